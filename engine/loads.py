@@ -1,0 +1,173 @@
+"""Actions on the centre of gravity: weight and lateral inertia on a banked, sloped road (Sec. 4.7).
+
+Frame (Table 8): x forward along the trailer, y lateral toward the *inside* of the turn (the outer
+tires are at y = 0), z normal to the road surface, up. The external actions at the CG are the thesis's
+primary variables Px, Py, Pz (Eq. 6.13); their unit wrench directions are (1, 0, 0), (0, -1, 0) and
+(0, 0, -1) (Table 11), so positive Py pushes the CG toward the outer tires and positive Pz presses it
+onto the road.
+
+Slope sign: the thesis writes Px = W sin(phi) with Px along +x, i.e. its phi is positive *downhill*
+(Eq. 4.27 then unloads the rear). This module takes road-practice grades, positive *uphill*, and uses
+``Px = -W sin(phi_uphill)``: on an uphill the weight pulls the trailer backwards and Eq. 4.27 loads the
+rear group.
+
+References
+----------
+Thesis Eqs. 2.5, 4.24-4.27; Bonneson (2000) for the force decomposition.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InvalidLoad, InvalidRoad
+
+#: largest superelevation / grade accepted [%]; beyond it the small-slope road geometry of the thesis and
+#: the Table 21 design practice no longer apply.
+MAX_BANK_PERCENT = 20.0
+MAX_SLOPE_PERCENT = 20.0
+MAX_TRAILER_ANGLE_DEG = 60.0
+MAX_OVERWEIGHT_PERCENT = 50.0
+
+
+@dataclass(frozen=True)
+class Road:
+    """Road geometry at the curve.
+
+    bank_percent : superelevation e = 100 tan(bank angle), positive toward the inside of the curve [%]
+    slope_percent : longitudinal grade, positive uphill in the direction of travel [%]
+    """
+
+    bank_percent: float = 0.0
+    slope_percent: float = 0.0
+
+    @property
+    def bank_rad(self) -> float:
+        return math.atan(self.bank_percent / 100.0)
+
+    @property
+    def slope_rad(self) -> float:
+        return math.atan(self.slope_percent / 100.0)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """Load condition of Sec. 4.7 / Fig. 46.
+
+    lateral_offset_m : d1, positive toward the outside of the turn (toward the outer tires) [m]
+    longitudinal_offset_m : d2, positive toward the front (CG at x = -a + d2, Table 8) [m]
+    vertical_offset_m : d3, positive up [m]
+    overweight_percent : extra weight over the nominal W, same CG [%]
+    """
+
+    lateral_offset_m: float = 0.0
+    longitudinal_offset_m: float = 0.0
+    vertical_offset_m: float = 0.0
+    overweight_percent: float = 0.0
+
+    def weight_kn(self, nominal_kn: float) -> float:
+        return nominal_kn * (1.0 + self.overweight_percent / 100.0)
+
+
+def check_road(road: Road, trailer_angle_deg: float = 0.0) -> None:
+    """Refuse road inputs outside the model's domain with :class:`InvalidRoad` naming the field."""
+    for name, value, limit in (
+        ("road.bank_percent", road.bank_percent, MAX_BANK_PERCENT),
+        ("road.slope_percent", road.slope_percent, MAX_SLOPE_PERCENT),
+        ("trailer_angle_deg", trailer_angle_deg, MAX_TRAILER_ANGLE_DEG),
+    ):
+        if not math.isfinite(value):
+            raise InvalidRoad(f"{name} must be a finite number", field=name, value=value)
+        if abs(value) > limit:
+            raise InvalidRoad(f"{name} = {value} is outside [-{limit}, {limit}]", field=name, value=value)
+
+
+def check_load(
+    load: LoadCase,
+    *,
+    half_track_m: float,
+    cg_height_above_chassis_m: float,
+    wheelbase_m: float | None,
+    front_axle_to_cg_m: float | None,
+) -> None:
+    """Refuse a load case that puts the CG outside the vehicle or removes the load."""
+    d1, d2, d3, ow = (
+        load.lateral_offset_m,
+        load.longitudinal_offset_m,
+        load.vertical_offset_m,
+        load.overweight_percent,
+    )
+    for name, value in (
+        ("load.lateral_offset_m", d1),
+        ("load.longitudinal_offset_m", d2),
+        ("load.vertical_offset_m", d3),
+        ("load.overweight_percent", ow),
+    ):
+        if not math.isfinite(value):
+            raise InvalidLoad(f"{name} must be a finite number", field=name, value=value)
+    if abs(d1) >= half_track_m:
+        raise InvalidLoad(
+            f"load.lateral_offset_m = {d1} m puts the CG outside the track (half track {half_track_m} m)",
+            field="load.lateral_offset_m",
+            value=d1,
+        )
+    if cg_height_above_chassis_m + d3 <= 0:
+        raise InvalidLoad(
+            f"load.vertical_offset_m = {d3} m puts the CG below the chassis (l12 = {cg_height_above_chassis_m} m)",
+            field="load.vertical_offset_m",
+            value=d3,
+        )
+    if not -100.0 < ow <= MAX_OVERWEIGHT_PERCENT:
+        raise InvalidLoad(
+            f"load.overweight_percent = {ow} is outside (-100, {MAX_OVERWEIGHT_PERCENT}]",
+            field="load.overweight_percent",
+            value=ow,
+        )
+    if wheelbase_m is not None and front_axle_to_cg_m is not None:
+        a_eff = front_axle_to_cg_m - d2
+        if not 0.0 < a_eff < wheelbase_m:
+            raise InvalidLoad(
+                f"load.longitudinal_offset_m = {d2} m puts the CG outside the wheelbase "
+                f"(a - d2 = {a_eff:.3f} m must be in (0, {wheelbase_m}))",
+                field="load.longitudinal_offset_m",
+                value=d2,
+            )
+
+
+def cg_actions(weight_kn, ay_g, bank_rad, slope_up_rad):
+    """Primary variables Px, Py, Pz [kN] at the CG (Eqs. 4.24-4.26). Works elementwise on arrays.
+
+    Parameters
+    ----------
+    weight_kn : W, the actual weight (with overweight) [kN]
+    ay_g : lateral acceleration ay/g [-] (m ay = W ay/g)
+    bank_rad : bank angle phi, positive toward the inside of the curve [rad]
+    slope_up_rad : longitudinal slope, positive uphill [rad]
+
+    Returns
+    -------
+    (Px, Py, Pz) with Px the forward (+x) component [kN].
+    """
+    cb, sb = np.cos(bank_rad), np.sin(bank_rad)
+    cs, ss = np.cos(slope_up_rad), np.sin(slope_up_rad)
+    m_ay = weight_kn * ay_g
+    px = -weight_kn * ss  # Eq. 4.24 with the uphill sign (see the module docstring)
+    py = -weight_kn * sb * cs + m_ay * cb  # Eq. 4.25
+    pz = weight_kn * cb * cs + m_ay * sb  # Eq. 4.26
+    return px, py, pz
+
+
+def rear_load(pz, px, cg_height_m, a_eff_m, wheelbase_m):
+    """Normal load on the rear group Fr [kN] from moments about the front support (Eq. 4.27).
+
+    ``Px h2 - Pz (a +- d2) + Fr L = 0`` with Px the forward component and ``a_eff_m = a - d2``.
+    """
+    return (pz * a_eff_m - px * cg_height_m) / wheelbase_m
+
+
+def lateral_load_transfer(fz_outer, fz_inner):
+    """LLT = (Fz_outer - Fz_inner) / (Fz_outer + Fz_inner) (Eq. 2.5); 1 when the inner tire lifts."""
+    return (fz_outer - fz_inner) / (fz_outer + fz_inner)

@@ -1,0 +1,71 @@
+"""Result records of the engine (small frozen dataclasses the HTTP layer wraps)."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+
+@dataclass(frozen=True)
+class Curves:
+    """Quantities against the lateral acceleration, from rest to the limit (Figs. 92-97).
+
+    Every list has one entry per value of ``ay_g``. Loads in kN, angles in degrees, lengths in m.
+    Front entries are None for the 2D model (one axle group).
+    """
+
+    ay_g: list[float]
+    fz_front_outer_kn: list[float] | None  # Fz1
+    fz_front_inner_kn: list[float] | None  # Fz3
+    fz_rear_outer_kn: list[float]  # Fz17 (2D: Fz1)
+    fz_rear_inner_kn: list[float]  # Fz19 (2D: Fz3)
+    llt_front: list[float] | None
+    llt_rear: list[float]
+    roll_angle_deg: list[float]  # theta_3D = theta17 + theta21 + theta23 + theta27 (2D: theta1+6+8)
+    cg_lateral_m: list[float]  # h1 (Eq. 6.1 / 5.1)
+    cg_height_m: list[float]  # h2 (Eq. 6.2 / 5.2)
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class TireLoads:
+    """Tire normal loads at one state [kN] (thesis numbering: 1/3 front outer/inner, 17/19 rear)."""
+
+    front_outer_kn: float | None
+    front_inner_kn: float | None
+    rear_outer_kn: float
+    rear_inner_kn: float
+
+
+@dataclass(frozen=True)
+class RolloverResult:
+    """Static rollover threshold of one vehicle on one road with one load case.
+
+    srt : lateral acceleration at the limit, ay/g [g]
+    roll_angle_deg : total body roll at the limit [deg] (None for the rigid closed forms)
+    limit : what ended the load ramp: ``"rear-inner-lift-off"`` (Fz19 = 0), ``"rear-llt-limit"`` (LLTr
+        reached ``rear_llt_limit``) or ``"closed-form"`` (Ch. 2 models)
+    stage_values : for the 3D model, ``{"srt_ts": ..., "srt_3d": ...}`` (tires+suspension only, and the
+        full system) when both were computed
+    """
+
+    model: str
+    stage: str | None
+    srt: float
+    roll_angle_deg: float | None
+    limit: str
+    rear_llt_limit: float
+    llt_front: float | None = None
+    llt_rear: float | None = None
+    tire_loads: TireLoads | None = None
+    cg_lateral_m: float | None = None
+    cg_height_m: float | None = None
+    stage_values: dict[str, float] = field(default_factory=dict)
+    iterations: int | None = None
+    parameters: dict[str, float] = field(default_factory=dict)
+    curves: Curves | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)

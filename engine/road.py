@@ -1,0 +1,155 @@
+"""Road-design formulas of Ch. 9: maximum curve speed and minimum curve radius.
+
+Units follow road practice: speeds in km/h, radii in m, superelevation in %, SRT in g. The constant 127
+is 3.6^2 * g = 12.96 * 9.81 (km/h to m/s, and g).
+
+Side-friction factor (Table 21)
+-------------------------------
+Table 21 (AASHTO 2003, DNER 1999, DNIT 2009) gives a *range* of design side-friction factors per design
+speed. We take the **low end** by default: it is the conservative choice for a minimum radius (smaller f,
+larger radius), and for 50-120 km/h it coincides with AASHTO's maximum side-friction factors for design.
+``bound="high"`` or ``"mid"`` select the upper end or the middle of the range. Between tabulated speeds
+the factor is interpolated linearly in speed; outside 30-120 km/h the table says nothing and the caller
+must give ``side_friction`` explicitly (:class:`InvalidRoad` otherwise).
+
+References
+----------
+Thesis Eqs. 9.1-9.3 and Table 21; AASHTO (2001, 2003); DNIT (2009).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InvalidRoad
+
+KMH2_PER_M_G = 127.0  # V^2 / (127 R) is the lateral acceleration in g for V in km/h, R in m
+
+#: Table 21: design speed [km/h], side-friction factor range (low, high) [-]
+TABLE21_SPEEDS_KMH = np.array([30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0, 100.0, 110.0, 120.0])
+TABLE21_F_LOW = np.array([0.17, 0.17, 0.16, 0.15, 0.14, 0.14, 0.13, 0.12, 0.11, 0.09])
+TABLE21_F_HIGH = np.array([0.28, 0.23, 0.19, 0.17, 0.15, 0.14, 0.14, 0.13, 0.12, 0.11])
+FRICTION_BOUNDS = ("low", "mid", "high")
+
+
+def max_curve_speed_kmh(srt_g, radius_m):
+    """Maximum speed on a curve before rollover, V = sqrt(127 SRT R) [km/h] (Eq. 9.1).
+
+    ``srt_g`` must be the SRT on *that* curve's bank and slope: the thesis's SRT already contains the
+    bank angle (Eq. 6.18), so no superelevation term is added here.
+    """
+    srt = np.asarray(srt_g, dtype=float)
+    r = np.asarray(radius_m, dtype=float)
+    return np.sqrt(KMH2_PER_M_G * srt * r)
+
+
+def side_friction_factor(speed_kmh, bound: str = "low"):
+    """Design side-friction factor f from Table 21, interpolated linearly in speed [-].
+
+    Raises :class:`InvalidRoad` for a speed outside 30-120 km/h or an unknown ``bound``.
+    """
+    if bound not in FRICTION_BOUNDS:
+        raise InvalidRoad(
+            f"side-friction bound must be one of {FRICTION_BOUNDS}, got {bound!r}",
+            field="side_friction_bound",
+            value=bound,
+        )
+    v = np.asarray(speed_kmh, dtype=float)
+    lo, hi = TABLE21_SPEEDS_KMH[0], TABLE21_SPEEDS_KMH[-1]
+    if np.any(~np.isfinite(v)) or np.any(v < lo) or np.any(v > hi):
+        raise InvalidRoad(
+            f"Table 21 covers design speeds {lo:g}-{hi:g} km/h; give side_friction explicitly outside it",
+            field="design_speed_kmh",
+            value=float(np.min(v)) if v.size else None,
+        )
+    f_low = np.interp(v, TABLE21_SPEEDS_KMH, TABLE21_F_LOW)
+    f_high = np.interp(v, TABLE21_SPEEDS_KMH, TABLE21_F_HIGH)
+    if bound == "low":
+        return f_low
+    if bound == "high":
+        return f_high
+    return 0.5 * (f_low + f_high)
+
+
+def aashto_min_radius_m(speed_kmh, superelevation_percent, side_friction):
+    """Minimum radius by the simplified curve formula R = V^2 / (127 (0.01 e + f)) [m] (Eq. 9.2)."""
+    v = np.asarray(speed_kmh, dtype=float)
+    demand = 0.01 * np.asarray(superelevation_percent, dtype=float) + np.asarray(side_friction, dtype=float)
+    if np.any(demand <= 0):
+        raise InvalidRoad("0.01 e + f must be positive for Eq. 9.2", field="superelevation_percent")
+    return v**2 / (KMH2_PER_M_G * demand)
+
+
+def rollover_min_radius_m(speed_kmh, srt_g):
+    """Minimum radius against rollover R = V^2 / (127 SRT) [m] (Eq. 9.3), SRT on that bank and slope."""
+    v = np.asarray(speed_kmh, dtype=float)
+    srt = np.asarray(srt_g, dtype=float)
+    if np.any(srt <= 0):
+        raise InvalidRoad("the SRT must be positive for Eq. 9.3", field="srt")
+    return v**2 / (KMH2_PER_M_G * srt)
+
+
+@dataclass(frozen=True)
+class MinRadius:
+    aashto_min_radius_m: float
+    rollover_min_radius_m: float
+    governing_min_radius_m: float
+    governed_by: str  # "side-friction" or "rollover"
+    side_friction: float
+
+
+def min_radius(
+    design_speed_kmh: float,
+    superelevation_percent: float,
+    srt_g: float,
+    side_friction: float | None = None,
+    bound: str = "low",
+) -> MinRadius:
+    """Both minimum radii (Eqs. 9.2 and 9.3) and the governing (larger) one."""
+    check_speed(design_speed_kmh)
+    f = float(side_friction_factor(design_speed_kmh, bound)) if side_friction is None else float(side_friction)
+    if not (math.isfinite(f) and 0.0 < f < 1.0):
+        raise InvalidRoad(f"side_friction must be in (0, 1), got {f}", field="side_friction", value=f)
+    r_f = float(aashto_min_radius_m(design_speed_kmh, superelevation_percent, f))
+    r_r = float(rollover_min_radius_m(design_speed_kmh, srt_g))
+    gov = "rollover" if r_r > r_f else "side-friction"
+    return MinRadius(r_f, r_r, max(r_f, r_r), gov, f)
+
+
+def check_speed(speed_kmh: float, field: str = "design_speed_kmh") -> None:
+    if not (isinstance(speed_kmh, int | float) and math.isfinite(speed_kmh) and 0 < speed_kmh <= 200):
+        raise InvalidRoad(f"{field} must be in (0, 200] km/h, got {speed_kmh!r}", field=field, value=speed_kmh)
+
+
+def side_friction_speed_kmh(radius_m, superelevation_percent, bound: str = "low"):
+    """Speed at which a curve uses up the design side friction: V = sqrt(127 R (0.01 e + f(V))) [km/h].
+
+    f depends on V through Table 21, so the equation is implicit; the right-hand side falls as V rises,
+    so there is one root. It is found by bisection on the table's range and clamped to it: a curve that
+    needs V < 30 km/h uses f(30) and one above 120 km/h uses f(120) (the table says nothing outside).
+    Works elementwise on arrays.
+    """
+    r = np.atleast_1d(np.asarray(radius_m, dtype=float))
+    e = np.broadcast_to(np.asarray(superelevation_percent, dtype=float), r.shape)
+    lo = np.full(r.shape, TABLE21_SPEEDS_KMH[0])
+    hi = np.full(r.shape, TABLE21_SPEEDS_KMH[-1])
+
+    def excess(v):  # positive while V is below the speed the curve allows
+        return np.sqrt(np.maximum(KMH2_PER_M_G * r * (0.01 * e + side_friction_factor(v, bound)), 0.0)) - v
+
+    below = excess(lo) <= 0  # even at 30 km/h the curve is too tight
+    above = excess(hi) >= 0  # faster than 120 km/h with f(120)
+    for _ in range(60):  # bisection to ~1e-16 of the 90 km/h bracket
+        mid = 0.5 * (lo + hi)
+        pos = excess(mid) > 0
+        lo = np.where(pos, mid, lo)
+        hi = np.where(pos, hi, mid)
+    v = 0.5 * (lo + hi)
+    f_lo = side_friction_factor(np.full(r.shape, TABLE21_SPEEDS_KMH[0]), bound)
+    f_hi = side_friction_factor(np.full(r.shape, TABLE21_SPEEDS_KMH[-1]), bound)
+    v = np.where(below, np.sqrt(np.maximum(KMH2_PER_M_G * r * (0.01 * e + f_lo), 0.0)), v)
+    v = np.where(above, np.sqrt(np.maximum(KMH2_PER_M_G * r * (0.01 * e + f_hi), 0.0)), v)
+    return v if np.ndim(radius_m) else float(v[0])

@@ -66,6 +66,7 @@ class RolloverResult:
     iterations: int | None = None
     parameters: dict[str, float] = field(default_factory=dict)
     curves: Curves | None = None
+    notes: list[str] = field(default_factory=list)  # caveats about this case (e.g. kingpin uplift)
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)

@@ -1,0 +1,848 @@
+"""The three-dimensional trailer model of Ch. 6 (Tables 8-11, Eqs. 6.1-6.2, 6.15-6.19).
+
+Mechanism (Fig. 43, Table 8)
+----------------------------
+Frame: x forward, origin below the kingpin (fifth wheel), y toward the inside of the turn with the outer
+tires at y = 0, z normal to the road. Twenty-three links:
+
+* the road (ground);
+* the **front group** (front tires at x = -l13, fifth wheel at x = 0), yawed by the trailer/trailer angle
+  psi about the vertical through the kingpin (point 29, Table 8): outer and inner tire columns, axle, two
+  leaf-spring legs of two links each, bolster, two fifth-wheel legs of two links each, fifth-wheel plate
+  (joints 1-16, :mod:`engine.groups`);
+* the **rear group** at x = -L: tire columns, axle, two leaf-spring legs, bolster (joints 17-26);
+* the **chassis** carrying the CG at (-a + d2, h1, h2), joined to the rear bolster by joint 27 and to the
+  fifth-wheel plate by joint 28.
+
+The CG hangs from the rear chain, p_CG = A17 A18 A21 A22 A23 A27 A_CG p_CG (Table 9); its lateral
+distance h1 and height h2 are Eqs. 6.1-6.2.
+
+Joints and constraints follow Table 11 (revolute: Fx Fy Fz My Mz; prismatic: Fx Fp Mx My Mz and the
+spring FT/FLS/FFW; spherical slider at the inner contacts: Fx My Fz; torsion-spring revolutes 5, 11, 21:
++Tx), with two deliberate readings at the chassis joints, written down in ``docs/model.md``:
+
+* **joint 28** (kingpin on the fifth-wheel plate) transmits the three forces and one moment *about the
+  front unit's longitudinal axis x'*: a fifth wheel is free in yaw (kingpin) and in pitch about the lead
+  unit's transverse axis (the plate oscillates on its mounting pins, Figs. 34-36), and roll-coupled about
+  x'. At psi = 0 this is Table 11's spherical joint with Tx. For psi != 0 the moment the trailer feels about
+  its own x axis is Tf cos psi and Tf sin psi goes into pitch: Eqs. 4.22-4.23.
+* **joint 27** (rear bolster on the chassis) transmits, besides Fx Fy Fz Tx, the pitch moment My: the
+  chassis is built into the rear suspension hangers, and a multi-axle group takes pitch moments by load
+  shift between its axles. Without it Eq. 4.27 contradicts the chassis' own pitch equilibrium on a grade
+  (with two pin-ended supports the rear load is fixed by statics) or is met only through a spurious axial
+  chassis force of several hundred kN.
+
+Closure equations (Eq. 6.19)
+----------------------------
+The cut-set equations leave the mechanism statically indeterminate (22 cuts x 6 = 132 equations, 148
+unknowns here). The in-plane statics of each group is determinate; what is not:
+
+1. the **front/rear load split**, closed by Eq. 4.27: Fz17 + Fz19 = (Pz (a - d2) - Px h2) / L;
+2. the **front/rear split of the roll moment** (the four-legged table, Fig. 60), closed by the chassis
+   torsion relation Eq. 4.21, ``Tf + Tr (a - L)/(a x) = 0`` with Tf = T28 (the coupling moment about the
+   front unit's axis, whose trailer-x component is Tf cos psi, Eq. 4.22) and Tr = Tx27. The constant
+   x = Jr/Jf is a property of the chassis. Ch. 9 fixes it through Kamnik et al.'s observation that the
+   front lateral load transfer is 70 % of the rear one at the rollover limit: ``"chassis-constant"``
+   (default) chooses x once per vehicle and stage so that LLTf = rho LLTr at the limit on a flat road with
+   the nominal centred load (where Kamnik et al. measured it), and keeps that x for every other road and
+   load case. Alternatives, for comparison: ``"llt-ratio"`` imposes LLTf = rho LLTr in every case and at
+   every load step, Fr (Fz1 - Fz3) = rho Ff (Fz17 - Fz19) (identical at the calibration case, and on banks;
+   it leaves grades and the trailer angle almost without effect); ``"inverse-ratio"`` reads x = 1/rho
+   literally, which gives LLTf = 0.82 LLTr and SRT_3D = 0.355 for the B-train, not the 0.7 and 0.3364
+   that Ch. 9 reports;
+3. the **longitudinal force path**: the thesis neglects accelerating and braking forces, so the trailer's
+   own (rear) tires are free-rolling, Fx17 = Fx19 = 0, and Px reaches the road through the kingpin and
+   the front unit.
+
+The remaining null space (out-of-plane force and moment distributions inside the groups, e.g. the pitch
+moment shared by the front tires) touches none of the quantities reported; the Davies reference path
+checks that with the null-space test of :func:`engine.davies.solve_statics`.
+
+The rollover limit is the rear inner tire lifting off (Fz19 = 0, Eq. 6.18) or, more generally, the rear
+lateral load transfer reaching ``llt_limit`` (Table 17 uses 0.6).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import NamedTuple
+
+import numpy as np
+
+from .compliance import chassis_twist, shear_torsion_coefficient
+from .davies import Closure, solve_statics
+from .errors import ConvergenceError
+from .groups import (
+    SCALAR,
+    FifthWheelParams,
+    GroupGeometry,
+    GroupParams,
+    ground_reactions,
+    group_geometry,
+    group_next_state,
+    group_statics,
+)
+from .mechanism import Mechanism, custom_joint, external, joint
+from .screw import rot_x, screw_matrix, unit_couple, unit_force
+from .vehicles import Vehicle, group_stiffness
+
+#: closures of the roll-moment split (see the module docstring)
+CLOSURES = ("chassis-constant", "llt-ratio", "inverse-ratio")
+STAGES = ("full", "tires-suspension")
+
+
+# ---------------------------------------------------------------------------------------- model
+
+
+@dataclass(frozen=True)
+class TrailerModel:
+    """Everything the 3D mechanism needs, derived from a vehicle record and a stage."""
+
+    rear: GroupParams
+    front: GroupParams
+    wheelbase: float  # L [m]
+    kingpin_to_cg: float  # a [m]
+    kingpin_to_front_axle: float  # l13 [m]
+    cg_above_chassis: float  # l12 [m]
+    llt_ratio: float  # rho = LLTf / LLTr
+    closure: str  # "llt-ratio" (LLTf = rho LLTr imposed) or "torque-split" (Eq. 4.21 with torque_split_x)
+    chassis_rigidity: float | None  # G Jr [kN m^2/rad]
+    weight_nominal: float  # W [kN]
+    torque_split_x: float = 1.0  # x = Jr/Jf of Eq. 4.21, used by the "torque-split" closure
+
+    @property
+    def yaw_pivot_y(self) -> float:
+        """Lateral position of the kingpin (point 29 of Table 8): t2 / 2."""
+        return 0.5 * self.front.axle_width
+
+
+def build_model(vehicle: Vehicle, stage: str = "full", closure: str = "llt-ratio") -> TrailerModel:
+    """Map a (validated) vehicle record onto the 3D mechanism (see :mod:`engine.vehicles` for the sums).
+
+    ``stage="tires-suspension"`` is the first stage of Ch. 9: tires and suspensions compliant, the fifth
+    wheel rigid and the lateral load transfer equal front and rear (rho = 1); ``"full"`` adds the fifth
+    wheel's compliance and the chassis' torsional flexibility (rho from the record, twist from G Jr).
+    """
+    v = vehicle
+    w = v.weight_kn
+    front_load = w * (v.wheelbase_m - v.front_axle_to_cg_m) / v.wheelbase_m  # Eq. 4.27 at rest
+    rear_load = w - front_load
+    full = stage == "full"
+
+    def group(which: str, load: float, fw: FifthWheelParams | None) -> GroupParams:
+        k = group_stiffness(v, which)
+        width = v.rear_axle_width_m if which == "rear" else v.front_axle_width_m
+        return GroupParams(
+            axle_width=width,
+            spring_separation=v.spring_separation_m,
+            rolling_radius=v.rolling_radius_m,
+            suspension_height=v.suspension_height_m,
+            k_tire=k.tire_side_kn_per_m,
+            k_spring=k.suspension_side_kn_per_m,
+            k_shear=shear_torsion_coefficient(k.suspension_side_kn_per_m, v.suspension_height_m),
+            f_start=0.5 * load,
+            fifth_wheel=fw,
+        )
+
+    fw = None
+    if v.has_fifth_wheel:
+        kf = v.fifth_wheel_stiffness_kn_per_m
+        fw = FifthWheelParams(
+            width=v.fifth_wheel_width_m,
+            height=v.fifth_wheel_height_m,
+            k_spring=kf if full else math.inf,
+            k_torsion=shear_torsion_coefficient(kf, v.fifth_wheel_height_m) if full else math.inf,
+            f_start=0.5 * front_load,
+        )
+    return TrailerModel(
+        rear=group("rear", rear_load, None),
+        front=group("front", front_load, fw),
+        wheelbase=v.wheelbase_m,
+        kingpin_to_cg=v.front_axle_to_cg_m,
+        kingpin_to_front_axle=v.fifth_wheel_to_front_axle_m or 0.0,
+        cg_above_chassis=v.cg_height_above_chassis_m,
+        llt_ratio=v.front_llt_ratio if full else 1.0,
+        closure="torque-split" if closure == "inverse-ratio" else "llt-ratio",
+        torque_split_x=1.0 / v.front_llt_ratio if full else 1.0,
+        chassis_rigidity=v.chassis_torsional_stiffness_knm2_per_rad if full else None,
+        weight_nominal=w,
+    )
+
+
+@dataclass(frozen=True)
+class Case:
+    """One road/load case; every field may be a float or (for grids) a numpy array of one shape."""
+
+    weight: object  # W with overweight [kN]
+    bank: object  # bank angle [rad]
+    slope: object  # slope angle, positive uphill [rad]
+    psi: object  # trailer/trailer angle [rad]
+    d1: object  # lateral CG offset, + toward the outer tires [m]
+    d2: object  # longitudinal CG offset, + toward the front [m]
+    d3: object  # vertical CG offset, + up [m]
+    llt_limit: object  # rear LLT at the limit [-]
+
+
+# ------------------------------------------------------------------------------ the fast path
+
+
+class Geometry(NamedTuple):
+    rear: GroupGeometry
+    front: GroupGeometry
+    p27: tuple  # (x, y, z) trailer frame
+    p28: tuple
+    cg: tuple
+    roll: object  # theta_3D = theta17 + theta21 + theta23 + theta27 [rad]
+    theta27: object
+
+
+def geometry(m: TrailerModel, case: Case, rear_state, front_state, theta27, xp=SCALAR) -> Geometry:
+    """Positions of joints 27, 28 and of the CG (Table 10, Eqs. 6.1-6.2) from the group states."""
+    gr = group_geometry(m.rear, rear_state, xp)
+    gf = group_geometry(m.front, front_state, xp)
+    p27 = (-m.wheelbase, gr.top[0], gr.top[1])
+    roll = gr.top_angle + theta27
+    c, s = xp.cos(roll), xp.sin(roll)
+    l12 = m.cg_above_chassis + case.d3
+    cg = (-m.kingpin_to_cg + case.d2, p27[1] - case.d1 * c - l12 * s, p27[2] - case.d1 * s + l12 * c)
+    dy = gf.top[0] - m.yaw_pivot_y  # the kingpin point in the front frame sits at x' = 0
+    cp, sp = xp.cos(case.psi), xp.sin(case.psi)
+    p28 = (-dy * sp, m.yaw_pivot_y + dy * cp, gf.top[1])
+    return Geometry(gr, gf, p27, p28, cg, roll, theta27)
+
+
+def cg_actions(case: Case, ay, xp=SCALAR):
+    """(Px, Py, Pz) [kN] at the CG (Eqs. 4.24-4.26; Px forward, slope positive uphill)."""
+    cb, sb = xp.cos(case.bank), xp.sin(case.bank)
+    cs, ss = xp.cos(case.slope), xp.sin(case.slope)
+    w = case.weight
+    return -w * ss, -w * sb * cs + w * ay * cb, w * cb * cs + w * ay * sb
+
+
+class ChassisLoads(NamedTuple):
+    px: object
+    py: object
+    pz: object
+    fr: object  # rear normal load Fz17 + Fz19 (Eq. 4.27) [kN]
+    f27: tuple  # force of the rear bolster on the chassis (Fx27, Fy27, Fz27)
+    tx27: object  # moment of the rear bolster on the chassis about x
+    my27: object
+    f28: tuple  # force of the plate on the chassis (trailer frame)
+    t28: object  # moment of the plate on the chassis about x' (the front torque Tf)
+    rear_load: tuple  # (fy, fz, mx) on the rear bolster, in the rear group's plane
+    front_load: tuple  # (fy', fz', mx') on the plate, in the front group's plane
+
+
+def chassis_loads(m: TrailerModel, case: Case, geo: Geometry, ay, t28, xp=SCALAR) -> ChassisLoads:
+    """Equilibrium of the chassis link with the closures Eq. 4.27 and Fx17 = Fx19 = 0.
+
+    Unknowns at joint 27: Fy27, Tx27, My27 (Fz27 = Fr from Eq. 4.27, Fx27 = 0: free-rolling rear tires);
+    at joint 28: the force F28 and the moment t28 about x' (given here: it is fixed by the roll-moment
+    closure). Moments about joint 27: z gives Fy28, x gives Tx27, y gives My27.
+    """
+    px, py, pz = cg_actions(case, ay, xp)
+    fx, fy, fz = px, -py, -pz  # the action on the chassis (Table 11 directions)
+    a_eff = m.kingpin_to_cg - case.d2
+    fr = (pz * a_eff - px * geo.cg[2]) / m.wheelbase  # Eq. 4.27
+    p27, p28, cg = geo.p27, geo.p28, geo.cg
+    rx, ry, rz = p28[0] - p27[0], p28[1] - p27[1], p28[2] - p27[2]
+    cx, cy, cz = cg[0] - p27[0], cg[1] - p27[1], cg[2] - p27[2]
+    mcx, mcy, mcz = cy * fz - cz * fy, cz * fx - cx * fz, cx * fy - cy * fx
+    f28x = -fx
+    f28z = -fz - fr
+    f28y = (ry * f28x - mcz) / rx
+    fy27 = -fy - f28y
+    cp, sp = xp.cos(case.psi), xp.sin(case.psi)
+    tx27 = -(ry * f28z - rz * f28y + mcx) - t28 * cp
+    my27 = -(rz * f28x - rx * f28z + mcy) - t28 * sp
+    # loads on the groups: minus what they apply to the chassis; the front one in the front frame
+    rear = (-fy27, -fr, -tx27)
+    front = (-(-f28x * sp + f28y * cp), -f28z, -t28)
+    return ChassisLoads(px, py, pz, fr, (0.0 * fr, fy27, fr), tx27, my27, (f28x, f28y, f28z), t28, rear, front)
+
+
+def _reactions(m: TrailerModel, case: Case, geo: Geometry, ay, t28, xp):
+    cl = chassis_loads(m, case, geo, ay, t28, xp)
+    rz_out, rz_in, _ = ground_reactions(geo.rear, *cl.rear_load)
+    fz_out, fz_in, _ = ground_reactions(geo.front, *cl.front_load)
+    return cl, fz_out, fz_in, rz_out, rz_in
+
+
+def _closure_residual(m: TrailerModel, case: Case, geo: Geometry, ay, t28, xp, at_limit: bool):
+    """Residuals of (roll-moment closure, limit condition), both affine in (ay, t28)."""
+    cl, f1, f3, f17, f19 = _reactions(m, case, geo, ay, t28, xp)
+    lam = case.llt_limit
+    limit = (f17 - f19) - lam * (f17 + f19)
+    if m.closure == "torque-split":
+        a_eff = m.kingpin_to_cg - case.d2
+        split = t28 - cl.tx27 * (m.wheelbase - a_eff) / (a_eff * m.torque_split_x)  # Eq. 4.21
+    elif at_limit:  # LLTr = lam and LLTf = rho lam: both linear
+        split = (f1 - f3) - m.llt_ratio * lam * (f1 + f3)
+    else:  # Fr (Fz1 - Fz3) = rho Ff (Fz17 - Fz19) with Fr, Ff fixed by ay
+        split = (f17 + f19) * (f1 - f3) - m.llt_ratio * (f1 + f3) * (f17 - f19)
+    return split, limit
+
+
+def solve_loads(m: TrailerModel, case: Case, geo: Geometry, ay=None, xp=SCALAR):
+    """(ay, t28) at the limit (``ay=None``) or t28 at a given ay, exactly, at frozen geometry.
+
+    Every force is affine in (ay, t28) at frozen geometry, so three evaluations give the coefficients and a
+    2x2 (or 1x1) linear solve the answer.
+    """
+    if ay is None:
+        s0, l0 = _closure_residual(m, case, geo, 0.0, 0.0, xp, True)
+        sa, la = _closure_residual(m, case, geo, 1.0, 0.0, xp, True)
+        st, lt = _closure_residual(m, case, geo, 0.0, 1.0, xp, True)
+        a11, a12, a21, a22 = sa - s0, st - s0, la - l0, lt - l0
+        det = a11 * a22 - a12 * a21
+        ay_sol = (-s0 * a22 + a12 * l0) / det
+        t_sol = (-a11 * l0 + a21 * s0) / det
+        return ay_sol, t_sol
+    s0, _ = _closure_residual(m, case, geo, ay, 0.0, xp, False)
+    s1, _ = _closure_residual(m, case, geo, ay, 1.0, xp, False)
+    return ay, -s0 / (s1 - s0)
+
+
+class State(NamedTuple):
+    rear: tuple
+    front: tuple
+    theta27: object
+
+
+def rest_state(m: TrailerModel, like=0.0) -> State:
+    z = 0.0 * like
+    return State(tuple(v + z for v in m.rear.rest_state()), tuple(v + z for v in m.front.rest_state()), z)
+
+
+class Solution(NamedTuple):
+    ay: object
+    state: State
+    geometry: Geometry
+    loads: ChassisLoads
+    rear: object  # GroupForces
+    front: object  # GroupForces
+    iterations: int
+
+
+def forces_at(m: TrailerModel, case: Case, state: State, ay=None, xp=SCALAR):
+    """One pass of the fast path: geometry -> closures (and limit) -> all forces, at a frozen state."""
+    geo = geometry(m, case, state.rear, state.front, state.theta27, xp)
+    ay, t28 = solve_loads(m, case, geo, ay, xp)
+    cl = chassis_loads(m, case, geo, ay, t28, xp)
+    rf = group_statics(m.rear, geo.rear, *cl.rear_load, xp=xp)
+    ff = group_statics(m.front, geo.front, *cl.front_load, xp=xp)
+    return ay, geo, cl, rf, ff
+
+
+def next_state(m: TrailerModel, case: Case, cl: ChassisLoads, rf, ff) -> State:
+    a_eff = m.kingpin_to_cg - case.d2
+    th27 = chassis_twist(cl.tx27, m.wheelbase - a_eff, m.chassis_rigidity)  # Eq. 4.20
+    return State(group_next_state(m.rear, rf), group_next_state(m.front, ff), th27)
+
+
+def _flat(state: State):
+    return (*state.rear, *state.front, state.theta27)
+
+
+def solve(
+    m: TrailerModel,
+    case: Case,
+    ay=None,
+    *,
+    start: State | None = None,
+    xp=SCALAR,
+    tol: float = 1e-13,
+    max_iter: int = 200,
+    forces=None,
+) -> Solution:
+    """Geometry and forces consistent with each other, at the limit (``ay=None``) or at a given ay.
+
+    Fixed-point iteration (geometry -> forces by the statics -> geometry by the compliance laws) with a
+    secant (Anderson, depth 1) acceleration; ``forces`` swaps in another statics solver with the same
+    signature as :func:`forces_at` (the Davies reference path). Raises :class:`ConvergenceError`.
+    """
+    forces = forces or forces_at
+    state = start or rest_state(m, case.weight)
+    x = np.array(_flat(state), dtype=float) if xp is SCALAR else np.stack(np.broadcast_arrays(*_flat(state)))
+    shape = (len(state.rear), len(state.front))
+    g_prev = f_prev = None
+    err = math.inf
+    for it in range(1, max_iter + 1):
+        try:
+            ay_k, geo, cl, rf, ff = forces(m, case, _unflat(x, shape), ay, xp)
+        except (ValueError, ZeroDivisionError, FloatingPointError) as exc:
+            raise ConvergenceError(
+                f"the mechanism left its valid geometry at iteration {it} ({exc}); the vehicle is at or beyond "
+                "its static stability limit for this case",
+                iterations=it,
+            ) from None
+        gx = _flat(next_state(m, case, cl, rf, ff))
+        g = np.array(gx, dtype=float) if xp is SCALAR else np.stack(np.broadcast_arrays(*gx))
+        f = g - x
+        err = float(np.max(np.abs(f))) if f.size else 0.0
+        if not math.isfinite(err):
+            raise ConvergenceError(
+                "non-finite geometry: the vehicle is beyond its static stability limit", iterations=it
+            )
+        if err < tol:
+            return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
+        if f_prev is None:
+            x_new = g
+        else:  # Anderson(1) / secant step on the fixed-point map, per case
+            df = f - f_prev
+            denom = np.sum(df * df, axis=0)
+            gamma = np.where(denom > 0, np.sum(f * df, axis=0) / np.where(denom > 0, denom, 1.0), 0.0)
+            x_new = g - gamma * (g - g_prev)
+        g_prev, f_prev, x = g, f, x_new
+    raise ConvergenceError(
+        f"the geometry/force iteration did not converge in {max_iter} iterations (last change {err:.2e})",
+        iterations=max_iter,
+        residual=err,
+    )
+
+
+def _unflat(x, shape) -> State:
+    nr, nf = shape
+    vals = [x[i] if x.ndim > 1 else float(x[i]) for i in range(x.shape[0])]
+    return State(tuple(vals[:nr]), tuple(vals[nr : nr + nf]), vals[nr + nf])
+
+
+def reference_case(m: TrailerModel) -> Case:
+    """Flat road, psi = 0, nominal centred load, rear inner tire lifting: where Kamnik et al.'s ratio holds."""
+    return Case(weight=m.weight_nominal, bank=0.0, slope=0.0, psi=0.0, d1=0.0, d2=0.0, d3=0.0, llt_limit=1.0)
+
+
+def calibrate_chassis_constant(m: TrailerModel, forces=None) -> TrailerModel:
+    """The model with the torque-split closure (Eq. 4.21) and x = Jr/Jf chosen so LLTf = rho LLTr.
+
+    Solves the reference case (:func:`reference_case`) with the ratio imposed and reads x off Eq. 4.21,
+    x = Tr (L - a) / (a Tf). At the reference case both closures give the same answer.
+    """
+    sol = solve(replace(m, closure="llt-ratio"), reference_case(m), forces=forces)
+    a, big_l = m.kingpin_to_cg, m.wheelbase
+    x = sol.loads.tx27 * (big_l - a) / (a * sol.loads.t28)
+    return replace(m, closure="torque-split", torque_split_x=float(x))
+
+
+# --------------------------------------------------------------------- Davies reference path
+
+
+FRONT_LINKS = (
+    "front outer tire",
+    "front inner tire",
+    "front axle",
+    "front leg a lower",
+    "front leg a upper",
+    "front bolster",
+    "front leg b lower",
+    "front leg b upper",
+)
+FW_LINKS = ("fw leg a lower", "fw leg a upper", "fw plate", "fw leg b lower", "fw leg b upper")
+REAR_LINKS = (
+    "rear outer tire",
+    "rear inner tire",
+    "rear axle",
+    "rear leg a lower",
+    "rear leg a upper",
+    "rear bolster",
+    "rear leg b lower",
+    "rear leg b upper",
+)
+
+#: the quantities the model reports; the Davies path requires each of them to be determined
+REPORTED = (
+    "Fz1",
+    "Fz3",
+    "Fz17",
+    "Fz19",
+    "Fy1",
+    "Fy17",
+    "FT2",
+    "FT4",
+    "FT18",
+    "FT20",
+    "FLS6",
+    "FLS9",
+    "FLS22",
+    "FLS25",
+    "Tx5",
+    "Tx21",
+    "Tx27",
+    "T28",
+)
+REPORTED_FW = ("FFW12", "FFW15", "Tx11")
+
+
+class _Chain:
+    """Successive screw displacements about x-parallel axes (and one about z) for one group (Table 9)."""
+
+    def __init__(self, base: np.ndarray):
+        self.base = base
+
+    @staticmethod
+    def rx(y: float, theta: float, x: float) -> np.ndarray:
+        return screw_matrix((1.0, 0.0, 0.0), (x, y, 0.0), theta, 0.0)
+
+    @staticmethod
+    def tz(y: float, d: float, x: float) -> np.ndarray:
+        return screw_matrix((0.0, 0.0, 1.0), (x, y, 0.0), 0.0, d)
+
+
+def _point(a: np.ndarray, ref) -> np.ndarray:
+    return (a @ np.array([*ref, 1.0]))[:3]
+
+
+def _group_joints(
+    mech: Mechanism, names: dict, p: GroupParams, g: GroupGeometry, state, x0: float, yaw: np.ndarray, numbers: dict
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """Add one group's joints by successive screws; return (chain matrix to the top link, its rotation, top y).
+
+    ``numbers`` maps role -> thesis joint number (e.g. {"outer": 17, ...}); ``yaw`` is A29 (identity at rear).
+    """
+    t = p.axle_width
+    b = p.spring_separation
+    susp = g.suspension
+    l_out, l_in, l_a, l_b, th_a = state[:5]
+    th_t = g.theta_tire
+    ya, yb = 0.5 * (t - b), 0.5 * (t + b)
+    rot_yaw = yaw[:3, :3]
+    ex = rot_yaw @ np.array([1.0, 0.0, 0.0])
+    ground_frame = rot_yaw
+    n = numbers
+
+    def rolled(angle: float) -> np.ndarray:
+        return rot_yaw @ rot_x(angle)
+
+    # tire system (Fig. 26): outer revolute, tire springs, inner spherical slider (Table 11)
+    a_out = yaw @ _Chain.rx(0.0, th_t, x0)
+    a_out_top = a_out @ _Chain.tz(0.0, l_out, x0)
+    joint(mech, str(n["outer"]), "road", names["outer tire"], _point(yaw, (x0, 0.0, 0.0)), ground_frame, "revolute")
+    joint(
+        mech,
+        str(n["outer_spring"]),
+        names["outer tire"],
+        names["axle"],
+        _point(a_out_top, (x0, 0.0, 0.0)),
+        rolled(th_t),
+        "prismatic",
+        actuator=f"FT{n['outer_spring']}",
+    )
+    a_in = yaw @ screw_matrix((0.0, 1.0, 0.0), (x0, 0.0, 0.0), 0.0, g.track) @ _Chain.rx(0.0, th_t, x0)
+    joint(
+        mech,
+        str(n["inner"]),
+        "road",
+        names["inner tire"],
+        _point(yaw, (x0, g.track, 0.0)),
+        ground_frame,
+        "spherical-slider",
+    )
+    joint(
+        mech,
+        str(n["inner_spring"]),
+        names["inner tire"],
+        names["axle"],
+        _point(a_in @ _Chain.tz(0.0, l_in, x0), (x0, 0.0, 0.0)),
+        rolled(th_t),
+        "prismatic",
+        actuator=f"FT{n['inner_spring']}",
+    )
+    # suspension four-bar (Fig. 31): legs a (torsion at the base) and b
+    a_a = a_out_top @ _Chain.rx(ya, th_a, x0)
+    a_a_top = a_a @ _Chain.tz(ya, l_a, x0)
+    joint(
+        mech,
+        str(n["base_a"]),
+        names["axle"],
+        names["leg a lower"],
+        _point(a_out_top, (x0, ya, 0.0)),
+        ground_frame,
+        "revolute",
+        actuator=f"Tx{n['base_a']}",
+    )
+    joint(
+        mech,
+        str(n["spring_a"]),
+        names["leg a lower"],
+        names["leg a upper"],
+        _point(a_a_top, (x0, ya, 0.0)),
+        rolled(th_t + th_a),
+        "prismatic",
+        actuator=f"FLS{n['spring_a']}",
+    )
+    joint(
+        mech,
+        str(n["top_a"]),
+        names["leg a upper"],
+        names["bolster"],
+        _point(a_a_top, (x0, ya, 0.0)),
+        ground_frame,
+        "revolute",
+    )
+    a_b = a_out_top @ _Chain.rx(yb, susp.base_b, x0)
+    a_b_top = a_b @ _Chain.tz(yb, l_b, x0)
+    joint(
+        mech,
+        str(n["base_b"]),
+        names["axle"],
+        names["leg b lower"],
+        _point(a_out_top, (x0, yb, 0.0)),
+        ground_frame,
+        "revolute",
+    )
+    joint(
+        mech,
+        str(n["spring_b"]),
+        names["leg b lower"],
+        names["leg b upper"],
+        _point(a_b_top, (x0, yb, 0.0)),
+        rolled(th_t + susp.base_b),
+        "prismatic",
+        actuator=f"FLS{n['spring_b']}",
+    )
+    joint(
+        mech,
+        str(n["top_b"]),
+        names["leg b upper"],
+        names["bolster"],
+        _point(a_b_top @ _Chain.rx(yb, susp.top_b, x0), (x0, yb, 0.0)),
+        ground_frame,
+        "revolute",
+    )
+    chain = a_a_top @ _Chain.rx(ya, susp.top_a, x0)  # to the bolster (A17 A18 A21 A22 A23)
+    angle = th_t + th_a + susp.top_a
+    if p.fifth_wheel is not None:  # fifth wheel (Fig. 37) at x = 0 on the bolster
+        fw = g.fifth_wheel
+        b1 = p.fifth_wheel.width
+        lf_a, lf_b, thf_a = state[5:8]
+        fa, fb = 0.5 * (t - b1), 0.5 * (t + b1)
+        f_a = chain @ _Chain.rx(fa, thf_a, 0.0)
+        f_a_top = f_a @ _Chain.tz(fa, lf_a, 0.0)
+        joint(
+            mech,
+            "11",
+            names["bolster"],
+            "fw leg a lower",
+            _point(chain, (0.0, fa, 0.0)),
+            ground_frame,
+            "revolute",
+            actuator="Tx11",
+        )
+        joint(
+            mech,
+            "12",
+            "fw leg a lower",
+            "fw leg a upper",
+            _point(f_a_top, (0.0, fa, 0.0)),
+            rolled(angle + thf_a),
+            "prismatic",
+            actuator="FFW12",
+        )
+        joint(mech, "13", "fw leg a upper", "fw plate", _point(f_a_top, (0.0, fa, 0.0)), ground_frame, "revolute")
+        f_b = chain @ _Chain.rx(fb, fw.base_b, 0.0)
+        f_b_top = f_b @ _Chain.tz(fb, lf_b, 0.0)
+        joint(mech, "14", names["bolster"], "fw leg b lower", _point(chain, (0.0, fb, 0.0)), ground_frame, "revolute")
+        joint(
+            mech,
+            "15",
+            "fw leg b lower",
+            "fw leg b upper",
+            _point(f_b_top, (0.0, fb, 0.0)),
+            rolled(angle + fw.base_b),
+            "prismatic",
+            actuator="FFW15",
+        )
+        joint(mech, "16", "fw leg b upper", "fw plate", _point(f_b_top, (0.0, fb, 0.0)), ground_frame, "revolute")
+        chain = f_a_top @ _Chain.rx(fa, fw.top_a, 0.0)  # A11 A12 A13
+    return chain, ex, t
+
+
+def build_mechanism(m: TrailerModel, case: Case, state: State) -> tuple[Mechanism, Geometry]:
+    """The 23-link mechanism of Fig. 43 at the given state, positions by successive screws (Table 9)."""
+    geo = geometry(m, case, state.rear, state.front, state.theta27)
+    has_fw = m.front.fifth_wheel is not None
+    links = ["road", *FRONT_LINKS, *(FW_LINKS if has_fw else ()), *REAR_LINKS, "chassis"]
+    mech = Mechanism(links)
+    front_names = {
+        "outer tire": "front outer tire",
+        "inner tire": "front inner tire",
+        "axle": "front axle",
+        "leg a lower": "front leg a lower",
+        "leg a upper": "front leg a upper",
+        "leg b lower": "front leg b lower",
+        "leg b upper": "front leg b upper",
+        "bolster": "front bolster",
+    }
+    rear_names = {k: v.replace("front", "rear") for k, v in front_names.items()}
+    a29 = screw_matrix((0.0, 0.0, 1.0), (0.0, m.yaw_pivot_y, 0.0), float(case.psi), 0.0)  # point 29
+    chain_f, ex_f, t2 = _group_joints(
+        mech,
+        front_names,
+        m.front,
+        geo.front,
+        state.front,
+        -m.kingpin_to_front_axle,
+        a29,
+        {
+            "outer": 1,
+            "outer_spring": 2,
+            "inner": 3,
+            "inner_spring": 4,
+            "base_a": 5,
+            "spring_a": 6,
+            "top_a": 7,
+            "base_b": 8,
+            "spring_b": 9,
+            "top_b": 10,
+        },
+    )
+    chain_r, _, t4 = _group_joints(
+        mech,
+        rear_names,
+        m.rear,
+        geo.rear,
+        state.rear,
+        -m.wheelbase,
+        np.eye(4),
+        {
+            "outer": 17,
+            "outer_spring": 18,
+            "inner": 19,
+            "inner_spring": 20,
+            "base_a": 21,
+            "spring_a": 22,
+            "top_a": 23,
+            "base_b": 24,
+            "spring_b": 25,
+            "top_b": 26,
+        },
+    )
+    # joint 27: rear bolster -> chassis; Fx Fy Fz, chassis torsion Tx, pitch My (see the module docstring)
+    p27 = _point(chain_r, (-m.wheelbase, 0.5 * t4, 0.0))
+    custom_joint(
+        mech,
+        "27",
+        "rear bolster",
+        "chassis",
+        [
+            ("Fx27", unit_force((1, 0, 0), p27)),
+            ("Fy27", unit_force((0, 1, 0), p27)),
+            ("Fz27", unit_force((0, 0, 1), p27)),
+            ("Tx27", unit_couple((1, 0, 0))),
+            ("My27", unit_couple((0, 1, 0))),
+        ],
+    )
+    # joint 28: fifth-wheel plate (or front bolster) -> chassis; forces and the roll moment about x'
+    p28 = _point(chain_f, (0.0, 0.5 * t2, 0.0))
+    top = "fw plate" if has_fw else "front bolster"
+    custom_joint(
+        mech,
+        "28",
+        top,
+        "chassis",
+        [
+            ("Fx28", unit_force((1, 0, 0), p28)),
+            ("Fy28", unit_force((0, 1, 0), p28)),
+            ("Fz28", unit_force((0, 0, 1), p28)),
+            ("T28", unit_couple(ex_f)),
+        ],
+    )
+    # the CG: A17 A18 A21 A22 A23 A27 A_CG (Table 9)
+    a27 = chain_r @ screw_matrix((1.0, 0.0, 0.0), (-m.wheelbase, 0.5 * t4, 0.0), float(state.theta27), 0.0)
+    cg = _point(
+        a27, (-m.kingpin_to_cg + float(case.d2), 0.5 * t4 - float(case.d1), m.cg_above_chassis + float(case.d3))
+    )
+    external(mech, "Px", "chassis", unit_force((1, 0, 0), cg))  # Table 11
+    external(mech, "Py", "chassis", unit_force((0, -1, 0), cg))
+    external(mech, "Pz", "chassis", unit_force((0, 0, -1), cg))
+    return mech, geo._replace(p27=tuple(p27), p28=tuple(p28), cg=tuple(cg))
+
+
+def davies_closures(m: TrailerModel, case: Case, geo: Geometry, ay=None) -> tuple[list[Closure], dict, list]:
+    """Closure rows of Eq. 6.19 (see the module docstring); at the limit the loads become unknowns tied to ay."""
+    w, lam, rho = float(case.weight), float(case.llt_limit), m.llt_ratio
+    a_eff = m.kingpin_to_cg - float(case.d2)
+    h2 = geo.cg[2]
+    cls = [
+        Closure({"Fz17": 1.0, "Fz19": 1.0, "Pz": -a_eff / m.wheelbase, "Px": h2 / m.wheelbase}, label="Eq. 4.27"),
+        Closure({"Fx17": 1.0}, label="free-rolling rear tire 17"),
+        Closure({"Fx19": 1.0}, label="free-rolling rear tire 19"),
+    ]
+    if m.closure == "torque-split":
+        cls.append(Closure({"T28": 1.0, "Tx27": -(m.wheelbase - a_eff) / (a_eff * m.torque_split_x)}, label="Eq. 4.21"))
+    bank, slope = float(case.bank), float(case.slope)
+    if ay is None:
+        cls.append(Closure({"Fz17": 1.0 - lam, "Fz19": -(1.0 + lam)}, label="rear LLT limit"))
+        if m.closure != "torque-split":
+            cls.append(Closure({"Fz1": 1.0 - rho * lam, "Fz3": -(1.0 + rho * lam)}, label="LLTf = rho LLTr"))
+        cls += [
+            Closure({"Px": 1.0}, constant=w * math.sin(slope), label="Eq. 4.24"),
+            Closure(
+                {"Py": 1.0, "ay": -w * math.cos(bank)}, constant=w * math.sin(bank) * math.cos(slope), label="Eq. 4.25"
+            ),
+            Closure(
+                {"Pz": 1.0, "ay": -w * math.sin(bank)}, constant=-w * math.cos(bank) * math.cos(slope), label="Eq. 4.26"
+            ),
+        ]
+        return cls, {}, ["ay"]
+    px, py, pz = cg_actions(case, ay)
+    if m.closure != "torque-split":
+        fr = (pz * a_eff - px * h2) / m.wheelbase
+        ff = pz - fr
+        cls.append(Closure({"Fz1": fr, "Fz3": -fr, "Fz17": -rho * ff, "Fz19": rho * ff}, label="LLTf = rho LLTr"))
+    return cls, {"Px": px, "Py": py, "Pz": pz}, []
+
+
+class DaviesForces(NamedTuple):
+    fz_outer: float
+    fz_inner: float
+    fy_outer: float
+    tire_outer: float
+    tire_inner: float
+    suspension: object
+    fifth_wheel: object
+
+
+def davies_forces_at(m: TrailerModel, case: Case, state: State, ay=None, xp=SCALAR):
+    """Drop-in replacement of :func:`forces_at` that solves the full Davies statics (reference path)."""
+    from .groups import FourBarForces
+
+    mech, geo = build_mechanism(m, case, state)
+    closures, primary, extra = davies_closures(m, case, geo, ay)
+    has_fw = m.front.fifth_wheel is not None
+    sol = solve_statics(
+        mech, primary, closures, extra_unknowns=extra, require=REPORTED + (REPORTED_FW if has_fw else ())
+    )
+    v = sol.values
+    ay_sol = v["ay"] if ay is None else ay
+    loads = ChassisLoads(
+        v["Px"],
+        v["Py"],
+        v["Pz"],
+        v["Fz17"] + v["Fz19"],
+        (v["Fx27"], v["Fy27"], v["Fz27"]),
+        v["Tx27"],
+        v["My27"],
+        (v["Fx28"], v["Fy28"], v["Fz28"]),
+        v["T28"],
+        (),
+        (),
+    )
+    rear = DaviesForces(
+        v["Fz17"], v["Fz19"], v["Fy17"], v["FT18"], v["FT20"], FourBarForces(v["FLS22"], v["FLS25"], v["Tx21"]), None
+    )
+    front = DaviesForces(
+        v["Fz1"],
+        v["Fz3"],
+        v["Fy1"],
+        v["FT2"],
+        v["FT4"],
+        FourBarForces(v["FLS6"], v["FLS9"], v["Tx5"]),
+        FourBarForces(v["FFW12"], v["FFW15"], v["Tx11"]) if has_fw else None,
+    )
+    return ay_sol, geo, loads, rear, front
+
+
+def with_case(case: Case, **changes) -> Case:
+    return replace(case, **changes)

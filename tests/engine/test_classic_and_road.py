@@ -1,0 +1,123 @@
+"""Closed-form models of Ch. 2 and road formulas of Ch. 9 against hand calculations and Tables 18, 20, 21."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from engine import classic, road
+from engine.errors import InvalidRoad
+from engine.loads import LoadCase, Road
+from engine.vehicles import PRESETS
+
+TABLE14 = PRESETS["table14-semitrailer"]
+BTRAIN = PRESETS["table16-btrain"]
+
+
+def test_rigid_and_banked_rigid():
+    # Eqs. 2.6 and 2.8 for the B-train: t = 1.86 m, h = 0.499 + 0.205 + 1.356 = 2.06 m
+    assert classic.classic_threshold(BTRAIN, "rigid").srt == pytest.approx(0.93 / 2.06, rel=1e-12)
+    r = classic.classic_threshold(BTRAIN, "rigid-bank", road=Road(bank_percent=6))
+    assert r.srt == pytest.approx(0.93 / 2.06 + 0.06, rel=1e-12)
+    off = classic.classic_threshold(BTRAIN, "rigid", load=LoadCase(lateral_offset_m=0.1, vertical_offset_m=0.2))
+    assert off.srt == pytest.approx(0.83 / 2.26, rel=1e-12)
+
+
+def test_rill_by_hand_for_table14():
+    # Eq. 2.20 with k_theta = 5400 * 0.95^2 / 2 (Eq. 2.11), kT = 5040 per side, mg = 250 kN, l12 = 1.346
+    k_theta_star = 5400 * 0.95**2 / 2 / (250 * 1.346)
+    k_t_star = 1.86 * 5040 / 250
+    expected = 0.93 / (2.05 + 1.346 / (k_theta_star - 1)) - 1 / k_t_star
+    r = classic.classic_threshold(TABLE14, "rill")
+    assert r.srt == pytest.approx(expected, rel=1e-12)
+    assert r.srt == pytest.approx(0.3838, abs=5e-5)
+    # Winkler with Delta t from the same roll compliance is the same mechanics (see classic.py)
+    assert classic.classic_threshold(TABLE14, "winkler").srt == pytest.approx(r.srt, rel=1e-12)
+
+
+def test_rill_tends_to_rigid_with_stiff_tires_and_suspension():
+    assert classic.rill(1.86, 2.05, 1.346, 1e12, 1e12, 250) == pytest.approx(0.93 / 2.05, rel=1e-9)
+
+
+def test_chang_satisfies_its_own_equation_and_reduces_to_rigid():
+    r = classic.classic_threshold(BTRAIN, "chang", road=Road(bank_percent=8))
+    p = r.parameters
+    assert r.srt == pytest.approx(classic.chang(p["t"], p["h"], p["h0"], p["phi"], p["theta"]), rel=1e-12)
+    # theta obeys Eq. 2.17 at the SRT it produces
+    _th1, th2 = classic.rill_roll_angles(r.srt, p["t"], p["l12"], p["k_theta"], p["kT"], p["W"])
+    assert p["theta"] == pytest.approx(th2, rel=1e-12)
+    assert classic.chang(1.86, 2.06, 0.704, 0.0, 0.0) == pytest.approx(0.93 / 2.06)
+
+
+def test_gillespie_by_hand_for_the_btrain():
+    k_f, k_r = 3600 * 0.95**2 / 2, 5400 * 0.95**2 / 2
+    m = 355.22 * 1.356
+    expected = (1.86 / (2 * 2.06)) / (1 + (1 - 0.704 / 2.06) * m / (k_f + k_r - m))
+    assert classic.classic_threshold(BTRAIN, "gillespie").srt == pytest.approx(expected, rel=1e-12)
+
+
+def test_navin_satisfies_eq_2_30_and_its_rigid_flat_limit():
+    r = classic.classic_threshold(BTRAIN, "navin", road=Road(bank_percent=4))
+    p = r.parameters
+    assert r.srt == pytest.approx(
+        classic.navin(p["t"], p["h"], p["h0"], p["h5"], p["lre"], p["L"], p["phi"], p["theta"]), rel=1e-12
+    )
+    assert p["h5"] == pytest.approx(0.499 + 0.205 + 0.1)  # kingpin height
+    # rigid, flat: (t/2)(1 - lre/L) / (h - h5 lre/L)
+    lre, big_l = 1.26, 4.26
+    assert classic.navin(1.86, 2.06, 0.704, 0.804, lre, big_l, 0.0, 0.0) == pytest.approx(
+        0.93 * (1 - lre / big_l) / (2.06 - 0.804 * lre / big_l)
+    )
+
+
+def test_every_model_is_listed_with_its_equation():
+    assert set(classic.MODELS) == {"3d", "2d", *classic.CLASSIC_MODELS}
+    assert classic.MODELS["rill"].equation == "Eq. 2.20"
+
+
+# ----------------------------------------------------------------------------------- road formulas
+
+
+@pytest.mark.parametrize("srt,speed", [(0.4485, 67.5), (0.3364, 58.5), (0.2528, 50.7)])
+def test_table18_max_speed_on_80_m(srt, speed):
+    assert road.max_curve_speed_kmh(srt, 80.0) == pytest.approx(speed, abs=0.05)  # Eq. 9.1, Table 18
+
+
+@pytest.mark.parametrize("srt,speed", [(0.23, 59.2), (0.22, 57.9), (0.202, 55.5), (0.172, 51.2)])
+def test_table20_max_speed_on_120_m(srt, speed):
+    assert road.max_curve_speed_kmh(srt, 120.0) == pytest.approx(speed, abs=0.05)  # Eq. 9.1, Table 20
+
+
+def test_table21_side_friction_and_interpolation():
+    assert road.side_friction_factor(60.0) == pytest.approx(0.15)
+    assert road.side_friction_factor(60.0, "high") == pytest.approx(0.17)
+    assert road.side_friction_factor(30.0, "mid") == pytest.approx((0.17 + 0.28) / 2)
+    assert road.side_friction_factor(55.0) == pytest.approx(0.155)  # halfway between 50 and 60 km/h
+    assert road.side_friction_factor(np.array([80.0, 120.0])) == pytest.approx([0.14, 0.09])
+    with pytest.raises(InvalidRoad, match="30-120"):
+        road.side_friction_factor(130.0)
+    with pytest.raises(InvalidRoad):
+        road.side_friction_factor(60.0, "median")
+
+
+def test_minimum_radius_both_criteria_and_which_governs():
+    # 80 km/h, e = 8 %: AASHTO R = 80^2 / (127 (0.08 + 0.14)); rollover R = 80^2 / (127 SRT)
+    r = road.min_radius(80.0, 8.0, srt_g=0.285)
+    assert r.aashto_min_radius_m == pytest.approx(6400 / (127 * 0.22))
+    assert r.rollover_min_radius_m == pytest.approx(6400 / (127 * 0.285))
+    assert r.governed_by == "side-friction" and r.governing_min_radius_m == r.aashto_min_radius_m
+    tight = road.min_radius(80.0, 8.0, srt_g=0.18)
+    assert tight.governed_by == "rollover" and tight.governing_min_radius_m == tight.rollover_min_radius_m
+    given = road.min_radius(80.0, 8.0, srt_g=0.3, side_friction=0.1)
+    assert given.side_friction == 0.1 and given.aashto_min_radius_m == pytest.approx(6400 / (127 * 0.18))
+
+
+def test_side_friction_speed_solves_the_implicit_equation():
+    v = road.side_friction_speed_kmh(250.0, 6.0)
+    assert v == pytest.approx(math.sqrt(127 * 250 * (0.06 + road.side_friction_factor(v))), rel=1e-12)
+    many = road.side_friction_speed_kmh(np.array([15.0, 250.0, 5000.0]), np.array([0.0, 6.0, 2.0]))
+    assert many[1] == pytest.approx(v)
+    assert many[0] == pytest.approx(math.sqrt(127 * 15 * 0.17))  # below 30 km/h: f(30) used
+    assert many[2] == pytest.approx(math.sqrt(127 * 5000 * (0.02 + 0.09)))  # above 120 km/h: f(120)

@@ -14,7 +14,6 @@ The limit is the inner tire lifting (Fz3 = 0, Eq. 5.22) or the LLT reaching ``ll
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -126,39 +125,22 @@ def solve(
     forces=None,
 ) -> Solution2D:
     """Consistent geometry and forces at the limit (``ay=None``) or at a given ay (fixed point + Anderson(1))."""
+    from .trailer3d import fixed_point
+
     forces = forces or forces_at
     state = start or tuple(v + 0.0 * case.weight for v in m.group.rest_state())
-    x = np.stack(np.broadcast_arrays(*state)).astype(float)
-    g_prev = f_prev = None
-    err = math.inf
-    for it in range(1, max_iter + 1):
-        st = tuple(x[i] if x.ndim > 1 else float(x[i]) for i in range(x.shape[0]))
+
+    def step(x, it):
         try:
-            ay_k, g, cg, py, pz, f = forces(m, case, st, ay, xp)
+            out = forces(m, case, x, ay, xp)
         except (ValueError, ZeroDivisionError, FloatingPointError) as exc:
             raise ConvergenceError(
                 f"the mechanism left its valid geometry at iteration {it} ({exc})", iterations=it
             ) from None
-        gx = np.stack(np.broadcast_arrays(*group_next_state(m.group, f))).astype(float)
-        fx = gx - x
-        err = float(np.max(np.abs(fx)))
-        if not math.isfinite(err):
-            raise ConvergenceError("non-finite geometry: beyond the static stability limit", iterations=it)
-        if err < tol:
-            return Solution2D(ay_k, st, g, cg, py, pz, f, it)
-        if f_prev is None:
-            x_new = gx
-        else:
-            df = fx - f_prev
-            den = np.sum(df * df, axis=0)
-            gamma = np.where(den > 0, np.sum(fx * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
-            x_new = gx - gamma * (gx - g_prev)
-        g_prev, f_prev, x = gx, fx, x_new
-    raise ConvergenceError(
-        f"the 2D iteration did not converge in {max_iter} iterations (last change {err:.2e})",
-        iterations=max_iter,
-        residual=err,
-    )
+        return out, group_next_state(m.group, out[5])
+
+    x, it, (ay_k, g, cg, py, pz, f) = fixed_point(step, state, vector=xp is not SCALAR, tol=tol, max_iter=max_iter)
+    return Solution2D(ay_k, tuple(x), g, cg, py, pz, f, it)
 
 
 def srt_eq_5_22(h1, h2, e):

@@ -364,36 +364,62 @@ def solve(
     """
     forces = forces or forces_at
     state = start or rest_state(m, case.weight)
-    x = np.array(_flat(state), dtype=float) if xp is SCALAR else np.stack(np.broadcast_arrays(*_flat(state)))
     shape = (len(state.rear), len(state.front))
-    g_prev = f_prev = None
-    err = math.inf
-    for it in range(1, max_iter + 1):
+
+    def step(x, it):
         try:
-            ay_k, geo, cl, rf, ff = forces(m, case, _unflat(x, shape), ay, xp)
+            out = forces(m, case, _unflat(x, shape), ay, xp)
         except (ValueError, ZeroDivisionError, FloatingPointError) as exc:
             raise ConvergenceError(
                 f"the mechanism left its valid geometry at iteration {it} ({exc}); the vehicle is at or beyond "
                 "its static stability limit for this case",
                 iterations=it,
             ) from None
-        gx = _flat(next_state(m, case, cl, rf, ff))
-        g = np.array(gx, dtype=float) if xp is SCALAR else np.stack(np.broadcast_arrays(*gx))
-        f = g - x
-        err = float(np.max(np.abs(f))) if f.size else 0.0
+        return out, _flat(next_state(m, case, *out[2:]))
+
+    x, it, out = fixed_point(step, _flat(state), vector=xp is not SCALAR, tol=tol, max_iter=max_iter)
+    ay_k, geo, cl, rf, ff = out
+    return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
+
+
+def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
+    """Solve x = g(x) by fixed-point iteration with an Anderson(1) (secant) step.
+
+    ``step(x, it)`` returns ``(payload, g(x))``; x is a tuple of floats, or of equal-shape arrays when
+    ``vector`` (one independent problem per array element, converged when all are). Returns
+    ``(x, iterations, payload)`` at convergence; :class:`ConvergenceError` otherwise.
+    """
+    x = np.stack(np.broadcast_arrays(*x0)).astype(float) if vector else [float(v) for v in x0]
+    g_prev = f_prev = None
+    err = math.inf
+    for it in range(1, max_iter + 1):
+        payload, gx = step(tuple(x), it)
+        if vector:
+            g = np.stack(np.broadcast_arrays(*gx)).astype(float)
+            f = g - x
+            err = float(np.max(np.abs(f))) if f.size else 0.0
+        else:
+            g = list(gx)
+            f = [a - b for a, b in zip(g, x, strict=True)]
+            err = max(abs(v) for v in f)
         if not math.isfinite(err):
             raise ConvergenceError(
                 "non-finite geometry: the vehicle is beyond its static stability limit", iterations=it
             )
         if err < tol:
-            return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
+            return x, it, payload
         if f_prev is None:
             x_new = g
-        else:  # Anderson(1) / secant step on the fixed-point map, per case
+        elif vector:  # Anderson(1) per problem
             df = f - f_prev
-            denom = np.sum(df * df, axis=0)
-            gamma = np.where(denom > 0, np.sum(f * df, axis=0) / np.where(denom > 0, denom, 1.0), 0.0)
+            den = np.sum(df * df, axis=0)
+            gamma = np.where(den > 0, np.sum(f * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
             x_new = g - gamma * (g - g_prev)
+        else:
+            df = [a - b for a, b in zip(f, f_prev, strict=True)]
+            den = sum(v * v for v in df)
+            gamma = sum(a * b for a, b in zip(f, df, strict=True)) / den if den > 0 else 0.0
+            x_new = [a - gamma * (a - b) for a, b in zip(g, g_prev, strict=True)]
         g_prev, f_prev, x = g, f, x_new
     raise ConvergenceError(
         f"the geometry/force iteration did not converge in {max_iter} iterations (last change {err:.2e})",
@@ -404,7 +430,7 @@ def solve(
 
 def _unflat(x, shape) -> State:
     nr, nf = shape
-    vals = [x[i] if x.ndim > 1 else float(x[i]) for i in range(x.shape[0])]
+    vals = list(x)
     return State(tuple(vals[:nr]), tuple(vals[nr : nr + nf]), vals[nr + nf])
 
 

@@ -1,0 +1,116 @@
+"""Engine benchmark: prints timings (no assertions). Run: ``python bench/bench_engine.py``.
+
+Measures
+--------
+1. one 3D SRT solve (one stage, the chassis constant already calibrated), fast path: median and p95;
+2. one full ``rollover_threshold`` call (both stages, with the calibration solves), fast path;
+3. the same solve on the Davies reference path (full 6 x 22 cut-set system per iteration);
+4. the Table 17 (4 x 7 x 12 = 336 cases) and Table 19 (9 x 7 x 5 = 315 cases) grids, 651 cases, by
+   :func:`engine.threshold.sweep` (batched numpy fast path);
+5. where the time of one fast solve goes (per iteration: geometry, closures + limit, group statics).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from engine import trailer3d
+from engine.threshold import rollover_threshold, stage_model, sweep
+from engine.vehicles import PRESETS
+
+BTRAIN = PRESETS["table16-btrain"]
+TABLE17 = {
+    "trailer_angle_deg": [0, 10, 20, 30],
+    "bank_percent": [0, 2, 4, 6, 8, 10, 12],
+    "slope_percent": [9, 8, 6, 4, 2, 0, -2, -4, -6, -8, -10, -12],
+}
+TABLE19 = {
+    "lateral_offset_m": [-0.16, -0.12, -0.08, -0.04, 0, 0.04, 0.08, 0.12, 0.16],
+    "longitudinal_offset_m": [-1.5, -1.0, -0.5, 0, 0.5, 1.0, 1.5],
+    "vertical_offset_m": [-0.2, -0.1, 0, 0.1, 0.2],
+}
+
+
+def timeit(fn, repeat: int) -> list[float]:
+    out = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        out.append(time.perf_counter() - t0)
+    return out
+
+
+def report(label: str, samples: list[float], unit: float = 1e3, suffix: str = "ms") -> None:
+    s = sorted(samples)
+    p95 = s[min(len(s) - 1, int(0.95 * len(s)))]
+    print(
+        f"{label:<58} median {statistics.median(s) * unit:8.3f} {suffix}   p95 {p95 * unit:8.3f} {suffix}"
+        f"   (n={len(s)})"
+    )
+
+
+def main() -> None:
+    print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs")
+    m = stage_model(BTRAIN, "full")
+    case = trailer3d.Case(
+        weight=BTRAIN.weight_kn, bank=0.04, slope=-0.04, psi=0.17, d1=0.04, d2=0.0, d3=0.0, llt_limit=1.0
+    )
+    sol = trailer3d.solve(m, case)
+    print(f"B-train SRT_3D on 4 % bank, 4 % downhill, 10 deg: {sol.ay:.4f} g in {sol.iterations} iterations")
+    report("one 3D SRT solve, one stage, fast path", timeit(lambda: trailer3d.solve(m, case), 400))
+    report("rollover_threshold(3d): both stages + calibrations", timeit(lambda: rollover_threshold(BTRAIN), 200))
+    report(
+        "rollover_threshold(3d, include_curves, 41 points)",
+        timeit(lambda: rollover_threshold(BTRAIN, include_curves=True), 20),
+    )
+    report(
+        "rollover_threshold(2d), Table 14",
+        timeit(lambda: rollover_threshold(PRESETS["table14-semitrailer"], "2d"), 200),
+    )
+    report(
+        "one 3D SRT solve, Davies reference path",
+        timeit(lambda: trailer3d.solve(m, case, forces=trailer3d.davies_forces_at), 5),
+    )
+
+    def grids():
+        a = sweep(BTRAIN, TABLE17, rear_llt_limit=0.6)
+        b = sweep(BTRAIN, TABLE19)
+        return a, b
+
+    a, b = grids()
+    n = a.srt.size + b.srt.size
+    print(f"grids: {a.srt.size} + {b.srt.size} = {n} cases, {len(a.errors) + len(b.errors)} refused")
+    report(f"Tables 17 + 19 grids ({n} cases), sweep", timeit(grids, 15))
+
+    # where the time of one fast solve goes
+    state = sol.state
+    geo = trailer3d.geometry(m, case, state.rear, state.front, state.theta27)
+    cl = trailer3d.chassis_loads(m, case, geo, sol.ay, sol.loads.t28)
+    from engine.groups import group_statics
+
+    per = {
+        "geometry (Eqs. 4.2-4.19, 6.1-6.2)": lambda: trailer3d.geometry(
+            m, case, state.rear, state.front, state.theta27
+        ),
+        "closures + limit (3 chassis evaluations, 2x2 solve)": lambda: trailer3d.solve_loads(m, case, geo),
+        "group statics (both groups)": lambda: (
+            group_statics(m.rear, geo.rear, *cl.rear_load),
+            group_statics(m.front, geo.front, *cl.front_load),
+        ),
+        "whole iteration (forces_at + compliance laws)": lambda: trailer3d.next_state(
+            m, case, *trailer3d.forces_at(m, case, state)[2:]
+        ),
+    }
+    print(f"per iteration ({sol.iterations} iterations per solve):")
+    for label, fn in per.items():
+        report("  " + label, timeit(fn, 2000), unit=1e6, suffix="us")
+
+
+if __name__ == "__main__":
+    main()

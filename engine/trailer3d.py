@@ -872,3 +872,37 @@ def davies_forces_at(m: TrailerModel, case: Case, state: State, ay=None, xp=SCAL
 
 def with_case(case: Case, **changes) -> Case:
     return replace(case, **changes)
+
+
+def eq_6_37_coefficients(m: TrailerModel, case: Case, state: State) -> tuple[float, float, float]:
+    """C52, C53, C54 of Fz19 = -C52 Px - C53 Py - C54 Pz (Eq. 6.37) at a frozen state.
+
+    With linear homogeneous closures (Eq. 4.27, free-rolling rear tires, the torque split of Eq. 4.21) the
+    Davies solution is linear in the primaries, so three solves with unit primaries give the coefficients
+    (the thesis reads them off the Gauss-Jordan form of Eq. 6.19).
+    """
+    if m.closure != "torque-split":
+        raise ValueError("Eq. 6.37 needs the linear torque-split closure (Eq. 4.21)")
+    mech, geo = build_mechanism(m, case, state)
+    closures, _, _ = davies_closures(m, case, geo, ay=0.0)
+    out = []
+    for unit in (
+        {"Px": 1.0, "Py": 0.0, "Pz": 0.0},
+        {"Px": 0.0, "Py": 1.0, "Pz": 0.0},
+        {"Px": 0.0, "Py": 0.0, "Pz": 1.0},
+    ):
+        out.append(-solve_statics(mech, unit, closures, require=("Fz19",))["Fz19"])
+    return out[0], out[1], out[2]
+
+
+def srt_eq_6_39(c52, c53, c54, bank_rad, slope_up_rad):
+    """SRT at Fz19 = 0 from the coefficients of Eq. 6.37 (Eq. 6.39) [g].
+
+    With Px the forward component and slopes positive uphill (Px = -W sin phi),
+    ay/g = (C52 sin(phi)/cos(bank) + C53 e cos(phi) - C54 cos(phi)) / (C53 + C54 e), e = tan(bank). The
+    thesis prints the same expression with its slope positive downhill (-C52 sin(phi)) and with -C53 e for
+    the bank term, a sign that Eqs. 4.25-4.26 do not support (substitute them into Eq. 6.37 to check).
+    """
+    e = math.tan(bank_rad)
+    cs = math.cos(slope_up_rad)
+    return (c52 * math.sin(slope_up_rad) / math.cos(bank_rad) + c53 * e * cs - c54 * cs) / (c53 + c54 * e)

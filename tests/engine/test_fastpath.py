@@ -209,3 +209,15 @@ def test_batched_fast_path_equals_one_case_at_a_time():
             llt_limit=float(case.llt_limit[i]),
         )
         assert batch.ay[i] == pytest.approx(trailer3d.solve(m, one).ay, rel=1e-10)
+
+
+@pytest.mark.parametrize("bank,slope,psi", [(0, 0, 0), (8, -10, 0), (4, 6, 30)])
+def test_eq_6_39_from_the_davies_coefficients_gives_the_same_srt(bank, slope, psi):
+    """Eq. 6.37 read off the Davies solution at the limit geometry, then Eq. 6.39, equals the stepped SRT."""
+    m = stage_model(BTRAIN, "full")
+    case = _case("table16-btrain", bank, slope, psi, 0.0, 0.0, 0.0, 0, 1.0)
+    sol = trailer3d.solve(m, case)
+    c52, c53, c54 = trailer3d.eq_6_37_coefficients(m, case, sol.state)
+    assert trailer3d.srt_eq_6_39(c52, c53, c54, case.bank, case.slope) == pytest.approx(sol.ay, rel=1e-9)
+    # a forward (downhill) force unloads the rear group (Eq. 4.27), so C52 > 0 and uphill raises the SRT
+    assert c52 > 0 and c53 > 0

@@ -1,0 +1,102 @@
+"""The FastAPI application: ``create_app()`` factory and the module-level ``app`` that uvicorn serves.
+
+uvicorn app.main:app --host 127.0.0.1 --port 8000
+"""
+
+from __future__ import annotations
+
+from contextlib import asynccontextmanager
+from typing import Any
+
+from fastapi import FastAPI
+from fastapi.routing import APIRoute
+from prometheus_fastapi_instrumentator import Instrumentator
+
+from engine import ENGINE_VERSION
+
+from .cache import make_cache
+from .deps import resolve_settings
+from .logs import configure_logging, get_logger
+from .problems import PROBLEM_MEDIA_TYPE, install_problem_handlers
+from .routers import health, models, road, srt, vehicles
+from .settings import Settings, get_settings
+
+DESCRIPTION = """\
+Static rollover threshold (SRT) of heavy vehicles and the curve design that follows from it: the maximum speed on
+a curve (Eq. 9.1) and the minimum radius for a design speed (Eqs. 9.2-9.3, Table 21).
+
+Units are SI except road practice: speeds in km/h, superelevation and grade in %, SRT in g. Every field names its
+unit and its thesis symbol. Errors are RFC 9457 problem details (`application/problem+json`). Computed responses
+carry `ETag` (the cache key) and `X-Cache: hit|miss`.
+"""
+
+TAGS = [
+    {"name": "vehicles", "description": "The thesis presets (Tables 14, 15, 16, 22, 23) as full vehicle records."},
+    {"name": "srt", "description": "Static rollover threshold with the 3D, 2D or a closed-form model."},
+    {"name": "road", "description": "Curve design: maximum speed (Eq. 9.1) and minimum radius (Eqs. 9.2-9.3)."},
+    {"name": "models", "description": "The available models, their equations and references."},
+    {"name": "health", "description": "Liveness and Prometheus metrics."},
+]
+
+
+def operation_id(route: APIRoute) -> str:
+    """Stable operation ids ``<tag>-<route name>`` (e.g. ``srt-compute_srt``) for readable client methods."""
+    return f"{route.tags[0]}-{route.name}"
+
+
+def _problem_openapi(app: FastAPI) -> dict[str, Any]:
+    """The generated spec with every error response moved to ``application/problem+json``."""
+    if app.openapi_schema is not None:
+        return app.openapi_schema
+    schema = FastAPI.openapi(app)
+    for path_item in schema.get("paths", {}).values():
+        for operation in path_item.values():
+            for code, response in operation.get("responses", {}).items():
+                content = response.get("content", {})
+                if code.isdigit() and int(code) >= 400 and "application/json" in content:
+                    response["content"] = {PROBLEM_MEDIA_TYPE: content["application/json"]}
+    app.openapi_schema = schema
+    return schema
+
+
+def create_app(settings: Settings | None = None) -> FastAPI:
+    """Build the app. ``settings`` overrides :func:`get_settings` (tests); otherwise the environment is read."""
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI):
+        cfg = resolve_settings(app)
+        if getattr(app.state, "cache", None) is None:
+            app.state.cache = make_cache(cfg)
+        cache = app.state.cache
+        log = get_logger("rollover.app")
+        log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend)
+        if cache.redis is not None:
+            await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
+        try:
+            yield
+        finally:
+            await cache.aclose()
+            app.state.cache = None
+
+    app = FastAPI(
+        title="rollover",
+        version=ENGINE_VERSION,
+        summary="Static rollover threshold of heavy vehicles, maximum curve speed and minimum curve radius.",
+        description=DESCRIPTION,
+        openapi_tags=TAGS,
+        generate_unique_id_function=operation_id,
+        lifespan=lifespan,
+    )
+    if settings is not None:
+        app.dependency_overrides[get_settings] = lambda: settings
+    configure_logging(resolve_settings(app).log_level)
+    app.state.cache = None
+    install_problem_handlers(app)
+    for module in (vehicles, srt, road, models, health):
+        app.include_router(module.router)
+    Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
+    app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]
+    return app
+
+
+app = create_app()

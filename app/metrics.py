@@ -1,0 +1,26 @@
+"""Prometheus metrics of the service (besides the HTTP metrics of prometheus-fastapi-instrumentator).
+
+Defined once at import on the default registry, so several app instances in one process (tests) share them.
+"""
+
+from __future__ import annotations
+
+from prometheus_client import Counter, Histogram
+
+SOLVE_SECONDS = Histogram(
+    "rollover_solve_seconds",
+    "Wall time of one engine computation (cache misses only) [s].",
+    ["operation", "model"],
+    buckets=(0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0),
+)
+CACHE_LOOKUPS = Counter(
+    "rollover_cache_lookups_total",
+    "Result-cache lookups by operation and outcome (hit tier: local or redis; miss).",
+    ["operation", "result"],
+)
+ENGINE_ERRORS = Counter(
+    "rollover_engine_errors_total",
+    "Engine refusals (physically invalid input, singular mechanism, no convergence) by error class.",
+    ["error"],
+)
+REDIS_FAILURES = Counter("rollover_redis_failures_total", "Redis calls that failed (the service went on without).")

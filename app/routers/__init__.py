@@ -1,0 +1,1 @@
+"""One router per resource (prefix + tag); operation ids are ``<tag>-<route name>``."""

@@ -1,0 +1,38 @@
+"""POST /v1/curve-speed (Eq. 9.1) and POST /v1/min-radius (Eqs. 9.2-9.3, Table 21)."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, Response
+
+from ..deps import CacheDep
+from ..schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
+from ..service import compute_curve_speed, compute_min_radius
+from .common import computed_responses, json_response
+
+router = APIRouter(prefix="/v1", tags=["road"])
+
+
+@router.post(
+    "/curve-speed",
+    name="curve_speed",
+    response_model=CurveSpeedResult,
+    responses=computed_responses(400, 404, 422, 500),
+)
+async def curve_speed(body: CurveSpeedRequest, cache: CacheDep) -> Response:
+    """Maximum speed on a curve of radius R before rollover, V = sqrt(127 SRT R) [km/h] (Eq. 9.1).
+
+    The SRT is either given or computed from the SRT request fields for `road`'s bank and slope; it already
+    contains the bank, so no superelevation term is added."""
+    return json_response(await compute_curve_speed(cache, body))
+
+
+@router.post(
+    "/min-radius",
+    name="min_radius",
+    response_model=MinRadiusResult,
+    responses=computed_responses(400, 404, 422, 500),
+)
+async def min_radius(body: MinRadiusRequest, cache: CacheDep) -> Response:
+    """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (AASHTO/DNIT, side friction from
+    Table 21 unless given), Eq. 9.3 (rollover, the SRT on that bank and slope) and the governing one."""
+    return json_response(await compute_min_radius(cache, body))

@@ -1,0 +1,130 @@
+"""POST /v1/curve-speed (Eq. 9.1) and POST /v1/min-radius (Eqs. 9.2, 9.3 and Table 21)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import ConfigDict, Field
+
+from engine.loads import MAX_BANK_PERCENT
+from engine.road import FRICTION_BOUNDS
+
+from .common import EXAMPLE_PRESET, OutputModel, describe
+from .srt import VEHICLE_DESCRIPTION, SrtInputs, SrtResult, VehicleRef
+
+SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit")
+
+_GIVEN_SRT = describe(
+    "A known SRT for this curve's bank and slope (it already contains the bank: nothing is added to it). "
+    "Give either `srt` or `vehicle` (with the other SRT request fields).",
+    unit="g",
+    symbol="SRT",
+)
+_OPTIONAL_VEHICLE = VEHICLE_DESCRIPTION + " Give either `vehicle` (the SRT is computed) or `srt`."
+SrtSource = Literal["given", "computed"]
+
+
+class CurveSpeedRequest(SrtInputs):
+    """Maximum speed on a curve before rollover, V = sqrt(127 SRT R) (Eq. 9.1), from a given SRT or from the
+    SRT request fields (the SRT is then computed for `road`'s bank and slope)."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "examples": [
+                {"radius_m": 80.0, "vehicle": EXAMPLE_PRESET, "model": "3d", "road": {"bank_percent": 0.0}},
+                {"radius_m": 80.0, "srt": 0.3364},
+            ]
+        }
+    )
+
+    radius_m: float = Field(gt=0, le=1e5, description=describe("Curve radius.", unit="m", symbol="R (Eq. 9.1)"))
+    srt: float | None = Field(None, gt=0, le=10, description=_GIVEN_SRT)
+    vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+
+
+class MinRadiusRequest(SrtInputs):
+    """Minimum curve radius for a design speed and superelevation: AASHTO/DNIT Eq. 9.2 with the side-friction
+    factor given or from Table 21, rollover Eq. 9.3 with the vehicle's SRT on that bank and slope, and the
+    governing (larger) one. When the SRT is computed, the bank is `superelevation_percent`."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "examples": [
+                {"design_speed_kmh": 60.0, "superelevation_percent": 8.0, "vehicle": EXAMPLE_PRESET, "model": "3d"},
+                {"design_speed_kmh": 60.0, "superelevation_percent": 8.0, "srt": 0.285, "side_friction": 0.15},
+            ]
+        }
+    )
+
+    design_speed_kmh: float = Field(gt=0, le=200, description=describe("Design speed.", unit="km/h", symbol="V"))
+    superelevation_percent: float = Field(
+        ge=-MAX_BANK_PERCENT,
+        le=MAX_BANK_PERCENT,
+        description=describe(
+            "Superelevation of the curve; also the bank of the computed SRT.", unit="%", symbol="e (Eq. 9.2)"
+        ),
+    )
+    side_friction: float | None = Field(
+        None,
+        gt=0,
+        lt=1,
+        description=describe(
+            "Design side-friction factor; when null it is read from Table 21 (30-120 km/h) at `side_friction_bound`, "
+            "linearly interpolated between the tabulated speeds.",
+            unit="-",
+            symbol="f (Eq. 9.2, Table 21)",
+        ),
+    )
+    side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
+        "low",
+        description=describe(
+            "Where to read Table 21's range: `low` (default; the conservative choice, smaller f and a larger "
+            "radius; equal to AASHTO's maximum f for design from 50 km/h), `mid` or `high`.",
+            unit="-",
+            symbol="f range (Table 21)",
+        ),
+    )
+    srt: float | None = Field(None, gt=0, le=10, description=_GIVEN_SRT)
+    vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+
+
+class CurveSpeedResult(OutputModel):
+    max_speed_kmh: float = Field(
+        description=describe("Maximum speed before rollover, sqrt(127 SRT R).", unit="km/h", symbol="V (Eq. 9.1)")
+    )
+    radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
+    srt: float = Field(description=describe("SRT used (on this curve's bank and slope).", unit="g", symbol="SRT"))
+    srt_source: SrtSource = Field(description=describe("`given` in the request or `computed`.", unit="-"))
+    srt_result: SrtResult | None = Field(
+        description=describe("The SRT computation, when the SRT was computed.", unit="see its fields", symbol="SRT")
+    )
+    engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))
+
+
+class MinRadiusResult(OutputModel):
+    aashto_min_radius_m: float = Field(
+        description=describe(
+            "Side-friction minimum radius V^2 / (127 (0.01 e + f)).", unit="m", symbol="Rmin (Eq. 9.2)"
+        )
+    )
+    rollover_min_radius_m: float = Field(
+        description=describe("Rollover minimum radius V^2 / (127 SRT).", unit="m", symbol="Rmin (Eq. 9.3)")
+    )
+    governing_min_radius_m: float = Field(
+        description=describe("The larger of the two minimum radii.", unit="m", symbol="max(Eq. 9.2, Eq. 9.3)")
+    )
+    governed_by: Literal["side-friction", "rollover"] = Field(
+        description=describe("Which criterion gives the governing radius.", unit="-", symbol="Eq. 9.2 / Eq. 9.3")
+    )
+    side_friction: float = Field(description=describe("Side-friction factor used.", unit="-", symbol="f"))
+    side_friction_source: Literal["given", "table21-low", "table21-mid", "table21-high"] = Field(
+        description=describe("Whether f was given or read from Table 21 (and at which bound).", unit="-")
+    )
+    design_speed_kmh: float = Field(description=describe("Design speed.", unit="km/h", symbol="V"))
+    superelevation_percent: float = Field(description=describe("Superelevation.", unit="%", symbol="e"))
+    srt: float = Field(description=describe("SRT used (on this bank and slope).", unit="g", symbol="SRT"))
+    srt_source: SrtSource = Field(description=describe("`given` in the request or `computed`.", unit="-"))
+    srt_result: SrtResult | None = Field(
+        description=describe("The SRT computation, when the SRT was computed.", unit="see its fields", symbol="SRT")
+    )
+    engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

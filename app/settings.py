@@ -1,0 +1,39 @@
+"""Service settings (pydantic-settings), read from the environment with the ``ROLLOVER_`` prefix.
+
+Behind an ``@lru_cache`` :func:`get_settings` dependency that tests override (``app.dependency_overrides``)
+or bypass by passing a :class:`Settings` to :func:`app.main.create_app`.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Literal
+
+from pydantic import Field
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+
+class Settings(BaseSettings):
+    model_config = SettingsConfigDict(env_prefix="ROLLOVER_", extra="ignore")
+
+    cache_backend: Literal["memory", "redis"] = Field(
+        "memory",
+        description="memory: in-process LRU only (one worker). redis: in-process LRU in front of a shared Redis.",
+    )
+    cache_max_entries: int = Field(4096, ge=1, description="Size bound of the in-process LRU cache [entries].")
+    redis_url: str = Field("redis://127.0.0.1:6379/0", description="Redis URL (used when cache_backend=redis).")
+    redis_ttl_seconds: int = Field(
+        7 * 24 * 3600, ge=0, description="Expiry of the entries written to Redis [s]; 0 keeps them until evicted."
+    )
+    redis_timeout_seconds: float = Field(
+        0.25, gt=0, description="Connect and read timeout of each Redis call [s]; past it the call counts as down."
+    )
+    redis_retry_seconds: float = Field(
+        15.0, ge=0, description="After a Redis failure, serve from the local cache without Redis for this long [s]."
+    )
+    log_level: Literal["DEBUG", "INFO", "WARNING", "ERROR"] = Field("INFO", description="Lowest level logged.")
+
+
+@lru_cache
+def get_settings() -> Settings:
+    return Settings()

@@ -380,19 +380,40 @@ def sweep(
             raise InvalidInput(f"grid.{axis} is empty", field=f"grid.{axis}")
     axes = tuple(grid)
     combos = list(itertools.product(*(list(map(float, grid[a])) for a in axes)))
-    cases, errors = [], {}
-    for i, combo in enumerate(combos):
+    cases = []
+    for combo in combos:
         r, ang, ld, lim = road, trailer_angle_deg, load, rear_llt_limit
         for axis, val in zip(axes, combo, strict=True):
             r, ang, ld, lim = _apply(axis, val, r, ang, ld, lim)
         cases.append((r, ang, ld, lim))
+    srt, roll, errors = evaluate_cases(vehicle, cases, model=model, stage=stage, chassis_closure=chassis_closure)
+    n = len(combos)
+    return SweepResult(
+        model, stage if model == "3d" else None, axes, np.array(combos, dtype=float).reshape(n, -1), srt, roll, errors
+    )
+
+
+def evaluate_cases(
+    vehicle: Vehicle,
+    cases: Sequence[tuple[Road, float, LoadCase, float]],
+    *,
+    model: str = "3d",
+    stage: str = "full",
+    chassis_closure: str = "chassis-constant",
+) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
+    """SRT [g] and roll [deg] of a list of (road, trailer angle, load, rear LLT limit) cases at once.
+
+    Returns ``(srt, roll, errors)``: arrays with nan where ``errors`` (case index -> message) explains why.
+    """
+    n = len(cases)
+    errors: dict[int, str] = {}
+    for i, (r, ang, ld, lim) in enumerate(cases):
         try:
             _check_options(model, stage, lim, 2, "reduced", chassis_closure)
             if model not in CLASSIC_MODELS:
                 _check_case(vehicle, model, r, ang, ld)
         except RolloverError as exc:
             errors[i] = str(exc)
-    n = len(combos)
     srt = np.full(n, np.nan)
     roll = np.full(n, np.nan)
     ok = [i for i in range(n) if i not in errors]
@@ -408,9 +429,7 @@ def sweep(
     elif ok:
         validate_vehicle(vehicle, model=model)
         _batch(vehicle, model, stage, chassis_closure, [cases[i] for i in ok], ok, srt, roll, errors)
-    return SweepResult(
-        model, stage if model == "3d" else None, axes, np.array(combos, dtype=float).reshape(n, -1), srt, roll, errors
-    )
+    return srt, roll, errors
 
 
 def _batch(vehicle, model, stage, closure, cases, index, srt, roll, errors) -> None:

@@ -1,0 +1,341 @@
+"""Road-design and compliance tools built on the SRT (the thesis's Ch. 9.6 and 11 proposals).
+
+* **Targets**: whether an SRT meets configurable minimums (defaults: 0.35 g general freight, 0.40 g
+  dangerous goods, as in Australia's Performance-Based Standards and New Zealand's SRT rule) and by how
+  much; the tilt-table angle ``atan(SRT)`` a tilt test would show.
+* **Inverse limits**: for a target SRT, the largest CG height above the chassis, overweight or outward
+  lateral offset d1 -- or the smallest spring separation -- at which the vehicle still meets it, found
+  exactly by Brent's bracketed root finder on the engine; and the table of that limit over a range of
+  overweights (the exact counterpart of the TERNZ calculator's table of acceptable mass/load-height pairs).
+* **Curve assessment**: for each horizontal curve (radius, superelevation, grade), the SRT on that bank
+  and grade, the rollover speed (Eq. 9.1), the side-friction speed sqrt(127 R (0.01 e + f)) with f from
+  Table 21, the governing safe speed and the margin against the posted speed. The SRT does not depend on
+  the radius, so curves sharing bank and grade share one solve (all distinct pairs in one batched solve).
+
+References
+----------
+Thesis Eqs. 9.1-9.3, Table 21; NTC Australia (2008) PBS scheme; NZTA (2008) SRT calculator (TERNZ).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .errors import InvalidInput, InvalidRoad, RolloverError
+from .loads import MAX_OVERWEIGHT_PERCENT, LoadCase, Road
+from .road import KMH2_PER_M_G, max_curve_speed_kmh, side_friction_speed_kmh
+from .threshold import evaluate_cases, rollover_threshold
+from .vehicles import Vehicle, group_stiffness
+
+#: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
+DEFAULT_TARGETS = {"general": 0.35, "dangerous_goods": 0.40}
+
+
+# ------------------------------------------------------------------------------------- targets
+
+
+@dataclass(frozen=True)
+class TargetCheck:
+    name: str
+    target_g: float
+    meets: bool
+    margin_g: float  # srt - target
+
+
+def check_targets(srt_g: float, targets: dict[str, float] | None = None) -> list[TargetCheck]:
+    """Whether ``srt_g`` meets each target (SRT >= target) and the margin SRT - target [g]."""
+    targets = DEFAULT_TARGETS if targets is None else targets
+    out = []
+    for name, t in targets.items():
+        if not (isinstance(t, int | float) and math.isfinite(t) and 0 < t < 2):
+            raise InvalidInput(f"target {name!r} must be in (0, 2) g, got {t!r}", field=f"targets.{name}", value=t)
+        out.append(TargetCheck(name, float(t), srt_g >= t, srt_g - t))
+    return out
+
+
+def tilt_table_angle_deg(srt_g):
+    """Tilt-table angle equivalent to an SRT: a rigid vehicle tips at tan(angle) = SRT [deg]."""
+    return np.degrees(np.arctan(srt_g))
+
+
+# -------------------------------------------------------------------------------- inverse limits
+
+LIMIT_PARAMETERS = {
+    # name: (direction, description). "max": the SRT falls as the parameter grows; "min": it rises.
+    "cg_height_above_chassis_m": ("max", "largest CG height above the chassis l12 [m]"),
+    "overweight_percent": ("max", "largest overweight [%]"),
+    "lateral_offset_m": ("max", "largest lateral CG offset toward the outside of the turn d1 [m]"),
+    "spring_separation_m": ("min", "smallest lateral separation between the springs b [m]"),
+}
+
+
+@dataclass(frozen=True)
+class Limit:
+    parameter: str
+    kind: str  # "max" or "min"
+    value: float | None  # the limit; None when no value in the range meets the target
+    status: str  # "found", "always-met" (the whole range meets it), "never-met"
+    range: tuple[float, float]  # the physically admissible range searched
+    srt_at_limit: float | None
+    evaluations: int
+
+
+@dataclass
+class _Counter:
+    n: int = 0
+
+
+def _apply(vehicle: Vehicle, load: LoadCase, parameter: str, value: float) -> tuple[Vehicle, LoadCase]:
+    if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
+        return vehicle.replace(**{parameter: value}), load
+    return vehicle, replace(load, **{parameter: value})
+
+
+def _range(vehicle: Vehicle, load: LoadCase, parameter: str) -> tuple[float, float]:
+    """Admissible range of the parameter (open at the physical bounds, so every point can be solved)."""
+    eps = 1e-6
+    from .vehicles import static_axle_loads
+
+    w = load.weight_kn(vehicle.weight_kn)
+    _, rear = static_axle_loads(vehicle, load.longitudinal_offset_m, weight_kn=w)
+    k = group_stiffness(vehicle, "rear")
+    if parameter == "cg_height_above_chassis_m":  # Rill's bound k_theta > W_rear l12 (Eq. 2.17)
+        lo = max(0.05, -load.vertical_offset_m + 0.05)
+        return lo, 0.98 * k.roll_stiffness(vehicle.spring_separation_m) / rear - load.vertical_offset_m
+    if parameter == "overweight_percent":
+        return -50.0, MAX_OVERWEIGHT_PERCENT
+    if parameter == "lateral_offset_m":
+        half = vehicle.rear_track_m / 2
+        return -0.9 * half, 0.9 * half
+    # spring separation: from Rill's bound up to the axle width
+    width = min(vehicle.rear_axle_width_m, vehicle.front_axle_width_m or math.inf)
+    b_min = (
+        math.sqrt(2 * rear * (vehicle.cg_height_above_chassis_m + load.vertical_offset_m) / k.suspension_side_kn_per_m)
+        * 1.02
+    )
+    return b_min, width * (1 - eps) - eps
+
+
+def parameter_limit(
+    vehicle: Vehicle,
+    target_srt_g: float,
+    parameter: str,
+    *,
+    model: str = "3d",
+    stage: str = "full",
+    road: Road = Road(),
+    trailer_angle_deg: float = 0.0,
+    load: LoadCase = LoadCase(),
+    rear_llt_limit: float = 1.0,
+    xtol: float = 1e-6,
+) -> Limit:
+    """The limit of one parameter at which the SRT equals ``target_srt_g`` (Brent's method, bracketed).
+
+    The SRT is monotonic in each parameter over its admissible range (decreasing in l12, overweight and
+    outward d1; increasing in b), so the bracket holds one root. ``status`` says when the whole range
+    meets the target ("always-met": the limit is the range's end, or the last solvable value where the
+    vehicle would collapse before missing the target) or none of it does ("never-met").
+    """
+    if parameter not in LIMIT_PARAMETERS:
+        raise InvalidInput(
+            f"parameter must be one of {', '.join(LIMIT_PARAMETERS)}", field="parameter", value=parameter
+        )
+    if not (isinstance(target_srt_g, int | float) and math.isfinite(target_srt_g) and 0 < target_srt_g < 2):
+        raise InvalidInput("target_srt_g must be in (0, 2) g", field="target_srt_g", value=target_srt_g)
+    kind = LIMIT_PARAMETERS[parameter][0]
+    lo, hi = _range(vehicle, load, parameter)
+    count = _Counter()
+
+    def srt(x: float) -> float:
+        count.n += 1
+        v, ld = _apply(vehicle, load, parameter, x)
+        return rollover_threshold(
+            v,
+            model,
+            stage=stage,
+            road=road,
+            trailer_angle_deg=trailer_angle_deg,
+            load=ld,
+            rear_llt_limit=rear_llt_limit,
+        ).srt
+
+    def g(x: float) -> float:
+        return srt(x) - target_srt_g
+
+    # evaluate the ends; near the bad end the vehicle may collapse (no solution): bisect toward the good end
+    # until a solvable point that misses the target brackets the root
+    good, bad = (lo, hi) if kind == "max" else (hi, lo)
+    try:
+        g_good = g(good)
+    except RolloverError as exc:
+        raise InvalidInput(
+            f"the vehicle cannot be solved even at {parameter} = {good:.4g}: {exc}", field=parameter
+        ) from exc
+    if g_good < 0:
+        return Limit(parameter, kind, None, "never-met", (lo, hi), None, count.n)
+    unsolvable = None
+    while True:
+        try:
+            g_bad = g(bad)
+        except RolloverError:
+            unsolvable = bad
+            g_bad = None
+        if g_bad is not None and g_bad < 0:
+            break
+        if g_bad is not None:  # solvable and still meets the target: the root lies beyond it
+            good, g_good = bad, g_bad
+            if unsolvable is None:
+                return Limit(parameter, kind, bad, "always-met", (lo, hi), target_srt_g + g_bad, count.n)
+        if abs(unsolvable - good) < xtol:  # met up to where the vehicle stops being solvable
+            return Limit(parameter, kind, good, "always-met", (lo, hi), target_srt_g + g_good, count.n)
+        bad = 0.5 * (good + unsolvable)
+    root = brentq(g, min(good, bad), max(good, bad), xtol=xtol, rtol=1e-10)
+    return Limit(parameter, kind, float(root), "found", (lo, hi), target_srt_g, count.n)
+
+
+@dataclass(frozen=True)
+class LimitTableRow:
+    overweight_percent: float
+    limit: Limit
+
+
+def limit_table(
+    vehicle: Vehicle, target_srt_g: float, parameter: str, overweights: Sequence[float], **kwargs
+) -> list[LimitTableRow]:
+    """The limit of ``parameter`` for each overweight (TERNZ's table of acceptable mass / load-height pairs)."""
+    if parameter == "overweight_percent":
+        raise InvalidInput("the table runs over overweights; pick another parameter", field="parameter")
+    base: LoadCase = kwargs.pop("load", LoadCase())
+    rows = []
+    for ow in overweights:
+        ld = replace(base, overweight_percent=float(ow))
+        rows.append(LimitTableRow(float(ow), parameter_limit(vehicle, target_srt_g, parameter, load=ld, **kwargs)))
+    return rows
+
+
+# ----------------------------------------------------------------------------- curve assessment
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One horizontal curve. grade_percent is signed along the direction of travel (+ uphill)."""
+
+    id: str
+    radius_m: float
+    superelevation_percent: float
+    grade_percent: float = 0.0
+    posted_speed_kmh: float | None = None
+
+
+@dataclass(frozen=True)
+class CurveAssessment:
+    id: str
+    srt_g: float | None
+    rollover_speed_kmh: float | None  # Eq. 9.1 with the SRT on this bank and grade
+    side_friction_speed_kmh: float  # sqrt(127 R (0.01 e + f)), f from Table 21
+    safe_speed_kmh: float | None  # the smaller of the two
+    governed_by: str | None  # "rollover" or "side-friction"
+    posted_speed_kmh: float | None
+    margin_kmh: float | None  # safe - posted
+    flagged: bool  # margin < 0
+    error: str | None = None
+
+
+@dataclass
+class AlignmentAssessment:
+    curves: list[CurveAssessment]
+    distinct_cases: int  # SRT solves needed (distinct bank/grade pairs)
+    notes: list[str] = field(default_factory=list)
+
+
+def check_curve(c: Curve, index: int) -> None:
+    """Refuse a curve that no formula can use, naming the row and the field."""
+    where = f"curves[{index}] ({c.id})"
+    if not (math.isfinite(c.radius_m) and c.radius_m > 0):
+        raise InvalidRoad(
+            f"{where}: radius_m must be positive, got {c.radius_m}", field=f"curves[{index}].radius_m", value=c.radius_m
+        )
+    if not math.isfinite(c.superelevation_percent) or abs(c.superelevation_percent) > 20:
+        raise InvalidRoad(
+            f"{where}: superelevation_percent must be in [-20, 20]",
+            field=f"curves[{index}].superelevation_percent",
+            value=c.superelevation_percent,
+        )
+    if not math.isfinite(c.grade_percent) or abs(c.grade_percent) > 20:
+        raise InvalidRoad(
+            f"{where}: grade_percent must be in [-20, 20]",
+            field=f"curves[{index}].grade_percent",
+            value=c.grade_percent,
+        )
+    if c.posted_speed_kmh is not None and not (math.isfinite(c.posted_speed_kmh) and 0 < c.posted_speed_kmh <= 200):
+        raise InvalidRoad(
+            f"{where}: posted_speed_kmh must be in (0, 200]",
+            field=f"curves[{index}].posted_speed_kmh",
+            value=c.posted_speed_kmh,
+        )
+
+
+def assess_curves(
+    vehicle: Vehicle,
+    curves: Sequence[Curve],
+    *,
+    model: str = "3d",
+    stage: str = "full",
+    trailer_angle_deg: float = 0.0,
+    load: LoadCase = LoadCase(),
+    rear_llt_limit: float = 1.0,
+    friction_bound: str = "low",
+) -> AlignmentAssessment:
+    """Safe speed on each curve: rollover (Eq. 9.1 with that curve's SRT) against side friction (Table 21)."""
+    if not curves:
+        raise InvalidInput("no curves to assess", field="curves")
+    for i, c in enumerate(curves):
+        check_curve(c, i)
+    e = np.array([c.superelevation_percent for c in curves])
+    gr = np.array([c.grade_percent for c in curves])
+    r = np.array([c.radius_m for c in curves])
+    pairs, inverse = np.unique(np.stack((e, gr), axis=1), axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    cases = [
+        (Road(bank_percent=float(b), slope_percent=float(s)), trailer_angle_deg, load, rear_llt_limit) for b, s in pairs
+    ]
+    srt_pairs, _, errors = evaluate_cases(vehicle, cases, model=model, stage=stage)
+    srt = srt_pairs[inverse]
+    fric = np.asarray(side_friction_speed_kmh(r, e, friction_bound), dtype=float).reshape(-1)
+    roll = np.where(np.isfinite(srt), max_curve_speed_kmh(np.where(np.isfinite(srt), srt, 0.0), r), np.nan)
+    out = []
+    for i, c in enumerate(curves):
+        k = int(inverse[i])
+        err = errors.get(k)
+        if err is not None:
+            out.append(
+                CurveAssessment(c.id, None, None, float(fric[i]), None, None, c.posted_speed_kmh, None, False, err)
+            )
+            continue
+        safe = min(float(roll[i]), float(fric[i]))
+        gov = "rollover" if roll[i] < fric[i] else "side-friction"
+        margin = None if c.posted_speed_kmh is None else safe - c.posted_speed_kmh
+        out.append(
+            CurveAssessment(
+                c.id,
+                float(srt[i]),
+                float(roll[i]),
+                float(fric[i]),
+                safe,
+                gov,
+                c.posted_speed_kmh,
+                margin,
+                margin is not None and margin < 0,
+            )
+        )
+    return AlignmentAssessment(out, len(pairs))
+
+
+def lateral_acceleration_g(speed_kmh, radius_m):
+    """Steady-state lateral acceleration V^2/(127 R) [g] of a vehicle at ``speed_kmh`` on radius ``radius_m``."""
+    return np.asarray(speed_kmh, dtype=float) ** 2 / (KMH2_PER_M_G * np.asarray(radius_m, dtype=float))

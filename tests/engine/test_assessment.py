@@ -1,0 +1,125 @@
+"""Targets, inverse limits and curve assessment (engine side of the road-design tools)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from engine.assessment import (
+    Curve,
+    assess_curves,
+    check_targets,
+    limit_table,
+    parameter_limit,
+    tilt_table_angle_deg,
+)
+from engine.errors import InvalidInput, InvalidRoad
+from engine.loads import LoadCase, Road
+from engine.road import max_curve_speed_kmh, side_friction_speed_kmh
+from engine.threshold import rollover_threshold
+from engine.vehicles import PRESETS
+
+BTRAIN = PRESETS["table16-btrain"]
+
+
+def test_targets_and_tilt_angle():
+    checks = {c.name: c for c in check_targets(0.3364)}
+    assert checks["general"].target_g == 0.35 and not checks["general"].meets
+    assert checks["general"].margin_g == pytest.approx(-0.0136)
+    assert not checks["dangerous_goods"].meets
+    assert check_targets(0.45, {"custom": 0.42})[0].meets
+    assert tilt_table_angle_deg(1.0) == pytest.approx(45.0)
+    assert tilt_table_angle_deg(0.3364) == pytest.approx(math.degrees(math.atan(0.3364)))
+    with pytest.raises(InvalidInput, match="custom"):
+        check_targets(0.3, {"custom": -1})
+
+
+@pytest.mark.parametrize(
+    "parameter", ["cg_height_above_chassis_m", "overweight_percent", "lateral_offset_m", "spring_separation_m"]
+)
+def test_inverse_limit_lands_on_the_target(parameter):
+    target = 0.32
+    lim = parameter_limit(BTRAIN, target, parameter)
+    assert lim.status == "found"
+    # solving forward at the limit gives the target back
+    v, load = BTRAIN, LoadCase()
+    if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
+        v = BTRAIN.replace(**{parameter: lim.value})
+    else:
+        load = LoadCase(**{parameter: lim.value})
+    assert rollover_threshold(v, load=load).srt == pytest.approx(target, abs=1e-5)
+    # and the side of the limit that is allowed meets it
+    step = 1e-3 * (1 if lim.kind == "min" else -1)
+    if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
+        ok = rollover_threshold(BTRAIN.replace(**{parameter: lim.value + step})).srt
+    else:
+        ok = rollover_threshold(BTRAIN, load=LoadCase(**{parameter: lim.value + 100 * step})).srt
+    assert ok > target
+
+
+def test_limits_that_the_range_cannot_reach():
+    # even the lowest CG (l12 = 0.05 m, rigid t/2h = 0.93/0.754 = 1.23) cannot reach 1.5 g
+    never = parameter_limit(BTRAIN, 1.5, "cg_height_above_chassis_m")
+    assert never.status == "never-met" and never.value is None
+    always = parameter_limit(BTRAIN, 0.05, "lateral_offset_m")
+    assert always.status == "always-met" and always.value == pytest.approx(always.range[1])
+
+
+def test_limit_table_falls_with_overweight():
+    rows = limit_table(BTRAIN, 0.33, "cg_height_above_chassis_m", [0, 10, 20])
+    values = [r.limit.value for r in rows]
+    assert all(r.limit.status == "found" for r in rows)
+    assert values[0] > values[1] > values[2]
+    with pytest.raises(InvalidInput):
+        limit_table(BTRAIN, 0.33, "overweight_percent", [0])
+
+
+def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
+    curves = [
+        Curve("tight", 60.0, 6.0, -4.0, 60.0),
+        Curve("wide", 900.0, 6.0, -4.0, 100.0),  # same bank and grade as "tight": one solve
+        Curve("flat", 250.0, 0.0, 0.0, None),
+    ]
+    res = assess_curves(BTRAIN, curves)
+    assert res.distinct_cases == 2
+    tight, wide, flat = res.curves
+    srt = rollover_threshold(BTRAIN, road=Road(bank_percent=6.0, slope_percent=-4.0)).srt
+    assert tight.srt_g == pytest.approx(srt, rel=1e-9) and wide.srt_g == tight.srt_g
+    assert tight.rollover_speed_kmh == pytest.approx(float(max_curve_speed_kmh(srt, 60.0)))  # Eq. 9.1
+    assert tight.side_friction_speed_kmh == pytest.approx(side_friction_speed_kmh(60.0, 6.0))
+    for c in res.curves:
+        assert c.safe_speed_kmh == min(c.rollover_speed_kmh, c.side_friction_speed_kmh)
+        assert c.governed_by == ("rollover" if c.rollover_speed_kmh < c.side_friction_speed_kmh else "side-friction")
+    assert tight.margin_kmh == pytest.approx(tight.safe_speed_kmh - 60.0)
+    assert tight.flagged == (tight.margin_kmh < 0)
+    assert flat.margin_kmh is None and not flat.flagged
+
+
+def test_rollover_governs_where_the_srt_is_below_the_side_friction_demand():
+    # flat road: the side-friction speed uses e + f <= 0.17 while the B-train's SRT is ~0.34: friction governs;
+    # with an LLT limit of 0.6 and a 10 % downhill the SRT (~0.18) drops near f and rollover can govern
+    res = assess_curves(BTRAIN, [Curve("a", 100.0, 0.0, -10.0)], rear_llt_limit=0.6, trailer_angle_deg=30)
+    c = res.curves[0]
+    assert c.srt_g < 0.2
+    assert c.governed_by == ("rollover" if c.srt_g < 0.16 else "side-friction")
+
+
+def test_bad_curves_are_refused_with_their_row():
+    with pytest.raises(InvalidRoad, match=r"curves\[1\]") as exc:
+        assess_curves(BTRAIN, [Curve("ok", 100.0, 4.0), Curve("zero", 0.0, 4.0)])
+    assert exc.value.field == "curves[1].radius_m"
+    with pytest.raises(InvalidRoad, match="superelevation"):
+        assess_curves(BTRAIN, [Curve("x", 100.0, 40.0)])
+
+
+def test_many_curves_come_back_with_as_many_rows():
+    rng = np.random.default_rng(1)
+    curves = [
+        Curve(str(i), float(rng.uniform(50, 600)), float(rng.integers(0, 9)), float(rng.integers(-6, 7)))
+        for i in range(500)
+    ]
+    res = assess_curves(BTRAIN, curves)
+    assert len(res.curves) == 500 and res.distinct_cases <= 9 * 13
+    assert all(c.error is None for c in res.curves)

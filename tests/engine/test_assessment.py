@@ -63,8 +63,10 @@ def test_limits_that_the_range_cannot_reach():
     # even the lowest CG (l12 = 0.05 m, rigid t/2h = 0.93/0.754 = 1.23) cannot reach 1.5 g
     never = parameter_limit(BTRAIN, 1.5, "cg_height_above_chassis_m")
     assert never.status == "never-met" and never.value is None
-    always = parameter_limit(BTRAIN, 0.05, "lateral_offset_m")
+    # 50 % overweight (the largest accepted) still leaves the B-train above 0.2 g
+    always = parameter_limit(BTRAIN, 0.2, "overweight_percent")
     assert always.status == "always-met" and always.value == pytest.approx(always.range[1])
+    assert always.srt_at_limit > 0.2
 
 
 def test_limit_table_falls_with_overweight():

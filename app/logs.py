@@ -13,8 +13,11 @@ def _dumps(obj, **_kw) -> str:
     return orjson.dumps(obj, default=str).decode()
 
 
-def configure_logging(level: str = "INFO") -> None:
-    """Configure structlog for JSON lines; safe to call more than once (each app instance does)."""
+def configure_logging(level: str = "INFO", *, force: bool = False) -> None:
+    """Configure structlog for JSON lines, once per process (a later app instance, or a test that captures
+    the logs, keeps the configuration in force unless ``force``)."""
+    if structlog.is_configured() and not force:
+        return
     structlog.configure(
         processors=[
             structlog.contextvars.merge_contextvars,

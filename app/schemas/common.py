@@ -9,9 +9,10 @@ EXAMPLE_PRESET = "table16-btrain"
 
 
 class InputModel(BaseModel):
-    """Base of request bodies: unknown fields are refused; NaN and infinities are refused."""
+    """Base of request bodies: unknown fields, NaN and infinities are refused, and types are strict (no
+    coercion of ``0`` to ``false`` or ``"1.5"`` to ``1.5``: the body must match the published schema)."""
 
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True)
 
 
 class OutputModel(BaseModel):

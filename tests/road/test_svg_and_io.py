@@ -1,0 +1,149 @@
+"""The SVG renderer and the CSV / LandXML curve readers (no HTTP)."""
+
+from __future__ import annotations
+
+import itertools
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from app.alignment_io import AlignmentFormatError, CurveOverride, read_csv, read_landxml
+from app.svg import Marker, Panel, Series, line_chart, nice_ticks
+
+NS = {"s": "http://www.w3.org/2000/svg"}
+
+
+def test_nice_ticks_cover_the_range_with_round_steps():
+    # (0.3364 - 0) / 5 = 0.067 rounds up to a step of 0.1
+    assert nice_ticks(0, 0.3364) == pytest.approx([0, 0.1, 0.2, 0.3, 0.4])
+    t = nice_ticks(-3.2, 187.0)
+    assert t[0] <= -3.2 and t[-1] >= 187.0
+    steps = {round(b - a, 9) for a, b in itertools.pairwise(t)}
+    assert len(steps) == 1
+
+
+def test_chart_parses_and_holds_its_series_markers_and_labels():
+    svg = line_chart(
+        "Tire normal loads",
+        "lateral acceleration ay/g [-]",
+        [
+            Panel(
+                "normal load [kN]",
+                [
+                    Series("Fz1", [0, 0.1, 0.2], [50, 60, 70]),
+                    Series("Fz3 <inner>", [0, 0.1, 0.2], [50, 40, 30], dashed=True),
+                ],
+                [Marker(0.2, "SRT_3D = 0.200")],
+            ),
+            Panel("LLT [-]", [Series("LLTr", [0, 0.1, 0.2], [0, 0.5, 1.0])]),
+        ],
+        caption="Fz1, Fz3: front outer and inner tire normal loads (thesis Fig. 92).",
+    )
+    root = ET.fromstring(svg)
+    series = {g.get("data-name"): g for g in root.iter("{http://www.w3.org/2000/svg}g") if g.get("class") == "series"}
+    assert set(series) == {"Fz1", "Fz3 <inner>", "LLTr"}
+    line = series["Fz1"].find("s:polyline", NS)
+    assert [float(v) for v in line.get("data-y").split()] == [50, 60, 70]
+    assert len(line.get("points").split()) == 3
+    texts = " ".join(t.text or "" for t in root.iter("{http://www.w3.org/2000/svg}text"))
+    assert "lateral acceleration ay/g [-]" in texts and "normal load [kN]" in texts and "Fig. 92" in texts
+    markers = [g for g in root.iter("{http://www.w3.org/2000/svg}g") if g.get("class") == "marker"]
+    assert float(markers[0].get("data-x")) == 0.2
+
+
+def test_chart_refuses_empty_data():
+    with pytest.raises(ValueError):
+        line_chart("t", "x", [Panel("y", [])])
+
+
+CSV_OK = (
+    "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\nC1,120,6,-4,60\nC2,350,4,,80\nC3,90,8,2,\n\n"
+)
+
+
+def test_csv_reads_curves_with_optional_columns():
+    curves = read_csv(CSV_OK)
+    assert [c.id for c in curves] == ["C1", "C2", "C3"]
+    assert curves[0].radius_m == 120 and curves[0].grade_percent == -4 and curves[0].posted_speed_kmh == 60
+    assert curves[1].grade_percent == 0.0 and curves[2].posted_speed_kmh is None
+    minimal = read_csv("ID, Radius_m ,superelevation_percent\nA,100,2\n")
+    assert minimal[0].grade_percent == 0.0
+
+
+@pytest.mark.parametrize(
+    "text,where,field",
+    [
+        ("id,radius_m,grade_percent\nA,100,2\n", "row 1 (header)", "superelevation_percent"),
+        ("id,radius_m,superelevation_percent\nA,abc,2\n", "row 2", "radius_m"),
+        ("id,radius_m,superelevation_percent\nA,100,2\nB,100\n", "row 3", None),
+        ("id,radius_m,superelevation_percent\nA,100,2\nA,200,3\n", "row 3", "id"),
+        ("id,radius_m,superelevation_percent,wind\nA,100,2,3\n", "row 1 (header)", "wind"),
+        ("id,radius_m,superelevation_percent\n", "row 2", None),
+        ("", None, None),
+    ],
+)
+def test_csv_errors_name_the_row_and_column(text, where, field):
+    with pytest.raises(AlignmentFormatError) as exc:
+        read_csv(text)
+    assert exc.value.location == where
+    assert exc.value.field == field
+
+
+LANDXML = """<?xml version="1.0"?>
+<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2">
+  <Alignments>
+    <Alignment name="BR-101" length="1500" staStart="0">
+      <CoordGeom>
+        <Line staStart="0" length="200"><Start>0 0</Start><End>0 200</End></Line>
+        <Curve rot="cw" radius="250" length="120" staStart="200" name="K1"><Start>0 200</Start></Curve>
+        <Spiral length="60" radiusStart="INF" radiusEnd="400" staStart="320"/>
+        <Curve rot="ccw" radius="400.5" length="90" staStart="380"/>
+      </CoordGeom>
+    </Alignment>
+  </Alignments>
+</LandXML>"""
+
+
+def test_landxml_curves_with_defaults_and_overrides():
+    got = read_landxml(
+        LANDXML,
+        superelevation_percent=6.0,
+        grade_percent=-2.0,
+        posted_speed_kmh=80,
+        overrides={"BR-101#2": CurveOverride(superelevation_percent=4.0, grade_percent=3.0)},
+    )
+    (k1, sta1), (k2, sta2) = got
+    assert (k1.id, k1.radius_m, k1.superelevation_percent, k1.grade_percent, sta1) == ("K1", 250, 6.0, -2.0, 200)
+    assert (k2.id, k2.radius_m, k2.superelevation_percent, k2.grade_percent, sta2) == ("BR-101#2", 400.5, 4.0, 3.0, 380)
+    assert k2.posted_speed_kmh == 80
+
+
+@pytest.mark.parametrize(
+    "doc,kwargs,match",
+    [
+        (
+            "<LandXML><Alignments><Alignment name='A'><CoordGeom><Curve staStart='1'/></CoordGeom></Alignment>"
+            "</Alignments></LandXML>",
+            {"superelevation_percent": 4},
+            "Curve #1 .* has no radius",
+        ),
+        (
+            "<LandXML><Alignments><Alignment name='A'><CoordGeom><Curve radius='-5'/></CoordGeom></Alignment>"
+            "</Alignments></LandXML>",
+            {"superelevation_percent": 4},
+            "radius must be positive",
+        ),
+        ("<LandXML><Alignments><Alignment", {"superelevation_percent": 4}, "malformed XML"),
+        ("<Foo/>", {"superelevation_percent": 4}, "not <LandXML>"),
+        (LANDXML, {"superelevation_percent": None}, "no superelevation"),
+        (LANDXML, {"superelevation_percent": 4, "overrides": {"K9": CurveOverride(grade_percent=1)}}, "K9"),
+        (
+            '<?xml version="1.0"?><!DOCTYPE x [<!ENTITY a "aaaa">]><LandXML>&a;</LandXML>',
+            {"superelevation_percent": 4},
+            "entities",
+        ),
+    ],
+)
+def test_landxml_errors_name_the_element(doc, kwargs, match):
+    with pytest.raises(AlignmentFormatError, match=match):
+        read_landxml(doc, **kwargs)

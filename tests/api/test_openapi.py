@@ -1,0 +1,106 @@
+"""The committed openapi/openapi.json: same as the app serves, valid, and carrying what clients rely on."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+from openapi_spec_validator import validate
+
+from app.main import create_app
+from app.schemas.vehicles import METADATA_FIELDS, VehicleRecord
+from engine.vehicles import Vehicle
+
+from .conftest import ROOT
+
+SPEC_PATH = ROOT / "openapi" / "openapi.json"
+COMMITTED = json.loads(SPEC_PATH.read_text(encoding="utf-8"))
+
+OPERATIONS = {
+    ("get", "/v1/vehicles"): "vehicles-list_vehicles",
+    ("get", "/v1/vehicles/{id}"): "vehicles-get_vehicle",
+    ("post", "/v1/srt"): "srt-compute_srt",
+    ("post", "/v1/curve-speed"): "road-curve_speed",
+    ("post", "/v1/min-radius"): "road-min_radius",
+    ("get", "/v1/models"): "models-list_models",
+    ("get", "/healthz"): "health-healthz",
+    ("get", "/metrics"): "health-metrics",
+}
+
+
+def test_committed_spec_is_what_the_app_serves(client):
+    served = client.get("/openapi.json").json()
+    assert served == COMMITTED, "openapi/openapi.json drifted: run python scripts/export_openapi.py"
+    # and the export script writes it byte for byte (sorted keys, stable)
+    check = subprocess.run(
+        [sys.executable, "scripts/export_openapi.py", "--check"], cwd=ROOT, capture_output=True, text=True
+    )
+    assert check.returncode == 0, check.stderr
+
+
+def test_spec_is_valid_openapi():
+    validate(COMMITTED)
+
+
+def test_operation_ids_are_stable():
+    found = {(m, p): op["operationId"] for p, item in COMMITTED["paths"].items() for m, op in item.items()}
+    assert found == OPERATIONS
+
+
+@pytest.mark.parametrize(("method", "path"), sorted(OPERATIONS))
+def test_every_operation_declares_problem_details(method, path):
+    responses = COMMITTED["paths"][path][method]["responses"]
+    errors = {code: r for code, r in responses.items() if int(code) >= 400}
+    assert "500" in errors
+    if method == "post":
+        assert {"400", "404", "422"} <= set(errors)
+    for r in errors.values():
+        assert list(r["content"]) == ["application/problem+json"]
+        assert r["content"]["application/problem+json"]["schema"] == {"$ref": "#/components/schemas/Problem"}
+
+
+@pytest.mark.parametrize("path", ["/v1/srt", "/v1/curve-speed", "/v1/min-radius"])
+def test_computed_operations_declare_etag_and_x_cache(path):
+    headers = COMMITTED["paths"][path]["post"]["responses"]["200"]["headers"]
+    assert set(headers) == {"ETag", "X-Cache"}
+
+
+@pytest.mark.parametrize("name", ["SrtRequest", "CurveSpeedRequest", "MinRadiusRequest"])
+def test_every_request_model_has_a_btrain_example(name):
+    examples = COMMITTED["components"]["schemas"][name]["examples"]
+    assert any(e.get("vehicle") == "table16-btrain" for e in examples)
+
+
+def test_examples_are_accepted_by_the_app(shared_client):
+    paths = {"SrtRequest": "/v1/srt", "CurveSpeedRequest": "/v1/curve-speed", "MinRadiusRequest": "/v1/min-radius"}
+    for name, path in paths.items():
+        for example in COMMITTED["components"]["schemas"][name]["examples"]:
+            r = shared_client.post(path, json=example)
+            assert r.status_code == 200, (name, example, r.text)
+
+
+def test_every_field_names_its_unit_and_thesis_symbol():
+    missing = []
+    for name, schema in COMMITTED["components"]["schemas"].items():
+        if name in ("Problem", "FieldError"):  # RFC 9457 members, not physical quantities
+            continue
+        for field, prop in schema.get("properties", {}).items():
+            text = prop.get("description", "")
+            if "Unit:" not in text or "Thesis symbol:" not in text:
+                missing.append(f"{name}.{field}")
+    assert missing == []
+
+
+def test_vehicle_record_schema_has_every_engine_field():
+    # the record is the engine's Vehicle plus the ignored preset metadata: a new engine field must appear here
+    engine_fields = set(Vehicle.__dataclass_fields__)
+    assert set(VehicleRecord.model_fields) - set(METADATA_FIELDS) == engine_fields
+    record = COMMITTED["components"]["schemas"]["VehicleRecord"]
+    assert set(record["properties"]) - set(METADATA_FIELDS) == engine_fields
+    assert record["additionalProperties"] is False
+
+
+def test_create_app_is_deterministic():
+    assert create_app().openapi() == create_app().openapi()

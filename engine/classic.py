@@ -38,7 +38,7 @@ import math
 from dataclasses import dataclass, field
 
 from .errors import InvalidLoad, InvalidRoad
-from .loads import LoadCase, Road, check_load, check_road
+from .loads import LoadCase, Road, check_case
 from .vehicles import Vehicle, group_stiffness, static_axle_loads, validate_vehicle
 
 # ------------------------------------------------------------------------------- the formulas
@@ -239,14 +239,7 @@ def classic_threshold(
     if model not in CLASSIC_MODELS:
         raise InvalidRoad(f"unknown closed-form model {model!r}", field="model", value=model)
     validate_vehicle(vehicle, model=model)
-    check_road(road, trailer_angle_deg)
-    check_load(
-        load,
-        half_track_m=vehicle.rear_track_m / 2.0,
-        cg_height_above_chassis_m=vehicle.cg_height_above_chassis_m,
-        wheelbase_m=vehicle.wheelbase_m,
-        front_axle_to_cg_m=vehicle.front_axle_to_cg_m,
-    )
+    check_case(vehicle, road, trailer_angle_deg, load)
     _refuse_unsupported(model, road, trailer_angle_deg, load, rear_llt_limit)
 
     v = vehicle

@@ -34,6 +34,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .compliance import shear_torsion_coefficient
+from .errors import ConvergenceError
+
 HALF_PI = 0.5 * math.pi
 
 
@@ -91,6 +94,30 @@ class GroupParams:
         if self.fifth_wheel is not None:
             st += (self.fifth_wheel.height, self.fifth_wheel.height, 0.0)
         return st
+
+
+def group_params(
+    vehicle, which: str, static_load_kn: float, fifth_wheel: FifthWheelParams | None = None
+) -> GroupParams:
+    """The ``"front"`` or ``"rear"`` group of a vehicle record (per-side sums of :mod:`engine.vehicles`).
+
+    ``static_load_kn`` is the group's nominal static load: the lengths lr and ls hold at half of it per side.
+    """
+    from .vehicles import group_stiffness
+
+    v = vehicle
+    k = group_stiffness(v, which)
+    return GroupParams(
+        axle_width=v.rear_axle_width_m if which == "rear" else v.front_axle_width_m,
+        spring_separation=v.spring_separation_m,
+        rolling_radius=v.rolling_radius_m,
+        suspension_height=v.suspension_height_m,
+        k_tire=k.tire_side_kn_per_m,
+        k_spring=k.suspension_side_kn_per_m,
+        k_shear=shear_torsion_coefficient(k.suspension_side_kn_per_m, v.suspension_height_m),
+        f_start=0.5 * static_load_kn,
+        fifth_wheel=fifth_wheel,
+    )
 
 
 # ------------------------------------------------------------------------------------- kinematics
@@ -281,3 +308,52 @@ def group_next_state(p: GroupParams, f: GroupForces):
             0.0 * f.fifth_wheel.torsion_a if math.isinf(kt) else -f.fifth_wheel.torsion_a / kt,  # Eq. 4.13
         )
     return st
+
+
+# ------------------------------------------------------------------------------------ iteration
+
+
+def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
+    """Solve x = g(x) by fixed-point iteration with an Anderson(1) (secant) step.
+
+    ``step(x, it)`` returns ``(payload, g(x))``; x is a tuple of floats, or of equal-shape arrays when
+    ``vector`` (one independent problem per array element, converged when all are). Returns
+    ``(x, iterations, payload)`` at convergence; :class:`ConvergenceError` otherwise.
+    """
+    x = np.stack(np.broadcast_arrays(*x0)).astype(float) if vector else [float(v) for v in x0]
+    g_prev = f_prev = None
+    err = math.inf
+    for it in range(1, max_iter + 1):
+        payload, gx = step(tuple(x), it)
+        if vector:
+            g = np.stack(np.broadcast_arrays(*gx)).astype(float)
+            f = g - x
+            err = float(np.max(np.abs(f))) if f.size else 0.0
+        else:
+            g = list(gx)
+            f = [a - b for a, b in zip(g, x, strict=True)]
+            err = max(abs(v) for v in f)
+        if not math.isfinite(err):
+            raise ConvergenceError(
+                "non-finite geometry: the vehicle is beyond its static stability limit", iterations=it
+            )
+        if err < tol:
+            return x, it, payload
+        if f_prev is None:
+            x_new = g
+        elif vector:  # Anderson(1) per problem
+            df = f - f_prev
+            den = np.sum(df * df, axis=0)
+            gamma = np.where(den > 0, np.sum(f * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
+            x_new = g - gamma * (g - g_prev)
+        else:
+            df = [a - b for a, b in zip(f, f_prev, strict=True)]
+            den = sum(v * v for v in df)
+            gamma = sum(a * b for a, b in zip(f, df, strict=True)) / den if den > 0 else 0.0
+            x_new = [a - gamma * (a - b) for a, b in zip(g, g_prev, strict=True)]
+        g_prev, f_prev, x = g, f, x_new
+    raise ConvergenceError(
+        f"the geometry/force iteration did not converge in {max_iter} iterations (last change {err:.2e})",
+        iterations=max_iter,
+        residual=err,
+    )

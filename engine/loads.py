@@ -138,6 +138,18 @@ def check_load(
             )
 
 
+def check_case(vehicle, road: Road, trailer_angle_deg: float, load: LoadCase) -> None:
+    """Check a road and load case against a vehicle record (its half track, l12, wheelbase, a)."""
+    check_road(road, trailer_angle_deg)
+    check_load(
+        load,
+        half_track_m=vehicle.rear_track_m / 2.0,
+        cg_height_above_chassis_m=vehicle.cg_height_above_chassis_m,
+        wheelbase_m=vehicle.wheelbase_m,
+        front_axle_to_cg_m=vehicle.front_axle_to_cg_m,
+    )
+
+
 def kingpin_uplift_note(a_eff_m: float, wheelbase_m: float | None) -> str | None:
     """A note when the CG lies behind the rear group: Eq. 4.27 then lifts the kingpin (negative front load)."""
     if wheelbase_m is None or a_eff_m <= wheelbase_m:

@@ -24,7 +24,7 @@ from . import trailer2d, trailer3d
 from .classic import CLASSIC_MODELS, classic_threshold
 from .errors import InvalidInput, InvalidLoad, RolloverError
 from .groups import ARRAY
-from .loads import LoadCase, Road, check_load, check_road, kingpin_uplift_note
+from .loads import LoadCase, Road, check_case, kingpin_uplift_note
 from .results import Curves, RolloverResult, TireLoads
 from .vehicles import Vehicle, validate_vehicle
 
@@ -69,14 +69,7 @@ def _check_options(model, stage, rear_llt_limit, curve_points, method, chassis_c
 
 
 def _check_case(vehicle: Vehicle, model: str, road: Road, trailer_angle_deg: float, load: LoadCase) -> None:
-    check_road(road, trailer_angle_deg)
-    check_load(
-        load,
-        half_track_m=vehicle.rear_track_m / 2.0,
-        cg_height_above_chassis_m=vehicle.cg_height_above_chassis_m,
-        wheelbase_m=vehicle.wheelbase_m,
-        front_axle_to_cg_m=vehicle.front_axle_to_cg_m,
-    )
+    check_case(vehicle, road, trailer_angle_deg, load)
     if model == "2d":
         for name, value in (("road.slope_percent", road.slope_percent), ("trailer_angle_deg", trailer_angle_deg)):
             if value != 0:

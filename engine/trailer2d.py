@@ -19,13 +19,21 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .compliance import shear_torsion_coefficient
 from .davies import PLANAR_YZ, solve_statics
 from .errors import ConvergenceError
-from .groups import SCALAR, GroupGeometry, GroupParams, group_geometry, group_next_state, group_statics
+from .groups import (
+    SCALAR,
+    GroupGeometry,
+    GroupParams,
+    fixed_point,
+    group_geometry,
+    group_next_state,
+    group_params,
+    group_statics,
+)
 from .mechanism import Mechanism, external, joint
 from .screw import rot_x, screw_matrix, unit_force
-from .vehicles import Vehicle, group_stiffness, static_axle_loads
+from .vehicles import Vehicle, static_axle_loads
 
 
 @dataclass(frozen=True)
@@ -38,19 +46,9 @@ class PlanarModel:
 def build_model(vehicle: Vehicle, longitudinal_offset_m: float = 0.0) -> PlanarModel:
     """The Ch. 5 mechanism for the rear group of ``vehicle`` (per-side stiffness sums of vehicles.py)."""
     v = vehicle
-    k = group_stiffness(v, "rear")
     _, nominal_rear = static_axle_loads(v)
     _, rear = static_axle_loads(v, longitudinal_offset_m, weight_kn=1.0)
-    group = GroupParams(
-        axle_width=v.rear_axle_width_m,
-        spring_separation=v.spring_separation_m,
-        rolling_radius=v.rolling_radius_m,
-        suspension_height=v.suspension_height_m,
-        k_tire=k.tire_side_kn_per_m,
-        k_spring=k.suspension_side_kn_per_m,
-        k_shear=shear_torsion_coefficient(k.suspension_side_kn_per_m, v.suspension_height_m),
-        f_start=0.5 * nominal_rear,
-    )
+    group = group_params(v, "rear", nominal_rear)
     return PlanarModel(group, v.cg_height_above_chassis_m, rear)
 
 
@@ -125,8 +123,6 @@ def solve(
     forces=None,
 ) -> Solution2D:
     """Consistent geometry and forces at the limit (``ay=None``) or at a given ay (fixed point + Anderson(1))."""
-    from .trailer3d import fixed_point
-
     forces = forces or forces_at
     state = start or tuple(v + 0.0 * case.weight for v in m.group.rest_state())
 

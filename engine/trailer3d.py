@@ -78,14 +78,16 @@ from .groups import (
     FifthWheelParams,
     GroupGeometry,
     GroupParams,
+    fixed_point,
     ground_reactions,
     group_geometry,
     group_next_state,
+    group_params,
     group_statics,
 )
 from .mechanism import Mechanism, custom_joint, external, joint
 from .screw import rot_x, screw_matrix, unit_couple, unit_force
-from .vehicles import Vehicle, group_stiffness
+from .vehicles import Vehicle
 
 #: closures of the roll-moment split (see the module docstring)
 CLOSURES = ("chassis-constant", "llt-ratio", "inverse-ratio")
@@ -130,21 +132,6 @@ def build_model(vehicle: Vehicle, stage: str = "full", closure: str = "llt-ratio
     rear_load = w - front_load
     full = stage == "full"
 
-    def group(which: str, load: float, fw: FifthWheelParams | None) -> GroupParams:
-        k = group_stiffness(v, which)
-        width = v.rear_axle_width_m if which == "rear" else v.front_axle_width_m
-        return GroupParams(
-            axle_width=width,
-            spring_separation=v.spring_separation_m,
-            rolling_radius=v.rolling_radius_m,
-            suspension_height=v.suspension_height_m,
-            k_tire=k.tire_side_kn_per_m,
-            k_spring=k.suspension_side_kn_per_m,
-            k_shear=shear_torsion_coefficient(k.suspension_side_kn_per_m, v.suspension_height_m),
-            f_start=0.5 * load,
-            fifth_wheel=fw,
-        )
-
     fw = None
     if v.has_fifth_wheel:
         kf = v.fifth_wheel_stiffness_kn_per_m
@@ -156,8 +143,8 @@ def build_model(vehicle: Vehicle, stage: str = "full", closure: str = "llt-ratio
             f_start=0.5 * front_load,
         )
     return TrailerModel(
-        rear=group("rear", rear_load, None),
-        front=group("front", front_load, fw),
+        rear=group_params(v, "rear", rear_load),
+        front=group_params(v, "front", front_load, fw),
         wheelbase=v.wheelbase_m,
         kingpin_to_cg=v.front_axle_to_cg_m,
         kingpin_to_front_axle=v.fifth_wheel_to_front_axle_m or 0.0,
@@ -382,52 +369,6 @@ def solve(
     return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
 
 
-def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
-    """Solve x = g(x) by fixed-point iteration with an Anderson(1) (secant) step.
-
-    ``step(x, it)`` returns ``(payload, g(x))``; x is a tuple of floats, or of equal-shape arrays when
-    ``vector`` (one independent problem per array element, converged when all are). Returns
-    ``(x, iterations, payload)`` at convergence; :class:`ConvergenceError` otherwise.
-    """
-    x = np.stack(np.broadcast_arrays(*x0)).astype(float) if vector else [float(v) for v in x0]
-    g_prev = f_prev = None
-    err = math.inf
-    for it in range(1, max_iter + 1):
-        payload, gx = step(tuple(x), it)
-        if vector:
-            g = np.stack(np.broadcast_arrays(*gx)).astype(float)
-            f = g - x
-            err = float(np.max(np.abs(f))) if f.size else 0.0
-        else:
-            g = list(gx)
-            f = [a - b for a, b in zip(g, x, strict=True)]
-            err = max(abs(v) for v in f)
-        if not math.isfinite(err):
-            raise ConvergenceError(
-                "non-finite geometry: the vehicle is beyond its static stability limit", iterations=it
-            )
-        if err < tol:
-            return x, it, payload
-        if f_prev is None:
-            x_new = g
-        elif vector:  # Anderson(1) per problem
-            df = f - f_prev
-            den = np.sum(df * df, axis=0)
-            gamma = np.where(den > 0, np.sum(f * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
-            x_new = g - gamma * (g - g_prev)
-        else:
-            df = [a - b for a, b in zip(f, f_prev, strict=True)]
-            den = sum(v * v for v in df)
-            gamma = sum(a * b for a, b in zip(f, df, strict=True)) / den if den > 0 else 0.0
-            x_new = [a - gamma * (a - b) for a, b in zip(g, g_prev, strict=True)]
-        g_prev, f_prev, x = g, f, x_new
-    raise ConvergenceError(
-        f"the geometry/force iteration did not converge in {max_iter} iterations (last change {err:.2e})",
-        iterations=max_iter,
-        residual=err,
-    )
-
-
 def _unflat(x, shape) -> State:
     nr, nf = shape
     vals = list(x)
@@ -574,112 +515,82 @@ def _group_joints(
         "prismatic",
         actuator=f"FT{n['inner_spring']}",
     )
-    # suspension four-bar (Fig. 31): legs a (torsion at the base) and b
-    a_a = a_out_top @ _Chain.rx(ya, th_a, x0)
-    a_a_top = a_a @ _Chain.tz(ya, l_a, x0)
-    joint(
-        mech,
-        str(n["base_a"]),
+
+    def leg(lower, y, x, theta, length, link_from, link_lower, link_upper, link_to, nums, angle, spring, torsion=None):
+        """Base revolute (with torsion spring), spring prismatic, top revolute of one leg (Figs. 31, 37)."""
+        base, spr, top = nums
+        top_chain = lower @ _Chain.rx(y, theta, x) @ _Chain.tz(y, length, x)
+        p_top = _point(top_chain, (x, y, 0.0))
+        joint(mech, base, link_from, link_lower, _point(lower, (x, y, 0.0)), ground_frame, "revolute", actuator=torsion)
+        joint(mech, spr, link_lower, link_upper, p_top, rolled(angle + theta), "prismatic", actuator=spring)
+        joint(mech, top, link_upper, link_to, p_top, ground_frame, "revolute")
+        return top_chain
+
+    # suspension four-bar (Fig. 31): legs a (torsion at the base) and b, on the axle
+    a_a_top = leg(
+        a_out_top,
+        ya,
+        x0,
+        th_a,
+        l_a,
         names["axle"],
         names["leg a lower"],
-        _point(a_out_top, (x0, ya, 0.0)),
-        ground_frame,
-        "revolute",
-        actuator=f"Tx{n['base_a']}",
-    )
-    joint(
-        mech,
-        str(n["spring_a"]),
-        names["leg a lower"],
-        names["leg a upper"],
-        _point(a_a_top, (x0, ya, 0.0)),
-        rolled(th_t + th_a),
-        "prismatic",
-        actuator=f"FLS{n['spring_a']}",
-    )
-    joint(
-        mech,
-        str(n["top_a"]),
         names["leg a upper"],
         names["bolster"],
-        _point(a_a_top, (x0, ya, 0.0)),
-        ground_frame,
-        "revolute",
+        (str(n["base_a"]), str(n["spring_a"]), str(n["top_a"])),
+        th_t,
+        f"FLS{n['spring_a']}",
+        f"Tx{n['base_a']}",
     )
-    a_b = a_out_top @ _Chain.rx(yb, susp.base_b, x0)
-    a_b_top = a_b @ _Chain.tz(yb, l_b, x0)
-    joint(
-        mech,
-        str(n["base_b"]),
+    leg(
+        a_out_top,
+        yb,
+        x0,
+        susp.base_b,
+        l_b,
         names["axle"],
         names["leg b lower"],
-        _point(a_out_top, (x0, yb, 0.0)),
-        ground_frame,
-        "revolute",
-    )
-    joint(
-        mech,
-        str(n["spring_b"]),
-        names["leg b lower"],
-        names["leg b upper"],
-        _point(a_b_top, (x0, yb, 0.0)),
-        rolled(th_t + susp.base_b),
-        "prismatic",
-        actuator=f"FLS{n['spring_b']}",
-    )
-    joint(
-        mech,
-        str(n["top_b"]),
         names["leg b upper"],
         names["bolster"],
-        _point(a_b_top @ _Chain.rx(yb, susp.top_b, x0), (x0, yb, 0.0)),
-        ground_frame,
-        "revolute",
+        (str(n["base_b"]), str(n["spring_b"]), str(n["top_b"])),
+        th_t,
+        f"FLS{n['spring_b']}",
     )
     chain = a_a_top @ _Chain.rx(ya, susp.top_a, x0)  # to the bolster (A17 A18 A21 A22 A23)
     angle = th_t + th_a + susp.top_a
     if p.fifth_wheel is not None:  # fifth wheel (Fig. 37) at x = 0 on the bolster
         fw = g.fifth_wheel
-        b1 = p.fifth_wheel.width
         lf_a, lf_b, thf_a = state[5:8]
-        fa, fb = 0.5 * (t - b1), 0.5 * (t + b1)
-        f_a = chain @ _Chain.rx(fa, thf_a, 0.0)
-        f_a_top = f_a @ _Chain.tz(fa, lf_a, 0.0)
-        joint(
-            mech,
-            "11",
+        fa, fb = 0.5 * (t - p.fifth_wheel.width), 0.5 * (t + p.fifth_wheel.width)
+        f_a_top = leg(
+            chain,
+            fa,
+            0.0,
+            thf_a,
+            lf_a,
             names["bolster"],
             "fw leg a lower",
-            _point(chain, (0.0, fa, 0.0)),
-            ground_frame,
-            "revolute",
-            actuator="Tx11",
-        )
-        joint(
-            mech,
-            "12",
-            "fw leg a lower",
             "fw leg a upper",
-            _point(f_a_top, (0.0, fa, 0.0)),
-            rolled(angle + thf_a),
-            "prismatic",
-            actuator="FFW12",
+            "fw plate",
+            ("11", "12", "13"),
+            angle,
+            "FFW12",
+            "Tx11",
         )
-        joint(mech, "13", "fw leg a upper", "fw plate", _point(f_a_top, (0.0, fa, 0.0)), ground_frame, "revolute")
-        f_b = chain @ _Chain.rx(fb, fw.base_b, 0.0)
-        f_b_top = f_b @ _Chain.tz(fb, lf_b, 0.0)
-        joint(mech, "14", names["bolster"], "fw leg b lower", _point(chain, (0.0, fb, 0.0)), ground_frame, "revolute")
-        joint(
-            mech,
-            "15",
+        leg(
+            chain,
+            fb,
+            0.0,
+            fw.base_b,
+            lf_b,
+            names["bolster"],
             "fw leg b lower",
             "fw leg b upper",
-            _point(f_b_top, (0.0, fb, 0.0)),
-            rolled(angle + fw.base_b),
-            "prismatic",
-            actuator="FFW15",
+            "fw plate",
+            ("14", "15", "16"),
+            angle,
+            "FFW15",
         )
-        joint(mech, "16", "fw leg b upper", "fw plate", _point(f_b_top, (0.0, fb, 0.0)), ground_frame, "revolute")
         chain = f_a_top @ _Chain.rx(fa, fw.top_a, 0.0)  # A11 A12 A13
     return chain, ex, t
 

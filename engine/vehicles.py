@@ -372,6 +372,19 @@ _TRI_AXLE_REAR = dict(
     spring_separation_m=0.95,
 )
 
+# the 1.86 m tracks and the lead unit's tandem under a fifth wheel, shared by Tables 16 and 23
+_TANDEM_FRONT_WITH_FIFTH_WHEEL = dict(
+    front_track_m=1.86,
+    rear_track_m=1.86,
+    front_axle_width_m=1.86,
+    rear_axle_width_m=1.86,
+    front_axles=2,
+    front_tires_per_axle=4,
+    fifth_wheel_stiffness_kn_per_m=7500.0,
+    fifth_wheel_height_m=0.1,
+    fifth_wheel_width_m=0.6,
+)
+
 PRESETS: dict[str, Vehicle] = {
     # Ch. 7, Table 14: the 2D model of a semi-trailer's tridem group. Its "equivalent" 5400 and 5040 kN/m
     # are 3 axles x 1800 kN/m and 3 axles x 2 tires per side x 840 kN/m.
@@ -410,21 +423,13 @@ PRESETS: dict[str, Vehicle] = {
     # Ch. 9, Table 16: the rear trailer of a B-train.
     "table16-btrain": Vehicle(
         weight_kn=355.22,
-        front_track_m=1.86,
-        rear_track_m=1.86,
-        front_axle_width_m=1.86,
-        rear_axle_width_m=1.86,
-        front_axles=2,
-        front_tires_per_axle=4,
-        fifth_wheel_stiffness_kn_per_m=7500.0,
-        fifth_wheel_height_m=0.1,
-        fifth_wheel_width_m=0.6,
         cg_height_above_chassis_m=1.356,
         fifth_wheel_to_front_axle_m=0.15,
         wheelbase_m=4.26,
         front_axle_to_cg_m=3.0,
         front_llt_ratio=0.7,
         **_TRI_AXLE_REAR,
+        **_TANDEM_FRONT_WITH_FIFTH_WHEEL,
     ),
     # Appendix B, Table 22: a rigid truck, one steer axle (single tires) and a tandem (LLTf = 0.9 LLTr).
     "table22-truck": Vehicle(
@@ -451,21 +456,13 @@ PRESETS: dict[str, Vehicle] = {
     # Appendix C, Table 23: the semi-trailer of a tractor-semitrailer (LLTf = 0.7 LLTr).
     "table23-semitrailer": Vehicle(
         weight_kn=392.13,
-        front_track_m=1.86,
-        rear_track_m=1.86,
-        front_axle_width_m=1.86,
-        rear_axle_width_m=1.86,
-        front_axles=2,
-        front_tires_per_axle=4,
-        fifth_wheel_stiffness_kn_per_m=7500.0,
-        fifth_wheel_height_m=0.1,
-        fifth_wheel_width_m=0.6,
         cg_height_above_chassis_m=1.21,
         fifth_wheel_to_front_axle_m=0.2,
         wheelbase_m=8.7,
         front_axle_to_cg_m=5.55,
         front_llt_ratio=0.7,
         **_TRI_AXLE_REAR,
+        **_TANDEM_FRONT_WITH_FIFTH_WHEEL,
     ),
 }
 

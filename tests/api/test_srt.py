@@ -133,3 +133,11 @@ def test_every_closed_form_answers_below_the_rigid_bound(shared_client, model):
     # roll compliance moves the CG outward, so each model is below the rigid t/2h = 0.4515
     assert 0.2 < out["srt"] < 0.93 / 2.06
     assert math.isfinite(out["roll_angle_deg"]) and out["roll_angle_deg"] > 0
+
+
+def test_engine_notes_are_passed_on(shared_client):
+    # d2 = -1.5 m puts the B-train's CG at a - d2 = 4.5 m, behind the rear group (L = 4.26 m): the engine
+    # answers and attaches a note about the kingpin uplift (Eq. 4.27)
+    behind = srt(shared_client, load={"longitudinal_offset_m": -1.5})
+    assert behind["notes"] and "behind the rear axle group" in behind["notes"][0]
+    assert srt(shared_client)["notes"] == []

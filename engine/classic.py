@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .errors import InvalidLoad, InvalidRoad
+from .errors import InvalidInput, InvalidLoad, InvalidRoad
 from .loads import LoadCase, Road, check_case
 from .vehicles import Vehicle, group_stiffness, static_axle_loads, validate_vehicle
 
@@ -237,7 +237,7 @@ def classic_threshold(
 ) -> ClassicResult:
     """SRT of one closed-form model of Ch. 2 for ``vehicle`` (see the module docstring for the mapping)."""
     if model not in CLASSIC_MODELS:
-        raise InvalidRoad(f"unknown closed-form model {model!r}", field="model", value=model)
+        raise InvalidInput(f"unknown closed-form model {model!r}", field="model", value=model)
     validate_vehicle(vehicle, model=model)
     check_case(vehicle, road, trailer_angle_deg, load)
     _refuse_unsupported(model, road, trailer_angle_deg, load, rear_llt_limit)

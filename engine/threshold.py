@@ -118,6 +118,11 @@ def _case3d(vehicle: Vehicle, road: Road, angle_deg: float, load: LoadCase, limi
     )
 
 
+def _clean(scale: float, *loads) -> list[float]:
+    """Loads as floats, with round-off around an exact zero (the lifted tire, ~1e-13 kN) set to 0."""
+    return [0.0 if abs(x) <= 1e-9 * abs(scale) else float(x) for x in loads]
+
+
 def _llt(outer, inner):
     return (outer - inner) / (outer + inner)
 
@@ -131,7 +136,7 @@ def _curves_3d(m, case, limit_sol, points, forces) -> Curves:
         state = s.state
         rows.append(s)
     rows.append(limit_sol)
-    f = [(r.front.fz_outer, r.front.fz_inner, r.rear.fz_outer, r.rear.fz_inner) for r in rows]
+    f = [_clean(case.weight, r.front.fz_outer, r.front.fz_inner, r.rear.fz_outer, r.rear.fz_inner) for r in rows]
     return Curves(
         ay_g=[float(a) for a in ays],
         fz_front_outer_kn=[float(x[0]) for x in f],
@@ -157,13 +162,13 @@ def _result_3d(stage, sol, limit, stage_values, curves, m) -> RolloverResult:
         rear_llt_limit=limit,
         llt_front=float(_llt(fo, fi)),
         llt_rear=float(_llt(ro, ri)),
-        tire_loads=TireLoads(float(fo), float(fi), float(ro), float(ri)),
+        tire_loads=TireLoads(*_clean(float(sol.loads.pz), fo, fi, ro, ri)),
         cg_lateral_m=float(sol.geometry.cg[1]),
         cg_height_m=float(sol.geometry.cg[2]),
         stage_values=stage_values,
         iterations=sol.iterations,
         parameters={
-            "chassis_constant_x": float(m.torque_split_x) if m.closure == "torque-split" else float("nan"),
+            **({"chassis_constant_x": float(m.torque_split_x)} if m.closure == "torque-split" else {}),
             "rear_load_kn": float(sol.loads.fr),
             "front_load_kn": float(sol.loads.pz - sol.loads.fr),
             "theta27_deg": math.degrees(float(sol.geometry.theta27)),
@@ -197,8 +202,8 @@ def _curves_2d(m, case, limit_sol, points, forces) -> Curves:
         ay_g=[float(a) for a in ays],
         fz_front_outer_kn=None,
         fz_front_inner_kn=None,
-        fz_rear_outer_kn=[float(r.forces.fz_outer) for r in rows],
-        fz_rear_inner_kn=[float(r.forces.fz_inner) for r in rows],
+        fz_rear_outer_kn=[_clean(case.weight, r.forces.fz_outer)[0] for r in rows],
+        fz_rear_inner_kn=[_clean(case.weight, r.forces.fz_inner)[0] for r in rows],
         llt_front=None,
         llt_rear=[float(_llt(r.forces.fz_outer, r.forces.fz_inner)) for r in rows],
         roll_angle_deg=[math.degrees(float(r.geometry.top_angle)) for r in rows],
@@ -280,7 +285,7 @@ def rollover_threshold(
             limit="rear-inner-lift-off" if rear_llt_limit == 1.0 else "rear-llt-limit",
             rear_llt_limit=rear_llt_limit,
             llt_rear=float(_llt(f.fz_outer, f.fz_inner)),
-            tire_loads=TireLoads(None, None, float(f.fz_outer), float(f.fz_inner)),
+            tire_loads=TireLoads(None, None, *_clean(float(case.weight), f.fz_outer, f.fz_inner)),
             cg_lateral_m=float(sol.cg[0]),
             cg_height_m=float(sol.cg[1]),
             iterations=sol.iterations,

@@ -16,6 +16,7 @@ from fastapi.exceptions import RequestValidationError
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
+from engine.assessment import check_targets, tilt_table_angle_deg
 from engine.loads import LoadCase, Road
 from engine.road import check_speed, max_curve_speed_kmh, min_radius, side_friction_factor
 from engine.threshold import rollover_threshold
@@ -25,6 +26,7 @@ from .cache import ResultCache, cache_key
 from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .schemas.road import SRT_FIELDS, CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from .schemas.srt import SrtInputs, SrtRequest, SrtResult
+from .settings import Settings
 
 DEFAULT_CURVE_POINTS = SrtRequest.model_fields["curve_points"].default
 
@@ -52,8 +54,27 @@ def resolve_vehicle(ref: Any) -> Vehicle:
     return Vehicle.from_dict(ref.record())
 
 
-def resolve_srt(req: SrtInputs, *, include_curves: bool = False, curve_points: int | None = None) -> dict[str, Any]:
-    """The fully resolved SRT request: every field explicit, the vehicle as its full record."""
+def resolve_targets(targets: dict[str, float] | None, settings: Settings) -> dict[str, float]:
+    """The SRT targets of a request: its own, else the configured defaults (name -> minimum SRT [g])."""
+    return dict(targets) if targets is not None else settings.default_targets()
+
+
+def target_checks(srt_g: float, targets: dict[str, float]) -> list[dict[str, Any]]:
+    """``TargetCheckOut`` dicts for an SRT, in order of increasing target (then name): the order is fixed by
+    the targets themselves, so equal targets given in any order give the same body and the same cache key."""
+    checks = sorted(check_targets(srt_g, targets), key=lambda c: (c.target_g, c.name))
+    return [{"name": c.name, "target_g": c.target_g, "meets": c.meets, "margin_g": c.margin_g} for c in checks]
+
+
+def resolve_srt(
+    req: SrtInputs,
+    *,
+    targets: dict[str, float],
+    include_curves: bool = False,
+    curve_points: int | None = None,
+) -> dict[str, Any]:
+    """The fully resolved SRT request: every field explicit, the vehicle as its full record, the targets the
+    result is checked against (they are in the body, so they are in the key)."""
     return {
         "vehicle": resolve_vehicle(req.vehicle).to_dict(),
         "model": req.model,
@@ -65,6 +86,7 @@ def resolve_srt(req: SrtInputs, *, include_curves: bool = False, curve_points: i
         "include_curves": include_curves,
         # without curves the number of points changes nothing: keep it out of the key
         "curve_points": (curve_points or DEFAULT_CURVE_POINTS) if include_curves else None,
+        "targets": dict(targets),
     }
 
 
@@ -80,6 +102,12 @@ def _srt_source(req: CurveSpeedRequest | MinRadiusRequest) -> None:
         raise _refuse("srt", "give either srt (g) or vehicle (with the other SRT request fields)")
     if req.srt is not None:
         extra = [f for f in SRT_FIELDS if f in req.model_fields_set]
+        if extra == ["targets"]:
+            raise _refuse(
+                "targets",
+                "targets are checked against a computed SRT (the embedded srt_result); with a given srt there is "
+                "none: leave targets out, or give the SRT request fields instead of srt",
+            )
         if extra:
             raise _refuse(
                 extra[0],
@@ -113,6 +141,8 @@ def solve_srt(resolved: dict[str, Any]) -> bytes:
     data = result.to_dict()
     data["parameters"] = {k: _finite_or_none(v) for k, v in data["parameters"].items()}
     data["notes"] = list(data.get("notes") or [])
+    data["tilt_table_angle_deg"] = float(tilt_table_angle_deg(result.srt))
+    data["targets"] = target_checks(result.srt, resolved["targets"])
     data["engine_version"] = ENGINE_VERSION
     # validating the engine's output against the published schema turns a contract break into a loud error
     return SrtResult.model_validate(data).model_dump_json().encode()
@@ -143,9 +173,10 @@ async def _srt_for(cache: ResultCache, req: CurveSpeedRequest | MinRadiusRequest
     return data["srt"], "computed", data
 
 
-async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest) -> Computed:
+async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest, settings: Settings) -> Computed:
     _srt_source(req)
-    resolved_srt = resolve_srt(req) if req.srt is None else None
+    targets = resolve_targets(req.targets, settings)
+    resolved_srt = resolve_srt(req, targets=targets) if req.srt is None else None
     resolved = {"radius_m": req.radius_m, "srt": req.srt, "srt_request": resolved_srt}
     key = cache_key("curve-speed", resolved)
     body = await _cached(cache, "curve-speed", key)
@@ -165,7 +196,7 @@ async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest) -> Com
     return Computed(body.encode(), key, False)
 
 
-async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest) -> Computed:
+async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings: Settings) -> Computed:
     _srt_source(req)
     resolved_srt = None
     if req.srt is None:
@@ -181,7 +212,7 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest) -> Compu
         with_bank = req.model_copy(
             update={"road": req.road.model_copy(update={"bank_percent": req.superelevation_percent})}
         )
-        resolved_srt = resolve_srt(with_bank)
+        resolved_srt = resolve_srt(with_bank, targets=resolve_targets(req.targets, settings))
     resolved = {
         "design_speed_kmh": req.design_speed_kmh,
         "superelevation_percent": req.superelevation_percent,

@@ -12,6 +12,8 @@ from typing import Literal
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
+from engine.assessment import DEFAULT_TARGETS
+
 
 class Settings(BaseSettings):
     model_config = SettingsConfigDict(env_prefix="ROLLOVER_", extra="ignore")
@@ -32,6 +34,22 @@ class Settings(BaseSettings):
         15.0, ge=0, description="After a Redis failure, serve from the local cache without Redis for this long [s]."
     )
     log_level: Literal["DEBUG", "INFO", "WARNING", "ERROR"] = Field("INFO", description="Lowest level logged.")
+    srt_target_general_g: float = Field(
+        DEFAULT_TARGETS["general"],
+        gt=0,
+        lt=2,
+        description="SRT target every result is checked against, general freight (PBS / NZ rule: 0.35) [g].",
+    )
+    srt_target_dangerous_goods_g: float = Field(
+        DEFAULT_TARGETS["dangerous_goods"],
+        gt=0,
+        lt=2,
+        description="SRT target for dangerous goods, e.g. tankers (PBS / NZ rule: 0.40) [g].",
+    )
+
+    def default_targets(self) -> dict[str, float]:
+        """The SRT targets checked when a request gives none: name -> minimum SRT [g]."""
+        return {"general": self.srt_target_general_g, "dangerous_goods": self.srt_target_dangerous_goods_g}
 
 
 @lru_cache

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Response
 
-from ..deps import CacheDep
+from ..deps import CacheDep, SettingsDep
 from ..schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from ..service import compute_curve_speed, compute_min_radius
 from .common import computed_responses, json_response
@@ -18,12 +18,12 @@ router = APIRouter(prefix="/v1", tags=["road"])
     response_model=CurveSpeedResult,
     responses=computed_responses(400, 404, 422, 500),
 )
-async def curve_speed(body: CurveSpeedRequest, cache: CacheDep) -> Response:
+async def curve_speed(body: CurveSpeedRequest, cache: CacheDep, settings: SettingsDep) -> Response:
     """Maximum speed on a curve of radius R before rollover, V = sqrt(127 SRT R) [km/h] (Eq. 9.1).
 
     The SRT is either given or computed from the SRT request fields for `road`'s bank and slope; it already
     contains the bank, so no superelevation term is added."""
-    return json_response(await compute_curve_speed(cache, body))
+    return json_response(await compute_curve_speed(cache, body, settings))
 
 
 @router.post(
@@ -32,7 +32,7 @@ async def curve_speed(body: CurveSpeedRequest, cache: CacheDep) -> Response:
     response_model=MinRadiusResult,
     responses=computed_responses(400, 404, 422, 500),
 )
-async def min_radius(body: MinRadiusRequest, cache: CacheDep) -> Response:
+async def min_radius(body: MinRadiusRequest, cache: CacheDep, settings: SettingsDep) -> Response:
     """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (AASHTO/DNIT, side friction from
     Table 21 unless given), Eq. 9.3 (rollover, the SRT on that bank and slope) and the governing one."""
-    return json_response(await compute_min_radius(cache, body))
+    return json_response(await compute_min_radius(cache, body, settings))

@@ -10,9 +10,9 @@ from engine.loads import MAX_BANK_PERCENT
 from engine.road import FRICTION_BOUNDS
 
 from .common import EXAMPLE_PRESET, OutputModel, describe
-from .srt import VEHICLE_DESCRIPTION, SrtInputs, SrtResult, VehicleRef
+from .srt import VEHICLE_DESCRIPTION, SrtInputs, SrtResult, SrtTargets, VehicleRef
 
-SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit")
+SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
 
 _GIVEN_SRT = describe(
     "A known SRT for this curve's bank and slope (it already contains the bank: nothing is added to it). "
@@ -24,7 +24,7 @@ _OPTIONAL_VEHICLE = VEHICLE_DESCRIPTION + " Give either `vehicle` (the SRT is co
 SrtSource = Literal["given", "computed"]
 
 
-class CurveSpeedRequest(SrtInputs):
+class CurveSpeedRequest(SrtInputs, SrtTargets):
     """Maximum speed on a curve before rollover, V = sqrt(127 SRT R) (Eq. 9.1), from a given SRT or from the
     SRT request fields (the SRT is then computed for `road`'s bank and slope)."""
 
@@ -42,7 +42,7 @@ class CurveSpeedRequest(SrtInputs):
     vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
 
 
-class MinRadiusRequest(SrtInputs):
+class MinRadiusRequest(SrtInputs, SrtTargets):
     """Minimum curve radius for a design speed and superelevation: AASHTO/DNIT Eq. 9.2 with the side-friction
     factor given or from Table 21, rollover Eq. 9.3 with the vehicle's SRT on that bank and slope, and the
     governing (larger) one. When the SRT is computed, the bank is `superelevation_percent`."""

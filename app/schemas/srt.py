@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Discriminator, Field, Tag
+from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, WithJsonSchema
 
 from engine.classic import MODELS
 from engine.loads import MAX_BANK_PERCENT, MAX_OVERWEIGHT_PERCENT, MAX_SLOPE_PERCENT, MAX_TRAILER_ANGLE_DEG
@@ -110,10 +110,10 @@ SRT_EXAMPLE: dict[str, Any] = {
 }
 
 
-class SrtInputs(InputModel):
-    """Everything that determines one SRT (shared by /v1/srt, /v1/curve-speed and /v1/min-radius)."""
+class SrtOptions(InputModel):
+    """The SRT request fields other than the vehicle and the road (shared with the alignment assessment, where
+    each curve has its own bank and grade)."""
 
-    vehicle: VehicleRef = Field(description=VEHICLE_DESCRIPTION)
     model: ModelId = Field(
         "3d", description=describe("Model id (see GET /v1/models).", unit="-", symbol="Chs. 2, 5, 6 models")
     )
@@ -124,9 +124,6 @@ class SrtInputs(InputModel):
             unit="-",
             symbol="SRT_TS / SRT_3D stages (Ch. 9)",
         ),
-    )
-    road: RoadIn = Field(
-        default_factory=RoadIn, description=describe("Road bank and slope at the curve.", unit="%", symbol="e, slope")
     )
     trailer_angle_deg: float = Field(
         0.0,
@@ -152,10 +149,60 @@ class SrtInputs(InputModel):
     )
 
 
-class SrtRequest(SrtInputs):
+class SrtInputs(SrtOptions):
+    """Everything that determines one SRT (shared by /v1/srt, /v1/curve-speed and /v1/min-radius)."""
+
+    vehicle: VehicleRef = Field(description=VEHICLE_DESCRIPTION)
+    road: RoadIn = Field(
+        default_factory=RoadIn, description=describe("Road bank and slope at the curve.", unit="%", symbol="e, slope")
+    )
+
+
+#: a target's name: lower-case letters, digits and underscores (it also names CSV columns)
+TARGET_NAME_PATTERN = r"^[a-z][a-z0-9_]{0,39}$"
+MAX_TARGETS = 10
+Targets = Annotated[
+    dict[Annotated[str, StringConstraints(pattern=TARGET_NAME_PATTERN)], Annotated[float, Field(gt=0, lt=2)]],
+    Field(min_length=1, max_length=MAX_TARGETS),
+    WithJsonSchema(
+        {
+            "type": "object",
+            "minProperties": 1,
+            "maxProperties": MAX_TARGETS,
+            "propertyNames": {"pattern": TARGET_NAME_PATTERN},
+            "additionalProperties": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 2},
+        }
+    ),
+]
+TARGETS_DESCRIPTION = describe(
+    "SRT targets to check the result against, name -> minimum SRT in g (1-10 entries; names in lower case, "
+    "digits and `_`). They replace the service's defaults, which are `general` 0.35 g and `dangerous_goods` "
+    "0.40 g (Australia's PBS scheme, New Zealand's SRT rule) unless the deployment configures others.",
+    unit="g",
+    symbol="SRT target",
+)
+
+
+class SrtTargets(InputModel):
+    """The SRT targets a computed SRT is checked against."""
+
+    targets: Targets | None = Field(None, description=TARGETS_DESCRIPTION)
+
+
+class SrtRequest(SrtInputs, SrtTargets):
     """Static rollover threshold of one vehicle on one road with one load case."""
 
-    model_config = ConfigDict(json_schema_extra={"examples": [{**SRT_EXAMPLE, "include_curves": False}]})
+    model_config = ConfigDict(
+        json_schema_extra={
+            "examples": [
+                {**SRT_EXAMPLE, "include_curves": False},
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "targets": {"general": 0.35, "dangerous_goods": 0.40, "tanker_fleet": 0.45},
+                },
+            ]
+        }
+    )
 
     include_curves: bool = Field(
         False,
@@ -216,6 +263,31 @@ class CurvesOut(OutputModel):
     )
 
 
+class TargetCheckOut(OutputModel):
+    """Whether an SRT meets one target, and by how much."""
+
+    name: str = Field(description=describe("Target name (`general`, `dangerous_goods` or the request's).", unit="-"))
+    target_g: float = Field(description=describe("Minimum SRT the target asks for.", unit="g", symbol="SRT target"))
+    meets: bool = Field(description=describe("Whether SRT >= target.", unit="-", symbol="SRT >= target"))
+    margin_g: float = Field(
+        description=describe("SRT - target; negative when the target is missed.", unit="g", symbol="SRT - target")
+    )
+
+
+TARGETS_OUT = describe(
+    "The SRT checked against each target (the request's `targets`, else the service's defaults), in order of "
+    "increasing target.",
+    unit="g",
+    symbol="SRT target",
+)
+TILT_OUT = describe(
+    "Tilt-table angle equivalent to the SRT, atan(SRT): the angle at which a tilt test would tip a vehicle with "
+    "this threshold.",
+    unit="deg",
+    symbol="atan(SRT)",
+)
+
+
 class SrtResult(OutputModel):
     """The static rollover threshold and the state of the vehicle at the limit."""
 
@@ -231,6 +303,8 @@ class SrtResult(OutputModel):
             "Total body roll at the limit (null for the rigid closed forms).", unit="deg", symbol="theta_3D"
         )
     )
+    tilt_table_angle_deg: float = Field(description=TILT_OUT)
+    targets: list[TargetCheckOut] = Field(description=TARGETS_OUT)
     model: str = Field(description=describe("Model used.", unit="-", symbol="-"))
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
     limit: str = Field(

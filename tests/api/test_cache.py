@@ -63,6 +63,8 @@ def test_the_etag_is_the_sha256_of_the_canonical_resolved_request_with_the_engin
         "rear_llt_limit": 1.0,
         "include_curves": False,
         "curve_points": None,
+        # the body reports the SRT against the targets, so they are in the key (the configured defaults here)
+        "targets": {"general": 0.35, "dangerous_goods": 0.40},
     }
     digest = hashlib.sha256(orjson.dumps(resolved, option=orjson.OPT_SORT_KEYS)).hexdigest()
     assert etag == f"{ENGINE_VERSION}:srt:{digest}"

@@ -8,6 +8,9 @@ pickle), so a hit returns exactly what the miss returned.
 Redis is optional at run time: when a call fails (connection refused, timeout, any ``RedisError``) the
 cache logs ``redis_unavailable`` once, answers from the local LRU (and the caller computes), and does not
 try Redis again for ``redis_retry_seconds``; the first call that succeeds afterwards logs ``redis_recovered``.
+
+The in-process LRU is bounded by entries and by total bytes; a body larger than ``cache_max_entry_bytes`` is not
+cached in either tier (it is computed again on the next request and answered with ``X-Cache: miss``).
 """
 
 from __future__ import annotations
@@ -50,6 +53,21 @@ def cache_key(operation: str, resolved: dict[str, Any]) -> str:
     return f"{ENGINE_VERSION}:{operation}:{digest.hexdigest()}"
 
 
+class SizedLRU(LRUCache):
+    """An LRU bounded both by its number of entries and by the total bytes of its values (a batch answer of
+    100,000 curve rows is tens of MB: an entry bound alone would let a few thousand of them exhaust memory)."""
+
+    def __init__(self, max_entries: int, max_bytes: int) -> None:
+        super().__init__(maxsize=max_bytes, getsizeof=len)
+        self.max_entries = max_entries
+
+    def __setitem__(self, key: str, value: bytes) -> None:
+        if key not in self:
+            while len(self) >= self.max_entries:
+                self.popitem()
+        super().__setitem__(key, value)
+
+
 @dataclass(frozen=True)
 class Lookup:
     value: bytes | None
@@ -66,8 +84,11 @@ class ResultCache:
         *,
         ttl_seconds: int = 0,
         retry_seconds: float = 15.0,
+        max_bytes: int = 512 * 2**20,
+        max_entry_bytes: int = 32 * 2**20,
     ) -> None:
-        self.local: LRUCache[str, bytes] = LRUCache(maxsize=max_entries)
+        self.local: SizedLRU = SizedLRU(max_entries, max_bytes)
+        self.max_entry_bytes = min(max_entry_bytes, max_bytes)
         self.redis = redis
         self.ttl_seconds = ttl_seconds
         self.retry_seconds = retry_seconds
@@ -123,6 +144,8 @@ class ResultCache:
         return Lookup(None, None)
 
     async def set(self, key: str, value: bytes) -> None:
+        if len(value) > self.max_entry_bytes:  # too big to keep: computed again on the next request
+            return
         self.local[key] = value
         if self._redis_usable():
             try:
@@ -170,4 +193,6 @@ def make_cache(settings) -> ResultCache:
         redis,
         ttl_seconds=settings.redis_ttl_seconds,
         retry_seconds=settings.redis_retry_seconds,
+        max_bytes=settings.cache_max_bytes,
+        max_entry_bytes=settings.cache_max_entry_bytes,
     )

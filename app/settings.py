@@ -23,6 +23,12 @@ class Settings(BaseSettings):
         description="memory: in-process LRU only (one worker). redis: in-process LRU in front of a shared Redis.",
     )
     cache_max_entries: int = Field(4096, ge=1, description="Size bound of the in-process LRU cache [entries].")
+    cache_max_bytes: int = Field(
+        512 * 2**20, ge=1, description="Size bound of the in-process LRU: total bytes of the cached bodies [bytes]."
+    )
+    cache_max_entry_bytes: int = Field(
+        32 * 2**20, ge=1, description="Bodies larger than this are not cached in either tier [bytes]."
+    )
     redis_url: str = Field("redis://127.0.0.1:6379/0", description="Redis URL (used when cache_backend=redis).")
     redis_ttl_seconds: int = Field(
         7 * 24 * 3600, ge=0, description="Expiry of the entries written to Redis [s]; 0 keeps them until evicted."

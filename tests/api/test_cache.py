@@ -141,3 +141,23 @@ def test_errors_are_not_cached(client):
     assert client.post("/v1/srt", json=body).status_code == 422
     r = client.post("/v1/srt", json=body)
     assert r.status_code == 422 and "x-cache" not in r.headers
+
+
+def test_the_lru_is_bounded_in_bytes_too():
+    bodies = [{"vehicle": BTRAIN, "model": "rigid", "load": {"vertical_offset_m": d}} for d in (0.0, 0.1, 0.2)]
+    with make_client() as c:
+        size = len(c.post("/v1/srt", json=bodies[0]).content)
+    # room for two of these bodies (they differ by a few bytes at most), not three
+    with make_client(Settings(cache_backend="memory", cache_max_bytes=int(2.5 * size))) as c:
+        for b in bodies:
+            assert c.post("/v1/srt", json=b).headers["x-cache"] == "miss"
+        assert c.get("/healthz").json()["cache_entries"] == 2
+        assert c.post("/v1/srt", json=bodies[0]).headers["x-cache"] == "miss"  # the oldest was evicted
+
+
+def test_a_body_over_the_entry_limit_is_not_cached():
+    with make_client(Settings(cache_backend="memory", cache_max_entry_bytes=100)) as c:
+        assert c.post("/v1/srt", json=RIGID).headers["x-cache"] == "miss"
+        r = c.post("/v1/srt", json=RIGID)
+        assert r.status_code == 200 and r.headers["x-cache"] == "miss"
+        assert c.get("/healthz").json()["cache_entries"] == 0

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -33,11 +34,12 @@ DEFAULT_CURVE_POINTS = SrtRequest.model_fields["curve_points"].default
 
 @dataclass(frozen=True)
 class Computed:
-    """A response body with its cache key and whether it came from the cache."""
+    """A response body with its cache key, whether it came from the cache, and its media type."""
 
     body: bytes
     key: str
     hit: bool
+    media_type: str = "application/json"
 
     @property
     def etag(self) -> str:
@@ -152,6 +154,39 @@ async def _cached(cache: ResultCache, operation: str, key: str) -> bytes | None:
     lookup = await cache.get(key)
     CACHE_LOOKUPS.labels(operation, lookup.tier or "miss").inc()
     return lookup.value
+
+
+async def cached(
+    cache: ResultCache,
+    operation: str,
+    resolved: dict[str, Any],
+    produce: Callable[[], Awaitable[bytes]],
+    media_type: str = "application/json",
+) -> Computed:
+    """The body for ``resolved`` from the cache, or from ``produce()`` (then stored under the same key)."""
+    key = cache_key(operation, resolved)
+    body = await _cached(cache, operation, key)
+    if body is not None:
+        return Computed(body, key, True, media_type)
+    body = await produce()
+    await cache.set(key, body)
+    return Computed(body, key, False, media_type)
+
+
+async def cached_csv(
+    cache: ResultCache,
+    operation: str,
+    resolved: dict[str, Any],
+    json_body: Callable[[], Awaitable[Computed]],
+    render: Callable[[bytes], bytes],
+) -> Computed:
+    """The CSV form of a JSON answer, cached under its own key (``<operation>-csv``: its own ETag), rendered from
+    the JSON body (itself from the cache or computed) on a miss."""
+
+    async def produce() -> bytes:
+        return render((await json_body()).body)
+
+    return await cached(cache, f"{operation}-csv", resolved, produce, "text/csv; charset=utf-8")
 
 
 async def compute_srt(cache: ResultCache, resolved: dict[str, Any]) -> Computed:

@@ -21,8 +21,34 @@ CACHE_HEADERS: dict[str, Any] = {
 }
 
 
+VARY_HEADER = {
+    "description": "`Accept`: the answer is JSON or CSV depending on it.",
+    "schema": {"type": "string"},
+}
+
+
 def computed_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
     return {200: {"headers": CACHE_HEADERS}, **error_responses(*codes)}
+
+
+def table_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
+    """A computed answer that is JSON by default and CSV when ``Accept`` prefers ``text/csv``."""
+    return {
+        200: {
+            "headers": {**CACHE_HEADERS, "Vary": VARY_HEADER},
+            "content": {"text/csv": {"schema": {"type": "string"}}},
+            "description": "JSON by default; CSV (header row, one row per case) when `Accept` prefers `text/csv`.",
+        },
+        **error_responses(*codes),
+    }
+
+
+def computed_response(result: Computed, *, vary_accept: bool = False) -> Response:
+    """The body with its media type, ETag and X-Cache (and ``Vary: Accept`` for negotiated answers)."""
+    headers = {"ETag": result.etag, "X-Cache": "hit" if result.hit else "miss"}
+    if vary_accept:
+        headers["Vary"] = "Accept"
+    return Response(content=result.body, media_type=result.media_type, headers=headers)
 
 
 def json_response(result: Computed) -> Response:

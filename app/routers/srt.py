@@ -1,13 +1,17 @@
-"""POST /v1/srt: static rollover threshold."""
+"""POST /v1/srt (static rollover threshold), /v1/srt/limits (inverse limits) and /v1/srt/sweep (grids)."""
 
 from __future__ import annotations
 
-from fastapi import APIRouter, Response
+from fastapi import APIRouter, Request, Response
 
 from ..deps import CacheDep, SettingsDep
+from ..schemas.limits import LimitsRequest, LimitsResult
 from ..schemas.srt import SrtRequest, SrtResult
+from ..schemas.sweep import SweepRequest, SweepResult
 from ..service import compute_srt, resolve_srt, resolve_targets
-from .common import computed_responses, json_response
+from ..service_tools import compute_limits, compute_sweep
+from ..tables import wants_csv
+from .common import computed_response, computed_responses, json_response, table_responses
 
 router = APIRouter(prefix="/v1", tags=["srt"])
 
@@ -24,3 +28,23 @@ async def srt(body: SrtRequest, cache: CacheDep, settings: SettingsDep) -> Respo
         curve_points=body.curve_points,
     )
     return json_response(await compute_srt(cache, resolved))
+
+
+@router.post(
+    "/srt/limits", name="limits", response_model=LimitsResult, responses=computed_responses(400, 404, 422, 500)
+)
+async def limits(body: LimitsRequest, cache: CacheDep, settings: SettingsDep) -> Response:
+    """For a target SRT, the largest CG height above the chassis, overweight or lateral offset d1 -- or the
+    smallest spring separation -- at which the vehicle still meets it (Brent's bracketed root finder on the
+    engine; about 10-15 SRT solves), and the same limit over a range of overweights (TERNZ's table of acceptable
+    mass / load-height pairs, solved exactly)."""
+    return computed_response(await compute_limits(cache, body, settings))
+
+
+@router.post("/srt/sweep", name="sweep", response_model=SweepResult, responses=table_responses(400, 404, 422, 500))
+async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
+    """The SRT over the Cartesian product of up to eight axes (bank, slope, trailer angle, d1, d2, d3,
+    overweight, rear LLT limit; at most 20,000 cases), like the thesis's Tables 17 and 19, in one call; JSON, or
+    CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
+    csv = wants_csv(request.headers.get("accept"))
+    return computed_response(await compute_sweep(cache, body, settings, csv=csv), vary_accept=True)

@@ -22,6 +22,8 @@ OPERATIONS = {
     ("get", "/v1/vehicles"): "vehicles-list_vehicles",
     ("get", "/v1/vehicles/{id}"): "vehicles-get_vehicle",
     ("post", "/v1/srt"): "srt-compute_srt",
+    ("post", "/v1/srt/limits"): "srt-limits",
+    ("post", "/v1/srt/sweep"): "srt-sweep",
     ("post", "/v1/curve-speed"): "road-curve_speed",
     ("post", "/v1/min-radius"): "road-min_radius",
     ("get", "/v1/models"): "models-list_models",
@@ -61,20 +63,38 @@ def test_every_operation_declares_problem_details(method, path):
         assert r["content"]["application/problem+json"]["schema"] == {"$ref": "#/components/schemas/Problem"}
 
 
-@pytest.mark.parametrize("path", ["/v1/srt", "/v1/curve-speed", "/v1/min-radius"])
+#: every computed operation (ETag, X-Cache) -> the request model of its JSON body
+COMPUTED = {
+    "/v1/srt": "SrtRequest",
+    "/v1/curve-speed": "CurveSpeedRequest",
+    "/v1/min-radius": "MinRadiusRequest",
+    "/v1/srt/limits": "LimitsRequest",
+    "/v1/srt/sweep": "SweepRequest",
+}
+#: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
+TABLES = {"/v1/srt/sweep"}
+
+
+@pytest.mark.parametrize("path", sorted(COMPUTED))
 def test_computed_operations_declare_etag_and_x_cache(path):
     headers = COMMITTED["paths"][path]["post"]["responses"]["200"]["headers"]
-    assert set(headers) == {"ETag", "X-Cache"}
+    assert set(headers) == ({"ETag", "X-Cache", "Vary"} if path in TABLES else {"ETag", "X-Cache"})
 
 
-@pytest.mark.parametrize("name", ["SrtRequest", "CurveSpeedRequest", "MinRadiusRequest"])
+@pytest.mark.parametrize("path", sorted(TABLES))
+def test_table_operations_declare_json_and_csv(path):
+    content = COMMITTED["paths"][path]["post"]["responses"]["200"]["content"]
+    assert set(content) == {"application/json", "text/csv"}
+
+
+@pytest.mark.parametrize("name", sorted(COMPUTED.values()))
 def test_every_request_model_has_a_btrain_example(name):
     examples = COMMITTED["components"]["schemas"][name]["examples"]
     assert any(e.get("vehicle") == "table16-btrain" for e in examples)
 
 
 def test_examples_are_accepted_by_the_app(shared_client):
-    paths = {"SrtRequest": "/v1/srt", "CurveSpeedRequest": "/v1/curve-speed", "MinRadiusRequest": "/v1/min-radius"}
+    paths = {name: path for path, name in COMPUTED.items()}
     for name, path in paths.items():
         for example in COMMITTED["components"]["schemas"][name]["examples"]:
             r = shared_client.post(path, json=example)

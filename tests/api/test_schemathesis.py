@@ -4,6 +4,9 @@ Checks on every generated request: no 5xx, the status code, content type, header
 spec, and invalid input is rejected with a 4xx. Not checked: ``positive_data_acceptance`` (a schema-valid
 request may still be physically impossible, e.g. a track that differs from the axle width or a preset id
 that does not exist, and the engine rightly answers 404/422 for it).
+
+The inverse limits (about ten SRT solves per limit, up to 25 table rows) and the batch operations (up to
+20,000 cases) cost far more per call than the rest: they get fewer examples each.
 """
 
 from __future__ import annotations
@@ -18,8 +21,24 @@ from app.settings import Settings
 app = create_app(Settings(cache_backend="memory"))
 schema = schemathesis.openapi.from_asgi("/openapi.json", app)
 
+LIMITS = ["/v1/srt/limits"]
+BATCHES = ["/v1/srt/sweep"]
+FUZZ = {"deadline": None, "suppress_health_check": list(HealthCheck), "derandomize": True}
 
-@schema.parametrize()
-@settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck), derandomize=True)
+
+@schema.exclude(path=LIMITS + BATCHES).parametrize()
+@settings(max_examples=25, **FUZZ)
 def test_no_server_errors_and_responses_conform(case):
+    case.call_and_validate(excluded_checks=[positive_data_acceptance])
+
+
+@schema.include(path=BATCHES).parametrize()
+@settings(max_examples=10, **FUZZ)
+def test_batches_no_server_errors_and_responses_conform(case):
+    case.call_and_validate(excluded_checks=[positive_data_acceptance])
+
+
+@schema.include(path=LIMITS).parametrize()
+@settings(max_examples=5, **FUZZ)
+def test_limits_no_server_errors_and_responses_conform(case):
     case.call_and_validate(excluded_checks=[positive_data_acceptance])

@@ -1,0 +1,168 @@
+"""POST /v1/srt/sweep: the SRT over a grid of cases (the thesis's Tables 17 and 19 in one call)."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from pydantic import ConfigDict, Field
+
+from engine.loads import MAX_BANK_PERCENT, MAX_OVERWEIGHT_PERCENT, MAX_SLOPE_PERCENT, MAX_TRAILER_ANGLE_DEG
+
+from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
+
+MAX_AXIS_VALUES = 200
+MAX_CASES = 20_000
+
+#: axis -> (bounds, unit, thesis symbol, text); the bounds are those of the same field of the SRT request
+AXES: dict[str, tuple[dict[str, float], str, str, str]] = {
+    "bank_percent": (
+        {"ge": -MAX_BANK_PERCENT, "le": MAX_BANK_PERCENT},
+        "%",
+        "e, phi",
+        "Bank (superelevation), + toward the inside of the curve.",
+    ),
+    "slope_percent": (
+        {"ge": -MAX_SLOPE_PERCENT, "le": MAX_SLOPE_PERCENT},
+        "%",
+        "slope",
+        "Longitudinal grade, + uphill.",
+    ),
+    "trailer_angle_deg": (
+        {"ge": -MAX_TRAILER_ANGLE_DEG, "le": MAX_TRAILER_ANGLE_DEG},
+        "deg",
+        "psi",
+        "Angle between the last two units (3d only).",
+    ),
+    "lateral_offset_m": ({"ge": -5, "le": 5}, "m", "d1", "Lateral CG offset, + toward the outside of the turn."),
+    "longitudinal_offset_m": ({"ge": -50, "le": 50}, "m", "d2", "Longitudinal CG offset, + toward the front."),
+    "vertical_offset_m": ({"ge": -10, "le": 10}, "m", "d3", "Vertical CG offset, + up."),
+    "overweight_percent": (
+        {"gt": -100, "le": MAX_OVERWEIGHT_PERCENT},
+        "%",
+        "overweight",
+        "Extra weight over the nominal W.",
+    ),
+    "rear_llt_limit": ({"gt": 0, "le": 1}, "-", "LLTr", "Rear lateral load transfer at which the ramp stops."),
+}
+AXIS_ORDER = tuple(AXES)
+
+
+def _values(name: str) -> Any:
+    """The grid field of one axis: 1-200 values within the SRT request's bounds for that field."""
+    _, unit, symbol, text = AXES[name]
+    return Field(
+        None,
+        min_length=1,
+        max_length=MAX_AXIS_VALUES,
+        description=describe(f"{text} Values of this axis (1-{MAX_AXIS_VALUES}).", unit=unit, symbol=symbol),
+    )
+
+
+def _value(name: str) -> Any:
+    return Annotated[float, Field(**AXES[name][0])]
+
+
+BankValue = _value("bank_percent")
+SlopeValue = _value("slope_percent")
+AngleValue = _value("trailer_angle_deg")
+D1Value = _value("lateral_offset_m")
+D2Value = _value("longitudinal_offset_m")
+D3Value = _value("vertical_offset_m")
+OverweightValue = _value("overweight_percent")
+LltValue = _value("rear_llt_limit")
+
+
+class SweepGrid(InputModel):
+    """The axes to vary (at least one) and their values. The cases are the Cartesian product of the axes, in
+    this fixed order whatever their order in the request (a JSON object has none): `bank_percent`,
+    `slope_percent`, `trailer_angle_deg`, `lateral_offset_m`, `longitudinal_offset_m`, `vertical_offset_m`,
+    `overweight_percent`, `rear_llt_limit`; the first axis varies slowest. An axis overrides the base case's
+    field of the same name."""
+
+    bank_percent: list[BankValue] | None = _values("bank_percent")
+    slope_percent: list[SlopeValue] | None = _values("slope_percent")
+    trailer_angle_deg: list[AngleValue] | None = _values("trailer_angle_deg")
+    lateral_offset_m: list[D1Value] | None = _values("lateral_offset_m")
+    longitudinal_offset_m: list[D2Value] | None = _values("longitudinal_offset_m")
+    vertical_offset_m: list[D3Value] | None = _values("vertical_offset_m")
+    overweight_percent: list[OverweightValue] | None = _values("overweight_percent")
+    rear_llt_limit: list[LltValue] | None = _values("rear_llt_limit")
+
+    def axes(self) -> dict[str, list[float]]:
+        """The given axes, in the product's order."""
+        return {a: list(getattr(self, a)) for a in AXIS_ORDER if getattr(self, a) is not None}
+
+
+class SweepRequest(SrtInputs, SrtTargets):
+    """The SRT over a grid: the SRT request fields are the base case, `grid` the axes to vary (at most
+    20,000 cases). Table 17 is bank x slope at a rear LLT limit of 0.6; Table 19 adds the trailer angle.
+    `Accept: text/csv` answers the rows as CSV with a header row."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "examples": [
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "rear_llt_limit": 0.6,
+                    "grid": {"bank_percent": [0, 4, 8], "slope_percent": [-12, -4, 0, 4, 12]},
+                },
+                {"vehicle": EXAMPLE_PRESET, "grid": {"overweight_percent": [0, 10, 20, 30]}},
+            ]
+        }
+    )
+
+    grid: SweepGrid = Field(
+        description=describe(
+            "Axes to vary and their values (1-200 each, at most 20,000 cases in all).",
+            unit="per axis",
+            symbol="Tables 17, 19",
+        )
+    )
+
+
+def _row_axis(name: str) -> Any:
+    _, unit, symbol, text = AXES[name]
+    return Field(None, description=describe(f"{text} Present only when swept.", unit=unit, symbol=symbol))
+
+
+class SweepRow(OutputModel):
+    """One case: the swept axes' values (only those), then the results."""
+
+    bank_percent: float | None = _row_axis("bank_percent")
+    slope_percent: float | None = _row_axis("slope_percent")
+    trailer_angle_deg: float | None = _row_axis("trailer_angle_deg")
+    lateral_offset_m: float | None = _row_axis("lateral_offset_m")
+    longitudinal_offset_m: float | None = _row_axis("longitudinal_offset_m")
+    vertical_offset_m: float | None = _row_axis("vertical_offset_m")
+    overweight_percent: float | None = _row_axis("overweight_percent")
+    rear_llt_limit: float | None = _row_axis("rear_llt_limit")
+    srt: float | None = Field(
+        description=describe("SRT of the case; null when refused (see `error`).", unit="g", symbol="SRT")
+    )
+    roll_angle_deg: float | None = Field(
+        description=describe(
+            "Total body roll at the limit; null when refused or for the rigid closed forms.",
+            unit="deg",
+            symbol="theta_3D",
+        )
+    )
+    tilt_table_angle_deg: float | None = Field(description=TILT_OUT + " Null when refused.")
+    targets: list[TargetCheckOut] = Field(description=TARGETS_OUT + " Empty when refused.")
+    error: str | None = Field(
+        description=describe("Why the engine refused or could not solve the case (null otherwise).", unit="-")
+    )
+
+
+class SweepResult(OutputModel):
+    """The SRT of every case of the grid; a case the engine refuses keeps its row, with `error`."""
+
+    model: str = Field(description=describe("Model used.", unit="-"))
+    stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
+    axes: list[str] = Field(
+        description=describe("The swept axes, in the product's order (the first varies slowest).", unit="-")
+    )
+    cases: int = Field(description=describe("Number of cases (rows).", unit="count"))
+    refused: int = Field(description=describe("Cases without an SRT (rows with `error`).", unit="count"))
+    rows: list[SweepRow] = Field(description=describe("One row per case, in the product's order.", unit="per field"))
+    engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -1,0 +1,229 @@
+"""Inverse limits (POST /v1/srt/limits) and grid sweeps (POST /v1/srt/sweep): request -> engine -> body.
+
+Same flow as :mod:`app.service`: the fully resolved request (preset expanded, defaults and targets filled) is the
+cache key; the engine runs in a worker thread; the body is JSON bytes, and the sweep's CSV form is rendered from
+it and cached under its own key.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import orjson
+from starlette.concurrency import run_in_threadpool
+
+from engine import ENGINE_VERSION
+from engine.assessment import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
+from engine.errors import InvalidInput, RolloverError
+from engine.loads import LoadCase, Road
+from engine.threshold import sweep
+from engine.vehicles import Vehicle
+
+from .cache import ResultCache
+from .metrics import SOLVE_SECONDS
+from .schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
+from .schemas.sweep import AXIS_ORDER, MAX_CASES, SweepRequest, SweepResult
+from .service import Computed, _refuse, cached, cached_csv, resolve_srt, resolve_targets, target_checks
+from .settings import Settings
+from .tables import flatten_targets, target_columns, to_csv
+
+
+def _base_case(resolved: dict[str, Any]) -> tuple[Vehicle, dict[str, Any]]:
+    """The engine's vehicle and keyword arguments for a resolved SRT request."""
+    return Vehicle.from_dict(resolved["vehicle"]), {
+        "model": resolved["model"],
+        "stage": resolved["stage"],
+        "road": Road(**resolved["road"]),
+        "trailer_angle_deg": resolved["trailer_angle_deg"],
+        "load": LoadCase(**resolved["load"]),
+        "rear_llt_limit": resolved["rear_llt_limit"],
+    }
+
+
+def _srt_case(req, settings: Settings) -> dict[str, Any]:
+    """The resolved base case of a limits or sweep request (no curves: those fields would only blur the key)."""
+    base = resolve_srt(req, targets=resolve_targets(req.targets, settings))
+    del base["include_curves"], base["curve_points"]
+    return base
+
+
+# ------------------------------------------------------------------------------------------ limits
+
+
+def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
+    if req.parameter == "overweight_percent" and req.overweights_percent is not None:
+        raise _refuse(
+            "overweights_percent",
+            "the table runs over overweights: with parameter = overweight_percent there is none (leave "
+            "overweights_percent out, or pick another parameter)",
+        )
+    table = None
+    if req.parameter != "overweight_percent":
+        table = list(req.overweights_percent) if req.overweights_percent is not None else list(DEFAULT_OVERWEIGHTS)
+    target = req.target_srt_g if req.target_srt_g is not None else settings.srt_target_general_g
+    return {
+        "case": _srt_case(req, settings),
+        "parameter": req.parameter,
+        "target_srt_g": target,
+        "overweights_percent": table,
+    }
+
+
+def _limit_out(limit: Limit, targets: dict[str, float]) -> dict[str, Any]:
+    srt = limit.srt_at_limit
+    return {
+        "value": limit.value,
+        "status": limit.status,
+        "range_min": limit.range[0],
+        "range_max": limit.range[1],
+        "srt_at_limit": srt,
+        "evaluations": limit.evaluations,
+        "tilt_table_angle_deg": None if srt is None else float(tilt_table_angle_deg(srt)),
+        "targets": [] if srt is None else target_checks(srt, targets),
+    }
+
+
+def _current_value(vehicle: Vehicle, load: LoadCase, parameter: str) -> float:
+    holder, name = PARAMETER_INFO[parameter][2].split(".")
+    return float(getattr(vehicle if holder == "vehicle" else load, name))
+
+
+def solve_limits(resolved: dict[str, Any]) -> bytes:
+    """The limit and its table (blocking: called in a worker thread) -> LimitsResult JSON bytes."""
+    started = time.perf_counter()
+    case = resolved["case"]
+    vehicle, kwargs = _base_case(case)
+    parameter, target = resolved["parameter"], resolved["target_srt_g"]
+    try:
+        limit = parameter_limit(vehicle, target, parameter, **kwargs)
+    except InvalidInput as exc:
+        if exc.field != parameter:
+            raise
+        cause = exc.__cause__
+        if isinstance(cause, InvalidInput) and cause.field is not None:
+            raise cause from None  # e.g. a MissingParameter: its own field says more than the searched one
+        # the base case cannot be solved at the range's good end: point at the request's field
+        raise type(exc)(str(exc), field="parameter", value=parameter) from exc
+    table = None
+    if resolved["overweights_percent"] is not None:
+        table = []
+        for ow in resolved["overweights_percent"]:
+            try:
+                (row,) = limit_table(vehicle, target, parameter, [ow], **kwargs)
+            except RolloverError as exc:  # one row the engine cannot solve is reported, not dropped
+                table.append(
+                    {
+                        "overweight_percent": ow,
+                        "value": None,
+                        "status": "refused",
+                        "srt_at_limit": None,
+                        "evaluations": 0,
+                        "error": str(exc),
+                    }
+                )
+                continue
+            table.append(
+                {
+                    "overweight_percent": row.overweight_percent,
+                    "value": row.limit.value,
+                    "status": row.limit.status,
+                    "srt_at_limit": row.limit.srt_at_limit,
+                    "evaluations": row.limit.evaluations,
+                    "error": None,
+                }
+            )
+    SOLVE_SECONDS.labels("srt-limits", case["model"]).observe(time.perf_counter() - started)
+    unit, symbol, _ = PARAMETER_INFO[parameter]
+    return (
+        LimitsResult.model_validate(
+            {
+                "parameter": parameter,
+                "kind": limit.kind,
+                "unit": unit,
+                "symbol": symbol,
+                "description": LIMIT_PARAMETERS[parameter][1],
+                "target_srt_g": target,
+                "current_value": _current_value(vehicle, kwargs["load"], parameter),
+                "limit": _limit_out(limit, case["targets"]),
+                "table": table,
+                "model": case["model"],
+                "stage": case["stage"] if case["model"] == "3d" else None,
+                "engine_version": ENGINE_VERSION,
+            }
+        )
+        .model_dump_json()
+        .encode()
+    )
+
+
+async def compute_limits(cache: ResultCache, req: LimitsRequest, settings: Settings) -> Computed:
+    resolved = resolve_limits(req, settings)
+
+    async def produce() -> bytes:
+        return await run_in_threadpool(solve_limits, resolved)
+
+    return await cached(cache, "srt-limits", resolved, produce)
+
+
+# ------------------------------------------------------------------------------------------- sweep
+
+
+def resolve_sweep(req: SweepRequest, settings: Settings) -> dict[str, Any]:
+    axes = req.grid.axes()
+    if not axes:
+        raise _refuse("grid", f"give at least one axis to vary: {', '.join(AXIS_ORDER)}")
+    cases = math.prod(len(v) for v in axes.values())
+    if cases > MAX_CASES:
+        sizes = " x ".join(f"{len(v)} {a}" for a, v in axes.items())
+        raise _refuse("grid", f"{sizes} = {cases} cases; at most {MAX_CASES} per request (split the grid)", cases)
+    return {"case": _srt_case(req, settings), "grid": axes}
+
+
+def solve_sweep(resolved: dict[str, Any]) -> bytes:
+    """Every case of the grid (blocking: called in a worker thread) -> SweepResult JSON bytes."""
+    started = time.perf_counter()
+    case, grid = resolved["case"], resolved["grid"]
+    vehicle, kwargs = _base_case(case)
+    result = sweep(vehicle, grid, **kwargs)
+    targets = case["targets"]
+    rows = result.rows()
+    for row in rows:
+        srt = row["srt"]
+        row["tilt_table_angle_deg"] = None if srt is None else float(tilt_table_angle_deg(srt))
+        row["targets"] = [] if srt is None else target_checks(srt, targets)
+    SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
+    out = SweepResult.model_validate(
+        {
+            "model": result.model,
+            "stage": result.stage,
+            "axes": list(result.axes),
+            "cases": len(rows),
+            "refused": len(result.errors),
+            "rows": rows,
+            "engine_version": ENGINE_VERSION,
+        }
+    )
+    # exclude_unset: a row holds the swept axes only (the others are the base case's)
+    return out.model_dump_json(exclude_unset=True).encode()
+
+
+def sweep_csv(resolved: dict[str, Any], body: bytes) -> bytes:
+    names = [n for n, _ in sorted(resolved["case"]["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
+    columns = [*resolved["grid"], "srt", "roll_angle_deg", "tilt_table_angle_deg", *target_columns(names), "error"]
+    return to_csv(columns, (flatten_targets(r) for r in orjson.loads(body)["rows"]))
+
+
+async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed:
+    resolved = resolve_sweep(req, settings)
+
+    async def produce() -> bytes:
+        return await run_in_threadpool(solve_sweep, resolved)
+
+    async def as_json() -> Computed:
+        return await cached(cache, "srt-sweep", resolved, produce)
+
+    if not csv:
+        return await as_json()
+    return await cached_csv(cache, "srt-sweep", resolved, as_json, lambda body: sweep_csv(resolved, body))

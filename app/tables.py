@@ -1,0 +1,89 @@
+"""Tables as CSV (RFC 4180, header row) and the choice between JSON and CSV from the ``Accept`` header.
+
+The batch endpoints (alignment assessment, sweep) answer JSON by default and CSV when ``Accept`` prefers
+``text/csv``. Numbers are written with full precision (``repr``), booleans as ``true``/``false``, null as an empty
+field; each SRT target becomes two columns, ``meets_<name>`` and ``margin_<name>_g`` (target names are lower-case
+letters, digits and ``_``, so they are safe column names).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+CSV_MEDIA_TYPE = "text/csv"
+JSON_MEDIA_TYPE = "application/json"
+
+
+def _cell(value: Any) -> Any:
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    return value
+
+
+def target_columns(names: Sequence[str]) -> list[str]:
+    return [c for n in names for c in (f"meets_{n}", f"margin_{n}_g")]
+
+
+def flatten_targets(row: dict[str, Any]) -> dict[str, Any]:
+    """A row with a ``targets`` list -> the same row with ``meets_<name>`` / ``margin_<name>_g`` columns."""
+    out = {k: v for k, v in row.items() if k != "targets"}
+    for t in row.get("targets") or ():
+        out[f"meets_{t['name']}"] = t["meets"]
+        out[f"margin_{t['name']}_g"] = t["margin_g"]
+    return out
+
+
+def to_csv(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
+    """CSV text (UTF-8) with a header row; a column a row does not have is left empty."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\r\n")
+    writer.writerow(columns)
+    for row in rows:
+        writer.writerow([_cell(row.get(c)) for c in columns])
+    return buf.getvalue().encode()
+
+
+def _parse_accept(accept: str) -> list[tuple[str, float]]:
+    out = []
+    for part in accept.split(","):
+        media, *params = (p.strip() for p in part.split(";"))
+        if not media:
+            continue
+        q = 1.0
+        for p in params:
+            name, _, value = p.partition("=")
+            if name.strip().lower() == "q":
+                try:
+                    q = float(value)
+                except ValueError:
+                    q = 0.0
+        out.append((media.lower(), q))
+    return out
+
+
+def _quality(ranges: list[tuple[str, float]], media: str) -> tuple[float, int]:
+    """(q, specificity) of the most specific range matching ``media``; (0, 0) when none does."""
+    kind = media.split("/")[0]
+    best = (0.0, 0)
+    for m, q in ranges:
+        spec = 3 if m == media else 2 if m == f"{kind}/*" else 1 if m == "*/*" else 0
+        if spec > best[1]:
+            best = (q, spec)
+    return best
+
+
+def wants_csv(accept: str | None) -> bool:
+    """Whether ``Accept`` prefers ``text/csv`` to ``application/json`` (JSON on a tie or without the header)."""
+    if not accept:
+        return False
+    ranges = _parse_accept(accept)
+    q_csv, s_csv = _quality(ranges, CSV_MEDIA_TYPE)
+    q_json, s_json = _quality(ranges, JSON_MEDIA_TYPE)
+    return q_csv > 0 and (q_csv > q_json or (q_csv == q_json and s_csv > s_json))

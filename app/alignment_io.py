@@ -2,7 +2,9 @@
 
 Both return :class:`engine.assessment.Curve` records, or raise :class:`AlignmentFormatError` naming the row
 (CSV, 1-based, counting the header as row 1) or the element (LandXML) and what is wrong with it. Nothing
-is skipped silently: a curve that cannot be read stops the whole file with its location.
+is skipped silently: a curve that cannot be read, or whose values no formula can use (a radius of 0, a
+superelevation or grade beyond 20 %, a posted speed outside (0, 200] km/h: the bounds of
+:func:`engine.assessment.check_curve`), stops the whole file with its location.
 
 CSV columns (header names, any order, case-insensitive): ``id``, ``radius_m``, ``superelevation_percent``,
 ``grade_percent`` (optional, default 0, + uphill in the direction of travel), ``posted_speed_kmh``
@@ -26,7 +28,8 @@ from dataclasses import dataclass
 from defusedxml import ElementTree as SafeET
 from defusedxml.common import DefusedXmlException
 
-from engine.assessment import Curve
+from engine.assessment import Curve, check_curve
+from engine.errors import InvalidRoad
 
 MAX_CURVES = 100_000
 CSV_REQUIRED = ("id", "radius_m", "superelevation_percent")
@@ -55,6 +58,18 @@ def _number(text: str, column: str, where: str, *, optional: bool = False) -> fl
     if not math.isfinite(v):
         raise AlignmentFormatError(f"{column} must be finite, got {t!r}", where, column)
     return v
+
+
+def _checked(curve: Curve, where: str) -> Curve:
+    """The curve, if every formula can use it (the engine's bounds); else the error at this row / element."""
+    try:
+        check_curve(curve, 0)
+    except InvalidRoad as exc:
+        column = (exc.field or "").rsplit(".", 1)[-1] or None
+        prefix = f"curves[0] ({curve.id}): "
+        reason = str(exc)[len(prefix) :] if str(exc).startswith(prefix) else str(exc)
+        raise AlignmentFormatError(reason, where, column) from None
+    return curve
 
 
 def read_csv(text: str) -> list[Curve]:
@@ -108,12 +123,17 @@ def read_csv(text: str) -> list[Curve]:
                 else None
             )
             curves.append(
-                Curve(
-                    id=cid,
-                    radius_m=_number(row[idx["radius_m"]], "radius_m", where),
-                    superelevation_percent=_number(row[idx["superelevation_percent"]], "superelevation_percent", where),
-                    grade_percent=0.0 if grade is None else grade,
-                    posted_speed_kmh=posted,
+                _checked(
+                    Curve(
+                        id=cid,
+                        radius_m=_number(row[idx["radius_m"]], "radius_m", where),
+                        superelevation_percent=_number(
+                            row[idx["superelevation_percent"]], "superelevation_percent", where
+                        ),
+                        grade_percent=0.0 if grade is None else grade,
+                        posted_speed_kmh=posted,
+                    ),
+                    where,
                 )
             )
             if len(curves) > MAX_CURVES:
@@ -192,7 +212,7 @@ def read_landxml(
                     )
                 g = ov.grade_percent if ov.grade_percent is not None else grade_percent
                 v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
-                out.append((Curve(cid, radius, e, g, v), station))
+                out.append((_checked(Curve(cid, radius, e, g, v), where), station))
                 if len(out) > MAX_CURVES:
                     raise AlignmentFormatError(f"more than {MAX_CURVES} curves", where)
     if not out:

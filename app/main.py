@@ -18,7 +18,7 @@ from .cache import make_cache
 from .deps import resolve_settings
 from .logs import configure_logging, get_logger
 from .problems import PROBLEM_MEDIA_TYPE, install_problem_handlers
-from .routers import health, models, road, srt, vehicles
+from .routers import alignments, health, models, road, srt, vehicles
 from .settings import Settings, get_settings
 
 DESCRIPTION = """\
@@ -34,6 +34,11 @@ TAGS = [
     {"name": "vehicles", "description": "The thesis presets (Tables 14, 15, 16, 22, 23) as full vehicle records."},
     {"name": "srt", "description": "Static rollover threshold with the 3D, 2D or a closed-form model."},
     {"name": "road", "description": "Curve design: maximum speed (Eq. 9.1) and minimum radius (Eqs. 9.2-9.3)."},
+    {
+        "name": "alignments",
+        "description": "Batch assessment of a road alignment's horizontal curves (JSON, CSV or LandXML 1.2): safe "
+        "speed against rollover (Eq. 9.1) and side friction (Table 21), margin against the posted speed.",
+    },
     {"name": "models", "description": "The available models, their equations and references."},
     {"name": "health", "description": "Liveness and Prometheus metrics."},
 ]
@@ -92,7 +97,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     configure_logging(resolve_settings(app).log_level)
     app.state.cache = None
     install_problem_handlers(app)
-    for module in (vehicles, srt, road, models, health):
+    for module in (vehicles, srt, road, alignments, models, health):
         app.include_router(module.router)
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]

@@ -10,6 +10,7 @@ request fails the schema                    422     ``urn:rollover:problem:valid
 unknown vehicle preset                      404     ``urn:rollover:problem:unknown-preset``
 engine InvalidVehicle / MissingParameter    422     ``...:invalid-vehicle`` / ``...:missing-parameter``
 engine InvalidRoad / InvalidLoad            422     ``...:invalid-road`` / ``...:invalid-load``
+CSV / LandXML curves that cannot be read    422     ``urn:rollover:problem:invalid-alignment``
 engine MechanismSingular                    422     ``...:mechanism-singular``
 engine ConvergenceError                     422     ``...:no-convergence``
 no route / method (Starlette)               404/405 ``about:blank``
@@ -17,7 +18,8 @@ anything else (a bug)                       500     ``urn:rollover:problem:inter
 ==========================================  ======  ===================================================
 
 Validation errors and engine input errors carry ``errors``: one entry per offending field with its
-dotted name (``road.bank_percent``, ``vehicle.weight_kn``), the reason and the error type.
+dotted name (``road.bank_percent``, ``vehicle.weight_kn``), the reason and the error type; an uploaded
+file's error also says where in the file (``location``: ``row 7``, ``Alignment 'A' CoordGeom Curve #3 ('K1')``).
 """
 
 from __future__ import annotations
@@ -66,6 +68,11 @@ class FieldError(BaseModel):
     message: str = Field(description="Why it was refused.")
     type: str = Field(description="Short error code (pydantic's error type, or the engine's error class).")
     loc: list[str | int] = Field(description="Location of the input in the request (`body`, `path`, ...).")
+    location: str | None = Field(
+        None,
+        description="For an uploaded CSV or LandXML document: where in it (`row 7`, `row 1 (header)`, "
+        "`Alignment 'A' CoordGeom Curve #3 ('K1')`, `LandXML line 4, column 2`).",
+    )
 
 
 class Problem(BaseModel):
@@ -80,6 +87,18 @@ class Problem(BaseModel):
     instance: str | None = Field(None, description="The request path that produced the problem.")
     errors: list[FieldError] | None = Field(None, description="The offending inputs, when the problem has any.")
     known: list[str] | None = Field(None, description="For an unknown preset: the known preset ids.")
+
+
+class InvalidAlignment(ValueError):
+    """Curves in a CSV or LandXML document that cannot be read: the request field holding the document
+    (``csv``, ``landxml.document``; ``body`` for a raw upload), the column or attribute, and where in the file."""
+
+    def __init__(self, message: str, *, source: str, location: str | None, column: str | None) -> None:
+        super().__init__(f"{source} {location}: {message}" if location else f"{source}: {message}")
+        self.reason = message
+        self.source = source
+        self.location = location
+        self.column = column
 
 
 def problem_response(
@@ -157,6 +176,15 @@ async def _input_handler(request: Request, exc: InvalidInput) -> JSONResponse:
     return problem_response(request, 422, slug, title, str(exc), errors=errors)
 
 
+async def _alignment_handler(request: Request, exc: InvalidAlignment) -> JSONResponse:
+    field = exc.source if exc.column is None else f"{exc.source}.{exc.column}"
+    loc = ["body"] if exc.source == "body" else ["body", *exc.source.split(".")]
+    error = {"field": field, "message": exc.reason, "type": "invalid-alignment", "loc": loc, "location": exc.location}
+    return problem_response(
+        request, 422, "invalid-alignment", "The curves cannot be read from the document", str(exc), errors=[error]
+    )
+
+
 async def _singular_handler(request: Request, exc: MechanismSingular) -> JSONResponse:
     ENGINE_ERRORS.labels(type(exc).__name__).inc()
     return problem_response(
@@ -201,6 +229,7 @@ def install_problem_handlers(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, _validation_handler)
     app.add_exception_handler(UnknownPreset, _unknown_preset_handler)
     app.add_exception_handler(InvalidInput, _input_handler)
+    app.add_exception_handler(InvalidAlignment, _alignment_handler)
     app.add_exception_handler(MechanismSingular, _singular_handler)
     app.add_exception_handler(ConvergenceError, _convergence_handler)
     app.add_exception_handler(StarletteHTTPException, _http_handler)

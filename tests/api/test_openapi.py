@@ -26,6 +26,7 @@ OPERATIONS = {
     ("post", "/v1/srt/sweep"): "srt-sweep",
     ("post", "/v1/curve-speed"): "road-curve_speed",
     ("post", "/v1/min-radius"): "road-min_radius",
+    ("post", "/v1/alignments/assess"): "alignments-assess",
     ("get", "/v1/models"): "models-list_models",
     ("get", "/healthz"): "health-healthz",
     ("get", "/metrics"): "health-metrics",
@@ -70,9 +71,10 @@ COMPUTED = {
     "/v1/min-radius": "MinRadiusRequest",
     "/v1/srt/limits": "LimitsRequest",
     "/v1/srt/sweep": "SweepRequest",
+    "/v1/alignments/assess": "AlignmentRequest",
 }
 #: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
-TABLES = {"/v1/srt/sweep"}
+TABLES = {"/v1/srt/sweep", "/v1/alignments/assess"}
 
 
 @pytest.mark.parametrize("path", sorted(COMPUTED))

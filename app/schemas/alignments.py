@@ -1,0 +1,300 @@
+"""POST /v1/alignments/assess: the safe speed on every horizontal curve of a road alignment, for one or more
+vehicles (rollover, Eq. 9.1, against side friction, Table 21)."""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import ConfigDict, Field
+
+from engine.loads import MAX_BANK_PERCENT, MAX_SLOPE_PERCENT
+from engine.road import FRICTION_BOUNDS
+
+from ..alignment_io import MAX_CURVES
+from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from .srt import (
+    TARGETS_OUT,
+    TILT_OUT,
+    VEHICLE_DESCRIPTION,
+    SrtOptions,
+    SrtTargets,
+    TargetCheckOut,
+    VehicleRef,
+)
+
+MAX_VEHICLES = 10
+#: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)
+MAX_ROWS = 100_000
+MAX_CSV_CHARS = 16_000_000
+MAX_LANDXML_CHARS = 64_000_000
+MAX_POSTED_SPEED_KMH = 200.0
+
+CurveId = Annotated[str, Field(min_length=1, max_length=100)]
+_E = describe(
+    "Superelevation of the curve: the bank of its SRT and the e of the side-friction speed.",
+    unit="%",
+    symbol="e (Eqs. 9.2, 6.18)",
+)
+_GRADE = describe(
+    "Longitudinal grade in the direction of travel, + uphill, - downhill: the slope of the curve's SRT.",
+    unit="%",
+    symbol="slope (Eq. 4.24)",
+)
+_POSTED = describe(
+    "Posted (or operating) speed on the curve; the margin is the safe speed minus it. Null: no margin.",
+    unit="km/h",
+    symbol="V",
+)
+
+
+class CurveIn(InputModel):
+    """One horizontal curve."""
+
+    id: CurveId = Field(description=describe("Curve id, unique in the request.", unit="-"))
+    radius_m: float = Field(gt=0, le=1e5, description=describe("Curve radius.", unit="m", symbol="R (Eq. 9.1)"))
+    superelevation_percent: float = Field(ge=-MAX_BANK_PERCENT, le=MAX_BANK_PERCENT, description=_E)
+    grade_percent: float = Field(0.0, ge=-MAX_SLOPE_PERCENT, le=MAX_SLOPE_PERCENT, description=_GRADE)
+    posted_speed_kmh: float | None = Field(None, gt=0, le=MAX_POSTED_SPEED_KMH, description=_POSTED)
+
+
+class CurveOverrideIn(InputModel):
+    """Values for one LandXML curve (by its id) that replace the document-wide defaults."""
+
+    superelevation_percent: float | None = Field(None, ge=-MAX_BANK_PERCENT, le=MAX_BANK_PERCENT, description=_E)
+    grade_percent: float | None = Field(None, ge=-MAX_SLOPE_PERCENT, le=MAX_SLOPE_PERCENT, description=_GRADE)
+    posted_speed_kmh: float | None = Field(None, gt=0, le=MAX_POSTED_SPEED_KMH, description=_POSTED)
+
+
+class LandXmlIn(InputModel):
+    """A LandXML 1.2 document: every `CoordGeom/Curve` of every `Alignment` is a curve (its `radius`; its
+    `staStart` is reported as the station; its `name` is the id, else `<alignment name>#<n>`). LandXML keeps
+    superelevation and grade in elements whose use varies between design packages, so they are given here: as
+    defaults for every curve, and per curve id in `curve_overrides`."""
+
+    document: str = Field(
+        min_length=1,
+        max_length=MAX_LANDXML_CHARS,
+        description=describe(
+            "The LandXML 1.2 document (XML text; entities and DTDs are refused).", unit="-", symbol="-"
+        ),
+    )
+    superelevation_percent: float | None = Field(
+        None,
+        ge=-MAX_BANK_PERCENT,
+        le=MAX_BANK_PERCENT,
+        description=_E + " Default for every curve; a curve left without one (here or in `curve_overrides`) is "
+        "an error naming it.",
+    )
+    grade_percent: float = Field(
+        0.0, ge=-MAX_SLOPE_PERCENT, le=MAX_SLOPE_PERCENT, description=_GRADE + " Default for every curve."
+    )
+    posted_speed_kmh: float | None = Field(
+        None, gt=0, le=MAX_POSTED_SPEED_KMH, description=_POSTED + " Default for every curve."
+    )
+    curve_overrides: dict[CurveId, CurveOverrideIn] | None = Field(
+        None,
+        max_length=MAX_CURVES,
+        description=describe(
+            "Per-curve values by curve id; an id that is not in the document is an error.", unit="%, km/h"
+        ),
+    )
+
+
+ALIGNMENT_CSV_EXAMPLE = (
+    "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\nC1,120,8,-4,70\nC2,350,6,0,90\nC3,90,8,2,60\n"
+)
+ALIGNMENT_LANDXML_EXAMPLE = (
+    '<?xml version="1.0"?>\n'
+    '<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2"><Alignments>'
+    '<Alignment name="BR-101" length="1500" staStart="0"><CoordGeom>'
+    '<Line staStart="0" length="200"><Start>0 0</Start><End>0 200</End></Line>'
+    '<Curve rot="cw" radius="250" length="120" staStart="200" name="K1"/>'
+    '<Curve rot="ccw" radius="400" length="90" staStart="380" name="K2"/>'
+    "</CoordGeom></Alignment></Alignments></LandXML>"
+)
+
+
+class AlignmentRequest(SrtOptions, SrtTargets):
+    """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve
+    has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 100,000 curves and
+    100,000 rows (curves x vehicles) per request.
+
+    The same request can also be sent as a raw `text/csv` or `application/xml` (LandXML) body with the options
+    as query parameters (presets only; see the operation)."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "examples": [
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "rear_llt_limit": 0.6,
+                    "curves": [
+                        {
+                            "id": "C1",
+                            "radius_m": 120.0,
+                            "superelevation_percent": 8.0,
+                            "grade_percent": -4.0,
+                            "posted_speed_kmh": 70.0,
+                        },
+                        {"id": "C2", "radius_m": 350.0, "superelevation_percent": 6.0, "posted_speed_kmh": 90.0},
+                    ],
+                },
+                {"vehicles": [EXAMPLE_PRESET, "table23-semitrailer"], "csv": ALIGNMENT_CSV_EXAMPLE},
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "landxml": {
+                        "document": ALIGNMENT_LANDXML_EXAMPLE,
+                        "superelevation_percent": 6.0,
+                        "posted_speed_kmh": 80.0,
+                        "curve_overrides": {"K2": {"superelevation_percent": 4.0, "grade_percent": -3.0}},
+                    },
+                },
+            ]
+        }
+    )
+
+    vehicle: VehicleRef | None = Field(None, description=VEHICLE_DESCRIPTION + " Give `vehicle` or `vehicles`.")
+    vehicles: list[VehicleRef] | None = Field(
+        None,
+        min_length=1,
+        max_length=MAX_VEHICLES,
+        description=describe(
+            f"Several vehicles (1-{MAX_VEHICLES} preset ids or records), each assessed on every curve. Give "
+            "`vehicle` or `vehicles`.",
+            unit="-",
+            symbol="Tables 14-16, 22, 23",
+        ),
+    )
+    side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
+        "low",
+        description=describe(
+            "Where to read Table 21's side-friction range for the side-friction speed: `low` (default, the "
+            "conservative one), `mid` or `high`.",
+            unit="-",
+            symbol="f range (Table 21)",
+        ),
+    )
+    curves: list[CurveIn] | None = Field(
+        None,
+        min_length=1,
+        max_length=MAX_CURVES,
+        description=describe(f"The curves (1-{MAX_CURVES}).", unit="per field", symbol="R, e, slope"),
+    )
+    csv: str | None = Field(
+        None,
+        min_length=1,
+        max_length=MAX_CSV_CHARS,
+        description=describe(
+            "The curves as CSV text with a header row naming the columns (any order, case-insensitive): `id`, "
+            "`radius_m`, `superelevation_percent`, optional `grade_percent` (empty = 0) and `posted_speed_kmh` "
+            "(empty = none). A row that cannot be read is an error naming the row and the column.",
+            unit="m, %, km/h (per column)",
+            symbol="R, e, slope, V",
+        ),
+    )
+    landxml: LandXmlIn | None = Field(
+        None,
+        description=describe(
+            "The curves of a LandXML 1.2 alignment, with the superelevation and grade to use.",
+            unit="see its fields",
+            symbol="R, e, slope",
+        ),
+    )
+
+
+# ------------------------------------------------------------------------------------------- output
+
+
+class CurveRow(OutputModel):
+    """One curve, for one vehicle."""
+
+    id: str = Field(description=describe("Curve id.", unit="-"))
+    station_m: float | None = Field(
+        description=describe("Start station of the curve (LandXML `staStart`; null otherwise).", unit="m")
+    )
+    radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
+    superelevation_percent: float = Field(description=describe("Superelevation.", unit="%", symbol="e"))
+    grade_percent: float = Field(description=describe("Grade, + uphill.", unit="%", symbol="slope"))
+    srt_g: float | None = Field(
+        description=describe(
+            "SRT on this curve's bank and grade (it contains the bank); null when the engine refused the case "
+            "(see `error`).",
+            unit="g",
+            symbol="SRT",
+        )
+    )
+    tilt_table_angle_deg: float | None = Field(description=TILT_OUT + " Null without an SRT.")
+    targets: list[TargetCheckOut] = Field(description=TARGETS_OUT + " Empty without an SRT.")
+    rollover_speed_kmh: float | None = Field(
+        description=describe(
+            "Speed at which the vehicle reaches its SRT, sqrt(127 SRT R).", unit="km/h", symbol="V (Eq. 9.1)"
+        )
+    )
+    side_friction_speed_kmh: float = Field(
+        description=describe(
+            "Speed at which the curve uses up the design side friction, V = sqrt(127 R (0.01 e + f(V))) with f "
+            "from Table 21 at `side_friction_bound` (clamped to the table's 30-120 km/h).",
+            unit="km/h",
+            symbol="V (Eq. 9.2 solved for V)",
+        )
+    )
+    side_friction: float = Field(
+        description=describe("Side-friction factor f at that speed.", unit="-", symbol="f (Table 21)")
+    )
+    safe_speed_kmh: float | None = Field(
+        description=describe("The smaller of the two speeds; null without an SRT.", unit="km/h", symbol="V")
+    )
+    governed_by: Literal["rollover", "side-friction"] | None = Field(
+        description=describe("Which mechanism sets the safe speed; null without an SRT.", unit="-")
+    )
+    posted_speed_kmh: float | None = Field(description=describe("Posted speed, when given.", unit="km/h", symbol="V"))
+    margin_kmh: float | None = Field(
+        description=describe(
+            "Safe speed minus posted speed; null without a posted speed or an SRT.", unit="km/h", symbol="-"
+        )
+    )
+    flagged: bool = Field(description=describe("The margin is negative: the posted speed is unsafe.", unit="-"))
+    error: str | None = Field(
+        description=describe("Why the engine refused this curve's case (null otherwise).", unit="-")
+    )
+
+
+class AlignmentSummary(OutputModel):
+    curves: int = Field(description=describe("Curves assessed.", unit="count"))
+    flagged: int = Field(description=describe("Curves whose posted speed exceeds the safe speed.", unit="count"))
+    refused: int = Field(description=describe("Curves without an SRT (rows with `error`).", unit="count"))
+    distinct_srt_solves: int = Field(
+        description=describe(
+            "SRT solves needed: one per distinct (superelevation, grade) pair, since the SRT does not depend on "
+            "the radius.",
+            unit="count",
+        )
+    )
+    governed_by_rollover: int = Field(description=describe("Curves where rollover sets the safe speed.", unit="count"))
+    governed_by_side_friction: int = Field(
+        description=describe("Curves where side friction sets the safe speed.", unit="count")
+    )
+    min_margin_kmh: float | None = Field(
+        description=describe("Smallest margin over the curves (null without posted speeds).", unit="km/h")
+    )
+    min_safe_speed_kmh: float | None = Field(
+        description=describe("Lowest safe speed over the curves (null without any).", unit="km/h", symbol="V")
+    )
+
+
+class VehicleAssessment(OutputModel):
+    index: int = Field(description=describe("Position of the vehicle in the request (0 for `vehicle`).", unit="-"))
+    preset: str | None = Field(description=describe("The preset id, or null for a record.", unit="-"))
+    summary: AlignmentSummary = Field(description=describe("Counts over the curves.", unit="see its fields"))
+    rows: list[CurveRow] = Field(description=describe("One row per curve, in the request's order.", unit="per field"))
+
+
+class AlignmentResult(OutputModel):
+    """Every curve assessed for every vehicle."""
+
+    model: str = Field(description=describe("Model used.", unit="-"))
+    stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
+    side_friction_bound: str = Field(description=describe("Table 21 bound used.", unit="-", symbol="f range"))
+    curves: int = Field(description=describe("Curves in the request.", unit="count"))
+    vehicles: list[VehicleAssessment] = Field(description=describe("One entry per vehicle.", unit="see its fields"))
+    engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

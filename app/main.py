@@ -36,8 +36,9 @@ TAGS = [
     {"name": "road", "description": "Curve design: maximum speed (Eq. 9.1) and minimum radius (Eqs. 9.2-9.3)."},
     {
         "name": "alignments",
-        "description": "Batch assessment of a road alignment's horizontal curves (JSON, CSV or LandXML 1.2): safe "
-        "speed against rollover (Eq. 9.1) and side friction (Table 21), margin against the posted speed.",
+        "description": "Batch assessment of a road alignment's horizontal curves (JSON, CSV or LandXML 1.2, in a "
+        "JSON request or uploaded as they are): safe speed against rollover (Eq. 9.1) and side friction "
+        "(Table 21), margin against the posted speed.",
     },
     {"name": "models", "description": "The available models, their equations and references."},
     {"name": "health", "description": "Liveness and Prometheus metrics."},

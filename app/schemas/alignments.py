@@ -119,8 +119,8 @@ class AlignmentRequest(SrtOptions, SrtTargets):
     has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 100,000 curves and
     100,000 rows (curves x vehicles) per request.
 
-    The same request can also be sent as a raw `text/csv` or `application/xml` (LandXML) body with the options
-    as query parameters (presets only; see the operation)."""
+    The CSV or LandXML file can also be sent as it is, with the options as query parameters (presets only), to
+    `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`."""
 
     model_config = ConfigDict(
         json_schema_extra={

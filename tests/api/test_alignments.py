@@ -323,3 +323,86 @@ def test_too_many_rows(shared_client):
     text = "id,radius_m,superelevation_percent\n" + "".join(f"C{i},100,{i % 10}\n" for i in range(10_001))
     p = problem(shared_client.post(PATH, json={"vehicles": [BTRAIN] * 10, "csv": text}))
     assert p["errors"][0]["field"] == "vehicles" and "100010 rows" in p["errors"][0]["message"]
+
+
+# ------------------------------------------------------------------------------- raw file uploads
+
+
+def upload(client, kind, text, query, status=200, **headers):
+    content_type = {"csv": "text/csv", "landxml": "application/xml"}[kind]
+    data = text if isinstance(text, bytes) else text.encode()
+    r = client.post(f"{PATH}/{kind}?{query}", content=data, headers={"Content-Type": content_type, **headers})
+    assert r.status_code == status, r.text
+    return r
+
+
+def test_a_csv_upload_is_the_json_csv_request(shared_client, assessed):
+    # a spreadsheet's UTF-8 BOM is not part of the first column's name
+    r = upload(shared_client, "csv", "\ufeff" + to_csv_text(CURVES), "vehicle=table16-btrain&rear_llt_limit=0.6")
+    assert r.json() == assessed
+    assert r.headers["etag"] == post(shared_client, BASE).headers["etag"]  # one cache entry for every form
+    as_csv = upload(shared_client, "csv", to_csv_text(CURVES), "vehicle=table16-btrain&rear_llt_limit=0.6",
+                    Accept="text/csv")  # fmt: skip
+    assert as_csv.headers["content-type"].startswith("text/csv") and len(as_csv.text.splitlines()) == 1 + len(CURVES)
+
+
+def test_a_landxml_upload_takes_the_defaults_from_the_query(shared_client):
+    query = "vehicle=table16-btrain&vehicle=table23-semitrailer&superelevation_percent=6&grade_percent=-2"
+    raw = upload(shared_client, "landxml", to_landxml(CURVES[:2]), query).json()
+    landxml = {"document": to_landxml(CURVES[:2]), "superelevation_percent": 6.0, "grade_percent": -2.0}
+    body = {"vehicles": [BTRAIN, "table23-semitrailer"], "landxml": landxml}
+    assert raw == post(shared_client, body).json()
+    assert [(v["preset"], len(v["rows"])) for v in raw["vehicles"]] == [(BTRAIN, 2), ("table23-semitrailer", 2)]
+    assert [r["station_m"] for r in rows_of(raw)] == [0.0, 100.0]
+
+
+@pytest.mark.parametrize(
+    ("kind", "text", "query", "field", "location"),
+    [
+        ("csv", "id,radius_m,superelevation_percent\nA,100,2\nB,0,3\n", "vehicle=table16-btrain", "body.radius_m",
+         "row 3"),
+        ("csv", "id,radius_m\nA,100\n", "vehicle=table16-btrain", "body.superelevation_percent", "row 1 (header)"),
+        ("csv", b"id,radius_m,superelevation_percent\nA,100,\xff\n", "vehicle=table16-btrain", "body", None),
+        ("csv", "", "vehicle=table16-btrain", "body", None),
+        ("landxml", "<LandXML><Alignments><Alignment", "vehicle=table16-btrain&superelevation_percent=4", "body",
+         "LandXML line 1, column "),
+        ("landxml", to_landxml(CURVES[:1]), "vehicle=table16-btrain", "body.superelevation_percent",
+         "Alignment 'A1' CoordGeom Curve #1 ('C1')"),
+    ],
+)  # fmt: skip
+def test_upload_errors_name_the_row_or_element(shared_client, kind, text, query, field, location):
+    p = problem(upload(shared_client, kind, text, query, 422))
+    assert p["type"] == "urn:rollover:problem:invalid-alignment"
+    (error,) = p["errors"]
+    assert error["field"] == field and error["loc"] == ["body"]
+    if location is None:
+        assert error["location"] is None
+    else:
+        assert error["location"].startswith(location)
+
+
+@pytest.mark.parametrize(
+    ("kind", "query", "field", "words"),
+    [
+        ("csv", "rear_llt_limit=0.6", "vehicle", "Field required"),
+        ("csv", "vehicle=table16-btrain&superelevation_percent=4", "superelevation_percent", "Extra inputs"),
+        ("csv", "vehicle=table16-btrain&rear_llt_limit=abc", "rear_llt_limit", "valid number"),
+        ("csv", "vehicle=table16-btrain&lateral_offset_m=nan", "lateral_offset_m", "finite number"),
+        ("landxml", "vehicle=table16-btrain&posted_speed_kmh=300", "posted_speed_kmh", "less than or equal to 200"),
+        ("csv", "&".join(["vehicle=table16-btrain"] * 11), "vehicle", "at most 10"),
+    ],
+)
+def test_upload_query_errors_name_the_parameter(shared_client, kind, query, field, words):
+    text = to_csv_text(CURVES) if kind == "csv" else to_landxml(CURVES)
+    p = problem(upload(shared_client, kind, text, query, 422))
+    errors = {e["field"]: (e["message"], e["loc"]) for e in p["errors"]}
+    assert field in errors, errors
+    assert words in errors[field][0] and errors[field][1] == ["query", field]
+
+
+def test_an_upload_over_the_size_bound_is_refused(shared_client, monkeypatch):
+    import app.uploads
+
+    monkeypatch.setattr(app.uploads, "MAX_CSV_CHARS", 64)
+    p = problem(upload(shared_client, "csv", to_csv_text(CURVES), "vehicle=table16-btrain", 422))
+    assert p["errors"][0]["field"] == "body" and "exceeds 64 bytes" in p["errors"][0]["message"]

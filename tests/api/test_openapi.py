@@ -27,6 +27,8 @@ OPERATIONS = {
     ("post", "/v1/curve-speed"): "road-curve_speed",
     ("post", "/v1/min-radius"): "road-min_radius",
     ("post", "/v1/alignments/assess"): "alignments-assess",
+    ("post", "/v1/alignments/assess/csv"): "alignments-assess_csv",
+    ("post", "/v1/alignments/assess/landxml"): "alignments-assess_landxml",
     ("get", "/v1/models"): "models-list_models",
     ("get", "/healthz"): "health-healthz",
     ("get", "/metrics"): "health-metrics",
@@ -74,7 +76,7 @@ COMPUTED = {
     "/v1/alignments/assess": "AlignmentRequest",
 }
 #: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
-TABLES = {"/v1/srt/sweep", "/v1/alignments/assess"}
+TABLES = {"/v1/srt/sweep", "/v1/alignments/assess", "/v1/alignments/assess/csv", "/v1/alignments/assess/landxml"}
 
 
 @pytest.mark.parametrize("path", sorted(COMPUTED))

@@ -22,7 +22,7 @@ app = create_app(Settings(cache_backend="memory"))
 schema = schemathesis.openapi.from_asgi("/openapi.json", app)
 
 LIMITS = ["/v1/srt/limits"]
-BATCHES = ["/v1/srt/sweep", "/v1/alignments/assess"]
+BATCHES = ["/v1/srt/sweep", "/v1/alignments/assess", "/v1/alignments/assess/csv", "/v1/alignments/assess/landxml"]
 FUZZ = {"deadline": None, "suppress_health_check": list(HealthCheck), "derandomize": True}
 
 

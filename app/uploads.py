@@ -1,0 +1,169 @@
+"""Raw CSV and LandXML uploads: POST /v1/alignments/assess/csv and /v1/alignments/assess/landxml.
+
+A road-design package exports a file; the natural request is the file itself as the body, the options in the
+query::
+
+    curl --data-binary @curves.csv -H 'Content-Type: text/csv' \\
+      'http://127.0.0.1:8000/v1/alignments/assess/csv?vehicle=table16-btrain&rear_llt_limit=0.6'
+
+The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` (fields and bounds
+taken from the JSON request's own, so the two forms cannot drift); the body is read with a size bound, decoded,
+and the equivalent JSON request (``{"vehicle": ..., "csv": "<the file>"}``) goes through the same service and
+cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``body`` and the row or element.
+"""
+
+from __future__ import annotations
+
+import codecs
+import re
+from typing import Annotated, Any
+
+from fastapi import Request
+from fastapi.exceptions import RequestValidationError
+from pydantic import ConfigDict, Field, ValidationError, create_model
+
+from .problems import InvalidAlignment
+from .schemas.alignments import (
+    MAX_CSV_CHARS,
+    MAX_LANDXML_CHARS,
+    MAX_VEHICLES,
+    AlignmentRequest,
+    LandXmlIn,
+)
+from .schemas.common import describe
+from .schemas.srt import LoadIn
+
+OPTIONS = ("model", "stage", "trailer_angle_deg", "rear_llt_limit", "side_friction_bound")
+LOAD = ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
+LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
+
+_PRESETS = Field(
+    min_length=1,
+    max_length=MAX_VEHICLES,
+    description=describe(
+        f"Preset id(s) to assess, repeated for several (1-{MAX_VEHICLES}: `?vehicle=table16-btrain&"
+        "vehicle=table23-semitrailer`); a full record needs the JSON form (POST /v1/alignments/assess).",
+        unit="-",
+        symbol="Tables 14-16, 22, 23",
+    ),
+)
+
+
+def _field(model: type, name: str) -> tuple[Any, Any]:
+    info = model.model_fields[name]
+    return info.annotation, info
+
+
+_QUERY_CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False)
+CsvUploadQuery = create_model(
+    "CsvUploadQuery",
+    __config__=_QUERY_CONFIG,
+    vehicle=(list[Annotated[str, Field(min_length=1, max_length=100)]], _PRESETS),
+    **{n: _field(AlignmentRequest, n) for n in OPTIONS},
+    **{n: _field(LoadIn, n) for n in LOAD},
+)
+LandXmlUploadQuery = create_model(
+    "LandXmlUploadQuery",
+    __config__=_QUERY_CONFIG,
+    vehicle=(list[Annotated[str, Field(min_length=1, max_length=100)]], _PRESETS),
+    **{n: _field(AlignmentRequest, n) for n in OPTIONS},
+    **{n: _field(LoadIn, n) for n in LOAD},
+    **{n: _field(LandXmlIn, n) for n in LANDXML_DEFAULTS},
+)
+
+
+def _too_large(limit: int) -> RequestValidationError:
+    return RequestValidationError(
+        [
+            {
+                "type": "too_long",
+                "loc": ("body",),
+                "msg": f"the document exceeds {limit} bytes; split the alignment",
+                "input": None,
+            }
+        ]
+    )
+
+
+async def read_body(request: Request, limit: int) -> bytes:
+    """The body, refused as soon as it passes ``limit`` bytes (never read whole into memory first)."""
+    declared = request.headers.get("content-length")
+    if declared is not None and declared.isdigit() and int(declared) > limit:
+        raise _too_large(limit)
+    chunks, size = [], 0
+    async for chunk in request.stream():
+        size += len(chunk)
+        if size > limit:
+            raise _too_large(limit)
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def decode_csv(data: bytes) -> str:
+    try:
+        return data.decode("utf-8-sig")  # a BOM (spreadsheet exports) is not part of the first column's name
+    except UnicodeDecodeError as exc:
+        raise InvalidAlignment(
+            f"the CSV is not UTF-8 text (byte {exc.start})", source="body", location=None, column=None
+        ) from None
+
+
+def decode_xml(data: bytes) -> str:
+    """XML bytes as text: UTF-8 (with or without BOM), or the encoding its XML declaration names."""
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        pass
+    declared = re.match(rb"""\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""", data)
+    if declared:
+        try:
+            return data.decode(codecs.lookup(declared.group(1).decode()).name)
+        except (LookupError, UnicodeDecodeError):
+            pass
+    raise InvalidAlignment(
+        "the document is neither UTF-8 nor in the encoding its XML declaration names",
+        source="body",
+        location="LandXML",
+        column=None,
+    )
+
+
+def upload_request(query, **document: Any) -> AlignmentRequest:
+    """The JSON request equivalent to an upload: the query's options and presets, and the document."""
+    presets = list(query.vehicle)
+    data: dict[str, Any] = {n: getattr(query, n) for n in OPTIONS}
+    data["load"] = {n: getattr(query, n) for n in LOAD}
+    data.update({"vehicle": presets[0]} if len(presets) == 1 else {"vehicles": presets})
+    data.update(document)
+    try:
+        return AlignmentRequest.model_validate(data)
+    except ValidationError as exc:  # the query was checked with the same bounds: only the document is left
+        raise RequestValidationError(
+            [
+                {**e, "loc": ("body",) if e["loc"][0] in ("csv", "landxml") else ("query", *e["loc"])}
+                for e in exc.errors()
+            ]
+        ) from None
+
+
+async def csv_upload(request: Request, query) -> AlignmentRequest:
+    text = decode_csv(await read_body(request, MAX_CSV_CHARS))
+    if not text.strip():
+        raise InvalidAlignment("the body is empty: send the CSV file", source="body", location=None, column=None)
+    return upload_request(query, csv=text)
+
+
+async def landxml_upload(request: Request, query) -> AlignmentRequest:
+    text = decode_xml(await read_body(request, MAX_LANDXML_CHARS))
+    if not text.strip():
+        raise InvalidAlignment("the body is empty: send the LandXML file", source="body", location=None, column=None)
+    defaults = {n: getattr(query, n) for n in LANDXML_DEFAULTS}
+    return upload_request(query, landxml={"document": text, **defaults})
+
+
+def upload_body(media_type: str, example: str | None = None) -> dict[str, Any]:
+    """OpenAPI ``requestBody`` of an upload operation (the route reads the body itself)."""
+    content: dict[str, Any] = {"schema": {"type": "string"}}
+    if example is not None:
+        content["example"] = example
+    return {"requestBody": {"required": True, "content": {media_type: content}}}

@@ -18,7 +18,7 @@ from .cache import make_cache
 from .deps import resolve_settings
 from .logs import configure_logging, get_logger
 from .problems import PROBLEM_MEDIA_TYPE, install_problem_handlers
-from .routers import alignments, health, models, road, srt, vehicles
+from .routers import alignments, health, models, plots, road, srt, vehicles
 from .settings import Settings, get_settings
 
 DESCRIPTION = """\
@@ -39,6 +39,11 @@ TAGS = [
         "description": "Batch assessment of a road alignment's horizontal curves (JSON, CSV or LandXML 1.2, in a "
         "JSON request or uploaded as they are): safe speed against rollover (Eq. 9.1) and side friction "
         "(Table 21), margin against the posted speed.",
+    },
+    {
+        "name": "plots",
+        "description": "The thesis's figures for one case, as SVG: tire loads, LLT, roll and CG path against ay/g "
+        "(Figs. 85-87, 92-97), minimum radius against design speed (Figs. 108-114).",
     },
     {"name": "models", "description": "The available models, their equations and references."},
     {"name": "health", "description": "Liveness and Prometheus metrics."},
@@ -98,7 +103,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     configure_logging(resolve_settings(app).log_level)
     app.state.cache = None
     install_problem_handlers(app)
-    for module in (vehicles, srt, road, alignments, models, health):
+    for module in (vehicles, srt, road, alignments, plots, models, health):
         app.include_router(module.router)
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]

@@ -45,8 +45,11 @@ def nice_ticks(lo: float, hi: float, target: int = 6) -> list[float]:
     """Round tick values covering [lo, hi] (1, 2, 2.5 or 5 times a power of ten apart)."""
     if not (math.isfinite(lo) and math.isfinite(hi)):
         raise ValueError("axis limits must be finite")
-    if hi <= lo:
-        hi = lo + (abs(lo) or 1.0)
+    if hi - lo <= 1e-9 * max(1.0, abs(lo), abs(hi)):
+        # a flat (or round-off flat) series: centre it in a range the ticks (rounded to 1e-10) can resolve
+        mid = 0.5 * (lo + hi)
+        half = max(0.05 * abs(mid), 0.5)
+        lo, hi = mid - half, mid + half
     raw = (hi - lo) / max(target - 1, 1)
     mag = 10 ** math.floor(math.log10(raw))
     step = next(m * mag for m in (1, 2, 2.5, 5, 10) if m * mag >= raw)
@@ -65,6 +68,8 @@ def _fmt(v: float) -> str:
     if v == 0:
         return "0"
     a = abs(v)
+    if 1000 <= a < 1e7 and v == round(v):
+        return f"{v:.0f}"  # 1000, 2500: not 1e+03
     if a >= 1000 or a < 0.01:
         return f"{v:.3g}"
     return f"{v:.3f}".rstrip("0").rstrip(".")
@@ -125,12 +130,17 @@ def line_chart(
             f'<text class="y-label" x="18" y="{cy:.1f}" text-anchor="middle" '
             f'transform="rotate(-90 18 {cy:.1f})">{escape(panel.y_label)}</text>'
         )
-        for m in panel.markers:
+        for i, m in enumerate(panel.markers):
             x = sx(m.x)
+            # labels one under the other (close markers would overprint), and left of a line near the right edge
+            ty = py0 + 14 + 14 * i
+            right = x > left + 0.7 * plot_w
+            label_x, anchor = (x - 3, ' text-anchor="end"') if right else (x + 3, "")
             out.append(
                 f'<g class="marker" data-x="{m.x:.6g}"><line x1="{x:.1f}" x2="{x:.1f}" y1="{py0}" '
                 f'y2="{py0 + panel_height}" stroke="#555" stroke-dasharray="3 3"/>'
-                f'<text x="{x + 3:.1f}" y="{py0 + 14}" font-size="11">{escape(m.label)}</text></g>'
+                f'<text x="{label_x:.1f}" y="{ty}" font-size="11"{anchor} paint-order="stroke" stroke="white" '
+                f'stroke-width="3">{escape(m.label)}</text></g>'
             )
         legend_y = py0 + 8
         for j, s in enumerate(panel.series):

@@ -29,6 +29,11 @@ OPERATIONS = {
     ("post", "/v1/alignments/assess"): "alignments-assess",
     ("post", "/v1/alignments/assess/csv"): "alignments-assess_csv",
     ("post", "/v1/alignments/assess/landxml"): "alignments-assess_landxml",
+    ("post", "/v1/plots/tire-loads"): "plots-tire_loads",
+    ("post", "/v1/plots/llt"): "plots-llt",
+    ("post", "/v1/plots/roll"): "plots-roll",
+    ("post", "/v1/plots/cg-path"): "plots-cg_path",
+    ("post", "/v1/plots/min-radius"): "plots-min_radius",
     ("get", "/v1/models"): "models-list_models",
     ("get", "/healthz"): "health-healthz",
     ("get", "/metrics"): "health-metrics",
@@ -74,7 +79,14 @@ COMPUTED = {
     "/v1/srt/limits": "LimitsRequest",
     "/v1/srt/sweep": "SweepRequest",
     "/v1/alignments/assess": "AlignmentRequest",
+    "/v1/plots/tire-loads": "PlotRequest",
+    "/v1/plots/llt": "PlotRequest",
+    "/v1/plots/roll": "PlotRequest",
+    "/v1/plots/cg-path": "PlotRequest",
+    "/v1/plots/min-radius": "MinRadiusPlotRequest",
 }
+#: the operations that answer an SVG image
+PLOTS = {p for p in COMPUTED if p.startswith("/v1/plots/")}
 #: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
 TABLES = {"/v1/srt/sweep", "/v1/alignments/assess", "/v1/alignments/assess/csv", "/v1/alignments/assess/landxml"}
 
@@ -91,7 +103,13 @@ def test_table_operations_declare_json_and_csv(path):
     assert set(content) == {"application/json", "text/csv"}
 
 
-@pytest.mark.parametrize("name", sorted(COMPUTED.values()))
+@pytest.mark.parametrize("path", sorted(PLOTS))
+def test_plot_operations_declare_svg_only(path):
+    content = COMMITTED["paths"][path]["post"]["responses"]["200"]["content"]
+    assert set(content) == {"image/svg+xml"}
+
+
+@pytest.mark.parametrize("name", sorted(set(COMPUTED.values())))
 def test_every_request_model_has_a_btrain_example(name):
     examples = COMMITTED["components"]["schemas"][name]["examples"]
     assert any(e.get("vehicle") == "table16-btrain" for e in examples)

@@ -1,0 +1,101 @@
+"""The plot endpoints (SVG): the thesis's figures for one vehicle and load case."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import ConfigDict, Field
+
+from engine.loads import MAX_BANK_PERCENT, MAX_SLOPE_PERCENT
+from engine.road import FRICTION_BOUNDS, TABLE21_SPEEDS_KMH
+from engine.threshold import MAX_CURVE_POINTS
+
+from .common import EXAMPLE_PRESET, describe
+from .srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
+
+V_MIN, V_MAX = float(TABLE21_SPEEDS_KMH[0]), float(TABLE21_SPEEDS_KMH[-1])
+MAX_SPEED_POINTS = 181
+
+
+class PlotRequest(SrtInputs):
+    """The SRT request of the plotted case (2d or 3d model: the closed forms have no curves against ay/g) and
+    the number of points of the curves, from rest to the limit."""
+
+    model_config = ConfigDict(json_schema_extra={"examples": [{**SRT_EXAMPLE, "curve_points": 41}]})
+
+    curve_points: int = Field(
+        41,
+        ge=2,
+        le=MAX_CURVE_POINTS,
+        description=describe("Points of each curve, from ay = 0 to the limit.", unit="count"),
+    )
+
+
+class MinRadiusPlotRequest(SrtOptions):
+    """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): AASHTO/DNIT Eq. 9.2
+    with Table 21's side friction, and rollover Eq. 9.3 with the vehicle's SRT on that bank and slope."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "examples": [
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "superelevation_percent": 8.0,
+                    "rear_llt_limit": 0.6,
+                    "speed_min_kmh": 30.0,
+                    "speed_max_kmh": 120.0,
+                },
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "superelevation_percent": 4.0,
+                    "slope_percent": -4.0,
+                    "rear_llt_limit": 0.6,
+                    "load": {"vertical_offset_m": 0.5},
+                    "side_friction_bound": "mid",
+                },
+            ]
+        }
+    )
+
+    vehicle: VehicleRef = Field(description=VEHICLE_DESCRIPTION)
+    superelevation_percent: float = Field(
+        ge=-MAX_BANK_PERCENT,
+        le=MAX_BANK_PERCENT,
+        description=describe(
+            "Superelevation of the curves: the e of Eq. 9.2 and the bank of the SRT of Eq. 9.3.",
+            unit="%",
+            symbol="e (Eq. 9.2)",
+        ),
+    )
+    slope_percent: float = Field(
+        0.0,
+        ge=-MAX_SLOPE_PERCENT,
+        le=MAX_SLOPE_PERCENT,
+        description=describe("Grade of the SRT's case, + uphill.", unit="%", symbol="slope (Eq. 4.24)"),
+    )
+    speed_min_kmh: float = Field(
+        V_MIN,
+        ge=V_MIN,
+        le=V_MAX,
+        description=describe("Lowest design speed plotted (Table 21 covers 30-120 km/h).", unit="km/h", symbol="V"),
+    )
+    speed_max_kmh: float = Field(
+        V_MAX,
+        ge=V_MIN,
+        le=V_MAX,
+        description=describe("Highest design speed plotted; above speed_min_kmh.", unit="km/h", symbol="V"),
+    )
+    points: int = Field(
+        19,
+        ge=2,
+        le=MAX_SPEED_POINTS,
+        description=describe("Design speeds plotted, evenly spaced (19: every 5 km/h over 30-120).", unit="count"),
+    )
+    side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
+        "low",
+        description=describe(
+            "Where to read Table 21's side-friction range: `low` (default, the conservative one), `mid` or `high`.",
+            unit="-",
+            symbol="f range (Table 21)",
+        ),
+    )

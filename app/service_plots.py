@@ -1,0 +1,239 @@
+"""The plot endpoints: the thesis's figures as SVG (app.svg), from the cached SRT computation.
+
+The curves against ay/g come from the same cached computation as ``POST /v1/srt`` with ``include_curves`` (so the
+four figures of one case cost one solve); the SVG is cached under its own key, which holds the resolved SRT
+request, the figure, the label shown in it and :data:`SVG_VERSION` (bump it when the drawing changes: the engine
+version does not cover the renderer).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import orjson
+
+from engine.road import TABLE21_SPEEDS_KMH, aashto_min_radius_m, rollover_min_radius_m, side_friction_factor
+from engine.threshold import CLASSIC_MODELS
+
+from .cache import ResultCache
+from .schemas.plots import MinRadiusPlotRequest, PlotRequest
+from .schemas.srt import RoadIn, SrtInputs
+from .service import Computed, _refuse, cached, compute_srt, resolve_srt
+from .settings import Settings
+from .svg import Marker, Panel, Series, line_chart
+
+SVG_MEDIA_TYPE = "image/svg+xml"
+SVG_VERSION = 1
+AY = "lateral acceleration ay/g [-]"
+SERIES_92 = "Eq. 9.2 (side friction)"
+SERIES_93 = "Eq. 9.3 (rollover)"
+
+
+def _label(req) -> str:
+    return req.vehicle if isinstance(req.vehicle, str) else "vehicle record"
+
+
+def _conditions(srt: dict[str, Any], road: dict[str, float]) -> str:
+    stage = f", {srt['stage']} stage" if srt["stage"] else ""
+    return (
+        f"{srt['model']} model{stage}; bank {road['bank_percent']:g} %, slope {road['slope_percent']:g} %, "
+        f"rear LLT limit {srt['rear_llt_limit']:g}"
+    )
+
+
+def _markers(srt: dict[str, Any]) -> list[Marker]:
+    """SRT_ts and SRT_3D (3d full stage), SRT_ts (tires-suspension stage) or SRT (2d)."""
+    values = srt["stage_values"]
+    if srt["model"] == "3d":
+        names = {"srt_ts": "SRT_ts", "srt_3d": "SRT_3D"}
+        return [Marker(values[k], f"{names[k]} = {values[k]:.3f}") for k in ("srt_ts", "srt_3d") if k in values]
+    return [Marker(srt["srt"], f"SRT = {srt['srt']:.3f}")]
+
+
+def _marker_caption(srt: dict[str, Any]) -> str:
+    if srt["model"] != "3d":
+        return "SRT: the threshold (the end of the load ramp)"
+    if "srt_3d" in srt["stage_values"]:
+        return "SRT_ts, SRT_3D: thresholds of the tires-and-suspension stage and of the full system"
+    return "SRT_ts: threshold of the tires-and-suspension stage"
+
+
+def _tire_loads(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
+    c = srt["curves"]
+    series = []
+    if c["fz_front_outer_kn"] is not None:
+        series += [
+            Series("Fz1 front outer", c["ay_g"], c["fz_front_outer_kn"]),
+            Series("Fz3 front inner", c["ay_g"], c["fz_front_inner_kn"], dashed=True),
+        ]
+    series += [
+        Series("Fz17 rear outer", c["ay_g"], c["fz_rear_outer_kn"]),
+        Series("Fz19 rear inner", c["ay_g"], c["fz_rear_inner_kn"], dashed=True),
+    ]
+    front = "Fz1, Fz3: front outer/inner tire normal loads; " if c["fz_front_outer_kn"] is not None else ""
+    two_d = " (the 2D model's one axle group, Fz1/Fz3 in Ch. 5)" if srt["model"] == "2d" else ""
+    caption = (
+        f"{front}Fz17, Fz19: rear outer/inner tire normal loads{two_d}, per side of each axle group; "
+        f"{_marker_caption(srt)} (thesis Figs. 85-87, 92)."
+    )
+    return "Tire normal loads", [Panel("normal load Fz [kN]", series, _markers(srt))], caption
+
+
+def _llt(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
+    c = srt["curves"]
+    series = [Series("LLTf front", c["ay_g"], c["llt_front"])] if c["llt_front"] is not None else []
+    series.append(Series("LLTr rear", c["ay_g"], c["llt_rear"]))
+    caption = (
+        "LLT = (Fz outer - Fz inner) / (Fz outer + Fz inner) of an axle group (Eq. 2.5); LLTf, LLTr: front and "
+        f"rear groups; the ramp stops when LLTr reaches the rear LLT limit; {_marker_caption(srt)} (thesis Fig. 93)."
+    )
+    return "Lateral load transfer", [Panel("lateral load transfer LLT [-]", series, _markers(srt))], caption
+
+
+def _roll(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
+    c = srt["curves"]
+    if srt["model"] == "2d":
+        name, text = "theta_2D", "theta_2D = theta1 + theta6 + theta8: body roll of the 2D mechanism (Ch. 5)"
+    else:
+        name, text = "theta_3D", "theta_3D = theta17 + theta21 + theta23 + theta27: total body roll (Ch. 6)"
+    caption = f"{text}; {_marker_caption(srt)} (thesis Fig. 94)."
+    return "Roll angle", [Panel("roll angle theta [deg]", [Series(name, c["ay_g"], c["roll_angle_deg"])],
+                                _markers(srt))], caption  # fmt: skip
+
+
+def _cg_path(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
+    c = srt["curves"]
+    markers = _markers(srt)
+    panels = [
+        Panel("h1, lateral CG position [m]", [Series("h1", c["ay_g"], c["cg_lateral_m"])], markers),
+        Panel("h2, CG height [m]", [Series("h2", c["ay_g"], c["cg_height_m"])], markers),
+    ]
+    eqs = "Eqs. 5.1-5.2" if srt["model"] == "2d" else "Eqs. 6.1-6.2"
+    caption = (
+        f"h1: lateral distance of the CG from the outer tire contact; h2: CG height above the road ({eqs}); "
+        f"the CG moves outward and down as the body rolls; {_marker_caption(srt)} (thesis Figs. 96-97)."
+    )
+    return "CG path", panels, caption
+
+
+FIGURES: dict[str, Callable[[dict[str, Any]], tuple[str, list[Panel], str]]] = {
+    "tire-loads": _tire_loads,
+    "llt": _llt,
+    "roll": _roll,
+    "cg-path": _cg_path,
+}
+
+
+def render_curves(kind: str, srt: dict[str, Any], label: str, road: dict[str, float]) -> str:
+    title, panels, caption = FIGURES[kind](srt)
+    return line_chart(
+        f"{title} against ay/g: {label}",
+        AY,
+        panels,
+        caption=f"{caption} Case: {label}, {_conditions(srt, road)}.",
+    )
+
+
+async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, kind: str) -> Computed:
+    """One of the figures against ay/g (``FIGURES``) as SVG."""
+    if req.model in CLASSIC_MODELS:
+        raise _refuse("model", f"the {req.model} model is a closed form without curves against ay/g: use 3d or 2d")
+    resolved_srt = resolve_srt(
+        req, targets=settings.default_targets(), include_curves=True, curve_points=req.curve_points
+    )
+    label = _label(req)
+    resolved = {"srt_request": resolved_srt, "figure": kind, "label": label, "svg_version": SVG_VERSION}
+
+    async def produce() -> bytes:
+        srt = orjson.loads((await compute_srt(cache, resolved_srt)).body)
+        return render_curves(kind, srt, label, resolved_srt["road"]).encode()
+
+    return await cached(cache, f"plot-{kind}", resolved, produce, SVG_MEDIA_TYPE)
+
+
+# ------------------------------------------------------------------------------------ min radius
+
+
+def crossing_speed(speeds: np.ndarray, e: float, srt: float, bound: str) -> float | None:
+    """The design speed where Eq. 9.2 and Eq. 9.3 give the same radius, 0.01 e + f(V) = SRT, if it lies in the
+    plotted range. f is linear between Table 21's speeds, so the root is found exactly on those segments."""
+    lo, hi = float(speeds[0]), float(speeds[-1])
+    inner = [v for v in TABLE21_SPEEDS_KMH if lo < v < hi]
+    nodes = np.array([lo, *inner, hi])
+    g = 0.01 * e + np.asarray(side_friction_factor(nodes, bound)) - srt
+    for a, b, ga, gb in zip(nodes[:-1], nodes[1:], g[:-1], g[1:], strict=True):
+        if ga == 0:
+            return float(a)
+        if ga * gb < 0:
+            return float(a + (b - a) * ga / (ga - gb))
+    return float(nodes[-1]) if g[-1] == 0 else None
+
+
+def render_min_radius(req: MinRadiusPlotRequest, srt: dict[str, Any], label: str) -> str:
+    v = np.linspace(req.speed_min_kmh, req.speed_max_kmh, req.points)
+    f = np.asarray(side_friction_factor(v, req.side_friction_bound), dtype=float)
+    e, s = req.superelevation_percent, srt["srt"]
+    r92 = aashto_min_radius_m(v, e, f)  # Eq. 9.2
+    r93 = rollover_min_radius_m(v, s)  # Eq. 9.3
+    markers = []
+    cross = crossing_speed(v, e, s, req.side_friction_bound)
+    if cross is not None:
+        side = "above" if r93[-1] > r92[-1] else "below"
+        markers.append(Marker(cross, f"Eq. 9.3 governs {side} {cross:.1f} km/h"))
+    panel = Panel(
+        "minimum radius Rmin [m]",
+        [
+            Series(SERIES_92, list(v), list(r92)),
+            Series(SERIES_93, list(v), list(r93), dashed=True),
+        ],
+        markers,
+    )
+    road = {"bank_percent": e, "slope_percent": req.slope_percent}
+    caption = (
+        f"Eq. 9.2 (AASHTO/DNIT, side friction): Rmin = V^2 / (127 (0.01 e + f)), f from Table 21 "
+        f"({req.side_friction_bound} bound); Eq. 9.3 (rollover): Rmin = V^2 / (127 SRT) with SRT = {s:.3f} g, the SRT "
+        f"of {label} on that bank and slope ({_conditions(srt, road)}); the larger radius governs (thesis Figs. "
+        "108-114)."
+    )
+    return line_chart(
+        f"Minimum radius against design speed, e = {e:g} %: {label}", "design speed V [km/h]", [panel], caption
+    )
+
+
+async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, settings: Settings) -> Computed:
+    if req.speed_max_kmh <= req.speed_min_kmh:
+        raise _refuse("speed_max_kmh", f"must be above speed_min_kmh ({req.speed_min_kmh} km/h)", req.speed_max_kmh)
+    if 0.01 * req.superelevation_percent + float(side_friction_factor(req.speed_max_kmh, req.side_friction_bound)) <= 0:
+        raise _refuse(
+            "superelevation_percent",
+            "0.01 e + f must be positive for Eq. 9.2 at every plotted speed (an adverse crossfall this steep has "
+            "no side-friction radius)",
+            req.superelevation_percent,
+        )
+    # the SRT of Eq. 9.3 is the one on the curve's bank (the superelevation) and slope
+    case = SrtInputs.model_construct(
+        vehicle=req.vehicle,
+        model=req.model,
+        stage=req.stage,
+        road=RoadIn.model_construct(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent),
+        trailer_angle_deg=req.trailer_angle_deg,
+        load=req.load,
+        rear_llt_limit=req.rear_llt_limit,
+    )
+    resolved_srt = resolve_srt(case, targets=settings.default_targets())
+    label = _label(req)
+    resolved = {
+        "srt_request": resolved_srt,
+        "speeds_kmh": [req.speed_min_kmh, req.speed_max_kmh, req.points],
+        "side_friction_bound": req.side_friction_bound,
+        "label": label,
+        "svg_version": SVG_VERSION,
+    }
+
+    async def produce() -> bytes:
+        srt = orjson.loads((await compute_srt(cache, resolved_srt)).body)
+        return render_min_radius(req, srt, label).encode()
+
+    return await cached(cache, "plot-min-radius", resolved, produce, SVG_MEDIA_TYPE)

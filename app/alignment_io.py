@@ -23,6 +23,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+from collections import Counter
 from dataclasses import dataclass
 
 from defusedxml import ElementTree as SafeET
@@ -221,8 +222,8 @@ def read_landxml(
         raise AlignmentFormatError(
             f"overrides name curves that are not in the file: {', '.join(sorted(overrides))}", "curve_overrides"
         )
-    ids = [c.id for c, _ in out]
-    dupes = sorted({i for i in ids if ids.count(i) > 1})
+    counts = Counter(c.id for c, _ in out)  # not list.count per id: that is quadratic in the number of curves
+    dupes = sorted(i for i, n in counts.items() if n > 1)
     if dupes:
         raise AlignmentFormatError(f"duplicate curve names {', '.join(dupes)}", "LandXML")
     return out

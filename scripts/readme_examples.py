@@ -11,9 +11,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import subprocess
 import sys
+import tempfile
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +37,18 @@ def cache_headers(response) -> str:
     return "\n".join(lines)
 
 
+def run_shell(command: str, stdin: bytes | None = None, files: dict[str, bytes] | None = None) -> str:
+    """Run the example's own shell command (a pipe, or the command after ``-o file &&``) on the real response, in
+    a scratch directory, so the README shows exactly what it prints."""
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, data in (files or {}).items():
+            (Path(tmp) / name).write_bytes(data)
+        done = subprocess.run(
+            ["bash", "-c", command], input=stdin, cwd=tmp, capture_output=True, check=True, env={**os.environ}
+        )
+    return done.stdout.decode().rstrip("\n")
+
+
 @dataclass
 class Example:
     title: str
@@ -41,20 +56,77 @@ class Example:
     path: str
     body: dict[str, Any] | None = None
     pipe: str = JSON_TOOL
-    show: Callable[[Any], str] = pretty
+    show: Callable[[Any], str] | None = None
     curl_flags: str = "-s"
+    headers: dict[str, str] = field(default_factory=dict)  # besides Content-Type (e.g. Accept)
+    raw: str | None = None  # a file sent as it is (--data-binary), with headers["Content-Type"]
+    output: str | None = None  # curl -o <file>, then ``after`` runs on it
+    after: str = ""
+    note: str = ""  # a line of prose under the title
+    heading: str = ""  # starts a new ### section of the examples
 
     def curl(self) -> str:
         if self.method != "POST":
             return f"curl {self.curl_flags} {BASE}{self.path}{self.pipe}"
-        return (
-            f"curl {self.curl_flags} -X POST {BASE}{self.path} -H 'Content-Type: application/json' \\\n"
-            f"  -d '{json.dumps(self.body)}'{self.pipe}"
-        )
+        url = f"'{BASE}{self.path}'" if "?" in self.path else f"{BASE}{self.path}"
+        headers = {"Content-Type": "application/json", **self.headers}
+        flags = " ".join(f"-H '{k}: {v}'" for k, v in headers.items())
+        data = f"--data-binary $'{ansi_c(self.raw)}'" if self.raw is not None else f"-d '{json.dumps(self.body)}'"
+        tail = f" -o {self.output} && {self.after}" if self.output else self.pipe
+        return f"curl {self.curl_flags} -X POST {url} {flags} \\\n  {data}{tail}"
+
+    def send(self, client):
+        headers = {"Content-Type": "application/json", **self.headers}
+        if self.raw is not None:
+            return client.request(self.method, self.path, content=self.raw.encode(), headers=headers)
+        return client.request(self.method, self.path, json=self.body, headers=self.headers or None)
+
+    def shown(self, response) -> str:
+        if self.show is not None:
+            return self.show(response)
+        if self.output:
+            return run_shell(self.after, files={self.output: response.content})
+        if self.pipe == JSON_TOOL:
+            return pretty(response)
+        if not self.pipe:
+            return response.text.rstrip("\n")
+        return run_shell(self.pipe.removeprefix(" | "), stdin=response.content)
+
+
+def ansi_c(text: str) -> str:
+    """Text inside bash's $'...' quoting: backslashes, single quotes and newlines escaped."""
+    return text.replace("\\", "\\\\").replace("'", "\\'").replace("\n", "\\n")
+
+
+BTRAIN = "table16-btrain"
+CURVES_CSV = (
+    "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\n"
+    "C1,120,8,-4,70\nC2,350,6,0,90\nC3,90,8,2,60\nC4,600,8,-4,100\n"
+)
+LANDXML = (
+    '<?xml version="1.0"?>\n<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2"><Alignments>\n'
+    '<Alignment name="BR-101" staStart="0"><CoordGeom>\n'
+    '<Line staStart="0" length="200"><Start>0 0</Start><End>0 200</End></Line>\n'
+    '<Curve rot="cw" radius="250" length="120" staStart="200" name="K1"/>\n'
+    '<Curve rot="ccw" radius="140" length="90" staStart="380" name="K2"/>\n'
+    "</CoordGeom></Alignment></Alignments></LandXML>\n"
+)
+
+
+def svg_series(path: str) -> str:
+    """A one-line check of a plot: each series with its number of points, then the markers."""
+    return (
+        'python -c \'import sys, xml.etree.ElementTree as ET; ns = "{http://www.w3.org/2000/svg}"; '
+        'gs = list(ET.parse(sys.argv[1]).getroot().iter(ns + "g")); '
+        '[print(g.get("data-name"), len(g.find(ns + "polyline").get("data-x").split()), "points") '
+        'for g in gs if g.get("class") == "series"]; '
+        '[print("marker at", g.get("data-x")) for g in gs if g.get("class") == "marker"]\' '
+        f"{path}"
+    )
 
 
 EXAMPLES = [
-    Example("Health", "GET", "/healthz"),
+    Example("Health", "GET", "/healthz", heading="Vehicles, SRT, curve speed and minimum radius"),
     Example(
         "The presets (ids only; each item is a full record)",
         "GET",
@@ -117,9 +189,95 @@ EXAMPLES = [
         {"design_speed_kmh": 80, "superelevation_percent": 10, "srt": 0.172},
     ),
     Example(
+        "SRT targets and the tilt-table angle: the rigid B-train against PBS / NZ and a fleet's own 0.45 g",
+        "POST",
+        "/v1/srt",
+        {"vehicle": BTRAIN, "model": "rigid", "targets": {"general": 0.35, "dangerous_goods": 0.40, "fleet": 0.45}},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print("srt", r["srt"], "tilt", '
+        'r["tilt_table_angle_deg"]); [print(t) for t in r["targets"]]\'',
+        heading="SRT targets and the tilt-table angle",
+    ),
+    Example(
+        "Inverse limit: the highest load (CG height above the chassis) at which the B-train still has 0.30 g, "
+        "and the same limit from 0 to 20 % overweight",
+        "POST",
+        "/v1/srt/limits",
+        {"vehicle": BTRAIN, "parameter": "cg_height_above_chassis_m", "target_srt_g": 0.30},
+        heading="Inverse limits: `POST /v1/srt/limits`",
+    ),
+    Example(
+        "Sweep: Table 17's bank x slope grid (rear LLT limit 0.6) as CSV",
+        "POST",
+        "/v1/srt/sweep",
+        {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "grid": {"bank_percent": [0, 4, 8], "slope_percent": [-4, 0, 4]}},
+        headers={"Accept": "text/csv"},
+        pipe="",
+        heading="Sweeps: `POST /v1/srt/sweep`",
+    ),
+    Example(
+        "Alignment assessment: two curves for the B-train (rear LLT limit 0.6)",
+        "POST",
+        "/v1/alignments/assess",
+        {
+            "vehicle": BTRAIN,
+            "rear_llt_limit": 0.6,
+            "curves": [
+                {"id": "C1", "radius_m": 120, "superelevation_percent": 8, "grade_percent": -4, "posted_speed_kmh": 70},
+                {"id": "C2", "radius_m": 350, "superelevation_percent": 6, "posted_speed_kmh": 90},
+            ],
+        },
+        heading="Alignment assessment: `POST /v1/alignments/assess` (and `/csv`, `/landxml`)",
+    ),
+    Example(
+        "Alignment assessment of a CSV file for two vehicles, answered as CSV (some of its columns)",
+        "POST",
+        "/v1/alignments/assess/csv?vehicle=table16-btrain&vehicle=table23-semitrailer&rear_llt_limit=0.6",
+        raw=CURVES_CSV,
+        headers={"Content-Type": "text/csv", "Accept": "text/csv"},
+        pipe=" | cut -d, -f2,3,8,14,15,17-21",
+        note="`--data-binary @curves.csv` sends a file the same way.",
+    ),
+    Example(
+        "Alignment assessment of a LandXML 1.2 alignment (superelevation, grade and posted speed as defaults)",
+        "POST",
+        "/v1/alignments/assess/landxml?vehicle=table16-btrain&superelevation_percent=6&grade_percent=-2"
+        "&posted_speed_kmh=80",
+        raw=LANDXML,
+        headers={"Content-Type": "application/xml"},
+        pipe=' | python -c \'import json,sys; v = json.load(sys.stdin)["vehicles"][0]; print(v["summary"]); '
+        '[print(r["id"], r["station_m"], r["srt_g"], r["safe_speed_kmh"], r["governed_by"], '
+        'r["margin_kmh"], r["flagged"]) for r in v["rows"]]\'',
+    ),
+    Example(
+        "An error in an uploaded CSV names the row and the column",
+        "POST",
+        "/v1/alignments/assess/csv?vehicle=table16-btrain",
+        raw="id,radius_m,superelevation_percent\nC1,120,8\nC2,0,6\n",
+        headers={"Content-Type": "text/csv"},
+    ),
+    Example(
+        "Plot: tire normal loads against ay/g (thesis Fig. 92), saved and checked",
+        "POST",
+        "/v1/plots/tire-loads",
+        {"vehicle": BTRAIN},
+        output="tire-loads.svg",
+        after=svg_series("tire-loads.svg"),
+        note="`/v1/plots/llt`, `/v1/plots/roll` and `/v1/plots/cg-path` take the same body.",
+        heading="Plots: `POST /v1/plots/...` (SVG)",
+    ),
+    Example(
+        "Plot: minimum radius against design speed, Eq. 9.2 against Eq. 9.3 (thesis Figs. 108-114)",
+        "POST",
+        "/v1/plots/min-radius",
+        {"vehicle": BTRAIN, "superelevation_percent": 4, "rear_llt_limit": 0.6, "load": {"vertical_offset_m": 0.5}},
+        output="min-radius.svg",
+        after=svg_series("min-radius.svg"),
+    ),
+    Example(
         "An error: unknown preset (RFC 9457 problem details)",
         "GET",
         "/v1/vehicles/table99",
+        heading="Errors and metrics",
     ),
     Example(
         "An error: a validation problem names the field and the reason",
@@ -156,8 +314,22 @@ def render() -> str:
     out = [START, ""]
     with TestClient(create_app(Settings(cache_backend="memory"))) as client:
         for ex in EXAMPLES:
-            response = client.request(ex.method, ex.path, json=ex.body)
-            out += [f"**{ex.title}**", "", "```console", f"$ {ex.curl()}", ex.show(response), "```", ""]
+            response = ex.send(client)
+            if response.status_code >= 500:
+                raise SystemExit(f"{ex.title}: {response.status_code} {response.text[:300]}")
+            note = [ex.note, ""] if ex.note else []
+            heading = [f"### {ex.heading}", ""] if ex.heading else []
+            out += [
+                *heading,
+                f"**{ex.title}**",
+                "",
+                *note,
+                "```console",
+                f"$ {ex.curl()}",
+                ex.shown(response),
+                "```",
+                "",
+            ]
     out.append(END)
     return "\n".join(out)
 

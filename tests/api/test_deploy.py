@@ -82,11 +82,19 @@ def test_readme_has_a_curl_example_per_endpoint():
         ("POST", "/v1/srt"),
         ("POST", "/v1/curve-speed"),
         ("POST", "/v1/min-radius"),
+        ("POST", "/v1/srt/limits"),
+        ("POST", "/v1/srt/sweep"),
+        ("POST", "/v1/alignments/assess"),
+        ("POST", "/v1/alignments/assess/csv"),
+        ("POST", "/v1/alignments/assess/landxml"),
+        ("POST", "/v1/plots/tire-loads"),
+        ("POST", "/v1/plots/min-radius"),
     ]:
-        pattern = rf"\$ curl -s[i]? (-X POST )?http://127\.0\.0\.1:8000{re.escape(path)}[ |']"
+        # a URL with a query string is quoted for the shell
+        pattern = rf"\$ curl -s[i]? (-X POST )?'?http://127\.0\.0\.1:8000{re.escape(path)}[ |'?]"
         assert re.search(pattern, README), (method, path)
         if method == "POST":
-            assert f"-X POST http://127.0.0.1:8000{path}" in README
+            assert re.search(rf"-X POST '?http://127\.0\.0\.1:8000{re.escape(path)}[ '?]", README), path
     # each example shows its output (a line after the command that is not another command)
     examples = re.findall(r"```console\n\$ (.*?)```", README, flags=re.S)
     assert len(examples) >= 8 and all(len(e.strip().splitlines()) >= 2 for e in examples)

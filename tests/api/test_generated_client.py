@@ -101,6 +101,36 @@ def test_generated_client_calls_the_live_server(server, client_package):
     speed = curve_speed.sync(client=client, body=models.CurveSpeedRequest.from_dict({"radius_m": 80, "srt": 0.3364}))
     assert speed.max_speed_kmh == pytest.approx(58.5, abs=0.05)
 
+    # the road-design operations: an inverse limit fed back as a vehicle record gives the target SRT
+    srt_limits = importlib.import_module(f"{api}.srt.srt_limits")
+    srt_sweep = importlib.import_module(f"{api}.srt.srt_sweep")
+    assess = importlib.import_module(f"{api}.alignments.alignments_assess")
+    plot_roll = importlib.import_module(f"{api}.plots.plots_roll")
+    limits = srt_limits.sync(
+        client=client,
+        body=models.LimitsRequest.from_dict(
+            {"vehicle": "table16-btrain", "parameter": "cg_height_above_chassis_m", "target_srt_g": 0.3}
+        ),
+    )
+    assert limits.limit.status == "found" or getattr(limits.limit.status, "value", None) == "found"
+    record = {k: v for k, v in btrain.to_dict().items() if k not in ("id", "title", "source", "models")}
+    record["cg_height_above_chassis_m"] = limits.limit.value
+    check = compute_srt.sync(client=client, body=models.SrtRequest.from_dict({"vehicle": record}))
+    assert check.srt == pytest.approx(0.3, abs=1e-5)
+    table17 = {"vehicle": "table16-btrain", "rear_llt_limit": 0.6, "grid": {"bank_percent": [0, 8]}}
+    swept = srt_sweep.sync(client=client, body=models.SweepRequest.from_dict(table17))
+    assert [row.bank_percent for row in swept.rows] == [0, 8]
+    assert swept.rows[1].srt == pytest.approx(0.285, rel=0.02)  # Table 17: 8 % bank, LLT 0.6
+    csv_text = "id,radius_m,superelevation_percent\nC1,120,8\nC2,600,8\n"
+    assessed = assess.sync(
+        client=client, body=models.AlignmentRequest.from_dict({"vehicle": "table16-btrain", "csv": csv_text})
+    )
+    rows = assessed.vehicles[0].rows
+    assert [r.id for r in rows] == ["C1", "C2"] and rows[0].srt_g == rows[1].srt_g
+    svg = plot_roll.sync_detailed(client=Client(base_url=server), body=models.PlotRequest.from_dict(
+        {"vehicle": "table16-btrain"}))  # fmt: skip
+    assert svg.status_code == 200 and svg.content.startswith(b"<svg") and svg.headers["x-cache"] == "miss"
+
     # an unknown preset comes back as the declared problem (404)
     missing = get_vehicle.sync_detailed(client=Client(base_url=server), id="nope")
     assert missing.status_code == 404

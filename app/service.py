@@ -92,7 +92,7 @@ def resolve_srt(
     }
 
 
-def _refuse(field: str, message: str, value: Any = None) -> RequestValidationError:
+def refuse(field: str, message: str, value: Any = None) -> RequestValidationError:
     return RequestValidationError(
         [{"type": "value_error", "loc": ("body", *field.split(".")), "msg": message, "input": value}]
     )
@@ -101,17 +101,17 @@ def _refuse(field: str, message: str, value: Any = None) -> RequestValidationErr
 def _srt_source(req: CurveSpeedRequest | MinRadiusRequest) -> None:
     """Either ``srt`` or the SRT request fields, never both (the given SRT already holds the bank)."""
     if req.srt is None and req.vehicle is None:
-        raise _refuse("srt", "give either srt (g) or vehicle (with the other SRT request fields)")
+        raise refuse("srt", "give either srt (g) or vehicle (with the other SRT request fields)")
     if req.srt is not None:
         extra = [f for f in SRT_FIELDS if f in req.model_fields_set]
         if extra == ["targets"]:
-            raise _refuse(
+            raise refuse(
                 "targets",
                 "targets are checked against a computed SRT (the embedded srt_result); with a given srt there is "
                 "none: leave targets out, or give the SRT request fields instead of srt",
             )
         if extra:
-            raise _refuse(
+            raise refuse(
                 extra[0],
                 f"{extra[0]} cannot be combined with srt: a given SRT already is the SRT on this curve's bank and "
                 "slope (give either srt or the SRT request fields)",
@@ -184,7 +184,8 @@ async def cached_csv(
     the JSON body (itself from the cache or computed) on a miss."""
 
     async def produce() -> bytes:
-        return render((await json_body()).body)
+        body = (await json_body()).body
+        return await run_in_threadpool(render, body)  # 100,000 rows take a while: not on the event loop
 
     return await cached(cache, f"{operation}-csv", resolved, produce, "text/csv; charset=utf-8")
 
@@ -237,7 +238,7 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
     if req.srt is None:
         # Eq. 9.3 needs the SRT on this curve's bank: the bank is the superelevation
         if "bank_percent" in req.road.model_fields_set and req.road.bank_percent != req.superelevation_percent:
-            raise _refuse(
+            raise refuse(
                 "road.bank_percent",
                 f"road.bank_percent ({req.road.bank_percent}) differs from superelevation_percent "
                 f"({req.superelevation_percent}); the SRT is computed on the curve's superelevation (leave "

@@ -27,7 +27,7 @@ from .cache import ResultCache
 from .metrics import SOLVE_SECONDS
 from .problems import InvalidAlignment
 from .schemas.alignments import MAX_ROWS, AlignmentRequest, AlignmentResult
-from .service import Computed, _refuse, cached, cached_csv, resolve_targets, resolve_vehicle, target_checks
+from .service import Computed, cached, cached_csv, refuse, resolve_targets, resolve_vehicle, target_checks
 from .settings import Settings
 from .tables import flatten_targets, target_columns, to_csv
 
@@ -57,9 +57,7 @@ def _one_of(req: AlignmentRequest, names: tuple[str, ...]) -> str:
     given = [n for n in names if getattr(req, n) is not None]
     if len(given) != 1:
         what = "both " + " and ".join(given) if given else "none"
-        raise _refuse(
-            given[1] if len(given) > 1 else names[0], f"give exactly one of {', '.join(names)} ({what} given)"
-        )
+        raise refuse(given[1] if len(given) > 1 else names[0], f"give exactly one of {', '.join(names)} ({what} given)")
     return given[0]
 
 
@@ -73,7 +71,7 @@ def read_curves(req: AlignmentRequest, source_field: str | None = None) -> list[
         out = []
         for i, c in enumerate(req.curves):
             if c.id in seen:
-                raise _refuse(f"curves.{i}.id", f"duplicate curve id {c.id!r} (also curves.{seen[c.id]}.id)", c.id)
+                raise refuse(f"curves.{i}.id", f"duplicate curve id {c.id!r} (also curves.{seen[c.id]}.id)", c.id)
             seen[c.id] = i
             out.append((Curve(c.id, c.radius_m, c.superelevation_percent, c.grade_percent, c.posted_speed_kmh), None))
         return out
@@ -110,7 +108,7 @@ def resolve_alignment(req: AlignmentRequest, settings: Settings, source_field: s
     refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
     curves = read_curves(req, source_field)
     if len(curves) * len(refs) > MAX_ROWS:
-        raise _refuse(
+        raise refuse(
             which,
             f"{len(curves)} curves x {len(refs)} vehicles = {len(curves) * len(refs)} rows; at most {MAX_ROWS} per "
             "request (split the alignment or the vehicles)",

@@ -20,7 +20,7 @@ from engine.threshold import CLASSIC_MODELS
 from .cache import ResultCache
 from .schemas.plots import MinRadiusPlotRequest, PlotRequest
 from .schemas.srt import RoadIn, SrtInputs
-from .service import Computed, _refuse, cached, compute_srt, resolve_srt
+from .service import Computed, cached, compute_srt, refuse, resolve_srt
 from .settings import Settings
 from .svg import Marker, Panel, Series, line_chart
 
@@ -139,7 +139,7 @@ def render_curves(kind: str, srt: dict[str, Any], label: str, road: dict[str, fl
 async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, kind: str) -> Computed:
     """One of the figures against ay/g (``FIGURES``) as SVG."""
     if req.model in CLASSIC_MODELS:
-        raise _refuse("model", f"the {req.model} model is a closed form without curves against ay/g: use 3d or 2d")
+        raise refuse("model", f"the {req.model} model is a closed form without curves against ay/g: use 3d or 2d")
     resolved_srt = resolve_srt(
         req, targets=settings.default_targets(), include_curves=True, curve_points=req.curve_points
     )
@@ -204,9 +204,9 @@ def render_min_radius(req: MinRadiusPlotRequest, srt: dict[str, Any], label: str
 
 async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, settings: Settings) -> Computed:
     if req.speed_max_kmh <= req.speed_min_kmh:
-        raise _refuse("speed_max_kmh", f"must be above speed_min_kmh ({req.speed_min_kmh} km/h)", req.speed_max_kmh)
+        raise refuse("speed_max_kmh", f"must be above speed_min_kmh ({req.speed_min_kmh} km/h)", req.speed_max_kmh)
     if 0.01 * req.superelevation_percent + float(side_friction_factor(req.speed_max_kmh, req.side_friction_bound)) <= 0:
-        raise _refuse(
+        raise refuse(
             "superelevation_percent",
             "0.01 e + f must be positive for Eq. 9.2 at every plotted speed (an adverse crossfall this steep has "
             "no side-friction radius)",

@@ -25,7 +25,7 @@ from .cache import ResultCache
 from .metrics import SOLVE_SECONDS
 from .schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
 from .schemas.sweep import AXIS_ORDER, MAX_CASES, SweepRequest, SweepResult
-from .service import Computed, _refuse, cached, cached_csv, resolve_srt, resolve_targets, target_checks
+from .service import Computed, cached, cached_csv, refuse, resolve_srt, resolve_targets, target_checks
 from .settings import Settings
 from .tables import flatten_targets, target_columns, to_csv
 
@@ -54,7 +54,7 @@ def _srt_case(req, settings: Settings) -> dict[str, Any]:
 
 def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
     if req.parameter == "overweight_percent" and req.overweights_percent is not None:
-        raise _refuse(
+        raise refuse(
             "overweights_percent",
             "the table runs over overweights: with parameter = overweight_percent there is none (leave "
             "overweights_percent out, or pick another parameter)",
@@ -173,11 +173,11 @@ async def compute_limits(cache: ResultCache, req: LimitsRequest, settings: Setti
 def resolve_sweep(req: SweepRequest, settings: Settings) -> dict[str, Any]:
     axes = req.grid.axes()
     if not axes:
-        raise _refuse("grid", f"give at least one axis to vary: {', '.join(AXIS_ORDER)}")
+        raise refuse("grid", f"give at least one axis to vary: {', '.join(AXIS_ORDER)}")
     cases = math.prod(len(v) for v in axes.values())
     if cases > MAX_CASES:
         sizes = " x ".join(f"{len(v)} {a}" for a, v in axes.items())
-        raise _refuse("grid", f"{sizes} = {cases} cases; at most {MAX_CASES} per request (split the grid)", cases)
+        raise refuse("grid", f"{sizes} = {cases} cases; at most {MAX_CASES} per request (split the grid)", cases)
     return {"case": _srt_case(req, settings), "grid": axes}
 
 

@@ -27,10 +27,10 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .errors import InvalidInput, InvalidRoad, RolloverError
-from .loads import MAX_OVERWEIGHT_PERCENT, LoadCase, Road
+from .loads import MAX_OVERWEIGHT_PERCENT, LoadCase, Road, check_case
 from .road import KMH2_PER_M_G, max_curve_speed_kmh, side_friction_speed_kmh
 from .threshold import evaluate_cases, rollover_threshold
-from .vehicles import Vehicle, group_stiffness
+from .vehicles import Vehicle, group_stiffness, validate_vehicle
 
 #: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
 DEFAULT_TARGETS = {"general": 0.35, "dangerous_goods": 0.40}
@@ -96,29 +96,32 @@ def _apply(vehicle: Vehicle, load: LoadCase, parameter: str, value: float) -> tu
     return vehicle, replace(load, **{parameter: value})
 
 
-def _range(vehicle: Vehicle, load: LoadCase, parameter: str) -> tuple[float, float]:
-    """Admissible range of the parameter (open at the physical bounds, so every point can be solved)."""
-    eps = 1e-6
+def _range(vehicle: Vehicle, load: LoadCase, parameter: str, model: str) -> tuple[float, float]:
+    """Admissible range of the parameter: inside the bounds :func:`validate_vehicle` enforces.
+
+    For l12 and b that is Rill's condition k_theta > W_group l12 (Eq. 2.17) for every group the model uses
+    (both groups in 3D), with the groups' nominal static loads, as the validation applies it.
+    """
     from .vehicles import static_axle_loads
 
-    w = load.weight_kn(vehicle.weight_kn)
-    _, rear = static_axle_loads(vehicle, load.longitudinal_offset_m, weight_kn=w)
-    k = group_stiffness(vehicle, "rear")
-    if parameter == "cg_height_above_chassis_m":  # Rill's bound k_theta > W_rear l12 (Eq. 2.17)
+    front_load, rear_load = static_axle_loads(vehicle)
+    groups = [("rear", rear_load)]
+    if model == "3d" and vehicle.front_axles is not None and front_load > 0:
+        groups.append(("front", front_load))
+    if parameter == "cg_height_above_chassis_m":
         lo = max(0.05, -load.vertical_offset_m + 0.05)
-        return lo, 0.98 * k.roll_stiffness(vehicle.spring_separation_m) / rear - load.vertical_offset_m
+        bound = min(group_stiffness(vehicle, g).roll_stiffness(vehicle.spring_separation_m) / w for g, w in groups)
+        return lo, 0.98 * bound - load.vertical_offset_m
     if parameter == "overweight_percent":
         return -50.0, MAX_OVERWEIGHT_PERCENT
     if parameter == "lateral_offset_m":
         half = vehicle.rear_track_m / 2
         return -0.9 * half, 0.9 * half
-    # spring separation: from Rill's bound up to the axle width
-    width = min(vehicle.rear_axle_width_m, vehicle.front_axle_width_m or math.inf)
-    b_min = (
-        math.sqrt(2 * rear * (vehicle.cg_height_above_chassis_m + load.vertical_offset_m) / k.suspension_side_kn_per_m)
-        * 1.02
-    )
-    return b_min, width * (1 - eps) - eps
+    # spring separation: from Rill's bound up to the narrowest axle
+    width = min(vehicle.rear_axle_width_m, (vehicle.front_axle_width_m or math.inf) if len(groups) > 1 else math.inf)
+    l12 = vehicle.cg_height_above_chassis_m
+    b_min = 1.02 * max(math.sqrt(2 * w * l12 / group_stiffness(vehicle, g).suspension_side_kn_per_m) for g, w in groups)
+    return b_min, width * (1 - 1e-6) - 1e-6
 
 
 def parameter_limit(
@@ -148,7 +151,7 @@ def parameter_limit(
     if not (isinstance(target_srt_g, int | float) and math.isfinite(target_srt_g) and 0 < target_srt_g < 2):
         raise InvalidInput("target_srt_g must be in (0, 2) g", field="target_srt_g", value=target_srt_g)
     kind = LIMIT_PARAMETERS[parameter][0]
-    lo, hi = _range(vehicle, load, parameter)
+    lo, hi = _range(vehicle, load, parameter, model)
     count = _Counter()
 
     def srt(x: float) -> float:
@@ -167,27 +170,44 @@ def parameter_limit(
     def g(x: float) -> float:
         return srt(x) - target_srt_g
 
-    # evaluate the ends; near the bad end the vehicle may collapse (no solution): bisect toward the good end
-    # until a solvable point that misses the target brackets the root
+    # errors that do not depend on the searched value (a model that needs a missing field, a road outside the
+    # domain...) are the caller's: let them through as they are, before searching
+    validate_vehicle(vehicle, model=model)
+    check_case(vehicle, road, trailer_angle_deg, load)
+
+    def solvable(x: float) -> float | None:
+        """g(x), or None where this value makes the case unsolvable (collapse, tipping at rest, ...)."""
+        try:
+            return g(x)
+        except RolloverError:
+            return None
+
     good, bad = (lo, hi) if kind == "max" else (hi, lo)
-    try:
-        g_good = g(good)
-    except RolloverError as exc:
-        raise InvalidInput(
-            f"the vehicle cannot be solved even at {parameter} = {good:.4g}: {exc}", field=parameter
-        ) from exc
+    g_good = solvable(good)
+    if g_good is None:  # the "good" end itself is out of the model's reach (e.g. a CG so low that the SRT
+        # exceeds the mechanism's range): step away from it, in growing steps, to the first solvable value
+        for k in range(30, 0, -1):
+            probe = good + (bad - good) / 2.0**k
+            g_probe = solvable(probe)
+            if g_probe is not None:
+                good, g_good = probe, g_probe
+                break
+        if g_good is None:
+            raise InvalidInput(
+                f"no value of {parameter} in [{lo:.4g}, {hi:.4g}] can be solved for this case", field=parameter
+            )
     if g_good < 0:
         return Limit(parameter, kind, None, "never-met", (lo, hi), None, count.n)
+    # near the bad end the vehicle may collapse (no solution): bisect toward the good end until a solvable
+    # point that misses the target brackets the root
     unsolvable = None
     while True:
-        try:
-            g_bad = g(bad)
-        except RolloverError:
+        g_bad = solvable(bad)
+        if g_bad is None:
             unsolvable = bad
-            g_bad = None
-        if g_bad is not None and g_bad < 0:
+        elif g_bad < 0:
             break
-        if g_bad is not None:  # solvable and still meets the target: the root lies beyond it
+        else:  # solvable and still meets the target: the root lies beyond it
             good, g_good = bad, g_bad
             if unsolvable is None:
                 return Limit(parameter, kind, bad, "always-met", (lo, hi), target_srt_g + g_bad, count.n)
@@ -242,7 +262,7 @@ class CurveAssessment:
     governed_by: str | None  # "rollover" or "side-friction"
     posted_speed_kmh: float | None
     margin_kmh: float | None  # safe - posted
-    flagged: bool  # margin < 0
+    flagged: bool  # margin < 0, or no SRT could be computed for the curve (``error`` says why)
     error: str | None = None
 
 
@@ -314,7 +334,8 @@ def assess_curves(
         err = errors.get(k)
         if err is not None:
             out.append(
-                CurveAssessment(c.id, None, None, float(fric[i]), None, None, c.posted_speed_kmh, None, False, err)
+                # no safe speed can be given: flagged for attention, not passed as fine (``error`` says why)
+                CurveAssessment(c.id, None, None, float(fric[i]), None, None, c.posted_speed_kmh, None, True, err)
             )
             continue
         safe = min(float(roll[i]), float(fric[i]))

@@ -125,3 +125,38 @@ def test_many_curves_come_back_with_as_many_rows():
     res = assess_curves(BTRAIN, curves)
     assert len(res.curves) == 500 and res.distinct_cases <= 9 * 13
     assert all(c.error is None for c in res.curves)
+
+
+def test_limit_search_steps_off_an_unsolvable_good_end():
+    # Table 15 at l12 = 0.05 m would need ~1.2 g, beyond the mechanism's valid geometry; the search moves
+    # to the first solvable CG height and still finds the limit (bounded by the weaker front group, 1 axle)
+    v = PRESETS["table15-semitrailer"]
+    lim = parameter_limit(v, 0.35, "cg_height_above_chassis_m")
+    assert lim.status == "found"
+    assert rollover_threshold(v.replace(cg_height_above_chassis_m=lim.value)).srt == pytest.approx(0.35, abs=1e-5)
+    front_bound = 1 * 2500 * 0.95**2 / 2 / (364.147 * 3.7 / 8.7)  # k_theta_front / W_front (Eq. 2.17)
+    assert lim.range[1] == pytest.approx(0.98 * front_bound)
+
+
+def test_limit_search_lets_configuration_errors_through():
+    from engine.errors import MissingParameter
+
+    with pytest.raises(MissingParameter) as exc:
+        parameter_limit(PRESETS["table14-semitrailer"], 0.35, "cg_height_above_chassis_m")  # 3d needs a front
+    assert exc.value.field == "front_track_m"
+    assert parameter_limit(PRESETS["table14-semitrailer"], 0.35, "cg_height_above_chassis_m", model="2d").status == (
+        "found"
+    )
+
+
+def test_a_curve_without_an_srt_is_flagged_with_its_reason():
+    # 20 % adverse crossfall with the load 0.45 m toward the outside: the vehicle tips at rest on that curve
+    res = assess_curves(
+        BTRAIN,
+        [Curve("bad", 100.0, -20.0, 0.0, 40.0), Curve("ok", 100.0, 6.0)],
+        load=LoadCase(lateral_offset_m=0.6),
+        rear_llt_limit=0.6,
+    )
+    bad, ok = res.curves
+    assert bad.srt_g is None and bad.error and bad.flagged
+    assert ok.error is None

@@ -154,7 +154,7 @@ def test_a_curve_without_an_srt_is_flagged_with_its_reason():
     res = assess_curves(
         BTRAIN,
         [Curve("bad", 100.0, -20.0, 0.0, 40.0), Curve("ok", 100.0, 6.0)],
-        load=LoadCase(lateral_offset_m=0.6),
+        load=LoadCase(lateral_offset_m=0.3),
         rear_llt_limit=0.6,
     )
     bad, ok = res.curves

@@ -11,5 +11,5 @@ The engine never does I/O, never logs and keeps no global state. Public entry po
 """
 
 #: bumped whenever a change can alter a number the engine returns (it is part of every cache key)
-ENGINE_VERSION = "1.0.0"
+ENGINE_VERSION = "1.1.0"
 __version__ = ENGINE_VERSION

@@ -191,13 +191,7 @@ async def cached_csv(
 
 
 async def compute_srt(cache: ResultCache, resolved: dict[str, Any]) -> Computed:
-    key = cache_key("srt", resolved)
-    body = await _cached(cache, "srt", key)
-    if body is not None:
-        return Computed(body, key, True)
-    body = await run_in_threadpool(solve_srt, resolved)
-    await cache.set(key, body)
-    return Computed(body, key, False)
+    return await cached(cache, "srt", resolved, lambda: run_in_threadpool(solve_srt, resolved))
 
 
 async def _srt_for(cache: ResultCache, req: CurveSpeedRequest | MinRadiusRequest, resolved_srt: dict | None):
@@ -214,22 +208,24 @@ async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest, settin
     targets = resolve_targets(req.targets, settings)
     resolved_srt = resolve_srt(req, targets=targets) if req.srt is None else None
     resolved = {"radius_m": req.radius_m, "srt": req.srt, "srt_request": resolved_srt}
-    key = cache_key("curve-speed", resolved)
-    body = await _cached(cache, "curve-speed", key)
-    if body is not None:
-        return Computed(body, key, True)
-    srt, source, srt_result = await _srt_for(cache, req, resolved_srt)
-    speed = float(max_curve_speed_kmh(srt, req.radius_m))  # Eq. 9.1; the SRT already contains the bank
-    body = CurveSpeedResult(
-        max_speed_kmh=speed,
-        radius_m=req.radius_m,
-        srt=srt,
-        srt_source=source,
-        srt_result=srt_result,
-        engine_version=ENGINE_VERSION,
-    ).model_dump_json()
-    await cache.set(key, body.encode())
-    return Computed(body.encode(), key, False)
+
+    async def produce() -> bytes:
+        srt, source, srt_result = await _srt_for(cache, req, resolved_srt)
+        speed = float(max_curve_speed_kmh(srt, req.radius_m))  # Eq. 9.1; the SRT already contains the bank
+        return (
+            CurveSpeedResult(
+                max_speed_kmh=speed,
+                radius_m=req.radius_m,
+                srt=srt,
+                srt_source=source,
+                srt_result=srt_result,
+                engine_version=ENGINE_VERSION,
+            )
+            .model_dump_json()
+            .encode()
+        )
+
+    return await cached(cache, "curve-speed", resolved, produce)
 
 
 async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings: Settings) -> Computed:
@@ -257,34 +253,36 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
         "srt": req.srt,
         "srt_request": resolved_srt,
     }
-    key = cache_key("min-radius", resolved)
-    body = await _cached(cache, "min-radius", key)
-    if body is not None:
-        return Computed(body, key, True)
-    check_speed(req.design_speed_kmh)  # refuse a speed Table 21 does not cover before solving for the SRT
-    if req.side_friction is None:
-        side_friction_factor(req.design_speed_kmh, req.side_friction_bound)
-    srt, source, srt_result = await _srt_for(cache, req, resolved_srt)
-    r = min_radius(
-        req.design_speed_kmh,
-        req.superelevation_percent,
-        srt,
-        side_friction=req.side_friction,
-        bound=req.side_friction_bound,
-    )
-    body = MinRadiusResult(
-        aashto_min_radius_m=r.aashto_min_radius_m,
-        rollover_min_radius_m=r.rollover_min_radius_m,
-        governing_min_radius_m=r.governing_min_radius_m,
-        governed_by=r.governed_by,
-        side_friction=r.side_friction,
-        side_friction_source="given" if req.side_friction is not None else f"table21-{req.side_friction_bound}",
-        design_speed_kmh=req.design_speed_kmh,
-        superelevation_percent=req.superelevation_percent,
-        srt=srt,
-        srt_source=source,
-        srt_result=srt_result,
-        engine_version=ENGINE_VERSION,
-    ).model_dump_json()
-    await cache.set(key, body.encode())
-    return Computed(body.encode(), key, False)
+
+    async def produce() -> bytes:
+        check_speed(req.design_speed_kmh)  # refuse a speed Table 21 does not cover before solving for the SRT
+        if req.side_friction is None:
+            side_friction_factor(req.design_speed_kmh, req.side_friction_bound)
+        srt, source, srt_result = await _srt_for(cache, req, resolved_srt)
+        r = min_radius(
+            req.design_speed_kmh,
+            req.superelevation_percent,
+            srt,
+            side_friction=req.side_friction,
+            bound=req.side_friction_bound,
+        )
+        return (
+            MinRadiusResult(
+                aashto_min_radius_m=r.aashto_min_radius_m,
+                rollover_min_radius_m=r.rollover_min_radius_m,
+                governing_min_radius_m=r.governing_min_radius_m,
+                governed_by=r.governed_by,
+                side_friction=r.side_friction,
+                side_friction_source="given" if req.side_friction is not None else f"table21-{req.side_friction_bound}",
+                design_speed_kmh=req.design_speed_kmh,
+                superelevation_percent=req.superelevation_percent,
+                srt=srt,
+                srt_source=source,
+                srt_result=srt_result,
+                engine_version=ENGINE_VERSION,
+            )
+            .model_dump_json()
+            .encode()
+        )
+
+    return await cached(cache, "min-radius", resolved, produce)

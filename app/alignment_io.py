@@ -23,6 +23,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import re
 from collections import Counter
 from dataclasses import dataclass
 
@@ -33,6 +34,11 @@ from engine.assessment import Curve, check_curve
 from engine.errors import InvalidRoad
 
 MAX_CURVES = 100_000
+#: one limit for a curve id in every form (JSON, CSV, LandXML): 1-100 characters, none of them a control character
+#: (C0, DEL, C1: NUL, ESC, CR, tab... would corrupt a CSV answer or a terminal)
+CURVE_ID_MAX_CHARS = 100
+CURVE_ID_PATTERN = r"^[^\x00-\x1f\x7f-\x9f]+$"
+_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
 CSV_REQUIRED = ("id", "radius_m", "superelevation_percent")
 CSV_OPTIONAL = ("grade_percent", "posted_speed_kmh")
 
@@ -61,14 +67,33 @@ def _number(text: str, column: str, where: str, *, optional: bool = False) -> fl
     return v
 
 
-def _checked(curve: Curve, where: str) -> Curve:
-    """The curve, if every formula can use it (the engine's bounds); else the error at this row / element."""
+def check_curve_id(cid: str, where: str, column: str) -> str:
+    """The id, if it is 1-100 characters without control characters; else the error at this row / element."""
+    if not cid:
+        raise AlignmentFormatError(f"{column} is empty", where, column)
+    if len(cid) > CURVE_ID_MAX_CHARS:
+        raise AlignmentFormatError(f"{column} has {len(cid)} characters; at most {CURVE_ID_MAX_CHARS}", where, column)
+    bad = _CONTROL.search(cid)
+    if bad:
+        raise AlignmentFormatError(
+            f"{column} contains the control character U+{ord(bad.group()):04X} at position {bad.start() + 1}",
+            where,
+            column,
+        )
+    return cid
+
+
+def _checked(curve: Curve, where: str, columns: dict[str, str] | None = None) -> Curve:
+    """The curve, if every formula can use it (the engine's bounds, the JSON form's); else the error here, naming
+    the column (``columns`` renames the engine's fields to the document's, e.g. LandXML's ``radius``)."""
     try:
         check_curve(curve, 0)
     except InvalidRoad as exc:
-        column = (exc.field or "").rsplit(".", 1)[-1] or None
-        prefix = f"curves[0] ({curve.id}): "
-        reason = str(exc)[len(prefix) :] if str(exc).startswith(prefix) else str(exc)
+        field = (exc.field or "").rsplit(".", 1)[-1] or None
+        column = (columns or {}).get(field, field)
+        reason = str(exc).removeprefix("curves[0].")
+        if field and column != field:
+            reason = reason.replace(field, column, 1)
         raise AlignmentFormatError(reason, where, column) from None
     return curve
 
@@ -107,9 +132,7 @@ def read_csv(text: str) -> list[Curve]:
             where = f"row {rownum}"
             if len(row) != len(names):
                 raise AlignmentFormatError(f"has {len(row)} fields, the header has {len(names)}", where)
-            cid = row[idx["id"]].strip()
-            if not cid:
-                raise AlignmentFormatError("id is empty", where, "id")
+            cid = check_curve_id(row[idx["id"]].strip(), where, "id")
             if cid in seen:
                 raise AlignmentFormatError(f"duplicate id {cid!r}", where, "id")
             seen.add(cid)
@@ -194,13 +217,13 @@ def read_landxml(
                     continue
                 n += 1
                 cid = el.get("name") or f"{a_name}#{n}"
-                where = f"Alignment {a_name!r} CoordGeom Curve #{n} ({cid!r})"
+                where = f"Alignment {a_name[:CURVE_ID_MAX_CHARS]!r} CoordGeom Curve #{n}"
+                cid = check_curve_id(cid, where, "name")
+                where = f"{where} ({cid!r})"
                 r_text = el.get("radius")
                 if r_text is None:
                     raise AlignmentFormatError("has no radius attribute", where, "radius")
                 radius = _number(r_text, "radius", where)
-                if radius <= 0:
-                    raise AlignmentFormatError(f"radius must be positive, got {r_text}", where, "radius")
                 sta = el.get("staStart")
                 station = _number(sta, "staStart", where) if sta is not None else None
                 ov = overrides.pop(cid, CurveOverride())
@@ -213,7 +236,7 @@ def read_landxml(
                     )
                 g = ov.grade_percent if ov.grade_percent is not None else grade_percent
                 v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
-                out.append((_checked(Curve(cid, radius, e, g, v), where), station))
+                out.append((_checked(Curve(cid, radius, e, g, v), where, {"radius_m": "radius"}), station))
                 if len(out) > MAX_CURVES:
                     raise AlignmentFormatError(f"more than {MAX_CURVES} curves", where)
     if not out:

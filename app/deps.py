@@ -1,4 +1,8 @@
-"""FastAPI dependencies and their ``Annotated`` aliases."""
+"""FastAPI dependencies and their ``Annotated`` aliases: the app's settings and its result cache.
+
+Both live on ``app.state``: :func:`app.main.create_app` stores the settings it was given (or read from the
+environment) and the lifespan opens the cache; a request reads them from its app.
+"""
 
 from __future__ import annotations
 
@@ -6,23 +10,19 @@ from typing import Annotated
 
 from fastapi import Depends, Request
 
-from .cache import ResultCache, make_cache
-from .settings import Settings, get_settings
-
-SettingsDep = Annotated[Settings, Depends(get_settings)]
+from .cache import ResultCache
+from .settings import Settings
 
 
-def resolve_settings(app) -> Settings:
-    """The settings in force for ``app``: a test's ``dependency_overrides[get_settings]`` wins."""
-    return app.dependency_overrides.get(get_settings, get_settings)()
+def get_app_settings(request: Request) -> Settings:
+    """The settings of the app serving this request."""
+    return request.app.state.settings
 
 
 def get_cache(request: Request) -> ResultCache:
-    """The app's result cache (made in the lifespan; made here when a test transport skips the lifespan)."""
-    app = request.app
-    if getattr(app.state, "cache", None) is None:
-        app.state.cache = make_cache(resolve_settings(app))
-    return app.state.cache
+    """The app's result cache (opened in the lifespan)."""
+    return request.app.state.cache
 
 
+SettingsDep = Annotated[Settings, Depends(get_app_settings)]
 CacheDep = Annotated[ResultCache, Depends(get_cache)]

@@ -15,7 +15,6 @@ from prometheus_fastapi_instrumentator import Instrumentator
 from engine import ENGINE_VERSION
 
 from .cache import make_cache
-from .deps import resolve_settings
 from .logs import configure_logging, get_logger
 from .problems import PROBLEM_MEDIA_TYPE, install_problem_handlers
 from .routers import alignments, health, models, plots, road, srt, vehicles
@@ -71,14 +70,11 @@ def _problem_openapi(app: FastAPI) -> dict[str, Any]:
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:
-    """Build the app. ``settings`` overrides :func:`get_settings` (tests); otherwise the environment is read."""
+    """Build the app with ``settings`` (tests), or the settings read from the environment."""
 
     @asynccontextmanager
     async def lifespan(app: FastAPI):
-        cfg = resolve_settings(app)
-        if getattr(app.state, "cache", None) is None:
-            app.state.cache = make_cache(cfg)
-        cache = app.state.cache
+        app.state.cache = cache = make_cache(app.state.settings)
         log = get_logger("rollover.app")
         log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend)
         if cache.redis is not None:
@@ -98,9 +94,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         generate_unique_id_function=operation_id,
         lifespan=lifespan,
     )
-    if settings is not None:
-        app.dependency_overrides[get_settings] = lambda: settings
-    configure_logging(resolve_settings(app).log_level)
+    app.state.settings = settings if settings is not None else get_settings()
+    configure_logging(app.state.settings.log_level)
     app.state.cache = None
     install_problem_handlers(app)
     for module in (vehicles, srt, road, alignments, plots, models, health):

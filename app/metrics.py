@@ -24,3 +24,7 @@ ENGINE_ERRORS = Counter(
     ["error"],
 )
 REDIS_FAILURES = Counter("rollover_redis_failures_total", "Redis calls that failed (the service went on without).")
+CACHE_REJECTED = Counter(
+    "rollover_cache_rejected_total",
+    "Shared-cache entries refused as not ours or not whole (bad envelope or HMAC, wrong type); recomputed.",
+)

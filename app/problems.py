@@ -101,6 +101,14 @@ class InvalidAlignment(ValueError):
         self.column = column
 
 
+def request_error(field: str, message: str, value: Any = None) -> RequestValidationError:
+    """A 422 validation problem for a rule that only the service can check (e.g. after reading a document),
+    located at ``field`` (dotted) in the body."""
+    return RequestValidationError(
+        [{"type": "value_error", "loc": ("body", *field.split(".")), "msg": message, "input": value}]
+    )
+
+
 def problem_response(
     request: Request,
     status: int,

@@ -17,6 +17,7 @@ from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
 from engine.assessment import Curve, assess_curves, tilt_table_angle_deg
+from engine.case import Case
 from engine.errors import InvalidInput
 from engine.loads import LoadCase
 from engine.road import TABLE21_SPEEDS_KMH, side_friction_factor
@@ -25,9 +26,9 @@ from engine.vehicles import Vehicle
 from .alignment_io import AlignmentFormatError, CurveOverride, read_csv, read_landxml
 from .cache import ResultCache
 from .metrics import SOLVE_SECONDS
-from .problems import InvalidAlignment
+from .problems import InvalidAlignment, request_error
 from .schemas.alignments import MAX_ROWS, AlignmentRequest, AlignmentResult
-from .service import Computed, cached, cached_csv, refuse, resolve_targets, resolve_vehicle, target_checks
+from .service import Computed, cached, cached_csv, resolve_targets, resolve_vehicle, target_checks
 from .settings import Settings
 from .tables import flatten_targets, target_columns, to_csv
 
@@ -53,28 +54,16 @@ SPEED_COLUMNS = (
 )
 
 
-def _one_of(req: AlignmentRequest, names: tuple[str, ...]) -> str:
-    given = [n for n in names if getattr(req, n) is not None]
-    if len(given) != 1:
-        what = "both " + " and ".join(given) if given else "none"
-        raise refuse(given[1] if len(given) > 1 else names[0], f"give exactly one of {', '.join(names)} ({what} given)")
-    return given[0]
-
-
 def read_curves(req: AlignmentRequest, source_field: str | None = None) -> list[tuple[Curve, float | None]]:
     """The curves (with their station, or None) from whichever of ``curves``, ``csv``, ``landxml`` is given.
 
     ``source_field`` names where a document came from for the error (``body`` for a raw upload)."""
-    source = _one_of(req, ("curves", "csv", "landxml"))
-    if source == "curves":
-        seen: dict[str, int] = {}
-        out = []
-        for i, c in enumerate(req.curves):
-            if c.id in seen:
-                raise refuse(f"curves.{i}.id", f"duplicate curve id {c.id!r} (also curves.{seen[c.id]}.id)", c.id)
-            seen[c.id] = i
-            out.append((Curve(c.id, c.radius_m, c.superelevation_percent, c.grade_percent, c.posted_speed_kmh), None))
-        return out
+    if req.curves is not None:
+        return [
+            (Curve(c.id, c.radius_m, c.superelevation_percent, c.grade_percent, c.posted_speed_kmh), None)
+            for c in req.curves
+        ]
+    source = "csv" if req.csv is not None else "landxml"
     try:
         if source == "csv":
             return [(c, None) for c in read_csv(req.csv)]
@@ -104,11 +93,11 @@ def read_curves(req: AlignmentRequest, source_field: str | None = None) -> list[
 
 def resolve_alignment(req: AlignmentRequest, settings: Settings, source_field: str | None = None) -> dict[str, Any]:
     """The fully resolved request: the vehicles' records (and preset ids), the options, and the curves."""
-    which = _one_of(req, ("vehicle", "vehicles"))
+    which = "vehicle" if req.vehicle is not None else "vehicles"
     refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
     curves = read_curves(req, source_field)
     if len(curves) * len(refs) > MAX_ROWS:
-        raise refuse(
+        raise request_error(
             which,
             f"{len(curves)} curves x {len(refs)} vehicles = {len(curves) * len(refs)} rows; at most {MAX_ROWS} per "
             "request (split the alignment or the vehicles)",
@@ -137,17 +126,16 @@ def _side_friction(speeds: np.ndarray, bound: str) -> np.ndarray:
 
 
 def _assess_vehicle(index: int, vehicle: Vehicle, curves: list[Curve], stations, resolved) -> dict[str, Any]:
+    case = Case(
+        vehicle,
+        resolved["model"],
+        resolved["stage"],
+        trailer_angle_deg=resolved["trailer_angle_deg"],
+        load=LoadCase(**resolved["load"]),
+        rear_llt_limit=resolved["rear_llt_limit"],
+    )
     try:
-        result = assess_curves(
-            vehicle,
-            curves,
-            model=resolved["model"],
-            stage=resolved["stage"],
-            trailer_angle_deg=resolved["trailer_angle_deg"],
-            load=LoadCase(**resolved["load"]),
-            rear_llt_limit=resolved["rear_llt_limit"],
-            friction_bound=resolved["side_friction_bound"],
-        )
+        result = assess_curves(case, curves, friction_bound=resolved["side_friction_bound"])
     except InvalidInput as exc:  # with several vehicles, say which one the engine refused
         if len(resolved["vehicles"]) > 1 and exc.field is not None and "." not in exc.field:
             raise type(exc)(

@@ -1,7 +1,7 @@
 """The plot endpoints: the thesis's figures as SVG (app.svg), from the cached SRT computation.
 
-The curves against ay/g come from the same cached computation as ``POST /v1/srt`` with ``include_curves`` (so the
-four figures of one case cost one solve); the SVG is cached under its own key, which holds the resolved SRT
+The curves against ay/g are the engine's :class:`~engine.results.Curves` of the memoised result of the case (so
+the four figures of one case cost one solve); the SVG is cached under its own key, which holds the resolved SRT
 request, the figure, the label shown in it and :data:`SVG_VERSION` (bump it when the drawing changes: the engine
 version does not cover the renderer).
 """
@@ -9,18 +9,19 @@ version does not cover the renderer).
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
 
 import numpy as np
-import orjson
 
+from engine.case import Case
+from engine.loads import Road
+from engine.models import get_model
+from engine.results import RolloverResult
 from engine.road import TABLE21_SPEEDS_KMH, aashto_min_radius_m, rollover_min_radius_m, side_friction_factor
-from engine.threshold import CLASSIC_MODELS
 
 from .cache import ResultCache
+from .problems import request_error
 from .schemas.plots import MinRadiusPlotRequest, PlotRequest
-from .schemas.srt import RoadIn, SrtInputs
-from .service import Computed, cached, compute_srt, refuse, resolve_srt
+from .service import Computed, cached, resolve_case, solve, srt_key
 from .settings import Settings
 from .svg import Marker, Panel, Series, line_chart
 
@@ -35,90 +36,90 @@ def _label(req) -> str:
     return req.vehicle if isinstance(req.vehicle, str) else "vehicle record"
 
 
-def _conditions(srt: dict[str, Any], road: dict[str, float]) -> str:
-    stage = f", {srt['stage']} stage" if srt["stage"] else ""
+def _conditions(r: RolloverResult, case: Case) -> str:
+    stage = f", {r.stage} stage" if r.stage else ""
     return (
-        f"{srt['model']} model{stage}; bank {road['bank_percent']:g} %, slope {road['slope_percent']:g} %, "
-        f"rear LLT limit {srt['rear_llt_limit']:g}"
+        f"{r.model} model{stage}; bank {case.road.bank_percent:g} %, slope {case.road.slope_percent:g} %, "
+        f"rear LLT limit {r.rear_llt_limit:g}"
     )
 
 
-def _markers(srt: dict[str, Any]) -> list[Marker]:
+def _markers(r: RolloverResult) -> list[Marker]:
     """SRT_ts and SRT_3D (3d full stage), SRT_ts (tires-suspension stage) or SRT (2d)."""
-    values = srt["stage_values"]
-    if srt["model"] == "3d":
+    values = r.stage_values
+    if r.model == "3d":
         names = {"srt_ts": "SRT_ts", "srt_3d": "SRT_3D"}
         return [Marker(values[k], f"{names[k]} = {values[k]:.3f}") for k in ("srt_ts", "srt_3d") if k in values]
-    return [Marker(srt["srt"], f"SRT = {srt['srt']:.3f}")]
+    return [Marker(r.srt, f"SRT = {r.srt:.3f}")]
 
 
-def _marker_caption(srt: dict[str, Any]) -> str:
-    if srt["model"] != "3d":
+def _marker_caption(r: RolloverResult) -> str:
+    if r.model != "3d":
         return "SRT: the threshold (the end of the load ramp)"
-    if "srt_3d" in srt["stage_values"]:
+    if "srt_3d" in r.stage_values:
         return "SRT_ts, SRT_3D: thresholds of the tires-and-suspension stage and of the full system"
     return "SRT_ts: threshold of the tires-and-suspension stage"
 
 
-def _tire_loads(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
-    c = srt["curves"]
+def _tire_loads(r: RolloverResult) -> tuple[str, list[Panel], str]:
+    c = r.curves
     series = []
-    if c["fz_front_outer_kn"] is not None:
+    if c.fz_front_outer_kn is not None:
         series += [
-            Series("Fz1 front outer", c["ay_g"], c["fz_front_outer_kn"]),
-            Series("Fz3 front inner", c["ay_g"], c["fz_front_inner_kn"], dashed=True),
+            Series("Fz1 front outer", c.ay_g, c.fz_front_outer_kn),
+            Series("Fz3 front inner", c.ay_g, c.fz_front_inner_kn, dashed=True),
         ]
     series += [
-        Series("Fz17 rear outer", c["ay_g"], c["fz_rear_outer_kn"]),
-        Series("Fz19 rear inner", c["ay_g"], c["fz_rear_inner_kn"], dashed=True),
+        Series("Fz17 rear outer", c.ay_g, c.fz_rear_outer_kn),
+        Series("Fz19 rear inner", c.ay_g, c.fz_rear_inner_kn, dashed=True),
     ]
-    front = "Fz1, Fz3: front outer/inner tire normal loads; " if c["fz_front_outer_kn"] is not None else ""
-    two_d = " (the 2D model's one axle group, Fz1/Fz3 in Ch. 5)" if srt["model"] == "2d" else ""
+    front = "Fz1, Fz3: front outer/inner tire normal loads; " if c.fz_front_outer_kn is not None else ""
+    two_d = " (the 2D model's one axle group, Fz1/Fz3 in Ch. 5)" if r.model == "2d" else ""
     caption = (
         f"{front}Fz17, Fz19: rear outer/inner tire normal loads{two_d}, per side of each axle group; "
-        f"{_marker_caption(srt)} (thesis Figs. 85-87, 92)."
+        f"{_marker_caption(r)} (thesis Figs. 85-87, 92)."
     )
-    return "Tire normal loads", [Panel("normal load Fz [kN]", series, _markers(srt))], caption
+    return "Tire normal loads", [Panel("normal load Fz [kN]", series, _markers(r))], caption
 
 
-def _llt(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
-    c = srt["curves"]
-    series = [Series("LLTf front", c["ay_g"], c["llt_front"])] if c["llt_front"] is not None else []
-    series.append(Series("LLTr rear", c["ay_g"], c["llt_rear"]))
+def _llt(r: RolloverResult) -> tuple[str, list[Panel], str]:
+    c = r.curves
+    series = [Series("LLTf front", c.ay_g, c.llt_front)] if c.llt_front is not None else []
+    series.append(Series("LLTr rear", c.ay_g, c.llt_rear))
     caption = (
         "LLT = (Fz outer - Fz inner) / (Fz outer + Fz inner) of an axle group (Eq. 2.5); LLTf, LLTr: front and "
-        f"rear groups; the ramp stops when LLTr reaches the rear LLT limit; {_marker_caption(srt)} (thesis Fig. 93)."
+        f"rear groups; the ramp stops when LLTr reaches the rear LLT limit; {_marker_caption(r)} (thesis Fig. 93)."
     )
-    return "Lateral load transfer", [Panel("lateral load transfer LLT [-]", series, _markers(srt))], caption
+    return "Lateral load transfer", [Panel("lateral load transfer LLT [-]", series, _markers(r))], caption
 
 
-def _roll(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
-    c = srt["curves"]
-    if srt["model"] == "2d":
+def _roll(r: RolloverResult) -> tuple[str, list[Panel], str]:
+    c = r.curves
+    if r.model == "2d":
         name, text = "theta_2D", "theta_2D = theta1 + theta6 + theta8: body roll of the 2D mechanism (Ch. 5)"
     else:
         name, text = "theta_3D", "theta_3D = theta17 + theta21 + theta23 + theta27: total body roll (Ch. 6)"
-    caption = f"{text}; {_marker_caption(srt)} (thesis Fig. 94)."
-    return "Roll angle", [Panel("roll angle theta [deg]", [Series(name, c["ay_g"], c["roll_angle_deg"])],
-                                _markers(srt))], caption  # fmt: skip
+    caption = f"{text}; {_marker_caption(r)} (thesis Fig. 94)."
+    panel = Panel("roll angle theta [deg]", [Series(name, c.ay_g, c.roll_angle_deg)], _markers(r))
+    return "Roll angle", [panel], caption
 
 
-def _cg_path(srt: dict[str, Any]) -> tuple[str, list[Panel], str]:
-    c = srt["curves"]
-    markers = _markers(srt)
+def _cg_path(r: RolloverResult) -> tuple[str, list[Panel], str]:
+    c = r.curves
+    markers = _markers(r)
     panels = [
-        Panel("h1, lateral CG position [m]", [Series("h1", c["ay_g"], c["cg_lateral_m"])], markers),
-        Panel("h2, CG height [m]", [Series("h2", c["ay_g"], c["cg_height_m"])], markers),
+        Panel("h1, lateral CG position [m]", [Series("h1", c.ay_g, c.cg_lateral_m)], markers),
+        Panel("h2, CG height [m]", [Series("h2", c.ay_g, c.cg_height_m)], markers),
     ]
-    eqs = "Eqs. 5.1-5.2" if srt["model"] == "2d" else "Eqs. 6.1-6.2"
+    eqs = "Eqs. 5.1-5.2" if r.model == "2d" else "Eqs. 6.1-6.2"
     caption = (
         f"h1: lateral distance of the CG from the outer tire contact; h2: CG height above the road ({eqs}); "
-        f"the CG moves outward and down as the body rolls; {_marker_caption(srt)} (thesis Figs. 96-97)."
+        f"the CG moves outward and down as the body rolls; {_marker_caption(r)} (thesis Figs. 96-97)."
     )
     return "CG path", panels, caption
 
 
-FIGURES: dict[str, Callable[[dict[str, Any]], tuple[str, list[Panel], str]]] = {
+FIGURES: dict[str, Callable[[RolloverResult], tuple[str, list[Panel], str]]] = {
     "tire-loads": _tire_loads,
     "llt": _llt,
     "roll": _roll,
@@ -126,29 +127,34 @@ FIGURES: dict[str, Callable[[dict[str, Any]], tuple[str, list[Panel], str]]] = {
 }
 
 
-def render_curves(kind: str, srt: dict[str, Any], label: str, road: dict[str, float]) -> str:
-    title, panels, caption = FIGURES[kind](srt)
+def render_curves(kind: str, r: RolloverResult, label: str, case: Case) -> str:
+    title, panels, caption = FIGURES[kind](r)
     return line_chart(
         f"{title} against ay/g: {label}",
         AY,
         panels,
-        caption=f"{caption} Case: {label}, {_conditions(srt, road)}.",
+        caption=f"{caption} Case: {label}, {_conditions(r, case)}.",
     )
 
 
 async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, kind: str) -> Computed:
     """One of the figures against ay/g (``FIGURES``) as SVG."""
-    if req.model in CLASSIC_MODELS:
-        raise refuse("model", f"the {req.model} model is a closed form without curves against ay/g: use 3d or 2d")
-    resolved_srt = resolve_srt(
-        req, targets=settings.default_targets(), include_curves=True, curve_points=req.curve_points
-    )
+    if not get_model(req.model).curves:
+        raise request_error(
+            "model", f"the {req.model} model is a closed form without curves against ay/g: use 3d or 2d"
+        )
+    case = resolve_case(req)
     label = _label(req)
-    resolved = {"srt_request": resolved_srt, "figure": kind, "label": label, "svg_version": SVG_VERSION}
+    resolved = {
+        "srt_request": srt_key(case, settings.default_targets(), include_curves=True, curve_points=req.curve_points),
+        "figure": kind,
+        "label": label,
+        "svg_version": SVG_VERSION,
+    }
 
     async def produce() -> bytes:
-        srt = orjson.loads((await compute_srt(cache, resolved_srt)).body)
-        return render_curves(kind, srt, label, resolved_srt["road"]).encode()
+        result = await solve(cache, case, curve_points=req.curve_points)
+        return render_curves(kind, result, label, case).encode()
 
     return await cached(cache, f"plot-{kind}", resolved, produce, SVG_MEDIA_TYPE)
 
@@ -171,10 +177,10 @@ def crossing_speed(speeds: np.ndarray, e: float, srt: float, bound: str) -> floa
     return float(nodes[-1]) if g[-1] == 0 else None
 
 
-def render_min_radius(req: MinRadiusPlotRequest, srt: dict[str, Any], label: str) -> str:
+def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, label: str) -> str:
     v = np.linspace(req.speed_min_kmh, req.speed_max_kmh, req.points)
     f = np.asarray(side_friction_factor(v, req.side_friction_bound), dtype=float)
-    e, s = req.superelevation_percent, srt["srt"]
+    e, s = req.superelevation_percent, r.srt
     r92 = aashto_min_radius_m(v, e, f)  # Eq. 9.2
     r93 = rollover_min_radius_m(v, s)  # Eq. 9.3
     markers = []
@@ -190,11 +196,10 @@ def render_min_radius(req: MinRadiusPlotRequest, srt: dict[str, Any], label: str
         ],
         markers,
     )
-    road = {"bank_percent": e, "slope_percent": req.slope_percent}
     caption = (
         f"Eq. 9.2 (AASHTO/DNIT, side friction): Rmin = V^2 / (127 (0.01 e + f)), f from Table 21 "
         f"({req.side_friction_bound} bound); Eq. 9.3 (rollover): Rmin = V^2 / (127 SRT) with SRT = {s:.3f} g, the SRT "
-        f"of {label} on that bank and slope ({_conditions(srt, road)}); the larger radius governs (thesis Figs. "
+        f"of {label} on that bank and slope ({_conditions(r, case)}); the larger radius governs (thesis Figs. "
         "108-114)."
     )
     return line_chart(
@@ -203,29 +208,18 @@ def render_min_radius(req: MinRadiusPlotRequest, srt: dict[str, Any], label: str
 
 
 async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, settings: Settings) -> Computed:
-    if req.speed_max_kmh <= req.speed_min_kmh:
-        raise refuse("speed_max_kmh", f"must be above speed_min_kmh ({req.speed_min_kmh} km/h)", req.speed_max_kmh)
     if 0.01 * req.superelevation_percent + float(side_friction_factor(req.speed_max_kmh, req.side_friction_bound)) <= 0:
-        raise refuse(
+        raise request_error(
             "superelevation_percent",
             "0.01 e + f must be positive for Eq. 9.2 at every plotted speed (an adverse crossfall this steep has "
             "no side-friction radius)",
             req.superelevation_percent,
         )
     # the SRT of Eq. 9.3 is the one on the curve's bank (the superelevation) and slope
-    case = SrtInputs.model_construct(
-        vehicle=req.vehicle,
-        model=req.model,
-        stage=req.stage,
-        road=RoadIn.model_construct(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent),
-        trailer_angle_deg=req.trailer_angle_deg,
-        load=req.load,
-        rear_llt_limit=req.rear_llt_limit,
-    )
-    resolved_srt = resolve_srt(case, targets=settings.default_targets())
+    case = resolve_case(req, road=Road(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent))
     label = _label(req)
     resolved = {
-        "srt_request": resolved_srt,
+        "srt_request": srt_key(case, settings.default_targets()),
         "speeds_kmh": [req.speed_min_kmh, req.speed_max_kmh, req.points],
         "side_friction_bound": req.side_friction_bound,
         "label": label,
@@ -233,7 +227,6 @@ async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, setting
     }
 
     async def produce() -> bytes:
-        srt = orjson.loads((await compute_srt(cache, resolved_srt)).body)
-        return render_min_radius(req, srt, label).encode()
+        return render_min_radius(req, await solve(cache, case), case, label).encode()
 
     return await cached(cache, "plot-min-radius", resolved, produce, SVG_MEDIA_TYPE)

@@ -7,7 +7,6 @@ it and cached under its own key.
 
 from __future__ import annotations
 
-import math
 import time
 from typing import Any
 
@@ -16,49 +15,34 @@ from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
 from engine.assessment import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
+from engine.case import Case
 from engine.errors import InvalidInput, RolloverError
-from engine.loads import LoadCase, Road
 from engine.threshold import sweep
-from engine.vehicles import Vehicle
 
 from .cache import ResultCache
 from .metrics import SOLVE_SECONDS
 from .schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
-from .schemas.sweep import AXIS_ORDER, MAX_CASES, SweepRequest, SweepResult
-from .service import Computed, cached, cached_csv, refuse, resolve_srt, resolve_targets, target_checks
+from .schemas.sweep import SweepRequest, SweepResult
+from .service import Computed, cached, cached_csv, resolve_case, resolve_targets, srt_key, target_checks
 from .settings import Settings
 from .tables import flatten_targets, target_columns, to_csv
 
 
-def _base_case(resolved: dict[str, Any]) -> tuple[Vehicle, dict[str, Any]]:
-    """The engine's vehicle and keyword arguments for a resolved SRT request."""
-    return Vehicle.from_dict(resolved["vehicle"]), {
-        "model": resolved["model"],
-        "stage": resolved["stage"],
-        "road": Road(**resolved["road"]),
-        "trailer_angle_deg": resolved["trailer_angle_deg"],
-        "load": LoadCase(**resolved["load"]),
-        "rear_llt_limit": resolved["rear_llt_limit"],
-    }
-
-
 def _srt_case(req, settings: Settings) -> dict[str, Any]:
     """The resolved base case of a limits or sweep request (no curves: those fields would only blur the key)."""
-    base = resolve_srt(req, targets=resolve_targets(req.targets, settings))
+    base = srt_key(resolve_case(req), resolve_targets(req.targets, settings))
     del base["include_curves"], base["curve_points"]
     return base
+
+
+def _case(resolved_case: dict[str, Any]) -> Case:
+    return Case.from_dict({k: v for k, v in resolved_case.items() if k != "targets"})
 
 
 # ------------------------------------------------------------------------------------------ limits
 
 
 def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
-    if req.parameter == "overweight_percent" and req.overweights_percent is not None:
-        raise refuse(
-            "overweights_percent",
-            "the table runs over overweights: with parameter = overweight_percent there is none (leave "
-            "overweights_percent out, or pick another parameter)",
-        )
     table = None
     if req.parameter != "overweight_percent":
         table = list(req.overweights_percent) if req.overweights_percent is not None else list(DEFAULT_OVERWEIGHTS)
@@ -85,19 +69,19 @@ def _limit_out(limit: Limit, targets: dict[str, float]) -> dict[str, Any]:
     }
 
 
-def _current_value(vehicle: Vehicle, load: LoadCase, parameter: str) -> float:
+def _current_value(case: Case, parameter: str) -> float:
     holder, name = PARAMETER_INFO[parameter][2].split(".")
-    return float(getattr(vehicle if holder == "vehicle" else load, name))
+    return float(getattr(case.vehicle if holder == "vehicle" else case.load, name))
 
 
 def solve_limits(resolved: dict[str, Any]) -> bytes:
     """The limit and its table (blocking: called in a worker thread) -> LimitsResult JSON bytes."""
     started = time.perf_counter()
     case = resolved["case"]
-    vehicle, kwargs = _base_case(case)
+    base = _case(case)
     parameter, target = resolved["parameter"], resolved["target_srt_g"]
     try:
-        limit = parameter_limit(vehicle, target, parameter, **kwargs)
+        limit = parameter_limit(base, target, parameter)
     except InvalidInput as exc:
         if exc.field != parameter:
             raise
@@ -111,7 +95,7 @@ def solve_limits(resolved: dict[str, Any]) -> bytes:
         table = []
         for ow in resolved["overweights_percent"]:
             try:
-                (row,) = limit_table(vehicle, target, parameter, [ow], **kwargs)
+                (row,) = limit_table(base, target, parameter, [ow])
             except RolloverError as exc:  # one row the engine cannot solve is reported, not dropped
                 table.append(
                     {
@@ -145,7 +129,7 @@ def solve_limits(resolved: dict[str, Any]) -> bytes:
                 "symbol": symbol,
                 "description": LIMIT_PARAMETERS[parameter][1],
                 "target_srt_g": target,
-                "current_value": _current_value(vehicle, kwargs["load"], parameter),
+                "current_value": _current_value(base, parameter),
                 "limit": _limit_out(limit, case["targets"]),
                 "table": table,
                 "model": case["model"],
@@ -171,22 +155,14 @@ async def compute_limits(cache: ResultCache, req: LimitsRequest, settings: Setti
 
 
 def resolve_sweep(req: SweepRequest, settings: Settings) -> dict[str, Any]:
-    axes = req.grid.axes()
-    if not axes:
-        raise refuse("grid", f"give at least one axis to vary: {', '.join(AXIS_ORDER)}")
-    cases = math.prod(len(v) for v in axes.values())
-    if cases > MAX_CASES:
-        sizes = " x ".join(f"{len(v)} {a}" for a, v in axes.items())
-        raise refuse("grid", f"{sizes} = {cases} cases; at most {MAX_CASES} per request (split the grid)", cases)
-    return {"case": _srt_case(req, settings), "grid": axes}
+    return {"case": _srt_case(req, settings), "grid": req.grid.axes()}
 
 
 def solve_sweep(resolved: dict[str, Any]) -> bytes:
     """Every case of the grid (blocking: called in a worker thread) -> SweepResult JSON bytes."""
     started = time.perf_counter()
     case, grid = resolved["case"], resolved["grid"]
-    vehicle, kwargs = _base_case(case)
-    result = sweep(vehicle, grid, **kwargs)
+    result = sweep(_case(case), grid)
     targets = case["targets"]
     rows = result.rows()
     for row in rows:

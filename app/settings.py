@@ -1,15 +1,16 @@
 """Service settings (pydantic-settings), read from the environment with the ``ROLLOVER_`` prefix.
 
-Behind an ``@lru_cache`` :func:`get_settings` dependency that tests override (``app.dependency_overrides``)
-or bypass by passing a :class:`Settings` to :func:`app.main.create_app`.
+:func:`get_settings` reads the environment once per process; :func:`app.main.create_app` takes it, or a
+:class:`Settings` given to it (tests), and keeps it on ``app.state``.
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
+import secrets
+from functools import cached_property, lru_cache
 from typing import Literal
 
-from pydantic import Field
+from pydantic import Field, SecretStr, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from engine.assessment import DEFAULT_TARGETS
@@ -30,6 +31,12 @@ class Settings(BaseSettings):
         32 * 2**20, ge=1, description="Bodies larger than this are not cached in either tier [bytes]."
     )
     redis_url: str = Field("redis://127.0.0.1:6379/0", description="Redis URL (used when cache_backend=redis).")
+    cache_secret: SecretStr | None = Field(
+        None,
+        min_length=16,
+        description="Secret of the HMAC that seals every Redis entry (required with cache_backend=redis; the same on "
+        "every replica; e.g. `openssl rand -hex 32`). An entry that does not verify is never served.",
+    )
     redis_ttl_seconds: int = Field(
         7 * 24 * 3600, ge=0, description="Expiry of the entries written to Redis [s]; 0 keeps them until evicted."
     )
@@ -37,7 +44,7 @@ class Settings(BaseSettings):
         0.25, gt=0, description="Connect and read timeout of each Redis call [s]; past it the call counts as down."
     )
     redis_retry_seconds: float = Field(
-        15.0, ge=0, description="After a Redis failure, serve from the local cache without Redis for this long [s]."
+        5.0, ge=0, description="After a Redis failure, serve from the local cache without Redis for this long [s]."
     )
     log_level: Literal["DEBUG", "INFO", "WARNING", "ERROR"] = Field("INFO", description="Lowest level logged.")
     srt_target_general_g: float = Field(
@@ -52,6 +59,25 @@ class Settings(BaseSettings):
         lt=2,
         description="SRT target for dangerous goods, e.g. tankers (PBS / NZ rule: 0.40) [g].",
     )
+
+    @model_validator(mode="after")
+    def _redis_needs_a_secret(self) -> Settings:
+        if self.cache_backend == "redis" and self.cache_secret is None:
+            raise ValueError(
+                "ROLLOVER_CACHE_SECRET is required with ROLLOVER_CACHE_BACKEND=redis: every replica seals and "
+                "verifies the shared entries with it (generate one with `openssl rand -hex 32`)"
+            )
+        return self
+
+    @cached_property
+    def _process_secret(self) -> bytes:
+        return secrets.token_bytes(32)
+
+    def cache_secret_bytes(self) -> bytes:
+        """The HMAC key of the shared cache (a random one per process without Redis, where nothing is shared)."""
+        if self.cache_secret is None:
+            return self._process_secret
+        return self.cache_secret.get_secret_value().encode()
 
     def default_targets(self) -> dict[str, float]:
         """The SRT targets checked when a request gives none: name -> minimum SRT [g]."""

@@ -24,6 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from engine.assessment import Curve, assess_curves  # noqa: E402
+from engine.case import Case  # noqa: E402
 from engine.vehicles import get_preset  # noqa: E402
 
 BTRAIN = "table16-btrain"
@@ -84,8 +85,8 @@ def bench_engine(curves: list[dict], repeat: int) -> None:
     vehicle = get_preset(BTRAIN)
     objs = [Curve(c["id"], c["radius_m"], c["superelevation_percent"], c["grade_percent"], c["posted_speed_kmh"])
             for c in curves]  # fmt: skip
-    result = assess_curves(vehicle, objs)
-    m, b = timed(lambda: assess_curves(vehicle, objs), repeat)
+    result = assess_curves(Case(vehicle), objs)
+    m, b = timed(lambda: assess_curves(Case(vehicle), objs), repeat)
     report("engine.assessment.assess_curves (3d, LLT 1)", m, b, f"{result.distinct_cases} SRT solves")
 
 

@@ -20,8 +20,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine import trailer3d
-from engine.threshold import rollover_threshold, stage_model, sweep
+from engine import trailer3d, trailer3d_davies
+from engine.case import Case
+from engine.stepping import stage_model
+from engine.threshold import rollover_threshold, sweep
 from engine.vehicles import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -57,30 +59,30 @@ def report(label: str, samples: list[float], unit: float = 1e3, suffix: str = "m
 
 def main() -> None:
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs")
-    m = stage_model(BTRAIN, "full")
-    case = trailer3d.Case(
+    m = stage_model(Case(BTRAIN), "full")
+    case = trailer3d.SolverCase(
         weight=BTRAIN.weight_kn, bank=0.04, slope=-0.04, psi=0.17, d1=0.04, d2=0.0, d3=0.0, llt_limit=1.0
     )
     sol = trailer3d.solve(m, case)
     print(f"B-train SRT_3D on 4 % bank, 4 % downhill, 10 deg: {sol.ay:.4f} g in {sol.iterations} iterations")
     report("one 3D SRT solve, one stage, fast path", timeit(lambda: trailer3d.solve(m, case), 400))
-    report("rollover_threshold(3d): both stages + calibrations", timeit(lambda: rollover_threshold(BTRAIN), 200))
+    report("rollover_threshold(3d): both stages + calibrations", timeit(lambda: rollover_threshold(Case(BTRAIN)), 200))
     report(
         "rollover_threshold(3d, include_curves, 41 points)",
-        timeit(lambda: rollover_threshold(BTRAIN, include_curves=True), 20),
+        timeit(lambda: rollover_threshold(Case(BTRAIN), include_curves=True), 20),
     )
     report(
         "rollover_threshold(2d), Table 14",
-        timeit(lambda: rollover_threshold(PRESETS["table14-semitrailer"], "2d"), 200),
+        timeit(lambda: rollover_threshold(Case(PRESETS["table14-semitrailer"], "2d")), 200),
     )
     report(
         "one 3D SRT solve, Davies reference path",
-        timeit(lambda: trailer3d.solve(m, case, forces=trailer3d.davies_forces_at), 5),
+        timeit(lambda: trailer3d.solve(m, case, forces=trailer3d_davies.davies_forces_at), 5),
     )
 
     def grids():
-        a = sweep(BTRAIN, TABLE17, rear_llt_limit=0.6)
-        b = sweep(BTRAIN, TABLE19)
+        a = sweep(Case(BTRAIN, rear_llt_limit=0.6), TABLE17)
+        b = sweep(Case(BTRAIN), TABLE19)
         return a, b
 
     a, b = grids()

@@ -13,7 +13,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine.classic import classic_threshold
+from engine.case import Case
 from engine.loads import LoadCase
 from engine.road import max_curve_speed_kmh
 from engine.threshold import rollover_threshold, sweep
@@ -68,34 +68,38 @@ def row(label, published, ours, unit=""):
 
 
 def main() -> None:
-    b = rollover_threshold(BTRAIN)
+    b = rollover_threshold(Case(BTRAIN))
     ts = b.stage_values["srt_ts"]
-    t14 = rollover_threshold(T14, "2d")
+    t14 = rollover_threshold(Case(T14, "2d"))
     print("| quantity (source) | published | ours | difference |\n|---|---|---|---|")
     row("B-train SRT_ts, tires + suspension (Sec. 9.1)", 0.3792, ts)
     row("B-train SRT_3D, full system (Sec. 9.1)", 0.3364, b.srt)
     row("B-train roll theta_3D at the limit [deg] (Fig. 94)", 5.8, b.roll_angle_deg)
-    row("B-train rigid SRT t/2h (Sec. 9.2)", 0.451, classic_threshold(BTRAIN, "rigid").srt)
+    row("B-train rigid SRT t/2h (Sec. 9.2)", 0.451, rollover_threshold(Case(BTRAIN, "rigid")).srt)
     row("Table 14 2D SRT (Sec. 7.2)", 0.376, t14.srt)
     row("Table 14 2D roll [deg] (Fig. 68)", 6.1, t14.roll_angle_deg)
     row("Table 14 2D SRT vs Adams (Sec. 7.1)", 0.374, t14.srt)
     row("Table 14 2D roll vs Adams [deg] (Fig. 66)", 5.75, t14.roll_angle_deg)
-    row("Table 14 Rill Eq. 2.20 (2 % from the 2D model, Sec. 7.3)", 0.376 / 0.98, classic_threshold(T14, "rill").srt)
-    row("B-train rear LLT 0.6, flat (Table 20)", 0.202, rollover_threshold(BTRAIN, rear_llt_limit=0.6).srt)
-    worst = rollover_threshold(BTRAIN, load=LoadCase(lateral_offset_m=0.16)).srt
+    row(
+        "Table 14 Rill Eq. 2.20 (2 % from the 2D model, Sec. 7.3)",
+        0.376 / 0.98,
+        rollover_threshold(Case(T14, "rill")).srt,
+    )
+    row("B-train rear LLT 0.6, flat (Table 20)", 0.202, rollover_threshold(Case(BTRAIN, rear_llt_limit=0.6)).srt)
+    worst = rollover_threshold(Case(BTRAIN, load=LoadCase(lateral_offset_m=0.16))).srt
     row("Table 18 case 3 (worst: d1 = +0.16 m, d2 = 0)", 0.2528, worst)
     best = max(
-        rollover_threshold(BTRAIN, load=LoadCase(lateral_offset_m=-0.16, longitudinal_offset_m=d2)).srt
+        rollover_threshold(Case(BTRAIN, load=LoadCase(lateral_offset_m=-0.16, longitudinal_offset_m=d2))).srt
         for d2 in (-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5)
     )
     row("Table 18 case 1 (best over d2, d1 = -0.16 m)", 0.4485, best)
-    ow = rollover_threshold(BTRAIN, load=LoadCase(overweight_percent=1.0)).srt
+    ow = rollover_threshold(Case(BTRAIN, load=LoadCase(overweight_percent=1.0))).srt
     row("overweight: loss per 1 % [% of SRT] (Sec. 9.4)", 0.2, (b.srt - ow) / b.srt * 100)
-    d1 = rollover_threshold(BTRAIN, load=LoadCase(lateral_offset_m=0.02)).srt
+    d1 = rollover_threshold(Case(BTRAIN, load=LoadCase(lateral_offset_m=0.02))).srt
     row("lateral offset: loss per 2 cm [g] (Sec. 9.3)", 0.01, b.srt - d1)
-    d3 = rollover_threshold(BTRAIN, load=LoadCase(vertical_offset_m=0.04)).srt
+    d3 = rollover_threshold(Case(BTRAIN, load=LoadCase(vertical_offset_m=0.04))).srt
     row("vertical offset: loss per 4 cm [g] (Sec. 9.3)", 0.01, b.srt - d3)
-    bb = rollover_threshold(BTRAIN.replace(spring_separation_m=0.96)).srt
+    bb = rollover_threshold(Case(BTRAIN.replace(spring_separation_m=0.96))).srt
     row("spring separation: gain per 1 cm [g] (Fig. 95)", 0.001, bb - b.srt)
     row("Table 18 speed at SRT_3D, R = 80 m [km/h] (Eq. 9.1)", 58.5, float(max_curve_speed_kmh(b.srt, 80)))
     print(
@@ -106,9 +110,8 @@ def main() -> None:
     print("\nTable 17 (rear LLT 0.6): mean error (ours - thesis) per slope column, each closure of the roll moment")
     for closure in ("chassis-constant", "llt-ratio", "inverse-ratio"):
         res = sweep(
-            BTRAIN,
+            Case(BTRAIN, rear_llt_limit=0.6),
             {"trailer_angle_deg": [0, 10, 20, 30], "bank_percent": BANKS, "slope_percent": SLOPES},
-            rear_llt_limit=0.6,
             chassis_closure=closure,
         )
         ours = res.srt.reshape(4, 7, 12)

@@ -26,11 +26,14 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from .errors import InvalidInput, InvalidRoad, RolloverError
-from .loads import MAX_OVERWEIGHT_PERCENT, LoadCase, Road, check_case
-from .road import KMH2_PER_M_G, max_curve_speed_kmh, side_friction_speed_kmh
+from .case import Case
+from .domain import MAX_OVERWEIGHT_PERCENT, check
+from .errors import InvalidInput, RolloverError
+from .loads import Road, check_case
+from .models import get_model
+from .road import max_curve_speed_kmh, side_friction_speed_kmh
 from .threshold import evaluate_cases, rollover_threshold
-from .vehicles import Vehicle, group_stiffness, validate_vehicle
+from .vehicles import group_stiffness, static_axle_loads
 
 #: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
 DEFAULT_TARGETS = {"general": 0.35, "dangerous_goods": 0.40}
@@ -52,8 +55,7 @@ def check_targets(srt_g: float, targets: dict[str, float] | None = None) -> list
     targets = DEFAULT_TARGETS if targets is None else targets
     out = []
     for name, t in targets.items():
-        if not (isinstance(t, int | float) and math.isfinite(t) and 0 < t < 2):
-            raise InvalidInput(f"target {name!r} must be in (0, 2) g, got {t!r}", field=f"targets.{name}", value=t)
+        check("target_srt_g", t, f"targets.{name}")
         out.append(TargetCheck(name, float(t), srt_g >= t, srt_g - t))
     return out
 
@@ -85,28 +87,23 @@ class Limit:
     evaluations: int
 
 
-@dataclass
-class _Counter:
-    n: int = 0
-
-
-def _apply(vehicle: Vehicle, load: LoadCase, parameter: str, value: float) -> tuple[Vehicle, LoadCase]:
+def with_parameter(case: Case, parameter: str, value: float) -> Case:
+    """The case with one :data:`LIMIT_PARAMETERS` entry set to ``value`` (a vehicle field or a load input)."""
     if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
-        return vehicle.replace(**{parameter: value}), load
-    return vehicle, replace(load, **{parameter: value})
+        return case.replace(vehicle=case.vehicle.replace(**{parameter: value}))
+    return case.replace(load=replace(case.load, **{parameter: value}))
 
 
-def _range(vehicle: Vehicle, load: LoadCase, parameter: str, model: str) -> tuple[float, float]:
-    """Admissible range of the parameter: inside the bounds :func:`validate_vehicle` enforces.
+def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
+    """Admissible range of the parameter: inside the bounds :func:`engine.vehicles.validate_vehicle` enforces.
 
     For l12 and b that is Rill's condition k_theta > W_group l12 (Eq. 2.17) for every group the model uses
     (both groups in 3D), with the groups' nominal static loads, as the validation applies it.
     """
-    from .vehicles import static_axle_loads
-
+    vehicle, load = case.vehicle, case.load
     front_load, rear_load = static_axle_loads(vehicle)
     groups = [("rear", rear_load)]
-    if model == "3d" and vehicle.front_axles is not None and front_load > 0:
+    if get_model(case.model).front_group and vehicle.front_axles is not None and front_load > 0:
         groups.append(("front", front_load))
     if parameter == "cg_height_above_chassis_m":
         lo = max(0.05, -load.vertical_offset_m + 0.05)
@@ -124,20 +121,43 @@ def _range(vehicle: Vehicle, load: LoadCase, parameter: str, model: str) -> tupl
     return b_min, width * (1 - 1e-6) - 1e-6
 
 
-def parameter_limit(
-    vehicle: Vehicle,
-    target_srt_g: float,
-    parameter: str,
-    *,
-    model: str = "3d",
-    stage: str = "full",
-    road: Road = Road(),
-    trailer_angle_deg: float = 0.0,
-    load: LoadCase = LoadCase(),
-    rear_llt_limit: float = 1.0,
-    xtol: float = 1e-6,
-) -> Limit:
-    """The limit of one parameter at which the SRT equals ``target_srt_g`` (Brent's method, bracketed).
+@dataclass(frozen=True)
+class _Search:
+    """The SRT minus the target as a function of the parameter, counting evaluations."""
+
+    case: Case
+    parameter: str
+    target: float
+    count: list
+
+    def __call__(self, x: float) -> float:
+        self.count[0] += 1
+        return rollover_threshold(with_parameter(self.case, self.parameter, x)).srt - self.target
+
+    def solvable(self, x: float) -> float | None:
+        """g(x), or None where this value makes the case unsolvable (collapse, tipping at rest, ...)."""
+        try:
+            return self(x)
+        except RolloverError:
+            return None
+
+
+def _first_solvable(g: _Search, good: float, bad: float) -> tuple[float, float | None]:
+    """The "good" end of the range, or the first solvable value stepping from it toward the bad end in growing
+    steps (a CG so low that the SRT exceeds the mechanism's range, ...)."""
+    g_good = g.solvable(good)
+    if g_good is not None:
+        return good, g_good
+    for k in range(30, 0, -1):
+        probe = good + (bad - good) / 2.0**k
+        g_probe = g.solvable(probe)
+        if g_probe is not None:
+            return probe, g_probe
+    return good, None
+
+
+def parameter_limit(case: Case, target_srt_g: float, parameter: str, *, xtol: float = 1e-6) -> Limit:
+    """The limit of one parameter at which the SRT of ``case`` equals ``target_srt_g`` (Brent's method, bracketed).
 
     The SRT is monotonic in each parameter over its admissible range (decreasing in l12, overweight and
     outward d1; increasing in b), so the bracket holds one root. ``status`` says when the whole range
@@ -148,61 +168,27 @@ def parameter_limit(
         raise InvalidInput(
             f"parameter must be one of {', '.join(LIMIT_PARAMETERS)}", field="parameter", value=parameter
         )
-    if not (isinstance(target_srt_g, int | float) and math.isfinite(target_srt_g) and 0 < target_srt_g < 2):
-        raise InvalidInput("target_srt_g must be in (0, 2) g", field="target_srt_g", value=target_srt_g)
-    kind = LIMIT_PARAMETERS[parameter][0]
-    lo, hi = _range(vehicle, load, parameter, model)
-    count = _Counter()
-
-    def srt(x: float) -> float:
-        count.n += 1
-        v, ld = _apply(vehicle, load, parameter, x)
-        return rollover_threshold(
-            v,
-            model,
-            stage=stage,
-            road=road,
-            trailer_angle_deg=trailer_angle_deg,
-            load=ld,
-            rear_llt_limit=rear_llt_limit,
-        ).srt
-
-    def g(x: float) -> float:
-        return srt(x) - target_srt_g
-
+    check("target_srt_g", target_srt_g)
     # errors that do not depend on the searched value (a model that needs a missing field, a road outside the
     # domain...) are the caller's: let them through as they are, before searching
-    validate_vehicle(vehicle, model=model)
-    check_case(vehicle, road, trailer_angle_deg, load)
-
-    def solvable(x: float) -> float | None:
-        """g(x), or None where this value makes the case unsolvable (collapse, tipping at rest, ...)."""
-        try:
-            return g(x)
-        except RolloverError:
-            return None
-
+    get_model(case.model).validate(case.vehicle)
+    check_case(case.vehicle, case.road, case.trailer_angle_deg, case.load)
+    kind = LIMIT_PARAMETERS[parameter][0]
+    lo, hi = parameter_range(case, parameter)
+    g = _Search(case, parameter, target_srt_g, [0])
     good, bad = (lo, hi) if kind == "max" else (hi, lo)
-    g_good = solvable(good)
-    if g_good is None:  # the "good" end itself is out of the model's reach (e.g. a CG so low that the SRT
-        # exceeds the mechanism's range): step away from it, in growing steps, to the first solvable value
-        for k in range(30, 0, -1):
-            probe = good + (bad - good) / 2.0**k
-            g_probe = solvable(probe)
-            if g_probe is not None:
-                good, g_good = probe, g_probe
-                break
-        if g_good is None:
-            raise InvalidInput(
-                f"no value of {parameter} in [{lo:.4g}, {hi:.4g}] can be solved for this case", field=parameter
-            )
+    good, g_good = _first_solvable(g, good, bad)
+    if g_good is None:
+        raise InvalidInput(
+            f"no value of {parameter} in [{lo:.4g}, {hi:.4g}] can be solved for this case", field=parameter
+        )
     if g_good < 0:
-        return Limit(parameter, kind, None, "never-met", (lo, hi), None, count.n)
+        return Limit(parameter, kind, None, "never-met", (lo, hi), None, g.count[0])
     # near the bad end the vehicle may collapse (no solution): bisect toward the good end until a solvable
     # point that misses the target brackets the root
     unsolvable = None
     while True:
-        g_bad = solvable(bad)
+        g_bad = g.solvable(bad)
         if g_bad is None:
             unsolvable = bad
         elif g_bad < 0:
@@ -210,12 +196,12 @@ def parameter_limit(
         else:  # solvable and still meets the target: the root lies beyond it
             good, g_good = bad, g_bad
             if unsolvable is None:
-                return Limit(parameter, kind, bad, "always-met", (lo, hi), target_srt_g + g_bad, count.n)
+                return Limit(parameter, kind, bad, "always-met", (lo, hi), target_srt_g + g_bad, g.count[0])
         if abs(unsolvable - good) < xtol:  # met up to where the vehicle stops being solvable
-            return Limit(parameter, kind, good, "always-met", (lo, hi), target_srt_g + g_good, count.n)
+            return Limit(parameter, kind, good, "always-met", (lo, hi), target_srt_g + g_good, g.count[0])
         bad = 0.5 * (good + unsolvable)
     root = brentq(g, min(good, bad), max(good, bad), xtol=xtol, rtol=1e-10)
-    return Limit(parameter, kind, float(root), "found", (lo, hi), target_srt_g, count.n)
+    return Limit(parameter, kind, float(root), "found", (lo, hi), target_srt_g, g.count[0])
 
 
 @dataclass(frozen=True)
@@ -224,18 +210,19 @@ class LimitTableRow:
     limit: Limit
 
 
-def limit_table(
-    vehicle: Vehicle, target_srt_g: float, parameter: str, overweights: Sequence[float], **kwargs
-) -> list[LimitTableRow]:
+def limit_table(case: Case, target_srt_g: float, parameter: str, overweights: Sequence[float]) -> list[LimitTableRow]:
     """The limit of ``parameter`` for each overweight (TERNZ's table of acceptable mass / load-height pairs)."""
     if parameter == "overweight_percent":
         raise InvalidInput("the table runs over overweights; pick another parameter", field="parameter")
-    base: LoadCase = kwargs.pop("load", LoadCase())
-    rows = []
-    for ow in overweights:
-        ld = replace(base, overweight_percent=float(ow))
-        rows.append(LimitTableRow(float(ow), parameter_limit(vehicle, target_srt_g, parameter, load=ld, **kwargs)))
-    return rows
+    return [
+        LimitTableRow(
+            float(ow),
+            parameter_limit(
+                case.replace(load=replace(case.load, overweight_percent=float(ow))), target_srt_g, parameter
+            ),
+        )
+        for ow in overweights
+    ]
 
 
 # ----------------------------------------------------------------------------- curve assessment
@@ -274,44 +261,21 @@ class AlignmentAssessment:
 
 
 def check_curve(c: Curve, index: int) -> None:
-    """Refuse a curve that no formula can use, naming the row and the field."""
-    where = f"curves[{index}] ({c.id})"
-    if not (math.isfinite(c.radius_m) and c.radius_m > 0):
-        raise InvalidRoad(
-            f"{where}: radius_m must be positive, got {c.radius_m}", field=f"curves[{index}].radius_m", value=c.radius_m
-        )
-    if not math.isfinite(c.superelevation_percent) or abs(c.superelevation_percent) > 20:
-        raise InvalidRoad(
-            f"{where}: superelevation_percent must be in [-20, 20]",
-            field=f"curves[{index}].superelevation_percent",
-            value=c.superelevation_percent,
-        )
-    if not math.isfinite(c.grade_percent) or abs(c.grade_percent) > 20:
-        raise InvalidRoad(
-            f"{where}: grade_percent must be in [-20, 20]",
-            field=f"curves[{index}].grade_percent",
-            value=c.grade_percent,
-        )
-    if c.posted_speed_kmh is not None and not (math.isfinite(c.posted_speed_kmh) and 0 < c.posted_speed_kmh <= 200):
-        raise InvalidRoad(
-            f"{where}: posted_speed_kmh must be in (0, 200]",
-            field=f"curves[{index}].posted_speed_kmh",
-            value=c.posted_speed_kmh,
-        )
+    """Refuse a curve that no formula can use, naming the row and the field (the bounds of
+    :data:`engine.domain.BOUNDS`, the same as the JSON request's)."""
+    where = f"curves[{index}]"
+    check("radius_m", c.radius_m, f"{where}.radius_m")
+    check("bank_percent", c.superelevation_percent, f"{where}.superelevation_percent")
+    check("slope_percent", c.grade_percent, f"{where}.grade_percent")
+    if c.posted_speed_kmh is not None:
+        check("speed_kmh", c.posted_speed_kmh, f"{where}.posted_speed_kmh")
 
 
-def assess_curves(
-    vehicle: Vehicle,
-    curves: Sequence[Curve],
-    *,
-    model: str = "3d",
-    stage: str = "full",
-    trailer_angle_deg: float = 0.0,
-    load: LoadCase = LoadCase(),
-    rear_llt_limit: float = 1.0,
-    friction_bound: str = "low",
-) -> AlignmentAssessment:
-    """Safe speed on each curve: rollover (Eq. 9.1 with that curve's SRT) against side friction (Table 21)."""
+def assess_curves(case: Case, curves: Sequence[Curve], *, friction_bound: str = "low") -> AlignmentAssessment:
+    """Safe speed on each curve: rollover (Eq. 9.1 with that curve's SRT) against side friction (Table 21).
+
+    ``case`` gives the vehicle and the SRT options; its road is replaced by each curve's superelevation and grade.
+    """
     if not curves:
         raise InvalidInput("no curves to assess", field="curves")
     for i, c in enumerate(curves):
@@ -321,10 +285,8 @@ def assess_curves(
     r = np.array([c.radius_m for c in curves])
     pairs, inverse = np.unique(np.stack((e, gr), axis=1), axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
-    cases = [
-        (Road(bank_percent=float(b), slope_percent=float(s)), trailer_angle_deg, load, rear_llt_limit) for b, s in pairs
-    ]
-    srt_pairs, _, errors = evaluate_cases(vehicle, cases, model=model, stage=stage)
+    cases = [case.replace(road=Road(bank_percent=float(b), slope_percent=float(s))) for b, s in pairs]
+    srt_pairs, _, errors = evaluate_cases(cases)
     srt = srt_pairs[inverse]
     fric = np.asarray(side_friction_speed_kmh(r, e, friction_bound), dtype=float).reshape(-1)
     roll = np.where(np.isfinite(srt), max_curve_speed_kmh(np.where(np.isfinite(srt), srt, 0.0), r), np.nan)
@@ -355,8 +317,3 @@ def assess_curves(
             )
         )
     return AlignmentAssessment(out, len(pairs))
-
-
-def lateral_acceleration_g(speed_kmh, radius_m):
-    """Steady-state lateral acceleration V^2/(127 R) [g] of a vehicle at ``speed_kmh`` on radius ``radius_m``."""
-    return np.asarray(speed_kmh, dtype=float) ** 2 / (KMH2_PER_M_G * np.asarray(radius_m, dtype=float))

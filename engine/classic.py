@@ -23,9 +23,9 @@ Delta t (Winkler)   h theta1 + l12 theta2 (tire roll about the outer contact, su
 lre, L, h5 (Navin)  L - a + d2, wheelbase_m, lr + ls + lf (the kingpin height; lr + ls for a truck)
 ==================  =====================================================================================
 
-Models that do not contain a road or load effect refuse it (:class:`InvalidRoad`) instead of ignoring it:
-only rigid-bank, Chang and Navin take a bank angle; none of them takes slope, trailer angle or a
-lateral-load-transfer limit below 1.
+Models that do not contain a road or load effect refuse it instead of ignoring it (the ``takes`` of each
+model in :data:`engine.models.MODELS`): only rigid-bank, Chang and Navin take a bank angle; none of them takes
+slope, trailer angle or a lateral-load-transfer limit below 1.
 
 References
 ----------
@@ -37,9 +37,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .errors import InvalidInput, InvalidLoad, InvalidRoad
-from .loads import LoadCase, Road, check_case
-from .vehicles import Vehicle, group_stiffness, static_axle_loads, validate_vehicle
+from .case import Case
+from .errors import InvalidLoad
+from .vehicles import cg_height_m, group_stiffness, static_axle_loads
 
 # ------------------------------------------------------------------------------- the formulas
 
@@ -108,89 +108,6 @@ def navin(t, h, h0, h5, lre, wheelbase, bank_rad, theta):
 
 
 @dataclass(frozen=True)
-class ModelInfo:
-    id: str
-    name: str
-    equation: str
-    reference: str
-    takes: tuple[str, ...]  # road/load inputs the model accounts for
-    summary: str
-
-
-MODELS: dict[str, ModelInfo] = {
-    m.id: m
-    for m in (
-        ModelInfo(
-            "3d",
-            "Developed 3D trailer model",
-            "Eqs. 6.1-6.2, 6.17-6.18",
-            "Moreno (thesis), Ch. 6",
-            ("bank", "slope", "trailer_angle", "d1", "d2", "d3", "overweight", "rear_llt_limit", "stage"),
-            "Davies-method mechanism of the last trailer: tires, leaf springs, fifth wheel, chassis.",
-        ),
-        ModelInfo(
-            "2d",
-            "Developed 2D trailer model",
-            "Eqs. 5.1-5.2, 5.22",
-            "Moreno (thesis), Ch. 5",
-            ("bank", "d1", "d2", "d3", "overweight", "rear_llt_limit"),
-            "Planar mechanism of one axle group: tires and leaf-spring suspension.",
-        ),
-        ModelInfo("rigid", "Rigid vehicle", "Eq. 2.6", "Gillespie (1992)", ("d1", "d3"), "SRT = t/2h."),
-        ModelInfo(
-            "rigid-bank",
-            "Rigid vehicle on a banked road",
-            "Eq. 2.8",
-            "Chang (2001)",
-            ("bank", "d1", "d3"),
-            "SRT = t/2h + e.",
-        ),
-        ModelInfo(
-            "winkler",
-            "Winkler model",
-            "Eq. 2.10",
-            "Winkler et al. (1992)",
-            ("d1", "d2", "d3", "overweight"),
-            "SRT = (t/2 - Delta t)/h2, CG shift from roll compliance.",
-        ),
-        ModelInfo(
-            "rill",
-            "Rill model",
-            "Eq. 2.20",
-            "Rill (2011)",
-            ("d1", "d2", "d3", "overweight"),
-            "Tire and suspension roll compliance, small angles.",
-        ),
-        ModelInfo(
-            "chang",
-            "Chang model",
-            "Eq. 2.22",
-            "Chang (2001)",
-            ("bank", "d1", "d2", "d3", "overweight"),
-            "Suspension roll on a banked road.",
-        ),
-        ModelInfo(
-            "gillespie",
-            "Gillespie model",
-            "Eq. 2.28",
-            "Gillespie (1992)",
-            ("d1", "d2", "d3", "overweight"),
-            "Roll about the axis through front and rear roll centres.",
-        ),
-        ModelInfo(
-            "navin",
-            "Navin model",
-            "Eq. 2.30",
-            "Navin (1992)",
-            ("bank", "d1", "d2", "d3", "overweight"),
-            "Roll axis from the fifth wheel to the rear outer tire.",
-        ),
-    )
-}
-CLASSIC_MODELS = ("rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin")
-
-
-@dataclass(frozen=True)
 class ClassicResult:
     model: str
     srt: float  # [g]
@@ -198,121 +115,160 @@ class ClassicResult:
     parameters: dict[str, float] = field(default_factory=dict)  # the mapped symbols, for transparency
 
 
-def _refuse_unsupported(
-    model: str, road: Road, trailer_angle_deg: float, load: LoadCase, rear_llt_limit: float
-) -> None:
-    takes = MODELS[model].takes
-    checks = (
-        ("bank", "road.bank_percent", road.bank_percent, InvalidRoad),
-        ("slope", "road.slope_percent", road.slope_percent, InvalidRoad),
-        ("trailer_angle", "trailer_angle_deg", trailer_angle_deg, InvalidRoad),
-        ("d1", "load.lateral_offset_m", load.lateral_offset_m, InvalidLoad),
-        ("d2", "load.longitudinal_offset_m", load.longitudinal_offset_m, InvalidLoad),
-        ("d3", "load.vertical_offset_m", load.vertical_offset_m, InvalidLoad),
-        ("overweight", "load.overweight_percent", load.overweight_percent, InvalidLoad),
+@dataclass(frozen=True)
+class _Symbols:
+    """The record and load case mapped onto the symbols of Ch. 2 (see the module docstring)."""
+
+    t: float  # track, with the lateral offset: t - 2 d1 [m]
+    h: float  # static CG height lr + ls + l12 + d3 [m]
+    h0: float  # roll-centre (spring-seat) height lr + ls [m]
+    l12: float  # CG height above the chassis with d3 [m]
+    bank: float  # bank angle phi [rad]
+    w_total: float  # W (1 + overweight) [kN]
+    w_rear: float  # the rear group's static share [kN]
+    k_theta_r: float  # rear suspension roll stiffness (Eq. 2.11) [kN m/rad]
+    k_t: float  # rear tire stiffness of one side [kN/m]
+
+    def params(self, **more: float) -> dict[str, float]:
+        return {"t": self.t, "h": self.h, "h0": self.h0, "l12": self.l12, **more}
+
+
+def _symbols(case: Case) -> _Symbols:
+    v, load = case.vehicle, case.load
+    w_total = case.weight_kn
+    _, w_rear = static_axle_loads(v, load.longitudinal_offset_m, weight_kn=w_total)
+    rear = group_stiffness(v, "rear")
+    h = cg_height_m(v, load.vertical_offset_m)
+    return _Symbols(
+        t=v.rear_track_m - 2.0 * load.lateral_offset_m,  # (t/2 - d1) as a track: the CG is d1 nearer the outer tires
+        h=h,
+        h0=v.rolling_radius_m + v.suspension_height_m,
+        l12=v.cg_height_above_chassis_m + load.vertical_offset_m,
+        bank=case.road.bank_rad,
+        w_total=w_total,
+        w_rear=w_rear,
+        k_theta_r=rear.roll_stiffness(v.spring_separation_m),
+        k_t=rear.tire_side_kn_per_m,
     )
-    for key, name, value, exc in checks:
-        if value != 0 and key not in takes:
-            raise exc(
-                f"the {model} model ({MODELS[model].equation}) does not account for {name}; "
-                f"use a model that does (2d or 3d)",
-                field=name,
-                value=value,
-            )
-    if rear_llt_limit != 1.0 and "rear_llt_limit" not in takes:
+
+
+def _group_roll_stiff_enough(s: _Symbols, case: Case) -> None:
+    if s.k_theta_r <= s.w_rear * s.l12:
         raise InvalidLoad(
-            f"the {model} model is defined at wheel lift-off only (LLT = 1)",
-            field="rear_llt_limit",
-            value=rear_llt_limit,
+            "the suspension roll stiffness does not exceed m g l12 for this load (Eq. 2.17)",
+            field="load.overweight_percent",
+            value=case.load.overweight_percent,
         )
 
 
-def classic_threshold(
-    vehicle: Vehicle,
-    model: str,
-    road: Road = Road(),
-    load: LoadCase = LoadCase(),
-    trailer_angle_deg: float = 0.0,
-    rear_llt_limit: float = 1.0,
-) -> ClassicResult:
-    """SRT of one closed-form model of Ch. 2 for ``vehicle`` (see the module docstring for the mapping)."""
-    if model not in CLASSIC_MODELS:
-        raise InvalidInput(f"unknown closed-form model {model!r}", field="model", value=model)
-    validate_vehicle(vehicle, model=model)
-    check_case(vehicle, road, trailer_angle_deg, load)
-    _refuse_unsupported(model, road, trailer_angle_deg, load, rear_llt_limit)
+def solve_rigid(case: Case) -> ClassicResult:
+    """Eq. 2.6 for the case."""
+    s = _symbols(case)
+    return ClassicResult("rigid", float(rigid(s.t, s.h)), None, s.params())
 
-    v = vehicle
-    t = v.rear_track_m
-    d1, d2, d3 = load.lateral_offset_m, load.longitudinal_offset_m, load.vertical_offset_m
-    t_eff = t - 2.0 * d1  # (t/2 - d1) written as a track: the CG sits d1 closer to the outer tires
-    h0 = v.rolling_radius_m + v.suspension_height_m
-    l12 = v.cg_height_above_chassis_m + d3
-    h = h0 + l12
-    bank = road.bank_rad
-    w_total = load.weight_kn(v.weight_kn)
-    _, w_rear = static_axle_loads(v, d2, weight_kn=w_total)
-    rear = group_stiffness(v, "rear")
-    k_theta_r = rear.roll_stiffness(v.spring_separation_m)
-    params = {"t": t_eff, "h": h, "h0": h0, "l12": l12}
 
-    if model == "rigid":
-        return ClassicResult(model, float(rigid(t_eff, h)), None, params)
-    if model == "rigid-bank":
-        e = math.tan(bank)
-        return ClassicResult(model, float(rigid_bank(t_eff, h, e)), None, {**params, "e": e})
+def solve_rigid_bank(case: Case) -> ClassicResult:
+    """Eq. 2.8 for the case."""
+    s = _symbols(case)
+    e = math.tan(s.bank)
+    return ClassicResult("rigid-bank", float(rigid_bank(s.t, s.h, e)), None, s.params(e=e))
 
-    k_t = rear.tire_side_kn_per_m
-    if model in ("rill", "winkler", "chang"):
-        if k_theta_r <= w_rear * l12:
-            raise InvalidLoad(
-                "the suspension roll stiffness does not exceed m g l12 for this load (Eq. 2.17)",
-                field="load.overweight_percent",
-                value=load.overweight_percent,
-            )
-        params.update(W=w_rear, k_theta=k_theta_r, kT=k_t)
-        if model in ("rill", "winkler"):
-            srt = rill(t_eff, h, l12, k_theta_r, k_t, w_rear)
-            th1, th2 = rill_roll_angles(srt, t_eff, l12, k_theta_r, k_t, w_rear)
-            if model == "winkler":
-                delta_t = h * th1 + l12 * th2
-                params.update(delta_t=delta_t, h2=h)
-                srt = winkler(t_eff, delta_t, h)
-            return ClassicResult(model, float(srt), math.degrees(th1 + th2), params)
-        # Chang: theta (suspension roll, Eq. 2.17) is linear in ay, so Eq. 2.22 is solved exactly
-        th1, _ = rill_roll_angles(0.0, t_eff, l12, k_theta_r, k_t, w_rear)
-        a = w_rear * l12 / (k_theta_r - w_rear * l12)
-        c = 1.0 - h0 / h
-        srt = ((t_eff / 2.0) / h + c * (bank - a * th1)) / (1.0 + c * a)
-        theta = a * srt + a * th1
-        params.update(phi=bank, theta=theta)
-        return ClassicResult(model, float(chang(t_eff, h, h0, bank, theta)), math.degrees(theta), params)
 
-    # 3D closed forms: the whole vehicle over both groups
-    k_theta_f = 0.0
-    if v.front_axles is not None:
-        k_theta_f = group_stiffness(v, "front").roll_stiffness(v.spring_separation_m)
-    if k_theta_f + k_theta_r <= w_total * (h - h0):
+def _rill_or_winkler(case: Case, model: str) -> ClassicResult:
+    s = _symbols(case)
+    _group_roll_stiff_enough(s, case)
+    srt = rill(s.t, s.h, s.l12, s.k_theta_r, s.k_t, s.w_rear)
+    th1, th2 = rill_roll_angles(srt, s.t, s.l12, s.k_theta_r, s.k_t, s.w_rear)
+    params = s.params(W=s.w_rear, k_theta=s.k_theta_r, kT=s.k_t)
+    if model == "winkler":
+        delta_t = s.h * th1 + s.l12 * th2
+        params.update(delta_t=delta_t, h2=s.h)
+        srt = winkler(s.t, delta_t, s.h)
+    return ClassicResult(model, float(srt), math.degrees(th1 + th2), params)
+
+
+def solve_rill(case: Case) -> ClassicResult:
+    """Eq. 2.20 for the case."""
+    return _rill_or_winkler(case, "rill")
+
+
+def solve_winkler(case: Case) -> ClassicResult:
+    """Eq. 2.10 with Delta t from the tire and suspension roll (coincides with Rill, see the module docstring)."""
+    return _rill_or_winkler(case, "winkler")
+
+
+def solve_chang(case: Case) -> ClassicResult:
+    """Eq. 2.22: theta (suspension roll, Eq. 2.17) is linear in ay, so the equation is solved exactly."""
+    s = _symbols(case)
+    _group_roll_stiff_enough(s, case)
+    th1, _ = rill_roll_angles(0.0, s.t, s.l12, s.k_theta_r, s.k_t, s.w_rear)
+    a = s.w_rear * s.l12 / (s.k_theta_r - s.w_rear * s.l12)
+    c = 1.0 - s.h0 / s.h
+    srt = ((s.t / 2.0) / s.h + c * (s.bank - a * th1)) / (1.0 + c * a)
+    theta = a * srt + a * th1
+    params = s.params(W=s.w_rear, k_theta=s.k_theta_r, kT=s.k_t, phi=s.bank, theta=theta)
+    return ClassicResult("chang", float(chang(s.t, s.h, s.h0, s.bank, theta)), math.degrees(theta), params)
+
+
+def _whole_vehicle(case: Case) -> tuple[_Symbols, float]:
+    """The symbols and the front roll stiffness of a 3D closed form, which sees both groups."""
+    s = _symbols(case)
+    v = case.vehicle
+    k_theta_f = group_stiffness(v, "front").roll_stiffness(v.spring_separation_m) if v.front_axles else 0.0
+    if k_theta_f + s.k_theta_r <= s.w_total * (s.h - s.h0):
         raise InvalidLoad(
             "the total roll stiffness does not exceed W (h - h0) (Eq. 2.27)",
             field="load.overweight_percent",
-            value=load.overweight_percent,
+            value=case.load.overweight_percent,
         )
-    params.update(W=w_total, k_theta_f=k_theta_f, k_theta_r=k_theta_r)
-    if model == "gillespie":
-        srt = gillespie(t_eff, h, h0, w_total, k_theta_f, k_theta_r)
-        theta = gillespie_roll(srt, h, h0, w_total, k_theta_f, k_theta_r)
-        return ClassicResult(model, float(srt), math.degrees(theta), params)
-    # Navin: theta = B SRT (Eq. 2.27) makes Eq. 2.30 linear in the SRT
-    lre = v.wheelbase_m - v.front_axle_to_cg_m + d2
-    h5 = h0 + ((v.fifth_wheel_height_m or 0.0) if v.has_fifth_wheel else 0.0)
-    b = gillespie_roll(1.0, h, h0, w_total, k_theta_f, k_theta_r)
+    return s, k_theta_f
+
+
+def solve_gillespie(case: Case) -> ClassicResult:
+    """Eq. 2.28 with the roll of Eq. 2.27."""
+    s, k_theta_f = _whole_vehicle(case)
+    srt = gillespie(s.t, s.h, s.h0, s.w_total, k_theta_f, s.k_theta_r)
+    theta = gillespie_roll(srt, s.h, s.h0, s.w_total, k_theta_f, s.k_theta_r)
+    params = s.params(W=s.w_total, k_theta_f=k_theta_f, k_theta_r=s.k_theta_r)
+    return ClassicResult("gillespie", float(srt), math.degrees(theta), params)
+
+
+def solve_navin(case: Case) -> ClassicResult:
+    """Eq. 2.30: with theta = B SRT (Eq. 2.27) it is linear in the SRT.
+
+    Navin's moment balance (Eq. 2.29) is about a roll axis from the fifth wheel (height h5) to the rear outer tire;
+    it describes rollover only while the CG lies above that axis, h - h5 lre/L > 0 at the CG's section. A CG at or
+    below it (a very low load under a high kingpin) cannot roll about it: the formula's denominator changes sign
+    and gives a negative SRT, so such a case is refused.
+    """
+    s, k_theta_f = _whole_vehicle(case)
+    v = case.vehicle
+    lre = v.wheelbase_m - v.front_axle_to_cg_m + case.load.longitudinal_offset_m
+    h5 = s.h0 + ((v.fifth_wheel_height_m or 0.0) if v.has_fifth_wheel else 0.0)
     r = lre / v.wheelbase_m
-    n0 = (t_eff / 2.0) * (1.0 - r) + h * bank - h5 * r * bank
-    d0 = (t_eff * bank / 2.0) * (r - 1.0) + h - h5 * r
-    srt = n0 / (d0 + (h - h0) * b)
+    above_axis = s.h - h5 * r
+    if above_axis <= 0:
+        raise InvalidLoad(
+            f"the CG ({s.h:.3f} m high) lies {-above_axis:.3f} m below Navin's roll axis (fifth wheel at h5 = "
+            f"{h5:.3f} m to the rear outer tire, {h5 * r:.3f} m high at the CG): the model (Eq. 2.29) does not "
+            "apply; use the 3d model",
+            field="cg_height_above_chassis_m",
+            value=v.cg_height_above_chassis_m,
+        )
+    b = gillespie_roll(1.0, s.h, s.h0, s.w_total, k_theta_f, s.k_theta_r)
+    n0 = (s.t / 2.0) * (1.0 - r) + s.h * s.bank - h5 * r * s.bank
+    d0 = (s.t * s.bank / 2.0) * (r - 1.0) + above_axis
+    srt = n0 / (d0 + (s.h - s.h0) * b)
     theta = b * srt
-    params.update(lre=lre, L=v.wheelbase_m, h5=h5, phi=bank, theta=theta)
-    return ClassicResult(
-        model, float(navin(t_eff, h, h0, h5, lre, v.wheelbase_m, bank, theta)), math.degrees(theta), params
+    params = s.params(
+        W=s.w_total,
+        k_theta_f=k_theta_f,
+        k_theta_r=s.k_theta_r,
+        lre=lre,
+        L=v.wheelbase_m,
+        h5=h5,
+        phi=s.bank,
+        theta=theta,
     )
+    srt = navin(s.t, s.h, s.h0, h5, lre, v.wheelbase_m, s.bank, theta)
+    return ClassicResult("navin", float(srt), math.degrees(theta), params)

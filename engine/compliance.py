@@ -53,7 +53,7 @@ def torsion_angle(moment_knm, torsion_coefficient_knm_per_rad):
     ``moment_knm`` is the moment the spring *applies* to the rotating link (the Davies magnitude Tx of the
     joint, base on leg), so the rotation is ``-Tx / kst``; an infinite coefficient gives 0.
     """
-    if isinstance(torsion_coefficient_knm_per_rad, float) and math.isinf(torsion_coefficient_knm_per_rad):
+    if math.isinf(torsion_coefficient_knm_per_rad):
         return 0.0 * moment_knm
     return -moment_knm / torsion_coefficient_knm_per_rad
 
@@ -61,16 +61,6 @@ def torsion_angle(moment_knm, torsion_coefficient_knm_per_rad):
 def leaf_spring_rate(length_m, leaves, leaf_width_m, leaf_thickness_m, modulus_kn_per_m2):
     """Rate of a multi-leaf spring kLs = 8 Es nl bl tl^3 / (3 l^3) [kN/m] (Table 2, Rill 2006)."""
     return 8.0 * modulus_kn_per_m2 * leaves * leaf_width_m * leaf_thickness_m**3 / (3.0 * length_m**3)
-
-
-def bar_axial_deformation(force_kn, length_m, area_m2, modulus_kn_per_m2):
-    """Axial deformation of a bar delta = -Fn Lb / (Ab E) [m] (Table 2)."""
-    return -force_kn * length_m / (area_m2 * modulus_kn_per_m2)
-
-
-def thermal_deformation(alpha_per_k, delta_t_k, length_m):
-    """Thermal deformation delta_T = alpha dT L [m] (Table 2, Eq. 3.3)."""
-    return alpha_per_k * delta_t_k * length_m
 
 
 def shear_torsion_coefficient(vertical_rate_side_kn_per_m, height_m, ratio=SHEAR_TO_VERTICAL_RATIO):
@@ -90,9 +80,12 @@ def chassis_torque_split(rear_torque_knm, a_m, wheelbase_m, x):
     return rear_torque_knm * (wheelbase_m - a_m) / (a_m * x)
 
 
-def chassis_torque_components(front_torque_knm, trailer_angle_rad):
-    """Components of the front torque at a trailer/trailer angle psi: (Tf cos psi, Tf sin psi) (Eqs. 4.22-4.23)."""
-    return front_torque_knm * math.cos(trailer_angle_rad), front_torque_knm * math.sin(trailer_angle_rad)
+def chassis_torque_components(front_torque_knm, trailer_angle_rad, xp=math):
+    """Components of the front torque at a trailer/trailer angle psi: (Tf cos psi, Tf sin psi) (Eqs. 4.22-4.23).
+
+    ``xp`` supplies ``cos``/``sin``: :mod:`math` for floats, :mod:`numpy` for arrays.
+    """
+    return front_torque_knm * xp.cos(trailer_angle_rad), front_torque_knm * xp.sin(trailer_angle_rad)
 
 
 def chassis_twist(rear_torque_knm, segment_length_m, torsional_rigidity_knm2):

@@ -34,7 +34,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .compliance import shear_torsion_coefficient
+from .compliance import (
+    fifth_wheel_height,
+    leaf_spring_height,
+    shear_torsion_coefficient,
+    tire_radius,
+    torsion_angle,
+)
 from .errors import ConvergenceError
 
 HALF_PI = 0.5 * math.pi
@@ -83,10 +89,6 @@ class GroupParams:
     k_shear: float  # leaf-spring torsion coefficient kst at the first leg's base [kN m/rad]
     f_start: float  # static load per side at which the lengths are lr and ls [kN]
     fifth_wheel: FifthWheelParams | None = None
-
-    @property
-    def state_size(self) -> int:
-        return 8 if self.fifth_wheel is not None else 5
 
     def rest_state(self) -> tuple[float, ...]:
         """Lengths at their initial values and no rotation (the reference configuration)."""
@@ -200,11 +202,6 @@ class GroupGeometry(NamedTuple):
     top: tuple  # the group's load point: midpoint of its top link (joint 27 / 28) (y, z)
     top_angle: object  # roll of the top link [rad]
 
-    @property
-    def body_roll(self):
-        """Roll of the top link relative to the road, theta_17 + theta_21 + theta_23 (+ fifth wheel)."""
-        return self.top_angle
-
 
 def group_geometry(p: GroupParams, state, xp=SCALAR) -> GroupGeometry:
     """Positions and joint angles of a group in its plane from its state (Eqs. 4.2-4.19, Tables 4-5)."""
@@ -291,21 +288,21 @@ def group_statics(p: GroupParams, g: GroupGeometry, fy, fz, mx, xp=SCALAR) -> Gr
 
 def group_next_state(p: GroupParams, f: GroupForces):
     """New state from the forces through the compliance laws (Eqs. 4.1, 4.6-4.7, 4.13-4.14)."""
-    ks = p.k_shear
+    susp = f.suspension
     st = (
-        p.rolling_radius - (f.tire_outer - p.f_start) / p.k_tire,  # Eq. 4.1
-        p.rolling_radius - (f.tire_inner - p.f_start) / p.k_tire,
-        p.suspension_height - (f.suspension.compression_a - p.f_start) / p.k_spring,  # Eq. 4.7
-        p.suspension_height - (f.suspension.compression_b - p.f_start) / p.k_spring,
-        0.0 * f.suspension.torsion_a if math.isinf(ks) else -f.suspension.torsion_a / ks,  # Eq. 4.6
+        tire_radius(f.tire_outer, p.f_start, p.k_tire, p.rolling_radius),  # Eq. 4.1
+        tire_radius(f.tire_inner, p.f_start, p.k_tire, p.rolling_radius),
+        leaf_spring_height(susp.compression_a, p.f_start, p.k_spring, p.suspension_height),  # Eq. 4.7
+        leaf_spring_height(susp.compression_b, p.f_start, p.k_spring, p.suspension_height),
+        torsion_angle(susp.torsion_a, p.k_shear),  # Eq. 4.6
     )
     fwp = p.fifth_wheel
-    if fwp is not None:
-        kf, kt = fwp.k_spring, fwp.k_torsion
+    if fwp is not None:  # a rigid fifth wheel (first stage) has infinite rates: its lengths stay at lf
+        fw = f.fifth_wheel
         st += (
-            fwp.height if math.isinf(kf) else fwp.height - (f.fifth_wheel.compression_a - fwp.f_start) / kf,
-            fwp.height if math.isinf(kf) else fwp.height - (f.fifth_wheel.compression_b - fwp.f_start) / kf,
-            0.0 * f.fifth_wheel.torsion_a if math.isinf(kt) else -f.fifth_wheel.torsion_a / kt,  # Eq. 4.13
+            fifth_wheel_height(fw.compression_a, fwp.f_start, fwp.k_spring, fwp.height),  # Eq. 4.14
+            fifth_wheel_height(fw.compression_b, fwp.f_start, fwp.k_spring, fwp.height),
+            torsion_angle(fw.torsion_a, fwp.k_torsion),  # Eq. 4.13
         )
     return st
 

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .domain import check
 from .errors import InvalidRoad
 
 KMH2_PER_M_G = 127.0  # V^2 / (127 R) is the lateral acceleration in g for V in km/h, R in m
@@ -120,8 +121,8 @@ def min_radius(
 
 
 def check_speed(speed_kmh: float, field: str = "design_speed_kmh") -> None:
-    if not (isinstance(speed_kmh, int | float) and math.isfinite(speed_kmh) and 0 < speed_kmh <= 200):
-        raise InvalidRoad(f"{field} must be in (0, 200] km/h, got {speed_kmh!r}", field=field, value=speed_kmh)
+    """Refuse a speed outside (0, 200] km/h (:data:`engine.domain.BOUNDS`)."""
+    check("speed_kmh", speed_kmh, field)
 
 
 def side_friction_speed_kmh(radius_m, superelevation_percent, bound: str = "low"):

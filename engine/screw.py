@@ -40,13 +40,6 @@ def screw_matrix(s, s0, theta: float = 0.0, d: float = 0.0) -> np.ndarray:
     return np.array([[a11, a12, a13, a14], [a21, a22, a23, a24], [a31, a32, a33, a34], [0.0, 0.0, 0.0, 1.0]])
 
 
-def reference_matrix(s0) -> np.ndarray:
-    """Reference position matrix p1 of a point (Eq. A.2): identity rotation, translation s0."""
-    p = np.eye(4)
-    p[:3, 3] = np.asarray(s0, dtype=float)
-    return p
-
-
 def successive(*matrices: np.ndarray) -> np.ndarray:
     """Product A_1 A_2 ... A_n of successive screw displacements (Table 4, Table 9)."""
     out = np.eye(4)
@@ -76,9 +69,3 @@ def rot_x(angle: float) -> np.ndarray:
     """3x3 rotation about x (a screw with s = (1, 0, 0), the axis of every revolute of Tables 3 and 8)."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def rot_z(angle: float) -> np.ndarray:
-    """3x3 rotation about z (the trailer/trailer angle psi of point 29, Table 8)."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])

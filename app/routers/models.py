@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter
 
-from engine.classic import MODELS
+from engine.models import MODELS
 
 from ..problems import error_responses
 from ..schemas.meta import ModelInfoOut
@@ -23,7 +23,7 @@ def list_models() -> list[ModelInfoOut]:
             reference=m.reference,
             takes=list(m.takes),
             summary=m.summary,
-            curves=m.id in ("3d", "2d"),
+            curves=m.curves,
             default=m.id == "3d",
         )
         for m in MODELS.values()

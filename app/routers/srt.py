@@ -8,7 +8,7 @@ from ..deps import CacheDep, SettingsDep
 from ..schemas.limits import LimitsRequest, LimitsResult
 from ..schemas.srt import SrtRequest, SrtResult
 from ..schemas.sweep import SweepRequest, SweepResult
-from ..service import compute_srt, resolve_srt, resolve_targets
+from ..service import compute_srt
 from ..service_tools import compute_limits, compute_sweep
 from ..tables import wants_csv
 from .common import computed_response, computed_responses, json_response, table_responses
@@ -21,13 +21,7 @@ async def srt(body: SrtRequest, cache: CacheDep, settings: SettingsDep) -> Respo
     """Static rollover threshold (g) of a vehicle on a road with a load case, the roll angle, the stage values,
     the state at the limit and, with `include_curves`, the curves against ay/g; whether the SRT meets each
     target (`targets`, default 0.35 g general and 0.40 g dangerous goods) and its tilt-table angle atan(SRT)."""
-    resolved = resolve_srt(
-        body,
-        targets=resolve_targets(body.targets, settings),
-        include_curves=body.include_curves,
-        curve_points=body.curve_points,
-    )
-    return json_response(await compute_srt(cache, resolved))
+    return json_response(await compute_srt(cache, body, settings))
 
 
 @router.post(

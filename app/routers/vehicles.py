@@ -6,6 +6,7 @@ from typing import Annotated
 
 from fastapi import APIRouter, Path
 
+from engine.models import supported_models
 from engine.vehicles import PRESET_INFO, PRESETS, get_preset
 
 from ..problems import error_responses
@@ -15,13 +16,9 @@ router = APIRouter(prefix="/v1/vehicles", tags=["vehicles"])
 
 
 def _preset(preset_id: str) -> VehiclePreset:
-    info = PRESET_INFO[preset_id]
+    info, vehicle = PRESET_INFO[preset_id], get_preset(preset_id)
     return VehiclePreset(
-        id=preset_id,
-        title=info.title,
-        source=info.source,
-        models=list(info.models),
-        **get_preset(preset_id).to_dict(),
+        id=preset_id, title=info.title, source=info.source, models=supported_models(vehicle), **vehicle.to_dict()
     )
 
 

@@ -5,13 +5,12 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import ConfigDict, Field
+from pydantic import ConfigDict, Field, model_validator
 
-from engine.loads import MAX_BANK_PERCENT, MAX_SLOPE_PERCENT
 from engine.road import FRICTION_BOUNDS
 
-from ..alignment_io import MAX_CURVES
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from ..alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
+from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, exactly_one_schema, shape_error
 from .srt import (
     TARGETS_OUT,
     TILT_OUT,
@@ -27,42 +26,35 @@ MAX_VEHICLES = 10
 MAX_ROWS = 100_000
 MAX_CSV_CHARS = 16_000_000
 MAX_LANDXML_CHARS = 64_000_000
-MAX_POSTED_SPEED_KMH = 200.0
 
-CurveId = Annotated[str, Field(min_length=1, max_length=100)]
-_E = describe(
-    "Superelevation of the curve: the bank of its SRT and the e of the side-friction speed.",
-    unit="%",
-    symbol="e (Eqs. 9.2, 6.18)",
-)
-_GRADE = describe(
-    "Longitudinal grade in the direction of travel, + uphill, - downhill: the slope of the curve's SRT.",
-    unit="%",
-    symbol="slope (Eq. 4.24)",
-)
-_POSTED = describe(
-    "Posted (or operating) speed on the curve; the margin is the safe speed minus it. Null: no margin.",
-    unit="km/h",
-    symbol="V",
-)
+CurveId = Annotated[str, Field(min_length=1, max_length=CURVE_ID_MAX_CHARS, pattern=CURVE_ID_PATTERN)]
+_E = "Superelevation of the curve: the bank of its SRT and the e of the side-friction speed."
+_E_SYMBOL = "e (Eqs. 9.2, 6.18)"
+_GRADE = "Longitudinal grade in the direction of travel, + uphill, - downhill: the slope of the curve's SRT."
+_GRADE_SYMBOL = "slope (Eq. 4.24)"
+_POSTED = "Posted (or operating) speed on the curve; the margin is the safe speed minus it. Null: no margin."
 
 
 class CurveIn(InputModel):
     """One horizontal curve."""
 
-    id: CurveId = Field(description=describe("Curve id, unique in the request.", unit="-"))
-    radius_m: float = Field(gt=0, le=1e5, description=describe("Curve radius.", unit="m", symbol="R (Eq. 9.1)"))
-    superelevation_percent: float = Field(ge=-MAX_BANK_PERCENT, le=MAX_BANK_PERCENT, description=_E)
-    grade_percent: float = Field(0.0, ge=-MAX_SLOPE_PERCENT, le=MAX_SLOPE_PERCENT, description=_GRADE)
-    posted_speed_kmh: float | None = Field(None, gt=0, le=MAX_POSTED_SPEED_KMH, description=_POSTED)
+    id: CurveId = Field(
+        description=describe(
+            f"Curve id, unique in the request: 1-{CURVE_ID_MAX_CHARS} characters, no control characters.", unit="-"
+        )
+    )
+    radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")
+    superelevation_percent: float = bounded("bank_percent", text=_E, symbol=_E_SYMBOL)
+    grade_percent: float = bounded("slope_percent", 0.0, text=_GRADE, symbol=_GRADE_SYMBOL)
+    posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED, symbol="V")
 
 
 class CurveOverrideIn(InputModel):
     """Values for one LandXML curve (by its id) that replace the document-wide defaults."""
 
-    superelevation_percent: float | None = Field(None, ge=-MAX_BANK_PERCENT, le=MAX_BANK_PERCENT, description=_E)
-    grade_percent: float | None = Field(None, ge=-MAX_SLOPE_PERCENT, le=MAX_SLOPE_PERCENT, description=_GRADE)
-    posted_speed_kmh: float | None = Field(None, gt=0, le=MAX_POSTED_SPEED_KMH, description=_POSTED)
+    superelevation_percent: float | None = bounded("bank_percent", None, text=_E, symbol=_E_SYMBOL)
+    grade_percent: float | None = bounded("slope_percent", None, text=_GRADE, symbol=_GRADE_SYMBOL)
+    posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED, symbol="V")
 
 
 class LandXmlIn(InputModel):
@@ -78,19 +70,17 @@ class LandXmlIn(InputModel):
             "The LandXML 1.2 document (XML text; entities and DTDs are refused).", unit="-", symbol="-"
         ),
     )
-    superelevation_percent: float | None = Field(
+    superelevation_percent: float | None = bounded(
+        "bank_percent",
         None,
-        ge=-MAX_BANK_PERCENT,
-        le=MAX_BANK_PERCENT,
-        description=_E + " Default for every curve; a curve left without one (here or in `curve_overrides`) is "
-        "an error naming it.",
+        text=_E + " Default for every curve; a curve left without one (here or in `curve_overrides`) is an error "
+        "naming it.",
+        symbol=_E_SYMBOL,
     )
-    grade_percent: float = Field(
-        0.0, ge=-MAX_SLOPE_PERCENT, le=MAX_SLOPE_PERCENT, description=_GRADE + " Default for every curve."
+    grade_percent: float = bounded(
+        "slope_percent", 0.0, text=_GRADE + " Default for every curve.", symbol=_GRADE_SYMBOL
     )
-    posted_speed_kmh: float | None = Field(
-        None, gt=0, le=MAX_POSTED_SPEED_KMH, description=_POSTED + " Default for every curve."
-    )
+    posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED + " Default for every curve.", symbol="V")
     curve_overrides: dict[CurveId, CurveOverrideIn] | None = Field(
         None,
         max_length=MAX_CURVES,
@@ -124,6 +114,7 @@ class AlignmentRequest(SrtOptions, SrtTargets):
 
     model_config = ConfigDict(
         json_schema_extra={
+            "allOf": [exactly_one_schema("vehicle", "vehicles"), exactly_one_schema("curves", "csv", "landxml")],
             "examples": [
                 {
                     "vehicle": EXAMPLE_PRESET,
@@ -149,7 +140,7 @@ class AlignmentRequest(SrtOptions, SrtTargets):
                         "curve_overrides": {"K2": {"superelevation_percent": 4.0, "grade_percent": -3.0}},
                     },
                 },
-            ]
+            ],
         }
     )
 
@@ -200,6 +191,29 @@ class AlignmentRequest(SrtOptions, SrtTargets):
             symbol="R, e, slope",
         ),
     )
+
+    @model_validator(mode="after")
+    def _one_source_each(self) -> AlignmentRequest:
+        for names in (("vehicle", "vehicles"), ("curves", "csv", "landxml")):
+            present = [n for n in names if getattr(self, n) is not None]
+            if len(present) != 1:
+                what = "both " + " and ".join(present) if present else "none"
+                raise shape_error(
+                    "AlignmentRequest",
+                    present[1] if len(present) > 1 else names[0],
+                    f"give exactly one of {', '.join(names)} ({what} given)",
+                )
+        seen: dict[str, int] = {}
+        for i, c in enumerate(self.curves or ()):
+            if c.id in seen:
+                raise shape_error(
+                    "AlignmentRequest",
+                    f"curves.{i}.id",
+                    f"duplicate curve id {c.id!r} (also curves.{seen[c.id]}.id)",
+                    c.id,
+                )
+            seen[c.id] = i
+        return self
 
 
 # ------------------------------------------------------------------------------------------- output

@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
-from pydantic import BaseModel, ConfigDict
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic_core import InitErrorDetails, PydanticCustomError, PydanticUndefined
+
+from engine.domain import BOUNDS
 
 #: the preset used in every request example
 EXAMPLE_PRESET = "table16-btrain"
@@ -24,3 +29,38 @@ class OutputModel(BaseModel):
 def describe(text: str, *, unit: str, symbol: str | None = None) -> str:
     """A field description that always names the unit and the thesis symbol ("-" when there is none)."""
     return f"{text} Unit: {unit}. Thesis symbol: {symbol or '-'}."
+
+
+def bounded(
+    name: str, default: Any = PydanticUndefined, *, text: str, symbol: str | None = None, unit: str | None = None
+):
+    """A request field bounded by :data:`engine.domain.BOUNDS` ``name`` (the engine checks the same range)."""
+    b = BOUNDS[name]
+    return Field(default, description=describe(text, unit=unit or b.unit or "-", symbol=symbol), **b.pydantic())
+
+
+def shape_error(model: str, field: str, message: str, value: Any = None) -> ValidationError:
+    """A request-shape rule broken (``model_validator``): a validation error located at ``field`` (dotted)."""
+    return ValidationError.from_exception_data(
+        model,
+        [
+            InitErrorDetails(
+                type=PydanticCustomError("request_shape", message), loc=tuple(field.split(".")), input=value
+            )
+        ],
+    )
+
+
+def given(model: BaseModel, names: tuple[str, ...] | list[str]) -> list[str]:
+    """The fields of ``names`` the request set explicitly (a default left out is not given)."""
+    return [n for n in names if n in model.model_fields_set]
+
+
+def exactly_one_schema(*names: str) -> dict[str, Any]:
+    """JSON Schema: exactly one of these properties (``oneOf`` of ``required``)."""
+    return {"oneOf": [{"required": [n]} for n in names]}
+
+
+def not_together_schema(first: str, others: tuple[str, ...] | list[str]) -> dict[str, Any]:
+    """JSON Schema: ``first`` excludes every one of ``others``."""
+    return {"not": {"required": [first], "anyOf": [{"required": [o]} for o in others]}}

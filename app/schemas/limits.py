@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import ConfigDict, Field
+from pydantic import ConfigDict, Field, model_validator
 
 from engine.assessment import LIMIT_PARAMETERS
 
-from .common import EXAMPLE_PRESET, OutputModel, describe
+from .common import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
 from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 
 # "cg_height_above_chassis_m", "overweight_percent", "lateral_offset_m", "spring_separation_m"
@@ -41,6 +41,11 @@ class LimitsRequest(SrtInputs, SrtTargets):
 
     model_config = ConfigDict(
         json_schema_extra={
+            # the table runs over overweights: parameter = overweight_percent has none
+            "not": {
+                "required": ["parameter", "overweights_percent"],
+                "properties": {"parameter": {"const": "overweight_percent"}},
+            },
             "examples": [
                 {
                     "vehicle": EXAMPLE_PRESET,
@@ -49,7 +54,7 @@ class LimitsRequest(SrtInputs, SrtTargets):
                     "overweights_percent": [0, 5, 10, 15, 20],
                 },
                 {"vehicle": EXAMPLE_PRESET, "parameter": "lateral_offset_m", "target_srt_g": 0.3},
-            ]
+            ],
         }
     )
 
@@ -63,15 +68,11 @@ class LimitsRequest(SrtInputs, SrtTargets):
             symbol="l12, overweight, d1, b",
         )
     )
-    target_srt_g: float | None = Field(
+    target_srt_g: float | None = bounded(
+        "target_srt_g",
         None,
-        gt=0,
-        lt=2,
-        description=describe(
-            "The SRT the vehicle must still reach; null = the service's `general` target (0.35 g unless configured).",
-            unit="g",
-            symbol="SRT target",
-        ),
+        text="The SRT the vehicle must still reach; null = the service's `general` target (0.35 g unless configured).",
+        symbol="SRT target",
     )
     overweights_percent: list[OverweightValue] | None = Field(
         None,
@@ -85,6 +86,17 @@ class LimitsRequest(SrtInputs, SrtTargets):
             symbol="overweight (Sec. 9.2)",
         ),
     )
+
+    @model_validator(mode="after")
+    def _no_table_over_itself(self) -> LimitsRequest:
+        if self.parameter == "overweight_percent" and self.overweights_percent is not None:
+            raise shape_error(
+                "LimitsRequest",
+                "overweights_percent",
+                "the table runs over overweights: with parameter = overweight_percent there is none (leave "
+                "overweights_percent out, or pick another parameter)",
+            )
+        return self
 
 
 LimitStatus = Literal["found", "always-met", "never-met"]

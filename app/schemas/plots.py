@@ -4,13 +4,12 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import ConfigDict, Field
+from pydantic import ConfigDict, Field, model_validator
 
-from engine.loads import MAX_BANK_PERCENT, MAX_SLOPE_PERCENT
+from engine.domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.road import FRICTION_BOUNDS, TABLE21_SPEEDS_KMH
-from engine.threshold import MAX_CURVE_POINTS
 
-from .common import EXAMPLE_PRESET, describe
+from .common import EXAMPLE_PRESET, bounded, describe, shape_error
 from .srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
 
 V_MIN, V_MAX = float(TABLE21_SPEEDS_KMH[0]), float(TABLE21_SPEEDS_KMH[-1])
@@ -24,7 +23,7 @@ class PlotRequest(SrtInputs):
     model_config = ConfigDict(json_schema_extra={"examples": [{**SRT_EXAMPLE, "curve_points": 41}]})
 
     curve_points: int = Field(
-        41,
+        DEFAULT_CURVE_POINTS,
         ge=2,
         le=MAX_CURVE_POINTS,
         description=describe("Points of each curve, from ay = 0 to the limit.", unit="count"),
@@ -58,20 +57,13 @@ class MinRadiusPlotRequest(SrtOptions):
     )
 
     vehicle: VehicleRef = Field(description=VEHICLE_DESCRIPTION)
-    superelevation_percent: float = Field(
-        ge=-MAX_BANK_PERCENT,
-        le=MAX_BANK_PERCENT,
-        description=describe(
-            "Superelevation of the curves: the e of Eq. 9.2 and the bank of the SRT of Eq. 9.3.",
-            unit="%",
-            symbol="e (Eq. 9.2)",
-        ),
+    superelevation_percent: float = bounded(
+        "bank_percent",
+        text="Superelevation of the curves: the e of Eq. 9.2 and the bank of the SRT of Eq. 9.3.",
+        symbol="e (Eq. 9.2)",
     )
-    slope_percent: float = Field(
-        0.0,
-        ge=-MAX_SLOPE_PERCENT,
-        le=MAX_SLOPE_PERCENT,
-        description=describe("Grade of the SRT's case, + uphill.", unit="%", symbol="slope (Eq. 4.24)"),
+    slope_percent: float = bounded(
+        "slope_percent", 0.0, text="Grade of the SRT's case, + uphill.", symbol="slope (Eq. 4.24)"
     )
     speed_min_kmh: float = Field(
         V_MIN,
@@ -99,3 +91,14 @@ class MinRadiusPlotRequest(SrtOptions):
             symbol="f range (Table 21)",
         ),
     )
+
+    @model_validator(mode="after")
+    def _speed_range(self) -> MinRadiusPlotRequest:
+        if self.speed_max_kmh <= self.speed_min_kmh:
+            raise shape_error(
+                "MinRadiusPlotRequest",
+                "speed_max_kmh",
+                f"must be above speed_min_kmh ({self.speed_min_kmh} km/h)",
+                self.speed_max_kmh,
+            )
+        return self

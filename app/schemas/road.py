@@ -4,21 +4,49 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import ConfigDict, Field
+from pydantic import ConfigDict, Field, model_validator
 
-from engine.loads import MAX_BANK_PERCENT
 from engine.road import FRICTION_BOUNDS
 
-from .common import EXAMPLE_PRESET, OutputModel, describe
+from .common import EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
 from .srt import VEHICLE_DESCRIPTION, SrtInputs, SrtResult, SrtTargets, VehicleRef
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
+#: either a given SRT (and none of the SRT request fields) or a vehicle (the SRT is computed), never both
+SRT_OR_VEHICLE_SCHEMA = {
+    "oneOf": [
+        {"required": ["srt"], "not": {"anyOf": [{"required": [f]} for f in SRT_FIELDS]}},
+        {"required": ["vehicle"], "not": {"required": ["srt"]}},
+    ]
+}
 
-_GIVEN_SRT = describe(
+
+def check_srt_source(req: SrtInputs, model: str) -> None:
+    """Either ``srt`` or the SRT request fields, never both (a given SRT already holds the bank)."""
+    if req.srt is None and req.vehicle is None:
+        raise shape_error(model, "srt", "give either srt (g) or vehicle (with the other SRT request fields)")
+    if req.srt is None:
+        return
+    extra = given(req, SRT_FIELDS)
+    if extra == ["targets"]:
+        raise shape_error(
+            model,
+            "targets",
+            "targets are checked against a computed SRT (the embedded srt_result); with a given srt there is none: "
+            "leave targets out, or give the SRT request fields instead of srt",
+        )
+    if extra:
+        raise shape_error(
+            model,
+            extra[0],
+            f"{extra[0]} cannot be combined with srt: a given SRT already is the SRT on this curve's bank and slope "
+            "(give either srt or the SRT request fields)",
+        )
+
+
+_GIVEN_SRT_TEXT = (
     "A known SRT for this curve's bank and slope (it already contains the bank: nothing is added to it). "
-    "Give either `srt` or `vehicle` (with the other SRT request fields).",
-    unit="g",
-    symbol="SRT",
+    "Give either `srt` or `vehicle` (with the other SRT request fields)."
 )
 _OPTIONAL_VEHICLE = VEHICLE_DESCRIPTION + " Give either `vehicle` (the SRT is computed) or `srt`."
 SrtSource = Literal["given", "computed"]
@@ -30,16 +58,22 @@ class CurveSpeedRequest(SrtInputs, SrtTargets):
 
     model_config = ConfigDict(
         json_schema_extra={
+            **SRT_OR_VEHICLE_SCHEMA,
             "examples": [
                 {"radius_m": 80.0, "vehicle": EXAMPLE_PRESET, "model": "3d", "road": {"bank_percent": 0.0}},
                 {"radius_m": 80.0, "srt": 0.3364},
-            ]
+            ],
         }
     )
 
-    radius_m: float = Field(gt=0, le=1e5, description=describe("Curve radius.", unit="m", symbol="R (Eq. 9.1)"))
-    srt: float | None = Field(None, gt=0, le=10, description=_GIVEN_SRT)
+    radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")
+    srt: float | None = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
     vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+
+    @model_validator(mode="after")
+    def _srt_or_vehicle(self) -> CurveSpeedRequest:
+        check_srt_source(self, "CurveSpeedRequest")
+        return self
 
 
 class MinRadiusRequest(SrtInputs, SrtTargets):
@@ -49,31 +83,25 @@ class MinRadiusRequest(SrtInputs, SrtTargets):
 
     model_config = ConfigDict(
         json_schema_extra={
+            **SRT_OR_VEHICLE_SCHEMA,
             "examples": [
                 {"design_speed_kmh": 60.0, "superelevation_percent": 8.0, "vehicle": EXAMPLE_PRESET, "model": "3d"},
                 {"design_speed_kmh": 60.0, "superelevation_percent": 8.0, "srt": 0.285, "side_friction": 0.15},
-            ]
+            ],
         }
     )
 
-    design_speed_kmh: float = Field(gt=0, le=200, description=describe("Design speed.", unit="km/h", symbol="V"))
-    superelevation_percent: float = Field(
-        ge=-MAX_BANK_PERCENT,
-        le=MAX_BANK_PERCENT,
-        description=describe(
-            "Superelevation of the curve; also the bank of the computed SRT.", unit="%", symbol="e (Eq. 9.2)"
-        ),
+    design_speed_kmh: float = bounded("speed_kmh", text="Design speed.", symbol="V")
+    superelevation_percent: float = bounded(
+        "bank_percent", text="Superelevation of the curve; also the bank of the computed SRT.", symbol="e (Eq. 9.2)"
     )
-    side_friction: float | None = Field(
+    side_friction: float | None = bounded(
+        "side_friction",
         None,
-        gt=0,
-        lt=1,
-        description=describe(
-            "Design side-friction factor; when null it is read from Table 21 (30-120 km/h) at `side_friction_bound`, "
-            "linearly interpolated between the tabulated speeds.",
-            unit="-",
-            symbol="f (Eq. 9.2, Table 21)",
-        ),
+        text="Design side-friction factor; when null it is read from Table 21 (30-120 km/h) at `side_friction_bound`, "
+        "linearly interpolated between the tabulated speeds.",
+        unit="-",
+        symbol="f (Eq. 9.2, Table 21)",
     )
     side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
         "low",
@@ -84,8 +112,22 @@ class MinRadiusRequest(SrtInputs, SrtTargets):
             symbol="f range (Table 21)",
         ),
     )
-    srt: float | None = Field(None, gt=0, le=10, description=_GIVEN_SRT)
+    srt: float | None = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
     vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+
+    @model_validator(mode="after")
+    def _srt_source_and_bank(self) -> MinRadiusRequest:
+        check_srt_source(self, "MinRadiusRequest")
+        if "bank_percent" in self.road.model_fields_set and self.road.bank_percent != self.superelevation_percent:
+            raise shape_error(
+                "MinRadiusRequest",
+                "road.bank_percent",
+                f"road.bank_percent ({self.road.bank_percent}) differs from superelevation_percent "
+                f"({self.superelevation_percent}); the SRT is computed on the curve's superelevation (leave "
+                "road.bank_percent out, or equal to it)",
+                self.road.bank_percent,
+            )
+        return self
 
 
 class CurveSpeedResult(OutputModel):

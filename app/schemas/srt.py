@@ -6,11 +6,10 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, WithJsonSchema
 
-from engine.classic import MODELS
-from engine.loads import MAX_BANK_PERCENT, MAX_OVERWEIGHT_PERCENT, MAX_SLOPE_PERCENT, MAX_TRAILER_ANGLE_DEG
-from engine.threshold import MAX_CURVE_POINTS
+from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
+from engine.models import MODELS
 
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe
 from .vehicles import VehicleRecord
 
 # "3d", "2d", "rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin"
@@ -45,57 +44,38 @@ VEHICLE_DESCRIPTION = describe(
 class RoadIn(InputModel):
     """Road geometry at the curve."""
 
-    bank_percent: float = Field(
+    bank_percent: float = bounded(
+        "bank_percent",
         0.0,
-        ge=-MAX_BANK_PERCENT,
-        le=MAX_BANK_PERCENT,
-        description=describe(
-            "Superelevation (bank) e = 100 tan(phi), positive toward the inside of the curve.",
-            unit="%",
-            symbol="e, phi (bank angle)",
-        ),
+        text="Superelevation (bank) e = 100 tan(phi), positive toward the inside of the curve.",
+        symbol="e, phi (bank angle)",
     )
-    slope_percent: float = Field(
+    slope_percent: float = bounded(
+        "slope_percent",
         0.0,
-        ge=-MAX_SLOPE_PERCENT,
-        le=MAX_SLOPE_PERCENT,
-        description=describe(
-            "Longitudinal grade, positive uphill in the direction of travel, negative downhill.",
-            unit="%",
-            symbol="slope (Table 17 columns; Px = W sin of the slope angle, Eq. 4.24)",
-        ),
+        text="Longitudinal grade, positive uphill in the direction of travel, negative downhill.",
+        symbol="slope (Table 17 columns; Px = W sin of the slope angle, Eq. 4.24)",
     )
 
 
 class LoadIn(InputModel):
     """Load case (Sec. 4.7, Fig. 46): CG offsets and overweight."""
 
-    lateral_offset_m: float = Field(
-        0.0,
-        ge=-5,
-        le=5,
-        description=describe("Lateral CG offset, positive toward the outside of the turn.", unit="m", symbol="d1"),
+    lateral_offset_m: float = bounded(
+        "lateral_offset_m", 0.0, text="Lateral CG offset, positive toward the outside of the turn.", symbol="d1"
     )
-    longitudinal_offset_m: float = Field(
+    longitudinal_offset_m: float = bounded(
+        "longitudinal_offset_m",
         0.0,
-        ge=-50,
-        le=50,
-        description=describe(
-            "Longitudinal CG offset, positive toward the front (CG at x = -a + d2, Table 8).", unit="m", symbol="d2"
-        ),
+        text="Longitudinal CG offset, positive toward the front (CG at x = -a + d2, Table 8).",
+        symbol="d2",
     )
-    vertical_offset_m: float = Field(
-        0.0, ge=-10, le=10, description=describe("Vertical CG offset, positive up.", unit="m", symbol="d3")
-    )
-    overweight_percent: float = Field(
+    vertical_offset_m: float = bounded("vertical_offset_m", 0.0, text="Vertical CG offset, positive up.", symbol="d3")
+    overweight_percent: float = bounded(
+        "overweight_percent",
         0.0,
-        gt=-100,
-        le=MAX_OVERWEIGHT_PERCENT,
-        description=describe(
-            "Extra weight over the nominal W, same CG (weight used = W (1 + overweight/100)).",
-            unit="%",
-            symbol="overweight (Sec. 9.2)",
-        ),
+        text="Extra weight over the nominal W, same CG (weight used = W (1 + overweight/100)).",
+        symbol="overweight (Sec. 9.2)",
     )
 
 
@@ -125,27 +105,19 @@ class SrtOptions(InputModel):
             symbol="SRT_TS / SRT_3D stages (Ch. 9)",
         ),
     )
-    trailer_angle_deg: float = Field(
-        0.0,
-        ge=-MAX_TRAILER_ANGLE_DEG,
-        le=MAX_TRAILER_ANGLE_DEG,
-        description=describe(
-            "Angle between the last two units of the combination (3d only).", unit="deg", symbol="psi"
-        ),
+    trailer_angle_deg: float = bounded(
+        "trailer_angle_deg", 0.0, text="Angle between the last two units of the combination (3d only).", symbol="psi"
     )
     load: LoadIn = Field(
         default_factory=LoadIn, description=describe("CG offsets and overweight.", unit="m, %", symbol="d1, d2, d3")
     )
-    rear_llt_limit: float = Field(
+    rear_llt_limit: float = bounded(
+        "rear_llt_limit",
         1.0,
-        gt=0,
-        le=1,
-        description=describe(
-            "Rear lateral load transfer at which the load ramp stops; 1 = rear inner tire lift-off "
-            "(Table 17 uses 0.6). Closed-form models accept only 1.",
-            unit="-",
-            symbol="LLTr (Eq. 2.5)",
-        ),
+        text="Rear lateral load transfer at which the load ramp stops; 1 = rear inner tire lift-off (Table 17 uses "
+        "0.6). Closed-form models accept only 1.",
+        unit="-",
+        symbol="LLTr (Eq. 2.5)",
     )
 
 
@@ -162,7 +134,7 @@ class SrtInputs(SrtOptions):
 TARGET_NAME_PATTERN = r"^[a-z][a-z0-9_]{0,39}$"
 MAX_TARGETS = 10
 Targets = Annotated[
-    dict[Annotated[str, StringConstraints(pattern=TARGET_NAME_PATTERN)], Annotated[float, Field(gt=0, lt=2)]],
+    dict[Annotated[str, StringConstraints(pattern=TARGET_NAME_PATTERN)], Annotated[float, Field(gt=0, le=2)]],
     Field(min_length=1, max_length=MAX_TARGETS),
     WithJsonSchema(
         {
@@ -170,7 +142,11 @@ Targets = Annotated[
             "minProperties": 1,
             "maxProperties": MAX_TARGETS,
             "propertyNames": {"pattern": TARGET_NAME_PATTERN},
-            "additionalProperties": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 2},
+            "additionalProperties": {
+                "type": "number",
+                "exclusiveMinimum": BOUNDS["target_srt_g"].minimum,
+                "maximum": BOUNDS["target_srt_g"].maximum,
+            },
         }
     ),
 ]
@@ -213,7 +189,7 @@ class SrtRequest(SrtInputs, SrtTargets):
         ),
     )
     curve_points: int = Field(
-        41,
+        DEFAULT_CURVE_POINTS,
         ge=2,
         le=MAX_CURVE_POINTS,
         description=describe("Number of points of the curves (with include_curves).", unit="count", symbol="-"),

@@ -2,55 +2,36 @@
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any
 
-from pydantic import ConfigDict, Field
+from pydantic import ConfigDict, Field, model_validator
 
-from engine.loads import MAX_BANK_PERCENT, MAX_OVERWEIGHT_PERCENT, MAX_SLOPE_PERCENT, MAX_TRAILER_ANGLE_DEG
+from engine.domain import BOUNDS
 
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
 from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 
 MAX_AXIS_VALUES = 200
 MAX_CASES = 20_000
 
-#: axis -> (bounds, unit, thesis symbol, text); the bounds are those of the same field of the SRT request
-AXES: dict[str, tuple[dict[str, float], str, str, str]] = {
-    "bank_percent": (
-        {"ge": -MAX_BANK_PERCENT, "le": MAX_BANK_PERCENT},
-        "%",
-        "e, phi",
-        "Bank (superelevation), + toward the inside of the curve.",
-    ),
-    "slope_percent": (
-        {"ge": -MAX_SLOPE_PERCENT, "le": MAX_SLOPE_PERCENT},
-        "%",
-        "slope",
-        "Longitudinal grade, + uphill.",
-    ),
-    "trailer_angle_deg": (
-        {"ge": -MAX_TRAILER_ANGLE_DEG, "le": MAX_TRAILER_ANGLE_DEG},
-        "deg",
-        "psi",
-        "Angle between the last two units (3d only).",
-    ),
-    "lateral_offset_m": ({"ge": -5, "le": 5}, "m", "d1", "Lateral CG offset, + toward the outside of the turn."),
-    "longitudinal_offset_m": ({"ge": -50, "le": 50}, "m", "d2", "Longitudinal CG offset, + toward the front."),
-    "vertical_offset_m": ({"ge": -10, "le": 10}, "m", "d3", "Vertical CG offset, + up."),
-    "overweight_percent": (
-        {"gt": -100, "le": MAX_OVERWEIGHT_PERCENT},
-        "%",
-        "overweight",
-        "Extra weight over the nominal W.",
-    ),
-    "rear_llt_limit": ({"gt": 0, "le": 1}, "-", "LLTr", "Rear lateral load transfer at which the ramp stops."),
+#: axis -> (unit, thesis symbol, text); the bounds are those of the same field of the SRT request
+AXES: dict[str, tuple[str, str, str]] = {
+    "bank_percent": ("%", "e, phi", "Bank (superelevation), + toward the inside of the curve."),
+    "slope_percent": ("%", "slope", "Longitudinal grade, + uphill."),
+    "trailer_angle_deg": ("deg", "psi", "Angle between the last two units (3d only)."),
+    "lateral_offset_m": ("m", "d1", "Lateral CG offset, + toward the outside of the turn."),
+    "longitudinal_offset_m": ("m", "d2", "Longitudinal CG offset, + toward the front."),
+    "vertical_offset_m": ("m", "d3", "Vertical CG offset, + up."),
+    "overweight_percent": ("%", "overweight", "Extra weight over the nominal W."),
+    "rear_llt_limit": ("-", "LLTr", "Rear lateral load transfer at which the ramp stops."),
 }
 AXIS_ORDER = tuple(AXES)
 
 
 def _values(name: str) -> Any:
     """The grid field of one axis: 1-200 values within the SRT request's bounds for that field."""
-    _, unit, symbol, text = AXES[name]
+    unit, symbol, text = AXES[name]
     return Field(
         None,
         min_length=1,
@@ -60,7 +41,7 @@ def _values(name: str) -> Any:
 
 
 def _value(name: str) -> Any:
-    return Annotated[float, Field(**AXES[name][0])]
+    return Annotated[float, Field(**BOUNDS[name].pydantic())]
 
 
 BankValue = _value("bank_percent")
@@ -79,6 +60,8 @@ class SweepGrid(InputModel):
     `slope_percent`, `trailer_angle_deg`, `lateral_offset_m`, `longitudinal_offset_m`, `vertical_offset_m`,
     `overweight_percent`, `rear_llt_limit`; the first axis varies slowest. An axis overrides the base case's
     field of the same name."""
+
+    model_config = ConfigDict(json_schema_extra={"minProperties": 1})
 
     bank_percent: list[BankValue] | None = _values("bank_percent")
     slope_percent: list[SlopeValue] | None = _values("slope_percent")
@@ -114,15 +97,29 @@ class SweepRequest(SrtInputs, SrtTargets):
 
     grid: SweepGrid = Field(
         description=describe(
-            "Axes to vary and their values (1-200 each, at most 20,000 cases in all).",
+            f"Axes to vary and their values (at least one axis, 1-{MAX_AXIS_VALUES} values each, and at most "
+            f"{MAX_CASES:,} cases in all: the product of the axes' lengths; a larger grid is refused).",
             unit="per axis",
             symbol="Tables 17, 19",
         )
     )
 
+    @model_validator(mode="after")
+    def _grid_size(self) -> SweepRequest:
+        axes = self.grid.axes()
+        if not axes:
+            raise shape_error("SweepRequest", "grid", f"give at least one axis to vary: {', '.join(AXIS_ORDER)}")
+        cases = math.prod(len(v) for v in axes.values())
+        if cases > MAX_CASES:
+            sizes = " x ".join(f"{len(v)} {a}" for a, v in axes.items())
+            raise shape_error(
+                "SweepRequest", "grid", f"{sizes} = {cases} cases; at most {MAX_CASES} per request (split the grid)"
+            )
+        return self
+
 
 def _row_axis(name: str) -> Any:
-    _, unit, symbol, text = AXES[name]
+    unit, symbol, text = AXES[name]
     return Field(None, description=describe(f"{text} Present only when swept.", unit=unit, symbol=symbol))
 
 

@@ -270,7 +270,7 @@ def test_request_errors_name_the_field(shared_client, body, field):
 @pytest.mark.parametrize(
     ("text", "location", "field", "words"),
     [
-        ("id,radius_m,superelevation_percent\nA,100,2\nB,0,3\n", "row 3", "csv.radius_m", "must be positive"),
+        ("id,radius_m,superelevation_percent\nA,100,2\nB,0,3\n", "row 3", "csv.radius_m", "outside [5, 100000] m"),
         ("id,radius_m,grade_percent\nA,100,2\n", "row 1 (header)", "csv.superelevation_percent", "missing column"),
         ("id,radius_m,superelevation_percent\nA,100,2\nB,100\n", "row 3", "csv", "has 2 fields"),
         ("id,radius_m,superelevation_percent\nA,abc,2\n", "row 2", "csv.radius_m", "not a number"),

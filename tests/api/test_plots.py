@@ -118,9 +118,24 @@ def test_the_plots_share_the_cached_solve_and_are_cached(client):
     again = client.post("/v1/plots/roll", json=body)
     assert again.headers["x-cache"] == "hit" and again.content == first.content
     assert again.headers["etag"] == first.headers["etag"]
-    # the SRT with these curves is in the cache now: /v1/srt answers it as a hit
+    # the other figures of the case and /v1/srt with the same curves reuse the engine's result: no new solve
+    solves = _srt_solves()
+    assert client.post("/v1/plots/llt", json=body).headers["x-cache"] == "miss"
     srt = client.post("/v1/srt", json={**body, "include_curves": True})
-    assert srt.headers["x-cache"] == "hit"
+    assert srt.status_code == 200 and len(srt.json()["curves"]["ay_g"]) == 11
+    assert _srt_solves() == solves
+
+
+def _srt_solves() -> float:
+    from prometheus_client import REGISTRY
+
+    return sum(
+        s.value
+        for m in REGISTRY.collect()
+        if m.name == "rollover_solve_seconds"
+        for s in m.samples
+        if s.name.endswith("_count") and s.labels.get("operation") == "srt"
+    )
 
 
 def test_closed_forms_have_no_curves_to_plot(shared_client):

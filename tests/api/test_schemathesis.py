@@ -12,6 +12,7 @@ The inverse limits (about ten SRT solves per limit, up to 25 table rows) and the
 from __future__ import annotations
 
 import schemathesis
+from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, settings
 from schemathesis.checks import positive_data_acceptance
 
@@ -19,6 +20,7 @@ from app.main import create_app
 from app.settings import Settings
 
 app = create_app(Settings(cache_backend="memory"))
+_lifespan = TestClient(app).__enter__()  # the app's lifespan (its cache) runs for the whole module
 schema = schemathesis.openapi.from_asgi("/openapi.json", app)
 
 LIMITS = ["/v1/srt/limits"]

@@ -15,6 +15,7 @@ from engine.assessment import (
     parameter_limit,
     tilt_table_angle_deg,
 )
+from engine.case import Case
 from engine.errors import InvalidInput, InvalidRoad
 from engine.loads import LoadCase, Road
 from engine.road import max_curve_speed_kmh, side_friction_speed_kmh
@@ -41,7 +42,7 @@ def test_targets_and_tilt_angle():
 )
 def test_inverse_limit_lands_on_the_target(parameter):
     target = 0.32
-    lim = parameter_limit(BTRAIN, target, parameter)
+    lim = parameter_limit(Case(BTRAIN), target, parameter)
     assert lim.status == "found"
     # solving forward at the limit gives the target back
     v, load = BTRAIN, LoadCase()
@@ -49,33 +50,33 @@ def test_inverse_limit_lands_on_the_target(parameter):
         v = BTRAIN.replace(**{parameter: lim.value})
     else:
         load = LoadCase(**{parameter: lim.value})
-    assert rollover_threshold(v, load=load).srt == pytest.approx(target, abs=1e-5)
+    assert rollover_threshold(Case(v, load=load)).srt == pytest.approx(target, abs=1e-5)
     # and the side of the limit that is allowed meets it
     step = 1e-3 * (1 if lim.kind == "min" else -1)
     if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
-        ok = rollover_threshold(BTRAIN.replace(**{parameter: lim.value + step})).srt
+        ok = rollover_threshold(Case(BTRAIN.replace(**{parameter: lim.value + step}))).srt
     else:
-        ok = rollover_threshold(BTRAIN, load=LoadCase(**{parameter: lim.value + 100 * step})).srt
+        ok = rollover_threshold(Case(BTRAIN, load=LoadCase(**{parameter: lim.value + 100 * step}))).srt
     assert ok > target
 
 
 def test_limits_that_the_range_cannot_reach():
     # even the lowest CG (l12 = 0.05 m, rigid t/2h = 0.93/0.754 = 1.23) cannot reach 1.5 g
-    never = parameter_limit(BTRAIN, 1.5, "cg_height_above_chassis_m")
+    never = parameter_limit(Case(BTRAIN), 1.5, "cg_height_above_chassis_m")
     assert never.status == "never-met" and never.value is None
     # 50 % overweight (the largest accepted) still leaves the B-train above 0.2 g
-    always = parameter_limit(BTRAIN, 0.2, "overweight_percent")
+    always = parameter_limit(Case(BTRAIN), 0.2, "overweight_percent")
     assert always.status == "always-met" and always.value == pytest.approx(always.range[1])
     assert always.srt_at_limit > 0.2
 
 
 def test_limit_table_falls_with_overweight():
-    rows = limit_table(BTRAIN, 0.33, "cg_height_above_chassis_m", [0, 10, 20])
+    rows = limit_table(Case(BTRAIN), 0.33, "cg_height_above_chassis_m", [0, 10, 20])
     values = [r.limit.value for r in rows]
     assert all(r.limit.status == "found" for r in rows)
     assert values[0] > values[1] > values[2]
     with pytest.raises(InvalidInput):
-        limit_table(BTRAIN, 0.33, "overweight_percent", [0])
+        limit_table(Case(BTRAIN), 0.33, "overweight_percent", [0])
 
 
 def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
@@ -84,10 +85,10 @@ def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
         Curve("wide", 900.0, 6.0, -4.0, 100.0),  # same bank and grade as "tight": one solve
         Curve("flat", 250.0, 0.0, 0.0, None),
     ]
-    res = assess_curves(BTRAIN, curves)
+    res = assess_curves(Case(BTRAIN), curves)
     assert res.distinct_cases == 2
     tight, wide, flat = res.curves
-    srt = rollover_threshold(BTRAIN, road=Road(bank_percent=6.0, slope_percent=-4.0)).srt
+    srt = rollover_threshold(Case(BTRAIN, road=Road(bank_percent=6.0, slope_percent=-4.0))).srt
     assert tight.srt_g == pytest.approx(srt, rel=1e-9) and wide.srt_g == tight.srt_g
     assert tight.rollover_speed_kmh == pytest.approx(float(max_curve_speed_kmh(srt, 60.0)))  # Eq. 9.1
     assert tight.side_friction_speed_kmh == pytest.approx(side_friction_speed_kmh(60.0, 6.0))
@@ -102,7 +103,7 @@ def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
 def test_rollover_governs_where_the_srt_is_below_the_side_friction_demand():
     # flat road: the side-friction speed uses e + f <= 0.17 while the B-train's SRT is ~0.34: friction governs;
     # with an LLT limit of 0.6 and a 10 % downhill the SRT (~0.18) drops near f and rollover can govern
-    res = assess_curves(BTRAIN, [Curve("a", 100.0, 0.0, -10.0)], rear_llt_limit=0.6, trailer_angle_deg=30)
+    res = assess_curves(Case(BTRAIN, rear_llt_limit=0.6, trailer_angle_deg=30), [Curve("a", 100.0, 0.0, -10.0)])
     c = res.curves[0]
     assert c.srt_g < 0.2
     assert c.governed_by == ("rollover" if c.srt_g < 0.16 else "side-friction")
@@ -110,10 +111,10 @@ def test_rollover_governs_where_the_srt_is_below_the_side_friction_demand():
 
 def test_bad_curves_are_refused_with_their_row():
     with pytest.raises(InvalidRoad, match=r"curves\[1\]") as exc:
-        assess_curves(BTRAIN, [Curve("ok", 100.0, 4.0), Curve("zero", 0.0, 4.0)])
+        assess_curves(Case(BTRAIN), [Curve("ok", 100.0, 4.0), Curve("zero", 0.0, 4.0)])
     assert exc.value.field == "curves[1].radius_m"
     with pytest.raises(InvalidRoad, match="superelevation"):
-        assess_curves(BTRAIN, [Curve("x", 100.0, 40.0)])
+        assess_curves(Case(BTRAIN), [Curve("x", 100.0, 40.0)])
 
 
 def test_many_curves_come_back_with_as_many_rows():
@@ -122,7 +123,7 @@ def test_many_curves_come_back_with_as_many_rows():
         Curve(str(i), float(rng.uniform(50, 600)), float(rng.integers(0, 9)), float(rng.integers(-6, 7)))
         for i in range(500)
     ]
-    res = assess_curves(BTRAIN, curves)
+    res = assess_curves(Case(BTRAIN), curves)
     assert len(res.curves) == 500 and res.distinct_cases <= 9 * 13
     assert all(c.error is None for c in res.curves)
 
@@ -131,9 +132,9 @@ def test_limit_search_steps_off_an_unsolvable_good_end():
     # Table 15 at l12 = 0.05 m would need ~1.2 g, beyond the mechanism's valid geometry; the search moves
     # to the first solvable CG height and still finds the limit (bounded by the weaker front group, 1 axle)
     v = PRESETS["table15-semitrailer"]
-    lim = parameter_limit(v, 0.35, "cg_height_above_chassis_m")
+    lim = parameter_limit(Case(v), 0.35, "cg_height_above_chassis_m")
     assert lim.status == "found"
-    assert rollover_threshold(v.replace(cg_height_above_chassis_m=lim.value)).srt == pytest.approx(0.35, abs=1e-5)
+    assert rollover_threshold(Case(v.replace(cg_height_above_chassis_m=lim.value))).srt == pytest.approx(0.35, abs=1e-5)
     front_bound = 1 * 2500 * 0.95**2 / 2 / (364.147 * 3.7 / 8.7)  # k_theta_front / W_front (Eq. 2.17)
     assert lim.range[1] == pytest.approx(0.98 * front_bound)
 
@@ -142,20 +143,18 @@ def test_limit_search_lets_configuration_errors_through():
     from engine.errors import MissingParameter
 
     with pytest.raises(MissingParameter) as exc:
-        parameter_limit(PRESETS["table14-semitrailer"], 0.35, "cg_height_above_chassis_m")  # 3d needs a front
+        parameter_limit(Case(PRESETS["table14-semitrailer"]), 0.35, "cg_height_above_chassis_m")  # 3d needs a front
     assert exc.value.field == "front_track_m"
-    assert parameter_limit(PRESETS["table14-semitrailer"], 0.35, "cg_height_above_chassis_m", model="2d").status == (
-        "found"
-    )
+    assert parameter_limit(
+        Case(PRESETS["table14-semitrailer"], model="2d"), 0.35, "cg_height_above_chassis_m"
+    ).status == ("found")
 
 
 def test_a_curve_without_an_srt_is_flagged_with_its_reason():
     # 20 % adverse crossfall with the load 0.45 m toward the outside: the vehicle tips at rest on that curve
     res = assess_curves(
-        BTRAIN,
+        Case(BTRAIN, load=LoadCase(lateral_offset_m=0.3), rear_llt_limit=0.6),
         [Curve("bad", 100.0, -20.0, 0.0, 40.0), Curve("ok", 100.0, 6.0)],
-        load=LoadCase(lateral_offset_m=0.3),
-        rear_llt_limit=0.6,
     )
     bad, ok = res.curves
     assert bad.srt_g is None and bad.error and bad.flagged

@@ -8,8 +8,10 @@ import numpy as np
 import pytest
 
 from engine import classic, road
+from engine.case import Case
 from engine.errors import InvalidRoad
 from engine.loads import LoadCase, Road
+from engine.threshold import rollover_threshold
 from engine.vehicles import PRESETS
 
 TABLE14 = PRESETS["table14-semitrailer"]
@@ -18,10 +20,10 @@ BTRAIN = PRESETS["table16-btrain"]
 
 def test_rigid_and_banked_rigid():
     # Eqs. 2.6 and 2.8 for the B-train: t = 1.86 m, h = 0.499 + 0.205 + 1.356 = 2.06 m
-    assert classic.classic_threshold(BTRAIN, "rigid").srt == pytest.approx(0.93 / 2.06, rel=1e-12)
-    r = classic.classic_threshold(BTRAIN, "rigid-bank", road=Road(bank_percent=6))
+    assert rollover_threshold(Case(BTRAIN, "rigid")).srt == pytest.approx(0.93 / 2.06, rel=1e-12)
+    r = rollover_threshold(Case(BTRAIN, "rigid-bank", road=Road(bank_percent=6)))
     assert r.srt == pytest.approx(0.93 / 2.06 + 0.06, rel=1e-12)
-    off = classic.classic_threshold(BTRAIN, "rigid", load=LoadCase(lateral_offset_m=0.1, vertical_offset_m=0.2))
+    off = rollover_threshold(Case(BTRAIN, "rigid", load=LoadCase(lateral_offset_m=0.1, vertical_offset_m=0.2)))
     assert off.srt == pytest.approx(0.83 / 2.26, rel=1e-12)
 
 
@@ -30,11 +32,11 @@ def test_rill_by_hand_for_table14():
     k_theta_star = 5400 * 0.95**2 / 2 / (250 * 1.346)
     k_t_star = 1.86 * 5040 / 250
     expected = 0.93 / (2.05 + 1.346 / (k_theta_star - 1)) - 1 / k_t_star
-    r = classic.classic_threshold(TABLE14, "rill")
+    r = rollover_threshold(Case(TABLE14, "rill"))
     assert r.srt == pytest.approx(expected, rel=1e-12)
     assert r.srt == pytest.approx(0.3838, abs=5e-5)
     # Winkler with Delta t from the same roll compliance is the same mechanics (see classic.py)
-    assert classic.classic_threshold(TABLE14, "winkler").srt == pytest.approx(r.srt, rel=1e-12)
+    assert rollover_threshold(Case(TABLE14, "winkler")).srt == pytest.approx(r.srt, rel=1e-12)
 
 
 def test_rill_tends_to_rigid_with_stiff_tires_and_suspension():
@@ -42,7 +44,7 @@ def test_rill_tends_to_rigid_with_stiff_tires_and_suspension():
 
 
 def test_chang_satisfies_its_own_equation_and_reduces_to_rigid():
-    r = classic.classic_threshold(BTRAIN, "chang", road=Road(bank_percent=8))
+    r = rollover_threshold(Case(BTRAIN, "chang", road=Road(bank_percent=8)))
     p = r.parameters
     assert r.srt == pytest.approx(classic.chang(p["t"], p["h"], p["h0"], p["phi"], p["theta"]), rel=1e-12)
     # theta obeys Eq. 2.17 at the SRT it produces
@@ -55,11 +57,11 @@ def test_gillespie_by_hand_for_the_btrain():
     k_f, k_r = 3600 * 0.95**2 / 2, 5400 * 0.95**2 / 2
     m = 355.22 * 1.356
     expected = (1.86 / (2 * 2.06)) / (1 + (1 - 0.704 / 2.06) * m / (k_f + k_r - m))
-    assert classic.classic_threshold(BTRAIN, "gillespie").srt == pytest.approx(expected, rel=1e-12)
+    assert rollover_threshold(Case(BTRAIN, "gillespie")).srt == pytest.approx(expected, rel=1e-12)
 
 
 def test_navin_satisfies_eq_2_30_and_its_rigid_flat_limit():
-    r = classic.classic_threshold(BTRAIN, "navin", road=Road(bank_percent=4))
+    r = rollover_threshold(Case(BTRAIN, "navin", road=Road(bank_percent=4)))
     p = r.parameters
     assert r.srt == pytest.approx(
         classic.navin(p["t"], p["h"], p["h0"], p["h5"], p["lre"], p["L"], p["phi"], p["theta"]), rel=1e-12
@@ -72,9 +74,52 @@ def test_navin_satisfies_eq_2_30_and_its_rigid_flat_limit():
     )
 
 
-def test_every_model_is_listed_with_its_equation():
-    assert set(classic.MODELS) == {"3d", "2d", *classic.CLASSIC_MODELS}
-    assert classic.MODELS["rill"].equation == "Eq. 2.20"
+# the closed forms of Ch. 2 and the equation the thesis gives each (Eqs. 2.6-2.30), and its own two models
+THESIS_EQUATIONS = {
+    "rigid": "Eq. 2.6",
+    "rigid-bank": "Eq. 2.8",
+    "winkler": "Eq. 2.10",
+    "rill": "Eq. 2.20",
+    "chang": "Eq. 2.22",
+    "gillespie": "Eq. 2.28",
+    "navin": "Eq. 2.30",
+}
+
+
+def test_the_registry_has_every_model_of_the_thesis_with_its_equation():
+    from engine.models import MODELS
+
+    assert set(MODELS) == {"3d", "2d", *THESIS_EQUATIONS}
+    for model_id, equation in THESIS_EQUATIONS.items():
+        assert MODELS[model_id].equation == equation
+        assert not MODELS[model_id].curves and MODELS[model_id].batch is None
+    assert MODELS["3d"].curves and MODELS["2d"].curves
+
+
+@pytest.mark.parametrize("model_id", ["3d", "2d", *THESIS_EQUATIONS])
+def test_each_model_refuses_every_input_it_does_not_account_for(model_id):
+    """A non-zero road or load input outside a model's ``takes`` is refused naming the field, never ignored."""
+    from engine.errors import InvalidInput
+    from engine.models import INPUTS, MODELS
+
+    model = MODELS[model_id]
+    nonzero = {
+        "bank": {"road": Road(bank_percent=4)},
+        "slope": {"road": Road(slope_percent=4)},
+        "trailer_angle": {"trailer_angle_deg": 10.0},
+        "d1": {"load": LoadCase(lateral_offset_m=0.05)},
+        "d2": {"load": LoadCase(longitudinal_offset_m=0.2)},
+        "d3": {"load": LoadCase(vertical_offset_m=0.05)},
+        "overweight": {"load": LoadCase(overweight_percent=5)},
+    }
+    for key, field, _get, _exc in INPUTS:
+        case = Case(BTRAIN, model_id, **nonzero[key])
+        if key in model.takes:
+            assert rollover_threshold(case).srt > 0
+        else:
+            with pytest.raises(InvalidInput) as exc:
+                rollover_threshold(case)
+            assert exc.value.field == field
 
 
 # ----------------------------------------------------------------------------------- road formulas

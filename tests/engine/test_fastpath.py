@@ -7,10 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from engine import trailer2d, trailer3d
+from engine import trailer2d, trailer3d, trailer3d_davies
+from engine.case import Case
 from engine.davies import solve_statics
 from engine.errors import MechanismSingular
-from engine.threshold import stage_model
+from engine.stepping import stage_model
 from engine.vehicles import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -29,7 +30,7 @@ CASES_3D = [
 
 def _case(vid, bank, slope, psi, d1, d2, d3, ow, lim):
     v = PRESETS[vid]
-    return trailer3d.Case(
+    return trailer3d.SolverCase(
         weight=v.weight_kn * (1 + ow / 100),
         bank=math.atan(bank / 100),
         slope=math.atan(slope / 100),
@@ -51,12 +52,12 @@ def _perturbed_state(m, rng):
 @pytest.mark.parametrize("params", CASES_3D, ids=lambda p: f"{p[0]}-{p[1]}-b{p[2]}-s{p[3]}-psi{p[4]}")
 def test_reduced_statics_equal_davies_solution_at_a_deformed_state(params):
     vid, stage, *rest = params
-    m = stage_model(PRESETS[vid], stage)
+    m = stage_model(Case(PRESETS[vid]), stage)
     case = _case(vid, *rest)
     state = _perturbed_state(m, np.random.default_rng(7))
     for ay in (None, 0.21):  # at the limit (ay unknown) and at a given ay
         a_fast, geo_f, cl_f, rf, ff = trailer3d.forces_at(m, case, state, ay)
-        a_dav, geo_d, cl_d, rd, fd = trailer3d.davies_forces_at(m, case, state, ay)
+        a_dav, geo_d, cl_d, rd, fd = trailer3d_davies.davies_forces_at(m, case, state, ay)
         assert a_dav == pytest.approx(a_fast, rel=1e-9)
         # positions by successive screws (Table 9) equal the planar chain of the fast path
         for p, q in ((geo_f.p27, geo_d.p27), (geo_f.p28, geo_d.p28), (geo_f.cg, geo_d.cg)):
@@ -108,29 +109,29 @@ def test_reduced_statics_equal_davies_solution_at_a_deformed_state(params):
     "vid,stage", [("table16-btrain", "full"), ("table16-btrain", "tires-suspension"), ("table22-truck", "full")]
 )
 def test_srt_by_fast_path_equals_srt_by_davies_path(vid, stage):
-    m = stage_model(PRESETS[vid], stage)
+    m = stage_model(Case(PRESETS[vid]), stage)
     case = _case(vid, 4, -4, 10, 0.04, 0.2, 0.05, 5, 1.0)
     fast = trailer3d.solve(m, case)
-    dav = trailer3d.solve(m, case, forces=trailer3d.davies_forces_at)
+    dav = trailer3d.solve(m, case, forces=trailer3d_davies.davies_forces_at)
     assert dav.ay == pytest.approx(fast.ay, rel=1e-9)
     assert float(dav.geometry.roll) == pytest.approx(float(fast.geometry.roll), rel=1e-9)
 
 
 def test_davies_system_size_rank_and_null_space_of_the_btrain():
     """22 cuts x 6 = 132 cut-set equations; the closures determine every reported quantity and no more."""
-    m = stage_model(BTRAIN, "full")
+    m = stage_model(Case(BTRAIN), "full")
     case = _case("table16-btrain", 0, 0, 0, 0, 0, 0, 0, 1.0)
     state = trailer3d.solve(m, case).state
-    mech, geo = trailer3d.build_mechanism(m, case, state)
+    mech, geo = trailer3d_davies.build_mechanism(m, case, state)
     n, j, f = mech.mobility_counts
     assert (n, j, f) == (23, 28, 3)  # Fig. 43: 23 links, 28 joints, Px Py Pz
-    closures, primary, _extra = trailer3d.davies_closures(m, case, geo, ay=0.3)
+    closures, primary, _extra = trailer3d_davies.davies_closures(m, case, geo, ay=0.3)
     bare = solve_statics(mech, primary, [])  # the cut-set law alone
     assert bare.n_equations == 22 * 6
     assert bare.n_unknowns == len(mech.variable_names) - 3
     assert bare.nullity > 0
     assert not {"Fz1", "Fz3", "Fz17", "Fz19"} & bare.determined  # the four-legged table (Fig. 60)
-    sol = solve_statics(mech, primary, closures, require=trailer3d.REPORTED + trailer3d.REPORTED_FW)
+    sol = solve_statics(mech, primary, closures, require=trailer3d_davies.REPORTED + trailer3d_davies.REPORTED_FW)
     assert sol.residual < 1e-12
     assert sol.nullity > 0  # still underdetermined, as Eq. 6.19 ...
     free = set(sol.values) - sol.determined
@@ -143,9 +144,9 @@ def test_davies_system_size_rank_and_null_space_of_the_btrain():
 
 
 def test_tire_loads_sum_to_the_normal_weight_component_in_the_davies_solution():
-    m = stage_model(BTRAIN, "full")
+    m = stage_model(Case(BTRAIN), "full")
     case = _case("table16-btrain", 8, -6, 20, 0.05, 0.0, 0.0, 0, 1.0)
-    sol = trailer3d.solve(m, case, forces=trailer3d.davies_forces_at)
+    sol = trailer3d.solve(m, case, forces=trailer3d_davies.davies_forces_at)
     total = sol.front.fz_outer + sol.front.fz_inner + sol.rear.fz_outer + sol.rear.fz_inner
     assert total == pytest.approx(sol.loads.pz, rel=1e-12)  # Pz, Eq. 4.26 at the limit
     assert sol.rear.fz_inner == pytest.approx(0.0, abs=1e-9)  # the limit: Fz19 = 0
@@ -183,10 +184,10 @@ def test_planar_davies_system_is_square_and_determinate():
 
 
 def test_batched_fast_path_equals_one_case_at_a_time():
-    m = stage_model(BTRAIN, "full")
+    m = stage_model(Case(BTRAIN), "full")
     banks = np.array([0.0, 0.04, 0.12])
     psis = np.radians([0.0, 20.0, 30.0])
-    case = trailer3d.Case(
+    case = trailer3d.SolverCase(
         weight=np.full(3, BTRAIN.weight_kn),
         bank=np.arctan(banks),
         slope=np.array([0.0, -0.06, 0.09]),
@@ -198,7 +199,7 @@ def test_batched_fast_path_equals_one_case_at_a_time():
     )
     batch = trailer3d.solve(m, case, xp=np)
     for i in range(3):
-        one = trailer3d.Case(
+        one = trailer3d.SolverCase(
             weight=BTRAIN.weight_kn,
             bank=float(case.bank[i]),
             slope=float(case.slope[i]),
@@ -214,10 +215,10 @@ def test_batched_fast_path_equals_one_case_at_a_time():
 @pytest.mark.parametrize("bank,slope,psi", [(0, 0, 0), (8, -10, 0), (4, 6, 30)])
 def test_eq_6_39_from_the_davies_coefficients_gives_the_same_srt(bank, slope, psi):
     """Eq. 6.37 read off the Davies solution at the limit geometry, then Eq. 6.39, equals the stepped SRT."""
-    m = stage_model(BTRAIN, "full")
+    m = stage_model(Case(BTRAIN), "full")
     case = _case("table16-btrain", bank, slope, psi, 0.0, 0.0, 0.0, 0, 1.0)
     sol = trailer3d.solve(m, case)
-    c52, c53, c54 = trailer3d.eq_6_37_coefficients(m, case, sol.state)
-    assert trailer3d.srt_eq_6_39(c52, c53, c54, case.bank, case.slope) == pytest.approx(sol.ay, rel=1e-9)
+    c52, c53, c54 = trailer3d_davies.eq_6_37_coefficients(m, case, sol.state)
+    assert trailer3d_davies.srt_eq_6_39(c52, c53, c54, case.bank, case.slope) == pytest.approx(sol.ay, rel=1e-9)
     # a forward (downhill) force unloads the rear group (Eq. 4.27), so C52 > 0 and uphill raises the SRT
     assert c52 > 0 and c53 > 0

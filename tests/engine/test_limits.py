@@ -10,10 +10,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from engine import trailer3d
-from engine.classic import classic_threshold
+from engine.case import Case
 from engine.errors import ConvergenceError, InvalidVehicle
 from engine.loads import LoadCase, Road
-from engine.threshold import rollover_threshold, stage_model
+from engine.stepping import stage_model
+from engine.threshold import rollover_threshold
 from engine.vehicles import PRESETS, static_axle_loads
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -28,12 +29,12 @@ def rigid(v):
 def test_infinitely_stiff_2d_model_is_the_rigid_model():
     # Eq. 2.6: SRT = t / 2h
     for v in (TABLE14, BTRAIN):
-        assert rollover_threshold(v.replace(**STIFF), "2d").srt == pytest.approx(rigid(v), rel=1e-8)
+        assert rollover_threshold(Case(v.replace(**STIFF), "2d")).srt == pytest.approx(rigid(v), rel=1e-8)
 
 
 def test_infinitely_stiff_3d_model():
     stiff = BTRAIN.replace(**STIFF)
-    r = rollover_threshold(stiff)
+    r = rollover_threshold(Case(stiff))
     # stage 1 (LLTf = LLTr): the rigid t/2h
     assert r.stage_values["srt_ts"] == pytest.approx(rigid(BTRAIN), rel=1e-8)
     # full stage, rigid: Eq. 6.18 with Fz19 = 0, Fz3 = Ff (1 - 0.7)/2 and the rest geometry
@@ -46,8 +47,8 @@ def test_infinitely_stiff_3d_model():
 def test_tire_and_spring_roll_compliance_alone_matches_rill():
     # the limit: the 2D model with only tire and spring roll compliance agrees with Eq. 2.20 to ~2 %
     for v in (TABLE14, BTRAIN):
-        r2d = rollover_threshold(v, "2d").srt
-        assert r2d == pytest.approx(classic_threshold(v, "rill").srt, rel=0.02)
+        r2d = rollover_threshold(Case(v, "2d")).srt
+        assert r2d == pytest.approx(rollover_threshold(Case(v, "rill")).srt, rel=0.02)
 
 
 def test_rigid_3d_on_a_bank_is_eq_2_8():
@@ -55,7 +56,7 @@ def test_rigid_3d_on_a_bank_is_eq_2_8():
     for e in (0.04, 0.10):
         # moment balance about the outer contact with the CG at (t/2, h) on a bank: (h1 + h2 e)/(h2 - h1 e)
         h, half = 2.06, 0.93
-        srt = rollover_threshold(stiff, road=Road(bank_percent=100 * e)).srt
+        srt = rollover_threshold(Case(stiff, road=Road(bank_percent=100 * e))).srt
         assert srt == pytest.approx((half + h * e) / (h - half * e), rel=1e-8)
 
 
@@ -71,8 +72,8 @@ def test_rigid_3d_on_a_bank_is_eq_2_8():
     lim=st.floats(0.5, 1.0),
 )
 def test_force_balance_and_eq_6_17_hold_for_any_case(bank, slope, psi, d1, d2, d3, ow, lim):
-    m = stage_model(BTRAIN, "full")
-    case = trailer3d.Case(
+    m = stage_model(Case(BTRAIN), "full")
+    case = trailer3d.SolverCase(
         weight=BTRAIN.weight_kn * (1 + ow / 100),
         bank=math.atan(bank / 100),
         slope=math.atan(slope / 100),
@@ -122,25 +123,27 @@ def _front_pitch_roll_share(s, m, case):
 
 
 def test_srt_rises_with_bank_and_falls_with_cg_height():
-    banks = [rollover_threshold(BTRAIN, road=Road(bank_percent=b)).srt for b in (-4, 0, 4, 8, 12)]
+    banks = [rollover_threshold(Case(BTRAIN, road=Road(bank_percent=b))).srt for b in (-4, 0, 4, 8, 12)]
     assert np.all(np.diff(banks) > 0)
-    heights = [rollover_threshold(BTRAIN.replace(cg_height_above_chassis_m=h)).srt for h in (1.0, 1.2, 1.4, 1.6)]
+    heights = [rollover_threshold(Case(BTRAIN.replace(cg_height_above_chassis_m=h))).srt for h in (1.0, 1.2, 1.4, 1.6)]
     assert np.all(np.diff(heights) < 0)
-    heights2d = [rollover_threshold(TABLE14.replace(cg_height_above_chassis_m=h), "2d").srt for h in (1.0, 1.3, 1.6)]
+    heights2d = [
+        rollover_threshold(Case(TABLE14.replace(cg_height_above_chassis_m=h), "2d")).srt for h in (1.0, 1.3, 1.6)
+    ]
     assert np.all(np.diff(heights2d) < 0)
 
 
 def test_srt_falls_with_outward_offset_overweight_and_softer_suspension():
-    d1 = [rollover_threshold(BTRAIN, load=LoadCase(lateral_offset_m=x)).srt for x in (-0.1, 0.0, 0.1)]
+    d1 = [rollover_threshold(Case(BTRAIN, load=LoadCase(lateral_offset_m=x))).srt for x in (-0.1, 0.0, 0.1)]
     assert d1[0] > d1[1] > d1[2]
-    ow = [rollover_threshold(BTRAIN, load=LoadCase(overweight_percent=x)).srt for x in (0, 5, 10)]
+    ow = [rollover_threshold(Case(BTRAIN, load=LoadCase(overweight_percent=x))).srt for x in (0, 5, 10)]
     assert ow[0] > ow[1] > ow[2]
-    k = [rollover_threshold(BTRAIN.replace(suspension_stiffness_kn_per_m=x)).srt for x in (1500, 1800, 2400)]
+    k = [rollover_threshold(Case(BTRAIN.replace(suspension_stiffness_kn_per_m=x))).srt for x in (1500, 1800, 2400)]
     assert k[0] < k[1] < k[2]
 
 
 def test_roll_angle_grows_along_the_curves_and_ends_at_the_limit():
-    r = rollover_threshold(BTRAIN, include_curves=True, curve_points=11)
+    r = rollover_threshold(Case(BTRAIN), include_curves=True, curve_points=11)
     c = r.curves
     assert c.ay_g[0] == 0.0 and c.ay_g[-1] == pytest.approx(r.srt)
     assert np.all(np.diff(c.roll_angle_deg) > 0)
@@ -151,8 +154,10 @@ def test_roll_angle_grows_along_the_curves_and_ends_at_the_limit():
 
 
 def test_non_convergence_is_reported_not_hidden():
-    m = stage_model(BTRAIN, "full")
-    case = trailer3d.Case(weight=BTRAIN.weight_kn, bank=0.0, slope=0.0, psi=0.0, d1=0.0, d2=0.0, d3=0.0, llt_limit=1.0)
+    m = stage_model(Case(BTRAIN), "full")
+    case = trailer3d.SolverCase(
+        weight=BTRAIN.weight_kn, bank=0.0, slope=0.0, psi=0.0, d1=0.0, d2=0.0, d3=0.0, llt_limit=1.0
+    )
     with pytest.raises(ConvergenceError, match="did not converge") as exc:
         trailer3d.solve(m, case, max_iter=3)
     assert exc.value.iterations == 3 and exc.value.residual > 0
@@ -163,8 +168,8 @@ def test_a_suspension_at_rills_stability_bound_is_refused_and_just_above_it_is_s
     w_rear = BTRAIN.weight_kn * 3.0 / 4.26
     k_axle_limit = w_rear * 1.356 * 2 / 0.95**2 / 3  # per axle and side
     with pytest.raises(InvalidVehicle, match="fall over at rest") as exc:
-        rollover_threshold(BTRAIN.replace(suspension_stiffness_kn_per_m=0.99 * k_axle_limit))
+        rollover_threshold(Case(BTRAIN.replace(suspension_stiffness_kn_per_m=0.99 * k_axle_limit)))
     assert exc.value.field == "suspension_stiffness_kn_per_m"
-    soft = rollover_threshold(BTRAIN.replace(suspension_stiffness_kn_per_m=1.3 * k_axle_limit))
-    assert 0 < soft.srt < rollover_threshold(BTRAIN).srt
+    soft = rollover_threshold(Case(BTRAIN.replace(suspension_stiffness_kn_per_m=1.3 * k_axle_limit)))
+    assert 0 < soft.srt < rollover_threshold(Case(BTRAIN)).srt
     assert soft.llt_rear == pytest.approx(1.0, abs=1e-9)

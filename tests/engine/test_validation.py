@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from engine.case import Case
 from engine.errors import InvalidInput, InvalidLoad, InvalidRoad, InvalidVehicle, MissingParameter, UnknownPreset
 from engine.loads import LoadCase, Road
 from engine.threshold import rollover_threshold, sweep
@@ -33,14 +34,14 @@ BTRAIN = PRESETS["table16-btrain"]
 )
 def test_impossible_vehicle_is_refused_with_its_field(change, field):
     with pytest.raises(InvalidVehicle) as exc:
-        rollover_threshold(BTRAIN.replace(**change))
+        rollover_threshold(Case(BTRAIN.replace(**change)))
     assert exc.value.field == field
     assert field in str(exc.value) or "stiffness" in str(exc.value)
 
 
 def test_2d_vehicle_cannot_run_the_3d_model():
     with pytest.raises(MissingParameter, match="front_track_m") as exc:
-        rollover_threshold(PRESETS["table14-semitrailer"], "3d")
+        rollover_threshold(Case(PRESETS["table14-semitrailer"], "3d"))
     assert exc.value.field == "front_track_m"
 
 
@@ -62,28 +63,31 @@ def test_2d_vehicle_cannot_run_the_3d_model():
     ],
 )
 def test_out_of_domain_case_is_refused(kwargs, exc, field):
+    options = {k: kwargs.pop(k) for k in ("curve_points", "include_curves") if k in kwargs}
     with pytest.raises(exc) as info:
-        rollover_threshold(BTRAIN, **kwargs)
+        rollover_threshold(Case(BTRAIN, **kwargs), **options)
     assert info.value.field == field
 
 
 def test_models_refuse_effects_they_do_not_contain():
     with pytest.raises(InvalidRoad, match="rill") as info:
-        rollover_threshold(BTRAIN, "rill", road=Road(bank_percent=4))
+        rollover_threshold(Case(BTRAIN, "rill", road=Road(bank_percent=4)))
     assert info.value.field == "road.bank_percent"
     with pytest.raises(InvalidInput, match="2d") as info:
-        rollover_threshold(BTRAIN, "2d", road=Road(slope_percent=4))
+        rollover_threshold(Case(BTRAIN, "2d", road=Road(slope_percent=4)))
     assert info.value.field == "road.slope_percent"
     with pytest.raises(InvalidInput):
-        rollover_threshold(BTRAIN, "2d", stage="tires-suspension")
+        rollover_threshold(Case(BTRAIN, "2d", stage="tires-suspension"))
     with pytest.raises(InvalidLoad):
-        rollover_threshold(BTRAIN, "gillespie", rear_llt_limit=0.6)
+        rollover_threshold(Case(BTRAIN, "gillespie", rear_llt_limit=0.6))
 
 
 def test_a_vehicle_that_tips_at_rest_has_no_srt():
     # CG 0.5 m toward the outside on a 20 % adverse crossfall: the rear LLT passes 0.6 with no acceleration
     with pytest.raises(InvalidInput, match="at rest"):
-        rollover_threshold(BTRAIN, road=Road(bank_percent=-20), load=LoadCase(lateral_offset_m=0.5), rear_llt_limit=0.6)
+        rollover_threshold(
+            Case(BTRAIN, road=Road(bank_percent=-20), load=LoadCase(lateral_offset_m=0.5), rear_llt_limit=0.6)
+        )
 
 
 def test_unknown_preset_and_unknown_fields():
@@ -95,9 +99,9 @@ def test_unknown_preset_and_unknown_fields():
 
 
 def test_sweep_reports_refused_cases_per_row_and_keeps_the_others():
-    res = sweep(BTRAIN, {"lateral_offset_m": [0.0, 0.5, 1.0]})
+    res = sweep(Case(BTRAIN), {"lateral_offset_m": [0.0, 0.5, 1.0]})
     assert set(res.errors) == {2}  # 1.0 m is outside the 0.93 m half track
     assert "lateral_offset_m" in res.errors[2]
     rows = res.rows()
-    assert rows[0]["srt"] == pytest.approx(rollover_threshold(BTRAIN).srt, rel=1e-10)
+    assert rows[0]["srt"] == pytest.approx(rollover_threshold(Case(BTRAIN)).srt, rel=1e-10)
     assert rows[2]["srt"] is None and rows[2]["error"]

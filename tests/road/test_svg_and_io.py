@@ -131,7 +131,7 @@ def test_landxml_curves_with_defaults_and_overrides():
             "<LandXML><Alignments><Alignment name='A'><CoordGeom><Curve radius='-5'/></CoordGeom></Alignment>"
             "</Alignments></LandXML>",
             {"superelevation_percent": 4},
-            "radius must be positive",
+            r"radius = -5.0 is outside \[5, 100000\] m",
         ),
         ("<LandXML><Alignments><Alignment", {"superelevation_percent": 4}, "malformed XML"),
         ("<Foo/>", {"superelevation_percent": 4}, "not <LandXML>"),

@@ -10,13 +10,15 @@ from typing import Any
 
 from fastapi import FastAPI
 from fastapi.routing import APIRoute
+from fastapi_offline import FastAPIOffline
 from prometheus_fastapi_instrumentator import Instrumentator
 
 from engine import ENGINE_VERSION
 
+from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
 from .cache import make_cache
 from .logs import configure_logging, get_logger
-from .problems import PROBLEM_MEDIA_TYPE, install_problem_handlers
+from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, health, models, plots, road, srt, vehicles
 from .settings import Settings, get_settings
 
@@ -51,7 +53,7 @@ TAGS = [
 
 def operation_id(route: APIRoute) -> str:
     """Stable operation ids ``<tag>-<route name>`` (e.g. ``srt-compute_srt``) for readable client methods."""
-    return f"{route.tags[0]}-{route.name}"
+    return f"{route.tags[0]}-{route.name}" if route.tags else route.name
 
 
 def _problem_openapi(app: FastAPI) -> dict[str, Any]:
@@ -61,6 +63,17 @@ def _problem_openapi(app: FastAPI) -> dict[str, Any]:
     schema = FastAPI.openapi(app)
     for path_item in schema.get("paths", {}).values():
         for operation in path_item.values():
+            if "requestBody" in operation:  # every body has a limit: state it, and declare the 413
+                limit = operation.setdefault(EXTENSION, DEFAULT_LIMIT)
+                text = f"Body limit: {describe_limit(limit)}; a larger body is refused with 413 before it is read."
+                operation["description"] = f"{operation.get('description', '').rstrip()}\n\n{text}".lstrip()
+                operation["responses"].setdefault(
+                    "413",
+                    {
+                        "description": error_responses(413)[413]["description"],
+                        "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
+                    },
+                )
             for code, response in operation.get("responses", {}).items():
                 content = response.get("content", {})
                 if code.isdigit() and int(code) >= 400 and "application/json" in content:
@@ -85,13 +98,16 @@ def create_app(settings: Settings | None = None) -> FastAPI:
             await cache.aclose()
             app.state.cache = None
 
-    app = FastAPI(
+    # the interactive docs (/docs, /redoc) with Swagger UI and ReDoc served from the fastapi-offline package's
+    # own copies (under /static-offline-docs): they work on an isolated network, no CDN
+    app = FastAPIOffline(
         title="rollover",
         version=ENGINE_VERSION,
         summary="Static rollover threshold of heavy vehicles, maximum curve speed and minimum curve radius.",
         description=DESCRIPTION,
         openapi_tags=TAGS,
         generate_unique_id_function=operation_id,
+        swagger_ui_parameters={"validatorUrl": None},  # Swagger UI's validator badge is an image from another host
         lifespan=lifespan,
     )
     app.state.settings = settings if settings is not None else get_settings()
@@ -101,6 +117,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for module in (vehicles, srt, road, alignments, plots, models, health):
         app.include_router(module.router)
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
+    app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)
     app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]
     return app
 

@@ -11,6 +11,7 @@ unknown vehicle preset                      404     ``urn:rollover:problem:unkno
 engine InvalidVehicle / MissingParameter    422     ``...:invalid-vehicle`` / ``...:missing-parameter``
 engine InvalidRoad / InvalidLoad            422     ``...:invalid-road`` / ``...:invalid-load``
 CSV / LandXML curves that cannot be read    422     ``urn:rollover:problem:invalid-alignment``
+request body over the operation's limit     413     ``urn:rollover:problem:body-too-large``
 engine MechanismSingular                    422     ``...:mechanism-singular``
 engine ConvergenceError                     422     ``...:no-convergence``
 no route / method (Starlette)               404/405 ``about:blank``
@@ -24,6 +25,7 @@ file's error also says where in the file (``location``: ``row 7``, ``Alignment '
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 from fastapi import FastAPI, Request
@@ -107,6 +109,18 @@ def request_error(field: str, message: str, value: Any = None) -> RequestValidat
     return RequestValidationError(
         [{"type": "value_error", "loc": ("body", *field.split(".")), "msg": message, "input": value}]
     )
+
+
+def problem_bytes(status: int, detail: str, instance: str) -> bytes:
+    """The 413 problem+json body the body-limit middleware answers with (before routing, outside the handlers)."""
+    body = {
+        "type": TYPE_PREFIX + "body-too-large",
+        "title": "Content Too Large",  # RFC 9110's name of 413
+        "status": status,
+        "detail": detail,
+        "instance": instance,
+    }
+    return json.dumps(body).encode()
 
 
 def problem_response(
@@ -251,6 +265,7 @@ def error_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
         404: "Unknown vehicle preset (the problem lists the known ids).",
         422: "Validation error (the problem's `errors` name each field and the reason), or the engine refused "
         "the input as physically invalid, found the mechanism singular or did not converge.",
+        413: "Request body over this operation's limit (stated in the description); refused before it is read.",
         500: "Internal error (a bug; logged, never a stack trace).",
     }
     return {c: {"model": Problem, "description": text[c]} for c in codes}

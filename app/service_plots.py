@@ -14,12 +14,10 @@ import numpy as np
 
 from engine.case import Case
 from engine.loads import Road
-from engine.models import get_model
 from engine.results import RolloverResult
 from engine.road import TABLE21_SPEEDS_KMH, aashto_min_radius_m, rollover_min_radius_m, side_friction_factor
 
 from .cache import ResultCache
-from .problems import request_error
 from .schemas.plots import MinRadiusPlotRequest, PlotRequest
 from .service import Computed, cached, resolve_case, solve, srt_key
 from .settings import Settings
@@ -139,10 +137,6 @@ def render_curves(kind: str, r: RolloverResult, label: str, case: Case) -> str:
 
 async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, kind: str) -> Computed:
     """One of the figures against ay/g (``FIGURES``) as SVG."""
-    if not get_model(req.model).curves:
-        raise request_error(
-            "model", f"the {req.model} model is a closed form without curves against ay/g: use 3d or 2d"
-        )
     case = resolve_case(req)
     label = _label(req)
     resolved = {
@@ -208,13 +202,6 @@ def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, 
 
 
 async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, settings: Settings) -> Computed:
-    if 0.01 * req.superelevation_percent + float(side_friction_factor(req.speed_max_kmh, req.side_friction_bound)) <= 0:
-        raise request_error(
-            "superelevation_percent",
-            "0.01 e + f must be positive for Eq. 9.2 at every plotted speed (an adverse crossfall this steep has "
-            "no side-friction radius)",
-            req.superelevation_percent,
-        )
     # the SRT of Eq. 9.3 is the one on the curve's bank (the superelevation) and slope
     case = resolve_case(req, road=Road(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent))
     label = _label(req)

@@ -4,17 +4,29 @@ The batch endpoints (alignment assessment, sweep) answer JSON by default and CSV
 ``text/csv``. Numbers are written with full precision (``repr``), booleans as ``true``/``false``, null as an empty
 field; each SRT target becomes two columns, ``meets_<name>`` and ``margin_<name>_g`` (target names are lower-case
 letters, digits and ``_``, so they are safe column names).
+
+Text cells are neutralised against spreadsheet formula injection as OWASP recommends ("CSV Injection"): a text that
+begins with ``=``, ``+``, ``-``, ``@``, a tab or a carriage return is prefixed with a single quote, so a spreadsheet
+shows it as text instead of evaluating it (a curve id ``=HYPERLINK(...)`` comes back as ``'=HYPERLINK(...)``);
+every text cell is quoted, quotes inside doubled (RFC 4180). Numbers are never prefixed: ``-4.0`` stays a number.
 """
 
 from __future__ import annotations
 
-import csv
 import io
 from collections.abc import Iterable, Sequence
 from typing import Any
 
 CSV_MEDIA_TYPE = "text/csv"
 JSON_MEDIA_TYPE = "application/json"
+
+
+#: the first characters that make a spreadsheet evaluate a cell (OWASP, CSV Injection)
+FORMULA_PREFIXES = ("=", "+", "-", "@", "\t", "\r")
+
+
+class Text(str):
+    """A text cell: quoted in the CSV (numbers are not)."""
 
 
 def _cell(value: Any) -> Any:
@@ -24,7 +36,25 @@ def _cell(value: Any) -> Any:
         return "true" if value else "false"
     if isinstance(value, float):
         return repr(value)
+    if isinstance(value, str):
+        return Text("'" + value if value.startswith(FORMULA_PREFIXES) else value)
     return value
+
+
+class _Writer:
+    """csv.writer that quotes text cells only (QUOTE_STRINGS needs Python 3.12)."""
+
+    def __init__(self, buf: io.StringIO) -> None:
+        self.buf = buf
+
+    def writerow(self, cells: Sequence[Any]) -> None:
+        self.buf.write(",".join(_field(c) for c in cells) + "\r\n")
+
+
+def _field(cell: Any) -> str:
+    if isinstance(cell, Text):
+        return '"' + cell.replace('"', '""') + '"'
+    return str(cell)
 
 
 def target_columns(names: Sequence[str]) -> list[str]:
@@ -43,8 +73,8 @@ def flatten_targets(row: dict[str, Any]) -> dict[str, Any]:
 def to_csv(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
     """CSV text (UTF-8) with a header row; a column a row does not have is left empty."""
     buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\r\n")
-    writer.writerow(columns)
+    writer = _Writer(buf)
+    writer.writerow(columns)  # column names are identifiers: never formulas
     for row in rows:
         writer.writerow([_cell(row.get(c)) for c in columns])
     return buf.getvalue().encode()

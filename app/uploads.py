@@ -7,7 +7,8 @@ query::
       'http://127.0.0.1:8000/v1/alignments/assess/csv?vehicle=table16-btrain&rear_llt_limit=0.6'
 
 The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` (fields and bounds
-taken from the JSON request's own, so the two forms cannot drift); the body is read with a size bound, decoded,
+taken from the JSON request's own, so the two forms cannot drift); the body (bounded by the route's body limit,
+:mod:`app.bodylimit`) is decoded,
 and the equivalent JSON request (``{"vehicle": ..., "csv": "<the file>"}``) goes through the same service and
 cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``body`` and the row or element.
 """
@@ -22,10 +23,9 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
+from .bodylimit import body_limit
 from .problems import InvalidAlignment
 from .schemas.alignments import (
-    MAX_CSV_CHARS,
-    MAX_LANDXML_CHARS,
     MAX_VEHICLES,
     AlignmentRequest,
     LandXmlIn,
@@ -70,33 +70,6 @@ LandXmlUploadQuery = create_model(
     **{n: _field(LoadIn, n) for n in LOAD},
     **{n: _field(LandXmlIn, n) for n in LANDXML_DEFAULTS},
 )
-
-
-def _too_large(limit: int) -> RequestValidationError:
-    return RequestValidationError(
-        [
-            {
-                "type": "too_long",
-                "loc": ("body",),
-                "msg": f"the document exceeds {limit} bytes; split the alignment",
-                "input": None,
-            }
-        ]
-    )
-
-
-async def read_body(request: Request, limit: int) -> bytes:
-    """The body, refused as soon as it passes ``limit`` bytes (never read whole into memory first)."""
-    declared = request.headers.get("content-length")
-    if declared is not None and declared.isdigit() and int(declared) > limit:
-        raise _too_large(limit)
-    chunks, size = [], 0
-    async for chunk in request.stream():
-        size += len(chunk)
-        if size > limit:
-            raise _too_large(limit)
-        chunks.append(chunk)
-    return b"".join(chunks)
 
 
 def decode_csv(data: bytes) -> str:
@@ -147,23 +120,23 @@ def upload_request(query, **document: Any) -> AlignmentRequest:
 
 
 async def csv_upload(request: Request, query) -> AlignmentRequest:
-    text = decode_csv(await read_body(request, MAX_CSV_CHARS))
+    text = decode_csv(await request.body())  # bounded by the route's body limit
     if not text.strip():
         raise InvalidAlignment("the body is empty: send the CSV file", source="body", location=None, column=None)
     return upload_request(query, csv=text)
 
 
 async def landxml_upload(request: Request, query) -> AlignmentRequest:
-    text = decode_xml(await read_body(request, MAX_LANDXML_CHARS))
+    text = decode_xml(await request.body())  # bounded by the route's body limit
     if not text.strip():
         raise InvalidAlignment("the body is empty: send the LandXML file", source="body", location=None, column=None)
     defaults = {n: getattr(query, n) for n in LANDXML_DEFAULTS}
     return upload_request(query, landxml={"document": text, **defaults})
 
 
-def upload_body(media_type: str, example: str | None = None) -> dict[str, Any]:
-    """OpenAPI ``requestBody`` of an upload operation (the route reads the body itself)."""
-    content: dict[str, Any] = {"schema": {"type": "string"}}
+def upload_body(media_type: str, limit: int, example: str | None = None) -> dict[str, Any]:
+    """OpenAPI ``requestBody`` of an upload operation (the route reads the body itself), with its body limit."""
+    content: dict[str, Any] = {"schema": {"type": "string", "minLength": 1}}
     if example is not None:
         content["example"] = example
-    return {"requestBody": {"required": True, "content": {media_type: content}}}
+    return {"requestBody": {"required": True, "content": {media_type: content}}, **body_limit(limit)}

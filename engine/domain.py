@@ -55,6 +55,14 @@ MAX_SPEED_KMH = 200.0
 
 BOUNDS: dict[str, Bound] = {
     "bank_percent": Bound(-MAX_BANK_PERCENT, MAX_BANK_PERCENT, "%", "small-slope road geometry", error=InvalidRoad),
+    "design_superelevation_percent": Bound(
+        -4.0,
+        MAX_BANK_PERCENT,
+        "%",
+        "a design superelevation: no curve is designed with an adverse crossfall beyond twice the normal crown (-2 %),"
+        " and down to -4 % 0.01 e + f stays positive for every tabulated side friction (f >= 0.08)",
+        error=InvalidRoad,
+    ),
     "slope_percent": Bound(-MAX_SLOPE_PERCENT, MAX_SLOPE_PERCENT, "%", "small-slope road geometry", error=InvalidRoad),
     "trailer_angle_deg": Bound(
         -MAX_TRAILER_ANGLE_DEG, MAX_TRAILER_ANGLE_DEG, "deg", "a combination turning on a road curve", error=InvalidRoad

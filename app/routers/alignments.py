@@ -6,8 +6,17 @@ from typing import Annotated
 
 from fastapi import APIRouter, Query, Request, Response
 
+from ..bodylimit import body_limit
 from ..deps import CacheDep, SettingsDep
-from ..schemas.alignments import ALIGNMENT_CSV_EXAMPLE, ALIGNMENT_LANDXML_EXAMPLE, AlignmentRequest, AlignmentResult
+from ..schemas.alignments import (
+    ALIGNMENT_CSV_EXAMPLE,
+    ALIGNMENT_JSON_LIMIT,
+    ALIGNMENT_LANDXML_EXAMPLE,
+    CSV_UPLOAD_LIMIT,
+    LANDXML_UPLOAD_LIMIT,
+    AlignmentRequest,
+    AlignmentResult,
+)
 from ..service_alignments import compute_alignment
 from ..tables import wants_csv
 from ..uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload, upload_body
@@ -27,6 +36,7 @@ vehicle and curve)."""
     name="assess",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500),
+    openapi_extra=body_limit(ALIGNMENT_JSON_LIMIT),
     description=ASSESSMENT
     + """
 
@@ -43,7 +53,7 @@ async def assess(body: AlignmentRequest, request: Request, cache: CacheDep, sett
     name="assess_csv",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500),
-    openapi_extra=upload_body("text/csv", ALIGNMENT_CSV_EXAMPLE),
+    openapi_extra=upload_body("text/csv", CSV_UPLOAD_LIMIT, ALIGNMENT_CSV_EXAMPLE),
     description=ASSESSMENT
     + """
 
@@ -65,7 +75,7 @@ async def assess_csv(
     name="assess_landxml",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500),
-    openapi_extra=upload_body("application/xml", ALIGNMENT_LANDXML_EXAMPLE),
+    openapi_extra=upload_body("application/xml", LANDXML_UPLOAD_LIMIT, ALIGNMENT_LANDXML_EXAMPLE),
     description=ASSESSMENT
     + """
 

@@ -59,5 +59,6 @@ async def cg_path(body: PlotRequest, cache: CacheDep, settings: SettingsDep) -> 
 async def min_radius(body: MinRadiusPlotRequest, cache: CacheDep, settings: SettingsDep) -> Response:
     """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): AASHTO/DNIT Eq. 9.2
     with Table 21's side friction against rollover Eq. 9.3 with the vehicle's SRT on that bank and slope, with a
-    marker where they cross (below or above it rollover governs)."""
+    marker where they cross (below or above it rollover governs). `speed_max_kmh` must be above `speed_min_kmh`
+    (a rule JSON Schema cannot state: a request breaking it is a 422 naming `speed_max_kmh`)."""
     return computed_response(await plot_min_radius(cache, body, settings))

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Request, Response
 
+from ..bodylimit import body_limit
 from ..deps import CacheDep, SettingsDep
 from ..schemas.limits import LimitsRequest, LimitsResult
 from ..schemas.srt import SrtRequest, SrtResult
-from ..schemas.sweep import SweepRequest, SweepResult
+from ..schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
 from ..service import compute_srt
 from ..service_tools import compute_limits, compute_sweep
 from ..tables import wants_csv
@@ -35,7 +36,13 @@ async def limits(body: LimitsRequest, cache: CacheDep, settings: SettingsDep) ->
     return computed_response(await compute_limits(cache, body, settings))
 
 
-@router.post("/srt/sweep", name="sweep", response_model=SweepResult, responses=table_responses(400, 404, 422, 500))
+@router.post(
+    "/srt/sweep",
+    name="sweep",
+    response_model=SweepResult,
+    responses=table_responses(400, 404, 422, 500),
+    openapi_extra=body_limit(SWEEP_BODY_LIMIT),
+)
 async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The SRT over the Cartesian product of up to eight axes (bank, slope, trailer angle, d1, d2, d3,
     overweight, rear LLT limit; at most 20,000 cases), like the thesis's Tables 17 and 19, in one call; JSON, or

@@ -26,6 +26,11 @@ MAX_VEHICLES = 10
 MAX_ROWS = 100_000
 MAX_CSV_CHARS = 16_000_000
 MAX_LANDXML_CHARS = 64_000_000
+#: body limits [bytes]: the raw CSV and LandXML uploads as their documents' bounds (UTF-8 text of that many
+#: characters); the JSON request may carry a LandXML document, JSON-escaped (every quote doubled in the worst case)
+CSV_UPLOAD_LIMIT = 16 * 2**20
+LANDXML_UPLOAD_LIMIT = 64 * 2**20
+ALIGNMENT_JSON_LIMIT = 128 * 2**20
 
 CurveId = Annotated[str, Field(min_length=1, max_length=CURVE_ID_MAX_CHARS, pattern=CURVE_ID_PATTERN)]
 _E = "Superelevation of the curve: the bank of its SRT and the e of the side-friction speed."
@@ -144,8 +149,8 @@ class AlignmentRequest(SrtOptions, SrtTargets):
         }
     )
 
-    vehicle: VehicleRef | None = Field(None, description=VEHICLE_DESCRIPTION + " Give `vehicle` or `vehicles`.")
-    vehicles: list[VehicleRef] | None = Field(
+    vehicle: VehicleRef = Field(None, description=VEHICLE_DESCRIPTION + " Give `vehicle` or `vehicles`.")
+    vehicles: list[VehicleRef] = Field(
         None,
         min_length=1,
         max_length=MAX_VEHICLES,
@@ -165,13 +170,13 @@ class AlignmentRequest(SrtOptions, SrtTargets):
             symbol="f range (Table 21)",
         ),
     )
-    curves: list[CurveIn] | None = Field(
+    curves: list[CurveIn] = Field(
         None,
         min_length=1,
         max_length=MAX_CURVES,
         description=describe(f"The curves (1-{MAX_CURVES}).", unit="per field", symbol="R, e, slope"),
     )
-    csv: str | None = Field(
+    csv: str = Field(
         None,
         min_length=1,
         max_length=MAX_CSV_CHARS,
@@ -183,7 +188,7 @@ class AlignmentRequest(SrtOptions, SrtTargets):
             symbol="R, e, slope, V",
         ),
     )
-    landxml: LandXmlIn | None = Field(
+    landxml: LandXmlIn = Field(
         None,
         description=describe(
             "The curves of a LandXML 1.2 alignment, with the superelevation and grade to use.",

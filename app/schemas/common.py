@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
 from pydantic_core import InitErrorDetails, PydanticCustomError, PydanticUndefined
 
 from engine.domain import BOUNDS
@@ -24,6 +24,22 @@ class OutputModel(BaseModel):
     """Base of response bodies: a non-finite number from the engine is an error, never a JSON null."""
 
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+
+def _integral(value: Any) -> Any:
+    """JSON Schema's ``integer`` is any number with a zero fractional part: 41.0 is 41 (41.5 and "41" are not)."""
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    return value
+
+
+def json_int(**constraints: Any) -> Any:
+    """An integer request field as JSON Schema defines one (strict otherwise: no strings, no fractions), with its
+    constraints (``ge``, ``le``, ``multiple_of``) on the integer itself, so the published schema states them."""
+    return Annotated[int, Field(**constraints), BeforeValidator(_integral)]
+
+
+JsonInt = json_int()
 
 
 def describe(text: str, *, unit: str, symbol: str | None = None) -> str:

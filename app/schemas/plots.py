@@ -7,11 +7,14 @@ from typing import Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from engine.domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
+from engine.models import MODELS
 from engine.road import FRICTION_BOUNDS, TABLE21_SPEEDS_KMH
 
-from .common import EXAMPLE_PRESET, bounded, describe, shape_error
+from .common import EXAMPLE_PRESET, bounded, describe, json_int, shape_error
 from .srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
 
+#: the models with curves against ay/g
+CurveModelId = Literal[tuple(m.id for m in MODELS.values() if m.curves)]  # type: ignore[valid-type]
 V_MIN, V_MAX = float(TABLE21_SPEEDS_KMH[0]), float(TABLE21_SPEEDS_KMH[-1])
 MAX_SPEED_POINTS = 181
 
@@ -22,10 +25,16 @@ class PlotRequest(SrtInputs):
 
     model_config = ConfigDict(json_schema_extra={"examples": [{**SRT_EXAMPLE, "curve_points": 41}]})
 
-    curve_points: int = Field(
+    model: CurveModelId = Field(  # type: ignore[assignment]
+        "3d",
+        description=describe(
+            "A model with curves against ay/g: `3d` (default) or `2d` (the closed forms have none).",
+            unit="-",
+            symbol="Chs. 5, 6 models",
+        ),
+    )
+    curve_points: json_int(ge=2, le=MAX_CURVE_POINTS) = Field(  # type: ignore[valid-type]
         DEFAULT_CURVE_POINTS,
-        ge=2,
-        le=MAX_CURVE_POINTS,
         description=describe("Points of each curve, from ay = 0 to the limit.", unit="count"),
     )
 
@@ -58,7 +67,7 @@ class MinRadiusPlotRequest(SrtOptions):
 
     vehicle: VehicleRef = Field(description=VEHICLE_DESCRIPTION)
     superelevation_percent: float = bounded(
-        "bank_percent",
+        "design_superelevation_percent",
         text="Superelevation of the curves: the e of Eq. 9.2 and the bank of the SRT of Eq. 9.3.",
         symbol="e (Eq. 9.2)",
     )
@@ -77,10 +86,8 @@ class MinRadiusPlotRequest(SrtOptions):
         le=V_MAX,
         description=describe("Highest design speed plotted; above speed_min_kmh.", unit="km/h", symbol="V"),
     )
-    points: int = Field(
+    points: json_int(ge=2, le=MAX_SPEED_POINTS) = Field(  # type: ignore[valid-type]
         19,
-        ge=2,
-        le=MAX_SPEED_POINTS,
         description=describe("Design speeds plotted, evenly spaced (19: every 5 km/h over 30-120).", unit="count"),
     )
     side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]

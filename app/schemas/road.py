@@ -9,14 +9,19 @@ from pydantic import ConfigDict, Field, model_validator
 from engine.road import FRICTION_BOUNDS
 
 from .common import EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
-from .srt import VEHICLE_DESCRIPTION, SrtInputs, SrtResult, SrtTargets, VehicleRef
+from .srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
 #: either a given SRT (and none of the SRT request fields) or a vehicle (the SRT is computed), never both
+#: (inside allOf, where client generators keep the object model and still publish the rule)
 SRT_OR_VEHICLE_SCHEMA = {
-    "oneOf": [
-        {"required": ["srt"], "not": {"anyOf": [{"required": [f]} for f in SRT_FIELDS]}},
-        {"required": ["vehicle"], "not": {"required": ["srt"]}},
+    "allOf": [
+        {
+            "oneOf": [
+                {"required": ["srt"], "not": {"anyOf": [{"required": [f]} for f in SRT_FIELDS]}},
+                {"required": ["vehicle"], "not": {"required": ["srt"]}},
+            ]
+        }
     ]
 }
 
@@ -67,8 +72,8 @@ class CurveSpeedRequest(SrtInputs, SrtTargets):
     )
 
     radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")
-    srt: float | None = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
-    vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+    srt: float = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
+    vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
 
     @model_validator(mode="after")
     def _srt_or_vehicle(self) -> CurveSpeedRequest:
@@ -93,7 +98,9 @@ class MinRadiusRequest(SrtInputs, SrtTargets):
 
     design_speed_kmh: float = bounded("speed_kmh", text="Design speed.", symbol="V")
     superelevation_percent: float = bounded(
-        "bank_percent", text="Superelevation of the curve; also the bank of the computed SRT.", symbol="e (Eq. 9.2)"
+        "design_superelevation_percent",
+        text="Superelevation of the curve; also the bank of the computed SRT.",
+        symbol="e (Eq. 9.2)",
     )
     side_friction: float | None = bounded(
         "side_friction",
@@ -112,21 +119,19 @@ class MinRadiusRequest(SrtInputs, SrtTargets):
             symbol="f range (Table 21)",
         ),
     )
-    srt: float | None = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
-    vehicle: VehicleRef | None = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+    srt: float = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
+    vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+
+    road: SlopeIn = Field(
+        default_factory=SlopeIn,
+        description=describe(
+            "The grade of the SRT's case (its bank is `superelevation_percent`).", unit="%", symbol="slope"
+        ),
+    )
 
     @model_validator(mode="after")
-    def _srt_source_and_bank(self) -> MinRadiusRequest:
+    def _srt_source(self) -> MinRadiusRequest:
         check_srt_source(self, "MinRadiusRequest")
-        if "bank_percent" in self.road.model_fields_set and self.road.bank_percent != self.superelevation_percent:
-            raise shape_error(
-                "MinRadiusRequest",
-                "road.bank_percent",
-                f"road.bank_percent ({self.road.bank_percent}) differs from superelevation_percent "
-                f"({self.superelevation_percent}); the SRT is computed on the curve's superelevation (leave "
-                "road.bank_percent out, or equal to it)",
-                self.road.bank_percent,
-            )
         return self
 
 

@@ -9,7 +9,7 @@ from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, W
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe
+from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
 from .vehicles import VehicleRecord
 
 # "3d", "2d", "rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin"
@@ -50,6 +50,17 @@ class RoadIn(InputModel):
         text="Superelevation (bank) e = 100 tan(phi), positive toward the inside of the curve.",
         symbol="e, phi (bank angle)",
     )
+    slope_percent: float = bounded(
+        "slope_percent",
+        0.0,
+        text="Longitudinal grade, positive uphill in the direction of travel, negative downhill.",
+        symbol="slope (Table 17 columns; Px = W sin of the slope angle, Eq. 4.24)",
+    )
+
+
+class SlopeIn(InputModel):
+    """The road's grade at the curve (where the bank is given elsewhere, e.g. as the superelevation)."""
+
     slope_percent: float = bounded(
         "slope_percent",
         0.0,
@@ -188,10 +199,8 @@ class SrtRequest(SrtInputs, SrtTargets):
             symbol="Figs. 92-97",
         ),
     )
-    curve_points: int = Field(
+    curve_points: json_int(ge=2, le=MAX_CURVE_POINTS) = Field(  # type: ignore[valid-type]
         DEFAULT_CURVE_POINTS,
-        ge=2,
-        le=MAX_CURVE_POINTS,
         description=describe("Number of points of the curves (with include_curves).", unit="count", symbol="-"),
     )
 

@@ -14,6 +14,8 @@ from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 
 MAX_AXIS_VALUES = 200
 MAX_CASES = 20_000
+#: 8 axes x 200 values of up to ~25 characters, with the base case: 256 KiB is ample [bytes]
+SWEEP_BODY_LIMIT = 256 * 1024
 
 #: axis -> (unit, thesis symbol, text); the bounds are those of the same field of the SRT request
 AXES: dict[str, tuple[str, str, str]] = {

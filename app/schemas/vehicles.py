@@ -8,26 +8,26 @@ nothing, roll stiffness above W l12, ... and answers 422 naming the field).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
 from pydantic import Field, create_model
 
 from engine.vehicles import FIELD_DOCS, FieldDoc
 
-from .common import InputModel, OutputModel, describe
+from .common import InputModel, OutputModel, describe, json_int
 
 #: preset metadata that GET /v1/vehicles/{id} adds to a record (accepted and ignored in a posted record)
 METADATA_FIELDS = ("id", "title", "source", "models")
 
 
-def _type(doc: FieldDoc, required: bool) -> Any:
-    base = int if doc.integer else float
+def _type(doc: FieldDoc, required: bool, bounded: bool = True) -> Any:
+    """The field's type, its range inside it (so an optional field's bounds apply to the number, not the null)."""
+    base: Any = int if doc.integer else float
+    if bounded:
+        low = {"gt": doc.minimum} if doc.exclusive_minimum else {"ge": doc.minimum}
+        bounds = {**low, "le": doc.maximum, **({"multiple_of": 2} if doc.even else {})}
+        base = json_int(**bounds) if doc.integer else Annotated[float, Field(**bounds)]
     return base if required else base | None
-
-
-def _bounds(doc: FieldDoc) -> dict[str, Any]:
-    low = {"gt": doc.minimum} if doc.exclusive_minimum else {"ge": doc.minimum}
-    return {**low, "le": doc.maximum}
 
 
 def _text(doc: FieldDoc, extra: str = "") -> str:
@@ -36,10 +36,8 @@ def _text(doc: FieldDoc, extra: str = "") -> str:
 
 def _record_field(name: str, doc: FieldDoc) -> tuple[Any, Any]:
     if doc.required:
-        return _type(doc, True), Field(description=_text(doc), **_bounds(doc))
-    return _type(doc, False), Field(
-        None, description=_text(doc, " Null when the table does not give it."), **_bounds(doc)
-    )
+        return _type(doc, True), Field(description=_text(doc))
+    return _type(doc, False), Field(None, description=_text(doc, " Null when the table does not give it."))
 
 
 _IGNORED = describe("Preset metadata from GET /v1/vehicles/{id}; accepted and ignored.", unit="-")
@@ -82,7 +80,7 @@ VehiclePreset = create_model(
     __doc__=_PresetBase.__doc__,
     **{
         name: (
-            _type(doc, doc.required),
+            _type(doc, doc.required, bounded=False),
             Field(description=describe(doc.description, unit=doc.unit, symbol=doc.symbol)),
         )
         for name, doc in FIELD_DOCS.items()

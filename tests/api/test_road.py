@@ -168,13 +168,18 @@ def test_min_radius_computes_the_srt_on_the_superelevation(shared_client):
     assert out["rollover_min_radius_m"] == pytest.approx(3600 / (127 * banked), rel=1e-12)
 
 
-def test_min_radius_refuses_a_bank_that_differs_from_the_superelevation(shared_client):
-    body = {"design_speed_kmh": 60, "superelevation_percent": 8, "vehicle": BTRAIN, "road": {"bank_percent": 4}}
+def test_min_radius_takes_no_bank_besides_the_superelevation(shared_client):
+    # the SRT's bank is the superelevation: the schema's road has only the slope (a bank is refused by the spec)
+    body = {"design_speed_kmh": 60, "superelevation_percent": 8, "vehicle": BTRAIN, "road": {"bank_percent": 8}}
     p = post(shared_client, "/v1/min-radius", body, 422)
-    assert p["errors"][0]["field"] == "road.bank_percent"
-    # the same bank (or none) is fine, and a slope is taken as given
-    body["road"] = {"bank_percent": 8, "slope_percent": -4}
-    post(shared_client, "/v1/min-radius", body)
+    assert p["errors"][0]["field"] == "road.bank_percent" and "Extra inputs" in p["errors"][0]["message"]
+    road = shared_client.get("/openapi.json").json()["components"]["schemas"]["SlopeIn"]
+    assert set(road["properties"]) == {"slope_percent"} and road["additionalProperties"] is False
+    # a slope is taken as given: the SRT is the one on the 8 % bank with that grade
+    body["road"] = {"slope_percent": -4}
+    out = post(shared_client, "/v1/min-radius", body)
+    srt = post(shared_client, "/v1/srt", {"vehicle": BTRAIN, "road": {"bank_percent": 8, "slope_percent": -4}})
+    assert out["srt"] == srt["srt"]
 
 
 def test_min_radius_with_an_unknown_preset_is_a_404(shared_client):

@@ -43,14 +43,29 @@ def test_rill_tends_to_rigid_with_stiff_tires_and_suspension():
     assert classic.rill(1.86, 2.05, 1.346, 1e12, 1e12, 250) == pytest.approx(0.93 / 2.05, rel=1e-9)
 
 
-def test_chang_satisfies_its_own_equation_and_reduces_to_rigid():
+# the B-train of Table 16 in the symbols of Ch. 2, by hand: rear group 3 axles x 1800 kN/m per side, 6 tires x
+# 840 kN/m per side, W_rear = 355.22 x 3.0 / 4.26 (Eq. 4.27 at rest), h0 = lr + ls, h = h0 + l12
+W_REAR = 355.22 * 3.0 / 4.26
+K_THETA_R = 3 * 1800 * 0.95**2 / 2  # Eq. 2.11
+K_T = 3 * 2 * 840.0
+H0, H = 0.499 + 0.205, 0.499 + 0.205 + 1.356
+
+
+def test_chang_by_hand_for_the_btrain_on_an_8_percent_bank():
+    # Eq. 2.22 with the suspension roll of Eqs. 2.15, 2.17: theta1 = W/(t kT), theta = A (ay + theta1),
+    # A = W l12 / (k_theta - W l12); SRT = t/2h + (1 - h0/h)(phi - theta) is linear in the SRT
+    phi = math.atan(0.08)
+    a = W_REAR * 1.356 / (K_THETA_R - W_REAR * 1.356)
+    theta1 = W_REAR / (1.86 * K_T)
+    c = 1 - H0 / H
+    expected = (0.93 / H + c * (phi - a * theta1)) / (1 + c * a)
     r = rollover_threshold(Case(BTRAIN, "chang", road=Road(bank_percent=8)))
-    p = r.parameters
-    assert r.srt == pytest.approx(classic.chang(p["t"], p["h"], p["h0"], p["phi"], p["theta"]), rel=1e-12)
-    # theta obeys Eq. 2.17 at the SRT it produces
-    _th1, th2 = classic.rill_roll_angles(r.srt, p["t"], p["l12"], p["k_theta"], p["kT"], p["W"])
-    assert p["theta"] == pytest.approx(th2, rel=1e-12)
-    assert classic.chang(1.86, 2.06, 0.704, 0.0, 0.0) == pytest.approx(0.93 / 2.06)
+    assert r.srt == pytest.approx(expected, rel=1e-12)
+    assert math.radians(r.roll_angle_deg) == pytest.approx(a * (expected + theta1), rel=1e-12)
+    # a bank raises it, less than the rigid model's + e (the body rolls out of the bank)
+    flat = rollover_threshold(Case(BTRAIN, "chang")).srt
+    assert flat < r.srt < flat + 0.08
+    assert classic.chang(1.86, 2.06, 0.704, 0.0, 0.0) == pytest.approx(0.93 / 2.06)  # rigid suspension: t/2h
 
 
 def test_gillespie_by_hand_for_the_btrain():
@@ -60,18 +75,33 @@ def test_gillespie_by_hand_for_the_btrain():
     assert rollover_threshold(Case(BTRAIN, "gillespie")).srt == pytest.approx(expected, rel=1e-12)
 
 
-def test_navin_satisfies_eq_2_30_and_its_rigid_flat_limit():
-    r = rollover_threshold(Case(BTRAIN, "navin", road=Road(bank_percent=4)))
-    p = r.parameters
-    assert r.srt == pytest.approx(
-        classic.navin(p["t"], p["h"], p["h0"], p["h5"], p["lre"], p["L"], p["phi"], p["theta"]), rel=1e-12
+def test_navin_by_hand_for_the_btrain_on_a_4_percent_bank():
+    # Eq. 2.30 with theta = B SRT (Eq. 2.27): lre = L - a = 1.26 m, L = 4.26 m, h5 = lr + ls + lf = 0.804 m (kingpin)
+    k_theta_f = 2 * 1800 * 0.95**2 / 2
+    m = 355.22 * (H - H0)
+    b = m / (k_theta_f + K_THETA_R - m)
+    phi, r = math.atan(0.04), 1.26 / 4.26
+    n0 = 0.93 * (1 - r) + H * phi - 0.804 * r * phi
+    d0 = 1.86 * phi / 2 * (r - 1) + H - 0.804 * r
+    expected = n0 / (d0 + (H - H0) * b)
+    res = rollover_threshold(Case(BTRAIN, "navin", road=Road(bank_percent=4)))
+    assert res.srt == pytest.approx(expected, rel=1e-12)
+    assert res.parameters["h5"] == pytest.approx(0.804)
+    # rigid and flat: (t/2)(1 - lre/L) / (h - h5 lre/L), the moment balance of Eq. 2.29 about the roll axis
+    assert classic.navin(1.86, 2.06, 0.704, 0.804, 1.26, 4.26, 0.0, 0.0) == pytest.approx(
+        0.93 * (1 - r) / (2.06 - 0.804 * r)
     )
-    assert p["h5"] == pytest.approx(0.499 + 0.205 + 0.1)  # kingpin height
-    # rigid, flat: (t/2)(1 - lre/L) / (h - h5 lre/L)
-    lre, big_l = 1.26, 4.26
-    assert classic.navin(1.86, 2.06, 0.704, 0.804, lre, big_l, 0.0, 0.0) == pytest.approx(
-        0.93 * (1 - lre / big_l) / (2.06 - 0.804 * lre / big_l)
-    )
+
+
+def test_navin_refuses_a_cg_below_its_roll_axis():
+    # a CG so low (l12 0.03 m) under a kingpin raised 1 m that it lies below the axis from the fifth wheel to the
+    # rear outer tire: Eq. 2.29's moment arm h - h5 lre/L is negative and the formula would give SRT < 0
+    from engine.errors import InvalidInput
+
+    low = BTRAIN.replace(cg_height_above_chassis_m=0.03, fifth_wheel_height_m=1.0)
+    with pytest.raises(InvalidInput, match="below Navin's roll axis") as exc:
+        rollover_threshold(Case(low.replace(wheelbase_m=4.26, front_axle_to_cg_m=0.5), "navin"))
+    assert exc.value.field == "cg_height_above_chassis_m"
 
 
 # the closed forms of Ch. 2 and the equation the thesis gives each (Eqs. 2.6-2.30), and its own two models

@@ -68,21 +68,28 @@ def test_compliance_laws():
     # Eq. 4.6: the leg rotates against the moment its base applies to it
     assert compliance.torsion_angle(-20.0, 4000.0) == pytest.approx(0.005)
     assert compliance.torsion_angle(-20.0, math.inf) == 0.0
-    # Table 2: multi-leaf spring rate 8 E n b t^3 / (3 l^3) -- 10 leaves 90 x 12 mm, 1.2 m, 206 GPa
-    assert compliance.leaf_spring_rate(1.2, 10, 0.09, 0.012, 206e6) == pytest.approx(
-        8 * 206e6 * 10 * 0.09 * 0.012**3 / (3 * 1.2**3)
-    )
+    # Table 2: a graduated multi-leaf spring is a beam of uniform strength, which deflects 3/2 as much as the
+    # prismatic beam of the same section (Shigley): its rate is 2/3 of 48 E I / l^3 for the stack loaded at mid-span
+    e, n, b, t, span = 206e6, 10, 0.09, 0.012, 1.2
+    prismatic = 48 * e * (n * b * t**3 / 12) / span**3
+    assert compliance.leaf_spring_rate(span, n, b, t, e) == pytest.approx(2 / 3 * prismatic)
     # chosen leaf-spring torsion coefficient: 10 x the two springs' vertical rate, at the spring top
     assert compliance.shear_torsion_coefficient(5400.0, 0.205) == pytest.approx(10 * 2 * 5400 * 0.205**2)
 
 
 def test_chassis_torsion_relations():
     # Eq. 4.20/4.21: equal twist of the CG section from both ends of a shaft built in at both ends
-    tr, a, big_l, x = 100.0, 3.0, 4.26, 1.8
-    tf = compliance.chassis_torque_split(tr, a, big_l, x)
-    gj_f = 5000.0
-    assert tf * a / gj_f == pytest.approx(tr * (big_l - a) / (x * gj_f))
-    tfx, tfy = compliance.chassis_torque_components(tf, math.radians(30))  # Eqs. 4.22-4.23
-    assert math.hypot(tfx, tfy) == pytest.approx(tf)
+    # a uniform shaft (x = Jr/Jf = 1) built in at both ends with a torque T at a from the front end: the reactions
+    # are T (L - a)/L at the front and T a/L at the rear (mechanics of materials, statically indeterminate shaft)
+    torque, a, big_l = 100.0, 3.0, 4.26
+    tr = torque * a / big_l
+    assert compliance.chassis_torque_split(tr, a, big_l, 1.0) == pytest.approx(torque * (big_l - a) / big_l)
+    # a rear section twice as stiff (x = 2) takes twice the share it would
+    assert compliance.chassis_torque_split(tr, a, big_l, 2.0) == pytest.approx(torque * (big_l - a) / big_l / 2)
+    # Eqs. 4.22-4.23: straight, the front torque is all roll; at right angles all pitch; at 30 deg, tan 30 of it
+    assert compliance.chassis_torque_components(10.0, 0.0) == pytest.approx((10.0, 0.0))
+    assert compliance.chassis_torque_components(10.0, math.pi / 2) == pytest.approx((0.0, 10.0), abs=1e-12)
+    tfx, tfy = compliance.chassis_torque_components(10.0, math.radians(30))
+    assert tfy / tfx == pytest.approx(0.5773502692)
     assert compliance.chassis_twist(-100.0, 1.26, None) == 0.0
     assert compliance.chassis_twist(-100.0, 1.26, 50000.0) == pytest.approx(100 * 1.26 / 50000)

@@ -7,7 +7,9 @@ Side-friction factor (Table 21)
 -------------------------------
 Table 21 (AASHTO 2003, DNER 1999, DNIT 2009) gives a *range* of design side-friction factors per design
 speed. We take the **low end** by default: it is the conservative choice for a minimum radius (smaller f,
-larger radius), and for 50-120 km/h it coincides with AASHTO's maximum side-friction factors for design.
+larger radius). It is not AASHTO's maximum side-friction factor for design: the current Green Book (2018,
+Table 3-7) gives 0.19/0.17/0.15 at 50/60/70 km/h where the low end reads 0.16/0.15/0.14 (the named
+standards, with their sources, are in :mod:`engine.standards`).
 ``bound="high"`` or ``"mid"`` select the upper end or the middle of the range. Between tabulated speeds
 the factor is interpolated linearly in speed; outside 30-120 km/h the table says nothing and the caller
 must give ``side_friction`` explicitly (:class:`InvalidRoad` otherwise).
@@ -50,29 +52,13 @@ def max_curve_speed_kmh(srt_g, radius_m):
 def side_friction_factor(speed_kmh, bound: str = "low"):
     """Design side-friction factor f from Table 21, interpolated linearly in speed [-].
 
-    Raises :class:`InvalidRoad` for a speed outside 30-120 km/h or an unknown ``bound``.
+    The ``thesis-table21`` standard of :mod:`engine.standards` at ``bound``. Raises :class:`InvalidRoad` for
+    a speed outside 30-120 km/h or an unknown ``bound``.
     """
-    if bound not in FRICTION_BOUNDS:
-        raise InvalidRoad(
-            f"side-friction bound must be one of {FRICTION_BOUNDS}, got {bound!r}",
-            field="side_friction_bound",
-            value=bound,
-        )
-    v = np.asarray(speed_kmh, dtype=float)
-    lo, hi = TABLE21_SPEEDS_KMH[0], TABLE21_SPEEDS_KMH[-1]
-    if np.any(~np.isfinite(v)) or np.any(v < lo) or np.any(v > hi):
-        raise InvalidRoad(
-            f"Table 21 covers design speeds {lo:g}-{hi:g} km/h; give side_friction explicitly outside it",
-            field="design_speed_kmh",
-            value=float(np.min(v)) if v.size else None,
-        )
-    f_low = np.interp(v, TABLE21_SPEEDS_KMH, TABLE21_F_LOW)
-    f_high = np.interp(v, TABLE21_SPEEDS_KMH, TABLE21_F_HIGH)
-    if bound == "low":
-        return f_low
-    if bound == "high":
-        return f_high
-    return 0.5 * (f_low + f_high)
+    from .standards import get_standard
+    from .standards import side_friction_factor as standard_side_friction_factor
+
+    return standard_side_friction_factor(get_standard("thesis-table21", bound), speed_kmh)
 
 
 def aashto_min_radius_m(speed_kmh, superelevation_percent, side_friction):
@@ -131,26 +117,10 @@ def side_friction_speed_kmh(radius_m, superelevation_percent, bound: str = "low"
     f depends on V through Table 21, so the equation is implicit; the right-hand side falls as V rises,
     so there is one root. It is found by bisection on the table's range and clamped to it: a curve that
     needs V < 30 km/h uses f(30) and one above 120 km/h uses f(120) (the table says nothing outside).
-    Works elementwise on arrays.
+    Works elementwise on arrays. The ``thesis-table21`` case of
+    :func:`engine.standards.side_friction_speed_kmh`, which also reports the clamping.
     """
-    r = np.atleast_1d(np.asarray(radius_m, dtype=float))
-    e = np.broadcast_to(np.asarray(superelevation_percent, dtype=float), r.shape)
-    lo = np.full(r.shape, TABLE21_SPEEDS_KMH[0])
-    hi = np.full(r.shape, TABLE21_SPEEDS_KMH[-1])
+    from .standards import get_standard
+    from .standards import side_friction_speed_kmh as standard_side_friction_speed_kmh
 
-    def excess(v):  # positive while V is below the speed the curve allows
-        return np.sqrt(np.maximum(KMH2_PER_M_G * r * (0.01 * e + side_friction_factor(v, bound)), 0.0)) - v
-
-    below = excess(lo) <= 0  # even at 30 km/h the curve is too tight
-    above = excess(hi) >= 0  # faster than 120 km/h with f(120)
-    for _ in range(60):  # bisection to ~1e-16 of the 90 km/h bracket
-        mid = 0.5 * (lo + hi)
-        pos = excess(mid) > 0
-        lo = np.where(pos, mid, lo)
-        hi = np.where(pos, hi, mid)
-    v = 0.5 * (lo + hi)
-    f_lo = side_friction_factor(np.full(r.shape, TABLE21_SPEEDS_KMH[0]), bound)
-    f_hi = side_friction_factor(np.full(r.shape, TABLE21_SPEEDS_KMH[-1]), bound)
-    v = np.where(below, np.sqrt(np.maximum(KMH2_PER_M_G * r * (0.01 * e + f_lo), 0.0)), v)
-    v = np.where(above, np.sqrt(np.maximum(KMH2_PER_M_G * r * (0.01 * e + f_hi), 0.0)), v)
-    return v if np.ndim(radius_m) else float(v[0])
+    return standard_side_friction_speed_kmh(get_standard("thesis-table21", bound), radius_m, superelevation_percent)

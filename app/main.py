@@ -17,7 +17,9 @@ from engine import ENGINE_VERSION
 
 from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
 from .cache import make_cache
+from .fastpath import FastPathMiddleware
 from .logs import configure_logging, get_logger
+from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, health, models, plots, road, srt, vehicles
 from .settings import Settings, get_settings
@@ -82,6 +84,15 @@ def _problem_openapi(app: FastAPI) -> dict[str, Any]:
     return schema
 
 
+def computed_paths(spec: dict[str, Any]) -> set[str]:
+    """The POST operations whose answer carries the cache's ETag (the ones the fast path can answer)."""
+    return {
+        path
+        for path, item in spec.get("paths", {}).items()
+        if "ETag" in item.get("post", {}).get("responses", {}).get("200", {}).get("headers", {})
+    }
+
+
 def create_app(settings: Settings | None = None) -> FastAPI:
     """Build the app with ``settings`` (tests), or the settings read from the environment."""
 
@@ -89,7 +100,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     async def lifespan(app: FastAPI):
         app.state.cache = cache = make_cache(app.state.settings)
         log = get_logger("rollover.app")
-        log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend)
+        nodelay = set_nodelay_on_listening_sockets()  # see app.netopts: --workers would otherwise wait ~40 ms
+        log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend, tcp_nodelay_sockets=nodelay)
         if cache.redis is not None:
             await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
         try:
@@ -117,6 +129,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for module in (vehicles, srt, road, alignments, plots, models, health):
         app.include_router(module.router)
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
+    # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
+    app.add_middleware(FastPathMiddleware, paths=lambda: computed_paths(app.openapi()), cache=lambda: app.state.cache)
     app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)
     app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]
     return app

@@ -28,3 +28,7 @@ CACHE_REJECTED = Counter(
     "rollover_cache_rejected_total",
     "Shared-cache entries refused as not ours or not whole (bad envelope or HMAC, wrong type); recomputed.",
 )
+FAST_PATH_HITS = Counter(
+    "rollover_fast_path_hits_total",
+    "Computed requests answered from the in-process cache by their raw bytes, before routing (not in http_*).",
+)

@@ -101,14 +101,16 @@ def srt_key(
 
 async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = None) -> RolloverResult:
     """The engine's result for ``case`` (with its curves at ``curve_points`` points when given), memoised per
-    process by the case's key; the engine runs in a worker thread."""
+    process by the case's key. A single threshold is solved on the event loop (about a millisecond: cheaper than the
+    hop to a worker thread); the curves, tens of solves, in a worker thread."""
     key = cache_key("engine-result", {**case.to_dict(), "curve_points": curve_points})
     result = cache.objects.get(key)
     if result is None:
         started = time.perf_counter()
-        result = await run_in_threadpool(
-            rollover_threshold, case, include_curves=curve_points is not None, curve_points=curve_points or 2
-        )
+        if curve_points is None:  # one threshold: about a millisecond, less than the hop to a worker thread costs
+            result = rollover_threshold(case)
+        else:  # the curves are tens of solves: not on the event loop
+            result = await run_in_threadpool(rollover_threshold, case, include_curves=True, curve_points=curve_points)
         SOLVE_SECONDS.labels("srt", case.model).observe(time.perf_counter() - started)
         cache.objects[key] = result
     return result

@@ -64,6 +64,7 @@ lateral load transfer reaching ``llt_limit`` (Table 17 uses 0.6).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 from typing import NamedTuple
@@ -155,8 +156,13 @@ class TrailerModel:
         return 0.5 * self.front.axle_width
 
 
+@functools.lru_cache(maxsize=256)
 def build_model(vehicle: Vehicle, stage: str = "full", closure: str = "chassis-constant", forces=None) -> TrailerModel:
     """Map a (validated) vehicle record onto the 3D mechanism (see :mod:`engine.vehicles` for the sums).
+
+    Memoised (bounded LRU): the model of a vehicle and stage, with its calibrated chassis constant (two solves), is
+    a pure function of frozen inputs and is immutable, so a vehicle solved again (another road, load or curve of an
+    alignment) reuses it. The memo changes no result, only how often the calibration runs.
 
     Parameters
     ----------

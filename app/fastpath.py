@@ -1,0 +1,154 @@
+"""The cache-hit fast path: an answer already known for the same request bytes is sent before any model is built.
+
+A pure ASGI middleware in front of FastAPI, for the computed POST operations. It keys the *raw* request (path,
+query string, content type, the negotiated representation, body bytes) to the canonical cache key (the ``ETag``)
+that the full path derived from it last time. When that key's body is still in the in-process cache, the answer
+goes out at once: no routing, no JSON parsing, no validation, no thread hop. Otherwise the request goes through the
+app as usual and, if its answer carries an ``ETag``, the raw key is remembered for next time.
+
+A request whose answer does not depend on its bytes alone (it names a saved vehicle, which its owner may edit) is
+marked not reusable by the service (``request.state.raw_reusable = False``) and is never answered from here: its
+canonical key is derived again each time, from the record as it is now.
+
+``If-None-Match`` with the current ``ETag`` is answered ``304 Not Modified`` (no body), on either path.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Awaitable, Callable, MutableMapping
+from typing import Any
+
+from cachetools import LRUCache
+
+from . import cache as cache_module
+from .metrics import CACHE_LOOKUPS, FAST_PATH_HITS
+from .tables import wants_csv
+
+#: raw request -> canonical key remembered per process (a few hundred bytes each)
+RAW_INDEX_ENTRIES = 65_536
+
+Scope = MutableMapping[str, Any]
+Receive = Callable[[], Awaitable[MutableMapping[str, Any]]]
+Send = Callable[[MutableMapping[str, Any]], Awaitable[None]]
+
+
+def _header(scope: Scope, name: bytes) -> bytes | None:
+    for key, value in scope["headers"]:
+        if key == name:
+            return value
+    return None
+
+
+def etag_matches(if_none_match: bytes | None, etag: bytes) -> bool:
+    """RFC 9110 weak comparison of If-None-Match against an entity tag (``*`` matches any)."""
+    if not if_none_match:
+        return False
+    tags = [t.strip() for t in if_none_match.split(b",")]
+    bare = etag.removeprefix(b"W/")
+    return any(t == b"*" or t.removeprefix(b"W/") == bare for t in tags)
+
+
+class FastPathMiddleware:
+    """Answer a repeated computed request from the in-process cache before the app sees it."""
+
+    def __init__(self, app, *, paths: Callable[[], set[str]], cache: Callable[[], Any]) -> None:
+        self.app = app
+        self._paths = paths  # () -> the computed POST paths (read once, from the routes)
+        self.paths: set[str] | None = None
+        self.cache = cache  # () -> the app's ResultCache (opened in the lifespan)
+        self.index: LRUCache = LRUCache(maxsize=RAW_INDEX_ENTRIES)
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http" or scope["method"] != "POST":
+            await self.app(scope, receive, send)
+            return
+        if self.paths is None:
+            self.paths = self._paths()
+        if scope["path"] not in self.paths:
+            await self.app(scope, receive, send)
+            return
+        body = await _read_body(receive)
+        if body is None:  # the client went away
+            return
+        csv = wants_csv((_header(scope, b"accept") or b"").decode("latin-1"))
+        parts = (
+            cache_module.ENGINE_VERSION.encode(),  # part of every key (read here so a test's change is seen)
+            scope["path"].encode(),
+            scope.get("query_string", b""),
+            _header(scope, b"content-type") or b"",
+            b"csv" if csv else b"",
+            body,
+        )
+        raw_key = hashlib.blake2b(b"\0".join(parts)).digest()
+        inm = _header(scope, b"if-none-match")
+        known = self.index.get(raw_key)
+        cache = self.cache()
+        if known is not None and cache is not None:
+            key, operation, media_type, vary = known
+            cached = cache.local.get(key)
+            if cached is not None:
+                FAST_PATH_HITS.inc()
+                CACHE_LOOKUPS.labels(operation, "local").inc()
+                await _answer(send, cached, key, media_type, vary, not_modified=etag_matches(inm, f'"{key}"'.encode()))
+                return
+        await self._through_app(scope, body, raw_key, inm, receive, send)
+
+    async def _through_app(self, scope: Scope, body: bytes, raw_key: bytes, inm, receive: Receive, send: Send):
+        replayed = False
+
+        async def replay() -> MutableMapping[str, Any]:
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": body, "more_body": False}
+            return await receive()
+
+        state: dict[str, Any] = {"not_modified": False}
+
+        async def watch(message: MutableMapping[str, Any]) -> None:
+            if message["type"] == "http.response.start":
+                headers = dict(message.get("headers") or [])
+                etag = headers.get(b"etag")
+                if message["status"] == 200 and etag is not None:
+                    reusable = scope.get("state", {}).get("raw_reusable", True)
+                    key = etag.strip(b'"').decode()
+                    if reusable:
+                        operation = key.split(":")[1] if key.count(":") >= 2 else "?"
+                        media = headers.get(b"content-type", b"application/json").decode()
+                        self.index[raw_key] = (key, operation, media, b"vary" in headers)
+                    if etag_matches(inm, etag):
+                        state["not_modified"] = True
+                        kept = [(k, v) for k, v in message["headers"] if k in (b"etag", b"x-cache", b"vary")]
+                        message = {"type": "http.response.start", "status": 304, "headers": kept}
+            elif message["type"] == "http.response.body" and state["not_modified"]:
+                if message.get("more_body"):
+                    return  # drop the body of a 304
+                message = {"type": "http.response.body", "body": b""}
+            await send(message)
+
+        await self.app(scope, replay, watch)
+
+
+async def _read_body(receive: Receive) -> bytes | None:
+    chunks = []
+    while True:
+        message = await receive()
+        if message["type"] != "http.request":
+            return None
+        chunks.append(message.get("body", b""))
+        if not message.get("more_body", False):
+            return b"".join(chunks)
+
+
+async def _answer(send: Send, body: bytes, key: str, media_type: str, vary: bool, *, not_modified: bool) -> None:
+    headers = [(b"etag", f'"{key}"'.encode()), (b"x-cache", b"hit")]
+    if vary:
+        headers.append((b"vary", b"Accept"))
+    if not_modified:
+        await send({"type": "http.response.start", "status": 304, "headers": headers})
+        await send({"type": "http.response.body", "body": b""})
+        return
+    headers += [(b"content-type", media_type.encode()), (b"content-length", str(len(body)).encode())]
+    await send({"type": "http.response.start", "status": 200, "headers": headers})
+    await send({"type": "http.response.body", "body": body})

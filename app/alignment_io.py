@@ -1,21 +1,22 @@
-"""Readers for horizontal curves: CSV with a header row, and LandXML 1.2 alignments.
+"""Readers for horizontal curves: CSV with a header row, and LandXML 1.2 alignments, into columns.
 
-Both return :class:`engine.assessment.Curve` records, or raise :class:`AlignmentFormatError` naming the row
-(CSV, 1-based, counting the header as row 1) or the element (LandXML) and what is wrong with it. Nothing
-is skipped silently: a curve that cannot be read, or whose values no formula can use (a radius of 0, a
-superelevation or grade beyond 20 %, a posted speed outside (0, 200] km/h: the bounds of
-:func:`engine.assessment.check_curve`), stops the whole file with its location.
+Both return a :class:`CurveTable` (the curves as arrays), or raise :class:`AlignmentFormatError` naming the row
+(CSV, 1-based, counting the header as row 1) or the element (LandXML) and what is wrong with it. Nothing is skipped
+silently: a curve that cannot be read, or whose values no formula can use (a radius below 5 m, a superelevation or
+grade beyond 20 %, a posted speed outside (0, 200] km/h: the bounds of :data:`engine.domain.BOUNDS`, the JSON form's
+too), stops the whole file with its location.
 
-CSV columns (header names, any order, case-insensitive): ``id``, ``radius_m``, ``superelevation_percent``,
-``grade_percent`` (optional, default 0, + uphill in the direction of travel), ``posted_speed_kmh``
-(optional, empty = none).
+CSV columns (header names, any order, case-insensitive): ``id``, ``radius_m``, ``superelevation_percent``
+(optional, empty = derive it from the design standard's distribution), ``grade_percent`` (optional, default 0,
++ uphill in the direction of travel), ``posted_speed_kmh`` (optional, empty = none).
 
-LandXML 1.2: every ``CoordGeom/Curve`` of every ``Alignment`` is a horizontal curve; its ``radius`` is
-required, ``staStart`` (station) and ``name`` are reported. LandXML keeps superelevation and grade in
-other elements whose use varies between design packages, so they are supplied per curve (keyed by the
-curve id) or as defaults. The curve id is the Curve's ``name`` when present, else
-``<alignment name>#<n>`` (n counts the alignment's curves from 1). Parsing uses defusedxml (no external
-entities, no entity expansion bombs).
+LandXML 1.2: every ``CoordGeom/Curve`` of every ``Alignment`` is a horizontal curve; its ``radius`` is required,
+``staStart`` (station) and ``name`` are reported. LandXML keeps superelevation and grade in other elements whose
+use varies between design packages, so they are supplied per curve (keyed by the curve id) or as defaults. The curve
+id is the Curve's ``name`` when present, else ``<alignment name>#<n>`` (n counts the alignment's curves from 1).
+Parsing uses defusedxml (no external entities, no entity expansion bombs).
+
+Curve ids are 1-100 characters without control characters in every form (JSON, CSV, LandXML).
 """
 
 from __future__ import annotations
@@ -24,13 +25,14 @@ import csv
 import io
 import math
 import re
-from collections import Counter
 from dataclasses import dataclass
+from typing import Any
 
+import numpy as np
 from defusedxml import ElementTree as SafeET
 from defusedxml.common import DefusedXmlException
 
-from engine.assessment import Curve, check_curve
+from engine.assessment import check_columns
 from engine.errors import InvalidRoad
 
 MAX_CURVES = 100_000
@@ -39,8 +41,44 @@ MAX_CURVES = 100_000
 CURVE_ID_MAX_CHARS = 100
 CURVE_ID_PATTERN = r"^[^\x00-\x1f\x7f-\x9f]+$"
 _CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
-CSV_REQUIRED = ("id", "radius_m", "superelevation_percent")
-CSV_OPTIONAL = ("grade_percent", "posted_speed_kmh")
+CSV_REQUIRED = ("id", "radius_m")
+CSV_OPTIONAL = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
+
+
+@dataclass(frozen=True)
+class CurveTable:
+    """Curves as columns: ids, radius [m], superelevation [%] (nan: derive it), grade [%], posted speed [km/h]
+    (nan: none) and station [m] (nan: none)."""
+
+    ids: list[str]
+    radius_m: np.ndarray
+    superelevation_percent: np.ndarray
+    grade_percent: np.ndarray
+    posted_speed_kmh: np.ndarray
+    station_m: np.ndarray
+    where: list[str] | None = None  # each curve's row or element in the document it came from (None: JSON)
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+    def key_rows(self) -> list[list[Any]]:
+        """The curves as JSON-ready rows for the cache key (None for nan)."""
+
+        def opt(a: np.ndarray) -> list[float | None]:
+            return [None if math.isnan(x) else x for x in a.tolist()]
+
+        return [
+            list(row)
+            for row in zip(
+                self.ids,
+                self.radius_m.tolist(),
+                opt(self.superelevation_percent),
+                self.grade_percent.tolist(),
+                opt(self.posted_speed_kmh),
+                opt(self.station_m),
+                strict=True,
+            )
+        ]
 
 
 class AlignmentFormatError(ValueError):
@@ -52,7 +90,7 @@ class AlignmentFormatError(ValueError):
         self.field = field
 
 
-def _number(text: str, column: str, where: str, *, optional: bool = False) -> float | None:
+def _number(text: str | None, column: str, where: str, *, optional: bool = False) -> float | None:
     t = (text or "").strip()
     if t == "":
         if optional:
@@ -83,26 +121,44 @@ def check_curve_id(cid: str, where: str, column: str) -> str:
     return cid
 
 
-def _checked(curve: Curve, where: str, columns: dict[str, str] | None = None) -> Curve:
-    """The curve, if every formula can use it (the engine's bounds, the JSON form's); else the error here, naming
-    the column (``columns`` renames the engine's fields to the document's, e.g. LandXML's ``radius``)."""
-    try:
-        check_curve(curve, 0)
-    except InvalidRoad as exc:
-        field = (exc.field or "").rsplit(".", 1)[-1] or None
-        column = (columns or {}).get(field, field)
-        reason = str(exc).removeprefix("curves[0].")
-        if field and column != field:
-            reason = reason.replace(field, column, 1)
-        raise AlignmentFormatError(reason, where, column) from None
-    return curve
+class _Collector:
+    """Curves collected row by row (with where each came from), checked at the end against the domain's bounds on
+    arrays; a curve out of bounds is reported at its row or element."""
+
+    def __init__(self, columns: dict[str, str] | None = None, id_column: str = "id") -> None:
+        self.ids: list[str] = []
+        self.values: list[tuple[float, float, float, float, float]] = []  # r, e, grade, posted, station
+        self.where: list[str] = []
+        self.seen: set[str] = set()
+        self.columns = columns or {}  # engine field -> the document's name for it
+        self.id_column = id_column
+
+    def add(self, cid: str, where: str, radius: float, e, grade: float, posted, station) -> None:
+        if cid in self.seen:
+            raise AlignmentFormatError(f"duplicate id {cid!r}", where, self.id_column)
+        self.seen.add(cid)
+        nan = math.nan
+        opt = (nan if e is None else e, grade, nan if posted is None else posted, nan if station is None else station)
+        self.ids.append(cid)
+        self.values.append((radius, *opt))
+        self.where.append(where)
+        if len(self.ids) > MAX_CURVES:
+            raise AlignmentFormatError(f"more than {MAX_CURVES} curves", where)
+
+    def table(self) -> CurveTable:
+        a = np.array(self.values, dtype=float).reshape(-1, 5)
+        t = CurveTable(self.ids, *(a[:, k].copy() for k in range(5)), where=self.where)
+        try:  # the bounds of the JSON form, on the columns
+            check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
+        except InvalidRoad as exc:
+            index, field = (exc.field or "").removeprefix("curves[").split("].", 1)
+            column = self.columns.get(field, field)
+            reason = str(exc).removeprefix(f"curves[{index}].").replace(field, column, 1)
+            raise AlignmentFormatError(reason, self.where[int(index)], column) from None
+        return t
 
 
-def read_csv(text: str) -> list[Curve]:
-    """Curves from CSV text with a header row (see the module docstring)."""
-    if not text.strip():
-        raise AlignmentFormatError("the CSV is empty (a header row and at least one curve are needed)")
-    reader = csv.reader(io.StringIO(text))
+def _header(reader) -> dict[str, int]:
     try:
         header = next(reader)
     except csv.Error as exc:
@@ -122,51 +178,39 @@ def read_csv(text: str) -> list[Curve]:
     dupes = {n for n in names if names.count(n) > 1}
     if dupes:
         raise AlignmentFormatError(f"duplicate column(s) {', '.join(sorted(dupes))}", "row 1 (header)")
-    idx = {n: i for i, n in enumerate(names)}
-    curves: list[Curve] = []
-    seen: set[str] = set()
+    return {n: i for i, n in enumerate(names)}
+
+
+def read_csv(text: str) -> CurveTable:
+    """Curves from CSV text with a header row (see the module docstring)."""
+    if not text.strip():
+        raise AlignmentFormatError("the CSV is empty (a header row and at least one curve are needed)")
+    reader = csv.reader(io.StringIO(text))
+    idx = _header(reader)
+    curves = _Collector()
     try:
         for rownum, row in enumerate(reader, start=2):
             if not any(c.strip() for c in row):
                 continue  # blank line (e.g. a trailing newline): not a curve
             where = f"row {rownum}"
-            if len(row) != len(names):
-                raise AlignmentFormatError(f"has {len(row)} fields, the header has {len(names)}", where)
-            cid = check_curve_id(row[idx["id"]].strip(), where, "id")
-            if cid in seen:
-                raise AlignmentFormatError(f"duplicate id {cid!r}", where, "id")
-            seen.add(cid)
-            grade = (
-                _number(row[idx["grade_percent"]], "grade_percent", where, optional=True)
-                if "grade_percent" in idx
-                else None
+            if len(row) != len(idx):
+                raise AlignmentFormatError(f"has {len(row)} fields, the header has {len(idx)}", where)
+            cell = {n: row[i] for n, i in idx.items()}
+            grade = _number(cell.get("grade_percent"), "grade_percent", where, optional=True)
+            curves.add(
+                check_curve_id(cell["id"].strip(), where, "id"),
+                where,
+                _number(cell["radius_m"], "radius_m", where),
+                _number(cell.get("superelevation_percent"), "superelevation_percent", where, optional=True),
+                0.0 if grade is None else grade,
+                _number(cell.get("posted_speed_kmh"), "posted_speed_kmh", where, optional=True),
+                None,
             )
-            posted = (
-                _number(row[idx["posted_speed_kmh"]], "posted_speed_kmh", where, optional=True)
-                if "posted_speed_kmh" in idx
-                else None
-            )
-            curves.append(
-                _checked(
-                    Curve(
-                        id=cid,
-                        radius_m=_number(row[idx["radius_m"]], "radius_m", where),
-                        superelevation_percent=_number(
-                            row[idx["superelevation_percent"]], "superelevation_percent", where
-                        ),
-                        grade_percent=0.0 if grade is None else grade,
-                        posted_speed_kmh=posted,
-                    ),
-                    where,
-                )
-            )
-            if len(curves) > MAX_CURVES:
-                raise AlignmentFormatError(f"more than {MAX_CURVES} curves", where)
     except csv.Error as exc:
         raise AlignmentFormatError(f"unreadable CSV: {exc}", f"row {reader.line_num}") from None
-    if not curves:
+    if not curves.ids:
         raise AlignmentFormatError("no curves after the header", "row 2")
-    return curves
+    return curves.table()
 
 
 @dataclass(frozen=True)
@@ -180,20 +224,7 @@ def _local(tag: str) -> str:
     return tag.rsplit("}", 1)[-1]
 
 
-def read_landxml(
-    text: str | bytes,
-    *,
-    superelevation_percent: float | None,
-    grade_percent: float = 0.0,
-    posted_speed_kmh: float | None = None,
-    overrides: dict[str, CurveOverride] | None = None,
-) -> list[tuple[Curve, float | None]]:
-    """Curves (with their start station [m], or None) from a LandXML 1.2 document.
-
-    ``superelevation_percent`` / ``grade_percent`` / ``posted_speed_kmh`` apply to every curve unless
-    ``overrides[curve id]`` gives its own. A curve left without a superelevation is an error naming it.
-    """
-    overrides = dict(overrides or {})
+def _parse_xml(text: str | bytes):
     try:
         root = SafeET.fromstring(text)
     except DefusedXmlException as exc:
@@ -203,50 +234,63 @@ def read_landxml(
         raise AlignmentFormatError(f"malformed XML: {exc}", f"LandXML line {line}, column {col}") from None
     if _local(root.tag) != "LandXML":
         raise AlignmentFormatError(f"the root element is <{_local(root.tag)}>, not <LandXML>", "LandXML")
-    out: list[tuple[Curve, float | None]] = []
+    return root
+
+
+def _landxml_curves(root):
+    """(alignment name, curve number, element) of every CoordGeom/Curve of every Alignment."""
     alignments = [e for e in root.iter() if _local(e.tag) == "Alignment"]
     if not alignments:
         raise AlignmentFormatError("no <Alignment> element", "LandXML")
     for a_index, alignment in enumerate(alignments, start=1):
         a_name = alignment.get("name") or f"alignment {a_index}"
-        geoms = [e for e in alignment if _local(e.tag) == "CoordGeom"]
         n = 0
-        for geom in geoms:
+        for geom in (e for e in alignment if _local(e.tag) == "CoordGeom"):
             for el in geom:
-                if _local(el.tag) != "Curve":
-                    continue
-                n += 1
-                cid = el.get("name") or f"{a_name}#{n}"
-                where = f"Alignment {a_name[:CURVE_ID_MAX_CHARS]!r} CoordGeom Curve #{n}"
-                cid = check_curve_id(cid, where, "name")
-                where = f"{where} ({cid!r})"
-                r_text = el.get("radius")
-                if r_text is None:
-                    raise AlignmentFormatError("has no radius attribute", where, "radius")
-                radius = _number(r_text, "radius", where)
-                sta = el.get("staStart")
-                station = _number(sta, "staStart", where) if sta is not None else None
-                ov = overrides.pop(cid, CurveOverride())
-                e = ov.superelevation_percent if ov.superelevation_percent is not None else superelevation_percent
-                if e is None:
-                    raise AlignmentFormatError(
-                        "no superelevation: give superelevation_percent as a default or for this curve id",
-                        where,
-                        "superelevation_percent",
-                    )
-                g = ov.grade_percent if ov.grade_percent is not None else grade_percent
-                v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
-                out.append((_checked(Curve(cid, radius, e, g, v), where, {"radius_m": "radius"}), station))
-                if len(out) > MAX_CURVES:
-                    raise AlignmentFormatError(f"more than {MAX_CURVES} curves", where)
-    if not out:
+                if _local(el.tag) == "Curve":
+                    n += 1
+                    yield a_name, n, el
+
+
+def read_landxml(
+    text: str | bytes,
+    *,
+    superelevation_percent: float | None,
+    grade_percent: float = 0.0,
+    posted_speed_kmh: float | None = None,
+    overrides: dict[str, CurveOverride] | None = None,
+) -> CurveTable:
+    """Curves (with their start station [m]) from a LandXML 1.2 document.
+
+    ``superelevation_percent`` / ``grade_percent`` / ``posted_speed_kmh`` apply to every curve unless
+    ``overrides[curve id]`` gives its own. A curve left without a superelevation is derived from the design
+    standard's distribution (the assessment refuses it, naming the curve, without ``max_superelevation_percent``).
+    """
+    overrides = dict(overrides or {})
+    curves = _Collector({"radius_m": "radius"}, id_column="name")
+    for a_name, n, el in _landxml_curves(_parse_xml(text)):
+        where = f"Alignment {a_name[:CURVE_ID_MAX_CHARS]!r} CoordGeom Curve #{n}"
+        cid = check_curve_id(el.get("name") or f"{a_name}#{n}", where, "name")
+        where = f"{where} ({cid!r})"
+        r_text = el.get("radius")
+        if r_text is None:
+            raise AlignmentFormatError("has no radius attribute", where, "radius")
+        sta = el.get("staStart")
+        ov = overrides.pop(cid, CurveOverride())
+        e = ov.superelevation_percent if ov.superelevation_percent is not None else superelevation_percent
+        g = ov.grade_percent if ov.grade_percent is not None else grade_percent
+        v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
+        station = _number(sta, "staStart", where) if sta is not None else None
+        try:
+            curves.add(cid, where, _number(r_text, "radius", where), e, g, v, station)
+        except AlignmentFormatError as exc:
+            if exc.field == "name":
+                raise AlignmentFormatError(f"duplicate curve name {cid!r}", where, "name") from None
+            raise
+    if not curves.ids:
         raise AlignmentFormatError("no CoordGeom/Curve element in any alignment", "LandXML")
     if overrides:
         raise AlignmentFormatError(
             f"overrides name curves that are not in the file: {', '.join(sorted(overrides))}", "curve_overrides"
         )
-    counts = Counter(c.id for c, _ in out)  # not list.count per id: that is quadratic in the number of curves
-    dupes = sorted(i for i, n in counts.items() if n > 1)
-    if dupes:
-        raise AlignmentFormatError(f"duplicate curve names {', '.join(dupes)}", "LandXML")
-    return out
+    return curves.table()

@@ -44,6 +44,8 @@ ENVELOPE_MAGIC = b"ROLLOVER1"
 _MAC_SIZE = hashlib.sha256().digest_size
 #: engine result objects memoised per process (a nested SRT, the curves of a plot)
 MEMO_ENTRIES = 1024
+#: large batch answers kept by reference, as their arrays (not as bytes), bounded by their size [bytes]
+ANSWER_BYTES = 128 * 2**20
 #: keys already logged as bad: each is logged once (bounded, so a flood of bad keys cannot grow memory)
 _LOGGED_BAD_KEYS = 10_000
 
@@ -126,7 +128,8 @@ class Lookup:
 
 
 class ResultCache:
-    """Two-tier cache of response bodies, and the per-process memo of engine result objects (``objects``)."""
+    """Two-tier cache of response bodies, the per-process memo of engine result objects (``objects``) and of large
+    batch answers kept by reference (``answers``, bounded by their size)."""
 
     def __init__(
         self,
@@ -141,6 +144,7 @@ class ResultCache:
     ) -> None:
         self.local: SizedLRU = SizedLRU(max_entries, max_bytes)
         self.objects: LRUCache = LRUCache(maxsize=MEMO_ENTRIES)
+        self.answers: LRUCache = LRUCache(maxsize=ANSWER_BYTES, getsizeof=lambda a: a.nbytes)
         self.max_entry_bytes = min(max_entry_bytes, max_bytes)
         self.redis = redis
         self.secret = secret

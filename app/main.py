@@ -12,6 +12,7 @@ from fastapi import FastAPI
 from fastapi.routing import APIRoute
 from fastapi_offline import FastAPIOffline
 from prometheus_fastapi_instrumentator import Instrumentator
+from pydantic.json_schema import models_json_schema
 
 from engine import ENGINE_VERSION
 
@@ -22,6 +23,7 @@ from .logs import configure_logging, get_logger
 from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, health, models, plots, road, srt, vehicles
+from .routers.common import READ_BY_ROUTE
 from .settings import Settings, get_settings
 
 DESCRIPTION = """\
@@ -63,6 +65,13 @@ def _problem_openapi(app: FastAPI) -> dict[str, Any]:
     if app.openapi_schema is not None:
         return app.openapi_schema
     schema = FastAPI.openapi(app)
+    # the models of routes that read their body themselves (routers.common.json_body), with what they use
+    _, defs = models_json_schema(
+        [(m, "validation") for m in READ_BY_ROUTE], ref_template="#/components/schemas/{model}"
+    )
+    components = schema.setdefault("components", {}).setdefault("schemas", {})
+    for name, definition in defs.get("$defs", {}).items():
+        components.setdefault(name, definition)
     for path_item in schema.get("paths", {}).values():
         for operation in path_item.values():
             if "requestBody" in operation:  # every body has a limit: state it, and declare the 413

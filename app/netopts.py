@@ -42,8 +42,13 @@ def set_nodelay_on_listening_sockets() -> int:
     count = 0
     for fd in _fds():
         try:
-            sock = socket.socket(fileno=os.dup(fd))
+            dup = os.dup(fd)
         except OSError:
+            continue
+        try:
+            sock = socket.socket(fileno=dup)
+        except OSError:  # not a socket (a file, a pipe): close the duplicate and go on
+            os.close(dup)
             continue
         try:
             if _unconnected_tcp(sock):

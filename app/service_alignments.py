@@ -1,42 +1,55 @@
-"""Alignment assessment (POST /v1/alignments/assess): curves from JSON, CSV or LandXML -> engine -> rows.
+"""Alignment assessment (POST /v1/alignments/assess and its uploads): curves -> engine -> rows, as columns.
 
-The resolved request holds the curves themselves (id, radius, superelevation, grade, posted speed, station),
-not the document they came from, so the same curves sent as JSON, CSV or LandXML share one cache entry. The
-engine solves one SRT per distinct (superelevation, grade) pair and per vehicle
-(:func:`engine.assessment.assess_curves`); rows sharing a pair share the target checks too.
+The curves come from a JSON list (read into columns by :mod:`app.curves`), a CSV text or a LandXML document
+(:mod:`app.alignment_io`); all three become one :class:`~app.alignment_io.CurveTable`, so the same curves share one
+cache entry whatever form they came in. The engine assesses each vehicle on arrays
+(:func:`engine.assessment.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the
+answer is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV in chunks. A small answer is
+rendered whole and cached as bytes (and served by the fast path on a repeat); a large one is streamed, never built
+as one document, and cached by reference, as its arrays. Streamed or whole, the bytes are the same.
 """
 
 from __future__ import annotations
 
+import hashlib
+import math
 import time
+from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import orjson
+from fastapi import Request
+from fastapi.exceptions import RequestValidationError
+from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
-from engine.assessment import Curve, assess_curves, tilt_table_angle_deg
+from engine.assessment import GOVERNED_BY, AlignmentColumns, assess_alignment, tilt_table_angle_deg
 from engine.case import Case
 from engine.errors import InvalidInput
 from engine.loads import LoadCase
-from engine.road import TABLE21_SPEEDS_KMH, side_friction_factor
-from engine.vehicles import Vehicle
 
-from .alignment_io import AlignmentFormatError, CurveOverride, read_csv, read_landxml
-from .cache import ResultCache
-from .metrics import SOLVE_SECONDS
+from .alignment_io import AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from .cache import ResultCache, cache_key
+from .curves import curves_from_json
+from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .problems import InvalidAlignment, request_error
-from .schemas.alignments import MAX_ROWS, AlignmentRequest, AlignmentResult
-from .service import Computed, cached, cached_csv, resolve_targets, resolve_vehicle, target_checks
+from .schemas.alignments import MAX_ROWS, AlignmentRequest
+from .service import Computed, resolve_targets, resolve_vehicle, target_checks
 from .settings import Settings
-from .tables import flatten_targets, target_columns, to_csv
+from .tables import Text, flatten_targets, target_columns, to_csv_chunks
 
+#: answers with more rows than this are streamed (and cached by reference), never built whole
+STREAM_ROWS = 5_000
+ROWS_PER_CHUNK = 1_000
 ROW_COLUMNS = (
     "id",
     "station_m",
     "radius_m",
     "superelevation_percent",
+    "superelevation_source",
     "grade_percent",
     "srt_g",
     "tilt_table_angle_deg",
@@ -45,28 +58,52 @@ SPEED_COLUMNS = (
     "rollover_speed_kmh",
     "side_friction_speed_kmh",
     "side_friction",
+    "side_friction_clamped",
     "safe_speed_kmh",
     "governed_by",
     "posted_speed_kmh",
     "margin_kmh",
     "flagged",
+    "standard_min_radius_m",
+    "meets_standard_min_radius",
     "error",
 )
+_PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curves while the rest is validated
 
 
-def read_curves(req: AlignmentRequest, source_field: str | None = None) -> list[tuple[Curve, float | None]]:
-    """The curves (with their station, or None) from whichever of ``curves``, ``csv``, ``landxml`` is given.
+# ------------------------------------------------------------------------------------------ reading
+
+
+def parse_json_request(body: bytes) -> tuple[AlignmentRequest, CurveTable | None]:
+    """The JSON request, validated: its ``curves`` (if any) read into columns by :func:`app.curves.curves_from_json`
+    (fast), everything else by the request model itself. Runs in a worker thread: 100,000 curves are 15 MB."""
+    try:
+        data = orjson.loads(body)
+    except orjson.JSONDecodeError as exc:
+        raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    curves = None
+    has_curves = isinstance(data, dict) and "curves" in data
+    try:
+        req = AlignmentRequest.model_validate({**data, "curves": _PLACEHOLDER} if has_curves else data)
+    except ValidationError as exc:
+        raise RequestValidationError(
+            [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
+        ) from None
+    if has_curves:
+        curves = curves_from_json(data["curves"])
+    return req, curves
+
+
+def read_curves(req: AlignmentRequest, curves: CurveTable | None, source_field: str | None) -> CurveTable:
+    """The curves from whichever of ``curves`` (already read), ``csv``, ``landxml`` the request has.
 
     ``source_field`` names where a document came from for the error (``body`` for a raw upload)."""
-    if req.curves is not None:
-        return [
-            (Curve(c.id, c.radius_m, c.superelevation_percent, c.grade_percent, c.posted_speed_kmh), None)
-            for c in req.curves
-        ]
+    if curves is not None:
+        return curves
     source = "csv" if req.csv is not None else "landxml"
     try:
         if source == "csv":
-            return [(c, None) for c in read_csv(req.csv)]
+            return read_csv(req.csv)
         x = req.landxml
         overrides = {
             k: CurveOverride(v.superelevation_percent, v.grade_percent, v.posted_speed_kmh)
@@ -81,161 +118,301 @@ def read_curves(req: AlignmentRequest, source_field: str | None = None) -> list[
         )
     except AlignmentFormatError as exc:
         where = source_field or ("csv" if source == "csv" else "landxml.document")
+        location = exc.location
         if exc.location == "curve_overrides":
             where, location = "landxml.curve_overrides", None
-        else:
-            location = exc.location
-        reason = str(exc)
-        if exc.location and reason.startswith(f"{exc.location}: "):
-            reason = reason[len(exc.location) + 2 :]
+        reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
         raise InvalidAlignment(reason, source=where, location=location, column=exc.field) from None
 
 
-def resolve_alignment(req: AlignmentRequest, settings: Settings, source_field: str | None = None) -> dict[str, Any]:
+def _digest(t: CurveTable) -> str:
+    """SHA-256 of the curves (ids, then the float64 columns with -0.0 and every nan made one value)."""
+    h = hashlib.sha256(orjson.dumps(t.ids))
+    for a in (t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh, t.station_m):
+        h.update(np.where(np.isnan(a), np.nan, a + 0.0).astype("<f8").tobytes())
+    return h.hexdigest()
+
+
+@dataclass(frozen=True)
+class AlignmentJob:
+    """A resolved alignment request: what the answer depends on (``resolved``, hashed into the key) and the
+    objects to compute it from."""
+
+    resolved: dict[str, Any]
+    vehicles: list[Any]
+    curves: CurveTable
+    source: str  # the request field the curves came from, for an error in a document (``csv``, ``body``, ...)
+
+    @property
+    def rows(self) -> int:
+        return len(self.curves) * len(self.vehicles)
+
+
+def resolve_alignment(
+    req: AlignmentRequest, curves: CurveTable | None, settings: Settings, source_field: str | None = None
+) -> AlignmentJob:
     """The fully resolved request: the vehicles' records (and preset ids), the options, and the curves."""
     which = "vehicle" if req.vehicle is not None else "vehicles"
     refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
-    curves = read_curves(req, source_field)
-    if len(curves) * len(refs) > MAX_ROWS:
+    table = read_curves(req, curves, source_field)
+    if len(table) * len(refs) > MAX_ROWS:
         raise request_error(
             which,
-            f"{len(curves)} curves x {len(refs)} vehicles = {len(curves) * len(refs)} rows; at most {MAX_ROWS} per "
+            f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {MAX_ROWS} per "
             "request (split the alignment or the vehicles)",
         )
-    return {
-        "vehicles": [resolve_vehicle(r).to_dict() for r in refs],
+    vehicles = [resolve_vehicle(r) for r in refs]
+    resolved = {
+        "vehicles": [v.to_dict() for v in vehicles],
         "presets": [r if isinstance(r, str) else None for r in refs],
         "model": req.model,
         "stage": req.stage,
         "trailer_angle_deg": req.trailer_angle_deg,
         "load": req.load.model_dump(),
         "rear_llt_limit": req.rear_llt_limit,
-        "side_friction_bound": req.side_friction_bound,
+        "design_standard": req.design_standard,
+        "side_friction_bound": req.bound,
+        "max_superelevation_percent": req.max_superelevation_percent,
         "targets": resolve_targets(req.targets, settings),
-        "curves": [
-            [c.id, c.radius_m, c.superelevation_percent, c.grade_percent, c.posted_speed_kmh, station]
-            for c, station in curves
-        ],
+        "curves": {"count": len(table), "sha256": _digest(table)},
     }
+    source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
+    return AlignmentJob(resolved, vehicles, table, source)
 
 
-def _side_friction(speeds: np.ndarray, bound: str) -> np.ndarray:
-    """f at each side-friction speed, as the engine used it (Table 21, clamped to its 30-120 km/h)."""
-    clamped = np.clip(speeds, TABLE21_SPEEDS_KMH[0], TABLE21_SPEEDS_KMH[-1])
-    return np.asarray(side_friction_factor(clamped, bound), dtype=float)
+# ---------------------------------------------------------------------------------------- computing
 
 
-def _assess_vehicle(index: int, vehicle: Vehicle, curves: list[Curve], stations, resolved) -> dict[str, Any]:
+@dataclass(frozen=True)
+class VehicleAnswer:
+    index: int
+    preset: str | None
+    columns: AlignmentColumns
+    pair_of_row: np.ndarray  # distinct-SRT index of each row, for the shared tilt angle and target checks
+    tilt: list[float | None]  # per distinct SRT
+    checks: list[list[dict[str, Any]]]
+
+
+@dataclass(frozen=True)
+class AlignmentAnswer:
+    """Every curve for every vehicle, as arrays: rendered to JSON or CSV in chunks."""
+
+    resolved: dict[str, Any]
+    curves: CurveTable
+    vehicles: list[VehicleAnswer]
+
+    @property
+    def nbytes(self) -> int:  # what keeping it costs (the cache bounds answers kept by reference by it)
+        per_row = 20 * 8
+        return 2_000 + len(self.curves) * (per_row * len(self.vehicles) + 48)
+
+
+def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
+    """The engine's error with its field as a request path (``curves[3].x`` -> ``curves.3.x``, with the curve's id
+    in the message), at the curve's row or element for a document, and, among several vehicles, with the vehicle's
+    index."""
+    field, message = exc.field or "", str(exc)
+    if field.startswith("curves["):
+        i = int(field[len("curves[") : field.index("]")])
+        column = field.split("].", 1)[1]
+        reason = message.removeprefix(f"curves[{i}]").lstrip(": ").removeprefix(f"{field} ")
+        t = job.curves
+        if t.where is not None:  # a CSV or LandXML document: its row or element
+            return InvalidAlignment(reason, source=job.source, location=t.where[i], column=column)
+        return type(exc)(f"{message} (curve {t.ids[i]!r})", field=f"curves.{i}.{column}", value=exc.value)
+    if len(job.vehicles) > 1 and field and "." not in field:
+        return type(exc)(f"vehicles[{index}]: {message}", field=f"vehicles.{index}.{field}", value=exc.value)
+    return exc
+
+
+def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
+    r = job.resolved
     case = Case(
-        vehicle,
-        resolved["model"],
-        resolved["stage"],
-        trailer_angle_deg=resolved["trailer_angle_deg"],
-        load=LoadCase(**resolved["load"]),
-        rear_llt_limit=resolved["rear_llt_limit"],
+        job.vehicles[index],
+        r["model"],
+        r["stage"],
+        trailer_angle_deg=r["trailer_angle_deg"],
+        load=LoadCase(**r["load"]),
+        rear_llt_limit=r["rear_llt_limit"],
     )
+    t = job.curves
     try:
-        result = assess_curves(case, curves, friction_bound=resolved["side_friction_bound"])
-    except InvalidInput as exc:  # with several vehicles, say which one the engine refused
-        if len(resolved["vehicles"]) > 1 and exc.field is not None and "." not in exc.field:
-            raise type(exc)(
-                f"vehicles[{index}]: {exc}", field=f"vehicles.{index}.{exc.field}", value=exc.value
-            ) from exc
-        raise
-    f = _side_friction(np.array([a.side_friction_speed_kmh for a in result.curves]), resolved["side_friction_bound"])
-    shared: dict[float, tuple[float, list[dict[str, Any]]]] = {}  # SRT -> (tilt angle, target checks)
-    rows = []
-    for a, c, station, fi in zip(result.curves, curves, stations, f, strict=True):
-        if a.srt_g is not None and a.srt_g not in shared:
-            shared[a.srt_g] = (float(tilt_table_angle_deg(a.srt_g)), target_checks(a.srt_g, resolved["targets"]))
-        tilt, checks = shared[a.srt_g] if a.srt_g is not None else (None, [])
-        rows.append(
-            {
-                "id": c.id,
-                "station_m": station,
-                "radius_m": c.radius_m,
-                "superelevation_percent": c.superelevation_percent,
-                "grade_percent": c.grade_percent,
-                "srt_g": a.srt_g,
-                "tilt_table_angle_deg": tilt,
-                "targets": checks,
-                "rollover_speed_kmh": a.rollover_speed_kmh,
-                "side_friction_speed_kmh": a.side_friction_speed_kmh,
-                "side_friction": float(fi),
-                "safe_speed_kmh": a.safe_speed_kmh,
-                "governed_by": a.governed_by,
-                "posted_speed_kmh": a.posted_speed_kmh,
-                "margin_kmh": a.margin_kmh,
-                "flagged": a.flagged,
-                "error": a.error,
-            }
+        cols = assess_alignment(
+            case,
+            t.radius_m,
+            t.superelevation_percent,
+            t.grade_percent,
+            t.posted_speed_kmh,
+            design_standard=r["design_standard"],
+            side_friction_bound=r["side_friction_bound"],
+            max_superelevation_percent=r["max_superelevation_percent"],
         )
-    margins = [r["margin_kmh"] for r in rows if r["margin_kmh"] is not None]
-    safe = [r["safe_speed_kmh"] for r in rows if r["safe_speed_kmh"] is not None]
-    summary = {
-        "curves": len(rows),
-        "flagged": sum(r["flagged"] for r in rows),
-        "refused": sum(r["error"] is not None for r in rows),
-        "distinct_srt_solves": result.distinct_cases,
-        "governed_by_rollover": sum(r["governed_by"] == "rollover" for r in rows),
-        "governed_by_side_friction": sum(r["governed_by"] == "side-friction" for r in rows),
-        "min_margin_kmh": min(margins) if margins else None,
-        "min_safe_speed_kmh": min(safe) if safe else None,
-    }
-    return {"index": index, "preset": resolved["presets"][index], "summary": summary, "rows": rows}
+    except InvalidInput as exc:
+        raise _located(exc, job, index) from None
+    srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
+    tilt = [None if s < 0 else float(tilt_table_angle_deg(s)) for s in srts]
+    checks = [[] if s < 0 else target_checks(float(s), r["targets"]) for s in srts]
+    return VehicleAnswer(index, r["presets"][index], cols, pair_of_row.reshape(-1), tilt, checks)
 
 
-def solve_alignment(resolved: dict[str, Any]) -> bytes:
-    """Every curve for every vehicle (blocking: called in a worker thread) -> AlignmentResult JSON bytes."""
+def solve_alignment(job: AlignmentJob) -> AlignmentAnswer:
+    """Every curve for every vehicle (blocking: called in a worker thread)."""
     started = time.perf_counter()
-    curves = [Curve(i, r, e, g, v) for i, r, e, g, v, _ in resolved["curves"]]
-    stations = [c[5] for c in resolved["curves"]]
-    vehicles = [
-        _assess_vehicle(k, Vehicle.from_dict(record), curves, stations, resolved)
-        for k, record in enumerate(resolved["vehicles"])
-    ]
-    SOLVE_SECONDS.labels("alignments", resolved["model"]).observe(time.perf_counter() - started)
-    return (
-        AlignmentResult.model_validate(
-            {
-                "model": resolved["model"],
-                "stage": resolved["stage"] if resolved["model"] == "3d" else None,
-                "side_friction_bound": resolved["side_friction_bound"],
-                "curves": len(curves),
-                "vehicles": vehicles,
-                "engine_version": ENGINE_VERSION,
-            }
-        )
-        .model_dump_json()
-        .encode()
-    )
+    answer = AlignmentAnswer(job.resolved, job.curves, [_vehicle_answer(job, k) for k in range(len(job.vehicles))])
+    SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
+    return answer
 
 
-def alignment_csv(resolved: dict[str, Any], body: bytes) -> bytes:
-    """One CSV table: a row per vehicle and curve, the vehicle's index and preset first."""
+# ---------------------------------------------------------------------------------------- rendering
+
+
+def _opt(values: np.ndarray) -> list[float | None]:
+    return [None if math.isnan(x) else x for x in values.tolist()]
+
+
+def _rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> list[dict[str, Any]]:
+    """Rows [start, stop) of one vehicle, as CurveRow dicts in the schema's field order."""
+    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    columns = {
+        "id": t.ids[sl],
+        "station_m": _opt(t.station_m[sl]),
+        "radius_m": c.radius_m[sl].tolist(),
+        "superelevation_percent": c.superelevation_percent[sl].tolist(),
+        "superelevation_source": ["derived" if d else "given" for d in c.superelevation_derived[sl].tolist()],
+        "grade_percent": c.grade_percent[sl].tolist(),
+        "srt_g": _opt(c.srt_g[sl]),
+        "tilt_table_angle_deg": [v.tilt[p] for p in v.pair_of_row[sl].tolist()],
+        "targets": [v.checks[p] for p in v.pair_of_row[sl].tolist()],
+        "rollover_speed_kmh": _opt(c.rollover_speed_kmh[sl]),
+        "side_friction_speed_kmh": c.side_friction_speed_kmh[sl].tolist(),
+        "side_friction": c.side_friction[sl].tolist(),
+        "side_friction_clamped": c.side_friction_clamped[sl].tolist(),
+        "safe_speed_kmh": _opt(c.safe_speed_kmh[sl]),
+        "governed_by": [GOVERNED_BY[g] for g in c.governed_by[sl].tolist()],
+        "posted_speed_kmh": _opt(c.posted_speed_kmh[sl]),
+        "margin_kmh": _opt(c.margin_kmh[sl]),
+        "flagged": c.flagged[sl].tolist(),
+        "standard_min_radius_m": _opt(c.standard_min_radius_m[sl]),
+        "meets_standard_min_radius": [None if m < 0 else bool(m) for m in c.meets_standard_min_radius[sl].tolist()],
+        "error": [None if k < 0 else c.errors[k] for k in c.error[sl].tolist()],
+    }
+    names = list(columns)
+    return [dict(zip(names, values, strict=True)) for values in zip(*columns.values(), strict=True)]
+
+
+def _summary(c: AlignmentColumns) -> dict[str, Any]:
+    margins, safe = c.margin_kmh[~np.isnan(c.margin_kmh)], c.safe_speed_kmh[~np.isnan(c.safe_speed_kmh)]
+    return {
+        "curves": len(c),
+        "flagged": int(c.flagged.sum()),
+        "below_standard_min_radius": int((c.meets_standard_min_radius == 0).sum()),
+        "refused": int((c.error >= 0).sum()),
+        "distinct_srt_solves": c.distinct_cases,
+        "governed_by_rollover": int((c.governed_by == 1).sum()),
+        "governed_by_side_friction": int((c.governed_by == 2).sum()),
+        "min_margin_kmh": float(margins.min()) if margins.size else None,
+        "min_safe_speed_kmh": float(safe.min()) if safe.size else None,
+    }
+
+
+def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
+    """The AlignmentResult JSON document, in chunks of rows (byte for byte the document pydantic would write)."""
+    r = answer.resolved
+    head = {
+        "model": r["model"],
+        "stage": r["stage"] if r["model"] == "3d" else None,
+        "design_standard": r["design_standard"],
+        "side_friction_bound": r["side_friction_bound"],
+        "max_superelevation_percent": r["max_superelevation_percent"],
+        "curves": len(answer.curves),
+    }
+    yield orjson.dumps(head)[:-1] + b',"vehicles":['
+    n = len(answer.curves)
+    for k, v in enumerate(answer.vehicles):
+        vehicle = {"index": v.index, "preset": v.preset, "summary": _summary(v.columns)}
+        yield (b"," if k else b"") + orjson.dumps(vehicle)[:-1] + b',"rows":['
+        for start in range(0, n, ROWS_PER_CHUNK):
+            rows = orjson.dumps(_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n)))[1:-1]
+            yield (b"," if start else b"") + rows
+        yield b"]}"
+    yield b'],"engine_version":' + orjson.dumps(ENGINE_VERSION) + b"}"
+
+
+def csv_columns(resolved: dict[str, Any]) -> list[str]:
     names = [n for n, _ in sorted(resolved["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
-    columns = ["vehicle_index", "vehicle_preset", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
-    data = orjson.loads(body)
-    rows = (
-        {"vehicle_index": v["index"], "vehicle_preset": v["preset"], **flatten_targets(r)}
-        for v in data["vehicles"]
-        for r in v["rows"]
-    )
-    return to_csv(columns, rows)
+    return ["vehicle_index", "vehicle_preset", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
+
+
+def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
+    """One CSV table in chunks: a row per vehicle and curve, the vehicle's index and preset first."""
+    columns = csv_columns(answer.resolved)
+
+    def rows() -> Iterator[list[dict[str, Any]]]:
+        n = len(answer.curves)
+        for v in answer.vehicles:
+            preset = None if v.preset is None else Text(v.preset)
+            for start in range(0, n, ROWS_PER_CHUNK):
+                yield [
+                    {"vehicle_index": v.index, "vehicle_preset": preset, **flatten_targets(row)}
+                    for row in _rows(answer, v, start, min(start + ROWS_PER_CHUNK, n))
+                ]
+
+    return to_csv_chunks(columns, rows())
+
+
+def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:
+    return csv_chunks(answer) if csv else json_chunks(answer)
+
+
+# ---------------------------------------------------------------------------------------- the flow
+
+
+@dataclass(frozen=True)
+class Streamed:
+    """A large answer: its chunks, the key it would have, and its media type (sent as a streamed response)."""
+
+    chunks: Iterator[bytes]
+    key: str
+    hit: bool
+    media_type: str
+
+    @property
+    def etag(self) -> str:
+        return f'"{self.key}"'
+
+
+JSON_TYPE, CSV_TYPE = "application/json", "text/csv; charset=utf-8"
 
 
 async def compute_alignment(
-    cache: ResultCache, req: AlignmentRequest, settings: Settings, *, csv: bool, source_field: str | None = None
-) -> Computed:
-    # reading a large CSV or LandXML document takes a while: not on the event loop
-    resolved = await run_in_threadpool(resolve_alignment, req, settings, source_field)
-
-    async def produce() -> bytes:
-        return await run_in_threadpool(solve_alignment, resolved)
-
-    async def as_json() -> Computed:
-        return await cached(cache, "alignments", resolved, produce)
-
-    if not csv:
-        return await as_json()
-    return await cached_csv(cache, "alignments", resolved, as_json, lambda body: alignment_csv(resolved, body))
+    cache: ResultCache,
+    request: Request,
+    req: AlignmentRequest,
+    curves: CurveTable | None,
+    settings: Settings,
+    *,
+    csv: bool,
+    source_field: str | None = None,
+) -> Computed | Streamed:
+    """The assessment as a cached body (small answers) or a stream (large ones); the same bytes either way."""
+    job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
+    operation = "alignments-csv" if csv else "alignments"
+    media_type = CSV_TYPE if csv else JSON_TYPE
+    key = cache_key(operation, job.resolved)
+    body = (await cache.get(key, media_type)).value if job.rows <= STREAM_ROWS else None
+    if body is not None:
+        CACHE_LOOKUPS.labels(operation, "hit").inc()
+        return Computed(body, key, True, media_type)
+    answer_key = cache_key("alignment-answer", job.resolved)
+    answer = cache.answers.get(answer_key)
+    hit = answer is not None
+    CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
+    if answer is None:
+        answer = await run_in_threadpool(solve_alignment, job)
+        cache.answers[answer_key] = answer
+    if job.rows <= STREAM_ROWS:
+        body = await run_in_threadpool(lambda: b"".join(render(answer, csv)))
+        await cache.set(key, body, media_type)
+        return Computed(body, key, hit, media_type)
+    request.state.raw_reusable = False  # not kept as bytes: the fast path has nothing to serve it from
+    return Streamed(render(answer, csv), key, hit, media_type)

@@ -14,7 +14,7 @@ every text cell is quoted, quotes inside doubled (RFC 4180). Numbers are never p
 from __future__ import annotations
 
 import io
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
 
 CSV_MEDIA_TYPE = "text/csv"
@@ -72,12 +72,18 @@ def flatten_targets(row: dict[str, Any]) -> dict[str, Any]:
 
 def to_csv(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
     """CSV text (UTF-8) with a header row; a column a row does not have is left empty."""
-    buf = io.StringIO()
-    writer = _Writer(buf)
-    writer.writerow(columns)  # column names are identifiers: never formulas
-    for row in rows:
-        writer.writerow([_cell(row.get(c)) for c in columns])
-    return buf.getvalue().encode()
+    return b"".join(to_csv_chunks(columns, [rows]))
+
+
+def to_csv_chunks(columns: Sequence[str], chunks: Iterable[Iterable[dict[str, Any]]]) -> Iterator[bytes]:
+    """:func:`to_csv` in chunks: the header row, then one chunk of CSV lines per chunk of rows."""
+    yield (",".join(columns) + "\r\n").encode()  # column names are identifiers: never formulas
+    for rows in chunks:
+        buf = io.StringIO()
+        writer = _Writer(buf)
+        for row in rows:
+            writer.writerow([_cell(row.get(c)) for c in columns])
+        yield buf.getvalue().encode()
 
 
 def _parse_accept(accept: str) -> list[tuple[str, float]]:

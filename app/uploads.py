@@ -33,7 +33,15 @@ from .schemas.alignments import (
 from .schemas.common import describe
 from .schemas.srt import LoadIn
 
-OPTIONS = ("model", "stage", "trailer_angle_deg", "rear_llt_limit", "side_friction_bound")
+OPTIONS = (
+    "model",
+    "stage",
+    "trailer_angle_deg",
+    "rear_llt_limit",
+    "design_standard",
+    "side_friction_bound",
+    "max_superelevation_percent",
+)
 LOAD = ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
 LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
 
@@ -104,7 +112,7 @@ def decode_xml(data: bytes) -> str:
 def upload_request(query, **document: Any) -> AlignmentRequest:
     """The JSON request equivalent to an upload: the query's options and presets, and the document."""
     presets = list(query.vehicle)
-    data: dict[str, Any] = {n: getattr(query, n) for n in OPTIONS}
+    data: dict[str, Any] = {n: getattr(query, n) for n in OPTIONS if getattr(query, n) is not None}
     data["load"] = {n: getattr(query, n) for n in LOAD}
     data.update({"vehicle": presets[0]} if len(presets) == 1 else {"vehicles": presets})
     data.update(document)

@@ -63,6 +63,9 @@ BOUNDS: dict[str, Bound] = {
         " and down to -4 % 0.01 e + f stays positive for every tabulated side friction (f >= 0.08)",
         error=InvalidRoad,
     ),
+    "max_superelevation_percent": Bound(
+        0.0, 12.0, "%", "the maximum superelevations the design standards tabulate (4-12 %)", True, InvalidRoad
+    ),
     "slope_percent": Bound(-MAX_SLOPE_PERCENT, MAX_SLOPE_PERCENT, "%", "small-slope road geometry", error=InvalidRoad),
     "trailer_angle_deg": Bound(
         -MAX_TRAILER_ANGLE_DEG, MAX_TRAILER_ANGLE_DEG, "deg", "a combination turning on a road curve", error=InvalidRoad

@@ -313,23 +313,24 @@ def group_next_state(p: GroupParams, f: GroupForces):
 def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
     """Solve x = g(x) by fixed-point iteration with an Anderson(1) (secant) step.
 
-    ``step(x, it)`` returns ``(payload, g(x))``; x is a tuple of floats, or of equal-shape arrays when
-    ``vector`` (one independent problem per array element, converged when all are). Returns
-    ``(x, iterations, payload)`` at convergence; :class:`ConvergenceError` otherwise.
+    ``step(x, it)`` returns ``(payload, g(x))``; x is a tuple of floats (one problem), or of equal-shape arrays when
+    ``vector`` (one independent problem per array element, see :func:`fixed_point_batch`). Returns
+    ``(x, iterations, payload)`` at convergence; :class:`ConvergenceError` otherwise (for a batch: when every
+    problem failed).
     """
-    x = np.stack(np.broadcast_arrays(*x0)).astype(float) if vector else [float(v) for v in x0]
+    if vector:
+        x, it, payload, failed = fixed_point_batch(step, x0, tol=tol, max_iter=max_iter)
+        if failed.size and bool(np.all(failed)):
+            raise ConvergenceError("every case of the batch left the valid geometry or did not converge", iterations=it)
+        return x, it, payload
+    x = [float(v) for v in x0]
     g_prev = f_prev = None
     err = math.inf
     for it in range(1, max_iter + 1):
         payload, gx = step(tuple(x), it)
-        if vector:
-            g = np.stack(np.broadcast_arrays(*gx)).astype(float)
-            f = g - x
-            err = float(np.max(np.abs(f))) if f.size else 0.0
-        else:
-            g = list(gx)
-            f = [a - b for a, b in zip(g, x, strict=True)]
-            err = max(abs(v) for v in f)
+        g = list(gx)
+        f = [a - b for a, b in zip(g, x, strict=True)]
+        err = max(abs(v) for v in f)
         if not math.isfinite(err):
             raise ConvergenceError(
                 "non-finite geometry: the vehicle is beyond its static stability limit", iterations=it
@@ -338,11 +339,6 @@ def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
             return x, it, payload
         if f_prev is None:
             x_new = g
-        elif vector:  # Anderson(1) per problem
-            df = f - f_prev
-            den = np.sum(df * df, axis=0)
-            gamma = np.where(den > 0, np.sum(f * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
-            x_new = g - gamma * (g - g_prev)
         else:
             df = [a - b for a, b in zip(f, f_prev, strict=True)]
             den = sum(v * v for v in df)
@@ -354,3 +350,37 @@ def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
         iterations=max_iter,
         residual=err,
     )
+
+
+def fixed_point_batch(step, x0, *, tol: float, max_iter: int):
+    """:func:`fixed_point` for many independent problems at once (x a tuple of equal-shape arrays).
+
+    A problem whose geometry becomes non-finite (it left the mechanism's valid geometry: the vehicle is at or
+    beyond its static stability limit in that case) is frozen and marked failed; the others go on. Returns
+    ``(x, iterations, payload, failed)``, ``failed`` a boolean array (also set for problems that did not converge
+    in ``max_iter`` iterations); the payload's entries of failed problems are meaningless.
+    """
+    x = np.stack(np.broadcast_arrays(*x0)).astype(float)
+    failed = np.zeros(x.shape[1:], dtype=bool)
+    g_prev = f_prev = None
+    payload = None
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for it in range(1, max_iter + 1):
+            payload, gx = step(tuple(x), it)
+            g = np.stack(np.broadcast_arrays(*gx)).astype(float)
+            failed |= ~np.all(np.isfinite(g), axis=0)
+            g = np.where(failed, x, g)  # a failed problem stays where it was
+            f = g - x
+            err = np.max(np.abs(f), axis=0) if f.size else np.zeros(failed.shape)
+            if not np.any(err >= tol):
+                return x, it, payload, failed
+            if f_prev is None:
+                x_new = g
+            else:  # Anderson(1) per problem
+                df = f - f_prev
+                den = np.sum(df * df, axis=0)
+                gamma = np.where(den > 0, np.sum(f * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
+                x_new = g - gamma * (g - g_prev)
+            g_prev, f_prev, x = g, f, x_new
+    failed |= err >= tol
+    return x, max_iter, payload, failed

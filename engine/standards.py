@@ -471,6 +471,25 @@ def min_radius_m(
     return MinRadiusResult(r_formula, "formula", f, r_formula, std.id, e, v)
 
 
+def min_radius_array(standard: DesignStandard | str, speed_kmh, max_superelevation_percent, bound: str | None = None):
+    """:func:`min_radius_m` on arrays of design speeds and e_max (speeds inside the range, e_max in [0, 12] %) [m].
+
+    Eq. 9.2 everywhere, replaced by the published value where the standard tabulates that (e_max, speed) cell.
+    """
+    std = _resolve(standard, bound)
+    v = _check_speeds(std, speed_kmh)
+    e = np.broadcast_to(np.asarray(max_superelevation_percent, dtype=float), v.shape)
+    if np.any(~np.isfinite(e) | (e < 0) | (e > E_MAX_LIMIT_PERCENT)):
+        bad = float(e[~np.isfinite(e) | (e < 0) | (e > E_MAX_LIMIT_PERCENT)].flat[0])
+        _check_e_max(std, bad, positive=False)
+    f = np.interp(v, std.speeds_kmh, std.f_max)
+    radius = np.asarray(aashto_min_radius_m(v, e, f), dtype=float)  # Eq. 9.2
+    for e_row, row in std.min_radius_table.items():  # the published cells, to the table's rounding
+        for speed, r_table in row.items():
+            radius = np.where((e == e_row) & (v == speed), r_table, radius)
+    return radius
+
+
 @dataclass(frozen=True)
 class MinRadiusCheck:
     """Whether a curve meets a standard's minimum radius at a posted speed."""
@@ -661,6 +680,7 @@ __all__ = [
     "SuperelevationTable",
     "get_standard",
     "meets_min_radius",
+    "min_radius_array",
     "min_radius_m",
     "side_friction_factor",
     "side_friction_speed",

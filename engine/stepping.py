@@ -18,7 +18,6 @@ Thesis Secs. 1.3, 5.2, 6.2 (Eqs. 5.22, 6.17-6.18), 7.2, 9.1-9.2.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 import numpy as np
 
@@ -160,22 +159,24 @@ def solve_3d(
     return _result_3d(case, sol, stage_values, curves, m)
 
 
-def batch_3d(base: Case, cases: Sequence[Case], chassis_closure: str = "chassis-constant"):
-    """(SRT [g], roll [deg]) arrays of many cases of one vehicle and stage, solved at once with numpy arrays.
+def _weight(case: Case, overweight_percent: np.ndarray) -> np.ndarray:
+    return case.vehicle.weight_kn * (1.0 + overweight_percent / 100.0)
 
-    Raises whatever the array solve raises (a case out of the mechanism's reach makes the whole batch fail; the
-    caller then solves the cases one by one)."""
+
+def batch_3d(base: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassis-constant"):
+    """(SRT [g], roll [deg]) arrays of many cases of one vehicle and stage, solved at once with numpy arrays:
+    ``col`` holds every case input as an array (:func:`engine.threshold.evaluate_arrays`). A case whose mechanism
+    leaves its valid geometry gets nan, the others their value."""
     m = stage_model(base, None, chassis_closure)
-    arr = lambda f: np.array([f(c) for c in cases], dtype=float)  # noqa: E731
     sc = trailer3d.SolverCase(
-        weight=arr(lambda c: c.weight_kn),
-        bank=arr(lambda c: c.road.bank_rad),
-        slope=arr(lambda c: c.road.slope_rad),
-        psi=np.radians(arr(lambda c: c.trailer_angle_deg)),
-        d1=arr(lambda c: c.load.lateral_offset_m),
-        d2=arr(lambda c: c.load.longitudinal_offset_m),
-        d3=arr(lambda c: c.load.vertical_offset_m),
-        llt_limit=arr(lambda c: c.rear_llt_limit),
+        weight=_weight(base, col["overweight_percent"]),
+        bank=np.arctan(col["bank_percent"] / 100.0),
+        slope=np.arctan(col["slope_percent"] / 100.0),
+        psi=np.radians(col["trailer_angle_deg"]),
+        d1=col["lateral_offset_m"],
+        d2=col["longitudinal_offset_m"],
+        d3=col["vertical_offset_m"],
+        llt_limit=col["rear_llt_limit"],
     )
     sol = trailer3d.solve(m, sc, xp=ARRAY)
     return sol.ay, np.degrees(sol.geometry.roll)
@@ -246,21 +247,21 @@ def solve_2d(
     )
 
 
-def batch_2d(base: Case, cases: Sequence[Case], chassis_closure: str = "chassis-constant"):
+def batch_2d(base: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassis-constant"):
     """(SRT [g], roll [deg]) arrays of many 2D cases at once; the load share depends on d2, so grouped by it."""
-    del base, chassis_closure
-    arr = lambda f: np.array([f(c) for c in cases], dtype=float)  # noqa: E731
-    weight, bank, limit = arr(lambda c: c.weight_kn), arr(lambda c: c.road.bank_rad), arr(lambda c: c.rear_llt_limit)
-    d1, d2, d3 = (
-        arr(lambda c, k=k: getattr(c.load, k))
-        for k in ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m")
-    )
-    ay, roll = np.empty(len(cases)), np.empty(len(cases))
+    del chassis_closure  # one group: no roll-moment split to close
+    weight = _weight(base, col["overweight_percent"])
+    d2 = col["longitudinal_offset_m"]
+    ay, roll = np.empty(len(d2)), np.empty(len(d2))
     for val in np.unique(d2):
         sel = d2 == val
-        m = trailer2d.build_model(cases[0].vehicle, float(val))
+        m = trailer2d.build_model(base.vehicle, float(val))
         c2 = trailer2d.Case2D(
-            weight=weight[sel] * m.load_share, bank=bank[sel], d1=d1[sel], d3=d3[sel], llt_limit=limit[sel]
+            weight=weight[sel] * m.load_share,
+            bank=np.arctan(col["bank_percent"][sel] / 100.0),
+            d1=col["lateral_offset_m"][sel],
+            d3=col["vertical_offset_m"][sel],
+            llt_limit=col["rear_llt_limit"][sel],
         )
         s = trailer2d.solve(m, c2, xp=ARRAY)
         ay[sel], roll[sel] = s.ay, np.degrees(s.geometry.top_angle)

@@ -12,7 +12,6 @@ Thesis Secs. 1.3, 6.2 (Eqs. 6.17-6.18, 6.39), 7.2, 9.1-9.2, Tables 17 and 19; AA
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
@@ -143,51 +142,134 @@ def rollover_threshold(
 
 # ------------------------------------------------------------------------------------- many cases
 
+_MECHANISM_FAILED = (
+    "the mechanism left its valid geometry for this case: the vehicle is at or beyond its static stability limit"
+)
+
+
+def _columns(case: Case, n: int, arrays: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Every case input as an array of length n: the given ones, the base case's value for the others."""
+    base = {
+        "bank_percent": case.road.bank_percent,
+        "slope_percent": case.road.slope_percent,
+        "trailer_angle_deg": case.trailer_angle_deg,
+        "lateral_offset_m": case.load.lateral_offset_m,
+        "longitudinal_offset_m": case.load.longitudinal_offset_m,
+        "vertical_offset_m": case.load.vertical_offset_m,
+        "overweight_percent": case.load.overweight_percent,
+        "rear_llt_limit": case.rear_llt_limit,
+    }
+    return {k: np.broadcast_to(np.asarray(arrays.get(k, v), dtype=float), (n,)) for k, v in base.items()}
+
+
+def case_at(case: Case, columns: Mapping[str, np.ndarray], i: int) -> Case:
+    """The case of row ``i`` of a batch (for its exact error message, or a one-case solve)."""
+    c = case
+    for axis, values in columns.items():
+        c = with_axis(c, axis, float(values[i]))
+    return c
+
+
+def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarray:
+    """Rows that may break a domain rule (a vectorised over-approximation of :meth:`Model.check`): they are checked
+    one by one for their exact message; every other row is known to pass."""
+    from .domain import BOUNDS
+    from .loads import MAX_CG_BEHIND_REAR_GROUP
+
+    v = case.vehicle
+    bad = np.zeros(len(col["bank_percent"]), dtype=bool)
+    for axis, values in col.items():
+        b = BOUNDS[axis]
+        low = values > b.minimum if b.exclusive_minimum else values >= b.minimum
+        bad |= ~(np.isfinite(values) & low & (values <= b.maximum))
+    keys = {
+        "bank_percent": "bank",
+        "slope_percent": "slope",
+        "trailer_angle_deg": "trailer_angle",
+        "lateral_offset_m": "d1",
+        "longitudinal_offset_m": "d2",
+        "vertical_offset_m": "d3",
+        "overweight_percent": "overweight",
+    }
+    for axis, key in keys.items():
+        if key not in model.takes:
+            bad |= col[axis] != 0
+    if "rear_llt_limit" not in model.takes:
+        bad |= col["rear_llt_limit"] != 1.0
+    bad |= np.abs(col["lateral_offset_m"]) >= v.rear_track_m / 2.0
+    bad |= v.cg_height_above_chassis_m + col["vertical_offset_m"] <= 0
+    if v.wheelbase_m is not None and v.front_axle_to_cg_m is not None:
+        a_eff = v.front_axle_to_cg_m - col["longitudinal_offset_m"]
+        bad |= (a_eff <= 0) | (a_eff > MAX_CG_BEHIND_REAR_GROUP * v.wheelbase_m)
+    return bad
+
+
+def evaluate_arrays(
+    case: Case, arrays: Mapping[str, Sequence[float]], *, chassis_closure: str = "chassis-constant"
+) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
+    """SRT [g] and roll [deg] of many cases of one vehicle, model and stage: ``case`` with each input of ``arrays``
+    (keys of :data:`SWEEP_AXES`, equal-length arrays) varied row by row.
+
+    Returns ``(srt, roll, errors)``: arrays with nan where ``errors`` (row -> message) says why. The domain is
+    checked with arrays (a row that may break a rule is checked alone, for its exact message); models with a batch
+    solve run every valid row through it at once, a row whose mechanism leaves its valid geometry failing alone.
+    """
+    model = get_model(case.model)
+    get_closure(chassis_closure)
+    check_stage_and_limit(case)
+    model.validate(case.vehicle)  # one vehicle for every row: a bad record is the caller's error, not a row's
+    n = len(next(iter(arrays.values()))) if arrays else 1
+    col = _columns(case, n, arrays)
+    srt, roll = np.full(n, np.nan), np.full(n, np.nan)
+    errors: dict[int, str] = {}
+    for i in np.flatnonzero(_suspect_rows(model, case, col)):
+        try:
+            model.check(case_at(case, col, int(i)))
+        except RolloverError as exc:
+            errors[int(i)] = str(exc)
+    refused = np.zeros(n, dtype=bool)
+    refused[list(errors)] = True
+    ok = np.flatnonzero(~refused)
+    if not ok.size:
+        return srt, roll, errors
+    if model.batch is None:  # closed forms: microseconds each
+        for i in ok:
+            try:
+                res = rollover_threshold(case_at(case, col, int(i)), chassis_closure=chassis_closure)
+            except RolloverError as exc:
+                errors[int(i)] = str(exc)
+                continue
+            srt[i] = res.srt
+            roll[i] = np.nan if res.roll_angle_deg is None else res.roll_angle_deg
+        return srt, roll, errors
+    ay, rl = model.batch(case, {k: v[ok] for k, v in col.items()}, chassis_closure)
+    good = np.isfinite(ay) & (ay > 0)
+    srt[ok[good]], roll[ok[good]] = ay[good], rl[good]
+    for k in np.flatnonzero(~good):
+        i = int(ok[k])
+        failed = not np.isfinite(ay[k])
+        errors[i] = _MECHANISM_FAILED if failed else str(_tips_at_rest(case_at(case, col, i), float(ay[k])))
+    return srt, roll, errors
+
 
 def evaluate_cases(
     cases: Sequence[Case], *, chassis_closure: str = "chassis-constant"
 ) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
-    """SRT [g] and roll [deg] of many cases of one vehicle, model and stage at once.
-
-    Returns ``(srt, roll, errors)``: arrays with nan where ``errors`` (case index -> message) says why. Models with
-    a batch solve run every valid case through it at once (numpy arrays); if the batch fails, each case is solved
-    alone so that one bad case costs only its own row.
-    """
-    n = len(cases)
-    srt, roll = np.full(n, np.nan), np.full(n, np.nan)
-    errors: dict[int, str] = {}
-    if not n:
-        return srt, roll, errors
-    model = get_model(cases[0].model)
-    get_closure(chassis_closure)
-    model.validate(cases[0].vehicle)  # one vehicle for every case: a bad record is the caller's error, not a row's
-    for i, c in enumerate(cases):
-        try:
-            model.check(c)
-        except RolloverError as exc:
-            errors[i] = str(exc)
-    ok = [i for i in range(n) if i not in errors]
-    if model.batch is not None and ok:
-        try:
-            with np.errstate(invalid="raise", divide="raise"):
-                ay, rl = model.batch(cases[ok[0]], [cases[i] for i in ok], chassis_closure)
-            for k, i in enumerate(ok):
-                if ay[k] > 0:
-                    srt[i], roll[i] = ay[k], rl[k]
-                else:
-                    errors[i] = str(_tips_at_rest(cases[i], float(ay[k])))
-            return srt, roll, errors
-        except (RolloverError, FloatingPointError, ValueError):
-            pass  # one case out of the mechanism's reach: solve them one by one below
-    for i in ok:
-        try:
-            res = rollover_threshold(cases[i], chassis_closure=chassis_closure)
-        except RolloverError as exc:
-            errors[i] = str(exc)
-            continue
-        srt[i] = res.srt
-        roll[i] = np.nan if res.roll_angle_deg is None else res.roll_angle_deg
-    return srt, roll, errors
+    """SRT [g] and roll [deg] of a list of cases of one vehicle, model and stage (:func:`evaluate_arrays`)."""
+    if not cases:
+        return np.full(0, np.nan), np.full(0, np.nan), {}
+    base = cases[0]
+    arrays = {
+        "bank_percent": [c.road.bank_percent for c in cases],
+        "slope_percent": [c.road.slope_percent for c in cases],
+        "trailer_angle_deg": [c.trailer_angle_deg for c in cases],
+        **{
+            k: [getattr(c.load, k) for c in cases]
+            for k in ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
+        },
+        "rear_llt_limit": [c.rear_llt_limit for c in cases],
+    }
+    return evaluate_arrays(base, arrays, chassis_closure=chassis_closure)
 
 
 @dataclass(frozen=True)
@@ -242,13 +324,9 @@ def sweep(case: Case, grid: Mapping[str, Sequence[float]], *, chassis_closure: s
         if len(vals) == 0:
             raise InvalidInput(f"grid.{axis} is empty", field=f"grid.{axis}")
     axes = tuple(grid)
-    combos = list(itertools.product(*(list(map(float, grid[a])) for a in axes)))
-    cases = []
-    for combo in combos:
-        c = case
-        for axis, val in zip(axes, combo, strict=True):
-            c = with_axis(c, axis, val)
-        cases.append(c)
-    srt, roll, errors = evaluate_cases(cases, chassis_closure=chassis_closure)
-    values = np.array(combos, dtype=float).reshape(len(combos), -1)
+    mesh = np.meshgrid(*(np.asarray(grid[a], dtype=float) for a in axes), indexing="ij")
+    values = np.stack([m.reshape(-1) for m in mesh], axis=1)  # product order: the first axis varies slowest
+    srt, roll, errors = evaluate_arrays(
+        case, {a: values[:, k] for k, a in enumerate(axes)}, chassis_closure=chassis_closure
+    )
     return SweepResult(case.model, case.stage if case.model == "3d" else None, axes, values, srt, roll, errors)

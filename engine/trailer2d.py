@@ -26,6 +26,7 @@ from .groups import (
     GroupGeometry,
     GroupParams,
     fixed_point,
+    fixed_point_batch,
     group_geometry,
     group_next_state,
     group_params,
@@ -135,8 +136,12 @@ def solve(
             ) from None
         return out, group_next_state(m.group, out[5])
 
-    x, it, (ay_k, g, cg, py, pz, f) = fixed_point(step, state, vector=xp is not SCALAR, tol=tol, max_iter=max_iter)
-    return Solution2D(ay_k, tuple(x), g, cg, py, pz, f, it)
+    if xp is SCALAR:
+        x, it, (ay_k, g, cg, py, pz, f) = fixed_point(step, state, vector=False, tol=tol, max_iter=max_iter)
+        return Solution2D(ay_k, tuple(x), g, cg, py, pz, f, it)
+    # a batch: a case that leaves the valid geometry (or does not converge) gets ay = nan
+    x, it, (ay_k, g, cg, py, pz, f), failed = fixed_point_batch(step, state, tol=tol, max_iter=max_iter)
+    return Solution2D(np.where(failed, np.nan, ay_k), tuple(x), g, cg, py, pz, f, it)
 
 
 def srt_eq_5_22(h1, h2, e):

@@ -69,6 +69,8 @@ import math
 from dataclasses import dataclass, replace
 from typing import NamedTuple
 
+import numpy as np
+
 from .compliance import chassis_torque_components, chassis_torque_split, chassis_twist, shear_torsion_coefficient
 from .errors import ConvergenceError, InvalidInput
 from .groups import (
@@ -77,6 +79,7 @@ from .groups import (
     GroupGeometry,
     GroupParams,
     fixed_point,
+    fixed_point_batch,
     ground_reactions,
     group_geometry,
     group_next_state,
@@ -415,9 +418,14 @@ def solve(
             ) from None
         return out, _flat(next_state(m, case, *out[2:]))
 
-    x, it, out = fixed_point(step, _flat(state), vector=xp is not SCALAR, tol=tol, max_iter=max_iter)
+    if xp is SCALAR:
+        x, it, out = fixed_point(step, _flat(state), vector=False, tol=tol, max_iter=max_iter)
+        ay_k, geo, cl, rf, ff = out
+        return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
+    # a batch: a case that leaves the valid geometry (or does not converge) gets ay = nan, the others their value
+    x, it, out, failed = fixed_point_batch(step, _flat(state), tol=tol, max_iter=max_iter)
     ay_k, geo, cl, rf, ff = out
-    return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
+    return Solution(np.where(failed, np.nan, ay_k), _unflat(x, shape), geo, cl, rf, ff, it)
 
 
 def _unflat(x, shape) -> State:

@@ -5,6 +5,8 @@ from __future__ import annotations
 from typing import Annotated
 
 from fastapi import APIRouter, Query, Request, Response
+from fastapi.responses import StreamingResponse
+from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from ..bodylimit import body_limit
 from ..deps import CacheDep, SettingsDep
@@ -17,18 +19,31 @@ from ..schemas.alignments import (
     AlignmentRequest,
     AlignmentResult,
 )
-from ..service_alignments import compute_alignment
+from ..service import Computed
+from ..service_alignments import Streamed, compute_alignment, parse_json_request
 from ..tables import wants_csv
 from ..uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload, upload_body
-from .common import computed_response, table_responses
+from .common import computed_response, json_body, table_responses
 
 router = APIRouter(prefix="/v1/alignments", tags=["alignments"])
 
+
+def answer(result: Computed | Streamed) -> Response:
+    """A whole body with its headers, or a streamed one (chunked) with the same headers."""
+    if isinstance(result, Computed):
+        return computed_response(result, vary_accept=True)
+    headers = {"ETag": result.etag, "X-Cache": "hit" if result.hit else "miss", "Vary": "Accept"}
+    return StreamingResponse(iterate_in_threadpool(result.chunks), media_type=result.media_type, headers=headers)
+
+
 ASSESSMENT = """For each horizontal curve and each vehicle: the SRT on the curve's bank and grade, the rollover
-speed sqrt(127 SRT R) (Eq. 9.1), the side-friction speed sqrt(127 R (0.01 e + f)) with f from Table 21, the safe
-speed (the smaller) and which mechanism governs, and the margin against the posted speed, flagged when negative.
-Curves sharing superelevation and grade share one SRT solve. JSON, or CSV with `Accept: text/csv` (one row per
-vehicle and curve)."""
+speed sqrt(127 SRT R) (Eq. 9.1), the side-friction speed sqrt(127 R (0.01 e + f_max)) with the design standard's
+f_max (`design_standard`, AASHTO 2018 by default), the safe speed (the smaller) and which mechanism governs, the
+margin against the posted speed (flagged when negative), and whether the radius meets the standard's minimum for the
+posted speed. A curve without a superelevation takes the standard's design value for its posted speed and the
+request's `max_superelevation_percent`. Curves sharing superelevation and grade share one SRT solve, and every
+distinct pair is solved in one batch. JSON, or CSV with `Accept: text/csv` (one row per vehicle and curve). Answers
+over 5,000 rows are streamed (chunked; the same bytes as a whole answer) and cached by reference."""
 
 
 @router.post(
@@ -36,16 +51,18 @@ vehicle and curve)."""
     name="assess",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500),
-    openapi_extra=body_limit(ALIGNMENT_JSON_LIMIT),
+    openapi_extra={**body_limit(ALIGNMENT_JSON_LIMIT), **json_body(AlignmentRequest)},
     description=ASSESSMENT
     + """
 
 The curves are a JSON list (`curves`), CSV text (`csv`) or a LandXML 1.2 document (`landxml`); the same files can
 also be sent as they are to `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`.""",
 )
-async def assess(body: AlignmentRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
+async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
+    # 100,000 curves are 15 MB of JSON: read and validated in a worker thread, the curves as columns
+    body, curves = await run_in_threadpool(parse_json_request, await request.body())
     csv = wants_csv(request.headers.get("accept"))
-    return computed_response(await compute_alignment(cache, body, settings, csv=csv), vary_accept=True)
+    return answer(await compute_alignment(cache, request, body, curves, settings, csv=csv))
 
 
 @router.post(
@@ -66,8 +83,7 @@ async def assess_csv(
 ) -> Response:
     body = await csv_upload(request, query)
     csv = wants_csv(request.headers.get("accept"))
-    result = await compute_alignment(cache, body, settings, csv=csv, source_field="body")
-    return computed_response(result, vary_accept=True)
+    return answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
 
 
 @router.post(
@@ -88,5 +104,4 @@ async def assess_landxml(
 ) -> Response:
     body = await landxml_upload(request, query)
     csv = wants_csv(request.headers.get("accept"))
-    result = await compute_alignment(cache, body, settings, csv=csv, source_field="body")
-    return computed_response(result, vary_accept=True)
+    return answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))

@@ -57,3 +57,15 @@ def json_response(result: Computed) -> Response:
         media_type="application/json",
         headers={"ETag": result.etag, "X-Cache": "hit" if result.hit else "miss"},
     )
+
+
+#: request models read by their route itself (off the event loop), published in the spec by reference
+READ_BY_ROUTE: list[type] = []
+
+
+def json_body(model: type) -> dict[str, Any]:
+    """``openapi_extra`` of a route that reads and validates its JSON body itself (in a worker thread: a large
+    body would hold the event loop): the request body is the model's schema, added to the spec's components."""
+    READ_BY_ROUTE.append(model)
+    ref = {"$ref": f"#/components/schemas/{model.__name__}"}
+    return {"requestBody": {"required": True, "content": {"application/json": {"schema": ref}}}}

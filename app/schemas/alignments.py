@@ -7,10 +7,8 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from engine.road import FRICTION_BOUNDS
-
 from ..alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, exactly_one_schema, shape_error
+from .common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, exactly_one_schema, shape_error
 from .srt import (
     TARGETS_OUT,
     TILT_OUT,
@@ -20,6 +18,7 @@ from .srt import (
     TargetCheckOut,
     VehicleRef,
 )
+from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 MAX_VEHICLES = 10
 #: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)
@@ -49,7 +48,13 @@ class CurveIn(InputModel):
         )
     )
     radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")
-    superelevation_percent: float = bounded("bank_percent", text=_E, symbol=_E_SYMBOL)
+    superelevation_percent: float | None = bounded(
+        "bank_percent",
+        None,
+        text=_E + " Left out (or null): derived from the design standard's distribution at the curve's posted speed "
+        "and the request's `max_superelevation_percent` (the row says so).",
+        symbol=_E_SYMBOL,
+    )
     grade_percent: float = bounded("slope_percent", 0.0, text=_GRADE, symbol=_GRADE_SYMBOL)
     posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED, symbol="V")
 
@@ -109,7 +114,7 @@ ALIGNMENT_LANDXML_EXAMPLE = (
 )
 
 
-class AlignmentRequest(SrtOptions, SrtTargets):
+class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
     """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve
     has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 100,000 curves and
     100,000 rows (curves x vehicles) per request.
@@ -119,7 +124,11 @@ class AlignmentRequest(SrtOptions, SrtTargets):
 
     model_config = ConfigDict(
         json_schema_extra={
-            "allOf": [exactly_one_schema("vehicle", "vehicles"), exactly_one_schema("curves", "csv", "landxml")],
+            "allOf": [
+                exactly_one_schema("vehicle", "vehicles"),
+                exactly_one_schema("curves", "csv", "landxml"),
+                BOUND_ONLY_WITH_TABLE21,
+            ],
             "examples": [
                 {
                     "vehicle": EXAMPLE_PRESET,
@@ -149,9 +158,12 @@ class AlignmentRequest(SrtOptions, SrtTargets):
         }
     )
 
-    vehicle: VehicleRef = Field(None, description=VEHICLE_DESCRIPTION + " Give `vehicle` or `vehicles`.")
+    vehicle: VehicleRef = Field(
+        None, description=VEHICLE_DESCRIPTION + " Give `vehicle` or `vehicles`.", json_schema_extra=ABSENT
+    )
     vehicles: list[VehicleRef] = Field(
         None,
+        json_schema_extra=ABSENT,
         min_length=1,
         max_length=MAX_VEHICLES,
         description=describe(
@@ -161,23 +173,24 @@ class AlignmentRequest(SrtOptions, SrtTargets):
             symbol="Tables 14-16, 22, 23",
         ),
     )
-    side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
-        "low",
-        description=describe(
-            "Where to read Table 21's side-friction range for the side-friction speed: `low` (default, the "
-            "conservative one), `mid` or `high`.",
-            unit="-",
-            symbol="f range (Table 21)",
-        ),
+    max_superelevation_percent: float = bounded(
+        "max_superelevation_percent",
+        None,
+        text="The road's maximum superelevation e_max: a curve without its own superelevation takes the standard's "
+        "design value for its posted speed (AASHTO Method 5, DNIT's distribution), and each curve's minimum radius is "
+        "the standard's for this e_max (without it, for the curve's own superelevation).",
+        symbol="e_max",
     )
     curves: list[CurveIn] = Field(
         None,
+        json_schema_extra=ABSENT,
         min_length=1,
         max_length=MAX_CURVES,
         description=describe(f"The curves (1-{MAX_CURVES}).", unit="per field", symbol="R, e, slope"),
     )
     csv: str = Field(
         None,
+        json_schema_extra=ABSENT,
         min_length=1,
         max_length=MAX_CSV_CHARS,
         description=describe(
@@ -190,6 +203,7 @@ class AlignmentRequest(SrtOptions, SrtTargets):
     )
     landxml: LandXmlIn = Field(
         None,
+        json_schema_extra=ABSENT,
         description=describe(
             "The curves of a LandXML 1.2 alignment, with the superelevation and grade to use.",
             unit="see its fields",
@@ -232,7 +246,18 @@ class CurveRow(OutputModel):
         description=describe("Start station of the curve (LandXML `staStart`; null otherwise).", unit="m")
     )
     radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
-    superelevation_percent: float = Field(description=describe("Superelevation.", unit="%", symbol="e"))
+    superelevation_percent: float = Field(
+        description=describe(
+            "Superelevation used (given, or derived: see `superelevation_source`).", unit="%", symbol="e"
+        )
+    )
+    superelevation_source: Literal["given", "derived"] = Field(
+        description=describe(
+            "`derived`: the curve gave none; it is the design standard's value for its posted speed and the "
+            "request's `max_superelevation_percent`.",
+            unit="-",
+        )
+    )
     grade_percent: float = Field(description=describe("Grade, + uphill.", unit="%", symbol="slope"))
     srt_g: float | None = Field(
         description=describe(
@@ -251,14 +276,21 @@ class CurveRow(OutputModel):
     )
     side_friction_speed_kmh: float = Field(
         description=describe(
-            "Speed at which the curve uses up the design side friction, V = sqrt(127 R (0.01 e + f(V))) with f "
-            "from Table 21 at `side_friction_bound` (clamped to the table's 30-120 km/h).",
+            "Speed at which the curve uses up the design side friction, V = sqrt(127 R (0.01 e + f_max(V))) with "
+            "the design standard's f_max (held at its value at the end of the standard's speed range beyond it: see "
+            "`side_friction_clamped`).",
             unit="km/h",
             symbol="V (Eq. 9.2 solved for V)",
         )
     )
     side_friction: float = Field(
-        description=describe("Side-friction factor f at that speed.", unit="-", symbol="f (Table 21)")
+        description=describe("The standard's f_max at that speed.", unit="-", symbol="f_max (Eq. 9.2)")
+    )
+    side_friction_clamped: bool = Field(
+        description=describe(
+            "The curve's side-friction speed falls outside the standard's speed range: f_max is the range end's.",
+            unit="-",
+        )
     )
     safe_speed_kmh: float | None = Field(
         description=describe("The smaller of the two speeds; null without an SRT.", unit="km/h", symbol="V")
@@ -272,7 +304,21 @@ class CurveRow(OutputModel):
             "Safe speed minus posted speed; null without a posted speed or an SRT.", unit="km/h", symbol="-"
         )
     )
-    flagged: bool = Field(description=describe("The margin is negative: the posted speed is unsafe.", unit="-"))
+    flagged: bool = Field(
+        description=describe("The margin is negative (the posted speed is unsafe), or the curve has no SRT.", unit="-")
+    )
+    standard_min_radius_m: float | None = Field(
+        description=describe(
+            "The design standard's minimum radius at the posted speed, for `max_superelevation_percent` (else the "
+            "curve's own superelevation): the published value where tabulated, else Eq. 9.2. Null without a posted "
+            "speed inside the standard's range.",
+            unit="m",
+            symbol="R_min (Eq. 9.2)",
+        )
+    )
+    meets_standard_min_radius: bool | None = Field(
+        description=describe("Whether radius_m >= standard_min_radius_m; null when that is null.", unit="-")
+    )
     error: str | None = Field(
         description=describe("Why the engine refused this curve's case (null otherwise).", unit="-")
     )
@@ -280,7 +326,14 @@ class CurveRow(OutputModel):
 
 class AlignmentSummary(OutputModel):
     curves: int = Field(description=describe("Curves assessed.", unit="count"))
-    flagged: int = Field(description=describe("Curves whose posted speed exceeds the safe speed.", unit="count"))
+    flagged: int = Field(
+        description=describe("Curves flagged: posted speed above the safe speed, or no SRT.", unit="count")
+    )
+    below_standard_min_radius: int = Field(
+        description=describe(
+            "Curves whose radius is below the standard's minimum for their posted speed.", unit="count"
+        )
+    )
     refused: int = Field(description=describe("Curves without an SRT (rows with `error`).", unit="count"))
     distinct_srt_solves: int = Field(
         description=describe(
@@ -313,7 +366,13 @@ class AlignmentResult(OutputModel):
 
     model: str = Field(description=describe("Model used.", unit="-"))
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
-    side_friction_bound: str = Field(description=describe("Table 21 bound used.", unit="-", symbol="f range"))
+    design_standard: str = Field(description=describe("The design standard used.", unit="-"))
+    side_friction_bound: str | None = Field(
+        description=describe("Table 21 bound used (thesis-table21 only; null otherwise).", unit="-", symbol="f range")
+    )
+    max_superelevation_percent: float | None = Field(
+        description=describe("The request's e_max, when given.", unit="%", symbol="e_max")
+    )
     curves: int = Field(description=describe("Curves in the request.", unit="count"))
     vehicles: list[VehicleAssessment] = Field(description=describe("One entry per vehicle.", unit="see its fields"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -47,12 +47,24 @@ def describe(text: str, *, unit: str, symbol: str | None = None) -> str:
     return f"{text} Unit: {unit}. Thesis symbol: {symbol or '-'}."
 
 
+def _absent_means_none(schema: dict[str, Any]) -> None:
+    """A field that is either given (a value, never null) or left out: the schema has no ``default: null``."""
+    schema.pop("default", None)
+
+
+#: ``json_schema_extra`` of a non-nullable field whose absence the server reads as None (left out, not null)
+ABSENT = _absent_means_none
+
+
 def bounded(
     name: str, default: Any = PydanticUndefined, *, text: str, symbol: str | None = None, unit: str | None = None
 ):
     """A request field bounded by :data:`engine.domain.BOUNDS` ``name`` (the engine checks the same range)."""
     b = BOUNDS[name]
-    return Field(default, description=describe(text, unit=unit or b.unit or "-", symbol=symbol), **b.pydantic())
+    extra = {"json_schema_extra": ABSENT} if default is None else {}
+    return Field(
+        default, description=describe(text, unit=unit or b.unit or "-", symbol=symbol), **b.pydantic(), **extra
+    )
 
 
 def shape_error(model: str, field: str, message: str, value: Any = None) -> ValidationError:

@@ -8,7 +8,7 @@ from pydantic import ConfigDict, Field, model_validator
 
 from engine.road import FRICTION_BOUNDS
 
-from .common import EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
+from .common import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
 from .srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
@@ -73,7 +73,7 @@ class CurveSpeedRequest(SrtInputs, SrtTargets):
 
     radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")
     srt: float = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
-    vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+    vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE, json_schema_extra=ABSENT)  # type: ignore[assignment]
 
     @model_validator(mode="after")
     def _srt_or_vehicle(self) -> CurveSpeedRequest:
@@ -120,7 +120,7 @@ class MinRadiusRequest(SrtInputs, SrtTargets):
         ),
     )
     srt: float = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
-    vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE)  # type: ignore[assignment]
+    vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE, json_schema_extra=ABSENT)  # type: ignore[assignment]
 
     road: SlopeIn = Field(
         default_factory=SlopeIn,

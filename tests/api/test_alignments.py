@@ -54,7 +54,8 @@ CURVES = [
     {"id": "C4", "radius_m": 20.0, "superelevation_percent": 2.0, "grade_percent": 3.0},  # tighter than Table 21
     {"id": "C5", "radius_m": 2500.0, "superelevation_percent": 6.0, "grade_percent": 0.0, "posted_speed_kmh": 110.0},
 ]
-BASE = {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "curves": CURVES}
+# the thesis's Table 21 at its low bound (the assessment's checks below use TABLE21_LOW)
+BASE = {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "curves": CURVES, "design_standard": "thesis-table21"}
 
 
 @pytest.fixture(scope="module")
@@ -120,6 +121,7 @@ def test_rollover_governs_a_high_load_on_a_tight_curve(shared_client):
         "vehicle": BTRAIN,
         "rear_llt_limit": 0.6,
         "load": {"vertical_offset_m": 0.5},
+        "design_standard": "thesis-table21",
         "curves": [
             {"id": "wide", "radius_m": 300.0, "superelevation_percent": 4.0},
             {"id": "tight", "radius_m": 60.0, "superelevation_percent": 4.0},
@@ -159,7 +161,8 @@ def to_landxml(curves) -> str:
 
 
 def test_csv_and_landxml_give_the_same_rows_as_json(shared_client, assessed):
-    by_csv = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "csv": to_csv_text(CURVES)})
+    table21 = {"design_standard": "thesis-table21"}
+    by_csv = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "csv": to_csv_text(CURVES), **table21})
     assert by_csv.json() == assessed
     # the same curves resolve to the same request: one cache entry, one ETag, whatever the format
     again = post(shared_client, BASE)
@@ -173,7 +176,7 @@ def test_csv_and_landxml_give_the_same_rows_as_json(shared_client, assessed):
         for c in CURVES
     }
     landxml = {"document": to_landxml(CURVES), "curve_overrides": overrides}
-    by_xml = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "landxml": landxml}).json()
+    by_xml = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "landxml": landxml, **table21}).json()
     for x, j, k in zip(rows_of(by_xml), rows_of(assessed), range(5), strict=True):
         assert x["station_m"] == 100.0 * k and j["station_m"] is None
         assert {**x, "station_m": None} == j
@@ -271,7 +274,8 @@ def test_request_errors_name_the_field(shared_client, body, field):
     ("text", "location", "field", "words"),
     [
         ("id,radius_m,superelevation_percent\nA,100,2\nB,0,3\n", "row 3", "csv.radius_m", "outside [5, 100000] m"),
-        ("id,radius_m,grade_percent\nA,100,2\n", "row 1 (header)", "csv.superelevation_percent", "missing column"),
+        ("id,radius_m,grade_percent\nA,100,2\n", "row 2", "csv.superelevation_percent", "max_superelevation_percent"),
+        ("id,grade_percent\nA,2\n", "row 1 (header)", "csv.radius_m", "missing column"),
         ("id,radius_m,superelevation_percent\nA,100,2\nB,100\n", "row 3", "csv", "has 2 fields"),
         ("id,radius_m,superelevation_percent\nA,abc,2\n", "row 2", "csv.radius_m", "not a number"),
         ("id,radius_m,superelevation_percent,posted_speed_kmh\nA,100,2,250\n", "row 2", "csv.posted_speed_kmh", "200"),
@@ -338,11 +342,11 @@ def upload(client, kind, text, query, status=200, **headers):
 
 def test_a_csv_upload_is_the_json_csv_request(shared_client, assessed):
     # a spreadsheet's UTF-8 BOM is not part of the first column's name
-    r = upload(shared_client, "csv", "\ufeff" + to_csv_text(CURVES), "vehicle=table16-btrain&rear_llt_limit=0.6")
+    query = "vehicle=table16-btrain&rear_llt_limit=0.6&design_standard=thesis-table21"
+    r = upload(shared_client, "csv", "\ufeff" + to_csv_text(CURVES), query)
     assert r.json() == assessed
     assert r.headers["etag"] == post(shared_client, BASE).headers["etag"]  # one cache entry for every form
-    as_csv = upload(shared_client, "csv", to_csv_text(CURVES), "vehicle=table16-btrain&rear_llt_limit=0.6",
-                    Accept="text/csv")  # fmt: skip
+    as_csv = upload(shared_client, "csv", to_csv_text(CURVES), query, Accept="text/csv")
     assert as_csv.headers["content-type"].startswith("text/csv") and len(as_csv.text.splitlines()) == 1 + len(CURVES)
 
 
@@ -361,7 +365,7 @@ def test_a_landxml_upload_takes_the_defaults_from_the_query(shared_client):
     [
         ("csv", "id,radius_m,superelevation_percent\nA,100,2\nB,0,3\n", "vehicle=table16-btrain", "body.radius_m",
          "row 3"),
-        ("csv", "id,radius_m\nA,100\n", "vehicle=table16-btrain", "body.superelevation_percent", "row 1 (header)"),
+        ("csv", "id,radius_m\nA,100\n", "vehicle=table16-btrain", "body.superelevation_percent", "row 2"),
         ("csv", b"id,radius_m,superelevation_percent\nA,100,\xff\n", "vehicle=table16-btrain", "body", None),
         ("csv", "", "vehicle=table16-btrain", "body", None),
         ("landxml", "<LandXML><Alignments><Alignment", "vehicle=table16-btrain&superelevation_percent=4", "body",

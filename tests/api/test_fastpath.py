@@ -99,3 +99,26 @@ def test_an_answer_marked_not_reusable_is_never_served_by_its_bytes():
         asyncio.run(call("/saved"))
         asyncio.run(call("/preset"))
     assert calls.count("/saved") == 3 and calls.count("/preset") == 1
+
+
+def test_tcp_nodelay_is_set_on_listening_sockets_and_inherited_without_leaking_descriptors():
+    import os
+    import socket
+
+    from app.netopts import set_nodelay_on_listening_sockets
+
+    listening = socket.socket(socket.AF_INET, socket.SOCK_STREAM)  # proto 0, as uvicorn --workers binds it
+    listening.bind(("127.0.0.1", 0))
+    listening.listen()
+    before = len(os.listdir("/proc/self/fd"))
+    try:
+        assert set_nodelay_on_listening_sockets() >= 1
+        assert len(os.listdir("/proc/self/fd")) == before  # every duplicate closed, sockets or not
+        assert listening.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY)
+        client = socket.create_connection(listening.getsockname())
+        accepted, _ = listening.accept()
+        assert accepted.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY)  # Linux copies it to the connection
+        accepted.close()
+        client.close()
+    finally:
+        listening.close()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -62,18 +63,23 @@ CSV_OK = (
 
 
 def test_csv_reads_curves_with_optional_columns():
-    curves = read_csv(CSV_OK)
-    assert [c.id for c in curves] == ["C1", "C2", "C3"]
-    assert curves[0].radius_m == 120 and curves[0].grade_percent == -4 and curves[0].posted_speed_kmh == 60
-    assert curves[1].grade_percent == 0.0 and curves[2].posted_speed_kmh is None
+    t = read_csv(CSV_OK)
+    assert t.ids == ["C1", "C2", "C3"] and t.where == ["row 2", "row 3", "row 4"]
+    assert (t.radius_m[0], t.grade_percent[0], t.posted_speed_kmh[0]) == (120, -4, 60)
+    assert t.grade_percent[1] == 0.0 and math.isnan(t.posted_speed_kmh[2])
     minimal = read_csv("ID, Radius_m ,superelevation_percent\nA,100,2\n")
-    assert minimal[0].grade_percent == 0.0
+    assert minimal.grade_percent[0] == 0.0
+    # without a superelevation (column or cell) the curve's is left to the design standard's distribution
+    derived = read_csv("id,radius_m,superelevation_percent\nA,100,\n")
+    assert math.isnan(derived.superelevation_percent[0]) and math.isnan(
+        read_csv("id,radius_m\nA,100\n").superelevation_percent[0]
+    )
 
 
 @pytest.mark.parametrize(
     "text,where,field",
     [
-        ("id,radius_m,grade_percent\nA,100,2\n", "row 1 (header)", "superelevation_percent"),
+        ("id,superelevation_percent\nA,2\n", "row 1 (header)", "radius_m"),
         ("id,radius_m,superelevation_percent\nA,abc,2\n", "row 2", "radius_m"),
         ("id,radius_m,superelevation_percent\nA,100,2\nB,100\n", "row 3", None),
         ("id,radius_m,superelevation_percent\nA,100,2\nA,200,3\n", "row 3", "id"),
@@ -112,10 +118,13 @@ def test_landxml_curves_with_defaults_and_overrides():
         posted_speed_kmh=80,
         overrides={"BR-101#2": CurveOverride(superelevation_percent=4.0, grade_percent=3.0)},
     )
-    (k1, sta1), (k2, sta2) = got
-    assert (k1.id, k1.radius_m, k1.superelevation_percent, k1.grade_percent, sta1) == ("K1", 250, 6.0, -2.0, 200)
-    assert (k2.id, k2.radius_m, k2.superelevation_percent, k2.grade_percent, sta2) == ("BR-101#2", 400.5, 4.0, 3.0, 380)
-    assert k2.posted_speed_kmh == 80
+    assert got.ids == ["K1", "BR-101#2"]
+    assert list(got.radius_m) == [250, 400.5] and list(got.superelevation_percent) == [6.0, 4.0]
+    assert list(got.grade_percent) == [-2.0, 3.0] and list(got.station_m) == [200, 380]
+    assert list(got.posted_speed_kmh) == [80, 80]
+    assert got.where[1] == "Alignment 'BR-101' CoordGeom Curve #2 ('BR-101#2')"
+    derive = read_landxml(LANDXML, superelevation_percent=None)  # left to the design standard's distribution
+    assert all(math.isnan(e) for e in derive.superelevation_percent)
 
 
 @pytest.mark.parametrize(
@@ -135,7 +144,6 @@ def test_landxml_curves_with_defaults_and_overrides():
         ),
         ("<LandXML><Alignments><Alignment", {"superelevation_percent": 4}, "malformed XML"),
         ("<Foo/>", {"superelevation_percent": 4}, "not <LandXML>"),
-        (LANDXML, {"superelevation_percent": None}, "no superelevation"),
         (LANDXML, {"superelevation_percent": 4, "overrides": {"K9": CurveOverride(grade_percent=1)}}, "K9"),
         (
             '<?xml version="1.0"?><!DOCTYPE x [<!ENTITY a "aaaa">]><LandXML>&a;</LandXML>',

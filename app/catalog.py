@@ -40,6 +40,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from sqlalchemy.exc import OperationalError
 from starlette.concurrency import run_in_threadpool
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from engine.errors import InvalidVehicle, MissingParameter
 from engine.vehicles import PRESETS, Vehicle, validate_vehicle
@@ -49,7 +50,7 @@ from .db import Database, repo
 from .db import upgrade as upgrade_database
 from .deps import resolve_settings
 from .logs import get_logger
-from .problems import problem_response
+from .problems import _http_handler, problem_response
 from .schemas.catalog import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
@@ -253,8 +254,33 @@ async def _database_down_handler(request: Request, exc: OperationalError) -> JSO
     )
 
 
+_HTTP_METHODS = {"get", "put", "post", "delete", "patch", "head", "options", "trace"}
+
+
+def documented_methods(app: FastAPI, path: str) -> set[str]:
+    """The methods the OpenAPI document declares for the resource at ``path`` (a literal path such as
+    ``/v1/vehicles/saved`` wins over a template such as ``/v1/vehicles/{id}``); empty when none matches."""
+    paths = app.openapi().get("paths", {})
+    for template in sorted(paths, key=lambda t: t.count("{")):
+        pattern = re.sub(r"\\\{[^/]*?\\\}", "[^/]+", re.escape(template))
+        if re.fullmatch(pattern, path):
+            return {m.upper() for m in paths[template] if m in _HTTP_METHODS}
+    return set()
+
+
+async def _http_handler_with_full_allow(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+    """Starlette's 405 lists only the methods of the *first* route matching the path; the catalog puts several
+    routes on one path (``/v1/vehicles``: GET presets, POST save), so ``Allow`` lists what the spec declares."""
+    if exc.status_code == 405:
+        allowed = documented_methods(request.app, request.url.path)
+        if allowed:
+            exc.headers = {**(exc.headers or {}), "Allow": ", ".join(sorted(allowed))}
+    return await _http_handler(request, exc)
+
+
 def install_catalog_handlers(app: FastAPI) -> None:
     """Map the catalog's errors to problem details (call after :func:`app.problems.install_problem_handlers`)."""
+    app.add_exception_handler(StarletteHTTPException, _http_handler_with_full_allow)
     app.add_exception_handler(CatalogProblem, _catalog_problem_handler)
     app.add_exception_handler(CatalogDisabled, _disabled_handler)
     app.add_exception_handler(NotAuthenticated, _unauthenticated_handler)
@@ -336,11 +362,14 @@ def validate_spec(spec: dict[str, Any]) -> None:
 
 
 def _check_json(value: Any, field: str, depth: int = 0) -> None:
-    """Only finite numbers (the parser accepts NaN and Infinity, which JSON cannot store) and bounded nesting."""
+    """Only finite numbers (the parser accepts NaN and Infinity, which JSON cannot store), integers within 64 bits,
+    and bounded nesting."""
     if depth > SPEC_MAX_DEPTH:
         raise InvalidVehicle(f"nested deeper than {SPEC_MAX_DEPTH} levels", field=field)
     if isinstance(value, float) and not math.isfinite(value):
         raise InvalidVehicle(f"{value} is not a finite number", field=field, value=str(value))
+    if isinstance(value, int) and not -(2**63) <= value < 2**64:  # what JSON tools (and orjson) can store
+        raise InvalidVehicle("integer outside the 64-bit range", field=field, value=str(value))
     children = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
     for key, item in children:
         _check_json(item, f"{field}.{key}", depth + 1)

@@ -9,14 +9,17 @@ PostgreSQL advisory lock, so the first one migrates and the others find the sche
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from alembic import command
-from alembic.config import Config
-from alembic.runtime.migration import MigrationContext
-from alembic.script import ScriptDirectory
 from sqlalchemy import text
 
 from .session import Database, lock_key
+
+if TYPE_CHECKING:
+    from alembic.config import Config
+
+# Alembic is imported inside the functions: the app imports this module at start-up whether or not the catalog is
+# enabled, and Alembic (with Mako) adds about half a second to that.
 
 MIGRATIONS = Path(__file__).resolve().parent / "migrations"
 _MIGRATION_LOCK = "rollover:migrations"
@@ -24,6 +27,8 @@ _MIGRATION_LOCK = "rollover:migrations"
 
 def alembic_config(db: Database | None = None) -> Config:
     """An Alembic configuration pointing at the packaged migration scripts (and at ``db``'s URL)."""
+    from alembic.config import Config
+
     config = Config()
     config.set_main_option("script_location", str(MIGRATIONS))
     if db is not None:
@@ -34,6 +39,8 @@ def alembic_config(db: Database | None = None) -> Config:
 
 def head_revision() -> str:
     """The newest revision of the packaged scripts."""
+    from alembic.script import ScriptDirectory
+
     head = ScriptDirectory.from_config(alembic_config()).get_current_head()
     assert head is not None
     return head
@@ -41,12 +48,16 @@ def head_revision() -> str:
 
 def current_revision(db: Database) -> str | None:
     """The revision the database is at (None for an empty database)."""
+    from alembic.runtime.migration import MigrationContext
+
     with db.engine.connect() as connection:
         return MigrationContext.configure(connection).get_current_revision()
 
 
 def upgrade(db: Database, revision: str = "head") -> str | None:
     """Migrate ``db`` to ``revision`` (default: the newest) in one locked transaction; returns the revision."""
+    from alembic import command
+
     config = alembic_config(db)
     with db._writer.begin() as connection:  # BEGIN IMMEDIATE on SQLite
         if db.dialect == "postgresql":

@@ -24,6 +24,7 @@ from ..schemas.catalog import (
     Fleet,
     FleetPage,
     FleetWrite,
+    PageQuery,
     SavedVehicle,
     SavedVehiclePage,
     VehicleWrite,
@@ -132,11 +133,7 @@ IfMatchOptional = Annotated[
     str | None,
     Header(alias="If-Match", description="Optional: when given, 412 unless it is the current version's `ETag`."),
 ]
-Limit = Annotated[int, Query(ge=1, le=200, description="Page size, 1-200 [items].")]
-Cursor = Annotated[
-    str | None,
-    Query(max_length=400, description="`next_cursor` of the previous page; omit for the first page."),
-]
+PageDep = Annotated[PageQuery, Query()]
 
 
 def writable_vehicle_owner(id: VehicleIdPath, credentials: BearerDep, settings: SettingsDep) -> str:
@@ -179,11 +176,11 @@ async def create_vehicle(body: VehicleWrite, owner: OwnerDep, request: Request, 
     response_model=SavedVehiclePage,
     responses=problem_responses(401, 403, 422, 500, 503),
 )
-async def list_saved_vehicles(owner: OwnerDep, request: Request, limit: Limit = 50, cursor: Cursor = None) -> Response:
+async def list_saved_vehicles(owner: OwnerDep, request: Request, page: PageDep) -> Response:
     """The caller's saved vehicles, oldest first, `limit` per page; follow `next_cursor` until it is null
     (keyset pagination on creation time and id: stable while vehicles are added)."""
     db = await catalog.catalog_db(request)
-    return _json(await catalog.list_vehicles(db, owner, cursor, limit))
+    return _json(await catalog.list_vehicles(db, owner, page.cursor, page.limit))
 
 
 @router.put(
@@ -247,10 +244,10 @@ async def create_fleet(body: FleetWrite, owner: OwnerDep, request: Request, sett
 @router.get(
     "/v1/fleets", name="list_fleets", response_model=FleetPage, responses=problem_responses(401, 403, 422, 500, 503)
 )
-async def list_fleets(owner: OwnerDep, request: Request, limit: Limit = 50, cursor: Cursor = None) -> Response:
+async def list_fleets(owner: OwnerDep, request: Request, page: PageDep) -> Response:
     """The caller's fleets, oldest first, `limit` per page; follow `next_cursor` until it is null."""
     db = await catalog.catalog_db(request)
-    return _json(await catalog.list_fleets(db, owner, cursor, limit))
+    return _json(await catalog.list_fleets(db, owner, page.cursor, page.limit))
 
 
 @router.get(

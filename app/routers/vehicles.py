@@ -13,7 +13,7 @@ from engine.vehicles import PRESET_INFO, PRESETS, get_preset
 from .. import catalog
 from ..auth import BearerDep, authenticate
 from ..deps import SettingsDep
-from ..problems import error_responses
+from ..problems import Problem, error_responses
 from ..schemas.catalog import SavedVehicle
 from ..schemas.vehicles import VehiclePreset
 from .catalog import problem_responses
@@ -47,7 +47,12 @@ def list_vehicles() -> list[VehiclePreset]:
                 "ETag": {"description": 'For a saved vehicle: its version (`"3"`).', "schema": {"type": "string"}}
             }
         },
-        **error_responses(404, 422, 500),
+        **error_responses(422, 500),
+        404: {
+            "model": Problem,
+            "description": "Unknown vehicle preset (the problem lists the known ids), or no saved vehicle with this "
+            "id for this key (missing, deleted or another key's).",
+        },
         **problem_responses(401, 403, 409, 503),
     },
     openapi_extra={"security": [{}]},  # the bearer key is optional: presets are public

@@ -6,7 +6,7 @@ from dataclasses import fields as dataclass_fields
 from datetime import datetime
 from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Discriminator, Field, Tag, create_model
+from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
 from engine.vehicles import Vehicle
 
@@ -35,6 +35,19 @@ _NEXT = describe(
     "id), so rows created while paging come at the end and no row is repeated or skipped.",
     unit="-",
 )
+
+
+class PageQuery(BaseModel):
+    """The query of a listing: page size and cursor; any other parameter is refused (422)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    limit: int = Field(50, ge=1, le=200, description=describe("Page size, 1-200.", unit="items"))
+    cursor: str | None = Field(
+        None,
+        max_length=400,
+        description=describe("`next_cursor` of the previous page; omit it for the first page.", unit="-"),
+    )
 
 
 class VehicleSpec(InputModel):

@@ -161,6 +161,10 @@ def test_schema_errors_name_the_field(cat, presets):
         headers=auth(K1, **{"Content-Type": "application/json"}),
     )
     assert r.status_code == 422 and r.json()["errors"][0]["field"] == "vehicle.spec.a.1"
+    huge = cat.post(
+        "/v1/vehicles", json={"title": "big int", "vehicle": {"spec": {"n": -(2**63) - 1}}}, headers=auth(K1)
+    )
+    assert huge.status_code == 422 and huge.json()["errors"][0]["field"] == "vehicle.spec.n"
 
 
 # ------------------------------------------------------------------------------------------- If-Match
@@ -341,6 +345,8 @@ def test_pagination_in_creation_order(cat):
     assert _pages(cat, "/v1/fleets", 2) == [fleets[:2], fleets[2:]]
     assert cat.get("/v1/vehicles/saved", params={"limit": 0}, headers=auth(K1)).status_code == 422
     assert cat.get("/v1/vehicles/saved", params={"limit": 201}, headers=auth(K1)).status_code == 422
+    unknown = cat.get("/v1/vehicles/saved", params={"offset": 3}, headers=auth(K1))
+    assert unknown.status_code == 422 and unknown.json()["errors"][0]["field"] == "offset"
     bad = cat.get("/v1/vehicles/saved", params={"cursor": "not-a-cursor"}, headers=auth(K1))
     assert bad.status_code == 422 and bad.json()["errors"][0]["field"] == "cursor"
     # a fleet cursor is not a vehicle cursor

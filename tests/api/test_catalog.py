@@ -577,6 +577,19 @@ def test_a_damaged_fleet_is_refused(database_url):
         assert c.get("/v1/fleets", headers=auth(K1)).json()["unreadable"] == [f["id"]]
 
 
+def test_a_database_that_stops_answering_is_a_503(tmp_path, presets):
+    from .conftest import free_port
+
+    with make_client(settings(f"sqlite:///{tmp_path / 'r.db'}")) as c:
+        vid = save(c, presets[BTRAIN])["id"]
+        c.app.state.db.dispose()
+        c.app.state.db = Database(f"postgresql+psycopg://postgres@127.0.0.1:{free_port()}/gone")  # nothing listens
+        r = c.get(f"/v1/vehicles/{vid}", headers=auth(K1))
+        assert r.status_code == 503 and r.headers["retry-after"] == "5"
+        assert r.json()["type"] == "urn:rollover:problem:database-unavailable"
+        assert c.get(f"/v1/vehicles/{BTRAIN}").status_code == 200  # presets still answer
+
+
 # --------------------------------------------------------------------------------- keys and secrets
 def test_a_key_is_never_stored_or_logged(database_url, tmp_path, presets):
     with capture_logs() as logs, make_client(settings(database_url)) as c:

@@ -465,6 +465,15 @@ async def _read_one(fn: Callable[..., T], table: str, *args: Any) -> T:
         raise _invalid_row(table, args[-1], f"{type(exc).__name__}: {exc}") from None
 
 
+async def _read_page(fn: Callable[..., repo.Page], table: str, db: Database, owner: str, **kwargs: Any) -> repo.Page:
+    """A listing page. A typed column the driver cannot convert (only possible by writing into a SQLite file
+    outside the service: PostgreSQL checks the types) fails the whole page: a logged 409, never a 500."""
+    try:
+        return await _run(fn, db, owner, **kwargs)
+    except (ValueError, TypeError) as exc:
+        raise _invalid_row(table, f"(a row of this {table} listing)", f"{type(exc).__name__}: {exc}") from None
+
+
 # ------------------------------------------------------------------------------------- vehicles: service
 def check_saved_vehicle_id(id: str) -> None:
     if not SAVED_VEHICLE_ID.match(id):
@@ -563,7 +572,8 @@ def decode_cursor(cursor: str | None, id_pattern: re.Pattern[str]) -> tuple[date
 
 
 async def list_vehicles(db: Database, owner: str, cursor: str | None, limit: int) -> SavedVehiclePage:
-    page = await _run(repo.list_vehicles, db, owner, after=decode_cursor(cursor, SAVED_VEHICLE_ID), limit=limit)
+    after = decode_cursor(cursor, SAVED_VEHICLE_ID)
+    page = await _read_page(repo.list_vehicles, "vehicle", db, owner, after=after, limit=limit)
     items, unreadable = [], []
     for stored in page.rows:
         try:
@@ -674,7 +684,7 @@ async def remove_fleet(db: Database, owner: str, id: str, if_match: str | None) 
 
 
 async def list_fleets(db: Database, owner: str, cursor: str | None, limit: int) -> FleetPage:
-    page = await _run(repo.list_fleets, db, owner, after=decode_cursor(cursor, FLEET_ID), limit=limit)
+    page = await _read_page(repo.list_fleets, "fleet", db, owner, after=decode_cursor(cursor, FLEET_ID), limit=limit)
     items, unreadable = [], []
     for stored in page.rows:
         try:

@@ -561,6 +561,9 @@ def test_a_damaged_sqlite_timestamp_is_a_409_not_a_500(tmp_path, presets):
         _damage(url, vid, "created_at", "yesterday-ish")
         r = c.get(f"/v1/vehicles/{vid}", headers=auth(K1))
         assert r.status_code == 409 and r.json()["type"] == "urn:rollover:problem:stored-record-invalid"
+        page = c.get("/v1/vehicles/saved", headers=auth(K1))  # the driver cannot read the page: 409 too
+        assert page.status_code == 409 and page.json()["type"] == "urn:rollover:problem:stored-record-invalid"
+        assert c.delete(f"/v1/vehicles/{vid}", headers=auth(K1)).status_code == 204  # and the owner can remove it
 
 
 def test_a_damaged_fleet_is_refused(database_url):

@@ -18,11 +18,12 @@ from engine import ENGINE_VERSION
 
 from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
 from .cache import make_cache
+from .catalog import close_catalog, install_catalog_handlers, open_catalog
 from .fastpath import FastPathMiddleware
 from .logs import configure_logging, get_logger
 from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
-from .routers import alignments, health, models, plots, road, srt, vehicles
+from .routers import alignments, catalog, health, models, plots, road, srt, vehicles
 from .routers.common import READ_BY_ROUTE
 from .settings import Settings, get_settings
 
@@ -37,6 +38,11 @@ carry `ETag` (the cache key) and `X-Cache: hit|miss`.
 
 TAGS = [
     {"name": "vehicles", "description": "The thesis presets (Tables 14, 15, 16, 22, 23) as full vehicle records."},
+    {
+        "name": "catalog",
+        "description": "Saved vehicles and named fleets of the caller's bearer key (`ROLLOVER_API_KEYS`), in a "
+        "SQLite or PostgreSQL database; changes need `If-Match` (optimistic concurrency).",
+    },
     {"name": "srt", "description": "Static rollover threshold with the 3D, 2D or a closed-form model."},
     {"name": "road", "description": "Curve design: maximum speed (Eq. 9.1) and minimum radius (Eqs. 9.2-9.3)."},
     {
@@ -113,9 +119,11 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend, tcp_nodelay_sockets=nodelay)
         if cache.redis is not None:
             await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
+        await open_catalog(app, app.state.settings)  # opens and migrates the database when ROLLOVER_API_KEYS is set
         try:
             yield
         finally:
+            await close_catalog(app)
             await cache.aclose()
             app.state.cache = None
 
@@ -135,7 +143,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     configure_logging(app.state.settings.log_level)
     app.state.cache = None
     install_problem_handlers(app)
-    for module in (vehicles, srt, road, alignments, plots, models, health):
+    install_catalog_handlers(app)
+    # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
+    for module in (catalog, vehicles, srt, road, alignments, plots, models, health):
         app.include_router(module.router)
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app

@@ -145,7 +145,7 @@ def problem_response(
     return JSONResponse(body, status_code=status, media_type=PROBLEM_MEDIA_TYPE, headers=headers)
 
 
-VEHICLE_TAGS = ("preset", "record")
+VEHICLE_TAGS = ("preset", "record", "spec")
 
 
 def _dotted(loc: tuple[Any, ...] | list[Any]) -> str:

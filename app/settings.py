@@ -10,14 +10,23 @@ import secrets
 from functools import cached_property, lru_cache
 from typing import Literal
 
-from pydantic import Field, SecretStr, model_validator
+from pydantic import Field, SecretStr, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from engine.assessment import DEFAULT_TARGETS
 
+#: shortest bearer key accepted in ROLLOVER_API_KEYS [characters]
+MIN_API_KEY_LENGTH = 16
+
+
+def split_api_keys(text: str) -> list[str]:
+    """``"a, b,,c"`` -> ``["a", "b", "c"]``."""
+    return [k.strip() for k in text.split(",") if k.strip()]
+
 
 class Settings(BaseSettings):
-    model_config = SettingsConfigDict(env_prefix="ROLLOVER_", extra="ignore")
+    # hide_input_in_errors: a refused setting (an API key, a database URL with its password) is never echoed
+    model_config = SettingsConfigDict(env_prefix="ROLLOVER_", extra="ignore", hide_input_in_errors=True)
 
     cache_backend: Literal["memory", "redis"] = Field(
         "memory",
@@ -78,6 +87,41 @@ class Settings(BaseSettings):
         if self.cache_secret is None:
             return self._process_secret
         return self.cache_secret.get_secret_value().encode()
+
+    # ------------------------------------------------------------------ saved vehicles and fleets (catalog)
+    database_url: str = Field(
+        "sqlite:///./rollover.db",
+        repr=False,  # may carry a password
+        description="SQLAlchemy URL of the catalog database: `sqlite:///path` (embedded, one host) or "
+        "`postgresql+psycopg://user:pass@host/db` (shared by several replicas).",
+    )
+    api_keys: SecretStr = Field(
+        SecretStr(""),
+        description="Comma-separated bearer keys allowed to save vehicles and fleets (each at least "
+        f"{MIN_API_KEY_LENGTH} characters); empty disables the catalog. Never logged or stored.",
+    )
+    catalog_max_vehicles: int = Field(1000, ge=1, description="Saved vehicles per key [vehicles].")
+    catalog_max_fleets: int = Field(100, ge=1, description="Fleets per key [fleets].")
+    catalog_max_vehicle_bytes: int = Field(
+        32 * 2**10, ge=256, description="Size of one saved vehicle body as stored (canonical JSON) [bytes]."
+    )
+    catalog_max_fleet_members: int = Field(100, ge=1, description="Vehicles in one fleet [vehicles].")
+
+    @field_validator("api_keys")
+    @classmethod
+    def _check_api_keys(cls, value: SecretStr) -> SecretStr:
+        for i, key in enumerate(split_api_keys(value.get_secret_value())):
+            if len(key) < MIN_API_KEY_LENGTH or any(c.isspace() for c in key):
+                # the message names the key's position, never the key
+                raise ValueError(
+                    f"ROLLOVER_API_KEYS key #{i + 1} is shorter than {MIN_API_KEY_LENGTH} characters or contains "
+                    "whitespace: use long random keys (python -c 'import secrets; print(secrets.token_urlsafe(32))')"
+                )
+        return value
+
+    def api_key_list(self) -> list[str]:
+        """The configured bearer keys (empty: the catalog is disabled)."""
+        return split_api_keys(self.api_keys.get_secret_value())
 
     def default_targets(self) -> dict[str, float]:
         """The SRT targets checked when a request gives none: name -> minimum SRT [g]."""

@@ -1,16 +1,23 @@
-"""GET /v1/vehicles and GET /v1/vehicles/{id}: the thesis presets as full vehicle records."""
+"""GET /v1/vehicles and GET /v1/vehicles/{id}: the thesis presets as full vehicle records, and (with the owner's
+bearer key) a saved vehicle by its ``veh_...`` id. Saving, changing, listing saved vehicles: ``app.routers.catalog``.
+"""
 
 from __future__ import annotations
 
 from typing import Annotated
 
-from fastapi import APIRouter, Path
+from fastapi import APIRouter, Path, Request, Response
 
 from engine.models import supported_models
 from engine.vehicles import PRESET_INFO, PRESETS, get_preset
 
-from ..problems import error_responses
+from .. import catalog
+from ..auth import BearerDep, authenticate
+from ..deps import SettingsDep
+from ..problems import Problem, error_responses
+from ..schemas.catalog import SavedVehicle
 from ..schemas.vehicles import VehiclePreset
+from .catalog import problem_responses
 
 router = APIRouter(prefix="/v1/vehicles", tags=["vehicles"])
 
@@ -28,10 +35,46 @@ def list_vehicles() -> list[VehiclePreset]:
     return [_preset(p) for p in PRESETS]
 
 
-@router.get("/{id}", response_model=VehiclePreset, responses=error_responses(404, 422, 500))
-def get_vehicle(
-    id: Annotated[str, Path(description="Preset id, e.g. `table16-btrain`.", examples=["table16-btrain"])],
-) -> VehiclePreset:
-    """One preset as its full vehicle record (fields the table does not give are null)."""
-    get_preset(id)  # UnknownPreset -> 404 problem listing the known ids
-    return _preset(id)
+@router.get(
+    "/{id}",
+    response_model=VehiclePreset | SavedVehicle,
+    responses={
+        200: {
+            "headers": {
+                "ETag": {"description": 'For a saved vehicle: its version (`"3"`).', "schema": {"type": "string"}}
+            }
+        },
+        **error_responses(422, 500),
+        404: {
+            "model": Problem,
+            "description": "Unknown vehicle preset (the problem lists the known ids), or no saved vehicle with this "
+            "id for this key (missing, deleted or another key's).",
+        },
+        **problem_responses(401, 403, 409, 503),
+    },
+    openapi_extra={"security": [{}]},  # the bearer key is optional: presets are public
+)
+async def get_vehicle(
+    id: Annotated[
+        str,
+        Path(
+            description="Preset id, e.g. `table16-btrain` (public), or a saved vehicle's id `veh_...` (needs the "
+            "key that saved it: `Authorization: Bearer <key>`; another key gets 404).",
+            examples=["table16-btrain"],
+        ),
+    ],
+    request: Request,
+    credentials: BearerDep,
+    settings: SettingsDep,
+) -> VehiclePreset | Response:
+    """One preset as its full vehicle record (fields the table does not give are null), or one of the caller's
+    saved vehicles with its `ETag`."""
+    if not id.startswith(catalog.SAVED_VEHICLE_PREFIX):
+        get_preset(id)  # UnknownPreset -> 404 problem listing the known ids
+        return _preset(id)
+    catalog.check_saved_vehicle_id(id)
+    owner = authenticate(credentials, settings)
+    saved = await catalog.read_vehicle(await catalog.catalog_db(request), owner, id)
+    return Response(
+        saved.model_dump_json().encode(), media_type="application/json", headers={"ETag": catalog.etag(saved.version)}
+    )

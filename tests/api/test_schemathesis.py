@@ -64,7 +64,10 @@ BATCHES = ["/v1/srt/sweep", "/v1/alignments/assess", "/v1/alignments/assess/csv"
 FUZZ = {"deadline": None, "suppress_health_check": list(HealthCheck), "derandomize": True}
 
 
-@schema.exclude(path=LIMITS + BATCHES).parametrize()
+# The catalog (tag `catalog`) is fuzzed by test_catalog_schemathesis.py on an app with keys and a temporary database.
+# Here no key is configured, so every catalog operation rightly answers 403 (disabled), which schemathesis's
+# missing-Authorization check would take for a failure (it expects 401).
+@schema.exclude(path=LIMITS + BATCHES).exclude(tag="catalog").parametrize()
 @settings(max_examples=25, **FUZZ)
 def test_no_server_errors_and_responses_conform(case):
     case.call_and_validate(**CHECKS)

@@ -1,0 +1,1 @@
+"""Alembic migration scripts of the catalog database (configured in code by ``app.db.migrate``)."""

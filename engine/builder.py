@@ -1158,7 +1158,9 @@ def payload_table(
     The SRT falls as the payload's load height rises (its CG rises) and, for a payload whose CG lies above the
     rest of the vehicle's, as its mass grows; each limit is a root of SRT - target found by Brent's method on a
     bracket over the physical range (mass 0 to the spec's mass; load height from 1 mm above the deck to the
-    spec's load height), stepping off ends the model cannot solve (:func:`engine.bracket.bracketed_limit`).
+    spec's load height), stepping off ends the model cannot solve (:func:`engine.bracket.bracketed_limit`). A value
+    the spec itself refuses (a payload above a rated group load, a body that would fall over at rest) counts as
+    unsolvable: the limit is then the last acceptable value, with status ``always-met``.
 
     Parameters
     ----------

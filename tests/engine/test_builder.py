@@ -279,7 +279,8 @@ def test_derivation_covers_every_record_field_with_method_and_source():
 
 def test_every_library_value_has_a_source():
     values = library_sources()
-    assert len(values) == 2 * 2 + 4 * 3  # two tyres (lr, kT), four suspensions (kLs, ls, b)
+    rated = sum(t.rated_load_kg is not None for t in TYRES.values())
+    assert len(values) == 2 * len(TYRES) + rated + 3 * len(SUSPENSIONS)  # tyres: lr, kT; suspensions: kLs, ls, b
     for entry_id, name, v in values:
         assert v.source.strip(), (entry_id, name)
         assert math.isfinite(v.value) and v.value > 0

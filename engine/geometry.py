@@ -1,0 +1,940 @@
+"""Horizontal curves of a route from its geometry: a polyline in a local metric frame -> tangents and curves.
+
+Input: vertices x (east), y (north) [m] in travel order, optionally z (elevation) [m], e.g. a GIS centreline
+or a GPS track after :func:`engine.geodesy.local_frame`. Output: each horizontal curve with the radius of its
+circular part, the chainage of the whole curve (spirals included) and of the arc, the deflection, the
+direction, the transition spiral lengths when they are resolved, the grade over the curve and the range of
+input vertices it covers. The method works on the *curvature diagram* (curvature against chainage), in which
+a tangent is a run of zero, a circular arc a plateau at 1/R and a clothoid a straight ramp between them.
+
+Method
+------
+1. **Clean and measure.** Repeated consecutive vertices are dropped. The position noise sigma [m] is
+   estimated from the vertices (unless given): the Menger curvature of every vertex triple is exact (1/R) for
+   noise-free vertices on a circle whatever their spacing, so the change of that curvature between
+   neighbouring triples, scaled back to an offset (times a b / 2, a and b the two segment lengths), is pure
+   noise with variance 5 sigma^2 for white lateral noise (:func:`vertex_noise_m`); its median absolute
+   deviation gives sigma robustly (tangent points and spiral ends are outliers it ignores).
+2. **Chainage.** A noisy track is longer than the road: each segment gains about sigma^2 / spacing from the
+   lateral noise (9 % at sigma = 3 m and 10 m spacing). Chainage is therefore measured along the direction of
+   the lightly smoothed path (the projection of every segment on the local heading, which lateral noise does
+   not lengthen); without noise it is the polyline length.
+3. **Resampling** at a uniform chainage step (``step_m``, default 5 m) by linear interpolation between
+   vertices, then the positions are smoothed by a Gaussian of scale tau_h (just enough for the heading noise
+   to stay below 0.03 rad; the step when there is no noise) and the heading theta(s) is unwrapped; the raw
+   curvature is d theta / ds.
+4. **Smoothing scale from the noise.** A Gaussian of scale tau [m] applied to the curvature turns white
+   lateral noise sigma at vertex spacing h into curvature noise of standard deviation
+   sd(tau) = sigma sqrt(3 h / (8 sqrt(pi))) tau^-2.5 (the integral of the squared second derivative of the
+   Gaussian, Eq. 1). The *detection* scale tau_d makes ``significance`` standard deviations equal to the
+   tangent threshold 1/``max_radius_m`` (so a long tangent shows no curve: with 4 standard deviations the
+   chance of a phantom is about 6e-5 per independent window of the route), and is at least the resampling
+   step and the median vertex spacing (which smooths the staircase curvature of a sparse polyline).
+5. **Detection.** A curve is a run of samples whose curvature at tau_d exceeds the threshold with one sign
+   (positive: left, counter-clockwise). Runs of opposite sign are separate curves (reverse curves).
+6. **Refinement** of each run at the finest scale tau_r (a ladder from the finest scale up to tau_d, factor
+   1.5) at which the curvature noise is at most 1/20 of the run's peak curvature: sharp curves are
+   measured with little blur even when the track is noisy. At that scale the run may split into several
+   curves (a broken-back curve: same direction, short tangent between).
+7. **Shape of each curve.** P is the plateau curvature (median of the samples above 3/4 of the peak).
+   A Gaussian blur keeps the point symmetry of a ramp about its middle, so the crossings of P/2 are exactly
+   the middles of the spirals (or the tangent points of a simple curve) whatever tau_r. The distance between
+   the P/4 and 3P/4 crossings of each flank, compared with that of a clothoid ramp blurred by tau_r (closed
+   form, Eq. 2), gives the spiral length; a spiral shorter than 2 tau_r is not resolved (the curve is then
+   reported as the equivalent simple curve, from spiral middle to spiral middle). A flank whose shape no
+   ramp explains (a plateau between P/2 and 0.9 P, or a long shoulder below P/2) is a second arc: the curve
+   is *compound*.
+8. **Radius** of the circular part: geometric least-squares circle (Gauss-Newton from the algebraic Kasa
+   fit) through the *input vertices* between the arc's ends, and where the curvature is at least 0.9 P (the
+   sharpest arc of a compound curve). The geometric fit is the maximum-likelihood radius under isotropic
+   Gaussian noise; the fit also gives the radius's standard error. With fewer than 3 vertices on the arc
+   (a sparse polyline) the radius is 1/P and ``sparse`` is set.
+9. **Deflection** is the change of the heading smoothed at tau_r between points 2.5 tau_r outside the curve
+   (or the midpoints to the neighbouring curves); a curve turning less than ``min_deflection_deg`` or less
+   than ``significance`` standard deviations of that heading difference is dropped.
+10. **Grade** [%]: least-squares slope of the elevation against chainage over the whole curve, + uphill in
+    the direction of travel (the grade at the middle of a vertical curve that spans the horizontal curve).
+
+Where it fails (see also docs/routes.md)
+----------------------------------------
+* Arcs shorter than about 3 tau_r (a few vertex spacings without noise) are blurred: their ends are
+  located within about tau_r and their radius comes from the few vertices on the arc.
+* GPS noise comparable with the middle ordinate M = L^2 / (8 R) of an arc of length L: the radius's relative
+  standard error is about sqrt(180 / n) sigma / (4 M) for n vertices on the arc; a curve whose offsets are
+  within the noise is not detected at all.
+* Spirals are resolved only when longer than 2 tau_r; with noise their lengths are uncertain by about
+  tau_r.
+* A compound curve is one curve: its radius is that of its sharpest arc (the one that governs the safe
+  speed) and it covers all its arcs; arcs whose curvatures differ by less than 10 % are not told apart.
+* Reverse curves with no tangent between are split where the curvature changes sign; broken-back curves
+  are split only when the tangent between them is longer than about 2 tau_r.
+* Vertices closer than the noise (a vehicle standing still) add loops that the smoothing cannot tell from
+  a bend; clean such clusters before.
+
+References
+----------
+[1] N. Chernov (2010), Circular and Linear Regression: Fitting Circles and Lines by Least Squares, CRC
+    Press: geometric circle fit, Kasa's algebraic fit as its initial value.
+[2] A. Savitzky, M. J. E. Golay (1964); T. Lindeberg (1994), Scale-Space Theory in Computer Vision: Gaussian
+    derivative filters and their noise.
+[3] AASHTO (2018), A Policy on Geometric Design of Highways and Streets, 7th ed., ch. 3: curve elements
+    (deflection, tangent, middle ordinate) and clothoid transitions (curvature linear in length).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import gaussian_filter1d
+from scipy.optimize import minimize_scalar
+from scipy.special import ndtr
+
+from .assessment import Curve
+from .errors import InvalidInput
+
+#: Eq. 1 constant: integral of the squared second derivative of a unit Gaussian, 3 / (8 sqrt(pi))
+_G2 = 3.0 / (8.0 * math.sqrt(math.pi))
+#: and of the squared first derivative, 1 / (4 sqrt(pi)) (heading noise)
+_G1 = 1.0 / (4.0 * math.sqrt(math.pi))
+#: heading noise allowed after the light smoothing that precedes the heading (step 3) [rad]
+HEADING_NOISE_RAD = 0.03
+#: the refinement scale keeps the curvature noise below this fraction of the curve's peak curvature
+PEAK_NOISE_FRACTION = 0.1
+#: the circle is fitted on the middle of the equivalent simple curve (R times the deflection)
+FIT_FRACTION = 0.6
+#: a circle fit this precise (standard error / radius) needs no help from the tangents
+PRECISE_FRACTION = 0.005
+#: spirals are read off the curvature diagram only where its noise is below this fraction of the plateau
+SPIRAL_NOISE_FRACTION = 0.02
+#: ladder factor between refinement scales
+SCALE_FACTOR = 1.5
+#: gaussian_filter1d truncation [standard deviations]
+_TRUNCATE = 4.0
+
+
+# ------------------------------------------------------------------------------------------ records
+
+
+@dataclass(frozen=True)
+class HorizontalCurve:
+    """One horizontal curve of a route. Chainages [m] from the route's first vertex, along the road."""
+
+    direction: str  # "left" or "right"
+    radius_m: float  # of the circular part (the sharpest arc of a compound curve)
+    start_m: float  # start of the whole curve (tangent-to-spiral, or tangent-to-curve point)
+    end_m: float  # end of the whole curve
+    arc_start_m: float  # start of the circular part (spiral-to-curve point)
+    arc_end_m: float
+    deflection_deg: float  # total change of direction over the curve (positive)
+    spiral_in_m: float | None  # entry / exit transition lengths; None where none was resolved
+    spiral_out_m: float | None
+    grade_percent: float | None  # + uphill in the direction of travel; None without elevations
+    start_index: int  # the input vertices start_index..end_index (inclusive) cover the curve
+    end_index: int
+    compound: bool  # several arcs of one direction without tangent between (radius: the sharpest)
+    sparse: bool  # fewer than 3 vertices on the arc: radius from the smoothed curvature, not a fit
+    truncated: bool  # the curve runs into the start or end of the route
+    radius_std_m: float | None  # standard error of the fitted radius (None without a fit or without noise)
+    smoothing_m: float  # the scale tau_r at which this curve was measured [m]
+
+    @property
+    def length_m(self) -> float:
+        return self.end_m - self.start_m
+
+    def as_curve(self, curve_id: str, superelevation_percent: float, posted_speed_kmh: float | None = None) -> Curve:
+        """The :class:`engine.assessment.Curve` record of this curve (grade 0 when unknown)."""
+        return Curve(
+            id=curve_id,
+            radius_m=self.radius_m,
+            superelevation_percent=superelevation_percent,
+            grade_percent=0.0 if self.grade_percent is None else self.grade_percent,
+            posted_speed_kmh=posted_speed_kmh,
+        )
+
+
+@dataclass(frozen=True)
+class RouteCurves:
+    """Curves of one route and the parameters the method used."""
+
+    curves: tuple[HorizontalCurve, ...]
+    length_m: float  # route length along the road [m]
+    chainage_m: np.ndarray  # chainage of every input vertex [m]
+    noise_m: float  # position noise sigma used (given or estimated) [m]
+    detection_smoothing_m: float  # tau_d [m]
+    tangent_curvature_per_m: float  # curvature threshold of a tangent, 1/max_radius_m [1/m]
+
+
+# ------------------------------------------------------------------------------------ noise model
+
+
+def curvature_noise_per_m(noise_m: float, spacing_m: float, scale_m):
+    """Standard deviation of the Gaussian-smoothed curvature from white position noise [1/m] (Eq. 1).
+
+    sd = sigma sqrt(h int G''^2) = sigma sqrt(3 h / (8 sqrt(pi))) tau^-2.5 for lateral noise sigma at vertex
+    spacing h and a Gaussian of standard deviation tau (valid for tau several times h).
+
+    Parameters
+    ----------
+    noise_m : float
+        Position noise sigma of the vertices [m].
+    spacing_m : float
+        Vertex spacing h [m].
+    scale_m : float or array_like
+        Smoothing scale tau [m].
+    """
+    return noise_m * np.sqrt(_G2 * spacing_m) * np.asarray(scale_m, dtype=float) ** -2.5
+
+
+def heading_noise_rad(noise_m: float, spacing_m: float, scale_m):
+    """Standard deviation of the Gaussian-smoothed heading from white position noise [rad].
+
+    sd = sigma sqrt(h / (4 sqrt(pi))) tau^-1.5 (the first-derivative counterpart of Eq. 1).
+
+    Parameters
+    ----------
+    noise_m : float
+        Position noise sigma [m].
+    spacing_m : float
+        Vertex spacing h [m].
+    scale_m : float or array_like
+        Smoothing scale tau [m].
+    """
+    return noise_m * np.sqrt(_G1 * spacing_m) * np.asarray(scale_m, dtype=float) ** -1.5
+
+
+def vertex_noise_m(x_m, y_m) -> float:
+    """Robust estimate of the position noise sigma of polyline vertices [m] (step 1 of the method).
+
+    The Menger curvature k of each vertex triple is 1/R for noise-free points on a circle at any spacing;
+    the differences of k between neighbouring triples, times the mean of a b / 2 (a, b the triple's two
+    segment lengths), have variance 5 sigma^2 under white lateral noise sigma. sigma = 1.4826 MAD / sqrt(5).
+    Returns 0 for fewer than 8 vertices.
+
+    Parameters
+    ----------
+    x_m, y_m : array_like
+        Vertices, consecutive vertices distinct [m].
+    """
+    x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
+    if x.size < 8:
+        return 0.0
+    dx, dy = np.diff(x), np.diff(y)
+    seg = np.hypot(dx, dy)
+    a, b = seg[:-1], seg[1:]
+    c = np.hypot(x[2:] - x[:-2], y[2:] - y[:-2])
+    cross = dx[:-1] * dy[1:] - dy[:-1] * dx[1:]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k = np.where(c > 0, 2.0 * cross / (a * b * c), 0.0)  # Menger curvature
+    w = a * b / 2.0
+    r = np.diff(k) * 0.5 * (w[:-1] + w[1:])
+    mad = np.median(np.abs(r - np.median(r)))
+    return float(1.4826 * mad / math.sqrt(5.0))
+
+
+# -------------------------------------------------------------------------------- blurred clothoid
+
+
+def _blurred_ramp(u: np.ndarray, lam: float) -> np.ndarray:
+    """A unit ramp of length lam (0 -> 1 over [-lam/2, lam/2]) blurred by a unit Gaussian (Eq. 2)."""
+    if lam < 1e-9:
+        return ndtr(u)
+
+    def psi(v):  # integral of the Gaussian CDF: v Phi(v) + phi(v)
+        return v * ndtr(v) + np.exp(-0.5 * v * v) / math.sqrt(2.0 * math.pi)
+
+    return (psi(u + lam / 2.0) - psi(u - lam / 2.0)) / lam
+
+
+def _ramp_table() -> tuple[np.ndarray, dict[float, np.ndarray]]:
+    """Crossing positions (in units of tau, from the ramp's middle) of levels of a blurred ramp, per lam."""
+    lams = np.concatenate(([0.0], np.geomspace(0.02, 400.0, 240)))
+    levels = (0.1, 0.25, 0.75, 0.9)
+    table = {q: np.empty_like(lams) for q in levels}
+    for i, lam in enumerate(lams):
+        u = np.linspace(-(lam / 2 + 6.0), lam / 2 + 6.0, 1201)
+        f = _blurred_ramp(u, lam)
+        for q in levels:
+            table[q][i] = np.interp(q, f, u)
+    for arr in table.values():
+        arr.flags.writeable = False
+    lams.flags.writeable = False
+    return lams, table
+
+
+_RAMP_LAMS, _RAMP_CROSS = _ramp_table()  # read-only constants
+
+
+def spiral_length_m(quartile_distance_m: float, scale_m: float) -> float:
+    """Clothoid length whose ramp, blurred by a Gaussian of scale tau, has this P/4-to-3P/4 distance [m].
+
+    Inverts Eq. 2: the distance is 1.349 tau for a step (no spiral) and tends to L/2 for L >> tau.
+
+    Parameters
+    ----------
+    quartile_distance_m : float
+        Distance between the crossings of 1/4 and 3/4 of the plateau curvature [m].
+    scale_m : float
+        Gaussian smoothing scale tau [m].
+    """
+    d = (_RAMP_CROSS[0.75] - _RAMP_CROSS[0.25]) * 1.0
+    ratio = quartile_distance_m / scale_m
+    if ratio <= d[0]:
+        return 0.0
+    return float(np.interp(ratio, d, _RAMP_LAMS) * scale_m)
+
+
+def _ramp_crossing(level: float, length_m: float, scale_m: float) -> float:
+    """Position of a level's crossing on a blurred ramp of that length, from its middle [m]."""
+    return float(np.interp(length_m / scale_m, _RAMP_LAMS, _RAMP_CROSS[level]) * scale_m)
+
+
+# ----------------------------------------------------------------------------------- circle fit
+
+
+@dataclass(frozen=True)
+class CircleFit:
+    xc_m: float
+    yc_m: float
+    radius_m: float
+    rms_m: float  # root-mean-square distance of the points from the circle
+    radius_std_m: float | None  # standard error of the radius (None with 3 points: no redundancy)
+
+
+def fit_circle(x_m, y_m, *, iterations: int = 20) -> CircleFit:
+    """Geometric least-squares circle through points (Gauss-Newton from Kasa's algebraic fit) [1].
+
+    Minimises sum (|p_i - c| - R)^2. The points are centred first, so routes far from the origin keep their
+    precision.
+
+    Parameters
+    ----------
+    x_m, y_m : array_like
+        At least 3 points [m].
+    iterations : int
+        Gauss-Newton iterations at most.
+    """
+    x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
+    if x.size < 3:
+        raise InvalidInput(f"a circle needs at least 3 points, got {x.size}", field="points", value=int(x.size))
+    x0, y0 = x.mean(), y.mean()
+    u, v = x - x0, y - y0
+    scale = max(float(np.sqrt(np.mean(u * u + v * v))), 1e-12)
+    u, v = u / scale, v / scale
+    # Kasa: u^2 + v^2 + D u + E v + F = 0 in the least-squares sense
+    a = np.column_stack((u, v, np.ones_like(u)))
+    sol, *_ = np.linalg.lstsq(a, -(u * u + v * v), rcond=None)
+    a_c, b_c = -sol[0] / 2, -sol[1] / 2
+    r = math.sqrt(max(a_c * a_c + b_c * b_c - sol[2], 1e-12))
+    p = np.array([a_c, b_c, r])
+    for _ in range(iterations):
+        du, dv = u - p[0], v - p[1]
+        d = np.maximum(np.hypot(du, dv), 1e-15)
+        res = d - p[2]
+        jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
+        step, *_ = np.linalg.lstsq(jac, -res, rcond=None)
+        p = p + step
+        if np.all(np.abs(step) <= 1e-12 * (1.0 + np.abs(p))):
+            break
+    du, dv = u - p[0], v - p[1]
+    d = np.hypot(du, dv)
+    res = d - p[2]
+    rms = float(np.sqrt(np.mean(res * res))) * scale
+    std = None
+    if x.size > 3:
+        jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
+        s2 = float(res @ res) / (x.size - 3)
+        try:
+            cov = np.linalg.inv(jac.T @ jac) * s2
+            std = float(math.sqrt(max(cov[2, 2], 0.0))) * scale
+        except np.linalg.LinAlgError:
+            std = None
+    return CircleFit(x0 + p[0] * scale, y0 + p[1] * scale, abs(p[2]) * scale, rms, std)
+
+
+# ------------------------------------------------------------------------------------- helpers
+
+
+def _check(x_m, y_m, z_m, step_m, noise_m, max_radius_m, significance, min_deflection_deg):
+    x = np.asarray(x_m, dtype=float).reshape(-1)
+    y = np.asarray(y_m, dtype=float).reshape(-1)
+    if x.shape != y.shape:
+        raise InvalidInput(f"x_m and y_m must have the same length, got {x.size} and {y.size}", field="y_m")
+    for name, arr in (("x_m", x), ("y_m", y)):
+        if not np.all(np.isfinite(arr)):
+            i = int(np.argmax(~np.isfinite(arr)))
+            raise InvalidInput(f"{name}[{i}] must be finite, got {arr[i]}", field=f"{name}[{i}]", value=float(arr[i]))
+    z = None
+    if z_m is not None:
+        z = np.asarray(z_m, dtype=float).reshape(-1)
+        if z.shape != x.shape:
+            raise InvalidInput(f"z_m has {z.size} values for {x.size} vertices", field="z_m")
+        if np.any(np.isinf(z)):
+            raise InvalidInput("z_m must be finite or NaN (unknown)", field="z_m")
+    for name, val, lo, hi in (
+        ("step_m", step_m, 0.1, 100.0),
+        ("max_radius_m", max_radius_m, 50.0, 1e6),
+        ("significance", significance, 1.0, 20.0),
+        ("min_deflection_deg", min_deflection_deg, 0.0, 90.0),
+    ):
+        if not (isinstance(val, int | float) and math.isfinite(val) and lo <= val <= hi):
+            raise InvalidInput(f"{name} must be in [{lo:g}, {hi:g}], got {val!r}", field=name, value=val)
+    if noise_m is not None and not (isinstance(noise_m, int | float) and math.isfinite(noise_m) and 0 <= noise_m < 100):
+        raise InvalidInput(f"noise_m must be in [0, 100) m or None, got {noise_m!r}", field="noise_m", value=noise_m)
+    return x, y, z
+
+
+def _smooth(a: np.ndarray, scale_m: float, step_m: float, mode: str = "nearest") -> np.ndarray:
+    """Gaussian smoothing; ``mode="constant"`` pads with 0 (a curvature that continues straight)."""
+    if scale_m <= 0.0:
+        return a
+    return gaussian_filter1d(a, scale_m / step_m, mode=mode, truncate=_TRUNCATE)
+
+
+def _smooth_path(
+    xs: np.ndarray, ys: np.ndarray, scale_m: float, step_m: float, end_m: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Gaussian smoothing of resampled positions, padded by straight lines fitted over ``end_m`` at each end.
+
+    Padding with the end vertex (or a mirror) would give that single noisy vertex the weight of the whole
+    padding and bend the ends of the route; the fitted lines continue it straight instead. They are fitted
+    over the detection scale, so that their own direction error does not show as a curve at the ends.
+    """
+    if scale_m <= 0.0:
+        return xs, ys
+    sig = scale_m / step_m
+    pad = math.ceil(_TRUNCATE * sig) + 1
+    fit_n = min(xs.size, max(3, math.ceil(end_m / step_m)))
+    out = []
+    for a in (xs, ys):
+        i = np.arange(fit_n, dtype=float)
+        head = np.polyfit(i, a[:fit_n], 1)
+        tail = np.polyfit(i, a[-fit_n:], 1)
+        before = np.polyval(head, np.arange(-pad, 0, dtype=float))
+        after = np.polyval(tail, np.arange(fit_n, fit_n + pad, dtype=float))
+        full = np.concatenate((before, a, after))
+        out.append(gaussian_filter1d(full, sig, mode="nearest", truncate=_TRUNCATE)[pad:-pad])
+    return out[0], out[1]
+
+
+def _heading(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    return np.unwrap(np.arctan2(np.gradient(ys), np.gradient(xs)))
+
+
+def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and (exclusive) end indices of the runs of True."""
+    d = np.diff(np.concatenate(([False], mask, [False])).astype(np.int8))
+    return np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+
+
+def _crossing(k: np.ndarray, i0: int, direction: int, level: float, want: bool) -> float:
+    """Fractional index where, walking from i0 in ``direction``, (k >= level) first equals ``want``.
+
+    Linear interpolation between the last sample before and the first sample after; the array end if never.
+    """
+    seg = k[i0::direction] if direction > 0 else k[i0::-1]
+    hits = (seg >= level) == want
+    j = int(np.argmax(hits))
+    if not hits[j]:
+        return float(i0 + direction * (seg.size - 1))
+    if j == 0:
+        return float(i0)
+    k_prev, k_here = seg[j - 1], seg[j]
+    t = (level - k_prev) / (k_here - k_prev) if k_here != k_prev else 0.5
+    return float(i0 + direction * (j - 1 + t))
+
+
+@dataclass
+class _Shape:
+    """A curve read off the curvature diagram; positions are chainages [m]."""
+
+    start: float
+    end: float
+    arc_start: float
+    arc_end: float
+    fit_from: float
+    fit_to: float
+    plateau: float  # P [1/m]
+    mid_in: float  # middle of the entry ramp (the P/2 crossing) or the reverse point
+    mid_out: float
+    spiral_in_m: float | None
+    spiral_out_m: float | None
+    open_in: bool  # the entry flank borders a tangent (not a reverse curve, not a compound shoulder)
+    open_out: bool
+    compound: bool
+
+
+@dataclass
+class _Candidate:
+    shape: _Shape
+    sign: float
+    tau: float  # tau_r [m]
+    tau_eff: float  # with the blur of the differencing and of sparse vertices [m]
+    theta: np.ndarray  # heading at tau_r over the local window
+    s0: float  # chainage of the window's first sample [m]
+    step: float  # resampling step [m]
+
+
+def _flank(k, c50: int, direction: int, p: float, tau: float, step: float, bound: int, thr: float, noise: float):
+    """One flank of a curve (direction -1: entry, +1: exit), in fractional sample indices.
+
+    Returns (outer end, inner arc end, middle, spiral length or None, borders a tangent, compound).
+    """
+    mid = _crossing(k, c50, direction, 0.5 * p, False)
+    q10 = _crossing(k, c50, direction, 0.10 * p, False)
+    # reverse curve: a significant opposite curvature within 3 tau of the flank's foot; the curves then meet
+    # where the curvature changes sign (a tangent end instead stays near zero for longer than that)
+    j = round(q10)
+    reach = math.ceil(3.0 * tau / step) + 1
+    beyond = k[j : j + reach] if direction > 0 else k[max(j - reach, 0) : j + 1]
+    if beyond.size and beyond.min() < -thr:
+        zero = _crossing(k, c50, direction, 0.0, False)
+        return zero, zero, zero, None, False, False
+    q25 = _crossing(k, c50, direction, 0.25 * p, False)
+    q75 = _crossing(k, c50, -direction, 0.75 * p, True)
+    q90 = _crossing(k, c50, -direction, 0.90 * p, True)
+    ls = spiral_length_m(abs(q75 - q25) * step, tau)
+    # compound test: the flank's shoulders against those of the blurred ramp its quartiles imply
+    inner_excess = abs(q90 - mid) * step - _ramp_crossing(0.9, ls, tau)
+    outer_excess = abs(mid - q10) * step + _ramp_crossing(0.1, ls, tau)
+    # blur, the spiral estimate, and three standard errors of the crossings under curvature noise
+    allowance = 2.0 * tau + 0.25 * ls + 3.0 * noise / p * (ls + 2.5 * tau)
+    if inner_excess > allowance or outer_excess > allowance:
+        # the outer arc, taken as a step to its own level k1: the curve starts where k crosses k1 / 2
+        lo, hi = (bound, round(mid)) if direction < 0 else (round(mid) + 1, bound + 1)
+        shoulder = k[max(lo, 0) : max(hi, 0)]
+        shoulder = shoulder[shoulder > 0]
+        k1 = float(np.median(shoulder)) if shoulder.size else 0.5 * p
+        return _crossing(k, round(mid), direction, 0.5 * k1, False), q90, mid, None, False, True
+    if ls < 2.0 * tau or noise > SPIRAL_NOISE_FRACTION * p:
+        return mid, mid, mid, None, True, False
+    half = 0.5 * ls / step
+    return mid + direction * half, mid - direction * half, mid, ls, True, False
+
+
+def _shape(k: np.ndarray, a: int, b: int, tau: float, step: float, s0: float, thr: float, noise: float) -> _Shape:
+    """Shape of the curve whose curvature run (same sign, made positive) is k[a:b] of the local window."""
+    run = k[a:b]
+    top = run[run >= 0.75 * run.max()]
+    p = float(np.median(top))
+    core = np.flatnonzero(run >= 0.5 * p) + a
+    start, arc0, mid0, ls1, open1, cmp1 = _flank(k, int(core[0]), -1, p, tau, step, a, thr, noise)
+    end, arc1, mid1, ls2, open2, cmp2 = _flank(k, int(core[-1]), +1, p, tau, step, b - 1, thr, noise)
+    if arc0 > arc1:  # the spirals meet (no circular part): the arc is the point of peak curvature
+        arc0 = arc1 = float(a + int(np.argmax(run)))
+    h90 = np.flatnonzero(run >= 0.9 * p) + a
+    fit_from, fit_to = max(arc0, float(h90[0])), min(arc1, float(h90[-1]))
+    if fit_from > fit_to:
+        fit_from, fit_to = arc0, arc1
+
+    def m(i: float) -> float:
+        return s0 + i * step
+
+    return _Shape(
+        m(start),
+        m(end),
+        m(arc0),
+        m(arc1),
+        m(fit_from),
+        m(fit_to),
+        p,
+        m(mid0),
+        m(mid1),
+        ls1,
+        ls2,
+        open1,
+        open2,
+        cmp1 or cmp2,
+    )
+
+
+def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h_v, h, out) -> None:
+    """Steps 6-7 for one detection run: pick tau_r, split the run into curves, read each one's shape."""
+    n = kappa.size
+    reach = math.ceil(_TRUNCATE * ladder[-1] / h)
+    lo, hi = max(0, i0 - reach), min(n, i1 + reach)
+    for tau in ladder:
+        pad = math.ceil(_TRUNCATE * extra(tau) / h) + 1
+        a0, b0 = max(0, lo - pad), min(n, hi + pad)
+        k_r = sign * _smooth(kappa[a0:b0], extra(tau), h, "constant" if a0 == 0 or b0 == n else "nearest")
+        if float(curvature_noise_per_m(sigma, h_v, tau)) <= PEAK_NOISE_FRACTION * float(k_r[i0 - a0 : i1 - a0].max()):
+            break
+    thr = threshold(tau)
+    th_r = None
+    for a, b in zip(*_runs(k_r > thr), strict=True):
+        if a + a0 >= i1 or b + a0 <= i0 or b - a < 2:  # a neighbour's run is found from its own detection run
+            continue
+        if th_r is None:
+            th_r = _smooth(theta[a0:b0], extra(tau), h)
+        shape = _shape(k_r, int(a), int(b), blur(tau), h, a0 * h, thr, float(curvature_noise_per_m(sigma, h_v, tau)))
+        out.append(_Candidate(shape, sign, tau, blur(tau), th_r, a0 * h, h))
+
+
+def _line_fit(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Total least-squares line: a point on it and its unit direction, oriented from the first point."""
+    pts = np.column_stack((x, y))
+    c = pts.mean(axis=0)
+    _, _, vt = np.linalg.svd(pts - c, full_matrices=False)
+    u = vt[0]
+    if u @ (pts[-1] - pts[0]) < 0:
+        u = -u
+    return c, u
+
+
+@dataclass
+class _Side:
+    """The curve's end on one side, from the fitted circle and the fitted tangent line."""
+
+    tangent_point_m: float  # chainage of the foot of the perpendicular from the centre
+    shift_m: float  # distance centre-line minus R (the clothoid's shift p)
+    direction: np.ndarray  # the tangent's unit direction
+    n: int
+
+
+def _side(chain, xv, yv, sel: np.ndarray, centre: np.ndarray, radius: float, entry: bool) -> _Side | None:
+    if sel.size < 4 or chain[sel[-1]] - chain[sel[0]] < 20.0:
+        return None
+    c, u = _line_fit(xv[sel], yv[sel])
+    ref = sel[-1] if entry else sel[0]  # the tangent vertex nearest the curve
+    q = np.array([xv[ref], yv[ref]])
+    foot_along = float((centre - c) @ u)
+    ref_along = float((q - c) @ u)
+    normal = np.array([-u[1], u[0]])
+    dist = abs(float((centre - c) @ normal))
+    return _Side(float(chain[ref]) + foot_along - ref_along, dist - radius, u, int(sel.size))
+
+
+def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: float):
+    """Steps 8-9: circle fit, tangent fits, spirals from the shift, deflection; returns the curve's numbers.
+
+    The circle is fitted on the vertices of the diagram's arc that also lie in the middle ``FIT_FRACTION`` of
+    the equivalent simple curve, R times the deflection, around the curve's middle: with noise the diagram's
+    ends are blurred outward by up to tau, and this keeps the tangents out of the fit (the fraction is a fixed
+    point: a radius too large by less than 1 / FIT_FRACTION still selects arc vertices only).
+    """
+    sh = cand.shape
+    before = np.flatnonzero((chain >= lo_b) & (chain <= sh.start - cand.tau_eff)) if sh.open_in else np.empty(0, int)
+    after = np.flatnonzero((chain >= sh.end + cand.tau_eff) & (chain <= hi_b)) if sh.open_out else np.empty(0, int)
+    lines = (_line(chain, xv, yv, before, True), _line(chain, xv, yv, after, False))
+    deflection = None
+    if lines[0] is not None and lines[1] is not None:
+        u1, u2 = lines[0].direction, lines[1].direction
+        deflection = abs(math.atan2(u1[0] * u2[1] - u1[1] * u2[0], float(u1 @ u2)))
+    if deflection is None:
+        local = cand.s0 + np.arange(cand.theta.size) * cand.step
+        e0 = max(sh.start - 2.5 * cand.tau_eff, lo_b, local[0])
+        e1 = min(sh.end + 2.5 * cand.tau_eff, hi_b, local[-1])
+        deflection = abs(float(np.interp(e1, local, cand.theta) - np.interp(e0, local, cand.theta)))
+    middle = 0.5 * (sh.mid_in + sh.mid_out)
+    radius, fit = 1.0 / sh.plateau, None
+    for _ in range(6):
+        f0, f1 = sh.fit_from, sh.fit_to
+        if not sh.compound:
+            half = 0.5 * FIT_FRACTION * radius * deflection
+            f0, f1 = max(f0, middle - half), min(f1, middle + half)
+        on_arc = np.flatnonzero((chain >= f0 - 1e-9) & (chain <= f1 + 1e-9))
+        if on_arc.size < 3:
+            on_arc = np.flatnonzero((chain >= sh.arc_start - 1e-9) & (chain <= sh.arc_end + 1e-9))
+        if on_arc.size < 3:
+            break
+        new = fit_circle(xv[on_arc], yv[on_arc])
+        if new.radius_m * sh.plateau > 10.0:  # a straight line through nearly collinear points: no radius
+            break
+        fit, done = new, abs(new.radius_m - radius) <= 1e-9 * radius
+        radius = new.radius_m
+        if done:
+            break
+    ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
+    if fit is None:
+        return ends[0], ends[1], fit, deflection
+    precise = (fit.radius_std_m or 0.0) <= PRECISE_FRACTION * fit.radius_m and (
+        sigma <= 0 or fit.radius_std_m is not None
+    )
+    if not precise and lines[0] is not None and lines[1] is not None and not sh.compound:
+        composite = _fit_simple_curve(lines, chain, xv, yv, lo_b, hi_b, 1.0 / sh.plateau)
+        if composite is not None:
+            radius, centre = composite
+            std = fit.radius_std_m  # the composite is at least as precise; keep the circle's as a bound
+            fit = CircleFit(float(centre[0]), float(centre[1]), radius, fit.rms_m, std)
+            for i, line in enumerate(lines):
+                end = _foot(line, centre)
+                ends[i] = (end, end, None)
+            return ends[0], ends[1], fit, deflection
+    centre = np.array([fit.xc_m, fit.yc_m])
+    for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
+        if line is not None:
+            ends[i] = _tangent_end(line, centre, fit, sigma, sgn)
+    return ends[0], ends[1], fit, deflection
+
+
+def _fit_simple_curve(lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float):
+    """Radius of the circle tangent to both fitted tangents that best fits the vertices between them.
+
+    The path is the entry tangent up to T1, the arc, the exit tangent from T2 (T = R tan(D/2) from the
+    intersection PI, the centre on the bisector at R / cos(D/2) [3]); the radius minimises the sum of squared
+    distances of the vertices to it (Brent's method). Returns (radius, centre) or None when the tangents are
+    nearly parallel or antiparallel.
+    """
+    (l1, l2) = lines
+    u1, u2 = l1.direction, l2.direction
+    cross = u1[0] * u2[1] - u1[1] * u2[0]
+    dot = float(u1 @ u2)
+    defl = abs(math.atan2(cross, dot))
+    if not (math.radians(2.0) < defl < math.radians(170.0)):
+        return None
+    # PI: l1.point + a u1 = l2.point + b u2
+    mat = np.column_stack((u1, -u2))
+    a, _ = np.linalg.solve(mat, l2.point - l1.point)
+    pi = l1.point + a * u1
+    bis = u2 - u1
+    bis = bis / np.linalg.norm(bis)
+    sel = np.flatnonzero((chain >= lo_b) & (chain <= hi_b))
+    pts = np.column_stack((xv[sel], yv[sel]))
+    half = defl / 2.0
+
+    def geometry(r: float):
+        centre = pi + bis * (r / math.cos(half))
+        tan_len = r * math.tan(half)
+        return centre, pi - u1 * tan_len, pi + u2 * tan_len
+
+    def sse(r: float) -> float:
+        centre, t1, t2 = geometry(r)
+        d1 = pts - t1
+        along1 = d1 @ u1
+        dist1 = np.where(along1 <= 0, np.abs(d1[:, 0] * u1[1] - d1[:, 1] * u1[0]), np.hypot(d1[:, 0], d1[:, 1]))
+        d2 = pts - t2
+        along2 = d2 @ u2
+        dist2 = np.where(along2 >= 0, np.abs(d2[:, 0] * u2[1] - d2[:, 1] * u2[0]), np.hypot(d2[:, 0], d2[:, 1]))
+        dc = pts - centre
+        a1, a2, ap = t1 - centre, t2 - centre, dc
+        c1 = a1[0] * ap[:, 1] - a1[1] * ap[:, 0]
+        c2 = ap[:, 0] * a2[1] - ap[:, 1] * a2[0]
+        inside = (np.sign(c1) == np.sign(cross)) & (np.sign(c2) == np.sign(cross))
+        dist_arc = np.where(inside, np.abs(np.hypot(dc[:, 0], dc[:, 1]) - r), np.inf)
+        d = np.minimum(np.minimum(dist1, dist2), dist_arc)
+        return float(d @ d)
+
+    grid = np.geomspace(0.2 * r0, 5.0 * r0, 49)  # coarse search, then Brent's method in the best bracket
+    costs = np.array([sse(float(r)) for r in grid])
+    i = int(np.argmin(costs))
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+    res = minimize_scalar(sse, bounds=(lo, hi), method="bounded", options={"xatol": 1e-5 * r0})
+    r = float(res.x)
+    return r, geometry(r)[0]
+
+
+def _foot(line, centre: np.ndarray) -> float:
+    """Chainage of the foot of the perpendicular from ``centre`` on a fitted tangent."""
+    return line.ref_chain + float((centre - line.point) @ line.direction) - line.ref_along
+
+
+@dataclass
+class _Line:
+    point: np.ndarray
+    direction: np.ndarray
+    ref_chain: float  # chainage of the tangent vertex nearest the curve
+    ref_along: float  # its position along the line from ``point``
+    n: int
+
+
+def _line(chain, xv, yv, sel: np.ndarray, entry: bool) -> _Line | None:
+    """The tangent next to a curve, fitted by total least squares (None when too short to fit)."""
+    if sel.size < 4 or chain[sel[-1]] - chain[sel[0]] < 20.0:
+        return None
+    c, u = _line_fit(xv[sel], yv[sel])
+    ref = sel[-1] if entry else sel[0]
+    return _Line(c, u, float(chain[ref]), float((np.array([xv[ref], yv[ref]]) - c) @ u), int(sel.size))
+
+
+def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, sgn: float):
+    """(curve end, arc end, spiral) on one side: the foot of the centre on the tangent, shifted by a spiral.
+
+    A clothoid of length Ls moves the circle off the tangent by p = Ls^2 / (24 R) and its middle lies
+    Ls / 2 - Ls^3 / (240 R^2) from the tangent point [3]; a shift within three standard errors is no spiral.
+    """
+    r = fit.radius_m
+    foot = _foot(line, centre)
+    normal = np.array([-line.direction[1], line.direction[0]])
+    shift = abs(float((centre - line.point) @ normal)) - r
+    sd = math.hypot(fit.radius_std_m or 0.0, sigma / math.sqrt(line.n))
+    ls = math.sqrt(24.0 * r * shift) if shift > max(3.0 * sd, 1e-4 * r) else None
+    half = 0.0 if ls is None else 0.5 * ls - ls**3 / (240.0 * r * r)
+    end = foot + sgn * half
+    return end, end - sgn * (ls or 0.0), ls
+
+
+def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg):
+    """Steps 8-10 for every candidate, in chainage order; overlapping duplicates are dropped."""
+    cands = sorted(cands, key=lambda c: c.shape.start)
+    kept: list[_Candidate] = []
+    for c in cands:
+        if kept and kept[-1].sign == c.sign and c.shape.start < kept[-1].shape.end:
+            continue  # the same curve found from two detection runs
+        kept.append(c)
+    out = []
+    for j, c in enumerate(kept):
+        lo_b = 0.0 if j == 0 else 0.5 * (kept[j - 1].shape.end + c.shape.start)
+        hi_b = total if j == len(kept) - 1 else 0.5 * (c.shape.end + kept[j + 1].shape.start)
+        (start, arc0, sp_in), (end, arc1, sp_out), fit, deflection = _measure(c, lo_b, hi_b, chain, xv, yv, sigma)
+        start, end = max(start, lo_b), min(end, hi_b)
+        arc0, arc1 = min(max(arc0, start), end), max(min(arc1, end), start)
+        sparse = fit is None
+        d_sd = math.sqrt(2.0) * float(heading_noise_rad(sigma, h_v, c.tau))
+        if math.degrees(deflection) < min_deflection_deg or deflection < significance * d_sd:
+            continue
+        first = max(int(np.searchsorted(chain, start, side="right")) - 1, 0)
+        last = min(int(np.searchsorted(chain, end, side="left")), chain.size - 1)
+        out.append(
+            HorizontalCurve(
+                direction="left" if c.sign > 0 else "right",
+                radius_m=float(fit.radius_m if fit is not None else 1.0 / c.shape.plateau),
+                start_m=float(start),
+                end_m=float(end),
+                arc_start_m=float(arc0),
+                arc_end_m=float(arc1),
+                deflection_deg=math.degrees(deflection),
+                spiral_in_m=sp_in,
+                spiral_out_m=sp_out,
+                grade_percent=_grade(chain, zv, start, end),
+                start_index=int(idx[first]),
+                end_index=int(idx[last]),
+                compound=c.shape.compound,
+                sparse=sparse,
+                truncated=start < 2.0 * c.tau_eff or end > total - 2.0 * c.tau_eff,
+                radius_std_m=fit.radius_std_m if (fit is not None and sigma > 0) else None,
+                smoothing_m=float(c.tau),
+            )
+        )
+    return out
+
+
+def _grade(chain: np.ndarray, zv: np.ndarray | None, start: float, end: float) -> float | None:
+    """Least-squares grade of the elevation against chainage over [start, end], + uphill [%] (step 10)."""
+    if zv is None:
+        return None
+    sel = (chain >= start) & (chain <= end) & np.isfinite(zv)
+    if np.count_nonzero(sel) < 2:
+        return None
+    c, zz = chain[sel], zv[sel]
+    c = c - c.mean()
+    den = float(c @ c)
+    if den <= 0:
+        return None
+    return 100.0 * float(c @ (zz - zz.mean())) / den
+
+
+# -------------------------------------------------------------------------------------- the method
+
+
+def find_curves(
+    x_m,
+    y_m,
+    z_m=None,
+    *,
+    step_m: float = 5.0,
+    noise_m: float | None = None,
+    max_radius_m: float = 5000.0,
+    significance: float = 4.0,
+    min_deflection_deg: float = 1.0,
+) -> RouteCurves:
+    """Tangents and horizontal curves of a polyline (see the module docstring for the method).
+
+    Parameters
+    ----------
+    x_m, y_m : array_like
+        Vertices east and north in a local metric frame, in travel order [m].
+    z_m : array_like or None
+        Elevation of each vertex, NaN where unknown [m].
+    step_m : float, default 5
+        Resampling step; curves are resolved down to a few steps [m].
+    noise_m : float or None, default None
+        Position noise sigma of the vertices (GPS: 2-5 m; a surveyed centreline: 0); None estimates it
+        from the vertices [m].
+    max_radius_m : float, default 5000
+        Curves flatter than this are tangents. At 120 km/h a 5000 m radius needs 0.023 g of lateral
+        acceleration, an order of magnitude below any SRT [m].
+    significance : float, default 4
+        How many standard deviations of the curvature (heading) noise a curve (its deflection) must exceed
+        [-].
+    min_deflection_deg : float, default 1
+        Smaller changes of direction are angle points of the digitised line, not curves (assumed: a
+        tolerance of digitising, not a design value) [deg].
+
+    Returns
+    -------
+    RouteCurves
+    """
+    x, y, z = _check(x_m, y_m, z_m, step_m, noise_m, max_radius_m, significance, min_deflection_deg)
+    n_in = x.size
+    if n_in < 2:
+        raise InvalidInput(f"a route needs at least 2 vertices, got {n_in}", field="x_m", value=n_in)
+    keep = np.concatenate(([True], np.hypot(np.diff(x), np.diff(y)) > 1e-9))  # drop repeated vertices
+    idx = np.flatnonzero(keep)
+    if idx.size < 2:
+        raise InvalidInput("all vertices coincide", field="x_m")
+    xv, yv = x[idx], y[idx]
+    zv = None if z is None else z[idx]
+    kt = 1.0 / max_radius_m
+    seg = np.hypot(np.diff(xv), np.diff(yv))
+    h_v = float(np.median(seg))  # vertex spacing
+    sigma = vertex_noise_m(xv, yv) if noise_m is None else float(noise_m)
+    # step 3: light smoothing so that the heading noise stays below HEADING_NOISE_RAD
+    tau_h = step_m
+    if sigma > 0:
+        tau_h = max(tau_h, (sigma * math.sqrt(_G1 * h_v) / HEADING_NOISE_RAD) ** (2.0 / 3.0))
+    tau_min = max(step_m, h_v, tau_h)
+    tau_d = tau_min
+    if sigma > 0:
+        tau_d = max(tau_min, (significance * sigma * math.sqrt(_G2 * h_v) / kt) ** 0.4)
+    chain = _chainage(xv, yv, seg, step_m, tau_h, sigma, 2.0 * tau_d)
+    total = float(chain[-1])
+    chain_in = np.maximum.accumulate(np.where(keep, np.repeat(chain, np.diff(np.append(idx, n_in))), 0.0))
+    if idx.size < 3 or total < 3 * step_m:
+        return RouteCurves((), total, chain_in, sigma, tau_h, kt)
+    # resample on the chainage (step 3)
+    m = math.ceil(total / step_m) + 1
+    s = np.linspace(0.0, total, m)
+    h = float(s[1] - s[0])
+    xs, ys = np.interp(s, chain, xv), np.interp(s, chain, yv)
+    theta = _heading(*_smooth_path(xs, ys, tau_h, h, 2.0 * tau_d))
+    kappa = np.gradient(theta, h)
+    # step 4: scales
+    ladder = [tau_min]
+    while ladder[-1] < tau_d:
+        ladder.append(min(ladder[-1] * SCALE_FACTOR, tau_d))
+
+    def extra(tau: float) -> float:  # the blur added to the curvature on top of tau_h
+        return math.sqrt(max(tau * tau - tau_h * tau_h, 0.0))
+
+    def threshold(tau: float) -> float:
+        return max(kt, significance * float(curvature_noise_per_m(sigma, h_v, tau)))
+
+    def blur(tau: float) -> float:  # tau plus the two central differences (2h boxes) and sparse vertices
+        return math.sqrt(tau * tau + 2.0 * h * h / 3.0 + (h_v * h_v / 12.0 if h_v > h else 0.0))
+
+    # step 5: detection
+    k_d = _smooth(kappa, extra(tau_d), h, "constant")
+    thr_d = threshold(tau_d)
+    cands: list[_Candidate] = []
+    for sign in (1.0, -1.0):
+        for i0, i1 in zip(*_runs(sign * k_d > thr_d), strict=True):
+            _refine(kappa, theta, sign, int(i0), int(i1), ladder, extra, blur, threshold, sigma, h_v, h, cands)
+    curves = _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg)
+    return RouteCurves(tuple(curves), total, chain_in, sigma, tau_d, kt)
+
+
+def _chainage(xv, yv, seg, step_m, tau_h, sigma, end_m) -> np.ndarray:
+    """Chainage of the vertices (step 2): polyline length, or with noise its projection on the heading."""
+    chain = np.concatenate(([0.0], np.cumsum(seg)))
+    if sigma <= 0 or chain[-1] < 3 * step_m:
+        return chain
+    m = math.ceil(chain[-1] / step_m) + 1
+    s = np.linspace(0.0, chain[-1], m)
+    h = float(s[1] - s[0])
+    xs, ys = np.interp(s, chain, xv), np.interp(s, chain, yv)
+    th = _heading(*_smooth_path(xs, ys, tau_h, h, end_m))
+    mid = 0.5 * (th[1:] + th[:-1])
+    ds = np.diff(xs) * np.cos(mid) + np.diff(ys) * np.sin(mid)
+    sc = np.concatenate(([0.0], np.cumsum(ds)))
+    return np.maximum.accumulate(np.interp(chain, s, sc))

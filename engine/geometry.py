@@ -88,7 +88,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
-from scipy.optimize import minimize_scalar
 from scipy.special import ndtr
 
 from .assessment import Curve
@@ -606,30 +605,57 @@ def _side(chain, xv, yv, sel: np.ndarray, centre: np.ndarray, radius: float, ent
 
 
 def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: float):
-    """Steps 8-9: circle fit, tangent fits, spirals from the shift, deflection; returns the curve's numbers.
+    """Steps 8-9 for one curve: ((start, arc start, spiral in), (end, arc end, spiral out), fit, deflection).
 
-    The circle is fitted on the vertices of the diagram's arc that also lie in the middle ``FIT_FRACTION`` of
-    the equivalent simple curve, R times the deflection, around the curve's middle: with noise the diagram's
-    ends are blurred outward by up to tau, and this keeps the tangents out of the fit (the fraction is a fixed
-    point: a radius too large by less than 1 / FIT_FRACTION still selects arc vertices only).
+    A precise circle fit (noise-free vertices) keeps the diagram's spirals, or takes them from the circle's
+    shift off the fitted tangents; otherwise, between two fitted tangents, the tangent-arc(-spiral) path is
+    fitted to all the vertices (:func:`_fit_tangent_curve`), which uses the tangents' information as well.
     """
     sh = cand.shape
     before = np.flatnonzero((chain >= lo_b) & (chain <= sh.start - cand.tau_eff)) if sh.open_in else np.empty(0, int)
     after = np.flatnonzero((chain >= sh.end + cand.tau_eff) & (chain <= hi_b)) if sh.open_out else np.empty(0, int)
     lines = (_line(chain, xv, yv, before, True), _line(chain, xv, yv, after, False))
-    deflection = None
-    if lines[0] is not None and lines[1] is not None:
+    both = lines[0] is not None and lines[1] is not None
+    deflection = _deflection(cand, lines, lo_b, hi_b) if not both else None
+    if both:
         u1, u2 = lines[0].direction, lines[1].direction
         deflection = abs(math.atan2(u1[0] * u2[1] - u1[1] * u2[0], float(u1 @ u2)))
-    if deflection is None:
-        local = cand.s0 + np.arange(cand.theta.size) * cand.step
-        e0 = max(sh.start - 2.5 * cand.tau_eff, lo_b, local[0])
-        e1 = min(sh.end + 2.5 * cand.tau_eff, hi_b, local[-1])
-        deflection = abs(float(np.interp(e1, local, cand.theta) - np.interp(e0, local, cand.theta)))
+    fit = _arc_fit(sh, deflection, chain, xv, yv)
+    ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
+    precise = fit is not None and (fit.radius_std_m or 0.0) <= PRECISE_FRACTION * fit.radius_m
+    precise = precise and (sigma <= 0 or fit.radius_std_m is not None)
+    if not precise and both and not sh.compound:
+        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_b, hi_b, 1.0 / sh.plateau)
+        if comp is not None:
+            rms = fit.rms_m if fit is not None else float("nan")
+            fit = CircleFit(float(comp.centre[0]), float(comp.centre[1]), comp.radius_m, rms, comp.radius_std_m)
+            for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
+                end = _foot(line, comp.centre) + sgn * _spiral_middle(comp.spiral_m, comp.radius_m)
+                ends[i] = (end, end - sgn * (comp.spiral_m or 0.0), comp.spiral_m)
+            return ends[0], ends[1], fit, deflection
+    if precise:  # a noisy circle's centre would move the ends more than the diagram's blur
+        centre = np.array([fit.xc_m, fit.yc_m])
+        for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
+            if line is not None:
+                ends[i] = _tangent_end(line, centre, fit, sigma, sgn)
+    return ends[0], ends[1], fit, deflection
+
+
+def _deflection(cand: _Candidate, lines, lo_b: float, hi_b: float) -> float:
+    """Change of the heading (smoothed at tau_r) across the curve, 2.5 tau_r beyond its ends [rad]."""
+    sh = cand.shape
+    local = cand.s0 + np.arange(cand.theta.size) * cand.step
+    e0 = max(sh.start - 2.5 * cand.tau_eff, lo_b, local[0])
+    e1 = min(sh.end + 2.5 * cand.tau_eff, hi_b, local[-1])
+    return abs(float(np.interp(e1, local, cand.theta) - np.interp(e0, local, cand.theta)))
+
+
+def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
+    """Circle through the vertices of the arc's middle (see :func:`find_curves`, step 8), or None."""
     middle = 0.5 * (sh.mid_in + sh.mid_out)
     radius, fit = 1.0 / sh.plateau, None
     for _ in range(6):
-        f0, f1 = sh.fit_from, sh.fit_to
+        f0, f1 = (sh.fit_from, sh.fit_to) if sh.compound else (sh.arc_start, sh.arc_end)
         if not sh.compound:
             half = 0.5 * FIT_FRACTION * radius * deflection
             f0, f1 = max(f0, middle - half), min(f1, middle + half)
@@ -645,83 +671,124 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
         radius = new.radius_m
         if done:
             break
-    ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
-    if fit is None:
-        return ends[0], ends[1], fit, deflection
-    precise = (fit.radius_std_m or 0.0) <= PRECISE_FRACTION * fit.radius_m and (
-        sigma <= 0 or fit.radius_std_m is not None
-    )
-    if not precise and lines[0] is not None and lines[1] is not None and not sh.compound:
-        composite = _fit_simple_curve(lines, chain, xv, yv, lo_b, hi_b, 1.0 / sh.plateau)
-        if composite is not None:
-            radius, centre = composite
-            std = fit.radius_std_m  # the composite is at least as precise; keep the circle's as a bound
-            fit = CircleFit(float(centre[0]), float(centre[1]), radius, fit.rms_m, std)
-            for i, line in enumerate(lines):
-                end = _foot(line, centre)
-                ends[i] = (end, end, None)
-            return ends[0], ends[1], fit, deflection
-    centre = np.array([fit.xc_m, fit.yc_m])
-    for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
-        if line is not None:
-            ends[i] = _tangent_end(line, centre, fit, sigma, sgn)
-    return ends[0], ends[1], fit, deflection
+    return fit
 
 
-def _fit_simple_curve(lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float):
-    """Radius of the circle tangent to both fitted tangents that best fits the vertices between them.
+def _spiral_middle(ls: float | None, r: float) -> float:
+    """Distance from a clothoid's tangent-to-spiral point to the foot of the shifted centre, k [m] [3]."""
+    return 0.0 if ls is None else 0.5 * ls - ls**3 / (240.0 * r * r)
 
-    The path is the entry tangent up to T1, the arc, the exit tangent from T2 (T = R tan(D/2) from the
-    intersection PI, the centre on the bisector at R / cos(D/2) [3]); the radius minimises the sum of squared
-    distances of the vertices to it (Brent's method). Returns (radius, centre) or None when the tangents are
-    nearly parallel or antiparallel.
+
+@dataclass(frozen=True)
+class _Composite:
+    radius_m: float
+    centre: np.ndarray
+    spiral_m: float | None  # symmetric clothoids, when the shift is significant
+    radius_std_m: float | None
+
+
+def _fit_tangent_curve(lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float) -> _Composite | None:
+    """Radius (and clothoid shift) of the curve between two fitted tangents that best fits the vertices.
+
+    The path is the entry tangent up to its foot F1, a circular arc of radius R whose centre lies on the
+    bisector at (R + p) / cos(D/2) from the tangents' intersection PI, and the exit tangent from F2 [3]. The
+    shift p of the circle off the tangents is that of symmetric clothoids of length Ls = sqrt(24 R p); the
+    clothoids themselves lie between the tangent and the circle within p, so they are represented by the
+    nearer of the two (an error below p / 2, small against GPS noise). (R, p) minimise the sum of squared
+    distances of the vertices to the path: a grid, refined twice around its best point. The spiral is kept
+    when it lowers the sum by more than 9 residual variances (a likelihood-ratio test at 3 standard
+    deviations); the radius's standard error comes from the curvature of the sum at its minimum.
+    Returns None when the tangents are nearly parallel or antiparallel.
     """
-    (l1, l2) = lines
+    l1, l2 = lines
     u1, u2 = l1.direction, l2.direction
     cross = u1[0] * u2[1] - u1[1] * u2[0]
-    dot = float(u1 @ u2)
-    defl = abs(math.atan2(cross, dot))
+    defl = abs(math.atan2(cross, float(u1 @ u2)))
     if not (math.radians(2.0) < defl < math.radians(170.0)):
         return None
-    # PI: l1.point + a u1 = l2.point + b u2
-    mat = np.column_stack((u1, -u2))
-    a, _ = np.linalg.solve(mat, l2.point - l1.point)
+    a, _ = np.linalg.solve(np.column_stack((u1, -u2)), l2.point - l1.point)
     pi = l1.point + a * u1
-    bis = u2 - u1
-    bis = bis / np.linalg.norm(bis)
+    bis = (u2 - u1) / np.linalg.norm(u2 - u1)
     sel = np.flatnonzero((chain >= lo_b) & (chain <= hi_b))
-    pts = np.column_stack((xv[sel], yv[sel]))
+    px, py = xv[sel], yv[sel]
     half = defl / 2.0
+    sgn = math.copysign(1.0, cross)
 
-    def geometry(r: float):
-        centre = pi + bis * (r / math.cos(half))
-        tan_len = r * math.tan(half)
-        return centre, pi - u1 * tan_len, pi + u2 * tan_len
+    n1 = sgn * np.array([-u1[1], u1[0]])  # inward normals of the two tangents
+    n2 = sgn * np.array([-u2[1], u2[0]])
 
-    def sse(r: float) -> float:
-        centre, t1, t2 = geometry(r)
-        d1 = pts - t1
-        along1 = d1 @ u1
-        dist1 = np.where(along1 <= 0, np.abs(d1[:, 0] * u1[1] - d1[:, 1] * u1[0]), np.hypot(d1[:, 0], d1[:, 1]))
-        d2 = pts - t2
-        along2 = d2 @ u2
-        dist2 = np.where(along2 >= 0, np.abs(d2[:, 0] * u2[1] - d2[:, 1] * u2[0]), np.hypot(d2[:, 0], d2[:, 1]))
-        dc = pts - centre
-        a1, a2, ap = t1 - centre, t2 - centre, dc
-        c1 = a1[0] * ap[:, 1] - a1[1] * ap[:, 0]
-        c2 = ap[:, 0] * a2[1] - ap[:, 1] * a2[0]
-        inside = (np.sign(c1) == np.sign(cross)) & (np.sign(c2) == np.sign(cross))
-        dist_arc = np.where(inside, np.abs(np.hypot(dc[:, 0], dc[:, 1]) - r), np.inf)
-        d = np.minimum(np.minimum(dist1, dist2), dist_arc)
-        return float(d @ d)
+    def shift(r, ls):  # clothoid shift p and tangent-to-spiral point to foot distance k [3]
+        return ls**2 / (24.0 * r) - ls**4 / (2688.0 * r**3), ls / 2.0 - ls**3 / (240.0 * r * r)
 
-    grid = np.geomspace(0.2 * r0, 5.0 * r0, 49)  # coarse search, then Brent's method in the best bracket
-    costs = np.array([sse(float(r)) for r in grid])
-    i = int(np.argmin(costs))
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    res = minimize_scalar(sse, bounds=(lo, hi), method="bounded", options={"xatol": 1e-5 * r0})
-    r = float(res.x)
-    return r, geometry(r)[0]
+    def centre_of(r, ls):
+        p, _ = shift(r, ls)
+        return pi + np.multiply.outer((r + p) / math.cos(half), bis)
+
+    def sse(r: np.ndarray, ls: np.ndarray) -> np.ndarray:
+        """Sum of squared distances for arrays of (R, Ls) of one shape."""
+        shape = np.shape(r)
+        r, ls = np.reshape(r, (-1, 1)), np.reshape(ls, (-1, 1))
+        p, k = shift(r, ls)
+        tl = (r + p) * math.tan(half) + k  # PI to the tangent-to-spiral points
+        cx = pi[0] + bis[0] * (r + p) / math.cos(half)
+        cy = pi[1] + bis[1] * (r + p) / math.cos(half)
+        xs_, ys_ = ls - ls**3 / (40.0 * r * r), ls**2 / (6.0 * r)  # spiral end in its tangent frame
+        d = np.full((r.shape[0], px.size), np.inf)
+        corners = []
+        for u, nrm, out in ((u1, n1, -1.0), (u2, n2, 1.0)):
+            tx, ty = pi[0] + out * u[0] * tl, pi[1] + out * u[1] * tl  # tangent-to-spiral point
+            ax = out * (-1.0)  # along the route away from the tangent, into the curve: -out * u
+            dx, dy = px - tx, py - ty
+            x = ax * (dx * u[0] + dy * u[1])  # distance into the curve
+            y = dx * nrm[0] + dy * nrm[1]  # toward the centre
+            on_line = np.where(x <= 0, np.abs(y), np.hypot(dx, dy))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                yc = x**3 / (6.0 * r * ls)
+                slope = x * x / (2.0 * r * ls)
+                spiral = np.where((x >= 0) & (x <= xs_) & (ls > 0), np.abs(y - yc) / np.sqrt(1 + slope**2), np.inf)
+            d = np.minimum(d, np.minimum(on_line, spiral))
+            corners.append((tx + ax * u[0] * xs_ + nrm[0] * ys_, ty + ax * u[1] * xs_ + nrm[1] * ys_))
+        (s1x, s1y), (s2x, s2y) = corners
+        qx, qy = px - cx, py - cy
+        c1 = (s1x - cx) * qy - (s1y - cy) * qx
+        c2 = qx * (s2y - cy) - qy * (s2x - cx)
+        inside = (c1 * sgn > 0) & (c2 * sgn > 0)
+        d = np.minimum(d, np.where(inside, np.abs(np.hypot(qx, qy) - r), np.inf))
+        return np.einsum("ij,ij->i", d, d).reshape(shape)
+
+    rs = np.geomspace(0.2 * r0, 5.0 * r0, 49)
+    gs = np.concatenate(([0.0], np.geomspace(0.02, 0.95, 11)))  # Ls / (R D): from no spiral to no arc
+    best_r, best_g = _grid_min(sse, rs, gs, defl)
+    ratio_r, step_g = rs[1] / rs[0], 0.15
+    for _ in range(2):  # refine around the best point
+        k_r = best_r * ratio_r ** np.linspace(-1, 1, 9)
+        k_g = np.unique(np.clip(best_g + step_g * np.linspace(-1, 1, 9), 0.0, 0.98))
+        best_r, best_g = _grid_min(sse, k_r, k_g, defl)
+        ratio_r, step_g = ratio_r**0.25, step_g / 4
+    best_ls = best_g * best_r * defl
+    n = sel.size
+    s_min = float(sse(best_r, best_ls))
+    var = s_min / max(n - 2, 1)
+    r_only = np.geomspace(best_r / 1.3, best_r * 1.3, 81)
+    zeros = np.zeros_like(r_only)
+    s_zero = sse(r_only, zeros)
+    spiral = None
+    if best_ls > 0 and float(np.min(s_zero)) - s_min > 9.0 * var:
+        spiral = best_ls
+    else:
+        best_r, best_ls = float(r_only[int(np.argmin(s_zero))]), 0.0
+    dr = 1e-3 * best_r  # standard error from the curvature of the sum in R (the spiral fixed)
+    three = sse(np.array([best_r - dr, best_r, best_r + dr]), np.full(3, best_ls))
+    curv = float(three[0] - 2 * three[1] + three[2]) / dr**2
+    std = math.sqrt(2.0 * var / curv) if curv > 0 else None
+    return _Composite(float(best_r), centre_of(best_r, best_ls).reshape(2), spiral, std)
+
+
+def _grid_min(fun, rs: np.ndarray, gs: np.ndarray, defl: float) -> tuple[float, float]:
+    r, g = np.meshgrid(rs, gs, indexing="ij")
+    vals = fun(r, g * r * defl)
+    i, j = np.unravel_index(int(np.argmin(vals)), vals.shape)
+    return float(rs[i]), float(gs[j])
 
 
 def _foot(line, centre: np.ndarray) -> float:
@@ -759,8 +826,7 @@ def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, 
     shift = abs(float((centre - line.point) @ normal)) - r
     sd = math.hypot(fit.radius_std_m or 0.0, sigma / math.sqrt(line.n))
     ls = math.sqrt(24.0 * r * shift) if shift > max(3.0 * sd, 1e-4 * r) else None
-    half = 0.0 if ls is None else 0.5 * ls - ls**3 / (240.0 * r * r)
-    end = foot + sgn * half
+    end = foot + sgn * _spiral_middle(ls, r)
     return end, end - sgn * (ls or 0.0), ls
 
 

@@ -102,7 +102,7 @@ HEADING_NOISE_RAD = 0.03
 #: the refinement scale keeps the curvature noise below this fraction of the curve's peak curvature
 PEAK_NOISE_FRACTION = 0.1
 #: the circle is fitted on the middle of the equivalent simple curve (R times the deflection)
-FIT_FRACTION = 0.6
+FIT_FRACTION = 0.8
 #: a circle fit this precise (standard error / radius) needs no help from the tangents
 PRECISE_FRACTION = 0.005
 #: spirals are read off the curvature diagram only where its noise is below this fraction of the plateau
@@ -471,6 +471,9 @@ class _Candidate:
     tau: float  # tau_r [m]
     tau_eff: float  # with the blur of the differencing and of sparse vertices [m]
     theta: np.ndarray  # heading at tau_r over the local window
+    theta_h: np.ndarray  # heading at tau_h (light smoothing) over the local window
+    sd_r: float  # standard deviation of theta (tau_r) and theta_h from the position noise [rad]
+    sd_h: float
     s0: float  # chainage of the window's first sample [m]
     step: float  # resampling step [m]
 
@@ -494,18 +497,21 @@ def _flank(k, c50: int, direction: int, p: float, tau: float, step: float, bound
     q75 = _crossing(k, c50, -direction, 0.75 * p, True)
     q90 = _crossing(k, c50, -direction, 0.90 * p, True)
     ls = spiral_length_m(abs(q75 - q25) * step, tau)
-    # compound test: the flank's shoulders against those of the blurred ramp its quartiles imply
-    inner_excess = abs(q90 - mid) * step - _ramp_crossing(0.9, ls, tau)
-    outer_excess = abs(mid - q10) * step + _ramp_crossing(0.1, ls, tau)
-    # blur, the spiral estimate, and three standard errors of the crossings under curvature noise
-    allowance = 2.0 * tau + 0.25 * ls + 3.0 * noise / p * (ls + 2.5 * tau)
+    # compound test: a ramp, blurred or not, is point-symmetric about its middle, so the 1/4 and 3/4 (1/10
+    # and 9/10) crossings are equally far from it; a second arc on the flank breaks that symmetry. Allowed:
+    # the blur's rounding and three standard errors of the crossings under the curvature noise.
+    allowance = 2.0 * tau + 3.0 * noise / p * (ls + 2.5 * tau)
+    inner_excess = abs(abs(q75 - mid) - abs(mid - q25)) * step
+    outer_excess = abs(abs(q90 - mid) - abs(mid - q10)) * step
     if inner_excess > allowance or outer_excess > allowance:
         # the outer arc, taken as a step to its own level k1: the curve starts where k crosses k1 / 2
         lo, hi = (bound, round(mid)) if direction < 0 else (round(mid) + 1, bound + 1)
         shoulder = k[max(lo, 0) : max(hi, 0)]
         shoulder = shoulder[shoulder > 0]
-        k1 = float(np.median(shoulder)) if shoulder.size else 0.5 * p
-        return _crossing(k, round(mid), direction, 0.5 * k1, False), q90, mid, None, False, True
+        outer = mid  # the second arc is inside the P/2 crossing: the curve starts there
+        if shoulder.size * step > 2.0 * tau:
+            outer = _crossing(k, round(mid), direction, 0.5 * float(np.median(shoulder)), False)
+        return outer, q90, mid, None, False, True
     if ls < 2.0 * tau or noise > SPIRAL_NOISE_FRACTION * p:
         return mid, mid, mid, None, True, False
     half = 0.5 * ls / step
@@ -548,7 +554,7 @@ def _shape(k: np.ndarray, a: int, b: int, tau: float, step: float, s0: float, th
     )
 
 
-def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h_v, h, out) -> None:
+def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h_v, h, tau_h, out) -> None:
     """Steps 6-7 for one detection run: pick tau_r, split the run into curves, read each one's shape."""
     n = kappa.size
     reach = math.ceil(_TRUNCATE * ladder[-1] / h)
@@ -567,7 +573,8 @@ def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h
         if th_r is None:
             th_r = _smooth(theta[a0:b0], extra(tau), h)
         shape = _shape(k_r, int(a), int(b), blur(tau), h, a0 * h, thr, float(curvature_noise_per_m(sigma, h_v, tau)))
-        out.append(_Candidate(shape, sign, tau, blur(tau), th_r, a0 * h, h))
+        sd_r, sd_h = (float(heading_noise_rad(sigma, h_v, v)) for v in (tau, tau_h))
+        out.append(_Candidate(shape, sign, tau, blur(tau), th_r, theta[a0:b0], sd_r, sd_h, a0 * h, h))
 
 
 def _line_fit(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -604,50 +611,83 @@ def _side(chain, xv, yv, sel: np.ndarray, centre: np.ndarray, radius: float, ent
     return _Side(float(chain[ref]) + foot_along - ref_along, dist - radius, u, int(sel.size))
 
 
-def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: float):
-    """Steps 8-9 for one curve: ((start, arc start, spiral in), (end, arc end, spiral out), fit, deflection).
+def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: float, significance: float):
+    """Steps 8-9 for one curve: ((start, arc start, spiral in), (end, arc end, spiral out), fit, deflection,
+    its standard deviation).
 
     A precise circle fit (noise-free vertices) keeps the diagram's spirals, or takes them from the circle's
     shift off the fitted tangents; otherwise, between two fitted tangents, the tangent-arc(-spiral) path is
     fitted to all the vertices (:func:`_fit_tangent_curve`), which uses the tangents' information as well.
     """
     sh = cand.shape
+    route_ends = (lo_b <= 0.0, hi_b >= chain[-1])
     before = np.flatnonzero((chain >= lo_b) & (chain <= sh.start - cand.tau_eff)) if sh.open_in else np.empty(0, int)
     after = np.flatnonzero((chain >= sh.end + cand.tau_eff) & (chain <= hi_b)) if sh.open_out else np.empty(0, int)
-    lines = (_line(chain, xv, yv, before, True), _line(chain, xv, yv, after, False))
+    lines = (_line(chain, xv, yv, before, True, sigma), _line(chain, xv, yv, after, False, sigma))
     both = lines[0] is not None and lines[1] is not None
-    deflection = _deflection(cand, lines, lo_b, hi_b) if not both else None
     if both:
         u1, u2 = lines[0].direction, lines[1].direction
         deflection = abs(math.atan2(u1[0] * u2[1] - u1[1] * u2[0], float(u1 @ u2)))
+        d_sd = math.hypot(lines[0].direction_sd, lines[1].direction_sd)
+    else:
+        deflection, d_sd = _deflection(cand, lo_b, hi_b, ends=route_ends)
     fit = _arc_fit(sh, deflection, chain, xv, yv)
+    if not both and fit is not None and not sh.compound:
+        deflection, d_sd = _deflection(cand, lo_b, hi_b, fit, (chain, xv, yv), route_ends)
     ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
     precise = fit is not None and (fit.radius_std_m or 0.0) <= PRECISE_FRACTION * fit.radius_m
     precise = precise and (sigma <= 0 or fit.radius_std_m is not None)
     if not precise and both and not sh.compound:
-        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_b, hi_b, 1.0 / sh.plateau)
+        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_b, hi_b, 1.0 / sh.plateau, significance)
         if comp is not None:
             rms = fit.rms_m if fit is not None else float("nan")
             fit = CircleFit(float(comp.centre[0]), float(comp.centre[1]), comp.radius_m, rms, comp.radius_std_m)
             for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
                 end = _foot(line, comp.centre) + sgn * _spiral_middle(comp.spiral_m, comp.radius_m)
                 ends[i] = (end, end - sgn * (comp.spiral_m or 0.0), comp.spiral_m)
-            return ends[0], ends[1], fit, deflection
+            return ends[0], ends[1], fit, deflection, d_sd
     if precise:  # a noisy circle's centre would move the ends more than the diagram's blur
         centre = np.array([fit.xc_m, fit.yc_m])
         for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
             if line is not None:
                 ends[i] = _tangent_end(line, centre, fit, sigma, sgn)
-    return ends[0], ends[1], fit, deflection
+    return ends[0], ends[1], fit, deflection, d_sd
 
 
-def _deflection(cand: _Candidate, lines, lo_b: float, hi_b: float) -> float:
-    """Change of the heading (smoothed at tau_r) across the curve, 2.5 tau_r beyond its ends [rad]."""
+def _deflection(
+    cand: _Candidate, lo_b: float, hi_b: float, fit: CircleFit | None = None, path=None, ends=(False, False)
+) -> tuple[float, float]:
+    """Change of heading across the curve and its standard deviation [rad].
+
+    At each end the heading smoothed at tau_r, 2.5 tau_r beyond the curve (at the route's ends, where the
+    smoothing is one-sided and half its weight falls on the last lightly smoothed heading, the larger of
+    twice its standard deviation and half that of the light one). At a junction with a reverse curve the heading has a
+    corner that any smoothing rounds (by 0.8 tau kappa for a Gaussian of scale tau): there it is the fitted
+    circle's tangent at the junction when a circle is given and credible (standard error under 10 %), else the
+    lightly smoothed heading. ``path`` = (chain, xv, yv) locates the junction; ``ends`` says which bound is
+    the route's end.
+    """
     sh = cand.shape
     local = cand.s0 + np.arange(cand.theta.size) * cand.step
-    e0 = max(sh.start - 2.5 * cand.tau_eff, lo_b, local[0])
-    e1 = min(sh.end + 2.5 * cand.tau_eff, hi_b, local[-1])
-    return abs(float(np.interp(e1, local, cand.theta) - np.interp(e0, local, cand.theta)))
+    heading, var = [], 0.0
+    credible = fit is not None and fit.radius_std_m is not None and fit.radius_std_m < 0.1 * fit.radius_m
+    credible = credible or (fit is not None and fit.radius_std_m is None)
+    sides = ((sh.start, -1.0, lo_b, ends[0], sh.open_in), (sh.end, 1.0, hi_b, ends[1], sh.open_out))
+    for end, reach, bound, route_end, open_side in sides:
+        e = end + reach * 2.5 * cand.tau_eff
+        clipped = (e < bound) if reach < 0 else (e > bound)
+        e = min(max(bound if clipped else e, local[0]), local[-1])
+        junction = clipped and not route_end and not open_side
+        th = float(np.interp(e, local, cand.theta_h if junction else cand.theta))
+        at_end = route_end and clipped  # the smoothing pads with the last heading: half its weight is on it
+        var += (cand.sd_h if junction else max(2.0 * cand.sd_r, 0.5 * cand.sd_h) if at_end else cand.sd_r) ** 2
+        if junction and credible and path is not None:
+            chain, xv, yv = path
+            px, py = np.interp(e, chain, xv) - fit.xc_m, np.interp(e, chain, yv) - fit.yc_m
+            tangent = math.atan2(cand.sign * px, -cand.sign * py)  # (P - C) turned 90 deg with the curve
+            th += (tangent - th + math.pi) % (2.0 * math.pi) - math.pi
+        heading.append(th)
+    return abs(heading[1] - heading[0]), math.sqrt(var)
 
 
 def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
@@ -687,7 +727,9 @@ class _Composite:
     radius_std_m: float | None
 
 
-def _fit_tangent_curve(lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float) -> _Composite | None:
+def _fit_tangent_curve(
+    lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float, significance: float
+) -> _Composite | None:
     """Radius (and clothoid shift) of the curve between two fitted tangents that best fits the vertices.
 
     The path is the entry tangent up to its foot F1, a circular arc of radius R whose centre lies on the
@@ -696,8 +738,9 @@ def _fit_tangent_curve(lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float
     clothoids themselves lie between the tangent and the circle within p, so they are represented by the
     nearer of the two (an error below p / 2, small against GPS noise). (R, p) minimise the sum of squared
     distances of the vertices to the path: a grid, refined twice around its best point. The spiral is kept
-    when it lowers the sum by more than 9 residual variances (a likelihood-ratio test at 3 standard
-    deviations); the radius's standard error comes from the curvature of the sum at its minimum.
+    when it lowers the sum by more than significance^2 residual variances (a likelihood-ratio test
+    at ``significance`` standard deviations); the radius's standard error comes from the curvature of the
+    sum at its minimum.
     Returns None when the tangents are nearly parallel or antiparallel.
     """
     l1, l2 = lines
@@ -773,7 +816,7 @@ def _fit_tangent_curve(lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float
     zeros = np.zeros_like(r_only)
     s_zero = sse(r_only, zeros)
     spiral = None
-    if best_ls > 0 and float(np.min(s_zero)) - s_min > 9.0 * var:
+    if best_ls > 0 and float(np.min(s_zero)) - s_min > significance**2 * var:
         spiral = best_ls
     else:
         best_r, best_ls = float(r_only[int(np.argmin(s_zero))]), 0.0
@@ -803,15 +846,18 @@ class _Line:
     ref_chain: float  # chainage of the tangent vertex nearest the curve
     ref_along: float  # its position along the line from ``point``
     n: int
+    direction_sd: float  # [rad]
 
 
-def _line(chain, xv, yv, sel: np.ndarray, entry: bool) -> _Line | None:
+def _line(chain, xv, yv, sel: np.ndarray, entry: bool, sigma: float) -> _Line | None:
     """The tangent next to a curve, fitted by total least squares (None when too short to fit)."""
     if sel.size < 4 or chain[sel[-1]] - chain[sel[0]] < 20.0:
         return None
     c, u = _line_fit(xv[sel], yv[sel])
     ref = sel[-1] if entry else sel[0]
-    return _Line(c, u, float(chain[ref]), float((np.array([xv[ref], yv[ref]]) - c) @ u), int(sel.size))
+    length = float(chain[sel[-1]] - chain[sel[0]])
+    sd = sigma * math.sqrt(12.0 / sel.size) / length  # slope of a least-squares line over n points on length L
+    return _Line(c, u, float(chain[ref]), float((np.array([xv[ref], yv[ref]]) - c) @ u), int(sel.size), sd)
 
 
 def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, sgn: float):
@@ -830,8 +876,13 @@ def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, 
     return end, end - sgn * (ls or 0.0), ls
 
 
-def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg):
-    """Steps 8-10 for every candidate, in chainage order; overlapping duplicates are dropped."""
+def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius):
+    """Steps 8-10 for every candidate, in chainage order; overlapping duplicates are dropped.
+
+    A curve is dropped when its deflection is below ``min_deflection_deg`` or within ``significance``
+    standard deviations of its noise (:func:`_deflection`; between fitted tangents, their directions'), or
+    when its radius is above ``max_radius`` (a tangent by definition).
+    """
     cands = sorted(cands, key=lambda c: c.shape.start)
     kept: list[_Candidate] = []
     for c in cands:
@@ -842,19 +893,22 @@ def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance,
     for j, c in enumerate(kept):
         lo_b = 0.0 if j == 0 else 0.5 * (kept[j - 1].shape.end + c.shape.start)
         hi_b = total if j == len(kept) - 1 else 0.5 * (c.shape.end + kept[j + 1].shape.start)
-        (start, arc0, sp_in), (end, arc1, sp_out), fit, deflection = _measure(c, lo_b, hi_b, chain, xv, yv, sigma)
+        (start, arc0, sp_in), (end, arc1, sp_out), fit, deflection, d_sd = _measure(
+            c, lo_b, hi_b, chain, xv, yv, sigma, significance
+        )
         start, end = max(start, lo_b), min(end, hi_b)
         arc0, arc1 = min(max(arc0, start), end), max(min(arc1, end), start)
         sparse = fit is None
-        d_sd = math.sqrt(2.0) * float(heading_noise_rad(sigma, h_v, c.tau))
-        if math.degrees(deflection) < min_deflection_deg or deflection < significance * d_sd:
+        radius = float(fit.radius_m if fit is not None else 1.0 / c.shape.plateau)
+        truncated = bool(start < 2.0 * c.tau_eff or end > total - 2.0 * c.tau_eff)
+        if math.degrees(deflection) < min_deflection_deg or deflection < significance * d_sd or radius > max_radius:
             continue
         first = max(int(np.searchsorted(chain, start, side="right")) - 1, 0)
         last = min(int(np.searchsorted(chain, end, side="left")), chain.size - 1)
         out.append(
             HorizontalCurve(
                 direction="left" if c.sign > 0 else "right",
-                radius_m=float(fit.radius_m if fit is not None else 1.0 / c.shape.plateau),
+                radius_m=radius,
                 start_m=float(start),
                 end_m=float(end),
                 arc_start_m=float(arc0),
@@ -867,7 +921,7 @@ def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance,
                 end_index=int(idx[last]),
                 compound=c.shape.compound,
                 sparse=sparse,
-                truncated=start < 2.0 * c.tau_eff or end > total - 2.0 * c.tau_eff,
+                truncated=truncated,
                 radius_std_m=fit.radius_std_m if (fit is not None and sigma > 0) else None,
                 smoothing_m=float(c.tau),
             )
@@ -985,8 +1039,10 @@ def find_curves(
     cands: list[_Candidate] = []
     for sign in (1.0, -1.0):
         for i0, i1 in zip(*_runs(sign * k_d > thr_d), strict=True):
-            _refine(kappa, theta, sign, int(i0), int(i1), ladder, extra, blur, threshold, sigma, h_v, h, cands)
-    curves = _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg)
+            _refine(kappa, theta, sign, int(i0), int(i1), ladder, extra, blur, threshold, sigma, h_v, h, tau_h, cands)
+    curves = _assemble(
+        cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius_m
+    )
     return RouteCurves(tuple(curves), total, chain_in, sigma, tau_d, kt)
 
 

@@ -19,8 +19,8 @@ LATITUDES = (0.0, 45.0, 60.0, -35.0)
 
 def test_ellipsoid_is_geographiclibs():
     # NIMA TR8350.2 defining parameters, cross-checked against GeographicLib's WGS84 (Karney)
-    assert WGS84_A_M == GEOD.a
-    assert WGS84_F == pytest.approx(GEOD.f, rel=1e-15)
+    assert GEOD.a == WGS84_A_M
+    assert pytest.approx(GEOD.f, rel=1e-15) == WGS84_F
 
 
 def test_equator_degree_of_longitude():

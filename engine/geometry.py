@@ -301,7 +301,7 @@ class CircleFit:
     radius_std_m: float | None  # standard error of the radius (None with 3 points: no redundancy)
 
 
-def fit_circle(x_m, y_m, *, iterations: int = 20) -> CircleFit:
+def fit_circle(x_m, y_m, *, iterations: int = 10) -> CircleFit:
     """Geometric least-squares circle through points (Gauss-Newton from Kasa's algebraic fit) [1].
 
     Minimises sum (|p_i - c| - R)^2. The points are centred first, so routes far from the origin keep their
@@ -332,9 +332,12 @@ def fit_circle(x_m, y_m, *, iterations: int = 20) -> CircleFit:
         d = np.maximum(np.hypot(du, dv), 1e-15)
         res = d - p[2]
         jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
-        step, *_ = np.linalg.lstsq(jac, -res, rcond=None)
+        try:
+            step = np.linalg.solve(jac.T @ jac, -(jac.T @ res))
+        except np.linalg.LinAlgError:
+            break
         p = p + step
-        if np.all(np.abs(step) <= 1e-12 * (1.0 + np.abs(p))):
+        if np.all(np.abs(step) <= 1e-10 * (1.0 + np.abs(p))):
             break
     du, dv = u - p[0], v - p[1]
     d = np.hypot(du, dv)
@@ -419,6 +422,11 @@ def _smooth_path(
 
 def _heading(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
     return np.unwrap(np.arctan2(np.gradient(ys), np.gradient(xs)))
+
+
+def _between(chain: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """Indices of the vertices whose (sorted) chainage lies in [lo, hi]."""
+    return np.arange(np.searchsorted(chain, lo, "left"), np.searchsorted(chain, hi, "right"))
 
 
 def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -554,7 +562,7 @@ def _shape(k: np.ndarray, a: int, b: int, tau: float, step: float, s0: float, th
     )
 
 
-def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h_v, h, tau_h, out) -> None:
+def _refine(kappa, theta, k_d, sign, i0, i1, ladder, extra, blur, threshold, sigma, h_v, h, tau_h, out) -> None:
     """Steps 6-7 for one detection run: pick tau_r, split the run into curves, read each one's shape."""
     n = kappa.size
     reach = math.ceil(_TRUNCATE * ladder[-1] / h)
@@ -562,7 +570,10 @@ def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h
     for tau in ladder:
         pad = math.ceil(_TRUNCATE * extra(tau) / h) + 1
         a0, b0 = max(0, lo - pad), min(n, hi + pad)
-        k_r = sign * _smooth(kappa[a0:b0], extra(tau), h, "constant" if a0 == 0 or b0 == n else "nearest")
+        if tau == ladder[-1]:  # the detection scale: already smoothed over the whole route
+            k_r = sign * k_d[a0:b0]
+        else:
+            k_r = sign * _smooth(kappa[a0:b0], extra(tau), h, "constant" if a0 == 0 or b0 == n else "nearest")
         if float(curvature_noise_per_m(sigma, h_v, tau)) <= PEAK_NOISE_FRACTION * float(k_r[i0 - a0 : i1 - a0].max()):
             break
     thr = threshold(tau)
@@ -579,13 +590,13 @@ def _refine(kappa, theta, sign, i0, i1, ladder, extra, blur, threshold, sigma, h
 
 def _line_fit(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Total least-squares line: a point on it and its unit direction, oriented from the first point."""
-    pts = np.column_stack((x, y))
-    c = pts.mean(axis=0)
-    _, _, vt = np.linalg.svd(pts - c, full_matrices=False)
-    u = vt[0]
-    if u @ (pts[-1] - pts[0]) < 0:
+    cx, cy = float(x.mean()), float(y.mean())
+    dx, dy = x - cx, y - cy
+    angle = 0.5 * math.atan2(2.0 * float(dx @ dy), float(dx @ dx) - float(dy @ dy))  # principal axis
+    u = np.array([math.cos(angle), math.sin(angle)])
+    if u[0] * (x[-1] - x[0]) + u[1] * (y[-1] - y[0]) < 0:
         u = -u
-    return c, u
+    return np.array([cx, cy]), u
 
 
 @dataclass
@@ -621,8 +632,8 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     """
     sh = cand.shape
     route_ends = (lo_b <= 0.0, hi_b >= chain[-1])
-    before = np.flatnonzero((chain >= lo_b) & (chain <= sh.start - cand.tau_eff)) if sh.open_in else np.empty(0, int)
-    after = np.flatnonzero((chain >= sh.end + cand.tau_eff) & (chain <= hi_b)) if sh.open_out else np.empty(0, int)
+    before = _between(chain, lo_b, sh.start - cand.tau_eff) if sh.open_in else np.empty(0, int)
+    after = _between(chain, sh.end + cand.tau_eff, hi_b) if sh.open_out else np.empty(0, int)
     lines = (_line(chain, xv, yv, before, True, sigma), _line(chain, xv, yv, after, False, sigma))
     both = lines[0] is not None and lines[1] is not None
     if both:
@@ -631,14 +642,22 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
         d_sd = math.hypot(lines[0].direction_sd, lines[1].direction_sd)
     else:
         deflection, d_sd = _deflection(cand, lo_b, hi_b, ends=route_ends)
-    fit = _arc_fit(sh, deflection, chain, xv, yv)
+    # a circle through the arc's own vertices cannot be precise when the noise is not small against its middle
+    # ordinate M (relative standard error sqrt(180 / n) sigma / (4 M) for n vertices): then, between two
+    # tangents, go straight to the path fit
+    tangent_fit = both and not sh.compound
+    fit = None
+    if not (tangent_fit and _circle_error(sh, chain, sigma) > PRECISE_FRACTION):
+        fit = _arc_fit(sh, deflection, chain, xv, yv)
     if not both and fit is not None and not sh.compound:
         deflection, d_sd = _deflection(cand, lo_b, hi_b, fit, (chain, xv, yv), route_ends)
     ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
     precise = fit is not None and (fit.radius_std_m or 0.0) <= PRECISE_FRACTION * fit.radius_m
     precise = precise and (sigma <= 0 or fit.radius_std_m is not None)
     if not precise and both and not sh.compound:
-        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_b, hi_b, 1.0 / sh.plateau, significance)
+        reach = cand.tau_eff + 20.0  # the far tangent is known from its line: the fit needs the curve's ends
+        lo_f, hi_f = max(lo_b, sh.start - reach), min(hi_b, sh.end + reach)
+        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_f, hi_f, 1.0 / sh.plateau, significance)
         if comp is not None:
             rms = fit.rms_m if fit is not None else float("nan")
             fit = CircleFit(float(comp.centre[0]), float(comp.centre[1]), comp.radius_m, rms, comp.radius_std_m)
@@ -652,6 +671,19 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
             if line is not None:
                 ends[i] = _tangent_end(line, centre, fit, sigma, sgn)
     return ends[0], ends[1], fit, deflection, d_sd
+
+
+def _circle_error(sh: _Shape, chain: np.ndarray, sigma: float) -> float:
+    """Expected relative standard error of a circle fitted through the vertices of the curve's arc [-]."""
+    if sigma <= 0:
+        return 0.0
+    n = _between(chain, sh.arc_start, sh.arc_end).size
+    r = 1.0 / sh.plateau
+    half_angle = min(0.5 * (sh.arc_end - sh.arc_start) / r, 0.5 * math.pi)
+    middle_ordinate = r * (1.0 - math.cos(half_angle))
+    if n < 4 or middle_ordinate <= 0:
+        return math.inf
+    return math.sqrt(180.0 / n) * sigma / (4.0 * middle_ordinate)
 
 
 def _deflection(
@@ -693,17 +725,20 @@ def _deflection(
 def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
     """Circle through the vertices of the arc's middle (see :func:`find_curves`, step 8), or None."""
     middle = 0.5 * (sh.mid_in + sh.mid_out)
-    radius, fit = 1.0 / sh.plateau, None
-    for _ in range(6):
+    radius, fit, used = 1.0 / sh.plateau, None, None
+    for _ in range(4):
         f0, f1 = (sh.fit_from, sh.fit_to) if sh.compound else (sh.arc_start, sh.arc_end)
         if not sh.compound:
             half = 0.5 * FIT_FRACTION * radius * deflection
             f0, f1 = max(f0, middle - half), min(f1, middle + half)
-        on_arc = np.flatnonzero((chain >= f0 - 1e-9) & (chain <= f1 + 1e-9))
+        on_arc = _between(chain, f0 - 1e-9, f1 + 1e-9)
         if on_arc.size < 3:
-            on_arc = np.flatnonzero((chain >= sh.arc_start - 1e-9) & (chain <= sh.arc_end + 1e-9))
+            on_arc = _between(chain, sh.arc_start - 1e-9, sh.arc_end + 1e-9)
         if on_arc.size < 3:
             break
+        if used is not None and on_arc[0] == used[0] and on_arc.size == used.size:
+            break  # the same vertices: the same circle
+        used = on_arc
         new = fit_circle(xv[on_arc], yv[on_arc])
         if new.radius_m * sh.plateau > 10.0:  # a straight line through nearly collinear points: no radius
             break
@@ -737,7 +772,8 @@ def _fit_tangent_curve(
     shift p of the circle off the tangents is that of symmetric clothoids of length Ls = sqrt(24 R p); the
     clothoids themselves lie between the tangent and the circle within p, so they are represented by the
     nearer of the two (an error below p / 2, small against GPS noise). (R, p) minimise the sum of squared
-    distances of the vertices to the path: a grid, refined twice around its best point. The spiral is kept
+    distances of the vertices to the path: first without spiral (a grid in R refined twice), then on a grid
+    of R and Ls / (R D) refined once. The spiral is kept
     when it lowers the sum by more than significance^2 residual variances (a likelihood-ratio test
     at ``significance`` standard deviations); the radius's standard error comes from the curvature of the
     sum at its minimum.
@@ -752,7 +788,7 @@ def _fit_tangent_curve(
     a, _ = np.linalg.solve(np.column_stack((u1, -u2)), l2.point - l1.point)
     pi = l1.point + a * u1
     bis = (u2 - u1) / np.linalg.norm(u2 - u1)
-    sel = np.flatnonzero((chain >= lo_b) & (chain <= hi_b))
+    sel = _between(chain, lo_b, hi_b)
     px, py = xv[sel], yv[sel]
     half = defl / 2.0
     sgn = math.copysign(1.0, cross)
@@ -799,27 +835,28 @@ def _fit_tangent_curve(
         d = np.minimum(d, np.where(inside, np.abs(np.hypot(qx, qy) - r), np.inf))
         return np.einsum("ij,ij->i", d, d).reshape(shape)
 
-    rs = np.geomspace(0.2 * r0, 5.0 * r0, 49)
-    gs = np.concatenate(([0.0], np.geomspace(0.02, 0.95, 11)))  # Ls / (R D): from no spiral to no arc
-    best_r, best_g = _grid_min(sse, rs, gs, defl)
-    ratio_r, step_g = rs[1] / rs[0], 0.15
-    for _ in range(2):  # refine around the best point
-        k_r = best_r * ratio_r ** np.linspace(-1, 1, 9)
-        k_g = np.unique(np.clip(best_g + step_g * np.linspace(-1, 1, 9), 0.0, 0.98))
-        best_r, best_g = _grid_min(sse, k_r, k_g, defl)
-        ratio_r, step_g = ratio_r**0.25, step_g / 4
+    # the simple curve first (p = 0): a coarse geometric grid of R, refined twice
+    rs = np.geomspace(0.25 * r0, 4.0 * r0, 25)
+    ratio = rs[1] / rs[0]
+    for _ in range(3):
+        costs = sse(rs, np.zeros_like(rs))
+        r_simple = float(rs[int(np.argmin(costs))])
+        rs = r_simple * ratio ** np.linspace(-1.0, 1.0, 13)
+        ratio = ratio ** (1.0 / 6.0)
+    s_zero = float(np.min(costs))
+    # then with clothoids, which pull the circle inward (a smaller R): R x Ls / (R D) grid, refined once
+    best_r, best_g = _grid_min(sse, r_simple * np.geomspace(0.5, 1.05, 9), np.geomspace(0.02, 0.95, 9), defl)
+    k_r = best_r * np.geomspace(0.93, 1.0 / 0.93, 5)
+    k_g = np.clip(best_g * np.geomspace(0.6, 1.0 / 0.6, 5), 0.0, 0.98)
+    best_r, best_g = _grid_min(sse, k_r, k_g, defl)
     best_ls = best_g * best_r * defl
-    n = sel.size
-    s_min = float(sse(best_r, best_ls))
-    var = s_min / max(n - 2, 1)
-    r_only = np.geomspace(best_r / 1.3, best_r * 1.3, 81)
-    zeros = np.zeros_like(r_only)
-    s_zero = sse(r_only, zeros)
+    s_min = float(sse(np.array([best_r]), np.array([best_ls]))[0])
+    var = min(s_min, s_zero) / max(sel.size - 2, 1)
     spiral = None
-    if best_ls > 0 and float(np.min(s_zero)) - s_min > significance**2 * var:
+    if s_zero - s_min > significance**2 * var:
         spiral = best_ls
     else:
-        best_r, best_ls = float(r_only[int(np.argmin(s_zero))]), 0.0
+        best_r, best_ls = r_simple, 0.0
     dr = 1e-3 * best_r  # standard error from the curvature of the sum in R (the spiral fixed)
     three = sse(np.array([best_r - dr, best_r, best_r + dr]), np.full(3, best_ls))
     curv = float(three[0] - 2 * three[1] + three[2]) / dr**2
@@ -933,10 +970,12 @@ def _grade(chain: np.ndarray, zv: np.ndarray | None, start: float, end: float) -
     """Least-squares grade of the elevation against chainage over [start, end], + uphill [%] (step 10)."""
     if zv is None:
         return None
-    sel = (chain >= start) & (chain <= end) & np.isfinite(zv)
-    if np.count_nonzero(sel) < 2:
+    idx = _between(chain, start, end)
+    zz = zv[idx]
+    ok = np.isfinite(zz)
+    if np.count_nonzero(ok) < 2:
         return None
-    c, zz = chain[sel], zv[sel]
+    c, zz = chain[idx][ok], zz[ok]
     c = c - c.mean()
     den = float(c @ c)
     if den <= 0:
@@ -1039,7 +1078,9 @@ def find_curves(
     cands: list[_Candidate] = []
     for sign in (1.0, -1.0):
         for i0, i1 in zip(*_runs(sign * k_d > thr_d), strict=True):
-            _refine(kappa, theta, sign, int(i0), int(i1), ladder, extra, blur, threshold, sigma, h_v, h, tau_h, cands)
+            _refine(
+                kappa, theta, k_d, sign, int(i0), int(i1), ladder, extra, blur, threshold, sigma, h_v, h, tau_h, cands
+            )
     curves = _assemble(
         cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius_m
     )

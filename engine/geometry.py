@@ -33,25 +33,30 @@ Method
 5. **Detection.** A curve is a run of samples whose curvature at tau_d exceeds the threshold with one sign
    (positive: left, counter-clockwise). Runs of opposite sign are separate curves (reverse curves).
 6. **Refinement** of each run at the finest scale tau_r (a ladder from the finest scale up to tau_d, factor
-   1.5) at which the curvature noise is at most 1/20 of the run's peak curvature: sharp curves are
+   1.5) at which the curvature noise is at most a tenth of the run's peak curvature: sharp curves are
    measured with little blur even when the track is noisy. At that scale the run may split into several
    curves (a broken-back curve: same direction, short tangent between).
 7. **Shape of each curve.** P is the plateau curvature (median of the samples above 3/4 of the peak).
    A Gaussian blur keeps the point symmetry of a ramp about its middle, so the crossings of P/2 are exactly
    the middles of the spirals (or the tangent points of a simple curve) whatever tau_r. The distance between
-   the P/4 and 3P/4 crossings of each flank, compared with that of a clothoid ramp blurred by tau_r (closed
-   form, Eq. 2), gives the spiral length; a spiral shorter than 2 tau_r is not resolved (the curve is then
-   reported as the equivalent simple curve, from spiral middle to spiral middle). A flank whose shape no
-   ramp explains (a plateau between P/2 and 0.9 P, or a long shoulder below P/2) is a second arc: the curve
-   is *compound*.
-8. **Radius** of the circular part: geometric least-squares circle (Gauss-Newton from the algebraic Kasa
-   fit) through the *input vertices* between the arc's ends, and where the curvature is at least 0.9 P (the
-   sharpest arc of a compound curve). The geometric fit is the maximum-likelihood radius under isotropic
-   Gaussian noise; the fit also gives the radius's standard error. With fewer than 3 vertices on the arc
-   (a sparse polyline) the radius is 1/P and ``sparse`` is set.
-9. **Deflection** is the change of the heading smoothed at tau_r between points 2.5 tau_r outside the curve
-   (or the midpoints to the neighbouring curves); a curve turning less than ``min_deflection_deg`` or less
-   than ``significance`` standard deviations of that heading difference is dropped.
+   the P/4 and 3P/4 crossings of each flank, compared with that of a clothoid ramp blurred by the effective
+   scale (closed form, Eq. 2), gives the spiral length; a spiral shorter than 2 tau_r is not resolved (the
+   curve is then the equivalent simple curve, from spiral middle to spiral middle). A flank whose crossings
+   are not symmetric about P/2 beyond the blur and the noise carries a second arc: the curve is *compound*.
+   A flank followed within 3 tau_r by significant opposite curvature is a reverse junction: the curves meet
+   where the curvature changes sign.
+8. **Radius and ends.** When a circle through the arc's own vertices can be precise (expected relative
+   standard error sqrt(180 / n) sigma / (4 M) at most 0.5 %, M the middle ordinate), the geometric
+   least-squares circle (Gauss-Newton from Kasa's fit) gives R, and the ends are the feet of its centre on
+   the least-squares tangents, moved by a clothoid where the centre's shift off a tangent is significant
+   (p = Ls^2 / (24 R)). Otherwise, between two fitted tangents, the tangent-clothoid-arc-clothoid-tangent
+   path is fitted to the vertices (R, then R and Ls on grids; the spiral kept by a likelihood-ratio test), which
+   also uses the tangents' information. Without tangents (reverse, compound) the circle is used as it is.
+   With fewer than 3 vertices on the arc the radius is 1/P and ``sparse`` is set.
+9. **Deflection**: the angle between the fitted tangents, else the change of the heading smoothed at tau_r
+   2.5 tau_r beyond the curve (at a reverse junction, the fitted circle's tangent there); a curve turning less
+   than ``min_deflection_deg``, or within ``significance`` standard deviations of that measurement's noise,
+   or flatter than ``max_radius_m``, is dropped.
 10. **Grade** [%]: least-squares slope of the elevation against chainage over the whole curve, + uphill in
     the direction of travel (the grade at the middle of a vertical curve that spans the horizontal curve).
 
@@ -59,13 +64,13 @@ Where it fails (see also docs/routes.md)
 ----------------------------------------
 * Arcs shorter than about 3 tau_r (a few vertex spacings without noise) are blurred: their ends are
   located within about tau_r and their radius comes from the few vertices on the arc.
-* GPS noise comparable with the middle ordinate M = L^2 / (8 R) of an arc of length L: the radius's relative
-  standard error is about sqrt(180 / n) sigma / (4 M) for n vertices on the arc; a curve whose offsets are
-  within the noise is not detected at all.
-* Spirals are resolved only when longer than 2 tau_r; with noise their lengths are uncertain by about
-  tau_r.
+* GPS noise comparable with the middle ordinate M of an arc: the radius's relative error grows as
+  sigma / M; a curve whose offsets are within the noise is not detected at all.
+* Spirals are resolved from the diagram only when longer than 2 tau_r and the noise is small; with GPS noise
+  their shift is usually below it and the curve is the equivalent simple curve, whose radius exceeds R by
+  about p sec(D/2) / (sec(D/2) - 1).
 * A compound curve is one curve: its radius is that of its sharpest arc (the one that governs the safe
-  speed) and it covers all its arcs; arcs whose curvatures differ by less than 10 % are not told apart.
+  speed) and it covers all its arcs; arcs whose curvatures differ by less than about 10 % are not told apart.
 * Reverse curves with no tangent between are split where the curvature changes sign; broken-back curves
   are split only when the tangent between them is longer than about 2 tau_r.
 * Vertices closer than the noise (a vehicle standing still) add loops that the smoothing cannot tell from
@@ -75,8 +80,8 @@ References
 ----------
 [1] N. Chernov (2010), Circular and Linear Regression: Fitting Circles and Lines by Least Squares, CRC
     Press: geometric circle fit, Kasa's algebraic fit as its initial value.
-[2] A. Savitzky, M. J. E. Golay (1964); T. Lindeberg (1994), Scale-Space Theory in Computer Vision: Gaussian
-    derivative filters and their noise.
+[2] T. Lindeberg (1994), Scale-Space Theory in Computer Vision, Kluwer: Gaussian derivative filters; the
+    noise integrals of Eq. 1 are those of the Gaussian's derivatives.
 [3] AASHTO (2018), A Policy on Geometric Design of Highways and Streets, 7th ed., ch. 3: curve elements
     (deflection, tangent, middle ordinate) and clothoid transitions (curvature linear in length).
 """
@@ -103,6 +108,8 @@ HEADING_NOISE_RAD = 0.03
 PEAK_NOISE_FRACTION = 0.1
 #: the circle is fitted on the middle of the equivalent simple curve (R times the deflection)
 FIT_FRACTION = 0.8
+#: at most this many vertices (evenly chosen) enter the tangent-curve path fit of a long curve
+PATH_FIT_VERTICES = 150
 #: a circle fit this precise (standard error / radius) needs no help from the tangents
 PRECISE_FRACTION = 0.005
 #: spirals are read off the curvature diagram only where its noise is below this fraction of the plateau
@@ -183,7 +190,7 @@ def curvature_noise_per_m(noise_m: float, spacing_m: float, scale_m):
     scale_m : float or array_like
         Smoothing scale tau [m].
     """
-    return noise_m * np.sqrt(_G2 * spacing_m) * np.asarray(scale_m, dtype=float) ** -2.5
+    return noise_m * np.sqrt(_G2 * spacing_m) * np.asarray(scale_m, dtype=float) ** -2.5  # Eq. 1
 
 
 def heading_noise_rad(noise_m: float, spacing_m: float, scale_m):
@@ -243,7 +250,7 @@ def _blurred_ramp(u: np.ndarray, lam: float) -> np.ndarray:
     def psi(v):  # integral of the Gaussian CDF: v Phi(v) + phi(v)
         return v * ndtr(v) + np.exp(-0.5 * v * v) / math.sqrt(2.0 * math.pi)
 
-    return (psi(u + lam / 2.0) - psi(u - lam / 2.0)) / lam
+    return (psi(u + lam / 2.0) - psi(u - lam / 2.0)) / lam  # Eq. 2
 
 
 def _ramp_table() -> tuple[np.ndarray, dict[float, np.ndarray]]:
@@ -789,6 +796,8 @@ def _fit_tangent_curve(
     pi = l1.point + a * u1
     bis = (u2 - u1) / np.linalg.norm(u2 - u1)
     sel = _between(chain, lo_b, hi_b)
+    if sel.size > PATH_FIT_VERTICES:  # evenly thinned: a long curve's radius is precise with fewer
+        sel = sel[np.linspace(0, sel.size - 1, PATH_FIT_VERTICES).astype(int)]
     px, py = xv[sel], yv[sel]
     half = defl / 2.0
     sgn = math.copysign(1.0, cross)
@@ -807,6 +816,7 @@ def _fit_tangent_curve(
         """Sum of squared distances for arrays of (R, Ls) of one shape."""
         shape = np.shape(r)
         r, ls = np.reshape(r, (-1, 1)), np.reshape(ls, (-1, 1))
+        with_spiral = bool(np.any(ls > 0))
         p, k = shift(r, ls)
         tl = (r + p) * math.tan(half) + k  # PI to the tangent-to-spiral points
         cx = pi[0] + bis[0] * (r + p) / math.cos(half)
@@ -821,11 +831,13 @@ def _fit_tangent_curve(
             x = ax * (dx * u[0] + dy * u[1])  # distance into the curve
             y = dx * nrm[0] + dy * nrm[1]  # toward the centre
             on_line = np.where(x <= 0, np.abs(y), np.hypot(dx, dy))
-            with np.errstate(divide="ignore", invalid="ignore"):
-                yc = x**3 / (6.0 * r * ls)
-                slope = x * x / (2.0 * r * ls)
-                spiral = np.where((x >= 0) & (x <= xs_) & (ls > 0), np.abs(y - yc) / np.sqrt(1 + slope**2), np.inf)
-            d = np.minimum(d, np.minimum(on_line, spiral))
+            d = np.minimum(d, on_line)
+            if with_spiral:
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    yc = x**3 / (6.0 * r * ls)
+                    slope = x * x / (2.0 * r * ls)
+                    on_spiral = np.abs(y - yc) / np.sqrt(1 + slope**2)
+                d = np.minimum(d, np.where((x >= 0) & (x <= xs_) & (ls > 0), on_spiral, np.inf))
             corners.append((tx + ax * u[0] * xs_ + nrm[0] * ys_, ty + ax * u[1] * xs_ + nrm[1] * ys_))
         (s1x, s1y), (s2x, s2y) = corners
         qx, qy = px - cx, py - cy
@@ -835,19 +847,21 @@ def _fit_tangent_curve(
         d = np.minimum(d, np.where(inside, np.abs(np.hypot(qx, qy) - r), np.inf))
         return np.einsum("ij,ij->i", d, d).reshape(shape)
 
-    # the simple curve first (p = 0): a coarse geometric grid of R, refined twice
-    rs = np.geomspace(0.25 * r0, 4.0 * r0, 25)
+    # the simple curve first (p = 0): a coarse geometric grid of R, refined twice, then a parabola in log R
+    rs = np.geomspace(0.25 * r0, 4.0 * r0, 17)
     ratio = rs[1] / rs[0]
     for _ in range(3):
         costs = sse(rs, np.zeros_like(rs))
-        r_simple = float(rs[int(np.argmin(costs))])
-        rs = r_simple * ratio ** np.linspace(-1.0, 1.0, 13)
-        ratio = ratio ** (1.0 / 6.0)
-    s_zero = float(np.min(costs))
+        i = int(np.argmin(costs))
+        r_simple, s_zero = float(rs[i]), float(costs[i])
+        rs = r_simple * ratio ** np.linspace(-1.0, 1.0, 9)
+        ratio = ratio**0.25
+    if 0 < i < costs.size - 1:
+        r_simple, s_zero = _parabola_min(sse, rs, costs, i, r_simple, s_zero)
     # then with clothoids, which pull the circle inward (a smaller R): R x Ls / (R D) grid, refined once
-    best_r, best_g = _grid_min(sse, r_simple * np.geomspace(0.5, 1.05, 9), np.geomspace(0.02, 0.95, 9), defl)
-    k_r = best_r * np.geomspace(0.93, 1.0 / 0.93, 5)
-    k_g = np.clip(best_g * np.geomspace(0.6, 1.0 / 0.6, 5), 0.0, 0.98)
+    best_r, best_g = _grid_min(sse, r_simple * np.geomspace(0.5, 1.05, 7), np.geomspace(0.02, 0.95, 7), defl)
+    k_r = best_r * np.geomspace(0.92, 1.0 / 0.92, 5)
+    k_g = np.clip(best_g * np.geomspace(0.55, 1.0 / 0.55, 5), 0.0, 0.98)
     best_r, best_g = _grid_min(sse, k_r, k_g, defl)
     best_ls = best_g * best_r * defl
     s_min = float(sse(np.array([best_r]), np.array([best_ls]))[0])
@@ -862,6 +876,20 @@ def _fit_tangent_curve(
     curv = float(three[0] - 2 * three[1] + three[2]) / dr**2
     std = math.sqrt(2.0 * var / curv) if curv > 0 else None
     return _Composite(float(best_r), centre_of(best_r, best_ls).reshape(2), spiral, std)
+
+
+def _parabola_min(fun, rs: np.ndarray, costs: np.ndarray, i: int, r: float, s: float) -> tuple[float, float]:
+    """Vertex of the parabola through the grid's best point and its neighbours (in log R), if it is lower."""
+    x = np.log(rs[i - 1 : i + 2])
+    y = costs[i - 1 : i + 2]
+    den = (x[0] - x[1]) * (x[0] - x[2]) * (x[1] - x[2])
+    a = (x[2] * (y[1] - y[0]) + x[1] * (y[0] - y[2]) + x[0] * (y[2] - y[1])) / den
+    b = (x[2] ** 2 * (y[0] - y[1]) + x[1] ** 2 * (y[2] - y[0]) + x[0] ** 2 * (y[1] - y[2])) / den
+    if a <= 0:
+        return r, s
+    r_new = float(np.exp(-b / (2 * a)))
+    s_new = float(fun(np.array([r_new]), np.zeros(1))[0])
+    return (r_new, s_new) if s_new < s else (r, s)
 
 
 def _grid_min(fun, rs: np.ndarray, gs: np.ndarray, defl: float) -> tuple[float, float]:

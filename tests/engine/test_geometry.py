@@ -233,12 +233,12 @@ def test_grade_on_a_vertical_curve_is_the_grade_at_the_curves_middle():
 
     def z(s):
         u = np.clip(s - s0, 0.0, length)
-        return 200.0 + g1 * s + (g2 - g1) * u**2 / (2 * length) + g2 * 0 * s
+        return 200.0 + g1 * s + (g2 - g1) * u**2 / (2 * length)
 
     route = [Tangent(600), Arc(250, 300, "right"), Tangent(600)]
     found, _ = detect(route, 5.0, 0.0, z_of_s=z)
     middle = 600 + 150
-    expected = 100 * (g1 + (g2 - g1) * (middle - s0) / length)  # 1.5 %
+    expected = 100 * (g1 + (g2 - g1) * (middle - s0) / length)  # -4 + 8 x 450 / 800 = 0.5 %
     assert found.curves[0].grade_percent == pytest.approx(expected, abs=0.3)
 
 

@@ -800,95 +800,99 @@ class _Composite:
     radius_std_m: float | None
 
 
-def _fit_tangent_curve(
-    lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float, significance: float
-) -> _Composite | None:
-    """Radius (and clothoid shift) of the curve between two fitted tangents that best fits the vertices.
+def _clothoid_shift(r, ls):
+    """Shift p of the circle off the tangent, and distance k from the tangent-to-spiral point to the foot of the
+    shifted centre, of a clothoid of length ls ending on radius r (first two terms of each series) [3]."""
+    return ls**2 / (24.0 * r) - ls**4 / (2688.0 * r**3), ls / 2.0 - ls**3 / (240.0 * r * r)
 
-    The path is the entry tangent up to its foot F1, a circular arc of radius R whose centre lies on the
-    bisector at (R + p) / cos(D/2) from the tangents' intersection PI, and the exit tangent from F2 [3]. The
-    shift p of the circle off the tangents is that of symmetric clothoids of length Ls = sqrt(24 R p); the
-    clothoids themselves lie between the tangent and the circle within p, so they are represented by the
-    nearer of the two (an error below p / 2, small against GPS noise). (R, p) minimise the sum of squared
-    distances of the vertices to the path: first without spiral (a grid in R refined twice), then on a grid
-    of R and Ls / (R D) refined once. The spiral is kept
-    when it lowers the sum by more than significance^2 residual variances (a likelihood-ratio test
-    at ``significance`` standard deviations); the radius's standard error comes from the curvature of the
-    sum at its minimum.
-    Returns None when the tangents are nearly parallel or antiparallel.
+
+class _TangentPath:
+    """Tangent-clothoid-arc-clothoid-tangent path between two fitted tangents, for arrays of (R, Ls).
+
+    The centre lies on the bisector at (R + p) / cos(D/2) from the tangents' intersection PI [3]; a clothoid
+    is its cubic y = x^3 / (6 R Ls) in the frame of its tangent-to-spiral point (distances measured normal to
+    it), the arc is the circle between the spirals' ends, the tangents are half-lines.
     """
-    l1, l2 = lines
-    u1, u2 = l1.direction, l2.direction
-    cross = u1[0] * u2[1] - u1[1] * u2[0]
-    defl = abs(math.atan2(cross, float(u1 @ u2)))
-    if not (math.radians(2.0) < defl < math.radians(170.0)):
-        return None
-    a, _ = np.linalg.solve(np.column_stack((u1, -u2)), l2.point - l1.point)
-    pi = l1.point + a * u1
-    bis = (u2 - u1) / np.linalg.norm(u2 - u1)
-    sel = _between(chain, lo_b, hi_b)
-    if sel.size > PATH_FIT_VERTICES:  # evenly thinned: a long curve's radius is precise with fewer
-        sel = sel[np.linspace(0, sel.size - 1, PATH_FIT_VERTICES).astype(int)]
-    px, py = xv[sel], yv[sel]
-    half = defl / 2.0
-    sgn = math.copysign(1.0, cross)
 
-    n1 = sgn * np.array([-u1[1], u1[0]])  # inward normals of the two tangents
-    n2 = sgn * np.array([-u2[1], u2[0]])
+    def __init__(self, lines, px: np.ndarray, py: np.ndarray) -> None:
+        l1, l2 = lines
+        self.u1, self.u2 = l1.direction, l2.direction
+        cross = self.u1[0] * self.u2[1] - self.u1[1] * self.u2[0]
+        self.deflection = abs(math.atan2(cross, float(self.u1 @ self.u2)))
+        self.sgn = math.copysign(1.0, cross)
+        self.px, self.py = px, py
+        if math.radians(2.0) < self.deflection < math.radians(170.0):
+            a, _ = np.linalg.solve(np.column_stack((self.u1, -self.u2)), l2.point - l1.point)
+            self.pi = l1.point + a * self.u1
+            self.bis = (self.u2 - self.u1) / np.linalg.norm(self.u2 - self.u1)
+        self.half = self.deflection / 2.0
+        self.n1 = self.sgn * np.array([-self.u1[1], self.u1[0]])  # inward normals of the two tangents
+        self.n2 = self.sgn * np.array([-self.u2[1], self.u2[0]])
 
-    def shift(r, ls):  # clothoid shift p and tangent-to-spiral point to foot distance k [3]
-        return ls**2 / (24.0 * r) - ls**4 / (2688.0 * r**3), ls / 2.0 - ls**3 / (240.0 * r * r)
+    def centre(self, r: float, ls: float) -> np.ndarray:
+        p, _ = _clothoid_shift(r, ls)
+        return self.pi + self.bis * (r + p) / math.cos(self.half)
 
-    def centre_of(r, ls):
-        p, _ = shift(r, ls)
-        return pi + np.multiply.outer((r + p) / math.cos(half), bis)
-
-    def sse(r: np.ndarray, ls: np.ndarray) -> np.ndarray:
-        """Sum of squared distances for arrays of (R, Ls) of one shape."""
+    def sse(self, r: np.ndarray, ls: np.ndarray) -> np.ndarray:
+        """Sum of squared distances of the vertices to the path, for arrays (R, Ls) of one shape."""
         shape = np.shape(r)
         r, ls = np.reshape(r, (-1, 1)), np.reshape(ls, (-1, 1))
-        with_spiral = bool(np.any(ls > 0))
-        p, k = shift(r, ls)
-        tl = (r + p) * math.tan(half) + k  # PI to the tangent-to-spiral points
-        cx = pi[0] + bis[0] * (r + p) / math.cos(half)
-        cy = pi[1] + bis[1] * (r + p) / math.cos(half)
+        px, py, pi, bis = self.px, self.py, self.pi, self.bis
+        p, k = _clothoid_shift(r, ls)
+        tl = (r + p) * math.tan(self.half) + k  # PI to the tangent-to-spiral points
+        cx = pi[0] + bis[0] * (r + p) / math.cos(self.half)
+        cy = pi[1] + bis[1] * (r + p) / math.cos(self.half)
         xs_, ys_ = ls - ls**3 / (40.0 * r * r), ls**2 / (6.0 * r)  # spiral end in its tangent frame
         d = np.full((r.shape[0], px.size), np.inf)
         corners = []
-        for u, nrm, out in ((u1, n1, -1.0), (u2, n2, 1.0)):
+        for u, nrm, out in ((self.u1, self.n1, -1.0), (self.u2, self.n2, 1.0)):
             tx, ty = pi[0] + out * u[0] * tl, pi[1] + out * u[1] * tl  # tangent-to-spiral point
-            ax = out * (-1.0)  # along the route away from the tangent, into the curve: -out * u
             dx, dy = px - tx, py - ty
-            x = ax * (dx * u[0] + dy * u[1])  # distance into the curve
+            x = -out * (dx * u[0] + dy * u[1])  # distance into the curve
             y = dx * nrm[0] + dy * nrm[1]  # toward the centre
-            on_line = np.where(x <= 0, np.abs(y), np.hypot(dx, dy))
-            d = np.minimum(d, on_line)
-            if with_spiral:
+            d = np.minimum(d, np.where(x <= 0, np.abs(y), np.hypot(dx, dy)))  # the tangent
+            if np.any(ls > 0):
                 with np.errstate(divide="ignore", invalid="ignore"):
-                    yc = x**3 / (6.0 * r * ls)
-                    slope = x * x / (2.0 * r * ls)
-                    on_spiral = np.abs(y - yc) / np.sqrt(1 + slope**2)
-                d = np.minimum(d, np.where((x >= 0) & (x <= xs_) & (ls > 0), on_spiral, np.inf))
-            corners.append((tx + ax * u[0] * xs_ + nrm[0] * ys_, ty + ax * u[1] * xs_ + nrm[1] * ys_))
+                    off = np.abs(y - x**3 / (6.0 * r * ls)) / np.sqrt(1 + (x * x / (2.0 * r * ls)) ** 2)
+                d = np.minimum(d, np.where((x >= 0) & (x <= xs_) & (ls > 0), off, np.inf))  # the clothoid
+            corners.append((tx - out * u[0] * xs_ + nrm[0] * ys_, ty - out * u[1] * xs_ + nrm[1] * ys_))
         (s1x, s1y), (s2x, s2y) = corners
         qx, qy = px - cx, py - cy
-        c1 = (s1x - cx) * qy - (s1y - cy) * qx
-        c2 = qx * (s2y - cy) - qy * (s2x - cx)
-        inside = (c1 * sgn > 0) & (c2 * sgn > 0)
-        d = np.minimum(d, np.where(inside, np.abs(np.hypot(qx, qy) - r), np.inf))
+        inside = ((s1x - cx) * qy - (s1y - cy) * qx) * self.sgn > 0
+        inside &= (qx * (s2y - cy) - qy * (s2x - cx)) * self.sgn > 0
+        d = np.minimum(d, np.where(inside, np.abs(np.hypot(qx, qy) - r), np.inf))  # the arc
         return np.einsum("ij,ij->i", d, d).reshape(shape)
 
-    # the simple curve first (p = 0): a coarse geometric grid of R, refined twice, then a parabola in log R
+
+def _fit_tangent_curve(
+    lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float, significance: float
+) -> _Composite | None:
+    """Radius (and clothoids) of the curve between two fitted tangents that best fits the vertices.
+
+    (R, Ls) minimise the sum of squared distances of the vertices to the :class:`_TangentPath`: first without
+    spiral (a geometric grid of R refined twice, then the vertex of a parabola in log R), then on a grid of R and
+    Ls / (R D) refined once. The spiral is kept when it lowers the sum by more than significance^2 residual
+    variances (a likelihood-ratio test at ``significance`` standard deviations); the radius's standard error
+    comes from the curvature of the sum at its minimum. Returns None when the tangents are nearly parallel or
+    antiparallel.
+    """
+    sel = _between(chain, lo_b, hi_b)
+    if sel.size > PATH_FIT_VERTICES:  # evenly thinned: a long curve's radius is precise with fewer
+        sel = sel[np.linspace(0, sel.size - 1, PATH_FIT_VERTICES).astype(int)]
+    path = _TangentPath(lines, xv[sel], yv[sel])
+    if not (math.radians(2.0) < path.deflection < math.radians(170.0)):
+        return None
+    sse, defl = path.sse, path.deflection
     rs = np.geomspace(0.25 * r0, 4.0 * r0, 17)
     ratio = rs[1] / rs[0]
     for _ in range(3):
         costs = sse(rs, np.zeros_like(rs))
         i = int(np.argmin(costs))
-        r_simple, s_zero = float(rs[i]), float(costs[i])
+        r_simple, s_zero, grid = float(rs[i]), float(costs[i]), rs
         rs = r_simple * ratio ** np.linspace(-1.0, 1.0, 9)
         ratio = ratio**0.25
     if 0 < i < costs.size - 1:
-        r_simple, s_zero = _parabola_min(sse, rs, costs, i, r_simple, s_zero)
+        r_simple, s_zero = _parabola_min(sse, grid, costs, i, r_simple, s_zero)
     # then with clothoids, which pull the circle inward (a smaller R): R x Ls / (R D) grid, refined once
     best_r, best_g = _grid_min(sse, r_simple * np.geomspace(0.5, 1.05, 7), np.geomspace(0.02, 0.95, 7), defl)
     k_r = best_r * np.geomspace(0.92, 1.0 / 0.92, 5)
@@ -906,7 +910,7 @@ def _fit_tangent_curve(
     three = sse(np.array([best_r - dr, best_r, best_r + dr]), np.full(3, best_ls))
     curv = float(three[0] - 2 * three[1] + three[2]) / dr**2
     std = math.sqrt(2.0 * var / curv) if curv > 0 else None
-    return _Composite(float(best_r), centre_of(best_r, best_ls).reshape(2), spiral, std)
+    return _Composite(float(best_r), path.centre(best_r, best_ls), spiral, std)
 
 
 def _parabola_min(fun, rs: np.ndarray, costs: np.ndarray, i: int, r: float, s: float) -> tuple[float, float]:

@@ -16,9 +16,11 @@ Method
    noise with variance 5 sigma^2 for white lateral noise (:func:`vertex_noise_m`); its median absolute
    deviation gives sigma robustly (tangent points and spiral ends are outliers it ignores).
 2. **Chainage.** A noisy track is longer than the road: each segment gains about sigma^2 / spacing from the
-   lateral noise (9 % at sigma = 3 m and 10 m spacing). Chainage is therefore measured along the direction of
-   the lightly smoothed path (the projection of every segment on the local heading, which lateral noise does
-   not lengthen); without noise it is the polyline length.
+   lateral noise (9 % at sigma = 3 m and 10 m spacing). Chainage is therefore the sum of the segments projected
+   on the local direction of the path, taken between Gaussian-weighted means of the positions ahead and behind
+   that leave out the segment's own vertices (so the direction does not correlate with the segment's noise),
+   with the projection's E[cos e] divided out; without noise it is the polyline length. Measured: within
+   0.05 % of the road's length with 3 m noise.
 3. **Resampling** at a uniform chainage step (``step_m``, default 5 m) by linear interpolation between
    vertices, then the positions are smoothed by a Gaussian of scale tau_h (just enough for the heading noise
    to stay below 0.03 rad; the step when there is no noise) and the heading theta(s) is unwrapped; the raw

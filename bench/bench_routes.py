@@ -1,0 +1,98 @@
+"""Wall time of curve finding on a long route: 500 km at 10 m vertex spacing (50,000 vertices).
+
+The route alternates tangents of 200-1500 m with curves: radius log-uniform in 60-2000 m, deflection 10-90 deg,
+a third of them with clothoid transitions (Ls = 0.3 sqrt(R) ... of order 20-130 m). It is laid on WGS84 at 45 deg N
+(tests/synthetic_routes.py; needs the test extra's geographiclib) and timed through
+
+* ``engine.geometry.find_curves`` on the plane coordinates, without noise and with 3 m of GPS-like noise;
+* ``engine.geodesy.local_frame`` + ``find_curves`` from longitude/latitude (the app's path);
+* ``app.route_io.read_geojson`` of the same route as a GeoJSON LineString (parsed dict).
+
+Prints figures only (median of the repeats) and how many curves were found against the design.
+
+    python bench/bench_routes.py [--km 500] [--spacing 10] [--repeat 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from app.route_io import read_geojson  # noqa: E402
+from engine.geodesy import local_frame  # noqa: E402
+from engine.geometry import find_curves  # noqa: E402
+from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
+
+
+def design(km: float, seed: int = 3) -> list:
+    rng = np.random.default_rng(seed)
+    elements, total = [], 0.0
+    while total < km * 1000:
+        elements.append(Tangent(float(rng.uniform(200, 1500))))
+        r = float(math.exp(rng.uniform(math.log(60), math.log(2000))))
+        defl = math.radians(float(rng.uniform(10, 90)))
+        side = "left" if rng.random() < 0.5 else "right"
+        if rng.random() < 1 / 3:
+            ls = 0.3 * math.sqrt(r) * 10
+            arc = max(r * defl - ls, 20.0)
+            elements.extend(spiral_curve(r, arc, ls, side))
+        else:
+            elements.append(Arc(r, r * defl, side))
+        total = sum(e.length_m for e in elements)
+    elements.append(Tangent(1000))
+    return elements
+
+
+def timed(fn, repeat: int) -> tuple[float, object]:
+    times, out = [], None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--km", type=float, default=500.0)
+    ap.add_argument("--spacing", type=float, default=10.0)
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args()
+    els = design(args.km)
+    n_design = sum(1 for e in els if isinstance(e, Arc))
+    x, y, _ = layout(els, args.spacing, ds=0.5)
+    rng = np.random.default_rng(1)
+    xn, yn = x + rng.normal(0, 3.0, x.size), y + rng.normal(0, 3.0, y.size)
+    lon, lat = to_lonlat(x, y, 45.0)
+    geojson = {"type": "LineString", "coordinates": np.column_stack((lon, lat)).tolist()}
+    print(f"route: {x.size - 1} segments, {args.km:g} km at {args.spacing:g} m, {n_design} designed curves")
+
+    t, res = timed(lambda: find_curves(x, y), args.repeat)
+    print(f"find_curves, no noise:          {t * 1000:8.1f} ms  ({len(res.curves)} curves)")
+    t, res = timed(lambda: find_curves(xn, yn), args.repeat)
+    print(
+        f"find_curves, 3 m noise:         {t * 1000:8.1f} ms  ({len(res.curves)} curves, "
+        f"sigma estimated {res.noise_m:.2f} m, detection scale {res.detection_smoothing_m:.0f} m)"
+    )
+
+    def from_lonlat():
+        f = local_frame(lon, lat)
+        return find_curves(f.x_m, f.y_m)
+
+    t, res = timed(from_lonlat, args.repeat)
+    print(f"local_frame + find_curves:      {t * 1000:8.1f} ms  ({len(res.curves)} curves)")
+    t, parts = timed(lambda: read_geojson(geojson), args.repeat)
+    print(f"read_geojson (parsed dict):     {t * 1000:8.1f} ms  ({parts[0].lon_deg.size} vertices)")
+
+
+if __name__ == "__main__":
+    main()

@@ -24,9 +24,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.optimize import brentq
 
 from . import standards
+from .bracket import bracketed_limit
 from .case import Case
 from .domain import BOUNDS, MAX_OVERWEIGHT_PERCENT, check
 from .errors import InvalidInput, InvalidRoad, RolloverError
@@ -122,39 +122,16 @@ def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
     return b_min, width * (1 - 1e-6) - 1e-6
 
 
-@dataclass(frozen=True)
-class _Search:
-    """The SRT minus the target as a function of the parameter, counting evaluations."""
+def _margin(case: Case, parameter: str, target: float):
+    """SRT minus the target as a function of the parameter; None where the value makes the case unsolvable."""
 
-    case: Case
-    parameter: str
-    target: float
-    count: list
-
-    def __call__(self, x: float) -> float:
-        self.count[0] += 1
-        return rollover_threshold(with_parameter(self.case, self.parameter, x)).srt - self.target
-
-    def solvable(self, x: float) -> float | None:
-        """g(x), or None where this value makes the case unsolvable (collapse, tipping at rest, ...)."""
+    def g(x: float) -> float | None:
         try:
-            return self(x)
-        except RolloverError:
+            return rollover_threshold(with_parameter(case, parameter, x)).srt - target
+        except RolloverError:  # collapse, tipping at rest, SRT outside the mechanism's range
             return None
 
-
-def _first_solvable(g: _Search, good: float, bad: float) -> tuple[float, float | None]:
-    """The "good" end of the range, or the first solvable value stepping from it toward the bad end in growing
-    steps (a CG so low that the SRT exceeds the mechanism's range, ...)."""
-    g_good = g.solvable(good)
-    if g_good is not None:
-        return good, g_good
-    for k in range(30, 0, -1):
-        probe = good + (bad - good) / 2.0**k
-        g_probe = g.solvable(probe)
-        if g_probe is not None:
-            return probe, g_probe
-    return good, None
+    return g
 
 
 def parameter_limit(case: Case, target_srt_g: float, parameter: str, *, xtol: float = 1e-6) -> Limit:
@@ -176,33 +153,15 @@ def parameter_limit(case: Case, target_srt_g: float, parameter: str, *, xtol: fl
     check_case(case.vehicle, case.road, case.trailer_angle_deg, case.load)
     kind = LIMIT_PARAMETERS[parameter][0]
     lo, hi = parameter_range(case, parameter)
-    g = _Search(case, parameter, target_srt_g, [0])
     good, bad = (lo, hi) if kind == "max" else (hi, lo)
-    good, g_good = _first_solvable(g, good, bad)
-    if g_good is None:
+    try:
+        r = bracketed_limit(_margin(case, parameter, target_srt_g), good, bad, xtol=xtol, field=parameter)
+    except InvalidInput as e:
         raise InvalidInput(
             f"no value of {parameter} in [{lo:.4g}, {hi:.4g}] can be solved for this case", field=parameter
-        )
-    if g_good < 0:
-        return Limit(parameter, kind, None, "never-met", (lo, hi), None, g.count[0])
-    # near the bad end the vehicle may collapse (no solution): bisect toward the good end until a solvable
-    # point that misses the target brackets the root
-    unsolvable = None
-    while True:
-        g_bad = g.solvable(bad)
-        if g_bad is None:
-            unsolvable = bad
-        elif g_bad < 0:
-            break
-        else:  # solvable and still meets the target: the root lies beyond it
-            good, g_good = bad, g_bad
-            if unsolvable is None:
-                return Limit(parameter, kind, bad, "always-met", (lo, hi), target_srt_g + g_bad, g.count[0])
-        if abs(unsolvable - good) < xtol:  # met up to where the vehicle stops being solvable
-            return Limit(parameter, kind, good, "always-met", (lo, hi), target_srt_g + g_good, g.count[0])
-        bad = 0.5 * (good + unsolvable)
-    root = brentq(g, min(good, bad), max(good, bad), xtol=xtol, rtol=1e-10)
-    return Limit(parameter, kind, float(root), "found", (lo, hi), target_srt_g, g.count[0])
+        ) from e
+    srt = None if r.margin is None else target_srt_g + r.margin
+    return Limit(parameter, kind, r.value, r.status, (lo, hi), srt, r.evaluations)
 
 
 @dataclass(frozen=True)

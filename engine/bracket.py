@@ -6,8 +6,8 @@ have no answer (the body collapses, the SRT leaves the mechanism's range): the m
 there. :func:`bracketed_limit` then steps off an unsolvable good end, bisects an unsolvable bad end toward the
 good one until a solvable point misses the target, and calls Brent's method on the bracket. The outcome is
 ``found`` (the margin is zero at ``value``), ``always-met`` (the whole solvable range meets the target:
-``value`` is its bad end) or ``never-met`` (``value`` is None). ``engine.assessment.parameter_limit`` follows
-the same pattern for the record's own parameters.
+``value`` is its bad end) or ``never-met`` (``value`` is None). The builder's payload limits and
+``engine.assessment.parameter_limit`` (the record's own parameters) both use it.
 
 References
 ----------

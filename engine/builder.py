@@ -44,11 +44,13 @@ from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass,
 from scipy.optimize import brentq
 
 from .bracket import bracketed_limit
+from .case import Case
 from .components import Sourced, get_suspension, get_tyre, parse_tyre_size, spring_rate_from_roll_stiffness
 from .errors import InvalidInput, InvalidVehicle, RolloverError
 from .loads import LoadCase, Road
+from .models import get_model
 from .threshold import rollover_threshold
-from .vehicles import FIELD_DOCS, Vehicle, validate_vehicle
+from .vehicles import FIELD_DOCS, Vehicle
 
 #: gravitational acceleration used for W = m g [m/s^2]. With it two of the thesis's weights are masses rounded to
 #: 10 kg (Table 15: 364.147 kN = 37 120 kg g; Table 16: 355.22 kN = 36 210 kg g, within 0.02 kg); with 9.80665
@@ -1082,7 +1084,7 @@ def build_vehicle(spec: VehicleSpec) -> BuiltVehicle:
 def _validate_record(vehicle: Vehicle, derivation: dict[str, FieldDerivation]) -> None:
     """engine.vehicles.validate_vehicle on the record; its errors re-pointed at the spec input behind the field."""
     try:
-        validate_vehicle(vehicle, model="3d")
+        get_model("3d").validate(vehicle)
     except InvalidVehicle as exc:
         d = derivation.get(exc.field or "")
         path = d.spec_path if d is not None and d.spec_path else f"record.{exc.field}"
@@ -1093,8 +1095,8 @@ def _validate_record(vehicle: Vehicle, derivation: dict[str, FieldDerivation]) -
 
 
 def _srt_g(vehicle: Vehicle, road: Road, load: LoadCase) -> float:
-    """The module's one engine call: the 3D model's SRT [g] (kept in one place for the move to ``Case``)."""
-    return rollover_threshold(vehicle, "3d", road=road, load=load).srt
+    """The module's one engine call: the 3D model's SRT [g]."""
+    return rollover_threshold(Case(vehicle, "3d", road=road, load=load)).srt
 
 
 @dataclass(frozen=True)

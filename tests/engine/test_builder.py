@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from dataclasses import asdict, replace
 
 import numpy as np
@@ -32,6 +33,7 @@ from engine.builder import (
     sloped_load_centroid,
     tank_liquid_cg_height_m,
 )
+from engine.case import Case
 from engine.components import (
     NOT_FOUND,
     SUSPENSIONS,
@@ -46,7 +48,7 @@ from engine.vehicles import FIELD_DOCS, PRESETS
 
 
 def srt(vehicle) -> float:
-    return rollover_threshold(vehicle, "3d").srt
+    return rollover_threshold(Case(vehicle, "3d")).srt
 
 
 def thesis_spec(unit_type, *, w_kn, l12, a, wheelbase, front_axles, front_tyres, l13, track=1.86, lr=0.499,
@@ -510,11 +512,14 @@ def test_refuses_inconsistent_inputs():
 
 
 def test_record_validation_errors_point_at_the_spec_input():
-    # Rill's condition (Eq. 2.17): a very soft spring lets the body fall over at rest; validate_vehicle names the
-    # record field, the builder re-points it at the input the value came from
+    # a spring so soft that the static load alone would compress it past its length (the record check in
+    # engine.domain): the vehicle check names the record field, the builder re-points it at the input it came from
     spec = semitrailer()
     soft = SuspensionSpec(stiffness_kn_per_m=40.0, height_m=0.205, spring_separation_m=0.95)
-    refused(replace(spec, rear=replace(spec.rear, suspension=soft)), "spec.rear.suspension.stiffness_kn_per_m", "2.17")
+    err = refused(replace(spec, rear=replace(spec.rear, suspension=soft)), "spec.rear.suspension.stiffness_kn_per_m")
+    assert "suspension_stiffness_kn_per_m" in str(err) and "deflect" in str(err)
+    # static deflection W_side / k: the side's load over 40 kN/m is far beyond the 0.205 m spring
+    assert re.search(r"deflect by (\d+\.\d+) m", str(err)) and float(re.search(r"by (\d+\.\d+) m", str(err))[1]) > 0.205
 
 
 def test_from_dict_refuses_unknown_and_missing_keys():

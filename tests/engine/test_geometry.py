@@ -27,6 +27,7 @@ import numpy as np
 import pytest
 
 from engine.assessment import assess_curves
+from engine.case import Case
 from engine.errors import InvalidInput
 from engine.geodesy import local_frame
 from engine.geometry import (
@@ -250,7 +251,7 @@ def test_no_elevation_no_grade():
 def test_curves_go_through_the_assessment():
     found, _ = detect(ROUTE, 10.0, 45.0, z_of_s=lambda s: 0.02 * s)
     curves = [c.as_curve(f"C{i}", 6.0, posted_speed_kmh=60.0) for i, c in enumerate(found.curves)]
-    out = assess_curves(PRESETS["table16-btrain"], curves)
+    out = assess_curves(Case(PRESETS["table16-btrain"]), curves)
     assert len(out.curves) == len(curves)
     # the sharpest curve (R 60 m) has the lowest safe speed
     safe = [a.safe_speed_kmh for a in out.curves]

@@ -81,7 +81,14 @@ BOUNDS: dict[str, Bound] = {
     "radius_m": Bound(5.0, 1e5, "m", "at least the 5.3 m inner turning radius of a heavy vehicle", error=InvalidRoad),
     "srt_g": Bound(0.01, 2.0, "g", "a vehicle below 0.01 g tips at rest; 2 g is beyond any road vehicle"),
     "target_srt_g": Bound(0.0, 2.0, "g", "a lateral acceleration a road vehicle can reach", True, InvalidInput),
-    "side_friction": Bound(0.0, 1.0, "", "a side-friction factor", True, InvalidRoad),
+    "side_friction": Bound(
+        0.01,
+        1.0,
+        "",
+        "a side-friction factor; below 0.01 (the srt_g floor) a curve's radius is unbounded",
+        False,
+        InvalidRoad,
+    ),
 }
 
 #: curves against ay/g: the thesis's figures use 41 points from rest to the limit; at most this many

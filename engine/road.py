@@ -21,12 +21,11 @@ ed., Eq. 3-8 and Table 3-7; DNER (1999), IPR-706, Sec. 5.4 (see :mod:`engine.sta
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .domain import check
+from .domain import BOUNDS, check
 from .errors import InvalidRoad
 
 KMH2_PER_M_G = 127.0  # V^2 / (127 R) is the lateral acceleration in g for V in km/h, R in m
@@ -61,6 +60,11 @@ def side_friction_factor(speed_kmh, bound: str = "low"):
     return standard_side_friction_factor(get_standard("thesis-table21", bound), speed_kmh)
 
 
+#: the smallest 0.01 e + f [-] Eq. 9.2 accepts: the floor of the SRT (``srt_g`` >= 0.01 g) for Eq. 9.3, so both
+#: radii stay bounded alike (V^2 / (127 * 0.01) at 130 km/h is 13,300 m)
+MIN_LATERAL_DEMAND = 0.01
+
+
 def side_friction_min_radius_m(speed_kmh, superelevation_percent, side_friction):
     """Minimum radius by the simplified curve formula R = V^2 / (127 (0.01 e + f)) [m] (Eq. 9.2).
 
@@ -69,8 +73,12 @@ def side_friction_min_radius_m(speed_kmh, superelevation_percent, side_friction)
     """
     v = np.asarray(speed_kmh, dtype=float)
     demand = 0.01 * np.asarray(superelevation_percent, dtype=float) + np.asarray(side_friction, dtype=float)
-    if np.any(demand <= 0):
-        raise InvalidRoad("0.01 e + f must be positive for Eq. 9.2", field="superelevation_percent")
+    if np.any(demand < MIN_LATERAL_DEMAND):
+        raise InvalidRoad(
+            f"0.01 e + f = {float(np.min(demand)):.4g}: Eq. 9.2 needs at least {MIN_LATERAL_DEMAND:g} (below it the "
+            "radius grows without bound: the road holds next to no lateral acceleration)",
+            field="superelevation_percent",
+        )
     return v**2 / (KMH2_PER_M_G * demand)
 
 
@@ -134,7 +142,8 @@ def min_radius(
 
     Raises
     ------
-    InvalidRoad : a speed outside the standard's range (naming it), an unknown standard or bound, f outside (0, 1).
+    InvalidRoad : a speed outside the standard's range (naming it), an unknown standard or bound, f outside
+        ``BOUNDS['side_friction']``.
     """
     from .standards import DEFAULT_DESIGN_STANDARD, get_standard
     from .standards import side_friction_factor as standard_f
@@ -146,8 +155,9 @@ def min_radius(
         source = f"table21-{std.bound}" if std.bound else std.id
     else:
         f, source = float(side_friction), "given"
-    if not (math.isfinite(f) and 0.0 < f < 1.0):
-        raise InvalidRoad(f"side_friction must be in (0, 1), got {f}", field="side_friction", value=f)
+    bound = BOUNDS["side_friction"]
+    if not bound.contains(f):
+        raise InvalidRoad(f"side_friction must be in {bound.text()} ({bound.why})", field="side_friction", value=f)
     r_f = float(side_friction_min_radius_m(design_speed_kmh, superelevation_percent, f))  # Eq. 9.2
     r_r = float(rollover_min_radius_m(design_speed_kmh, srt_g))  # Eq. 9.3
     gov = "rollover" if r_r > r_f else "side-friction"

@@ -272,7 +272,9 @@ def _resolve(standard: DesignStandard | str, bound: str | None) -> DesignStandar
     return get_standard(standard, bound)
 
 
-def _check_speeds(std: DesignStandard, speed_kmh, field: str = "design_speed_kmh") -> np.ndarray:
+def check_design_speeds(std: DesignStandard, speed_kmh, field: str = "design_speed_kmh") -> np.ndarray:
+    """The design speeds as an array [km/h]; :class:`InvalidRoad` naming ``field`` and the standard's range for any
+    outside it."""
     v = np.asarray(speed_kmh, dtype=float)
     lo, hi = std.speed_range_kmh
     bad = ~np.isfinite(v) | (v < lo) | (v > hi)
@@ -339,7 +341,7 @@ def side_friction_factor(standard: DesignStandard | str, speed_kmh, bound: str |
         the standard), or see :func:`get_standard`.
     """
     std = _resolve(standard, bound)
-    v = _check_speeds(std, speed_kmh)
+    v = check_design_speeds(std, speed_kmh)
     return np.interp(v, std.speeds_kmh, std.f_max)  # linear between rows (Table 3-7 / Quadro 5.4.3.1 / Table 21)
 
 
@@ -481,7 +483,7 @@ def min_radius_array(standard: DesignStandard | str, speed_kmh, max_superelevati
     Eq. 9.2 everywhere, replaced by the published value where the standard tabulates that (e_max, speed) cell.
     """
     std = _resolve(standard, bound)
-    v = _check_speeds(std, speed_kmh)
+    v = check_design_speeds(std, speed_kmh)
     e = np.broadcast_to(np.asarray(max_superelevation_percent, dtype=float), v.shape)
     if np.any(~np.isfinite(e) | (e < 0) | (e > E_MAX_LIMIT_PERCENT)):
         bad = float(e[~np.isfinite(e) | (e < 0) | (e > E_MAX_LIMIT_PERCENT)].flat[0])
@@ -538,7 +540,7 @@ def meets_min_radius(
     MinRadiusCheck
     """
     std = _resolve(standard, bound)
-    _check_speeds(std, posted_speed_kmh, field="posted_speed_kmh")
+    check_design_speeds(std, posted_speed_kmh, field="posted_speed_kmh")
     r = float(_check_radii(radius_m))
     lim = min_radius_m(std, posted_speed_kmh, max_superelevation_percent)
     return MinRadiusCheck(r >= lim.radius_m, r, lim.radius_m, lim.source, lim.f_max, r - lim.radius_m)
@@ -570,7 +572,7 @@ def _aashto_method5_f(std: DesignStandard, v: float, inv_r: np.ndarray, e_max: f
     inv_r_min = (e_max + f_max) * KMH2_PER_M_G / v**2  # 1/R_min = (e_max + f_max) / (V_D^2 / 127)
     inv_r_pi = e_max * KMH2_PER_M_G / v_r**2  # 1/R_PI = e_max / (V_R^2 / 127)
     h = e_max * v**2 / v_r**2 - e_max  # f at the design speed at the PI
-    tan1 = h / inv_r_pi  # slope of the first leg
+    tan1 = (v**2 - v_r**2) / KMH2_PER_M_G  # slope of the first leg, h / (1/R_PI) with e_max cancelled
     tan2 = (f_max - h) / (inv_r_min - inv_r_pi)  # slope of the second leg
     m_o = inv_r_pi * (inv_r_min - inv_r_pi) * (tan2 - tan1) / (2.0 * inv_r_min)  # middle ordinate at the PI
     f1 = m_o * (inv_r / inv_r_pi) ** 2 + inv_r * tan1  # 1/R <= 1/R_PI
@@ -589,6 +591,15 @@ def _superelevation_arrays(std: DesignStandard, speed_kmh: float, e_max_percent:
         )
     f_max = float(side_friction_factor(std, speed_kmh))
     e_max = _check_e_max(std, e_max_percent, positive=True)
+    lowest = min(std.max_superelevations_percent)
+    if e_max < lowest:  # the distributions are published (and Method 5's PI defined) for the tabulated e_max only
+        raise InvalidRoad(
+            f"max_superelevation_percent {e_max:g} % is below the e_max values {std.id} tabulates "
+            f"({lowest:g}-{max(std.max_superelevations_percent):g} %): its superelevation distribution is not "
+            "defined there",
+            field="max_superelevation_percent",
+            value=e_max,
+        )
     v = float(speed_kmh)
     r = _check_radii(radii_m)
     r_min = float(side_friction_min_radius_m(v, e_max, f_max))  # Eq. 9.2
@@ -690,6 +701,7 @@ __all__ = [
     "SideFrictionSpeed",
     "SuperelevationResult",
     "SuperelevationTable",
+    "check_design_speeds",
     "get_standard",
     "meets_min_radius",
     "min_radius_array",

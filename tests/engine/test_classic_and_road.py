@@ -189,6 +189,19 @@ def test_minimum_radius_both_criteria_and_which_governs():
     assert given.side_friction == 0.1 and given.aashto_min_radius_m == pytest.approx(6400 / (127 * 0.18))
 
 
+def test_eq_9_2_has_the_srt_floor_on_e_plus_f():
+    # 0.01 e + f = 0.01 is the smallest Eq. 9.2 takes (as srt_g >= 0.01 for Eq. 9.3): 130^2 / (127 * 0.01) m
+    assert road.side_friction_min_radius_m(130.0, 0.0, 0.01) == pytest.approx(16900 / 1.27, rel=1e-12)
+    assert road.side_friction_min_radius_m(130.0, -9.0, 0.1) == pytest.approx(16900 / 1.27, rel=1e-9)
+    for e, f in [(0.0, 5e-324), (-9.5, 0.1), (-20.0, 0.1)]:  # tiny or negative demand: refused, never inf
+        with pytest.raises(InvalidRoad) as err:
+            road.side_friction_min_radius_m(130.0, e, f)
+        assert err.value.field == "superelevation_percent"
+    with pytest.raises(InvalidRoad) as err:
+        road.min_radius(60.0, 0.0, srt_g=0.3, side_friction=0.005)
+    assert err.value.field == "side_friction" and "[0.01, 1]" in str(err.value)
+
+
 def test_side_friction_speed_solves_the_implicit_equation():
     v = road.side_friction_speed_kmh(250.0, 6.0)
     assert v == pytest.approx(math.sqrt(127 * 250 * (0.06 + road.side_friction_factor(v))), rel=1e-12)

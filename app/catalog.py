@@ -5,8 +5,8 @@ For the computations (wired by the HTTP layer): :func:`catalog_db` gives the req
 
 * :func:`resolve_saved_vehicle` ``(db, owner, id) -> dict``: the stored vehicle body, usable as the ``vehicle``
   of any request (a full record, or ``{"spec": {...}}`` for the builder);
-* :func:`resolve_fleet` ``(db, owner, id) -> list[str | dict]``: the members in order, a preset id as its
-  string and a saved vehicle as its stored body.
+* :func:`resolve_fleet` ``(db, owner, id) -> list[(id, dict | None)]``: the members in order, each with its id:
+  a preset with None, a saved vehicle with its stored body.
 
 Both refuse a missing, deleted or other owner's id with a 404 problem naming it, and a stored row that fails
 validation with a 409 problem (logged, never served).
@@ -16,7 +16,7 @@ What is checked, on write and again on every read (a row is never trusted becaus
 * a record: the :class:`~app.schemas.vehicles.VehicleRecord` schema, then the engine's
   ``validate_vehicle(..., model="3d")``; a record without the 3D fields (``MissingParameter``) is checked as a
   2D record instead, so a 2D vehicle may be saved; any other engine refusal is a 422 naming ``vehicle.<field>``;
-* a spec: :func:`validate_spec` -- a STUB for the vehicle builder (see there);
+* a spec: :func:`validate_spec`: the builder's schema and the build itself (422 naming ``vehicle.spec.<field>``);
 * the stored body's size (canonical JSON) against ``ROLLOVER_CATALOG_MAX_VEHICLE_BYTES`` (413).
 
 Deleting a saved vehicle that a fleet uses is refused with 409 ``vehicle-in-use`` naming the fleets (the safe
@@ -51,6 +51,7 @@ from .db import Database, repo
 from .db import upgrade as upgrade_database
 from .logs import get_logger
 from .problems import _http_handler, problem_response
+from .schemas.builder import SpecRef, VehicleSpecIn
 from .schemas.catalog import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
@@ -62,10 +63,10 @@ from .schemas.catalog import (
     SavedSpec,
     SavedVehicle,
     SavedVehiclePage,
-    VehicleSpec,
     VehicleWrite,
 )
 from .schemas.vehicles import VehicleRecord
+from .service_builder import build_spec
 from .settings import Settings
 
 SAVED_VEHICLE_ID = re.compile(SAVED_VEHICLE_ID_PATTERN)
@@ -344,11 +345,11 @@ async def _run(fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
 
 # ------------------------------------------------------------------------------------- vehicle validation
 def validate_spec(spec: dict[str, Any]) -> None:
-    """STUB of the vehicle builder's spec check: accepts any JSON object of at most ``SPEC_MAX_BYTES`` bytes.
+    """A stored or sent builder spec checked as the builder reads it: the request schema, then the build itself
+    (:func:`app.service_builder.build_spec`: the physics, the component library, the ratings).
 
-    The HTTP layer's lead points this at the builder's own validation (``engine/builder.py``, written in
-    parallel) once it exists. Raises :class:`~engine.errors.InvalidVehicle` with ``field="vehicle.spec"``
-    (a 422 problem naming it).
+    Raises :class:`~engine.errors.InvalidVehicle` naming ``vehicle.spec.<field>`` (a 422 problem), or pydantic's
+    ``ValidationError`` (a ``ValueError``) for a stored spec that no longer fits the schema.
     """
     if not isinstance(spec, dict):
         raise InvalidVehicle("spec must be a JSON object", field="vehicle.spec", value=type(spec).__name__)
@@ -359,6 +360,8 @@ def validate_spec(spec: dict[str, Any]) -> None:
             field="vehicle.spec",
             value=size,
         )
+    VehicleSpecIn.model_validate(spec)
+    build_spec(spec, "vehicle")
 
 
 def _check_json(value: Any, field: str, depth: int = 0) -> None:
@@ -387,17 +390,18 @@ def check_record(record: dict[str, Any]) -> None:
         get_model("2d").validate(vehicle)  # a 2D record may be saved; its own physics still checked
 
 
-def _kind_and_body(vehicle: VehicleRecord | VehicleSpec) -> tuple[str, dict[str, Any]]:
-    if isinstance(vehicle, VehicleSpec):
-        _check_json(vehicle.spec, "vehicle.spec")
-        validate_spec(vehicle.spec)
-        return "spec", {"spec": vehicle.spec}
+def _kind_and_body(vehicle: VehicleRecord | SpecRef) -> tuple[str, dict[str, Any]]:
+    if isinstance(vehicle, SpecRef):
+        spec = vehicle.spec.model_dump(mode="json", exclude_unset=True)  # as sent: what was left out stays out
+        _check_json(spec, "vehicle.spec")
+        validate_spec(spec)
+        return "spec", {"spec": spec}
     record = vehicle.record()
     check_record(record)
     return "record", record
 
 
-def prepare_vehicle(vehicle: VehicleRecord | VehicleSpec, settings: Settings) -> tuple[str, str]:
+def prepare_vehicle(vehicle: VehicleRecord | SpecRef, settings: Settings) -> tuple[str, str]:
     """``(kind, JSON text)`` to store for a vehicle the caller sent, after every check (422, 413)."""
     kind, body = _kind_and_body(vehicle)
     text = orjson.dumps(body, option=orjson.OPT_SORT_KEYS)
@@ -476,15 +480,16 @@ async def _read_page(fn: Callable[..., repo.Page], table: str, db: Database, own
 
 # ------------------------------------------------------------------------------------- vehicles: service
 def check_saved_vehicle_id(id: str) -> None:
+    """A path id that cannot be a saved vehicle's names none: 404, as an unknown well-formed id (the path
+    ``/v1/vehicles/{id}`` also serves presets, so its spec cannot state the saved ids' pattern)."""
     if not SAVED_VEHICLE_ID.match(id):
-        raise invalid_path_id(id, SAVED_VEHICLE_ID_PATTERN, "saved vehicle")
-
-
-def check_writable_vehicle_id(id: str) -> None:
-    """PUT/DELETE /v1/vehicles/{id}: a preset is read-only (405); anything else must be a saved id (422)."""
-    if id in PRESETS:
-        raise read_only_preset(id)
-    check_saved_vehicle_id(id)
+        raise CatalogProblem(
+            404,
+            "not-found",
+            "No such saved vehicle",
+            f"{id!r} is neither a preset nor a saved vehicle id (pattern {SAVED_VEHICLE_ID_PATTERN})",
+            id=id,
+        )
 
 
 def expected_versions(if_match: str | None, *, required: bool) -> frozenset[int] | None:
@@ -728,9 +733,10 @@ async def resolve_saved_vehicle(db: Database, owner: str, id: str) -> dict[str, 
     return saved.vehicle.model_dump()
 
 
-async def resolve_fleet(db: Database, owner: str, id: str) -> list[str | dict[str, Any]]:
-    """The members of fleet ``id`` of ``owner``, in order: a preset id as its string, a saved vehicle as its
-    stored body (as :func:`resolve_saved_vehicle` returns it). Fleet and members are read in one transaction.
+async def resolve_fleet(db: Database, owner: str, id: str) -> list[tuple[str, dict[str, Any] | None]]:
+    """The members of fleet ``id`` of ``owner``, in order, as ``(id, body)``: a preset as ``(preset id, None)``, a
+    saved vehicle as its id and its stored body (as :func:`resolve_saved_vehicle` returns it). Fleet and members
+    are read in one transaction.
 
     Raises
     ------
@@ -742,13 +748,14 @@ async def resolve_fleet(db: Database, owner: str, id: str) -> list[str | dict[st
         raise not_found("fleet", id)
     stored, vehicles = await _read_one(repo.get_fleet_with_vehicles, "fleet", db, owner, id)
     fleet = decode_fleet(stored)
-    out: list[str | dict[str, Any]] = []
+    out: list[tuple[str, dict[str, Any] | None]] = []
     for member in stored.members:
         if member.preset_id is not None:
-            out.append(member.preset_id)
+            out.append((member.preset_id, None))
             continue
         saved = vehicles.get(str(member.vehicle_id))
         if saved is None:  # the foreign key forbids it; refuse rather than drop a member
             raise _invalid_row("fleet", fleet.id, f"member {member.vehicle_id!r} is missing")
-        out.append(decode_vehicle(saved).vehicle.model_dump())
+        decoded = decode_vehicle(saved)
+        out.append((decoded.id, decoded.vehicle.model_dump()))
     return out

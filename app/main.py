@@ -23,7 +23,7 @@ from .fastpath import FastPathMiddleware
 from .logs import configure_logging, get_logger
 from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
-from .routers import alignments, catalog, health, models, plots, road, srt, standards, vehicles
+from .routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
 from .routers.common import READ_BY_ROUTE
 from .settings import Settings, get_settings
 
@@ -44,6 +44,12 @@ TAGS = [
         "description": "Saved vehicles and named fleets of the caller's bearer key (`ROLLOVER_API_KEYS`), in a "
         "SQLite or PostgreSQL database; changes need `If-Match` (optimistic concurrency).",
     },
+    {
+        "name": "builder",
+        "description": "A vehicle described by what an engineer can measure (axle groups, tyres, suspension type, "
+        "tare, payloads with deck and load heights), built into the full record with the source of every field; "
+        "the component library; the acceptable payload table.",
+    },
     {"name": "srt", "description": "Static rollover threshold with the 3D, 2D or a closed-form model."},
     {"name": "road", "description": "Curve design: maximum speed (Eq. 9.1) and minimum radius (Eqs. 9.2-9.3)."},
     {
@@ -56,6 +62,11 @@ TAGS = [
         "description": "Batch assessment of a road alignment's horizontal curves (JSON, CSV or LandXML 1.2, in a "
         "JSON request or uploaded as they are): safe speed against rollover (Eq. 9.1) and side friction "
         "(the design standard's f_max), margin against the posted speed.",
+    },
+    {
+        "name": "routes",
+        "description": "A route as geometry (GeoJSON or GPX, WGS84): its horizontal curves found and assessed "
+        "like an alignment's; the answer a GeoJSON FeatureCollection for a GIS, or CSV.",
     },
     {
         "name": "plots",
@@ -97,6 +108,9 @@ def _problem_openapi(app: FastAPI) -> dict[str, Any]:
                         "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
                     },
                 )
+            if "401" in operation.get("responses", {}) and "security" not in operation:
+                # accepts saved vehicles by id: the bearer key is optional (presets and records need none)
+                operation["security"] = [{}, {"bearerAuth": []}]
             for code, response in operation.get("responses", {}).items():
                 content = response.get("content", {})
                 if code.isdigit() and int(code) >= 400 and "application/json" in content:
@@ -151,7 +165,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_problem_handlers(app)
     install_catalog_handlers(app)
     # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
-    for module in (catalog, vehicles, srt, road, standards, alignments, plots, models, health):
+    for module in (catalog, builder, vehicles, srt, road, standards, alignments, routes, plots, models, health):
         app.include_router(module.router)
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app

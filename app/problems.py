@@ -26,6 +26,7 @@ file's error also says where in the file (``location``: ``row 7``, ``Alignment '
 from __future__ import annotations
 
 import json
+import re
 from typing import Any
 
 from fastapi import FastAPI, Request
@@ -103,6 +104,11 @@ class InvalidAlignment(ValueError):
         self.column = column
 
 
+class InvalidRoute(InvalidAlignment):
+    """A route document (``geojson`` or ``gpx``) that cannot be read: ``location`` names the feature or track and
+    the vertex (``features[0].geometry.coordinates[17]``, ``trk[1] 'A1' trkseg[1] trkpt[18]``)."""
+
+
 def request_error(field: str, message: str, value: Any = None) -> RequestValidationError:
     """A 422 validation problem for a rule that only the service can check (e.g. after reading a document),
     located at ``field`` (dotted) in the body."""
@@ -145,15 +151,23 @@ def problem_response(
     return JSONResponse(body, status_code=status, media_type=PROBLEM_MEDIA_TYPE, headers=headers)
 
 
-VEHICLE_TAGS = ("preset", "record", "spec")
+VEHICLE_TAGS = ("id", "record", "spec")
+
+
+def _is_vehicle(before: list[str]) -> bool:
+    """Whether the path ``before`` ends at a vehicle reference (``vehicle``, or ``vehicles.<i>``)."""
+    if before[-1:] == ["vehicle"]:
+        return True
+    return len(before) >= 2 and before[-2] == "vehicles" and before[-1].isdigit()
 
 
 def _dotted(loc: tuple[Any, ...] | list[Any]) -> str:
     parts = [str(p) for p in loc]
     if parts and parts[0] in ("body", "query", "path", "header"):
         parts = parts[1:]
-    # drop the union tag pydantic puts after `vehicle`: vehicle.record.weight_kn -> vehicle.weight_kn
-    parts = [p for i, p in enumerate(parts) if not (i > 0 and parts[i - 1] == "vehicle" and p in VEHICLE_TAGS)]
+    # drop the union tag pydantic puts after a vehicle: vehicle.record.weight_kn -> vehicle.weight_kn,
+    # vehicles.1.spec.spec.rear -> vehicles.1.spec.rear
+    parts = [p for i, p in enumerate(parts) if not (p in VEHICLE_TAGS and _is_vehicle(parts[:i]))]
     return ".".join(parts) or "body"
 
 
@@ -194,8 +208,20 @@ async def _input_handler(request: Request, exc: InvalidInput) -> JSONResponse:
     field = engine_field(exc.field)
     errors = None
     if field is not None:
-        errors = [{"field": field, "message": str(exc), "type": slug, "loc": ["body", *field.split(".")]}]
+        field = re.sub(r"\[(\d+)\]", r".\1", field)  # spec.payloads[0].x -> spec.payloads.0.x, as pydantic's paths
+        loc = ["body", *(int(p) if p.isdigit() else p for p in field.split("."))]
+        errors = [{"field": field, "message": str(exc), "type": slug, "loc": loc}]
     return problem_response(request, 422, slug, title, str(exc), errors=errors)
+
+
+async def _route_handler(request: Request, exc: InvalidRoute) -> JSONResponse:
+    field, loc = exc.source, ["body", exc.source]
+    if exc.source == "geojson" and exc.location:  # a JSON path into the document: name it as a request field
+        path = re.sub(r"\[(\d+)\]", r".\1", exc.location)
+        field = f"geojson.{path}"
+        loc = ["body", "geojson", *(int(p) if p.isdigit() else p for p in path.split("."))]
+    error = {"field": field, "message": exc.reason, "type": "invalid-route", "loc": loc, "location": exc.location}
+    return problem_response(request, 422, "invalid-route", "The route cannot be read", str(exc), errors=[error])
 
 
 async def _alignment_handler(request: Request, exc: InvalidAlignment) -> JSONResponse:
@@ -251,6 +277,7 @@ def install_problem_handlers(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, _validation_handler)
     app.add_exception_handler(UnknownPreset, _unknown_preset_handler)
     app.add_exception_handler(InvalidInput, _input_handler)
+    app.add_exception_handler(InvalidRoute, _route_handler)
     app.add_exception_handler(InvalidAlignment, _alignment_handler)
     app.add_exception_handler(MechanismSingular, _singular_handler)
     app.add_exception_handler(ConvergenceError, _convergence_handler)
@@ -267,5 +294,13 @@ def error_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
         "the input as physically invalid, found the mechanism singular or did not converge.",
         413: "Request body over this operation's limit (stated in the description); refused before it is read.",
         500: "Internal error (a bug; logged, never a stack trace).",
+        401: "A saved vehicle or fleet is named without a valid bearer key (`Authorization: Bearer <key>`).",
+        403: "A saved vehicle or fleet is named, but the deployment configures no `ROLLOVER_API_KEYS`.",
+        409: "A saved vehicle or fleet named fails validation where it is stored (logged, not used).",
+        503: "The database of saved vehicles is unavailable or locked; retry.",
     }
     return {c: {"model": Problem, "description": text[c]} for c in codes}
+
+
+#: the extra problems of an operation that accepts saved vehicles (``veh_...``) or fleets by id
+VEHICLE_REF_CODES = (401, 403, 409, 503)

@@ -49,8 +49,21 @@ class Computed:
 # ------------------------------------------------------------------------------------- resolution
 
 
+@dataclass(frozen=True)
+class SavedRef:
+    """A saved vehicle resolved: its id (reported back in batch answers) and its engine record."""
+
+    id: str
+    vehicle: Vehicle
+
+
 def resolve_vehicle(ref: Any) -> Vehicle:
-    """A preset id -> the preset's record (UnknownPreset -> 404); a record -> the engine record."""
+    """A preset id -> the preset's record (UnknownPreset -> 404); a record -> the engine record; an engine record
+    (a saved vehicle or a spec resolved by :func:`app.vehicle_refs.resolve_vehicle_refs`) as it is."""
+    if isinstance(ref, Vehicle):
+        return ref
+    if isinstance(ref, SavedRef):
+        return ref.vehicle
     if isinstance(ref, str):
         return get_preset(ref)
     return Vehicle.from_dict(ref.record())

@@ -36,10 +36,11 @@ from .cache import ResultCache, cache_key
 from .curves import curves_from_json
 from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .problems import InvalidAlignment, request_error
-from .schemas.alignments import MAX_ROWS, AlignmentRequest
-from .service import Computed, resolve_targets, resolve_vehicle, target_checks
+from .schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
+from .service import Computed, SavedRef, resolve_targets, resolve_vehicle, target_checks
 from .settings import Settings
 from .tables import Text, flatten_targets, target_columns, to_csv_chunks
+from .vehicle_refs import resolve_vehicle_refs
 
 #: answers with more rows than this are streamed (and cached by reference), never built whole
 STREAM_ROWS = 5_000
@@ -165,6 +166,7 @@ def resolve_alignment(
     resolved = {
         "vehicles": [v.to_dict() for v in vehicles],
         "presets": [r if isinstance(r, str) else None for r in refs],
+        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
         "model": req.model,
         "stage": req.stage,
         "trailer_angle_deg": req.trailer_angle_deg,
@@ -187,6 +189,7 @@ def resolve_alignment(
 class VehicleAnswer:
     index: int
     preset: str | None
+    saved_id: str | None
     columns: AlignmentColumns
     pair_of_row: np.ndarray  # distinct-SRT index of each row, for the shared tilt angle and target checks
     tilt: list[float | None]  # per distinct SRT
@@ -252,7 +255,7 @@ def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     tilt = [None if s < 0 else float(tilt_table_angle_deg(s)) for s in srts]
     checks = [[] if s < 0 else target_checks(float(s), r["targets"]) for s in srts]
-    return VehicleAnswer(index, r["presets"][index], cols, pair_of_row.reshape(-1), tilt, checks)
+    return VehicleAnswer(index, r["presets"][index], r["saved_ids"][index], cols, pair_of_row.reshape(-1), tilt, checks)
 
 
 def solve_alignment(job: AlignmentJob) -> AlignmentAnswer:
@@ -329,7 +332,7 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     yield orjson.dumps(head)[:-1] + b',"vehicles":['
     n = len(answer.curves)
     for k, v in enumerate(answer.vehicles):
-        vehicle = {"index": v.index, "preset": v.preset, "summary": _summary(v.columns)}
+        vehicle = {"index": v.index, "preset": v.preset, "saved_vehicle_id": v.saved_id, "summary": _summary(v.columns)}
         yield (b"," if k else b"") + orjson.dumps(vehicle)[:-1] + b',"rows":['
         for start in range(0, n, ROWS_PER_CHUNK):
             rows = orjson.dumps(_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n)))[1:-1]
@@ -340,7 +343,7 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
 
 def csv_columns(resolved: dict[str, Any]) -> list[str]:
     names = [n for n, _ in sorted(resolved["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
-    return ["vehicle_index", "vehicle_preset", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
+    return ["vehicle_index", "vehicle_preset", "vehicle_saved_id", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
 
 
 def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
@@ -351,9 +354,15 @@ def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
         n = len(answer.curves)
         for v in answer.vehicles:
             preset = None if v.preset is None else Text(v.preset)
+            saved = None if v.saved_id is None else Text(v.saved_id)
             for start in range(0, n, ROWS_PER_CHUNK):
                 yield [
-                    {"vehicle_index": v.index, "vehicle_preset": preset, **flatten_targets(row)}
+                    {
+                        "vehicle_index": v.index,
+                        "vehicle_preset": preset,
+                        "vehicle_saved_id": saved,
+                        **flatten_targets(row),
+                    }
                     for row in _rows(answer, v, start, min(start + ROWS_PER_CHUNK, n))
                 ]
 
@@ -395,6 +404,12 @@ async def compute_alignment(
     source_field: str | None = None,
 ) -> Computed | Streamed:
     """The assessment as a cached body (small answers) or a stream (large ones); the same bytes either way."""
+    fleet = req.fleet
+    req = await resolve_vehicle_refs(request, req, settings)
+    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
+        raise request_error(
+            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; an assessment takes at most {MAX_VEHICLES}"
+        )
     job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
     operation = "alignments-csv" if csv else "alignments"
     media_type = CSV_TYPE if csv else JSON_TYPE

@@ -13,14 +13,16 @@ from collections.abc import Callable
 import numpy as np
 
 from engine.case import Case
+from engine.errors import InvalidRoad
 from engine.loads import Road
 from engine.results import RolloverResult
 from engine.road import rollover_min_radius_m, side_friction_min_radius_m
-from engine.standards import DesignStandard, get_standard, side_friction_factor
+from engine.standards import DesignStandard, check_design_speeds, get_standard, side_friction_factor
+from engine.vehicles import Vehicle
 
 from .cache import ResultCache
 from .schemas.plots import MinRadiusPlotRequest, PlotRequest
-from .service import Computed, cached, resolve_case, solve, srt_key
+from .service import Computed, SavedRef, cached, resolve_case, solve, srt_key
 from .settings import Settings
 from .svg import Marker, Panel, Series, line_chart
 
@@ -32,7 +34,11 @@ SERIES_93 = "Eq. 9.3 (rollover)"
 
 
 def _label(req) -> str:
-    return req.vehicle if isinstance(req.vehicle, str) else "vehicle record"
+    if isinstance(req.vehicle, str):
+        return req.vehicle
+    if isinstance(req.vehicle, SavedRef):
+        return f"saved vehicle {req.vehicle.id}"
+    return "built vehicle" if isinstance(req.vehicle, Vehicle) else "vehicle record"
 
 
 def _conditions(r: RolloverResult, case: Case) -> str:
@@ -210,6 +216,19 @@ def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, 
 
 
 async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, settings: Settings) -> Computed:
+    std = get_standard(req.design_standard, req.bound)
+    for name in ("speed_min_kmh", "speed_max_kmh"):  # in the standard's range (422 naming it), before any solve
+        if getattr(req, name) is not None:
+            check_design_speeds(std, getattr(req, name), field=name)
+    v0, v1, _ = req.speeds
+    if v1 <= v0:  # one end given at the other end of the range
+        name = "speed_min_kmh" if req.speed_min_kmh is not None else "speed_max_kmh"
+        raise InvalidRoad(
+            f"{name} {getattr(req, name):g} km/h leaves nothing to plot: the design speeds of {std.id} are "
+            f"{std.speed_range_kmh[0]:g}-{std.speed_range_kmh[1]:g} km/h",
+            field=name,
+            value=getattr(req, name),
+        )
     # the SRT of Eq. 9.3 is the one on the curve's bank (the superelevation) and slope
     case = resolve_case(req, road=Road(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent))
     label = _label(req)

@@ -77,7 +77,7 @@ _THESIS = "Moreno (thesis)"
 class TyreSpec:
     """Tyres of an axle group: a library ``id`` and/or explicit data (explicit values win).
 
-    id : :data:`engine.components.TYRES` key
+    id : a tyre of the component library (:data:`engine.components.TYRES`), by its id
     size : size designation (``"295/80R22.5"``, ``"11R22.5"``): its section width and rim bound the geometry
     loaded_radius_m : lr, static loaded (dynamic rolling) radius [m]
     stiffness_kn_per_m : kT, vertical (radial) stiffness of one tyre [kN/m]
@@ -97,7 +97,7 @@ class TyreSpec:
 class SuspensionSpec:
     """Suspension of an axle group: a library ``type`` and/or explicit data (explicit values win).
 
-    type : :data:`engine.components.SUSPENSIONS` key
+    type : a suspension of the component library (:data:`engine.components.SUSPENSIONS`), by its id
     stiffness_kn_per_m : kLs, vertical rate of the spring on one side of one axle [kN/m]
     roll_stiffness_knm_per_rad : roll stiffness of one axle [kN m/rad]; mapped to kLs = 2 k_theta / b^2 (Eq. 2.11)
     height_m : ls, static suspension height at the rated load [m]
@@ -120,7 +120,8 @@ class AxleGroupSpec:
     track_m : lateral spacing of the tyre contacts; for duals, of the centres of the dual pairs [m]
     centre_from_kingpin_m : group centre behind the kingpin (truck: behind the front group centre) [m]
     axle_spacing_m : spread between adjacent axles [m] (recorded; the one-equivalent-axle model does not use it)
-    tyre, suspension : the group's components (the front group's default to the rear group's)
+    tyre : the group's tyres (the front group's default to the rear group's)
+    suspension : the group's suspension (the front group's default to the rear group's)
     rated_load_kg : the largest load the group may carry [kg]; the built vehicle's static load is checked against it
     """
 
@@ -157,8 +158,8 @@ class TankSpec:
     height_m : inside height of the tank (the diameter of a circular one) [m]
     bottom_height_m : height of the inside bottom above the ground [m]
     shape : ``circular`` or ``elliptical`` [-]
-    fill_height_m : liquid depth [m]; or
-    fill_fraction : liquid volume / tank volume [-]
+    fill_height_m : liquid depth (or give fill_fraction) [m]
+    fill_fraction : liquid volume / tank volume (or give fill_height_m) [-]
     """
 
     height_m: float
@@ -173,14 +174,16 @@ class PayloadSpec:
     """One payload: its mass, how high it sits (one of three ways) and where along the unit.
 
     mass_kg : payload mass [kg]
-    deck_height_m, load_height_m : deck (load bed) and top of the load above the ground, at the load's front [m]
-    deck_height_rear_m, load_height_rear_m : the same at the load's rear, for a sloping deck [m]
-        (load top default: parallel to the deck)
+    deck_height_m : deck (load bed) above the ground, at the load's front [m]
+    load_height_m : top of the load above the ground, at the load's front [m]
+    deck_height_rear_m : deck height at the load's rear, for a sloping deck [m]
+    load_height_rear_m : load top at the load's rear, for a sloping deck (default: parallel to the deck) [m]
     distribution : ``uniform`` (CG at mid-height) or ``mixed-freight`` (0.4 of the height) [-]
-    cg_height_m : or the payload CG height above the ground directly [m]
-    tank : or a liquid in a tank (its CG from the tank's geometry)
-    front_from_kingpin_m, length_m : the load's extent (default: the deck's length, centred on the deck) [m]
-    cg_from_kingpin_m : or the payload CG's distance behind the kingpin directly [m]
+    cg_height_m : the payload CG height above the ground, instead of deck and load heights [m]
+    tank : a liquid in a tank (its CG from the tank's geometry), instead of deck and load heights
+    front_from_kingpin_m : front end of the load behind the kingpin (default: the load centred on the deck) [m]
+    length_m : length of the load (default: the deck's length) [m]
+    cg_from_kingpin_m : the payload CG's distance behind the kingpin, instead of the load's extent [m]
     """
 
     mass_kg: float
@@ -198,7 +201,11 @@ class PayloadSpec:
 
 @dataclass(frozen=True)
 class DeckSpec:
-    """The load space: front end behind the kingpin (truck: front group centre) and length [m]."""
+    """The load space.
+
+    front_from_kingpin_m : front end of the load space behind the kingpin (truck: the front group centre) [m]
+    length_m : length of the load space [m]
+    """
 
     front_from_kingpin_m: float
     length_m: float
@@ -209,9 +216,10 @@ class FrontUnitSpec:
     """Front-unit and chassis data; every value defaults as documented in :func:`build_vehicle`.
 
     fifth_wheel_stiffness_kn_per_m : kf, rate of each fifth-wheel spring [kN/m]
-    fifth_wheel_height_m : lf [m]; fifth_wheel_width_m : b1 [m]
+    fifth_wheel_height_m : lf, initial height of the fifth wheel above the front bolster [m]
+    fifth_wheel_width_m : b1, width of the fifth wheel (separation of its two springs) [m]
     front_llt_ratio : LLTf / LLTr at the limit [-]
-    chassis_torsional_stiffness_knm2_per_rad : G Jr [kN m^2/rad]; None = torsionally rigid
+    chassis_torsional_stiffness_knm2_per_rad : G Jr, torsional stiffness of the chassis; absent: rigid [kN m^2/rad]
     """
 
     fifth_wheel_stiffness_kn_per_m: float | None = None
@@ -228,8 +236,13 @@ class VehicleSpec:
     unit_type : ``semitrailer`` (front group = the tractor's drive group under the fifth wheel), ``btrain-rear``
         (the last trailer of a B-train: front group = the lead trailer's group under the fifth wheel) or
         ``rigid-truck`` (front group = the steer axle(s), no fifth wheel)
-    rear, front : the axle groups; tare : the unladen mass; payloads : 0 or more payloads (two decks: two payloads)
-    deck : the load space (for payload positions); front_unit : fifth-wheel and chassis data
+    rear : the rear axle group (the last unit's own)
+    front : the front axle group (under the fifth wheel; a rigid truck's steer group)
+    tare : the unladen mass
+    payloads : 0 or more payloads (two decks: two payloads)
+    deck : the load space (for payload positions)
+    front_unit : fifth-wheel and chassis data
+    title : a name for the vehicle (shown in results) [-]
     """
 
     unit_type: str

@@ -10,6 +10,7 @@ from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from ..bodylimit import body_limit
 from ..deps import CacheDep, SettingsDep
+from ..problems import VEHICLE_REF_CODES
 from ..schemas.alignments import (
     ALIGNMENT_CSV_EXAMPLE,
     ALIGNMENT_JSON_LIMIT,
@@ -50,7 +51,7 @@ over 5,000 rows are streamed (chunked; the same bytes as a whole answer) and cac
     "/assess",
     name="assess",
     response_model=AlignmentResult,
-    responses=table_responses(400, 404, 422, 500),
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
     openapi_extra={**body_limit(ALIGNMENT_JSON_LIMIT), **json_body(AlignmentRequest)},
     description=ASSESSMENT
     + """
@@ -69,14 +70,15 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     "/assess/csv",
     name="assess_csv",
     response_model=AlignmentResult,
-    responses=table_responses(400, 404, 422, 500),
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
     openapi_extra=upload_body("text/csv", CSV_UPLOAD_LIMIT, ALIGNMENT_CSV_EXAMPLE),
     description=ASSESSMENT
     + """
 
 The body is the CSV file itself (UTF-8, a header row naming `id`, `radius_m`, `superelevation_percent` and
 optionally `grade_percent`, `posted_speed_kmh`), the options are query parameters (`vehicle` repeated for several
-presets). The same request as `POST /v1/alignments/assess` with `csv`: same answer, same cache entry.""",
+presets). The same request as `POST /v1/alignments/assess` with `csv`: same answer, same cache entry. A rule the
+query's schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
 )
 async def assess_csv(
     request: Request, query: Annotated[CsvUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
@@ -90,14 +92,15 @@ async def assess_csv(
     "/assess/landxml",
     name="assess_landxml",
     response_model=AlignmentResult,
-    responses=table_responses(400, 404, 422, 500),
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
     openapi_extra=upload_body("application/xml", LANDXML_UPLOAD_LIMIT, ALIGNMENT_LANDXML_EXAMPLE),
     description=ASSESSMENT
     + """
 
 The body is the LandXML 1.2 document itself (every `CoordGeom/Curve` of every `Alignment`), the options and the
 superelevation / grade / posted-speed defaults for every curve are query parameters (per-curve values need the
-JSON form's `curve_overrides`). The same request as `POST /v1/alignments/assess` with `landxml`.""",
+JSON form's `curve_overrides`). The same request as `POST /v1/alignments/assess` with `landxml`. A rule the query's
+schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
 )
 async def assess_landxml(
     request: Request, query: Annotated[LandXmlUploadQuery, Query()], cache: CacheDep, settings: SettingsDep

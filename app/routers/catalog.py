@@ -12,6 +12,7 @@ from typing import Annotated, Any
 import orjson
 from fastapi import APIRouter, Depends, Header, Path, Query, Request, Response
 from pydantic import BaseModel
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from .. import catalog
 from ..auth import BearerDep, OwnerDep, authenticate
@@ -115,7 +116,8 @@ def _fleet(fleet: Fleet, status: int = 200) -> Response:
 # ------------------------------------------------------------------------------------------- parameters
 VehicleIdPath = Annotated[
     str,
-    Path(description="A saved vehicle's id (`veh_...`). A preset id is read-only here (405).",
+    Path(description="A saved vehicle's id (`veh_...`). A preset id is read-only here (405); any other id names "
+                     "no saved vehicle (404).",
          examples=[EXAMPLE_VEHICLE_ID], max_length=100),
 ]  # fmt: skip
 FleetIdPath = Annotated[
@@ -136,9 +138,12 @@ IfMatchOptional = Annotated[
 PageDep = Annotated[PageQuery, Query()]
 
 
-def writable_vehicle_owner(id: VehicleIdPath, credentials: BearerDep, settings: SettingsDep) -> str:
-    """PUT/DELETE /v1/vehicles/{id}: a preset is read-only (405, whoever asks); then the key (403/401); then
-    the id's format (422)."""
+def writable_vehicle_owner(id: VehicleIdPath, credentials: BearerDep, settings: SettingsDep, request: Request) -> str:
+    """PUT/DELETE /v1/vehicles/{id}: a path of its own (`/v1/vehicles/saved`, `/v1/vehicles/build`...) answers
+    405 with its `Allow`; a preset is read-only (405, whoever asks); then the key (403/401); then an id that
+    cannot be a saved vehicle's is 404."""
+    if f"/v1/vehicles/{id}" in request.app.openapi()["paths"]:
+        raise StarletteHTTPException(405)
     if id in catalog.PRESETS:
         raise catalog.read_only_preset(id)
     owner = authenticate(credentials, settings)
@@ -178,7 +183,8 @@ async def create_vehicle(body: VehicleWrite, owner: OwnerDep, request: Request, 
 )
 async def list_saved_vehicles(owner: OwnerDep, request: Request, page: PageDep) -> Response:
     """The caller's saved vehicles, oldest first, `limit` per page; follow `next_cursor` until it is null
-    (keyset pagination on creation time and id: stable while vehicles are added)."""
+    (keyset pagination on creation time and id: stable while vehicles are added). The cursor is opaque: pass
+    `next_cursor` of the previous page as it is (anything else is a 422 naming `cursor`)."""
     db = await catalog.catalog_db(request)
     return _json(await catalog.list_vehicles(db, owner, page.cursor, page.limit))
 
@@ -245,7 +251,8 @@ async def create_fleet(body: FleetWrite, owner: OwnerDep, request: Request, sett
     "/v1/fleets", name="list_fleets", response_model=FleetPage, responses=problem_responses(401, 403, 422, 500, 503)
 )
 async def list_fleets(owner: OwnerDep, request: Request, page: PageDep) -> Response:
-    """The caller's fleets, oldest first, `limit` per page; follow `next_cursor` until it is null."""
+    """The caller's fleets, oldest first, `limit` per page; follow `next_cursor` until it is null. The cursor is
+    opaque: pass `next_cursor` of the previous page as it is (anything else is a 422 naming `cursor`)."""
     db = await catalog.catalog_db(request)
     return _json(await catalog.list_fleets(db, owner, page.cursor, page.limit))
 

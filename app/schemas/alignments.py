@@ -8,6 +8,7 @@ from typing import Annotated, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from ..alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
+from .catalog import FLEET_ID_PATTERN
 from .common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, exactly_one_schema, shape_error
 from .srt import (
     TARGETS_OUT,
@@ -125,7 +126,7 @@ class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
     model_config = ConfigDict(
         json_schema_extra={
             "allOf": [
-                exactly_one_schema("vehicle", "vehicles"),
+                exactly_one_schema("vehicle", "vehicles", "fleet"),
                 exactly_one_schema("curves", "csv", "landxml"),
                 BOUND_ONLY_WITH_TABLE21,
             ],
@@ -159,7 +160,7 @@ class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
     )
 
     vehicle: VehicleRef = Field(
-        None, description=VEHICLE_DESCRIPTION + " Give `vehicle` or `vehicles`.", json_schema_extra=ABSENT
+        None, description=VEHICLE_DESCRIPTION + " Give one of `vehicle`, `vehicles`, `fleet`.", json_schema_extra=ABSENT
     )
     vehicles: list[VehicleRef] = Field(
         None,
@@ -167,12 +168,22 @@ class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
         min_length=1,
         max_length=MAX_VEHICLES,
         description=describe(
-            f"Several vehicles (1-{MAX_VEHICLES} preset ids or records), each assessed on every curve. Give "
-            "`vehicle` or `vehicles`.",
+            f"Several vehicles (1-{MAX_VEHICLES}, each as `vehicle` may be), each assessed on every curve. Give one "
+            "of `vehicle`, `vehicles`, `fleet`.",
             unit="-",
             symbol="Tables 14-16, 22, 23",
         ),
     )
+    fleet: str = Field(
+        None,
+        json_schema_extra=ABSENT,
+        pattern=FLEET_ID_PATTERN,
+        description=describe(
+            f"A saved fleet's id (`flt_...`, with the bearer key that saved it): its vehicles (at most {MAX_VEHICLES}) "
+            "in its order, each assessed on every curve. Give one of `vehicle`, `vehicles`, `fleet`.",
+            unit="-",
+        ),
+    )  # type: ignore[assignment]
     max_superelevation_percent: float = bounded(
         "max_superelevation_percent",
         None,
@@ -213,7 +224,7 @@ class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
 
     @model_validator(mode="after")
     def _one_source_each(self) -> AlignmentRequest:
-        for names in (("vehicle", "vehicles"), ("curves", "csv", "landxml")):
+        for names in (("vehicle", "vehicles", "fleet"), ("curves", "csv", "landxml")):
             present = [n for n in names if getattr(self, n) is not None]
             if len(present) != 1:
                 what = "both " + " and ".join(present) if present else "none"
@@ -356,7 +367,10 @@ class AlignmentSummary(OutputModel):
 
 class VehicleAssessment(OutputModel):
     index: int = Field(description=describe("Position of the vehicle in the request (0 for `vehicle`).", unit="-"))
-    preset: str | None = Field(description=describe("The preset id, or null for a record.", unit="-"))
+    preset: str | None = Field(description=describe("The preset id, or null for another vehicle.", unit="-"))
+    saved_vehicle_id: str | None = Field(
+        description=describe("The saved vehicle's id (`veh_...`), or null for another vehicle.", unit="-")
+    )
     summary: AlignmentSummary = Field(description=describe("Counts over the curves.", unit="see its fields"))
     rows: list[CurveRow] = Field(description=describe("One row per curve, in the request's order.", unit="per field"))
 

@@ -10,12 +10,15 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_mo
 
 from engine.vehicles import Vehicle
 
+from .builder import SpecRef
 from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
 from .vehicles import VehiclePreset, VehicleRecord
 
 #: a saved vehicle's id: ``veh_`` + 22 url-safe base64 characters (128 random bits); a fleet's: ``flt_`` + 22
 SAVED_VEHICLE_ID_PATTERN = r"^veh_[A-Za-z0-9_-]{22}$"
 FLEET_ID_PATTERN = r"^flt_[A-Za-z0-9_-]{22}$"
+#: a fleet member: a saved vehicle's id or a preset's (lowercase letters, digits and hyphens)
+MEMBER_ID_PATTERN = r"^(veh_[A-Za-z0-9_-]{22}|[a-z0-9-]{1,100})$"
 EXAMPLE_VEHICLE_ID = "veh_3q2-7wLQz0mZb1cYkP4xVA"
 EXAMPLE_FLEET_ID = "flt_Vd9xk2LmQ0a-7TzPp1bRcw"
 TITLE_MAX_LENGTH = 200
@@ -50,17 +53,6 @@ class PageQuery(BaseModel):
     )
 
 
-class VehicleSpec(InputModel):
-    """A vehicle builder spec, saved as it is (the builder turns it into a record when it is used)."""
-
-    spec: dict[str, Any] = Field(
-        description=describe(
-            "The measurable spec of a vehicle for the vehicle builder (`POST /v1/vehicles/build`): a JSON object.",
-            unit="-",
-        )
-    )
-
-
 def _saved_kind(value: Any) -> str | None:
     if isinstance(value, dict):
         return "spec" if "spec" in value else "record"
@@ -68,7 +60,7 @@ def _saved_kind(value: Any) -> str | None:
 
 
 SavedVehicleIn = Annotated[
-    Annotated[VehicleRecord, Tag("record")] | Annotated[VehicleSpec, Tag("spec")],
+    Annotated[VehicleRecord, Tag("record")] | Annotated[SpecRef, Tag("spec")],
     Discriminator(
         _saved_kind,
         custom_error_type="invalid_vehicle",
@@ -168,9 +160,10 @@ class FleetWrite(InputModel):
     )
 
     title: str = Field(min_length=1, max_length=TITLE_MAX_LENGTH, description=_TITLE)
-    vehicles: list[Annotated[str, Field(min_length=1, max_length=100)]] = Field(
+    vehicles: list[Annotated[str, Field(min_length=1, max_length=100, pattern=MEMBER_ID_PATTERN)]] = Field(
         min_length=1,
         max_length=FLEET_MEMBERS_HARD_MAX,
+        json_schema_extra={"uniqueItems": True},
         description=describe(
             "The members, in order: ids of the caller's saved vehicles (`veh_...`) or preset ids "
             "(`table16-btrain`); each at most once; at most `ROLLOVER_CATALOG_MAX_FLEET_MEMBERS` (default 100).",

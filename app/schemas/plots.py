@@ -109,23 +109,10 @@ class MinRadiusPlotRequest(SrtOptions, DesignOptions):
 
     @model_validator(mode="after")
     def _speed_range(self) -> MinRadiusPlotRequest:
-        lo, hi = get_standard(self.design_standard, self.bound).speed_range_kmh
-        for name in ("speed_min_kmh", "speed_max_kmh"):
-            v = getattr(self, name)
-            if v is not None and not lo <= v <= hi:
-                raise shape_error(
-                    "MinRadiusPlotRequest",
-                    name,
-                    f"{v:g} km/h is outside the design speeds of {self.design_standard}: {lo:g}-{hi:g} km/h",
-                    v,
-                )
-        if self.speeds[1] <= self.speeds[0]:
-            raise shape_error(
-                "MinRadiusPlotRequest",
-                "speed_max_kmh",
-                f"must be above speed_min_kmh ({self.speeds[0]:g} km/h)",
-                self.speeds[1],
-            )
+        # (that the speeds lie in the standard's range is the engine's check: app.service_plots.plot_min_radius)
+        v0, v1 = self.speed_min_kmh, self.speed_max_kmh
+        if v0 is not None and v1 is not None and v1 <= v0:
+            raise shape_error("MinRadiusPlotRequest", "speed_max_kmh", f"must be above speed_min_kmh ({v0:g} km/h)", v1)
         return self
 
     @property

@@ -9,6 +9,7 @@ from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, W
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 
+from .builder import SpecRef
 from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
 from .vehicles import VehicleRecord
 
@@ -18,24 +19,31 @@ Stage = Literal["full", "tires-suspension"]
 
 
 def _vehicle_kind(value: Any) -> str:
-    return "preset" if isinstance(value, str) else "record"
+    if isinstance(value, str):
+        return "id"
+    if isinstance(value, SpecRef) or (isinstance(value, dict) and "spec" in value):
+        return "spec"
+    return "record"
 
 
-PresetId = Annotated[
+VehicleId = Annotated[
     str,
     Field(
         min_length=1,
         max_length=100,
-        description="Preset id from GET /v1/vehicles (e.g. `table16-btrain`); an unknown id is a 404.",
+        description="A preset id from GET /v1/vehicles (e.g. `table16-btrain`), or the id of one of the caller's "
+        "saved vehicles (`veh_...`, with `Authorization: Bearer <key>`); an unknown id is a 404 naming it.",
     ),
 ]
 VehicleRef = Annotated[
-    Annotated[PresetId, Tag("preset")] | Annotated[VehicleRecord, Tag("record")],
+    Annotated[VehicleId, Tag("id")] | Annotated[VehicleRecord, Tag("record")] | Annotated[SpecRef, Tag("spec")],
     Discriminator(_vehicle_kind),
 ]
 VEHICLE_DESCRIPTION = describe(
     "The vehicle: a preset id (`table14-semitrailer`, `table15-semitrailer`, `table16-btrain`, `table22-truck`, "
-    "`table23-semitrailer`) or a full vehicle record.",
+    "`table23-semitrailer`), a saved vehicle's id (`veh_...`, with the bearer key that saved it), a full vehicle "
+    'record, or a measurable spec `{"spec": {...}}` that the vehicle builder turns into a record (see '
+    "`POST /v1/vehicles/build`).",
     unit="-",
     symbol="Tables 14-16, 22, 23",
 )

@@ -11,7 +11,7 @@ from engine.domain import BOUNDS
 from engine.road import FRICTION_BOUNDS
 from engine.standards import DEFAULT_DESIGN_STANDARD, STANDARDS
 
-from .common import ABSENT, InputModel, OutputModel, bounded, describe, json_int, shape_error
+from .common import ABSENT, InputModel, OutputModel, bounded, describe, json_int, not_together_schema, shape_error
 
 __all__ = [
     "DEFAULT_DESIGN_STANDARD",
@@ -190,7 +190,7 @@ class SuperelevationTableRequest(DesignOptions):
 
     model_config = ConfigDict(
         json_schema_extra={
-            **BOUND_ONLY_WITH_TABLE21,
+            "allOf": [BOUND_ONLY_WITH_TABLE21, not_together_schema("radii_m", ("radius_max_m", "points"))],
             "examples": [
                 {"design_standard": "aashto-2018", "design_speed_kmh": 80, "max_superelevation_percent": 8},
                 {

@@ -9,7 +9,7 @@ from pydantic import ConfigDict, Field, model_validator
 
 from engine.domain import BOUNDS
 
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
+from .common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
 from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 
 MAX_AXIS_VALUES = 200
@@ -38,7 +38,12 @@ def _values(name: str) -> Any:
         None,
         min_length=1,
         max_length=MAX_AXIS_VALUES,
-        description=describe(f"{text} Values of this axis (1-{MAX_AXIS_VALUES}).", unit=unit, symbol=symbol),
+        json_schema_extra=ABSENT,
+        description=describe(
+            f"{text} Values of this axis (1-{MAX_AXIS_VALUES}); leave the field out for no axis.",
+            unit=unit,
+            symbol=symbol,
+        ),
     )
 
 
@@ -63,16 +68,18 @@ class SweepGrid(InputModel):
     `overweight_percent`, `rear_llt_limit`; the first axis varies slowest. An axis overrides the base case's
     field of the same name."""
 
+    # an axis is given (a list, never null) or left out, and no other field is allowed: at least one property is
+    # at least one axis (minProperties, which generated clients parse, unlike an anyOf of required branches)
     model_config = ConfigDict(json_schema_extra={"minProperties": 1})
 
-    bank_percent: list[BankValue] | None = _values("bank_percent")
-    slope_percent: list[SlopeValue] | None = _values("slope_percent")
-    trailer_angle_deg: list[AngleValue] | None = _values("trailer_angle_deg")
-    lateral_offset_m: list[D1Value] | None = _values("lateral_offset_m")
-    longitudinal_offset_m: list[D2Value] | None = _values("longitudinal_offset_m")
-    vertical_offset_m: list[D3Value] | None = _values("vertical_offset_m")
-    overweight_percent: list[OverweightValue] | None = _values("overweight_percent")
-    rear_llt_limit: list[LltValue] | None = _values("rear_llt_limit")
+    bank_percent: list[BankValue] = _values("bank_percent")
+    slope_percent: list[SlopeValue] = _values("slope_percent")
+    trailer_angle_deg: list[AngleValue] = _values("trailer_angle_deg")
+    lateral_offset_m: list[D1Value] = _values("lateral_offset_m")
+    longitudinal_offset_m: list[D2Value] = _values("longitudinal_offset_m")
+    vertical_offset_m: list[D3Value] = _values("vertical_offset_m")
+    overweight_percent: list[OverweightValue] = _values("overweight_percent")
+    rear_llt_limit: list[LltValue] = _values("rear_llt_limit")
 
     def axes(self) -> dict[str, list[float]]:
         """The given axes, in the product's order."""

@@ -206,7 +206,7 @@ def test_csv_answer_has_a_header_and_a_row_per_vehicle_and_curve(shared_client):
     r = post(shared_client, body, headers={"Accept": "text/csv"})
     assert r.headers["content-type"].startswith("text/csv") and r.headers["vary"] == "Accept"
     table = list(csv.DictReader(io.StringIO(r.text)))
-    assert list(table[0])[:4] == ["vehicle_index", "vehicle_preset", "id", "station_m"]
+    assert list(table[0])[:5] == ["vehicle_index", "vehicle_preset", "vehicle_saved_id", "id", "station_m"]
     assert {"srt_g", "rollover_speed_kmh", "side_friction_speed_kmh", "safe_speed_kmh", "margin_kmh"} <= set(table[0])
     assert {"meets_general", "margin_general_g", "meets_dangerous_goods", "margin_dangerous_goods_g"} <= set(table[0])
     assert len(table) == 2 * len(CURVES)

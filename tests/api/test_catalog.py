@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import hashlib
+import json
 from datetime import UTC, datetime
 
 import pytest
@@ -23,7 +24,7 @@ from app.db import Database, repo
 from app.schemas.vehicles import METADATA_FIELDS
 from app.settings import Settings
 
-from .conftest import make_client
+from .conftest import a_spec, make_client
 
 K1 = "owner-key-" + "a" * 24
 K2 = "other-key-" + "b" * 24
@@ -111,7 +112,7 @@ def test_crud_round_trip(cat, presets):
 def test_a_2d_record_and_a_spec_can_be_saved(cat, presets):
     two_d = save(cat, presets["table14-semitrailer"], "Table 14 (2D)")  # no 3D fields: MissingParameter allowed
     assert two_d["vehicle"]["front_axles"] is None and two_d["kind"] == "record"
-    spec = {"spec": {"axles": [{"tyres": 4}], "gross_kg": 36000, "note": "from the builder"}}
+    spec = a_spec("from the builder")
     saved = save(cat, spec, "spec")
     assert saved["kind"] == "spec" and saved["vehicle"] == spec
     assert cat.get(f"/v1/vehicles/{saved['id']}", headers=auth(K1)).json()["vehicle"] == spec
@@ -155,16 +156,18 @@ def test_schema_errors_name_the_field(cat, presets):
     r = cat.post("/v1/vehicles", json={"title": "a preset id is not a body", "vehicle": BTRAIN}, headers=auth(K1))
     assert r.status_code == 422 and r.json()["errors"][0]["field"] == "vehicle"
     # the parser accepts NaN; JSON cannot store it, so it is refused (not silently written as null)
-    r = cat.post(
-        "/v1/vehicles",
-        content=b'{"title": "nan", "vehicle": {"spec": {"a": [1, NaN]}}}',
-        headers=auth(K1, **{"Content-Type": "application/json"}),
-    )
-    assert r.status_code == 422 and r.json()["errors"][0]["field"] == "vehicle.spec.a.1"
-    huge = cat.post(
-        "/v1/vehicles", json={"title": "big int", "vehicle": {"spec": {"n": -(2**63) - 1}}}, headers=auth(K1)
-    )
-    assert huge.status_code == 422 and huge.json()["errors"][0]["field"] == "vehicle.spec.n"
+    nan = json.dumps({"title": "nan", "vehicle": a_spec()}).replace('"mass_kg": 8000.0', '"mass_kg": NaN')
+    r = cat.post("/v1/vehicles", content=nan.encode(), headers=auth(K1, **{"Content-Type": "application/json"}))
+    assert r.status_code == 422 and r.json()["errors"][0]["field"] == "vehicle.spec.tare.mass_kg"
+    spec = a_spec()
+    spec["spec"]["rear"] = {**spec["spec"]["rear"], "axles": -(2**63) - 1}
+    huge = cat.post("/v1/vehicles", json={"title": "big int", "vehicle": spec}, headers=auth(K1))
+    assert huge.status_code == 422 and huge.json()["errors"][0]["field"] == "vehicle.spec.rear.axles"
+    # a spec the builder refuses is refused when saved, naming the spec field and the reason
+    spec = a_spec()
+    spec["spec"]["payloads"] = [{**spec["spec"]["payloads"][0], "load_height_m": 1.0}]  # below the 1.25 m deck
+    r = cat.post("/v1/vehicles", json={"title": "load below deck", "vehicle": spec}, headers=auth(K1))
+    assert r.status_code == 422 and r.json()["errors"][0]["field"] == "vehicle.spec.payloads.0.load_height_m"
 
 
 # ------------------------------------------------------------------------------------------- If-Match
@@ -302,24 +305,33 @@ def test_presets_stay_public_and_read_only(cat, presets):
     assert cat.get(f"/v1/vehicles/{BTRAIN}").json()["weight_kn"] == 355.22
 
 
-def test_saved_ids_are_unguessable_and_malformed_ids_are_422(cat, presets):
+def test_saved_ids_are_unguessable_and_malformed_ids_are_refused(cat, presets):
     ids = {save(cat, presets[BTRAIN], f"n{i}")["id"] for i in range(5)}
     assert len(ids) == 5
     assert all(catalog.SAVED_VEHICLE_ID.match(i) for i in ids)
     f = fleet(cat, [BTRAIN])["id"]
     assert catalog.FLEET_ID.match(f)
+    body = {"title": "t", "vehicle": presets[BTRAIN]}
+    # /v1/vehicles/{id} also serves presets, so its spec has no id pattern: an id that cannot be saved names none
     for method, path in [
         ("GET", "/v1/vehicles/veh_short"),
         ("PUT", "/v1/vehicles/garbage"),
         ("DELETE", "/v1/vehicles/veh_" + "!" * 22),
-        ("GET", "/v1/fleets/flt_x"),
-        ("DELETE", "/v1/fleets/" + "a" * 26),
     ]:
-        r = cat.request(
-            method, path, json={"title": "t", "vehicle": presets[BTRAIN]}, headers=auth(K1, **{"If-Match": "*"})
-        )
+        r = cat.request(method, path, json=body, headers=auth(K1, **{"If-Match": "*"}))
+        assert r.status_code == 404, (method, path, r.text)
+        assert r.json()["type"] == "urn:rollover:problem:not-found"
+        assert "pattern ^veh_" in r.json()["detail"]
+    # a fleet's path states its pattern: 422 naming the id
+    for method, path in [("GET", "/v1/fleets/flt_x"), ("DELETE", "/v1/fleets/" + "a" * 26)]:
+        r = cat.request(method, path, json=body, headers=auth(K1, **{"If-Match": "*"}))
         assert r.status_code == 422, (method, path, r.text)
         assert [e["field"] for e in r.json()["errors"]] == ["id"]
+    # a literal path under /v1/vehicles is not an id: PUT/DELETE on it is 405 with what it allows
+    for path, allow in [("/v1/vehicles/saved", "GET"), ("/v1/vehicles/build", "POST")]:
+        r = cat.request("PUT", path, json=body, headers=auth(K1, **{"If-Match": "*"}))
+        assert r.status_code == 405, (path, r.text)
+        assert r.headers["allow"] == allow
 
 
 # ---------------------------------------------------------------------------------------- pagination
@@ -336,7 +348,7 @@ def _pages(c, path, limit, key=K1):
 
 
 def test_pagination_in_creation_order(cat):
-    made = [save(cat, {"spec": {"n": i}}, f"v{i}")["id"] for i in range(7)]
+    made = [save(cat, a_spec(i), f"v{i}")["id"] for i in range(7)]
     assert _pages(cat, "/v1/vehicles/saved", 3) == [made[0:3], made[3:6], made[6:7]]
     assert _pages(cat, "/v1/vehicles/saved", 7) == [made]
     assert _pages(cat, "/v1/vehicles/saved", 200) == [made]
@@ -355,14 +367,14 @@ def test_pagination_in_creation_order(cat):
 
 
 def test_pagination_has_no_duplicates_or_misses_under_inserts_and_deletes(cat):
-    made = [save(cat, {"spec": {"n": i}}, f"v{i}")["id"] for i in range(9)]
+    made = [save(cat, a_spec(i), f"v{i}")["id"] for i in range(9)]
     seen, cursor, added, deleted = [], None, [], None
     while True:
         params = {"limit": 2, **({"cursor": cursor} if cursor else {})}
         page = cat.get("/v1/vehicles/saved", params=params, headers=auth(K1)).json()
         seen += [i["id"] for i in page["items"]]
         # between pages, another client adds vehicles, and deletes one already seen
-        added += [save(cat, {"spec": {"late": len(added)}}, "late")["id"] for _ in range(2)]
+        added += [save(cat, a_spec(f"late {len(added)}"), "late")["id"] for _ in range(2)]
         if deleted is None:
             deleted = seen[0]
             assert cat.delete(f"/v1/vehicles/{deleted}", headers=auth(K1)).status_code == 204
@@ -384,7 +396,7 @@ def test_pagination_breaks_timestamp_ties_by_id(database_url, monkeypatch):
     instant = datetime(2026, 1, 1, 12, 0, 0, 123456, tzinfo=UTC)
     monkeypatch.setattr(repo, "utcnow", lambda: instant)
     with make_client(settings(database_url)) as c:
-        made = [save(c, {"spec": {"n": i}}, f"v{i}")["id"] for i in range(6)]
+        made = [save(c, a_spec(i), f"v{i}")["id"] for i in range(6)]
         pages = _pages(c, "/v1/vehicles/saved", 4)
     assert [len(p) for p in pages] == [4, 2]
     assert [i for p in pages for i in p] == sorted(made)
@@ -401,17 +413,17 @@ def test_per_key_limits(database_url, presets):
     )
     with make_client(small) as c:
         first = save(c, presets[BTRAIN], "one")  # a full record is about 800 bytes as stored
-        save(c, {"spec": {"n": 2}}, "two")
-        r = c.post("/v1/vehicles", json={"title": "three", "vehicle": {"spec": {"n": 3}}}, headers=auth(K1))
+        save(c, a_spec(2), "two")
+        r = c.post("/v1/vehicles", json={"title": "three", "vehicle": a_spec(3)}, headers=auth(K1))
         assert r.status_code == 409
         problem = r.json()
         assert problem["type"] == "urn:rollover:problem:limit-reached"
         assert problem["limit"] == {"setting": "ROLLOVER_CATALOG_MAX_VEHICLES", "max": 2}
-        save(c, {"spec": {"n": 1}}, "K2's first", key=K2)  # the limit is per key
+        save(c, a_spec(1), "K2's first", key=K2)  # the limit is per key
         assert c.delete(f"/v1/vehicles/{first['id']}", headers=auth(K1)).status_code == 204
-        third = save(c, {"spec": {"n": 3}}, "three")  # room again after a delete
+        third = save(c, a_spec(3), "three")  # room again after a delete
 
-        big = {"spec": {"blob": "x" * 1000}}
+        big = a_spec("x" * 100, payloads=10)  # a long title and ten deck loads: over 1000 bytes as stored
         r = c.post("/v1/vehicles", json={"title": "big", "vehicle": big}, headers=auth(K2))
         assert r.status_code == 413
         assert r.json()["limit"] == {"setting": "ROLLOVER_CATALOG_MAX_VEHICLE_BYTES", "max": 1000}
@@ -445,7 +457,9 @@ def test_fleet_membership_is_checked_and_protected(cat, presets):
     assert r.status_code == 404 and [e["field"] for e in r.json()["errors"]] == ["vehicles.1"]
     assert BTRAIN in r.json()["known"]
     r = cat.post("/v1/fleets", json={"title": "f", "vehicles": [mine, "veh_bad", mine]}, headers=auth(K1))
-    assert r.status_code == 422 and [e["field"] for e in r.json()["errors"]] == ["vehicles.1", "vehicles.2"]
+    assert r.status_code == 422 and [e["field"] for e in r.json()["errors"]] == ["vehicles.1"]  # the schema's pattern
+    r = cat.post("/v1/fleets", json={"title": "f", "vehicles": [mine, BTRAIN, mine]}, headers=auth(K1))
+    assert r.status_code == 422 and [e["field"] for e in r.json()["errors"]] == ["vehicles.2"]  # uniqueItems
     r = cat.post("/v1/fleets", json={"title": "f", "vehicles": []}, headers=auth(K1))
     assert r.status_code == 422
     assert cat.get("/v1/fleets", headers=auth(K1)).json()["items"] == []  # nothing half-created
@@ -476,12 +490,13 @@ def test_resolvers_for_the_computations(cat, presets):
     db = cat.app.state.db
     record = presets[BTRAIN]
     vid = save(cat, record)["id"]
-    spec = save(cat, {"spec": {"gross_kg": 40000}})["id"]
+    body = a_spec("resolved")
+    spec = save(cat, body)["id"]
     fid = fleet(cat, [spec, BTRAIN, vid])["id"]
     owner, other = owner_of(K1), owner_of(K2)
     assert asyncio.run(resolve_saved_vehicle(db, owner, vid)) == record
-    assert asyncio.run(resolve_saved_vehicle(db, owner, spec)) == {"spec": {"gross_kg": 40000}}
-    assert asyncio.run(resolve_fleet(db, owner, fid)) == [{"spec": {"gross_kg": 40000}}, BTRAIN, record]
+    assert asyncio.run(resolve_saved_vehicle(db, owner, spec)) == body
+    assert asyncio.run(resolve_fleet(db, owner, fid)) == [(spec, body), (BTRAIN, None), (vid, record)]
     for call in (
         resolve_saved_vehicle(db, other, vid),
         resolve_saved_vehicle(db, owner, "veh_" + "Z" * 22),

@@ -23,7 +23,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from .conftest import ROOT, free_port
+from .conftest import ROOT, a_spec, free_port
 
 KEY = "crash-key-" + "z" * 24
 KEY2 = "race-key-" + "y" * 24
@@ -99,7 +99,7 @@ class Writer:
 def _vehicle(writer: int, seq: int) -> dict:
     # alternate builder specs and full records, with content unique to (writer, seq)
     if seq % 2:
-        return {"spec": {"writer": writer, "seq": seq, "payload": "x" * (50 + seq % 200)}}
+        return a_spec(f"writer {writer} seq {seq}", payloads=1 + seq % 3)
     return {**RECORD, "cg_height_above_chassis_m": round(1.0 + writer / 100 + seq / 10000, 6)}
 
 
@@ -230,13 +230,11 @@ def _race(base: str, record: dict) -> None:
         assert final["version"] == 2 and final["title"].startswith("writer ")
 
         for i in range(LIMIT - 5):  # 1 + 15 saved: room for exactly 4 more
-            assert (
-                client.post("/v1/vehicles", json={"title": f"s{i}", "vehicle": {"spec": {"i": i}}}).status_code == 201
-            )
+            assert client.post("/v1/vehicles", json={"title": f"s{i}", "vehicle": a_spec(i)}).status_code == 201
 
         def create(i: int) -> int:
             with httpx.Client(base_url=base, headers=AUTH2, timeout=30) as c:
-                return c.post("/v1/vehicles", json={"title": f"n{i}", "vehicle": {"spec": {"n": i}}}).status_code
+                return c.post("/v1/vehicles", json={"title": f"n{i}", "vehicle": a_spec(i)}).status_code
 
         with ThreadPoolExecutor(10) as pool:
             created = sorted(pool.map(create, range(10)))

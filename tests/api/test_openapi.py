@@ -26,6 +26,11 @@ OPERATIONS = {
     ("post", "/v1/srt/sweep"): "srt-sweep",
     ("post", "/v1/curve-speed"): "road-curve_speed",
     ("post", "/v1/min-radius"): "road-min_radius",
+    ("post", "/v1/vehicles/build"): "builder-build_vehicle",
+    ("post", "/v1/vehicles/payload-table"): "builder-payload_table",
+    ("get", "/v1/components"): "builder-components",
+    ("get", "/v1/components/tyres"): "builder-tyres",
+    ("get", "/v1/components/suspensions"): "builder-suspensions",
     ("get", "/v1/design-standards"): "standards-list_design_standards",
     ("get", "/v1/design-standards/{id}"): "standards-get_design_standard",
     ("post", "/v1/superelevation"): "standards-superelevation",
@@ -33,6 +38,7 @@ OPERATIONS = {
     ("post", "/v1/alignments/assess"): "alignments-assess",
     ("post", "/v1/alignments/assess/csv"): "alignments-assess_csv",
     ("post", "/v1/alignments/assess/landxml"): "alignments-assess_landxml",
+    ("post", "/v1/routes/assess"): "routes-assess",
     ("post", "/v1/plots/tire-loads"): "plots-tire_loads",
     ("post", "/v1/plots/llt"): "plots-llt",
     ("post", "/v1/plots/roll"): "plots-roll",
@@ -90,7 +96,12 @@ def test_every_operation_declares_problem_details(method, path):
 LOOK_UP_NOTHING = {"catalog-create_vehicle", "standards-superelevation", "standards-superelevation_table"}
 
 #: computed operations without a vehicle -> the request model of their JSON body
-ROAD_ONLY = {"/v1/superelevation": "SuperelevationRequest", "/v1/superelevation/table": "SuperelevationTableRequest"}
+ROAD_ONLY = {
+    "/v1/superelevation": "SuperelevationRequest",
+    "/v1/superelevation/table": "SuperelevationTableRequest",
+    "/v1/vehicles/build": "BuildRequest",
+    "/v1/vehicles/payload-table": "PayloadTableRequest",
+}
 #: every computed operation with a vehicle (ETag, X-Cache) -> the request model of its JSON body
 COMPUTED = {
     "/v1/srt": "SrtRequest",
@@ -99,6 +110,7 @@ COMPUTED = {
     "/v1/srt/limits": "LimitsRequest",
     "/v1/srt/sweep": "SweepRequest",
     "/v1/alignments/assess": "AlignmentRequest",
+    "/v1/routes/assess": "RouteRequest",
     "/v1/plots/tire-loads": "PlotRequest",
     "/v1/plots/llt": "PlotRequest",
     "/v1/plots/roll": "PlotRequest",
@@ -114,6 +126,8 @@ TABLES = {
     "/v1/alignments/assess/csv",
     "/v1/alignments/assess/landxml",
     "/v1/superelevation/table",
+    "/v1/vehicles/payload-table",
+    "/v1/routes/assess",
 }
 
 

@@ -96,6 +96,9 @@ def test_superelevation_refusals_name_the_field(shared_client):
     assert p["errors"][0]["field"] == "design_speed_kmh" and "20-120 km/h" in p["detail"]
     p = post(shared_client, "/v1/superelevation", {**base, "max_superelevation_percent": 14}, 422).json()
     assert p["errors"][0]["field"] == "max_superelevation_percent"
+    # the distributions are published for e_max 4-12 % (Green Book, IPR-706): below, Method 5 is not defined
+    p = post(shared_client, "/v1/superelevation", {**base, "max_superelevation_percent": 1e-300}, 422).json()
+    assert p["errors"][0]["field"] == "max_superelevation_percent" and "4-12 %" in p["detail"]
     body = {"design_speed_kmh": 70, "max_superelevation_percent": 6, "radii_m": [500], "points": 3}
     p = post(shared_client, "/v1/superelevation/table", body, 422).json()
     assert p["errors"][0]["field"] == "points"

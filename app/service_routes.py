@@ -1,0 +1,320 @@
+"""Route assessment (POST /v1/routes/assess): geometry -> horizontal curves -> the alignment assessment.
+
+The document is read by :mod:`app.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
+feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
+(:func:`engine.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
+curves then go through the same assessment as an alignment's (:func:`app.service_alignments.solve_alignment`:
+superelevation given, from a feature property, or derived from the standard; grade from the elevations), so a curve
+gets the same answer whether it came from a table or from geometry. The answer is a GeoJSON FeatureCollection of the
+curves (a GIS reads it as it is), or CSV: one row per curve and vehicle.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import orjson
+from fastapi import Request
+from starlette.concurrency import run_in_threadpool
+
+from engine import ENGINE_VERSION
+from engine.errors import InvalidInput
+from engine.geodesy import local_frame
+from engine.geometry import HorizontalCurve, find_curves
+
+from .alignment_io import CurveTable
+from .cache import ResultCache
+from .problems import InvalidRoute, request_error
+from .route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
+from .schemas.alignments import MAX_ROWS, MAX_VEHICLES
+from .schemas.routes import RouteRequest, RouteResult
+from .service import Computed, SavedRef, cached, resolve_targets, resolve_vehicle
+from .service_alignments import AlignmentAnswer, AlignmentJob, _rows, _summary, csv_columns, solve_alignment
+from .settings import Settings
+from .tables import Text, flatten_targets, to_csv
+from .vehicle_refs import resolve_vehicle_refs
+
+#: the route's own columns in front of the alignment's in the CSV answer
+GEOMETRY_COLUMNS = (
+    "part",
+    "direction",
+    "start_m",
+    "end_m",
+    "length_m",
+    "deflection_deg",
+    "spiral_in_m",
+    "spiral_out_m",
+    "radius_std_m",
+    "compound",
+    "sparse",
+    "truncated",
+)
+
+
+@dataclass(frozen=True)
+class FoundCurve:
+    """A curve found on one part, with where it lies in the document."""
+
+    part: RoutePart
+    curve: HorizontalCurve
+    id: str
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """What was read and found: the parts, their curves and each part's noise estimate."""
+
+    parts: list[RoutePart]
+    curves: list[FoundCurve]
+    noise_m: list[float]
+    found_per_part: list[int]
+    length_m: list[float]  # along the road (the detection's chainage: vertex noise taken out)
+
+
+# ------------------------------------------------------------------------------------------ reading
+
+
+def read_route(req: RouteRequest) -> list[RoutePart]:
+    """The parts of the request's document; :class:`InvalidRoute` naming the part and vertex otherwise."""
+    source = "geojson" if req.geojson is not None else "gpx"
+    try:
+        return read_geojson(req.geojson) if source == "geojson" else read_gpx(req.gpx)
+    except RouteFormatError as exc:
+        reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
+        raise InvalidRoute(reason, source=source, location=exc.location, column=exc.field) from None
+
+
+def find_route_curves(req: RouteRequest, parts: list[RoutePart]) -> Geometry:
+    """Every part in its plane frame, through the curve detection."""
+    d = req.detection
+    curves: list[FoundCurve] = []
+    noise, found, length = [], [], []
+    for p in parts:
+        frame = local_frame(p.lon_deg, p.lat_deg, p.ele_m)
+        try:
+            rc = find_curves(
+                frame.x_m,
+                frame.y_m,
+                frame.z_m,
+                noise_m=d.noise_m,
+                max_radius_m=d.max_radius_m,
+                min_deflection_deg=d.min_deflection_deg,
+            )
+        except InvalidInput as exc:
+            raise InvalidRoute(str(exc), source="geojson" if req.geojson is not None else "gpx", location=p.location,
+                               column=None) from None  # fmt: skip
+        noise.append(rc.noise_m)
+        found.append(len(rc.curves))
+        length.append(rc.length_m)
+        curves += [FoundCurve(p, c, f"{p.source}-C{k + 1}") for k, c in enumerate(rc.curves)]
+    return Geometry(parts, curves, noise, found, length)
+
+
+def _property(part: RoutePart, name: str, default: float | None) -> float:
+    value = part.properties.get(name)
+    value = default if value is None else value
+    return math.nan if value is None else float(value)
+
+
+def curve_table(req: RouteRequest, geo: Geometry) -> CurveTable:
+    """The found curves as the alignment assessment's columns (superelevation and posted speed from the feature's
+    properties, else the request's defaults; nan: derive / none)."""
+    cs = geo.curves
+    e = np.array([_property(c.part, "superelevation_percent", req.superelevation_percent) for c in cs], dtype=float)
+    if np.any(np.isnan(e)) and req.max_superelevation_percent is None:
+        first = next(c for c, x in zip(cs, e, strict=True) if math.isnan(x))
+        raise request_error(
+            "superelevation_percent",
+            f"curve {first.id} has no superelevation: give superelevation_percent (for every curve), the feature "
+            "property superelevation_percent, or max_superelevation_percent (to derive it from the standard)",
+        )
+    return CurveTable(
+        ids=[c.id for c in cs],
+        radius_m=np.array([c.curve.radius_m for c in cs], dtype=float),
+        superelevation_percent=e,
+        grade_percent=np.array([c.curve.grade_percent or 0.0 for c in cs], dtype=float),
+        posted_speed_kmh=np.array([_property(c.part, "posted_speed_kmh", req.posted_speed_kmh) for c in cs]),
+        station_m=np.array([c.curve.start_m for c in cs], dtype=float),
+    )
+
+
+def _document_digest(req: RouteRequest) -> str:
+    doc = orjson.dumps(req.geojson, option=orjson.OPT_SORT_KEYS) if req.geojson is not None else req.gpx.encode()
+    return hashlib.sha256(doc).hexdigest()
+
+
+def _resolved(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
+    vehicles = [resolve_vehicle(r) for r in refs]
+    return {
+        "vehicles": [v.to_dict() for v in vehicles],
+        "presets": [r if isinstance(r, str) else None for r in refs],
+        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
+        "model": req.model,
+        "stage": req.stage,
+        "trailer_angle_deg": req.trailer_angle_deg,
+        "load": req.load.model_dump(),
+        "rear_llt_limit": req.rear_llt_limit,
+        "design_standard": req.design_standard,
+        "side_friction_bound": req.bound,
+        "max_superelevation_percent": req.max_superelevation_percent,
+        "targets": resolve_targets(req.targets, settings),
+        "route": {
+            "format": "geojson" if req.geojson is not None else "gpx",
+            "sha256": _document_digest(req),
+            "superelevation_percent": req.superelevation_percent,
+            "posted_speed_kmh": req.posted_speed_kmh,
+            "detection": req.detection.model_dump(),
+        },
+    }
+
+
+# ---------------------------------------------------------------------------------------- rendering
+
+
+def _coordinates(c: FoundCurve) -> list[list[float]]:
+    p = c.part
+    sl = slice(c.curve.start_index, c.curve.end_index + 1)
+    lon, lat = p.lon_deg[sl].tolist(), p.lat_deg[sl].tolist()
+    if p.ele_m is None:
+        return [[a, b] for a, b in zip(lon, lat, strict=True)]
+    ele = p.ele_m[sl].tolist()
+    return [[a, b] if math.isnan(z) else [a, b, z] for a, b, z in zip(lon, lat, ele, strict=True)]
+
+
+def _geometry_fields(c: FoundCurve) -> dict[str, Any]:
+    h = c.curve
+    vi = c.part.vertex_index
+    return {
+        "part": c.part.source,
+        "name": c.part.properties.get("name"),
+        "direction": h.direction,
+        "radius_m": h.radius_m,
+        "radius_std_m": h.radius_std_m,
+        "start_m": h.start_m,
+        "end_m": h.end_m,
+        "arc_start_m": h.arc_start_m,
+        "arc_end_m": h.arc_end_m,
+        "length_m": h.length_m,
+        "deflection_deg": h.deflection_deg,
+        "spiral_in_m": h.spiral_in_m,
+        "spiral_out_m": h.spiral_out_m,
+        "grade_percent": h.grade_percent,
+        "compound": h.compound,
+        "sparse": h.sparse,
+        "truncated": h.truncated,
+        "vertices": [int(vi[h.start_index]), int(vi[h.end_index])],
+    }
+
+
+def _governing(rows: list[dict[str, Any]]) -> int:
+    """The vehicle with the lowest safe speed on a curve (a refused case first: it has no safe speed)."""
+    speeds = [math.inf if r["safe_speed_kmh"] is None else r["safe_speed_kmh"] for r in rows]
+    refused = [k for k, r in enumerate(rows) if r["error"] is not None]
+    return refused[0] if refused else int(np.argmin(speeds))
+
+
+def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> bytes:
+    n = len(geo.curves)
+    per_vehicle = [_rows(answer, v, 0, n) for v in answer.vehicles]
+    features = []
+    for i, c in enumerate(geo.curves):
+        rows = [pv[i] for pv in per_vehicle]
+        g = _governing(rows)
+        props = {
+            "id": c.id,
+            **_geometry_fields(c),
+            "governing_vehicle": g,
+            "assessment": rows[g],
+            "vehicles": rows if len(rows) > 1 else None,
+        }
+        features.append({"type": "Feature", "geometry": {"type": "LineString", "coordinates": _coordinates(c)},
+                         "properties": props})  # fmt: skip
+    r = answer.resolved
+    out = {
+        "model": r["model"],
+        "stage": r["stage"] if r["model"] == "3d" else None,
+        "design_standard": r["design_standard"],
+        "length_m": float(sum(geo.length_m)),
+        "parts": [
+            {
+                "part": p.source,
+                "name": p.properties.get("name"),
+                "vertices": int(p.lon_deg.size),
+                "length_m": length,
+                "curves": k,
+                "noise_m": s,
+                "has_elevation": p.ele_m is not None,
+            }
+            for p, k, s, length in zip(geo.parts, geo.found_per_part, geo.noise_m, geo.length_m, strict=True)
+        ],
+        "vehicles": [
+            {
+                "index": v.index,
+                "preset": v.preset,
+                "saved_vehicle_id": v.saved_id,
+                "summary": _summary(v.columns),
+                "rows": [],
+            }
+            for v in answer.vehicles
+        ],
+        "curves": {"type": "FeatureCollection", "features": features},
+        "engine_version": ENGINE_VERSION,
+    }
+    return RouteResult.model_validate(out).model_dump_json().encode()  # the contract checked on the way out
+
+
+def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
+    """One row per vehicle and curve: the vehicle, the curve's geometry, then the alignment's columns."""
+    n = len(geo.curves)
+    base = csv_columns(answer.resolved)
+    columns = [*base[:3], *GEOMETRY_COLUMNS, *base[3:]]
+    rows = []
+    for v in answer.vehicles:
+        preset = None if v.preset is None else Text(v.preset)
+        saved = None if v.saved_id is None else Text(v.saved_id)
+        for c, row in zip(geo.curves, _rows(answer, v, 0, n), strict=True):
+            fields = {k: x for k, x in _geometry_fields(c).items() if k in GEOMETRY_COLUMNS}
+            fields["part"] = Text(fields["part"])
+            rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **fields,
+                         **flatten_targets(row)})  # fmt: skip
+    return to_csv(columns, rows)
+
+
+# ---------------------------------------------------------------------------------------- computing
+
+
+def _assess(req: RouteRequest, refs: list[Any], settings: Settings, csv: bool) -> tuple[dict[str, Any], bytes]:
+    """Read, find, assess and render (blocking: called in a worker thread)."""
+    parts = read_route(req)
+    geo = find_route_curves(req, parts)
+    resolved = _resolved(req, refs, settings)
+    if len(geo.curves) * len(refs) > MAX_ROWS:
+        raise request_error("vehicles", f"{len(geo.curves)} curves x {len(refs)} vehicles; at most {MAX_ROWS} rows")
+    table = curve_table(req, geo)
+    source = "geojson" if req.geojson is not None else "gpx"
+    job = AlignmentJob(resolved, [resolve_vehicle(r) for r in refs], table, source)
+    answer = solve_alignment(job)
+    return resolved, route_csv(geo, answer) if csv else route_json(req, geo, answer)
+
+
+async def assess_route(
+    cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, csv: bool
+) -> Computed:
+    fleet = req.fleet
+    req = await resolve_vehicle_refs(request, req, settings)
+    refs = [req.vehicle] if req.vehicle is not None else list(req.vehicles)
+    if fleet is not None and len(refs) > MAX_VEHICLES:
+        raise request_error("fleet", f"fleet {fleet} has {len(refs)} vehicles; a route takes at most {MAX_VEHICLES}")
+    key_parts = await run_in_threadpool(_resolved, req, refs, settings)  # the key: the request, resolved
+    operation = "route-csv" if csv else "route"
+    media = "text/csv; charset=utf-8" if csv else "application/json"
+
+    async def produce() -> bytes:
+        _, body = await run_in_threadpool(_assess, req, refs, settings, csv)
+        return body
+
+    return await cached(cache, operation, key_parts, produce, media)

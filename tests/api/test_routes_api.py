@@ -1,0 +1,153 @@
+"""POST /v1/routes/assess on synthetic routes laid out exactly (tests/synthetic_routes.py: tangents, clothoids and
+arcs put on the WGS84 ellipsoid with GeographicLib's geodesic direct problem), with GPS-like noise.
+
+Expected numbers are the designed radii, chainages and grades of the synthetic route, and the alignment endpoint's
+own answer for the same curve (a curve gets the same assessment from geometry as from a table).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+
+import numpy as np
+import pytest
+
+from tests.synthetic_routes import Arc, Tangent, curve_spans, layout, spiral_curve, to_lonlat
+
+PATH = "/v1/routes/assess"
+BTRAIN = "table16-btrain"
+# 4 km: a 250 m left curve with 60 m spirals and a 600 m right curve, between tangents. The arcs are long enough
+# for 5 % with 3 m of noise at 10 m spacing: a circle fit over an arc of length L with n vertices has a curvature
+# standard error of about 2 sigma sqrt(180 / n) / L^2 (least squares of the middle ordinate), 4.8 % of 1/600 m for a
+# 400 m arc but 0.9 % for 800 m
+ELEMENTS = [
+    Tangent(800.0),
+    *spiral_curve(250.0, 300.0, 60.0, "left"),
+    Tangent(700.0),
+    Arc(600.0, 800.0, "right"),
+    Tangent(1300.0),
+]
+GRADE = 0.03  # a steady 3 % climb in the direction of travel
+
+
+def route(lat0: float, noise_m: float = 0.0, spacing_m: float = 10.0, seed: int = 1) -> list[list[float]]:
+    x, y, s = layout(ELEMENTS, spacing_m)
+    rng = np.random.default_rng(seed)
+    x, y = x + rng.normal(0, noise_m, x.size), y + rng.normal(0, noise_m, y.size)
+    lon, lat = to_lonlat(x, y, lat0)
+    z = 300.0 + GRADE * s
+    return [[float(a), float(b), float(c)] for a, b, c in zip(lon, lat, z, strict=True)]
+
+
+def feature_collection(coords, **props) -> dict:
+    geometry = {"type": "LineString", "coordinates": coords}
+    return {"type": "FeatureCollection", "features": [{"type": "Feature", "properties": props, "geometry": geometry}]}
+
+
+def gpx(coords) -> str:
+    points = "".join(f'<trkpt lat="{la!r}" lon="{lo!r}"><ele>{z!r}</ele></trkpt>' for lo, la, z in coords)
+    return f'<gpx version="1.1" xmlns="http://www.topografix.com/GPX/1/1"><trk><name>R</name><trkseg>{points}</trkseg></trk></gpx>'
+
+
+def post(client, body, status=200, **headers):
+    r = client.post(PATH, json=body, headers=headers)
+    assert r.status_code == status, r.text
+    return r
+
+
+@pytest.mark.parametrize(("lat0", "noise", "tolerance"), [(45.0, 0.0, 0.01), (-35.0, 2.5, 0.05), (60.0, 3.0, 0.05)])
+def test_curves_found_with_their_radius_chainage_direction_and_grade(shared_client, lat0, noise, tolerance):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(lat0, noise)), "superelevation_percent": 6.0}
+    out = post(shared_client, body).json()
+    curves = [f["properties"] for f in out["curves"]["features"]]
+    assert [c["direction"] for c in curves] == ["left", "right"]  # no phantom curve on the tangents
+    for c, radius, (start, end) in zip(curves, (250.0, 600.0), curve_spans(ELEMENTS), strict=True):
+        assert c["radius_m"] == pytest.approx(radius, rel=tolerance)
+        assert c["grade_percent"] == pytest.approx(100 * GRADE, abs=0.3)
+        assert c["start_m"] == pytest.approx(start, abs=60) and c["end_m"] == pytest.approx(end, abs=60)
+    assert out["length_m"] == pytest.approx(sum(e.length_m for e in ELEMENTS), rel=0.01)
+    # each curve's geometry is the route's own vertices over the curve
+    first = out["curves"]["features"][0]
+    assert first["geometry"]["type"] == "LineString" and len(first["geometry"]["coordinates"]) >= 3
+
+
+def test_the_assessment_is_the_alignments(shared_client):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(45.0)), "superelevation_percent": 6.0,
+            "posted_speed_kmh": 80.0, "rear_llt_limit": 0.6}  # fmt: skip
+    curves = [f["properties"] for f in post(shared_client, body).json()["curves"]["features"]]
+    table = [
+        {"id": c["id"], "radius_m": c["radius_m"], "superelevation_percent": 6.0, "grade_percent": c["grade_percent"],
+         "posted_speed_kmh": 80.0}
+        for c in curves
+    ]  # fmt: skip
+    rows = shared_client.post(
+        "/v1/alignments/assess", json={"vehicle": BTRAIN, "curves": table, "rear_llt_limit": 0.6}
+    ).json()["vehicles"][0]["rows"]
+    for c, row in zip(curves, rows, strict=True):
+        got = c["assessment"]
+        for k in ("srt_g", "safe_speed_kmh", "rollover_speed_kmh", "side_friction_speed_kmh", "margin_kmh", "flagged"):
+            assert got[k] == row[k], k
+    assert curves[0]["assessment"]["flagged"]  # 250 m at 6 %: the B-train's safe speed is below 80 km/h
+
+
+def test_gpx_and_geojson_give_the_same_curves(shared_client):
+    coords = route(-35.0, 2.0)
+    a = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords), "superelevation_percent": 4})
+    b = post(shared_client, {"vehicle": BTRAIN, "gpx": gpx(coords), "superelevation_percent": 4})
+    fa, fb = (r.json()["curves"]["features"] for r in (a, b))
+    assert [f["properties"]["radius_m"] for f in fa] == [f["properties"]["radius_m"] for f in fb]
+    assert [f["properties"]["assessment"] | {"id": None} for f in fa] == [
+        f["properties"]["assessment"] | {"id": None} for f in fb
+    ]
+
+
+def test_superelevation_from_the_feature_the_request_or_the_standard(shared_client):
+    coords = route(45.0)
+    p = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords)}, 422).json()
+    assert p["errors"][0]["field"] == "superelevation_percent" and "max_superelevation_percent" in p["detail"]
+    derived = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords, posted_speed_kmh=70),
+                                   "max_superelevation_percent": 8})  # fmt: skip
+    rows = [f["properties"]["assessment"] for f in derived.json()["curves"]["features"]]
+    assert all(r["superelevation_source"] == "derived" for r in rows)
+    e = [r["superelevation_percent"] for r in rows]
+    assert e[0] > e[1] > 0  # the sharper curve gets more superelevation (AASHTO Method 5)
+    given = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords, superelevation_percent=5),
+                                 "superelevation_percent": 2, "max_superelevation_percent": 8})  # fmt: skip
+    assert {f["properties"]["assessment"]["superelevation_percent"] for f in given.json()["curves"]["features"]} == {5}
+
+
+def test_several_vehicles_and_csv(shared_client):
+    body = {"vehicles": [BTRAIN, "table23-semitrailer"], "geojson": feature_collection(route(45.0)),
+            "superelevation_percent": 6}  # fmt: skip
+    out = post(shared_client, body).json()
+    for f in out["curves"]["features"]:
+        p = f["properties"]
+        speeds = [v["safe_speed_kmh"] for v in p["vehicles"]]
+        assert (
+            p["assessment"] == p["vehicles"][p["governing_vehicle"]] and min(speeds) == speeds[p["governing_vehicle"]]
+        )
+    text = post(shared_client, body, accept="text/csv").text
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert len(rows) == 2 * len(out["curves"]["features"])
+    assert {r["vehicle_preset"] for r in rows} == {BTRAIN, "table23-semitrailer"} and rows[0]["direction"] == "left"
+
+
+@pytest.mark.parametrize(
+    ("coords", "field", "words"),
+    [
+        ([[10.0, 45.0]], "geojson.features.0.geometry.coordinates", "at least 2"),
+        ([[10.0, 45.0], [10.001, 45.0], [45.0, 100.0]], "geojson.features.0.geometry.coordinates.2", "latitude"),
+        ([[10.0, 45.0], [10.001, 45.0], [10.5, 45.0]], "geojson.features.0.geometry.coordinates.2", "jumps"),
+    ],
+)
+def test_bad_geometry_names_the_feature_and_the_vertex(shared_client, coords, field, words):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(coords), "superelevation_percent": 6}
+    p = post(shared_client, body, 422).json()
+    assert p["type"].endswith("invalid-route") and p["errors"][0]["field"] == field and words in p["detail"]
+
+
+def test_bad_gpx_names_the_point(shared_client):
+    text = gpx(route(45.0)[:5]).replace('lat="', 'lat="9', 1)  # the first point's latitude becomes 9xx
+    p = post(shared_client, {"vehicle": BTRAIN, "gpx": text, "superelevation_percent": 6}, 422).json()
+    assert p["errors"][0]["field"] == "gpx" and "trkpt[1]" in p["errors"][0]["location"]

@@ -1047,7 +1047,7 @@ def _check_ratings(
             if per_tyre > g.tyre_rated_load_kg:
                 raise InvalidVehicle(
                     f"each {key} tyre carries {per_tyre:.0f} kg at rest (from {what}), above "
-                    f"{g.path}.tyre.rated_load_kg = {g.tyre_rated_load_kg:g} kg",
+                    f"the tyre rating of {g.tyre_rated_load_kg:g} kg ({g.path}.tyre)",
                     field=blame,
                     value=per_tyre,
                 )

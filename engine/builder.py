@@ -45,7 +45,14 @@ from scipy.optimize import brentq
 
 from .bracket import bracketed_limit
 from .case import Case
-from .components import Sourced, get_suspension, get_tyre, parse_tyre_size, spring_rate_from_roll_stiffness
+from .components import (
+    Sourced,
+    get_suspension,
+    get_tyre,
+    parse_tyre_size,
+    rated_load_from_load_index_kg,
+    spring_rate_from_roll_stiffness,
+)
 from .errors import InvalidInput, InvalidVehicle, RolloverError
 from .loads import LoadCase, Road
 from .models import get_model
@@ -83,6 +90,8 @@ class TyreSpec:
     stiffness_kn_per_m : kT, vertical (radial) stiffness of one tyre [kN/m]
     section_width_m : section width of one tyre [m] (else read from ``size``)
     rated_load_kg : the load one tyre may carry in this fitment (single or dual) [kg]
+    load_index : or the sidewall load indices, ``"152/148"`` (single/dual) or ``"160"`` (single only): the rated
+        load of this fitment from the ISO load-index table (:func:`engine.components.rated_load_from_load_index_kg`)
     """
 
     id: str | None = None
@@ -91,6 +100,7 @@ class TyreSpec:
     stiffness_kn_per_m: float | None = None
     section_width_m: float | None = None
     rated_load_kg: float | None = None
+    load_index: str | None = None
 
 
 @dataclass(frozen=True)
@@ -422,7 +432,9 @@ def _pick(explicit: object, library: Sourced | None, path: str, lib_path: str, n
     return None
 
 
-def _resolve_tyre(spec: TyreSpec, path: str) -> tuple[_Value | None, _Value | None, float | None, float | None]:
+def _resolve_tyre(
+    spec: TyreSpec, path: str, tyres_per_axle: int
+) -> tuple[_Value | None, _Value | None, float | None, float | None]:
     entry = get_tyre(spec.id, field=f"{path}.id") if spec.id is not None else None
     lib_path = f"{path}.id"
     lr = _pick(spec.loaded_radius_m, entry and entry.loaded_radius_m, f"{path}.loaded_radius_m", lib_path, "lr")
@@ -438,6 +450,14 @@ def _resolve_tyre(spec: TyreSpec, path: str) -> tuple[_Value | None, _Value | No
     if lr is not None and size is not None:
         _check_loaded_radius(lr.value, size, lr.path)
     rated = spec.rated_load_kg
+    if spec.load_index is not None:
+        if rated is not None:
+            raise InvalidVehicle(
+                f"give either {path}.rated_load_kg or {path}.load_index, not both",
+                field=f"{path}.load_index",
+                value=spec.load_index,
+            )
+        rated = rated_load_from_load_index_kg(spec.load_index, tyres_per_axle, field=f"{path}.load_index")
     if rated is None and entry is not None and entry.rated_load_kg is not None:
         rated = entry.rated_load_kg.value
     rated = _number(rated, f"{path}.rated_load_kg") if rated is not None else None
@@ -498,8 +518,9 @@ def _resolve_group(spec: AxleGroupSpec, path: str) -> _Group:
         raise InvalidVehicle(f"{path} must be an axle group", field=path, value=spec)
     lr = kt = kls = ls = b = None
     width = tyre_rated = None
+    tyres_per_axle = _count(spec.tyres_per_axle, f"{path}.tyres_per_axle", (2, 4))
     if spec.tyre is not None:
-        lr, kt, width, tyre_rated = _resolve_tyre(spec.tyre, f"{path}.tyre")
+        lr, kt, width, tyre_rated = _resolve_tyre(spec.tyre, f"{path}.tyre", tyres_per_axle)
     if spec.suspension is not None:
         kls, ls, b = _resolve_suspension(spec.suspension, f"{path}.suspension")
     if spec.axle_spacing_m is not None:
@@ -508,7 +529,7 @@ def _resolve_group(spec: AxleGroupSpec, path: str) -> _Group:
     return _Group(
         path=path,
         axles=_count(spec.axles, f"{path}.axles"),
-        tyres_per_axle=_count(spec.tyres_per_axle, f"{path}.tyres_per_axle", (2, 4)),
+        tyres_per_axle=tyres_per_axle,
         track_m=_number(spec.track_m, f"{path}.track_m"),
         lr=lr,
         kt=kt,
@@ -1039,7 +1060,7 @@ def _check_ratings(
             if per_tyre > g.tyre_rated_load_kg:
                 raise InvalidVehicle(
                     f"each {key} tyre carries {per_tyre:.0f} kg at rest (from {what}), above "
-                    f"{g.path}.tyre.rated_load_kg = {g.tyre_rated_load_kg:g} kg",
+                    f"the tyre rating of {g.tyre_rated_load_kg:g} kg ({g.path}.tyre)",
                     field=blame,
                     value=per_tyre,
                 )

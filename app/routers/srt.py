@@ -12,6 +12,7 @@ from ..schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
 from ..service import compute_srt
 from ..service_tools import compute_limits, compute_sweep
 from ..tables import wants_csv
+from .alignments import answer as table_answer
 from .common import computed_response, computed_responses, json_response, table_responses
 
 router = APIRouter(prefix="/v1", tags=["srt"])
@@ -48,4 +49,4 @@ async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings:
     overweight, rear LLT limit; at most 20,000 cases), like the thesis's Tables 17 and 19, in one call; JSON, or
     CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
     csv = wants_csv(request.headers.get("accept"))
-    return computed_response(await compute_sweep(cache, body, settings, csv=csv), vary_accept=True)
+    return table_answer(await compute_sweep(cache, request, body, settings, csv=csv))

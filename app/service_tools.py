@@ -205,13 +205,15 @@ def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
 def _sweep_rows(answer: SweepAnswer, start: int, stop: int) -> list[dict[str, Any]]:
     """Rows [start, stop) as SweepRow dicts in the schema's field order (the swept axes only, then the results); the
     target checks as :func:`app.service.target_checks` makes them (SRT >= target, SRT - target), on arrays."""
-    r, names = answer.result, [name for name, _ in answer.targets]
+    r = answer.result
     goals = np.array([goal for _, goal in answer.targets], dtype=float)
     srt, values = r.srt[start:stop], r.values[start:stop]
     meets, margins = (srt[:, None] >= goals).tolist(), (srt[:, None] - goals).tolist()
-    checks = [(n, g) for n, g in zip(names, goals.tolist(), strict=True)]
     targets = [
-        [{"name": n, "target_g": g, "meets": m, "margin_g": d} for (n, g), m, d in zip(checks, ms, ds, strict=True)]
+        [
+            {"name": n, "target_g": g, "meets": m, "margin_g": d}
+            for (n, g), m, d in zip(answer.targets, ms, ds, strict=True)
+        ]
         for ms, ds in zip(meets, margins, strict=True)
     ]
     columns: dict[str, list[Any]] = {axis: values[:, k].tolist() for k, axis in enumerate(r.axes)}

@@ -23,13 +23,14 @@ from .fastpath import FastPathMiddleware
 from .logs import configure_logging, get_logger
 from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
-from .routers import alignments, catalog, health, models, plots, road, srt, vehicles
+from .routers import alignments, catalog, health, models, plots, road, srt, standards, vehicles
 from .routers.common import READ_BY_ROUTE
 from .settings import Settings, get_settings
 
 DESCRIPTION = """\
 Static rollover threshold (SRT) of heavy vehicles and the curve design that follows from it: the maximum speed on
-a curve (Eq. 9.1) and the minimum radius for a design speed (Eqs. 9.2-9.3, Table 21).
+a curve (Eq. 9.1) and the minimum radius for a design speed (Eqs. 9.2-9.3) to a named design standard (AASHTO
+2018 by default, DNIT 1999, or the thesis's Table 21).
 
 Units are SI except road practice: speeds in km/h, superelevation and grade in %, SRT in g. Every field names its
 unit and its thesis symbol. Errors are RFC 9457 problem details (`application/problem+json`). Computed responses
@@ -46,10 +47,15 @@ TAGS = [
     {"name": "srt", "description": "Static rollover threshold with the 3D, 2D or a closed-form model."},
     {"name": "road", "description": "Curve design: maximum speed (Eq. 9.1) and minimum radius (Eqs. 9.2-9.3)."},
     {
+        "name": "standards",
+        "description": "Road-design standards (AASHTO 2018, DNIT 1999, the thesis's Table 21): their side-friction "
+        "tables and minimum radii with citations, and the superelevation distribution (AASHTO Method 5, DNIT).",
+    },
+    {
         "name": "alignments",
         "description": "Batch assessment of a road alignment's horizontal curves (JSON, CSV or LandXML 1.2, in a "
         "JSON request or uploaded as they are): safe speed against rollover (Eq. 9.1) and side friction "
-        "(Table 21), margin against the posted speed.",
+        "(the design standard's f_max), margin against the posted speed.",
     },
     {
         "name": "plots",
@@ -145,7 +151,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_problem_handlers(app)
     install_catalog_handlers(app)
     # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
-    for module in (catalog, vehicles, srt, road, alignments, plots, models, health):
+    for module in (catalog, vehicles, srt, road, standards, alignments, plots, models, health):
         app.include_router(module.router)
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         Instrumentator(excluded_handlers=["/metrics"]).instrument(app)

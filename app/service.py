@@ -16,12 +16,12 @@ from typing import Any
 
 from starlette.concurrency import run_in_threadpool
 
-from engine import ENGINE_VERSION
+from engine import ENGINE_VERSION, standards
 from engine.assessment import check_targets, tilt_table_angle_deg
 from engine.case import Case
 from engine.loads import LoadCase, Road
 from engine.results import RolloverResult
-from engine.road import max_curve_speed_kmh, min_radius, side_friction_factor
+from engine.road import max_curve_speed_kmh, min_radius
 from engine.threshold import rollover_threshold
 from engine.vehicles import Vehicle, get_preset
 
@@ -217,13 +217,14 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
     targets = resolve_targets(req.targets, settings)
     road = Road(bank_percent=req.superelevation_percent, slope_percent=req.road.slope_percent)
     case = resolve_case(req, road=road) if req.srt is None else None
-    if req.side_friction is None:  # refuse a speed Table 21 does not cover before solving for the SRT
-        side_friction_factor(req.design_speed_kmh, req.side_friction_bound)
+    if req.side_friction is None:  # refuse a speed outside the standard's range before solving for the SRT
+        standards.side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
     resolved = {
         "design_speed_kmh": req.design_speed_kmh,
         "superelevation_percent": req.superelevation_percent,
         "side_friction": req.side_friction,
-        "side_friction_bound": None if req.side_friction is not None else req.side_friction_bound,
+        "design_standard": req.design_standard,
+        "side_friction_bound": req.bound,
         "srt": req.srt,
         "srt_request": None if case is None else srt_key(case, targets),
     }
@@ -235,15 +236,18 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
             req.superelevation_percent,
             srt,
             side_friction=req.side_friction,
-            bound=req.side_friction_bound,
+            design_standard=req.design_standard,
+            bound=req.bound,
         )
         out = MinRadiusResult(
-            aashto_min_radius_m=r.aashto_min_radius_m,
+            side_friction_min_radius_m=r.side_friction_min_radius_m,
+            aashto_min_radius_m=r.side_friction_min_radius_m,
             rollover_min_radius_m=r.rollover_min_radius_m,
             governing_min_radius_m=r.governing_min_radius_m,
             governed_by=r.governed_by,
             side_friction=r.side_friction,
-            side_friction_source="given" if req.side_friction is not None else f"table21-{req.side_friction_bound}",
+            side_friction_source=r.side_friction_source,
+            design_standard=r.design_standard,
             design_speed_kmh=req.design_speed_kmh,
             superelevation_percent=req.superelevation_percent,
             srt=srt,

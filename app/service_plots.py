@@ -15,7 +15,8 @@ import numpy as np
 from engine.case import Case
 from engine.loads import Road
 from engine.results import RolloverResult
-from engine.road import TABLE21_SPEEDS_KMH, aashto_min_radius_m, rollover_min_radius_m, side_friction_factor
+from engine.road import rollover_min_radius_m, side_friction_min_radius_m
+from engine.standards import DesignStandard, get_standard, side_friction_factor
 
 from .cache import ResultCache
 from .schemas.plots import MinRadiusPlotRequest, PlotRequest
@@ -24,7 +25,7 @@ from .settings import Settings
 from .svg import Marker, Panel, Series, line_chart
 
 SVG_MEDIA_TYPE = "image/svg+xml"
-SVG_VERSION = 1
+SVG_VERSION = 2  # 2: the caption names the design standard
 AY = "lateral acceleration ay/g [-]"
 SERIES_92 = "Eq. 9.2 (side friction)"
 SERIES_93 = "Eq. 9.3 (rollover)"
@@ -156,13 +157,14 @@ async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, 
 # ------------------------------------------------------------------------------------ min radius
 
 
-def crossing_speed(speeds: np.ndarray, e: float, srt: float, bound: str) -> float | None:
+def crossing_speed(speeds: np.ndarray, e: float, srt: float, std: DesignStandard) -> float | None:
     """The design speed where Eq. 9.2 and Eq. 9.3 give the same radius, 0.01 e + f(V) = SRT, if it lies in the
-    plotted range. f is linear between Table 21's speeds, so the root is found exactly on those segments."""
+    plotted range. f is linear between the standard's tabulated speeds, so the root is found exactly on those
+    segments."""
     lo, hi = float(speeds[0]), float(speeds[-1])
-    inner = [v for v in TABLE21_SPEEDS_KMH if lo < v < hi]
+    inner = [v for v in std.speeds_kmh if lo < v < hi]
     nodes = np.array([lo, *inner, hi])
-    g = 0.01 * e + np.asarray(side_friction_factor(nodes, bound)) - srt
+    g = 0.01 * e + np.asarray(side_friction_factor(std, nodes)) - srt
     for a, b, ga, gb in zip(nodes[:-1], nodes[1:], g[:-1], g[1:], strict=True):
         if ga == 0:
             return float(a)
@@ -171,14 +173,21 @@ def crossing_speed(speeds: np.ndarray, e: float, srt: float, bound: str) -> floa
     return float(nodes[-1]) if g[-1] == 0 else None
 
 
+def _friction_text(std: DesignStandard) -> str:
+    if std.bound:
+        return f"f from the thesis's Table 21 ({std.bound} bound)"
+    return f"f = f_max of {std.title}, {std.table}"
+
+
 def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, label: str) -> str:
-    v = np.linspace(req.speed_min_kmh, req.speed_max_kmh, req.points)
-    f = np.asarray(side_friction_factor(v, req.side_friction_bound), dtype=float)
+    std = get_standard(req.design_standard, req.bound)
+    v = np.linspace(*req.speeds)
+    f = np.asarray(side_friction_factor(std, v), dtype=float)
     e, s = req.superelevation_percent, r.srt
-    r92 = aashto_min_radius_m(v, e, f)  # Eq. 9.2
+    r92 = side_friction_min_radius_m(v, e, f)  # Eq. 9.2
     r93 = rollover_min_radius_m(v, s)  # Eq. 9.3
     markers = []
-    cross = crossing_speed(v, e, s, req.side_friction_bound)
+    cross = crossing_speed(v, e, s, std)
     if cross is not None:
         side = "above" if r93[-1] > r92[-1] else "below"
         markers.append(Marker(cross, f"Eq. 9.3 governs {side} {cross:.1f} km/h"))
@@ -191,10 +200,9 @@ def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, 
         markers,
     )
     caption = (
-        f"Eq. 9.2 (AASHTO/DNIT, side friction): Rmin = V^2 / (127 (0.01 e + f)), f from Table 21 "
-        f"({req.side_friction_bound} bound); Eq. 9.3 (rollover): Rmin = V^2 / (127 SRT) with SRT = {s:.3f} g, the SRT "
-        f"of {label} on that bank and slope ({_conditions(r, case)}); the larger radius governs (thesis Figs. "
-        "108-114)."
+        f"Eq. 9.2 (side friction): Rmin = V^2 / (127 (0.01 e + f)), {_friction_text(std)}; Eq. 9.3 (rollover): "
+        f"Rmin = V^2 / (127 SRT) with SRT = {s:.3f} g, the SRT of {label} on that bank and slope "
+        f"({_conditions(r, case)}); the larger radius governs (thesis Figs. 108-114)."
     )
     return line_chart(
         f"Minimum radius against design speed, e = {e:g} %: {label}", "design speed V [km/h]", [panel], caption
@@ -207,8 +215,9 @@ async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, setting
     label = _label(req)
     resolved = {
         "srt_request": srt_key(case, settings.default_targets()),
-        "speeds_kmh": [req.speed_min_kmh, req.speed_max_kmh, req.points],
-        "side_friction_bound": req.side_friction_bound,
+        "speeds_kmh": list(req.speeds),
+        "design_standard": req.design_standard,
+        "side_friction_bound": req.bound,
         "label": label,
         "svg_version": SVG_VERSION,
     }

@@ -343,7 +343,7 @@ def assess_alignment(
     grade_percent,
     posted_speed_kmh,
     *,
-    design_standard: str = "aashto-2018",
+    design_standard: str = standards.DEFAULT_DESIGN_STANDARD,
     side_friction_bound: str | None = None,
     max_superelevation_percent: float | None = None,
 ) -> AlignmentColumns:
@@ -433,14 +433,13 @@ def assess_curves(
     case: Case,
     curves: Sequence[Curve],
     *,
-    design_standard: str = "thesis-table21",
-    friction_bound: str = "low",
+    design_standard: str = standards.DEFAULT_DESIGN_STANDARD,
+    side_friction_bound: str | None = None,
     max_superelevation_percent: float | None = None,
 ) -> AlignmentAssessment:
     """:func:`assess_alignment` for a list of :class:`Curve` (one :class:`CurveAssessment` each).
 
-    ``design_standard`` defaults to the thesis's Table 21 here (at ``friction_bound``), as this function always
-    used; the HTTP service's default is its own.
+    ``side_friction_bound`` is the Table 21 bound (``thesis-table21`` only; ``low`` when not given).
     """
     if not curves:
         raise InvalidInput("no curves to assess", field="curves")
@@ -452,7 +451,7 @@ def assess_curves(
         [c.grade_percent for c in curves],
         [nan if c.posted_speed_kmh is None else c.posted_speed_kmh for c in curves],
         design_standard=design_standard,
-        side_friction_bound=friction_bound if design_standard == "thesis-table21" else None,
+        side_friction_bound=side_friction_bound,
         max_superelevation_percent=max_superelevation_percent,
     )
     out = []

@@ -3,20 +3,20 @@
 Units follow road practice: speeds in km/h, radii in m, superelevation in %, SRT in g. The constant 127
 is 3.6^2 * g = 12.96 * 9.81 (km/h to m/s, and g).
 
-Side-friction factor (Table 21)
--------------------------------
-Table 21 (AASHTO 2003, DNER 1999, DNIT 2009) gives a *range* of design side-friction factors per design
-speed. We take the **low end** by default: it is the conservative choice for a minimum radius (smaller f,
-larger radius). It is not AASHTO's maximum side-friction factor for design: the current Green Book (2018,
-Table 3-7) gives 0.19/0.17/0.15 at 50/60/70 km/h where the low end reads 0.16/0.15/0.14 (the named
-standards, with their sources, are in :mod:`engine.standards`).
-``bound="high"`` or ``"mid"`` select the upper end or the middle of the range. Between tabulated speeds
-the factor is interpolated linearly in speed; outside 30-120 km/h the table says nothing and the caller
-must give ``side_friction`` explicitly (:class:`InvalidRoad` otherwise).
+Side friction
+-------------
+Eq. 9.2 needs a design side-friction factor f. :func:`min_radius` reads it from a named design standard
+(:mod:`engine.standards`: ``aashto-2018``, the default, ``dnit-1999`` or ``thesis-table21``). The thesis's
+Table 21 (AASHTO 2003, DNER 1999, DNIT 2009) gives a *range* of f per design speed; :func:`side_friction_factor`
+here reads that range at a bound (``low`` by default, the conservative choice: smaller f, larger radius).
+Neither bound is any one standard: the current Green Book (2018, Table 3-7) gives 0.19/0.17/0.15 at
+50/60/70 km/h where the low end reads 0.16/0.15/0.14. Between tabulated speeds the factor is interpolated
+linearly in speed; outside a table's range nothing is extrapolated (:class:`InvalidRoad` names the range).
 
 References
 ----------
-Thesis Eqs. 9.1-9.3 and Table 21; AASHTO (2001, 2003); DNIT (2009).
+Thesis Eqs. 9.1-9.3 and Table 21; AASHTO (2018), *A Policy on Geometric Design of Highways and Streets*, 7th
+ed., Eq. 3-8 and Table 3-7; DNER (1999), IPR-706, Sec. 5.4 (see :mod:`engine.standards`).
 """
 
 from __future__ import annotations
@@ -61,13 +61,21 @@ def side_friction_factor(speed_kmh, bound: str = "low"):
     return standard_side_friction_factor(get_standard("thesis-table21", bound), speed_kmh)
 
 
-def aashto_min_radius_m(speed_kmh, superelevation_percent, side_friction):
-    """Minimum radius by the simplified curve formula R = V^2 / (127 (0.01 e + f)) [m] (Eq. 9.2)."""
+def side_friction_min_radius_m(speed_kmh, superelevation_percent, side_friction):
+    """Minimum radius by the simplified curve formula R = V^2 / (127 (0.01 e + f)) [m] (Eq. 9.2).
+
+    The point-mass curve formula of AASHTO (Green Book Eq. 3-8) and DNIT (IPR-706 Sec. 5.4); with a standard's
+    f_max and e_max it gives that standard's minimum radius (:func:`engine.standards.min_radius_m`).
+    """
     v = np.asarray(speed_kmh, dtype=float)
     demand = 0.01 * np.asarray(superelevation_percent, dtype=float) + np.asarray(side_friction, dtype=float)
     if np.any(demand <= 0):
         raise InvalidRoad("0.01 e + f must be positive for Eq. 9.2", field="superelevation_percent")
     return v**2 / (KMH2_PER_M_G * demand)
+
+
+#: deprecated name of :func:`side_friction_min_radius_m` (Eq. 9.2 is not only AASHTO's); kept for one version
+aashto_min_radius_m = side_friction_min_radius_m
 
 
 def rollover_min_radius_m(speed_kmh, srt_g):
@@ -81,11 +89,26 @@ def rollover_min_radius_m(speed_kmh, srt_g):
 
 @dataclass(frozen=True)
 class MinRadius:
-    aashto_min_radius_m: float
+    """Both minimum radii of a design speed and superelevation, and which governs.
+
+    side_friction_min_radius_m : Eq. 9.2 with f [m]; rollover_min_radius_m : Eq. 9.3 with the SRT [m]
+    governing_min_radius_m : the larger [m]; governed_by : ``side-friction`` or ``rollover``
+    side_friction : f used [-]; side_friction_source : ``given`` or the standard's table it was read from
+    design_standard : the standard's id [-]
+    """
+
+    side_friction_min_radius_m: float
     rollover_min_radius_m: float
     governing_min_radius_m: float
     governed_by: str  # "side-friction" or "rollover"
     side_friction: float
+    side_friction_source: str
+    design_standard: str
+
+    @property
+    def aashto_min_radius_m(self) -> float:
+        """Deprecated name of :attr:`side_friction_min_radius_m`."""
+        return self.side_friction_min_radius_m
 
 
 def min_radius(
@@ -93,17 +116,42 @@ def min_radius(
     superelevation_percent: float,
     srt_g: float,
     side_friction: float | None = None,
-    bound: str = "low",
+    *,
+    design_standard: str | None = None,
+    bound: str | None = None,
 ) -> MinRadius:
-    """Both minimum radii (Eqs. 9.2 and 9.3) and the governing (larger) one."""
+    """Both minimum radii (Eqs. 9.2 and 9.3) and the governing (larger) one.
+
+    Parameters
+    ----------
+    design_speed_kmh : design speed V; inside the standard's range unless ``side_friction`` is given [km/h]
+    superelevation_percent : superelevation e of the curve [%]
+    srt_g : the vehicle's SRT on that bank and slope [g]
+    side_friction : design side friction f; default: the standard's f_max at V [-]
+    design_standard : id of :data:`engine.standards.STANDARDS`; default
+        :data:`engine.standards.DEFAULT_DESIGN_STANDARD` [-]
+    bound : Table 21 bound (``low``/``mid``/``high``), ``thesis-table21`` only [-]
+
+    Raises
+    ------
+    InvalidRoad : a speed outside the standard's range (naming it), an unknown standard or bound, f outside (0, 1).
+    """
+    from .standards import DEFAULT_DESIGN_STANDARD, get_standard
+    from .standards import side_friction_factor as standard_f
+
     check_speed(design_speed_kmh)
-    f = float(side_friction_factor(design_speed_kmh, bound)) if side_friction is None else float(side_friction)
+    std = get_standard(design_standard or DEFAULT_DESIGN_STANDARD, bound)
+    if side_friction is None:
+        f = float(standard_f(std, design_speed_kmh))  # f_max of the standard's table, linear between rows
+        source = f"table21-{std.bound}" if std.bound else std.id
+    else:
+        f, source = float(side_friction), "given"
     if not (math.isfinite(f) and 0.0 < f < 1.0):
         raise InvalidRoad(f"side_friction must be in (0, 1), got {f}", field="side_friction", value=f)
-    r_f = float(aashto_min_radius_m(design_speed_kmh, superelevation_percent, f))
-    r_r = float(rollover_min_radius_m(design_speed_kmh, srt_g))
+    r_f = float(side_friction_min_radius_m(design_speed_kmh, superelevation_percent, f))  # Eq. 9.2
+    r_r = float(rollover_min_radius_m(design_speed_kmh, srt_g))  # Eq. 9.3
     gov = "rollover" if r_r > r_f else "side-friction"
-    return MinRadius(r_f, r_r, max(r_f, r_r), gov, f)
+    return MinRadius(r_f, r_r, max(r_f, r_r), gov, f, source, std.id)
 
 
 def check_speed(speed_kmh: float, field: str = "design_speed_kmh") -> None:

@@ -49,8 +49,12 @@ from .road import (
     TABLE21_F_HIGH,
     TABLE21_F_LOW,
     TABLE21_SPEEDS_KMH,
-    aashto_min_radius_m,
+    side_friction_min_radius_m,
 )
+
+#: the standard a calculation that names none is designed to: the current AASHTO Green Book, the most widely
+#: adopted of the three and the one whose f_max the others' ranges were adapted from (README, "Design standards")
+DEFAULT_DESIGN_STANDARD = "aashto-2018"
 
 #: largest maximum superelevation any of the standards tabulates [%]
 E_MAX_LIMIT_PERCENT = 12.0
@@ -464,7 +468,7 @@ def min_radius_m(
     f = float(side_friction_factor(std, speed_kmh))
     e = _check_e_max(std, max_superelevation_percent, positive=False)
     v = float(speed_kmh)
-    r_formula = float(aashto_min_radius_m(v, e, f))  # Eq. 9.2
+    r_formula = float(side_friction_min_radius_m(v, e, f))  # Eq. 9.2
     row = std.min_radius_table.get(e, {}) if tabulated else {}
     if v in row:
         return MinRadiusResult(row[v], "table", f, r_formula, std.id, e, v)
@@ -483,7 +487,7 @@ def min_radius_array(standard: DesignStandard | str, speed_kmh, max_superelevati
         bad = float(e[~np.isfinite(e) | (e < 0) | (e > E_MAX_LIMIT_PERCENT)].flat[0])
         _check_e_max(std, bad, positive=False)
     f = np.interp(v, std.speeds_kmh, std.f_max)
-    radius = np.asarray(aashto_min_radius_m(v, e, f), dtype=float)  # Eq. 9.2
+    radius = np.asarray(side_friction_min_radius_m(v, e, f), dtype=float)  # Eq. 9.2
     for e_row, row in std.min_radius_table.items():  # the published cells, to the table's rounding
         for speed, r_table in row.items():
             radius = np.where((e == e_row) & (v == speed), r_table, radius)
@@ -587,20 +591,26 @@ def _superelevation_arrays(std: DesignStandard, speed_kmh: float, e_max_percent:
     e_max = _check_e_max(std, e_max_percent, positive=True)
     v = float(speed_kmh)
     r = _check_radii(radii_m)
-    r_min = float(aashto_min_radius_m(v, e_max, f_max))  # Eq. 9.2
-    if np.any(r < r_min * (1.0 - 1e-12)):
-        first = float(r[r < r_min * (1.0 - 1e-12)].flat[0]) if r.ndim else float(r)
+    r_min = float(side_friction_min_radius_m(v, e_max, f_max))  # Eq. 9.2
+    # the published, rounded R_min (AASHTO rounds to the metre, sometimes down: 229 m for 229.06 m) is a radius
+    # the standard allows: between it and Eq. 9.2's value the curve is at R_min (e = e_max)
+    published = std.min_radius_table.get(e_max, {}).get(v)
+    limit = min(r_min, published) if published is not None else r_min
+    if np.any(r < limit * (1.0 - 1e-12)):
+        first = float(r[r < limit * (1.0 - 1e-12)].flat[0]) if r.ndim else float(r)
+        table = f" (published: {published:g} m)" if published is not None else ""
         raise InvalidRoad(
-            f"radius_m {first:g} m is below the minimum radius R_min = {r_min:.1f} m of {std.id} at "
+            f"radius_m {first:g} m is below the minimum radius R_min = {r_min:.1f} m{table} of {std.id} at "
             f"{v:g} km/h with e_max {e_max:g} % (f_max {f_max:g})",
             field="radius_m",
             value=first,
         )
-    r = np.maximum(r, r_min)  # round-off at R_min itself
-    demand = v**2 / (KMH2_PER_M_G * r)  # e/100 + f = V^2 / (127 R)
+    demand = v**2 / (KMH2_PER_M_G * r)  # e/100 + f = V^2 / (127 R), at the curve's own radius
+    r = np.maximum(r, r_min)  # at R_min (or the published rounding of it) the distribution gives e_max
     if std.superelevation_method == AASHTO_METHOD:
         f = _aashto_method5_f(std, v, 1.0 / r, 0.01 * e_max, f_max)
-        e = 100.0 * (demand - f)
+        e = np.minimum(100.0 * (v**2 / (KMH2_PER_M_G * r) - f), e_max)  # e_max exactly at R_min, no round-off
+        f = demand - 0.01 * e
     else:
         x = r_min / r
         e = e_max * (2.0 * x - x**2)  # DNER (1999): e = e_max (2 R_min/R - R_min^2/R^2)
@@ -615,7 +625,9 @@ def superelevation_percent(
 
     AASHTO: Method 5, the parabolic f distribution with its PI at the curvature that e_max alone holds at
     the running speed. DNIT: e = e_max (2 R_min/R - R_min^2/R^2). Both give e_max at R_min (Eq. 9.2,
-    unrounded), fall monotonically toward 0 as R grows, and leave f = V^2/(127 R) - e/100 <= f_max. The
+    unrounded), fall monotonically toward 0 as R grows, and leave f = V^2/(127 R) - e/100 <= f_max. A radius
+    between the published, rounded R_min (AASHTO rounds 229.06 m to 229 m) and Eq. 9.2's is accepted as R_min:
+    e = e_max there, and f exceeds f_max by what the table's rounding implies (at most ~0.05 %). The
     value is the method's exact e, not rounded: the AASHTO tables list radii for e in 0.2 % steps, and
     DNIT practice (the two implementations found) rounds e up to 0.1 %; rounding is the caller's choice.
 

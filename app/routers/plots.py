@@ -57,8 +57,9 @@ async def cg_path(body: PlotRequest, cache: CacheDep, settings: SettingsDep) -> 
 @router.post("/min-radius", name="min_radius", response_class=Response,
              responses=svg_responses("Rmin of Eqs. 9.2 and 9.3 against the design speed"))  # fmt: skip
 async def min_radius(body: MinRadiusPlotRequest, cache: CacheDep, settings: SettingsDep) -> Response:
-    """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): AASHTO/DNIT Eq. 9.2
-    with Table 21's side friction against rollover Eq. 9.3 with the vehicle's SRT on that bank and slope, with a
-    marker where they cross (below or above it rollover governs). `speed_max_kmh` must be above `speed_min_kmh`
-    (a rule JSON Schema cannot state: a request breaking it is a 422 naming `speed_max_kmh`)."""
+    """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): Eq. 9.2 with the design
+    standard's f_max (AASHTO 2018 by default; `thesis-table21` draws the thesis's figures) against rollover Eq. 9.3
+    with the vehicle's SRT on that bank and slope, with a marker where they cross (below or above it rollover
+    governs). The speeds lie in the standard's range, and `speed_max_kmh` above `speed_min_kmh` (rules JSON Schema
+    cannot state: a request breaking one is a 422 naming the field and the range)."""
     return computed_response(await plot_min_radius(cache, body, settings))

@@ -1,4 +1,4 @@
-"""POST /v1/curve-speed (Eq. 9.1) and POST /v1/min-radius (Eqs. 9.2-9.3, Table 21)."""
+"""POST /v1/curve-speed (Eq. 9.1) and POST /v1/min-radius (Eqs. 9.2-9.3, f from a design standard)."""
 
 from __future__ import annotations
 
@@ -33,6 +33,7 @@ async def curve_speed(body: CurveSpeedRequest, cache: CacheDep, settings: Settin
     responses=computed_responses(400, 404, 422, 500),
 )
 async def min_radius(body: MinRadiusRequest, cache: CacheDep, settings: SettingsDep) -> Response:
-    """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (AASHTO/DNIT, side friction from
-    Table 21 unless given), Eq. 9.3 (rollover, the SRT on that bank and slope) and the governing one."""
+    """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (side friction: the design standard's
+    f_max, AASHTO 2018 by default, unless `side_friction` is given), Eq. 9.3 (rollover, the SRT on that bank and
+    slope) and the governing one. The design speed must lie in the standard's range (422 naming it)."""
     return json_response(await compute_min_radius(cache, body, settings))

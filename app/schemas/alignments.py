@@ -1,5 +1,5 @@
 """POST /v1/alignments/assess: the safe speed on every horizontal curve of a road alignment, for one or more
-vehicles (rollover, Eq. 9.1, against side friction, Table 21)."""
+vehicles (rollover, Eq. 9.1, against side friction with a design standard's f_max)."""
 
 from __future__ import annotations
 

@@ -6,17 +6,19 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from engine.domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
+from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
-from engine.road import FRICTION_BOUNDS, TABLE21_SPEEDS_KMH
+from engine.standards import get_standard
 
-from .common import EXAMPLE_PRESET, bounded, describe, json_int, shape_error
+from .common import ABSENT, EXAMPLE_PRESET, bounded, describe, json_int, shape_error
 from .srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
+from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 #: the models with curves against ay/g
 CurveModelId = Literal[tuple(m.id for m in MODELS.values() if m.curves)]  # type: ignore[valid-type]
-V_MIN, V_MAX = float(TABLE21_SPEEDS_KMH[0]), float(TABLE21_SPEEDS_KMH[-1])
 MAX_SPEED_POINTS = 181
+#: spacing of the plotted design speeds when `points` is not given [km/h]
+SPEED_STEP_KMH = 5.0
 
 
 class PlotRequest(SrtInputs):
@@ -39,29 +41,28 @@ class PlotRequest(SrtInputs):
     )
 
 
-class MinRadiusPlotRequest(SrtOptions):
-    """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): AASHTO/DNIT Eq. 9.2
-    with Table 21's side friction, and rollover Eq. 9.3 with the vehicle's SRT on that bank and slope."""
+class MinRadiusPlotRequest(SrtOptions, DesignOptions):
+    """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): the side-friction radius
+    of Eq. 9.2 with the design standard's f_max, and the rollover radius of Eq. 9.3 with the vehicle's SRT on that
+    bank and slope. The speeds plotted lie in the standard's range (its whole range by default)."""
 
     model_config = ConfigDict(
         json_schema_extra={
+            "allOf": [BOUND_ONLY_WITH_TABLE21],
             "examples": [
-                {
-                    "vehicle": EXAMPLE_PRESET,
-                    "superelevation_percent": 8.0,
-                    "rear_llt_limit": 0.6,
-                    "speed_min_kmh": 30.0,
-                    "speed_max_kmh": 120.0,
-                },
+                {"vehicle": EXAMPLE_PRESET, "superelevation_percent": 8.0, "rear_llt_limit": 0.6},
                 {
                     "vehicle": EXAMPLE_PRESET,
                     "superelevation_percent": 4.0,
                     "slope_percent": -4.0,
                     "rear_llt_limit": 0.6,
                     "load": {"vertical_offset_m": 0.5},
+                    "design_standard": "thesis-table21",
                     "side_friction_bound": "mid",
+                    "speed_min_kmh": 30.0,
+                    "speed_max_kmh": 120.0,
                 },
-            ]
+            ],
         }
     )
 
@@ -75,37 +76,63 @@ class MinRadiusPlotRequest(SrtOptions):
         "slope_percent", 0.0, text="Grade of the SRT's case, + uphill.", symbol="slope (Eq. 4.24)"
     )
     speed_min_kmh: float = Field(
-        V_MIN,
-        ge=V_MIN,
-        le=V_MAX,
-        description=describe("Lowest design speed plotted (Table 21 covers 30-120 km/h).", unit="km/h", symbol="V"),
-    )
-    speed_max_kmh: float = Field(
-        V_MAX,
-        ge=V_MIN,
-        le=V_MAX,
-        description=describe("Highest design speed plotted; above speed_min_kmh.", unit="km/h", symbol="V"),
-    )
-    points: json_int(ge=2, le=MAX_SPEED_POINTS) = Field(  # type: ignore[valid-type]
-        19,
-        description=describe("Design speeds plotted, evenly spaced (19: every 5 km/h over 30-120).", unit="count"),
-    )
-    side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
-        "low",
+        None,
+        gt=0,
+        le=BOUNDS["speed_kmh"].maximum,
+        json_schema_extra=ABSENT,
         description=describe(
-            "Where to read Table 21's side-friction range: `low` (default, the conservative one), `mid` or `high`.",
-            unit="-",
-            symbol="f range (Table 21)",
+            "Lowest design speed plotted; default the standard's lowest (GET /v1/design-standards). Inside the "
+            "standard's range.",
+            unit="km/h",
+            symbol="V",
+        ),
+    )  # type: ignore[assignment]
+    speed_max_kmh: float = Field(
+        None,
+        gt=0,
+        le=BOUNDS["speed_kmh"].maximum,
+        json_schema_extra=ABSENT,
+        description=describe(
+            "Highest design speed plotted, above speed_min_kmh; default the standard's highest.",
+            unit="km/h",
+            symbol="V",
+        ),
+    )  # type: ignore[assignment]
+    points: json_int(ge=2, le=MAX_SPEED_POINTS) = Field(  # type: ignore[valid-type]
+        None,
+        json_schema_extra=ABSENT,
+        description=describe(
+            f"Design speeds plotted, evenly spaced; default one every {SPEED_STEP_KMH:g} km/h (at least 2).",
+            unit="count",
         ),
     )
 
     @model_validator(mode="after")
     def _speed_range(self) -> MinRadiusPlotRequest:
-        if self.speed_max_kmh <= self.speed_min_kmh:
+        lo, hi = get_standard(self.design_standard, self.bound).speed_range_kmh
+        for name in ("speed_min_kmh", "speed_max_kmh"):
+            v = getattr(self, name)
+            if v is not None and not lo <= v <= hi:
+                raise shape_error(
+                    "MinRadiusPlotRequest",
+                    name,
+                    f"{v:g} km/h is outside the design speeds of {self.design_standard}: {lo:g}-{hi:g} km/h",
+                    v,
+                )
+        if self.speeds[1] <= self.speeds[0]:
             raise shape_error(
                 "MinRadiusPlotRequest",
                 "speed_max_kmh",
-                f"must be above speed_min_kmh ({self.speed_min_kmh} km/h)",
-                self.speed_max_kmh,
+                f"must be above speed_min_kmh ({self.speeds[0]:g} km/h)",
+                self.speeds[1],
             )
         return self
+
+    @property
+    def speeds(self) -> tuple[float, float, int]:
+        """The plotted design speeds: lowest, highest [km/h] and how many."""
+        lo, hi = get_standard(self.design_standard, self.bound).speed_range_kmh
+        v0 = lo if self.speed_min_kmh is None else self.speed_min_kmh
+        v1 = hi if self.speed_max_kmh is None else self.speed_max_kmh
+        n = self.points if self.points is not None else max(2, round((v1 - v0) / SPEED_STEP_KMH) + 1)
+        return v0, v1, min(n, MAX_SPEED_POINTS)

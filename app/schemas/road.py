@@ -1,4 +1,4 @@
-"""POST /v1/curve-speed (Eq. 9.1) and POST /v1/min-radius (Eqs. 9.2, 9.3 and Table 21)."""
+"""POST /v1/curve-speed (Eq. 9.1) and POST /v1/min-radius (Eqs. 9.2 and 9.3, f from a design standard)."""
 
 from __future__ import annotations
 
@@ -7,9 +7,11 @@ from typing import Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from engine.road import FRICTION_BOUNDS
+from engine.standards import STANDARDS
 
 from .common import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
 from .srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
+from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
 #: either a given SRT (and none of the SRT request fields) or a vehicle (the SRT is computed), never both
@@ -81,16 +83,23 @@ class CurveSpeedRequest(SrtInputs, SrtTargets):
         return self
 
 
-class MinRadiusRequest(SrtInputs, SrtTargets):
-    """Minimum curve radius for a design speed and superelevation: AASHTO/DNIT Eq. 9.2 with the side-friction
-    factor given or from Table 21, rollover Eq. 9.3 with the vehicle's SRT on that bank and slope, and the
-    governing (larger) one. When the SRT is computed, the bank is `superelevation_percent`."""
+class MinRadiusRequest(SrtInputs, SrtTargets, DesignOptions):
+    """Minimum curve radius for a design speed and superelevation: the side-friction radius of Eq. 9.2 with the
+    design standard's f_max (or a given f), the rollover radius of Eq. 9.3 with the vehicle's SRT on that bank and
+    slope, and the governing (larger) one. When the SRT is computed, the bank is `superelevation_percent`. Without
+    a given `side_friction`, the design speed must lie in the standard's range (422 naming it)."""
 
     model_config = ConfigDict(
         json_schema_extra={
-            **SRT_OR_VEHICLE_SCHEMA,
+            "allOf": [*SRT_OR_VEHICLE_SCHEMA["allOf"], BOUND_ONLY_WITH_TABLE21],
             "examples": [
                 {"design_speed_kmh": 60.0, "superelevation_percent": 8.0, "vehicle": EXAMPLE_PRESET, "model": "3d"},
+                {
+                    "design_speed_kmh": 80.0,
+                    "superelevation_percent": 8.0,
+                    "vehicle": EXAMPLE_PRESET,
+                    "design_standard": "dnit-1999",
+                },
                 {"design_speed_kmh": 60.0, "superelevation_percent": 8.0, "srt": 0.285, "side_friction": 0.15},
             ],
         }
@@ -105,19 +114,10 @@ class MinRadiusRequest(SrtInputs, SrtTargets):
     side_friction: float | None = bounded(
         "side_friction",
         None,
-        text="Design side-friction factor; when null it is read from Table 21 (30-120 km/h) at `side_friction_bound`, "
-        "linearly interpolated between the tabulated speeds.",
+        text="Design side-friction factor; when null it is the design standard's f_max at the design speed "
+        "(linear between the tabulated speeds).",
         unit="-",
-        symbol="f (Eq. 9.2, Table 21)",
-    )
-    side_friction_bound: Literal[FRICTION_BOUNDS] = Field(  # type: ignore[valid-type]
-        "low",
-        description=describe(
-            "Where to read Table 21's range: `low` (default; the conservative choice, smaller f and a larger "
-            "radius; equal to AASHTO's maximum f for design from 50 km/h), `mid` or `high`.",
-            unit="-",
-            symbol="f range (Table 21)",
-        ),
+        symbol="f (Eq. 9.2)",
     )
     srt: float = bounded("srt_g", None, text=_GIVEN_SRT_TEXT, symbol="SRT")
     vehicle: VehicleRef = Field(None, description=_OPTIONAL_VEHICLE, json_schema_extra=ABSENT)  # type: ignore[assignment]
@@ -148,11 +148,26 @@ class CurveSpeedResult(OutputModel):
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))
 
 
+_F_SOURCES = ("given", *(i for i in STANDARDS if i != "thesis-table21"), *(f"table21-{b}" for b in FRICTION_BOUNDS))
+SideFrictionSource = Literal[_F_SOURCES]  # type: ignore[valid-type]
+
+
 class MinRadiusResult(OutputModel):
-    aashto_min_radius_m: float = Field(
+    side_friction_min_radius_m: float = Field(
         description=describe(
-            "Side-friction minimum radius V^2 / (127 (0.01 e + f)).", unit="m", symbol="Rmin (Eq. 9.2)"
+            "Side-friction minimum radius V^2 / (127 (0.01 e + f)), with the standard's f_max or the given f.",
+            unit="m",
+            symbol="Rmin (Eq. 9.2)",
         )
+    )
+    aashto_min_radius_m: float = Field(
+        deprecated=True,
+        description=describe(
+            "Deprecated (removed in the next version): the same value as `side_friction_min_radius_m`, under its "
+            "old name (Eq. 9.2 is not only AASHTO's).",
+            unit="m",
+            symbol="Rmin (Eq. 9.2)",
+        ),
     )
     rollover_min_radius_m: float = Field(
         description=describe("Rollover minimum radius V^2 / (127 SRT).", unit="m", symbol="Rmin (Eq. 9.3)")
@@ -164,9 +179,13 @@ class MinRadiusResult(OutputModel):
         description=describe("Which criterion gives the governing radius.", unit="-", symbol="Eq. 9.2 / Eq. 9.3")
     )
     side_friction: float = Field(description=describe("Side-friction factor used.", unit="-", symbol="f"))
-    side_friction_source: Literal["given", "table21-low", "table21-mid", "table21-high"] = Field(
-        description=describe("Whether f was given or read from Table 21 (and at which bound).", unit="-")
+    side_friction_source: SideFrictionSource = Field(
+        description=describe(
+            "`given`, or the table f was read from: a standard's id, or `table21-<bound>` for thesis-table21.",
+            unit="-",
+        )
     )
+    design_standard: str = Field(description=describe("The design standard of the request.", unit="-"))
     design_speed_kmh: float = Field(description=describe("Design speed.", unit="km/h", symbol="V"))
     superelevation_percent: float = Field(description=describe("Superelevation.", unit="%", symbol="e"))
     srt: float = Field(description=describe("SRT used (on this bank and slope).", unit="g", symbol="SRT"))

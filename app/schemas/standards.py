@@ -3,17 +3,24 @@ POST /v1/superelevation."""
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from engine.domain import BOUNDS
 from engine.road import FRICTION_BOUNDS
-from engine.standards import STANDARDS
+from engine.standards import DEFAULT_DESIGN_STANDARD, STANDARDS
 
-from .common import ABSENT, InputModel, OutputModel, bounded, describe, shape_error
+from .common import ABSENT, InputModel, OutputModel, bounded, describe, json_int, shape_error
 
-#: the standard a request that names none is designed to (README, "Design standards", says why)
-DEFAULT_DESIGN_STANDARD = "aashto-2018"
+__all__ = [
+    "DEFAULT_DESIGN_STANDARD",
+    "DesignOptions",
+    "StandardList",
+    "StandardOut",
+    "SuperelevationRequest",
+    "SuperelevationTableRequest",
+]
 DesignStandardId = Literal[tuple(STANDARDS)]  # type: ignore[valid-type]
 FrictionBound = Literal[FRICTION_BOUNDS]  # type: ignore[valid-type]
 
@@ -21,21 +28,24 @@ STANDARD_TEXT = describe(
     "The design standard whose side friction (and minimum radii, superelevation distribution) apply: "
     "`aashto-2018` (default: AASHTO Green Book 7th ed., Table 3-7, 20-120 km/h), `dnit-1999` (DNER/DNIT IPR-706, "
     "Quadros 5.4.3.1-5.4.3.2, 30-120 km/h) or `thesis-table21` (the thesis's Table 21 range, read at "
-    "`side_friction_bound`, 30-120 km/h). See GET /v1/design-standards.",
+    "`side_friction_bound`, 30-120 km/h). A request that gives `side_friction_bound` without `design_standard` "
+    "means `thesis-table21` (the only standard with a range to read). The design speeds accepted are the "
+    "standard's range. See GET /v1/design-standards.",
     unit="-",
     symbol="f_max (Eq. 9.2)",
 )
 BOUND_TEXT = describe(
     "`thesis-table21` only: where to read Table 21's range, `low` (default: smaller f, larger radius), `mid` or "
-    "`high`. Refused with the other standards, which have a single f_max per speed.",
+    "`high`. Given alone it selects `thesis-table21`; refused with another `design_standard`, which has a single "
+    "f_max per speed.",
     unit="-",
     symbol="f range (Table 21)",
 )
-#: side_friction_bound only with design_standard = thesis-table21 (a default standard is not thesis-table21)
+#: side_friction_bound never with a design_standard other than thesis-table21 (alone, it selects thesis-table21)
 BOUND_ONLY_WITH_TABLE21 = {
     "not": {
-        "required": ["side_friction_bound"],
-        "not": {"required": ["design_standard"], "properties": {"design_standard": {"const": "thesis-table21"}}},
+        "required": ["side_friction_bound", "design_standard"],
+        "properties": {"design_standard": {"not": {"const": "thesis-table21"}}},
     }
 }
 
@@ -48,6 +58,8 @@ class DesignOptions(InputModel):
 
     @model_validator(mode="after")
     def _bound_for_table21_only(self):
+        if self.side_friction_bound is not None and "design_standard" not in self.model_fields_set:
+            self.design_standard = "thesis-table21"  # the bound alone names the only standard that has one
         if self.side_friction_bound is not None and self.design_standard != "thesis-table21":
             raise shape_error(
                 type(self).__name__,
@@ -154,3 +166,98 @@ class StandardOut(OutputModel):
         description=describe("thesis-table21 only: the bounds its range can be read at.", unit="-")
     )
     notes: str = Field(description=describe("Sources used and what could not be verified.", unit="-"))
+
+
+class StandardList(OutputModel):
+    """The design standards the road endpoints accept."""
+
+    default: str = Field(description=describe("The standard a request that names none is designed to.", unit="-"))
+    standards: list[StandardOut] = Field(description=describe("Every known standard.", unit="-"))
+
+
+# ------------------------------------------------------------------------- superelevation table
+
+MAX_TABLE_RADII = 500
+#: default radii of the table: R_min to this multiple of it, geometrically spaced
+TABLE_RADIUS_SPAN = 20.0
+DEFAULT_TABLE_POINTS = 25
+
+
+class SuperelevationTableRequest(DesignOptions):
+    """The design superelevation over a set of radii at one design speed and e_max (the standard's distribution,
+    as in the Green Book's and IPR-706's superelevation tables): the given `radii_m`, or `points` radii spaced
+    geometrically from R_min to `radius_max_m`."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            **BOUND_ONLY_WITH_TABLE21,
+            "examples": [
+                {"design_standard": "aashto-2018", "design_speed_kmh": 80, "max_superelevation_percent": 8},
+                {
+                    "design_standard": "dnit-1999",
+                    "design_speed_kmh": 60,
+                    "max_superelevation_percent": 8,
+                    "radii_m": [125, 150, 200, 300, 500, 1000],
+                },
+            ],
+        }
+    )
+
+    design_speed_kmh: float = bounded("speed_kmh", text="Design speed.", symbol="V")
+    max_superelevation_percent: float = bounded(
+        "max_superelevation_percent", text="The road's maximum superelevation e_max.", symbol="e_max"
+    )
+    radii_m: list[Annotated[float, Field(ge=BOUNDS["radius_m"].minimum, le=BOUNDS["radius_m"].maximum)]] = Field(
+        None,
+        min_length=1,
+        max_length=MAX_TABLE_RADII,
+        json_schema_extra=ABSENT,
+        description=describe(
+            f"Radii to tabulate (1-{MAX_TABLE_RADII}), each at least the standard's R_min (422 naming it). Not "
+            "with `radius_max_m`/`points`.",
+            unit="m",
+            symbol="R",
+        ),
+    )  # type: ignore[assignment]
+    radius_max_m: float = Field(
+        None,
+        gt=0,
+        le=BOUNDS["radius_m"].maximum,
+        json_schema_extra=ABSENT,
+        description=describe(
+            f"Largest radius of the default range (default {TABLE_RADIUS_SPAN:g} R_min); above R_min.",
+            unit="m",
+            symbol="R",
+        ),
+    )  # type: ignore[assignment]
+    points: json_int(ge=2, le=MAX_TABLE_RADII) = Field(  # type: ignore[valid-type]
+        DEFAULT_TABLE_POINTS,
+        description=describe("Radii of the default range, spaced geometrically from R_min.", unit="count"),
+    )
+
+    @model_validator(mode="after")
+    def _radii_or_range(self):
+        if self.radii_m is not None and ({"radius_max_m", "points"} & self.model_fields_set):
+            name = "radius_max_m" if "radius_max_m" in self.model_fields_set else "points"
+            raise shape_error(
+                type(self).__name__, name, f"{name} sets the default range of radii: not with radii_m", None
+            )
+        return self
+
+
+class SuperelevationRow(OutputModel):
+    radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
+    superelevation_percent: float = Field(description=describe("Design superelevation.", unit="%", symbol="e"))
+    side_friction: float = Field(
+        description=describe("Side friction left at the design speed, V^2/(127 R) - e/100.", unit="-", symbol="f")
+    )
+
+
+class SuperelevationTableResult(OutputModel):
+    design_standard: str = Field(description=describe("The standard.", unit="-"))
+    method: str = Field(description=describe("The distribution method and its source.", unit="-"))
+    design_speed_kmh: float = Field(description=describe("Design speed.", unit="km/h", symbol="V"))
+    max_superelevation_percent: float = Field(description=describe("e_max.", unit="%", symbol="e_max"))
+    f_max: float = Field(description=describe("The standard's f_max at the design speed.", unit="-", symbol="f_max"))
+    min_radius_m: float = Field(description=describe("R_min for e_max (Eq. 9.2, unrounded).", unit="m", symbol="R_min"))
+    rows: list[SuperelevationRow] = Field(description=describe("One row per radius, in the order given.", unit="-"))

@@ -106,10 +106,13 @@ def test_a_missing_superelevation_without_e_max_is_refused_naming_the_curve(shar
 
 def test_side_friction_bound_applies_to_table21_only(shared_client):
     body = {"vehicle": BTRAIN, "curves": [{"id": "a", "radius_m": 200.0, "superelevation_percent": 4.0}]}
-    p = post(shared_client, {**body, "side_friction_bound": "high"}, 422).json()
+    p = post(shared_client, {**body, "design_standard": "aashto-2018", "side_friction_bound": "high"}, 422).json()
     assert p["errors"][0]["field"] == "side_friction_bound"
     out = post(shared_client, {**body, "design_standard": "thesis-table21", "side_friction_bound": "high"}).json()
     assert out["side_friction_bound"] == "high"
+    # a bound alone selects the only standard that has one (the previous version's requests keep their meaning)
+    alone = post(shared_client, {**body, "side_friction_bound": "high"}).json()
+    assert alone["design_standard"] == "thesis-table21" and alone["vehicles"] == out["vehicles"]
 
 
 # ------------------------------------------------------------------------------------------ streaming

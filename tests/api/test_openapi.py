@@ -26,6 +26,10 @@ OPERATIONS = {
     ("post", "/v1/srt/sweep"): "srt-sweep",
     ("post", "/v1/curve-speed"): "road-curve_speed",
     ("post", "/v1/min-radius"): "road-min_radius",
+    ("get", "/v1/design-standards"): "standards-list_design_standards",
+    ("get", "/v1/design-standards/{id}"): "standards-get_design_standard",
+    ("post", "/v1/superelevation"): "standards-superelevation",
+    ("post", "/v1/superelevation/table"): "standards-superelevation_table",
     ("post", "/v1/alignments/assess"): "alignments-assess",
     ("post", "/v1/alignments/assess/csv"): "alignments-assess_csv",
     ("post", "/v1/alignments/assess/landxml"): "alignments-assess_landxml",
@@ -75,14 +79,19 @@ def test_every_operation_declares_problem_details(method, path):
     assert "500" in errors
     if method == "post":
         assert {"400", "422"} <= set(errors)
-        if OPERATIONS[(method, path)] != "catalog-create_vehicle":  # saving a vehicle looks nothing up: no 404
+        if OPERATIONS[(method, path)] not in LOOK_UP_NOTHING:
             assert "404" in errors
     for r in errors.values():
         assert list(r["content"]) == ["application/problem+json"]
         assert r["content"]["application/problem+json"]["schema"] == {"$ref": "#/components/schemas/Problem"}
 
 
-#: every computed operation (ETag, X-Cache) -> the request model of its JSON body
+#: POST operations that look nothing up (no preset, no saved vehicle): no 404
+LOOK_UP_NOTHING = {"catalog-create_vehicle", "standards-superelevation", "standards-superelevation_table"}
+
+#: computed operations without a vehicle -> the request model of their JSON body
+ROAD_ONLY = {"/v1/superelevation": "SuperelevationRequest", "/v1/superelevation/table": "SuperelevationTableRequest"}
+#: every computed operation with a vehicle (ETag, X-Cache) -> the request model of its JSON body
 COMPUTED = {
     "/v1/srt": "SrtRequest",
     "/v1/curve-speed": "CurveSpeedRequest",
@@ -99,10 +108,16 @@ COMPUTED = {
 #: the operations that answer an SVG image
 PLOTS = {p for p in COMPUTED if p.startswith("/v1/plots/")}
 #: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
-TABLES = {"/v1/srt/sweep", "/v1/alignments/assess", "/v1/alignments/assess/csv", "/v1/alignments/assess/landxml"}
+TABLES = {
+    "/v1/srt/sweep",
+    "/v1/alignments/assess",
+    "/v1/alignments/assess/csv",
+    "/v1/alignments/assess/landxml",
+    "/v1/superelevation/table",
+}
 
 
-@pytest.mark.parametrize("path", sorted(COMPUTED))
+@pytest.mark.parametrize("path", sorted(COMPUTED | ROAD_ONLY))
 def test_computed_operations_declare_etag_and_x_cache(path):
     headers = COMMITTED["paths"][path]["post"]["responses"]["200"]["headers"]
     assert set(headers) == ({"ETag", "X-Cache", "Vary"} if path in TABLES else {"ETag", "X-Cache"})
@@ -127,7 +142,7 @@ def test_every_request_model_has_a_btrain_example(name):
 
 
 def test_examples_are_accepted_by_the_app(shared_client):
-    paths = {name: path for path, name in COMPUTED.items()}
+    paths = {name: path for path, name in (COMPUTED | ROAD_ONLY).items()}
     for name, path in paths.items():
         for example in COMMITTED["components"]["schemas"][name]["examples"]:
             r = shared_client.post(path, json=example)

@@ -149,8 +149,9 @@ HIGH_LOAD = {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "load": {"vertical_offset
 
 
 def test_min_radius_figure_against_eqs_9_2_and_9_3(shared_client):
+    # the thesis's figures use Table 21 (low bound) over its 30-120 km/h
     body = {**HIGH_LOAD, "superelevation_percent": 4.0, "slope_percent": -2.0, "points": 10}
-    p = plot(shared_client, "min-radius", body)
+    p = plot(shared_client, "min-radius", {**body, "design_standard": "thesis-table21"})
     assert list(p.series) == ["Eq. 9.2 (side friction)", "Eq. 9.3 (rollover)"]
     srt = shared_client.post(
         "/v1/srt", json={**HIGH_LOAD, "road": {"bank_percent": 4.0, "slope_percent": -2.0}}
@@ -171,12 +172,34 @@ def test_min_radius_figure_against_eqs_9_2_and_9_3(shared_client):
 
 
 def test_min_radius_without_a_crossing_has_no_marker(shared_client):
-    # the B-train on 8 % with LLT 1: SRT ~0.41 > 0.08 + f for every speed -> side friction governs throughout
-    p = plot(shared_client, "min-radius", {"vehicle": BTRAIN, "superelevation_percent": 8.0})
+    # the B-train on 8 % with LLT 1: SRT ~0.41 > 0.08 + f (Table 21 low: at most 0.17) for every speed -> side
+    # friction governs throughout
+    body = {"vehicle": BTRAIN, "superelevation_percent": 8.0, "design_standard": "thesis-table21"}
+    p = plot(shared_client, "min-radius", body)
     _, r92 = p.series["Eq. 9.2 (side friction)"]
     _, r93 = p.series["Eq. 9.3 (rollover)"]
     assert all(a > b for a, b in zip(r92, r93, strict=True)) and p.markers == []
     assert len(r92) == 19  # 30-120 km/h every 5 km/h
+
+
+def test_min_radius_figure_of_the_default_standard(shared_client):
+    # AASHTO 2018 (the default) covers 20-120 km/h: 21 speeds every 5 km/h, f = Table 3-7's f_max; at 20 km/h
+    # f_max = 0.35, so 0.08 + f = 0.43 exceeds the B-train's SRT on 8 % (~0.41): rollover governs the slowest
+    # speeds and the curves cross where 0.08 + f(V) = SRT
+    p = plot(shared_client, "min-radius", {"vehicle": BTRAIN, "superelevation_percent": 8.0})
+    v, r92 = p.series["Eq. 9.2 (side friction)"]
+    assert v == approx6(list(np.arange(20.0, 121.0, 5.0)))
+    f_aashto = np.interp(v, [20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120],
+                         [0.35, 0.28, 0.23, 0.19, 0.17, 0.15, 0.14, 0.13, 0.12, 0.11, 0.09])  # fmt: skip
+    assert r92 == approx6(list(np.asarray(v) ** 2 / (127 * (0.08 + f_aashto))))
+    srt = shared_client.post("/v1/srt", json={"vehicle": BTRAIN, "road": {"bank_percent": 8.0}}).json()["srt"]
+    (cross,) = p.markers
+    assert 0.08 + np.interp(cross, [20, 30], [0.35, 0.28]) == pytest.approx(srt, abs=1e-6)
+    assert "AASHTO" in p.caption and "Table 3-7" in p.caption
+    # a speed outside the standard's range is refused, naming the range
+    body = {"vehicle": BTRAIN, "superelevation_percent": 8.0, "design_standard": "dnit-1999", "speed_min_kmh": 20}
+    r = shared_client.post("/v1/plots/min-radius", json=body)
+    assert r.status_code == 422 and "30-120 km/h" in r.json()["detail"]
 
 
 @pytest.mark.parametrize(
@@ -198,7 +221,7 @@ def test_min_radius_errors_name_the_field(shared_client, body, field):
 def test_min_radius_takes_any_model(shared_client):
     # Eq. 9.3 needs only the SRT: the banked rigid closed form (Eq. 2.8) is t/2h + e
     p = plot(shared_client, "min-radius", {"vehicle": BTRAIN, "model": "rigid-bank", "superelevation_percent": 6.0,
-                                           "points": 2})  # fmt: skip
+                                           "points": 2, "speed_min_kmh": 30})  # fmt: skip
     srt = 0.93 / 2.06 + 0.06
     assert p.series["Eq. 9.3 (rollover)"][1] == approx6([30**2 / (127 * srt), 120**2 / (127 * srt)])
     assert math.isclose(p.series["Eq. 9.3 (rollover)"][0][1], 120)

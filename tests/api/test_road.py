@@ -110,22 +110,60 @@ def test_side_friction_comes_from_table21(shared_client, speed, bound):
 
 
 def test_side_friction_is_interpolated_linearly_between_tabulated_speeds(shared_client):
-    # 65 km/h: halfway between 60 (0.15) and 70 (0.14) -> 0.145 at the low bound; 75 km/h -> 0.14
+    # Table 21, low bound: 65 km/h is halfway between 60 (0.15) and 70 (0.14) -> 0.145; 75 km/h -> 0.14
     for speed, f in ((65.0, 0.145), (75.0, 0.14), (115.0, 0.10)):
-        body = {"design_speed_kmh": speed, "superelevation_percent": 0, "srt": 0.3}
+        body = {"design_speed_kmh": speed, "superelevation_percent": 0, "srt": 0.3, "design_standard": "thesis-table21"}
         out = post(shared_client, "/v1/min-radius", body)
         assert out["side_friction"] == pytest.approx(f, abs=1e-12)
+        assert out["side_friction_source"] == "table21-low"
+    # AASHTO 2018 Table 3-7 (metric), the default: 55 km/h between 50 (0.19) and 60 (0.17) -> 0.18
+    out = post(shared_client, "/v1/min-radius", {"design_speed_kmh": 55, "superelevation_percent": 0, "srt": 0.3})
+    assert out["side_friction"] == pytest.approx(0.18, abs=1e-12)
+    assert out["side_friction_source"] == "aashto-2018" and out["design_standard"] == "aashto-2018"
+
+
+def test_side_friction_bound_alone_selects_table21(shared_client):
+    # the requests of the previous version (a bound, no standard) keep their meaning: Table 21 at that bound
+    body = {"design_speed_kmh": 60, "superelevation_percent": 8, "srt": 0.3, "side_friction_bound": "high"}
+    out = post(shared_client, "/v1/min-radius", body)
+    assert out["design_standard"] == "thesis-table21" and out["side_friction_source"] == "table21-high"
+    assert out["side_friction"] == 0.17  # Table 21, 60 km/h, high end of 0.15-0.17
+    p = post(shared_client, "/v1/min-radius", {**body, "design_standard": "dnit-1999"}, 422)
+    assert p["errors"][0]["field"] == "side_friction_bound" and "thesis-table21" in p["detail"]
 
 
 def test_min_radius_by_hand(shared_client):
     # V = 60 km/h, e = 8 %, f = 0.15 (Table 21 low), SRT = 0.285 g (Table 17, 8 % bank, LLT 0.6):
     # Eq. 9.2: 60^2 / (127 (0.08 + 0.15)) = 123.25 m; Eq. 9.3: 60^2 / (127 0.285) = 99.46 m -> side friction governs
-    out = post(shared_client, "/v1/min-radius", {"design_speed_kmh": 60, "superelevation_percent": 8, "srt": 0.285})
-    assert out["aashto_min_radius_m"] == pytest.approx(3600 / (127 * 0.23), rel=1e-12)
-    assert out["aashto_min_radius_m"] == pytest.approx(123.25, abs=0.01)
+    body = {"design_speed_kmh": 60, "superelevation_percent": 8, "srt": 0.285, "design_standard": "thesis-table21"}
+    out = post(shared_client, "/v1/min-radius", body)
+    assert out["side_friction_min_radius_m"] == pytest.approx(3600 / (127 * 0.23), rel=1e-12)
+    assert out["side_friction_min_radius_m"] == pytest.approx(123.25, abs=0.01)
+    assert out["aashto_min_radius_m"] == out["side_friction_min_radius_m"]  # the deprecated name, same value
     assert out["rollover_min_radius_m"] == pytest.approx(3600 / (127 * 0.285), rel=1e-12)
-    assert out["governing_min_radius_m"] == out["aashto_min_radius_m"]
+    assert out["governing_min_radius_m"] == out["side_friction_min_radius_m"]
     assert out["governed_by"] == "side-friction"
+
+
+@pytest.mark.parametrize(
+    ("standard", "speed", "e_max", "published"),
+    [
+        # AASHTO 2018 Table 3-7 (metric), e_max 8 %, as reproduced by NYSDOT HDM Exhibit M2-14: 60 km/h -> 113 m,
+        # 100 km/h -> 394 m (rounded to the metre)
+        ("aashto-2018", 60, 8, 113),
+        ("aashto-2018", 100, 8, 394),
+        # DNER/DNIT IPR-706 Quadro 5.4.3.2, e_max 8 %: 80 km/h -> 230 m, 120 km/h -> 595 m (rounded to 5 m)
+        ("dnit-1999", 80, 8, 230),
+        ("dnit-1999", 120, 8, 595),
+    ],
+)
+def test_side_friction_radius_at_e_max_rounds_to_the_published_minimum(
+    shared_client, standard, speed, e_max, published
+):
+    body = {"design_speed_kmh": speed, "superelevation_percent": e_max, "srt": 0.35, "design_standard": standard}
+    out = post(shared_client, "/v1/min-radius", body)
+    step = 1 if standard == "aashto-2018" else 5  # each table's own rounding
+    assert step * round(out["side_friction_min_radius_m"] / step) == published
 
 
 def test_rollover_governs_for_a_low_srt(shared_client):
@@ -150,6 +188,11 @@ def test_given_side_friction_is_used_outside_table21(shared_client):
 def test_speed_outside_table21_without_side_friction_is_a_422(shared_client):
     p = post(shared_client, "/v1/min-radius", {"design_speed_kmh": 140, "superelevation_percent": 8, "srt": 0.3}, 422)
     assert p["errors"][0]["field"] == "design_speed_kmh"
+    assert "aashto-2018" in p["detail"] and "20-120 km/h" in p["detail"]
+    body = {"design_speed_kmh": 25, "superelevation_percent": 8, "srt": 0.3, "design_standard": "dnit-1999"}
+    p = post(shared_client, "/v1/min-radius", body, 422)
+    assert p["errors"][0]["field"] == "design_speed_kmh" and "30-120 km/h" in p["detail"]
+    p = post(shared_client, "/v1/min-radius", {**body, "design_standard": "thesis-table21"}, 422)
     assert "Table 21" in p["detail"]
 
 

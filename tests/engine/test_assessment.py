@@ -85,7 +85,7 @@ def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
         Curve("wide", 900.0, 6.0, -4.0, 100.0),  # same bank and grade as "tight": one solve
         Curve("flat", 250.0, 0.0, 0.0, None),
     ]
-    res = assess_curves(Case(BTRAIN), curves)
+    res = assess_curves(Case(BTRAIN), curves, design_standard="thesis-table21")
     assert res.distinct_cases == 2
     tight, wide, flat = res.curves
     srt = rollover_threshold(Case(BTRAIN, road=Road(bank_percent=6.0, slope_percent=-4.0))).srt
@@ -103,7 +103,11 @@ def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
 def test_rollover_governs_where_the_srt_is_below_the_side_friction_demand():
     # flat road: the side-friction speed uses e + f <= 0.17 while the B-train's SRT is ~0.34: friction governs;
     # with an LLT limit of 0.6 and a 10 % downhill the SRT (~0.18) drops near f and rollover can govern
-    res = assess_curves(Case(BTRAIN, rear_llt_limit=0.6, trailer_angle_deg=30), [Curve("a", 100.0, 0.0, -10.0)])
+    res = assess_curves(
+        Case(BTRAIN, rear_llt_limit=0.6, trailer_angle_deg=30),
+        [Curve("a", 100.0, 0.0, -10.0)],
+        design_standard="thesis-table21",
+    )
     c = res.curves[0]
     assert c.srt_g < 0.2
     assert c.governed_by == ("rollover" if c.srt_g < 0.16 else "side-friction")

@@ -1,31 +1,49 @@
 # syntax=docker/dockerfile:1
 # rollover HTTP service. Build: docker build -t rollover .   Run: docker run -p 8000:8000 rollover
-# Debian slim (not Alpine: numpy and scipy have manylinux wheels for glibc, none for musl).
+# README "Deployment": workers, the database volume, pinning the base image by digest, regenerating the lock.
+# Debian slim (not Alpine: numpy and scipy have manylinux wheels for glibc, none for musl). Both stages use the SAME
+# exact tag: the virtualenv's python is a symlink to the base image's /usr/local/bin/python3.11.
 
-# ---- build stage: a virtualenv with the dependencies, then the project ------------------------------
-FROM python:3.11-slim AS build
-ENV PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1
+# ---- build stage: a virtualenv from the lock, then the project ---------------------------------------------------
+FROM python:3.11.17-slim-bookworm AS build
+ENV PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
 WORKDIR /src
-RUN python -m venv /opt/venv
-# dependencies layer first: it is rebuilt only when pyproject.toml changes, not on every source edit
-COPY pyproject.toml ./
-RUN /opt/venv/bin/python -c "import tomllib; print('\n'.join(tomllib.load(open('pyproject.toml', 'rb'))['project']['dependencies']))" > requirements.txt \
-    && /opt/venv/bin/pip install -r requirements.txt
-# then the source, installed into the same virtualenv (dependencies already satisfied)
-COPY README.md ./
+# a virtualenv without pip: the base image's pip installs into it (pip --python), so the venv never holds an installer
+RUN python -m venv --without-pip /opt/venv
+# dependency layer: only the lock is copied, so it is rebuilt only when the lock changes (scripts/lock.sh). Every file
+# is checked against its locked sha256 and is a wheel (nothing compiled here). The numpy and scipy test suites
+# (about 50 MB) are left out of the image: they are never imported by the service.
+COPY requirements/runtime.txt requirements/runtime.txt
+RUN pip --python /opt/venv/bin/python install --require-hashes --no-deps --only-binary=:all: \
+        -r requirements/runtime.txt \
+    && find /opt/venv/lib/python3.11/site-packages/numpy /opt/venv/lib/python3.11/site-packages/scipy \
+        -depth -type d -name tests -exec rm -rf {} +
+# project layer: a change to the code rebuilds only this (a few hundred kilobytes)
+COPY pyproject.toml README.md ./
 COPY engine ./engine
 COPY app ./app
-RUN /opt/venv/bin/pip install --no-deps .
+RUN pip --python /opt/venv/bin/python install --no-deps .
 
-# ---- runtime stage: the virtualenv only, as a non-root user -----------------------------------------
-FROM python:3.11-slim
-RUN groupadd --system --gid 10001 rollover && useradd --system --uid 10001 --gid rollover --no-create-home rollover
+# ---- runtime stage: the virtualenv only, as a non-root user -------------------------------------------------------
+FROM python:3.11.17-slim-bookworm
+# no installer in the runtime image: the base image's pip, setuptools and wheel and ensurepip's bundled copies go
+# (the virtualenv never had them); then the service's user and its data directory
+RUN python -m pip uninstall --yes --quiet --disable-pip-version-check pip setuptools wheel \
+    && rm -rf /usr/local/lib/python3.11/ensurepip/_bundled \
+    && groupadd --system --gid 10001 rollover \
+    && useradd --system --uid 10001 --gid rollover --no-create-home --home-dir /nonexistent rollover \
+    && install -d -o rollover -g rollover -m 0750 /var/lib/rollover
 COPY --from=build /opt/venv /opt/venv
-ENV PATH="/opt/venv/bin:$PATH" PYTHONUNBUFFERED=1 PYTHONDONTWRITEBYTECODE=1
+# the catalog's SQLite database (used when ROLLOVER_API_KEYS is set) lives on the volume, owned by the service's user
+ENV PATH="/opt/venv/bin:$PATH" PYTHONUNBUFFERED=1 PYTHONDONTWRITEBYTECODE=1 \
+    ROLLOVER_DATABASE_URL=sqlite:////var/lib/rollover/rollover.db
+VOLUME ["/var/lib/rollover"]
+# an empty directory the service cannot write to: uvicorn puts its working directory first on sys.path
 WORKDIR /srv
 USER rollover
 EXPOSE 8000
+# HEALTHCHECK is a Docker image-format instruction: podman/buildah drop it from OCI images (build with --format docker)
 HEALTHCHECK --interval=30s --timeout=3s CMD ["python", "-c", "import urllib.request; urllib.request.urlopen('http://127.0.0.1:8000/healthz', timeout=2)"]
-# the README's serve command (uvicorn app.main:app --port 8000), bound to all interfaces inside the container;
-# one process per container: scale with replicas sharing Redis (ROLLOVER_CACHE_BACKEND=redis, ROLLOVER_REDIS_URL)
-CMD ["uvicorn", "app.main:app", "--host", "0.0.0.0", "--port", "8000"]
+# the README's serve command bound to all interfaces, on uvloop and httptools (uvicorn[standard]). Workers:
+# WEB_CONCURRENCY=N (read by uvicorn) with ROLLOVER_CACHE_BACKEND=redis; or one worker per container and replicas.
+CMD ["uvicorn", "app.main:app", "--host", "0.0.0.0", "--port", "8000", "--loop", "uvloop", "--http", "httptools"]

@@ -167,7 +167,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
     for module in (catalog, builder, vehicles, srt, road, standards, alignments, routes, plots, models, health):
         app.include_router(module.router)
-    Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
+    if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
+        Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
     app.add_middleware(FastPathMiddleware, paths=lambda: computed_paths(app.openapi()), cache=lambda: app.state.cache)
     app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)

@@ -56,6 +56,11 @@ class Settings(BaseSettings):
         5.0, ge=0, description="After a Redis failure, serve from the local cache without Redis for this long [s]."
     )
     log_level: Literal["DEBUG", "INFO", "WARNING", "ERROR"] = Field("INFO", description="Lowest level logged.")
+    metrics: bool = Field(
+        True,
+        description="Per-request HTTP metrics (prometheus-fastapi-instrumentator: http_requests_total, ...); false "
+        "leaves them out (GET /metrics still serves the service's own solve-time and cache counters).",
+    )
     srt_target_general_g: float = Field(
         DEFAULT_TARGETS["general"],
         gt=0,

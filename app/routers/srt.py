@@ -14,6 +14,7 @@ from ..service import compute_srt
 from ..service_tools import compute_limits, compute_sweep
 from ..tables import wants_csv
 from ..vehicle_refs import resolve_vehicle_refs
+from .alignments import answer as table_answer
 from .common import computed_response, computed_responses, json_response, table_responses
 
 router = APIRouter(prefix="/v1", tags=["srt"])
@@ -61,4 +62,4 @@ async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings:
     CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
     body = await resolve_vehicle_refs(request, body, settings)
     csv = wants_csv(request.headers.get("accept"))
-    return computed_response(await compute_sweep(cache, body, settings, csv=csv), vary_accept=True)
+    return table_answer(await compute_sweep(cache, request, body, settings, csv=csv))

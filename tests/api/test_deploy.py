@@ -1,10 +1,12 @@
-"""The README's two commands, the Dockerfile and .ci/run agree with each other and with pyproject.toml.
+"""The README's two commands, the Dockerfile, the lock files and .ci/run agree with each other and with pyproject.toml.
 
-There is no Docker engine on the CI machines, so the Dockerfile is checked by parsing it.
+There is no Docker engine on the CI machines, so the Dockerfile is checked by parsing it (its steps were run by hand
+in a scratch directory: see the README's Deployment section).
 """
 
 from __future__ import annotations
 
+import fnmatch
 import json
 import os
 import re
@@ -12,6 +14,8 @@ import shlex
 import tomllib
 
 import pytest
+from packaging.requirements import Requirement
+from packaging.utils import canonicalize_name
 
 from .conftest import ROOT
 
@@ -108,12 +112,17 @@ def test_readme_documents_every_setting():
     assert "ROLLOVER_CACHE_BACKEND=redis ROLLOVER_REDIS_URL=" in README and "--workers" in README
 
 
-def test_dockerfile_is_multi_stage_slim_debian():
-    froms = [rest for word, rest in dockerfile_instructions() if word == "FROM"]
+#: an exact version tag of the official image, Debian slim (optionally with its digest)
+BASE_IMAGE = re.compile(r"python:3\.11\.\d+-slim-(bookworm|trixie)(@sha256:[0-9a-f]{64})?")
+
+
+def test_dockerfile_is_multi_stage_slim_debian_pinned_to_one_exact_tag():
+    froms = [rest.split()[0] for word, rest in dockerfile_instructions() if word == "FROM"]
     assert len(froms) >= 2
     for image in froms:
-        base = image.split()[0]
-        assert base.startswith("python:3.11-slim") and "alpine" not in base
+        assert BASE_IMAGE.fullmatch(image), image  # not a moving tag such as python:3.11-slim
+    # the runtime stage runs the build stage's virtualenv, whose python is a symlink to the base image's interpreter
+    assert len(set(froms)) == 1
 
 
 def test_dockerfile_runs_as_a_non_root_user():
@@ -125,7 +134,7 @@ def test_dockerfile_runs_as_a_non_root_user():
     assert words.index("USER") < words.index("CMD")
 
 
-def test_dockerfile_cmd_is_exec_form_and_runs_the_readme_server():
+def test_dockerfile_cmd_is_exec_form_and_runs_the_readme_server_on_uvloop_and_httptools():
     cmds = [rest for word, rest in dockerfile_instructions() if word == "CMD"]
     argv = json.loads(cmds[-1])  # exec form: a JSON array
     assert isinstance(argv, list) and argv[0] == "uvicorn"
@@ -134,29 +143,123 @@ def test_dockerfile_cmd_is_exec_form_and_runs_the_readme_server():
     assert docker["app"] == readme["app"] == "app.main:app"
     assert docker["--port"] == readme["--port"] == "8000"
     assert docker["--host"] == "0.0.0.0" and readme["--host"] == "127.0.0.1"
+    assert docker["--loop"] == "uvloop" and docker["--http"] == "httptools"
+    # which uvicorn[standard] brings, and the lock the image installs has
+    assert "uvicorn[standard]" in {re.split(r"[<>=]", d)[0] for d in PYPROJECT["project"]["dependencies"]}
+    assert {"uvloop", "httptools"} <= set(locked("runtime"))
     exposed = [rest for word, rest in dockerfile_instructions() if word == "EXPOSE"]
     assert exposed == ["8000"]
 
 
-def test_dockerfile_installs_the_dependencies_from_pyproject_before_the_source():
+def test_dockerfile_installs_the_locked_dependencies_in_their_own_layer_before_the_source():
     build = stages()[0]
-    copies = [(i, rest) for i, (word, rest) in enumerate(build) if word == "COPY"]
+    copies = [(i, rest.split()) for i, (word, rest) in enumerate(build) if word == "COPY"]
     runs = [(i, rest) for i, (word, rest) in enumerate(build) if word == "RUN"]
-    pyproject_copy = next(i for i, rest in copies if rest.split()[0] == "pyproject.toml")
-    source_copies = [i for i, rest in copies if rest.split()[0] in ("app", "engine")]
-    assert {rest.split()[0] for _, rest in copies} >= {"pyproject.toml", "app", "engine", "README.md"}
-    deps_install = next(i for i, rest in runs if "pyproject.toml" in rest and "pip install" in rest)
-    assert pyproject_copy < deps_install < min(source_copies)
-    # the dependency list is read from pyproject's [project].dependencies, not restated by hand
-    assert "['project']['dependencies']" in build[deps_install][1]
-    # then the project itself is installed (packages engine* and app*) after the source is copied
-    project_install = next(i for i, rest in runs if re.search(r"pip install (--no-deps )?\.$", rest))
-    assert project_install > max(source_copies)
+    # the first COPY brings the runtime lock alone: the dependency layer depends on nothing else
+    first_copy, sources = copies[0]
+    assert sources[:-1] == ["requirements/runtime.txt"]
+    deps = next(i for i, rest in runs if "-r requirements/runtime.txt" in rest)
+    assert "--require-hashes" in build[deps][1] and "--only-binary=:all:" in build[deps][1]
+    later = [i for i, src in copies if {"pyproject.toml", "app", "engine"} & set(src[:-1])]
+    assert first_copy < deps < min(later)
+    assert {s for _, src in copies for s in src[:-1]} >= {"pyproject.toml", "README.md", "app", "engine"}
+    # then the project itself (packages engine* and app*) without dependencies, after its source is copied
+    project = next(i for i, rest in runs if re.search(r"install --no-deps \.$", rest))
+    assert project > max(later)
     assert PYPROJECT["tool"]["setuptools"]["packages"]["find"]["include"] == ["engine*", "app*"]
     # the runtime stage takes the installed virtualenv and puts it on the PATH, so `uvicorn` is the one installed
     final = stages()[-1]
-    assert any(w == "COPY" and "--from=build" in rest for w, rest in final)
+    assert any(w == "COPY" and "--from=build" in rest and "/opt/venv" in rest for w, rest in final)
     assert any(w == "ENV" and "/opt/venv/bin" in rest for w, rest in final)
+
+
+def test_the_runtime_image_has_no_installer():
+    build, final = stages()[0], stages()[-1]
+    # the virtualenv is made without pip (the base image's pip installs into it with --python) ...
+    assert any(w == "RUN" and "venv --without-pip /opt/venv" in rest for w, rest in build)
+    assert all("/opt/venv/bin/pip " not in rest for _, rest in build)
+    # ... and the runtime stage removes the base image's own pip, setuptools and wheel
+    uninstall = [rest for w, rest in final if w == "RUN" and "pip uninstall" in rest]
+    assert uninstall and all(name in uninstall[0] for name in ("pip", "setuptools", "wheel"))
+
+
+def test_the_sqlite_database_lives_on_a_volume_owned_by_the_service_user():
+    final = stages()[-1]
+    env = " ".join(rest for w, rest in final if w == "ENV")
+    url = re.search(r"ROLLOVER_DATABASE_URL=sqlite:///(/\S+)", env)
+    assert url, "the database URL points into the volume"
+    directory = url.group(1).rsplit("/", 1)[0]
+    volumes = [v for w, rest in final if w == "VOLUME" for v in json.loads(rest)]
+    assert directory in volumes
+    user = [rest for w, rest in final if w == "USER"][-1]
+    assert any(
+        w == "RUN" and re.search(rf"install -d -o {user} -g {user} .*{re.escape(directory)}", rest) for w, rest in final
+    )
+    # the working directory is not the writable volume: uvicorn puts it first on sys.path
+    workdir = [rest for w, rest in final if w == "WORKDIR"][-1]
+    assert workdir != directory
+
+
+def test_dockerignore_keeps_the_context_small_and_lets_through_what_the_build_copies():
+    patterns = [
+        line.strip() for line in (ROOT / ".dockerignore").read_text().splitlines() if line.strip() and line[0] != "#"
+    ]
+    assert {".git", ".venv*", "tests"} <= set(patterns)
+    sources = [s for w, rest in stages()[0] if w == "COPY" for s in rest.split()[:-1] if not s.startswith("--")]
+    for source in sources:
+        assert not any(fnmatch.fnmatch(source, p) or source.startswith(p + "/") for p in patterns), source
+
+
+# ----------------------------------------------------------------------------------------------- the lock
+
+
+def locked(name: str) -> dict[str, str]:
+    """requirements/<name>.txt -> {normalised package name: pinned version}; every pin carries a sha256."""
+    text = (ROOT / "requirements" / f"{name}.txt").read_text(encoding="utf-8")
+    pins: dict[str, str] = {}
+    for entry in re.split(r"\n(?=[A-Za-z0-9])", text.split("\n", 2)[-1]):
+        head = entry.split(";")[0].split("\\")[0].strip()
+        if "==" not in head:
+            continue
+        package, version = (p.strip() for p in head.split("=="))
+        assert "--hash=sha256:" in entry, f"{name}.txt: {package} has no hash"
+        pins.setdefault(canonicalize_name(package), version)
+    return pins
+
+
+@pytest.mark.parametrize(("lock", "extras"), [("runtime", []), ("test", ["test"]), ("dev", ["test", "dev"])])
+def test_the_lock_pins_every_dependency_of_pyproject_within_its_range(lock, extras):
+    pins = locked(lock)
+    wanted = list(PYPROJECT["project"]["dependencies"])
+    for extra in extras:
+        wanted += PYPROJECT["project"]["optional-dependencies"][extra]
+    for line in wanted:
+        req = Requirement(line)
+        name = canonicalize_name(req.name)
+        # a dependency added to pyproject.toml without running scripts/lock.sh fails here
+        assert name in pins, f"{req.name} is not in requirements/{lock}.txt: run scripts/lock.sh"
+        assert req.specifier.contains(pins[name], prereleases=True), (req, pins[name])
+        for extra in req.extras:  # psycopg[binary] -> psycopg-binary, uvicorn[standard] -> uvloop, httptools...
+            assert extra != "binary" or f"{name}-binary" in pins
+
+
+def test_the_three_locks_agree_and_the_runtime_one_holds_no_test_tools():
+    runtime, test, dev = locked("runtime"), locked("test"), locked("dev")
+    assert runtime.items() <= test.items() <= dev.items()
+    assert not {"pytest", "hypothesis", "schemathesis", "ruff"} & set(runtime)
+    assert "ruff" in dev
+
+
+def test_lock_script_regenerates_the_three_files_with_hashes():
+    script = ROOT / "scripts" / "lock.sh"
+    text = script.read_text(encoding="utf-8")
+    assert text.startswith("#!/usr/bin/env bash") and "set -euo pipefail" in text
+    assert "--generate-hashes" in text
+    for name in ("runtime", "test", "dev"):
+        assert f"requirements/{name}.txt" in text
+    if os.name == "posix":
+        assert os.access(script, os.X_OK)
+    assert "scripts/lock.sh" in README
 
 
 def test_readme_serve_command_installs_the_project_from_pyproject():
@@ -164,17 +267,23 @@ def test_readme_serve_command_installs_the_project_from_pyproject():
     assert {"fastapi", "uvicorn"} <= {re.split(r"[<>=\[]", d)[0] for d in PYPROJECT["project"]["dependencies"]}
 
 
-def test_ci_run_installs_redis_and_runs_the_readme_test_command():
+def test_ci_run_installs_redis_and_runs_the_suite_from_the_lock_in_its_own_venv():
     text = CI_RUN.read_text(encoding="utf-8")
     assert text.startswith("#!/usr/bin/env bash")
     assert "set -euo pipefail" in text
     assert "apt-get update" in text and "apt-get install -y" in text and "redis-server" in text
     lines = [line.strip() for line in text.splitlines() if line.strip() and not line.strip().startswith("#")]
-    assert lines[-1] == TEST
+    venv = lines.index("python3 -m venv .venv-ci")
+    activate, deps, project = lines[venv + 1 : venv + 4]
+    assert 'PATH="$PWD/.venv-ci/bin:$PATH"' in activate
+    assert deps.startswith("python -m pip install") and "--require-hashes -r requirements/test.txt" in deps
+    assert project.startswith("python -m pip install") and project.endswith("--no-deps -e .")
+    # then the README test command's second half: the whole suite
+    assert lines[-1] == TEST.split(" && ")[-1] == "python -m pytest"
     if os.name == "posix":
         assert os.access(CI_RUN, os.X_OK), ".ci/run must be executable"
 
 
-@pytest.mark.parametrize("name", ["Dockerfile", ".ci/run", "README.md"])
+@pytest.mark.parametrize("name", ["Dockerfile", ".dockerignore", ".ci/run", "README.md", "scripts/lock.sh"])
 def test_files_exist(name):
     assert (ROOT / name).is_file()

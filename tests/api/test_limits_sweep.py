@@ -1,7 +1,8 @@
 """POST /v1/srt/limits (inverse limits) and POST /v1/srt/sweep (grids), through HTTP.
 
 The limits are checked by feeding them back to /v1/srt (the SRT there must be the target) and by the SRT on
-either side of them; the sweep rows against single /v1/srt answers and the thesis's Table 17.
+either side of them; the sweep rows against single /v1/srt answers and the thesis's Table 17; a large sweep is
+streamed, byte for byte the document pydantic writes for it.
 """
 
 from __future__ import annotations
@@ -10,9 +11,10 @@ import csv
 import io
 import itertools
 
+import orjson
 import pytest
 
-from app.schemas.sweep import SweepGrid
+from app.schemas.sweep import SweepGrid, SweepResult
 from engine.threshold import SWEEP_AXES
 
 BTRAIN = "table16-btrain"
@@ -283,3 +285,86 @@ def test_sweep_errors_name_the_field(shared_client, grid, field, words):
     errors = {e["field"]: e["message"] for e in p["errors"]}
     assert field in errors, errors
     assert words in errors[field]
+
+
+# ------------------------------------------------------------------------------------------ streaming
+
+#: 2 banks x 3 slopes x 2 d1 = 12 cases; the 6 with d1 = 1.0 m are refused (beyond the half track, 0.93 m)
+STREAMED = {
+    "vehicle": BTRAIN,
+    "rear_llt_limit": 0.6,
+    "targets": {"general": 0.35, "tight": 0.2},
+    "grid": {"bank_percent": [0, 8], "slope_percent": [-4, 0, 4], "lateral_offset_m": [0.1, 1.0]},
+}
+CASES = 12
+
+
+def sweep_bytes(client, accept: str) -> tuple[bytes, dict]:
+    with client.stream("POST", "/v1/srt/sweep", json=STREAMED, headers={"accept": accept}) as r:
+        assert r.status_code == 200, r.read()
+        return b"".join(r.iter_raw()), dict(r.headers)
+
+
+@pytest.mark.parametrize("accept", ["application/json", "text/csv"])
+def test_a_sweep_above_the_threshold_is_streamed_and_is_the_same_bytes_as_below_it(monkeypatch, accept):
+    import app.service_tools as service_tools
+
+    from .conftest import make_client
+
+    answers = {}
+    for threshold, streamed in ((CASES - 1, True), (CASES, False)):  # just below and just above the case count
+        monkeypatch.setattr(service_tools, "STREAM_ROWS", threshold)
+        monkeypatch.setattr(service_tools, "ROWS_PER_CHUNK", 5)  # several chunks, the last one short
+        with make_client() as client:  # a cache of its own: each answer is computed
+            body, headers = sweep_bytes(client, accept)
+            assert headers["x-cache"] == "miss" and headers["vary"] == "Accept"
+            assert headers["content-type"].startswith(accept)
+            # streamed: chunked, its length not known up front; whole: one body with its length
+            assert ("content-length" not in headers) is streamed
+            again, again_headers = sweep_bytes(client, accept)  # streamed: from the answer kept by reference
+            assert again == body and again_headers["x-cache"] == "hit" and again_headers["etag"] == headers["etag"]
+        answers[streamed] = (body, headers["etag"])
+    assert answers[True] == answers[False]  # the same bytes and the same entity tag
+    body = answers[True][0]
+    if accept == "application/json":
+        # byte for byte the document pydantic writes for the same result: the chunked renderer is not a variant
+        assert SweepResult.model_validate_json(body).model_dump_json(exclude_unset=True).encode() == body
+        out = orjson.loads(body)
+        assert out["cases"] == CASES and out["refused"] == 6 and len(out["rows"]) == CASES
+        assert [r["lateral_offset_m"] for r in out["rows"][:4]] == [0.1, 1.0] * 2  # the last axis varies fastest
+        for row in out["rows"]:
+            refused = row["lateral_offset_m"] == 1.0
+            assert (row["error"] is not None, row["srt"] is None, row["targets"] == []) == (refused,) * 3
+    else:
+        rows = list(csv.DictReader(io.StringIO(body.decode())))
+        assert len(rows) == CASES
+        assert list(rows[0])[-5:] == ["meets_tight", "margin_tight_g", "meets_general", "margin_general_g", "error"]
+
+
+def test_a_large_sweep_row_is_the_single_srt_answer(client, monkeypatch):
+    import app.service_tools as service_tools
+
+    monkeypatch.setattr(service_tools, "STREAM_ROWS", 2)
+    with client.stream("POST", "/v1/srt/sweep", json=TABLE17) as r:
+        assert "content-length" not in r.headers
+        rows = orjson.loads(b"".join(r.iter_raw()))["rows"]
+    single = post(client, "/v1/srt", {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "road": {"bank_percent": 8}}).json()
+    (row,) = [r for r in rows if r["bank_percent"] == 8 and r["slope_percent"] == 0]
+    assert row["srt"] == pytest.approx(single["srt"], rel=1e-9)
+    assert row["tilt_table_angle_deg"] == pytest.approx(single["tilt_table_angle_deg"], rel=1e-9)
+    assert same_targets(row["targets"], single["targets"])
+
+
+def test_the_json_and_csv_forms_of_a_sweep_share_one_solve(client):
+    from prometheus_client import REGISTRY
+
+    def solves() -> float:
+        labels = {"operation": "srt-sweep", "model": "3d"}
+        return REGISTRY.get_sample_value("rollover_solve_seconds_count", labels) or 0.0
+
+    before = solves()
+    body = {"vehicle": BTRAIN, "grid": {"bank_percent": [0, 1, 2]}}
+    assert post(client, "/v1/srt/sweep", body).headers["x-cache"] == "miss"
+    as_csv = post(client, "/v1/srt/sweep", body, headers={"Accept": "text/csv"})
+    assert as_csv.headers["x-cache"] == "miss"  # its own body and key, rendered from the answer already solved
+    assert solves() - before == 1

@@ -102,3 +102,22 @@ def test_metrics_count_solves_and_cache_lookups(client):
     assert 'rollover_cache_lookups_total{operation="srt",result="local"}' in text
     assert 'rollover_cache_lookups_total{operation="srt",result="miss"}' in text
     assert "http_requests_total" in text  # prometheus-fastapi-instrumentator
+
+
+@pytest.mark.parametrize("enabled", [True, False])
+def test_the_metrics_setting_installs_the_http_instrumentation_or_not(enabled):
+    # (the instrumentator's counters are process-wide and only the first instrumented app of a process records them,
+    # so the test looks for its middleware on the app rather than at the counters)
+    from app.main import create_app
+    from app.settings import Settings
+
+    from .conftest import make_client
+
+    app = create_app(Settings(cache_backend="memory", metrics=enabled))
+    names = [m.cls.__name__ for m in app.user_middleware]
+    assert ("PrometheusInstrumentatorMiddleware" in names) is enabled
+    assert "FastPathMiddleware" in names and "BodyLimitMiddleware" in names
+    with make_client(Settings(cache_backend="memory", metrics=enabled)) as c:
+        # the service's own counters are served either way
+        assert c.post("/v1/srt", json={"vehicle": "table16-btrain", "model": "rigid"}).status_code == 200
+        assert "rollover_cache_lookups_total" in c.get("/metrics").text

@@ -72,14 +72,28 @@ def test_a_fleet_in_an_alignment(cat, presets):  # noqa: F811
     assert both.status_code == 422 and both.json()["errors"][0]["field"] in ("fleet", "vehicle")
 
 
-@pytest.mark.parametrize("path", ["/v1/curve-speed", "/v1/plots/llt", "/v1/min-radius"])
+EXTRA = {
+    "/v1/curve-speed": {"radius_m": 100},
+    "/v1/min-radius": {"design_speed_kmh": 60, "superelevation_percent": 6},
+    "/v1/srt/sweep": {"grid": {"bank_percent": [0, 4]}},
+    "/v1/srt/limits": {"parameter": "overweight_percent"},
+}
+
+
+@pytest.mark.parametrize(
+    "path", ["/v1/curve-speed", "/v1/plots/llt", "/v1/min-radius", "/v1/srt/sweep", "/v1/srt/limits"]
+)
 def test_saved_ids_work_in_every_computation(cat, presets, path):  # noqa: F811
     vid = save(cat, presets[BTRAIN])["id"]
-    extra = {"/v1/curve-speed": {"radius_m": 100}, "/v1/min-radius": {"design_speed_kmh": 60,
-             "superelevation_percent": 6}}.get(path, {})  # fmt: skip
+    extra = EXTRA.get(path, {})
     mine = cat.post(path, json={"vehicle": vid, **extra}, headers=auth(K1))
     preset = cat.post(path, json={"vehicle": BTRAIN, **extra})
-    assert mine.status_code == 200 and preset.status_code == 200
-    if path != "/v1/plots/llt":  # the plot's label names the vehicle
+    assert mine.status_code == 200 and preset.status_code == 200, (mine.text, preset.text)
+    if path in ("/v1/curve-speed", "/v1/min-radius"):
         assert mine.json()["srt_result"]["srt"] == preset.json()["srt_result"]["srt"]
+    elif path == "/v1/srt/sweep":
+        assert [r["srt"] for r in mine.json()["rows"]] == [r["srt"] for r in preset.json()["rows"]]
+    elif path == "/v1/srt/limits":
+        assert mine.json()["limit"] == preset.json()["limit"]
+    # the plot's label names the vehicle: its SVG differs by that label only
     assert cat.post(path, json={"vehicle": vid, **extra}, headers=auth(K2)).status_code == 404

@@ -17,7 +17,7 @@ import orjson
 from fastapi import APIRouter, Depends, Request, Response
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, StreamingResponse
-from pydantic import ConfigDict, Field, RootModel, create_model
+from pydantic import ConfigDict, Field, RootModel, ValidationError, create_model
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from engine.errors import InvalidInput
@@ -209,6 +209,9 @@ def parse_submission(body: bytes) -> tuple[Operation, Any]:
     op = OPERATIONS[operation]
     try:
         return op, op.parse(data["request"])
+    except ValidationError as exc:  # the request model's own errors
+        errors = [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
+        raise _under_request(RequestValidationError(errors)) from None
     except RequestValidationError as exc:
         raise _under_request(exc) from None
 

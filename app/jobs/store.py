@@ -27,7 +27,9 @@ writes are never read (the fragments are keyed by attempt, the done state is set
 
 from __future__ import annotations
 
+import os
 import secrets
+import socket
 import time
 import zlib
 from collections.abc import Callable, Iterator
@@ -51,6 +53,8 @@ FRAGMENT_TYPE = "application/vnd.rollover.job-fragment+zlib"
 STREAM_PIECE = 1 << 20
 
 _log = get_logger("rollover.jobs")
+#: this process, as a part's state names its worker
+WORKER = f"{socket.gethostname()}:{os.getpid()}"
 
 
 def new_job_id() -> str:
@@ -89,6 +93,7 @@ class PartState(_Stored):
     finished_at: float | None = None
     seconds: float | None = None
     sections: int = 0
+    worker: str | None = None  # host:pid of the worker running it (or that ran it)
     meta: dict[str, Any] | None = None
 
 
@@ -377,7 +382,8 @@ class JobStore:
         def claim(s: PartState) -> PartState | None:
             if s.status != "queued" or s.attempt != attempt:
                 return None
-            return s.model_copy(update={"status": "running", "started_at": now, "heartbeat_at": now, "done_units": 0})
+            update = {"status": "running", "started_at": now, "heartbeat_at": now, "done_units": 0, "worker": WORKER}
+            return s.model_copy(update=update)
 
         state = self._update_part(job_id, k, record.ttl_s, claim)
         if state is None or state.status != "running" or state.attempt != attempt or state.started_at != now:

@@ -220,7 +220,7 @@ def test_jobs_are_visible_to_their_key_only(tmp_path):
 
 def test_without_keys_a_job_needs_none_and_unknown_ids_are_404():
     with make_client() as c:
-        location, status = run(c, "srt.sweep", SWEEP)
+        _, status = run(c, "srt.sweep", SWEEP)
         assert status["status"] == "done"
         assert status["id"].startswith("job_") and len(status["id"]) == 4 + 22
         for path in ("/v1/jobs/job_AAAAAAAAAAAAAAAAAAAAAA", "/v1/jobs/nope/result", "/v1/jobs/job_x"):

@@ -17,12 +17,14 @@ import orjson
 from fastapi import APIRouter, Depends, Request, Response
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, StreamingResponse
+from fastapi.security import HTTPAuthorizationCredentials
+from fastapi.security.utils import get_authorization_scheme_param
 from pydantic import ConfigDict, Field, RootModel, ValidationError, create_model
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from engine.errors import InvalidInput
 
-from ..auth import BearerDep, authenticate
+from ..auth import authenticate
 from ..bodylimit import body_limit
 from ..deps import SettingsDep
 from ..logs import get_logger
@@ -144,11 +146,16 @@ def status_body(view: JobView) -> dict[str, Any]:
 # ------------------------------------------------------------------------------------- dependencies
 
 
-def job_owner(credentials: BearerDep, settings: SettingsDep) -> str | None:
+def job_owner(request: Request, settings: SettingsDep) -> str | None:
     """The caller's owner id; None when no key is configured (then no key is needed). With keys, a valid one is
-    required (401 problem otherwise)."""
+    required (401 problem otherwise). The header is read here, not through the bearer scheme's dependency, so the
+    spec can say the key is optional (``security: [{}, {bearerAuth: []}]``)."""
     if not settings.api_key_list():
         return None
+    scheme, token = get_authorization_scheme_param(request.headers.get("authorization"))
+    credentials = None
+    if scheme.lower() == "bearer" and token:
+        credentials = HTTPAuthorizationCredentials(scheme=scheme, credentials=token)
     return authenticate(credentials, settings)
 
 
@@ -262,6 +269,8 @@ def _visible(backend: Backend, job_id: str, owner: str | None) -> JobView | None
 # ------------------------------------------------------------------------------------------ routes
 
 _PROBLEM = {"model": Problem}
+#: the bearer key is optional: needed only when keys are configured (OpenAPI: `{}` = no credentials)
+_SECURITY = {"security": [{}, {"bearerAuth": []}]}
 _STATUS_HEADERS = {"Location": {"description": "The job's status URL.", "schema": {"type": "string"}}}
 _RESPONSES: dict[int | str, dict[str, Any]] = {
     401: {**_PROBLEM, "description": "Keys are configured (ROLLOVER_API_KEYS) and the request has no valid one."},
@@ -290,7 +299,7 @@ _SUBMIT_DESCRIPTION = (
         422: {**_PROBLEM, "description": "The job or its request is invalid (fields under `request.`)."},
         503: {**_PROBLEM, "description": "The embedded job store is full (ROLLOVER_JOBS_MAX_BYTES): retry later."},
     },
-    openapi_extra={**body_limit(JOBS_BODY_LIMIT), **json_body(JobSubmission)},
+    openapi_extra={**body_limit(JOBS_BODY_LIMIT), **json_body(JobSubmission), **_SECURITY},
     description=_SUBMIT_DESCRIPTION,
 )
 async def submit(request: Request, owner: OwnerDep, settings: SettingsDep, jobs: JobsDep) -> Response:
@@ -319,6 +328,7 @@ async def submit(request: Request, owner: OwnerDep, settings: SettingsDep, jobs:
 @router.get(
     "/{job_id}",
     name="status",
+    openapi_extra=_SECURITY,
     response_model=JobStatus,
     responses=_RESPONSES,
     description="The job's status, progress (updated while it runs), timestamps and, when failed, the problem.",
@@ -358,6 +368,7 @@ def _result_chunks(jobs: Backend, view: JobView, op: Operation, fmt: str) -> Ite
 @router.get(
     "/{job_id}/result",
     name="result",
+    openapi_extra=_SECURITY,
     responses={
         200: {
             "description": "The synchronous endpoint's answer, byte for byte: JSON, or CSV when `Accept` prefers "
@@ -406,6 +417,7 @@ async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
 @router.delete(
     "/{job_id}",
     name="cancel",
+    openapi_extra=_SECURITY,
     status_code=202,
     response_model=JobStatus,
     responses={

@@ -21,7 +21,7 @@ from pydantic import Field
 
 from engine.vehicles import Vehicle
 
-from ..alignment_io import CurveTable
+from ..alignment_io import CURVE_ID_PATTERN, CurveTable
 from ..cache import cache_key
 from ..schemas.alignments import AlignmentRequest, CurveId, CurveIn, CurveOverrideIn, LandXmlIn
 from ..schemas.common import ABSENT, describe
@@ -55,6 +55,15 @@ CHUNK_ROWS = 5_000
 _COLUMNS = ("radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh", "station_m")
 
 
+def _keys_match_the_id_pattern(schema: dict[str, Any]) -> None:
+    """JSON Schema's ``patternProperties`` lets a key that does not match through: say it in ``propertyNames`` too
+    (the synchronous request's LandXmlIn has the same gap)."""
+    for branch in schema.get("anyOf", []):
+        if branch.get("type") == "object":
+            branch.setdefault("propertyNames", {})["pattern"] = CURVE_ID_PATTERN
+            branch["additionalProperties"] = False
+
+
 class LandXmlJobIn(LandXmlIn):
     """A LandXML 1.2 document, as in the synchronous request, of up to 200,000,000 characters."""
 
@@ -66,7 +75,10 @@ class LandXmlJobIn(LandXmlIn):
         ),
     )
     curve_overrides: dict[CurveId, CurveOverrideIn] | None = Field(
-        None, max_length=MAX_JOB_CURVES, description=LandXmlIn.model_fields["curve_overrides"].description
+        None,
+        max_length=MAX_JOB_CURVES,
+        description=LandXmlIn.model_fields["curve_overrides"].description,
+        json_schema_extra=_keys_match_the_id_pattern,
     )
 
 

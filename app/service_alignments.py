@@ -249,7 +249,7 @@ def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
     return exc
 
 
-def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
+def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
     r = job.resolved
     case = Case(
         job.vehicles[index],
@@ -270,6 +270,7 @@ def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
             design_standard=r["design_standard"],
             side_friction_bound=r["side_friction_bound"],
             max_superelevation_percent=r["max_superelevation_percent"],
+            solve_pairs=solve_pairs,
         )
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
@@ -279,10 +280,12 @@ def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
     return VehicleAnswer(index, r["presets"][index], cols, pair_of_row.reshape(-1), tilt, checks)
 
 
-def solve_alignment(job: AlignmentJob) -> AlignmentAnswer:
-    """Every curve for every vehicle (blocking: called in a worker thread)."""
+def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
+    """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
+    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved)."""
     started = time.perf_counter()
-    answer = AlignmentAnswer(job.resolved, job.curves, [_vehicle_answer(job, k) for k in range(len(job.vehicles))])
+    vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
+    answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
     SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
     return answer
 

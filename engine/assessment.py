@@ -20,7 +20,7 @@ Thesis Eqs. 9.1-9.3, Table 21; NTC Australia (2008) PBS scheme; NZTA (2008) SRT 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -383,6 +383,19 @@ def bank_grade_pairs(superelevation_percent: np.ndarray, grade_percent: np.ndarr
     return np.stack((keys.real, keys.imag), axis=1), inverse.reshape(-1)
 
 
+def solve_bank_grade_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+    """The SRT of ``case`` on each (superelevation, grade) pair (rows of ``pairs``) in one batch, and why a pair has
+    none (:func:`engine.threshold.evaluate_arrays`); a pair's SRT does not depend on the others in the batch.
+
+    Parameters
+    ----------
+    case : the vehicle and SRT options (its road is replaced by each pair)
+    pairs : (n, 2) superelevation and grade [%]
+    """
+    srt, _, errors = evaluate_arrays(case, {"bank_percent": pairs[:, 0], "slope_percent": pairs[:, 1]})
+    return srt, errors
+
+
 def assess_alignment(
     case: Case,
     radius_m,
@@ -393,6 +406,7 @@ def assess_alignment(
     design_standard: str = standards.DEFAULT_DESIGN_STANDARD,
     side_friction_bound: str | None = None,
     max_superelevation_percent: float | None = None,
+    solve_pairs: Callable[[Case, np.ndarray], tuple[np.ndarray, dict[int, str]]] | None = None,
 ) -> AlignmentColumns:
     """Safe speed on every curve of an alignment, on arrays (one entry per curve).
 
@@ -414,6 +428,8 @@ def assess_alignment(
     design_standard : id of :data:`engine.standards.STANDARDS` [-]
     side_friction_bound : Table 21 bound, ``thesis-table21`` only [-]
     max_superelevation_percent : the road's e_max [%]
+    solve_pairs : replaces :func:`solve_bank_grade_pairs` (e.g. one that remembers the pairs it solved for a
+        batch assessed in slices) [-]
 
     Raises
     ------
@@ -430,7 +446,7 @@ def assess_alignment(
     std = standards.get_standard(design_standard, side_friction_bound)
     e = _derive_superelevation(std, radius, e_given, posted, max_superelevation_percent)
     pairs, inverse = bank_grade_pairs(e, grade)
-    srt_pairs, _, pair_errors = evaluate_arrays(case, {"bank_percent": pairs[:, 0], "slope_percent": pairs[:, 1]})
+    srt_pairs, pair_errors = (solve_pairs or solve_bank_grade_pairs)(case, pairs)
     srt = srt_pairs[inverse]
     friction = standards.side_friction_speed(std, radius, e)
     fric_speed = friction.speed_kmh

@@ -35,8 +35,9 @@ from ..service_alignments import CSV_TYPE, JSON_TYPE
 from ..settings import Settings
 from ..tables import wants_csv
 from .backends import Backend
+from .base import Operation, ResolveContext
 from .kv import StorageFull
-from .operations import OPERATIONS, Operation, ResolveContext
+from .operations import OPERATIONS
 from .store import JobNotFound, JobView, problem
 
 #: a job's request body: 1,000,000 curves as JSON are about 100 MB; a LandXML document of 200 M characters [bytes]

@@ -12,13 +12,16 @@ the smallest of their minimums, and the distinct SRT solves are counted over the
 from __future__ import annotations
 
 import io
+import threading
 from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
 import orjson
+from cachetools import LRUCache
 from pydantic import Field
 
+from engine.assessment import solve_bank_grade_pairs
 from engine.vehicles import Vehicle
 
 from ..alignment_io import CURVE_ID_PATTERN, CurveTable
@@ -42,7 +45,7 @@ from ..service_alignments import (
     summary,
     validate_request_data,
 )
-from .operations import Fragments, Operation, PartContext, Prepared, ResolveContext
+from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
 MAX_JOB_CURVES = 1_000_000
@@ -104,6 +107,34 @@ class AlignmentJobRequest(AlignmentRequest):
     landxml: LandXmlJobIn = Field(
         None, json_schema_extra=ABSENT, description=AlignmentRequest.model_fields["landxml"].description
     )
+
+
+class PairMemo:
+    """The SRTs of the (superelevation, grade) pairs this process has solved, per vehicle case: a part's chunks (and
+    the next parts of the same job on this worker) solve only the pairs not seen yet. A pair's SRT does not depend on
+    the batch it is solved in, so the answer is the synchronous one, byte for byte (the tests check it)."""
+
+    def __init__(self, cases: int = 16) -> None:
+        self.known: LRUCache = LRUCache(maxsize=cases)
+        self._lock = threading.Lock()
+
+    def __call__(self, case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+        key = cache_key("pair-srt", case.to_dict())
+        with self._lock:
+            memo = self.known.get(key)
+            if memo is None:
+                memo = self.known[key] = {}
+        rows = [tuple(p) for p in pairs.tolist()]
+        todo = [i for i, p in enumerate(rows) if p not in memo]
+        if todo:
+            srt, errors = solve_bank_grade_pairs(case, pairs[todo])
+            for j, i in enumerate(todo):
+                memo[rows[i]] = (float(srt[j]), errors.get(j))
+        found = [memo[p] for p in rows]
+        return np.array([s for s, _ in found]), {i: e for i, (_, e) in enumerate(found) if e is not None}
+
+
+PAIRS = PairMemo()
 
 
 # ----------------------------------------------------------------------------------------- the hooks
@@ -172,7 +203,7 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
     summaries: list[list[dict[str, Any]]] = [[] for _ in range(nv)]
     for a in range(0, n, step):
         b = min(a + step, n)
-        answer = solve_alignment(AlignmentJob(resolved, vehicles, curves.sliced(a, b), shared["source"]))
+        answer = solve_alignment(AlignmentJob(resolved, vehicles, curves.sliced(a, b), shared["source"]), PAIRS)
         for v in answer.vehicles:
             ctx.write("json", v.index, (b"," if a else b"") + json_rows(answer, v, 0, b - a))
             ctx.write("csv", v.index, csv_rows(answer, v, 0, b - a, columns))

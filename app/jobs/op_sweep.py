@@ -22,7 +22,7 @@ from ..cache import cache_key
 from ..schemas.common import describe, shape_error
 from ..schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
 from ..service_tools import resolve_sweep, solve_sweep, sweep_csv
-from .operations import Fragments, Operation, PartContext, Prepared, ResolveContext
+from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
 
 #: a job's limit (the synchronous request's: 20,000 cases)
 MAX_JOB_CASES = 1_000_000

@@ -156,11 +156,9 @@ def main() -> None:
             for fmt in ("json", "csv"):
                 size, secs = out["results"][fmt]
                 cells.append(f"{size / 2**20:.0f} MiB in {secs:.1f} s ({size / 2**20 / secs:.0f} MiB/s)")
-            print(
-                f"| {n} | {out['parts']} | {out['wall']:.1f} | {out['submit']:.1f} | {args.curves / out['wall']:,.0f} | "
-                f"{peaks} | {cells[0]} | {cells[1]} |",
-                flush=True,
-            )
+            rate = args.curves / out["wall"]
+            row = f"| {n} | {out['parts']} | {out['wall']:.1f} | {out['submit']:.1f} | {rate:,.0f} | {peaks} | "
+            print(row + f"{cells[0]} | {cells[1]} |", flush=True)
     finally:
         for p in reversed(procs):
             stop(p)

@@ -30,7 +30,7 @@ from ..deps import SettingsDep
 from ..logs import get_logger
 from ..problems import InvalidAlignment, Problem, engine_field, problem_response
 from ..routers.common import json_body
-from ..schemas.common import InputModel, OutputModel
+from ..schemas.common import InputModel, OutputModel, describe
 from ..service_alignments import CSV_TYPE, JSON_TYPE
 from ..settings import Settings
 from ..tables import wants_csv
@@ -61,8 +61,11 @@ def _submission_model() -> type[RootModel]:
                 name,
                 __base__=InputModel,
                 __doc__=op.description,
-                operation=(Literal[op.name], Field(description="The operation to run.")),
-                request=(op.request_model, Field(description="Its request, as the synchronous endpoint takes it.")),
+                operation=(Literal[op.name], Field(description=describe("The operation to run.", unit="-"))),
+                request=(
+                    op.request_model,
+                    Field(description=describe("Its request, as the synchronous endpoint takes it.", unit="-")),
+                ),
             )
         )
     union = Annotated[Union[tuple(variants)], Field(discriminator="operation")]  # noqa: UP007
@@ -73,11 +76,11 @@ JobSubmission = _submission_model()
 
 
 class JobParts(OutputModel):
-    total: int = Field(description="Parts of the job (independent units a worker takes). Unit: -.")
-    queued: int = Field(description="Parts waiting for a worker. Unit: -.")
-    running: int = Field(description="Parts being computed. Unit: -.")
-    done: int = Field(description="Parts finished. Unit: -.")
-    failed: int = Field(description="Parts that failed. Unit: -.")
+    total: int = Field(description=describe("Parts of the job (independent units a worker takes).", unit="-"))
+    queued: int = Field(description=describe("Parts waiting for a worker.", unit="-"))
+    running: int = Field(description=describe("Parts being computed.", unit="-"))
+    done: int = Field(description=describe("Parts finished.", unit="-"))
+    failed: int = Field(description=describe("Parts that failed.", unit="-"))
 
 
 class JobStatus(OutputModel):
@@ -85,25 +88,46 @@ class JobStatus(OutputModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    id: str = Field(description="The job's id: `job_` + 22 url-safe characters (128 random bits).")
-    operation: str | None = Field(description="The operation (null when the stored job cannot be read).")
-    status: Literal["queued", "running", "done", "failed", "cancelled"] = Field(description="Where the job is.")
-    progress: float = Field(ge=0, le=1, description="Work done / total work, updated while it runs. Unit: -.")
-    unit: str | None = Field(description="What `done` and `total` count: `rows` (alignments), `cases` (sweep).")
-    done: int = Field(description="Units of work done (a lost worker's part counts again from 0). Unit: `unit`.")
-    total: int = Field(description="Units of work of the job. Unit: `unit`.")
-    parts: JobParts
-    retries: int = Field(description="Part runs started again after their worker was lost. Unit: -.")
-    created_at: str | None = Field(description="When the job was submitted (RFC 3339, UTC).")
-    started_at: str | None = Field(description="When its first part started (RFC 3339, UTC).")
-    finished_at: str | None = Field(description="When it became done, failed or cancelled (RFC 3339, UTC).")
-    expires_at: str | None = Field(
-        description="When a finished job and its result are deleted (ROLLOVER_JOBS_RESULT_TTL_S after it finished; "
-        "RFC 3339, UTC)."
+    id: str = Field(description=describe("The job's id: `job_` + 22 url-safe characters (128 random bits).", unit="-"))
+    operation: str | None = Field(
+        description=describe("The operation (null when the stored job cannot be read).", unit="-")
     )
-    formats: list[str] = Field(description="The result's formats: `json`, and `csv` when the operation offers it.")
-    result: str | None = Field(description="The result's path, when done.")
-    error: Problem | None = Field(description="Why it failed (a problem-details object), when failed.")
+    status: Literal["queued", "running", "done", "failed", "cancelled"] = Field(
+        description=describe("Where the job is.", unit="-")
+    )
+    progress: float = Field(
+        ge=0, le=1, description=describe("Work done / total work, updated while it runs.", unit="-")
+    )
+    unit: str | None = Field(
+        description=describe("What `done` and `total` count: `rows` (alignments), `cases` (sweep).", unit="-")
+    )
+    done: int = Field(
+        description=describe(
+            "Units of work done (a lost worker's part counts again from 0).", unit="rows or cases (see `unit`)"
+        )
+    )
+    total: int = Field(description=describe("Units of work of the job.", unit="rows or cases (see `unit`)"))
+    parts: JobParts = Field(description=describe("The parts by status.", unit="-"))
+    retries: int = Field(description=describe("Part runs started again after their worker was lost.", unit="-"))
+    created_at: str | None = Field(description=describe("When the job was submitted (RFC 3339, UTC).", unit="-"))
+    started_at: str | None = Field(description=describe("When its first part started (RFC 3339, UTC).", unit="-"))
+    finished_at: str | None = Field(
+        description=describe("When it became done, failed or cancelled (RFC 3339, UTC).", unit="-")
+    )
+    expires_at: str | None = Field(
+        description=describe(
+            "When a finished job and its result are deleted (ROLLOVER_JOBS_RESULT_TTL_S after it finished; RFC 3339, "
+            "UTC).",
+            unit="-",
+        )
+    )
+    formats: list[str] = Field(
+        description=describe("The result's formats: `json`, and `csv` when the operation offers it.", unit="-")
+    )
+    result: str | None = Field(description=describe("The result's path, when done.", unit="-"))
+    error: Problem | None = Field(
+        description=describe("Why it failed (a problem-details object), when failed.", unit="-")
+    )
 
 
 def _rfc3339(t: float | None) -> str | None:
@@ -276,6 +300,8 @@ _STATUS_HEADERS = {"Location": {"description": "The job's status URL.", "schema"
 _RESPONSES: dict[int | str, dict[str, Any]] = {
     401: {**_PROBLEM, "description": "Keys are configured (ROLLOVER_API_KEYS) and the request has no valid one."},
     404: {**_PROBLEM, "description": "No such job for this caller (or, at submission, an unknown vehicle preset)."},
+    422: {**_PROBLEM, "description": "Validation error."},
+    500: {**_PROBLEM, "description": "Internal error (a bug; logged, never a stack trace)."},
 }
 _SUBMIT_DESCRIPTION = (
     "Submit a long batch: `operation` and its `request`, the synchronous endpoint's request at a job's size. The "

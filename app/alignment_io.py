@@ -61,6 +61,19 @@ class CurveTable:
     def __len__(self) -> int:
         return len(self.ids)
 
+    def sliced(self, start: int, stop: int) -> CurveTable:
+        """Curves [start, stop) (a job's part)."""
+        sl = slice(start, stop)
+        return CurveTable(
+            self.ids[sl],
+            self.radius_m[sl],
+            self.superelevation_percent[sl],
+            self.grade_percent[sl],
+            self.posted_speed_kmh[sl],
+            self.station_m[sl],
+            None if self.where is None else self.where[sl],
+        )
+
     def key_rows(self) -> list[list[Any]]:
         """The curves as JSON-ready rows for the cache key (None for nan)."""
 
@@ -125,7 +138,10 @@ class _Collector:
     """Curves collected row by row (with where each came from), checked at the end against the domain's bounds on
     arrays; a curve out of bounds is reported at its row or element."""
 
-    def __init__(self, columns: dict[str, str] | None = None, id_column: str = "id") -> None:
+    def __init__(
+        self, columns: dict[str, str] | None = None, id_column: str = "id", max_curves: int = MAX_CURVES
+    ) -> None:
+        self.max_curves = max_curves
         self.ids: list[str] = []
         self.values: list[tuple[float, float, float, float, float]] = []  # r, e, grade, posted, station
         self.where: list[str] = []
@@ -142,8 +158,8 @@ class _Collector:
         self.ids.append(cid)
         self.values.append((radius, *opt))
         self.where.append(where)
-        if len(self.ids) > MAX_CURVES:
-            raise AlignmentFormatError(f"more than {MAX_CURVES} curves", where)
+        if len(self.ids) > self.max_curves:
+            raise AlignmentFormatError(f"more than {self.max_curves} curves", where)
 
     def table(self) -> CurveTable:
         a = np.array(self.values, dtype=float).reshape(-1, 5)
@@ -181,13 +197,14 @@ def _header(reader) -> dict[str, int]:
     return {n: i for i, n in enumerate(names)}
 
 
-def read_csv(text: str) -> CurveTable:
-    """Curves from CSV text with a header row (see the module docstring)."""
+def read_csv(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable:
+    """Curves from CSV text with a header row (see the module docstring); at most ``max_curves`` (a job's limit is
+    larger than a request's)."""
     if not text.strip():
         raise AlignmentFormatError("the CSV is empty (a header row and at least one curve are needed)")
     reader = csv.reader(io.StringIO(text))
     idx = _header(reader)
-    curves = _Collector()
+    curves = _Collector(max_curves=max_curves)
     try:
         for rownum, row in enumerate(reader, start=2):
             if not any(c.strip() for c in row):
@@ -259,6 +276,7 @@ def read_landxml(
     grade_percent: float = 0.0,
     posted_speed_kmh: float | None = None,
     overrides: dict[str, CurveOverride] | None = None,
+    max_curves: int = MAX_CURVES,
 ) -> CurveTable:
     """Curves (with their start station [m]) from a LandXML 1.2 document.
 
@@ -267,7 +285,7 @@ def read_landxml(
     standard's distribution (the assessment refuses it, naming the curve, without ``max_superelevation_percent``).
     """
     overrides = dict(overrides or {})
-    curves = _Collector({"radius_m": "radius"}, id_column="name")
+    curves = _Collector({"radius_m": "radius"}, id_column="name", max_curves=max_curves)
     for a_name, n, el in _landxml_curves(_parse_xml(text)):
         where = f"Alignment {a_name[:CURVE_ID_MAX_CHARS]!r} CoordGeom Curve #{n}"
         cid = check_curve_id(el.get("name") or f"{a_name}#{n}", where, "name")

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import re
+from functools import lru_cache
 from typing import Annotated, Any
 
 import numpy as np
@@ -27,7 +28,13 @@ _CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
 _REQUIRED = frozenset(("id", "radius_m"))  # the superelevation may be left out: it is then derived
 _FIELDS = frozenset(("id", "radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh"))
 _CURVE = TypeAdapter(CurveIn)
-_LIST = TypeAdapter(Annotated[list[Any], Field(min_length=1, max_length=MAX_CURVES)])
+
+
+@lru_cache
+def _list(max_curves: int) -> TypeAdapter:
+    return TypeAdapter(Annotated[list[Any], Field(min_length=1, max_length=max_curves)])
+
+
 _NUMBER = (int, float)
 
 
@@ -51,11 +58,12 @@ def _refuse(index: int, item: Any, prefix: tuple = ("body", "curves")) -> None:
         ) from None
 
 
-def curves_from_json(items: Any) -> CurveTable:
-    """The validated ``curves`` of a JSON request as columns; a 422 naming the curve and field otherwise."""
-    if not isinstance(items, list) or not 1 <= len(items) <= MAX_CURVES:
+def curves_from_json(items: Any, max_curves: int = MAX_CURVES) -> CurveTable:
+    """The validated ``curves`` of a JSON request as columns (at most ``max_curves``: a job's limit is larger than a
+    request's); a 422 naming the curve and field otherwise."""
+    if not isinstance(items, list) or not 1 <= len(items) <= max_curves:
         try:  # pydantic's own error: not a list, or too short or too long
-            _LIST.validate_python(items, strict=True)
+            _list(max_curves).validate_python(items, strict=True)
         except ValidationError as exc:
             raise RequestValidationError(
                 [{**e, "loc": ("body", "curves", *e["loc"])} for e in exc.errors(include_url=False)]

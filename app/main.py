@@ -13,6 +13,7 @@ from fastapi.routing import APIRoute
 from fastapi_offline import FastAPIOffline
 from prometheus_fastapi_instrumentator import Instrumentator
 from pydantic.json_schema import models_json_schema
+from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
 
@@ -20,7 +21,9 @@ from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_l
 from .cache import make_cache
 from .catalog import close_catalog, install_catalog_handlers, open_catalog
 from .fastpath import FastPathMiddleware
+from .jobs import api as jobs_api
 from .logs import configure_logging, get_logger
+from .metrics import JOBS_ACTIVE
 from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
@@ -72,6 +75,11 @@ TAGS = [
         "name": "plots",
         "description": "The thesis's figures for one case, as SVG: tire loads, LLT, roll and CG path against ay/g "
         "(Figs. 85-87, 92-97), minimum radius against design speed (Figs. 108-114).",
+    },
+    {
+        "name": "jobs",
+        "description": "Long batches as jobs (alignments of up to 1,000,000 rows, sweeps of up to 1,000,000 cases): "
+        "submit, follow the progress, fetch the result (the synchronous answer, byte for byte), cancel.",
     },
     {"name": "models", "description": "The available models, their equations and references."},
     {"name": "health", "description": "Liveness and Prometheus metrics."},
@@ -128,6 +136,13 @@ def computed_paths(spec: dict[str, Any]) -> set[str]:
     }
 
 
+def _active_jobs(jobs) -> float:
+    try:
+        return float(jobs.active_count())
+    except Exception:  # a closed backend (tests make many apps) or Redis down: unknown
+        return float("nan")
+
+
 def create_app(settings: Settings | None = None) -> FastAPI:
     """Build the app with ``settings`` (tests), or the settings read from the environment."""
 
@@ -140,9 +155,12 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         if cache.redis is not None:
             await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
         await open_catalog(app, app.state.settings)  # opens and migrates the database when ROLLOVER_API_KEYS is set
+        app.state.jobs = jobs = jobs_api.open_jobs(app.state.settings)  # in-process threads, or Redis + RQ workers
+        JOBS_ACTIVE.set_function(lambda: _active_jobs(jobs))
         try:
             yield
         finally:
+            await run_in_threadpool(jobs.close)
             await close_catalog(app)
             await cache.aclose()
             app.state.cache = None
@@ -165,7 +183,20 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_problem_handlers(app)
     install_catalog_handlers(app)
     # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
-    for module in (catalog, builder, vehicles, srt, road, standards, alignments, routes, plots, models, health):
+    for module in (
+        catalog,
+        builder,
+        vehicles,
+        srt,
+        road,
+        standards,
+        alignments,
+        routes,
+        plots,
+        jobs_api,
+        models,
+        health,
+    ):
         app.include_router(module.router)
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         Instrumentator(excluded_handlers=["/metrics"]).instrument(app)

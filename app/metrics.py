@@ -5,7 +5,7 @@ Defined once at import on the default registry, so several app instances in one 
 
 from __future__ import annotations
 
-from prometheus_client import Counter, Histogram
+from prometheus_client import Counter, Gauge, Histogram
 
 SOLVE_SECONDS = Histogram(
     "rollover_solve_seconds",
@@ -31,4 +31,24 @@ CACHE_REJECTED = Counter(
 FAST_PATH_HITS = Counter(
     "rollover_fast_path_hits_total",
     "Computed requests answered from the in-process cache by their raw bytes, before routing (not in http_*).",
+)
+JOBS = Counter(
+    "rollover_jobs_total",
+    "Jobs by operation and status reached: queued (submitted), done, failed, cancelled.",
+    ["operation", "status"],
+)
+JOB_PART_SECONDS = Histogram(
+    "rollover_job_part_seconds",
+    "Wall time of one part of a job in a worker (solve, render and store) [s].",
+    ["operation"],
+    buckets=(0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0, 25.0, 50.0, 100.0, 250.0, 600.0),
+)
+JOB_PART_RETRIES = Counter(
+    "rollover_job_part_retries_total",
+    "Parts queued again because their worker stopped reporting (killed, out of memory, machine lost).",
+    ["operation"],
+)
+JOBS_ACTIVE = Gauge(
+    "rollover_jobs_active",
+    "Jobs queued or running in this service's job store (read from the store when scraped).",
 )

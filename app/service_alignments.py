@@ -26,12 +26,19 @@ from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
-from engine.assessment import GOVERNED_BY, AlignmentColumns, assess_alignment, tilt_table_angle_deg
+from engine.assessment import (
+    GOVERNED_BY,
+    AlignmentColumns,
+    assess_alignment,
+    bank_grade_pairs,
+    superelevation_used,
+    tilt_table_angle_deg,
+)
 from engine.case import Case
 from engine.errors import InvalidInput
 from engine.loads import LoadCase
 
-from .alignment_io import AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from .alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
 from .cache import ResultCache, cache_key
 from .curves import curves_from_json
 from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
@@ -39,7 +46,7 @@ from .problems import InvalidAlignment, request_error
 from .schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from .service import Computed, SavedRef, resolve_targets, resolve_vehicle, target_checks
 from .settings import Settings
-from .tables import Text, flatten_targets, target_columns, to_csv_chunks
+from .tables import Text, csv_line, csv_lines, flatten_targets, target_columns
 from .vehicle_refs import resolve_vehicle_refs
 
 #: answers with more rows than this are streamed (and cached by reference), never built whole
@@ -82,20 +89,29 @@ def parse_json_request(body: bytes) -> tuple[AlignmentRequest, CurveTable | None
         data = orjson.loads(body)
     except orjson.JSONDecodeError as exc:
         raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    return validate_request_data(data)
+
+
+def validate_request_data(
+    data: Any, *, model: type[AlignmentRequest] = AlignmentRequest, max_curves: int = MAX_CURVES
+) -> tuple[AlignmentRequest, CurveTable | None]:
+    """:func:`parse_json_request` of the parsed JSON (``model`` and ``max_curves``: a job's larger limits)."""
     curves = None
     has_curves = isinstance(data, dict) and "curves" in data
     try:
-        req = AlignmentRequest.model_validate({**data, "curves": _PLACEHOLDER} if has_curves else data)
+        req = model.model_validate({**data, "curves": _PLACEHOLDER} if has_curves else data)
     except ValidationError as exc:
         raise RequestValidationError(
             [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
         ) from None
     if has_curves:
-        curves = curves_from_json(data["curves"])
+        curves = curves_from_json(data["curves"], max_curves)
     return req, curves
 
 
-def read_curves(req: AlignmentRequest, curves: CurveTable | None, source_field: str | None) -> CurveTable:
+def read_curves(
+    req: AlignmentRequest, curves: CurveTable | None, source_field: str | None, max_curves: int = MAX_CURVES
+) -> CurveTable:
     """The curves from whichever of ``curves`` (already read), ``csv``, ``landxml`` the request has.
 
     ``source_field`` names where a document came from for the error (``body`` for a raw upload)."""
@@ -104,7 +120,7 @@ def read_curves(req: AlignmentRequest, curves: CurveTable | None, source_field: 
     source = "csv" if req.csv is not None else "landxml"
     try:
         if source == "csv":
-            return read_csv(req.csv)
+            return read_csv(req.csv, max_curves=max_curves)
         x = req.landxml
         overrides = {
             k: CurveOverride(v.superelevation_percent, v.grade_percent, v.posted_speed_kmh)
@@ -116,6 +132,7 @@ def read_curves(req: AlignmentRequest, curves: CurveTable | None, source_field: 
             grade_percent=x.grade_percent,
             posted_speed_kmh=x.posted_speed_kmh,
             overrides=overrides,
+            max_curves=max_curves,
         )
     except AlignmentFormatError as exc:
         where = source_field or ("csv" if source == "csv" else "landxml.document")
@@ -150,16 +167,23 @@ class AlignmentJob:
 
 
 def resolve_alignment(
-    req: AlignmentRequest, curves: CurveTable | None, settings: Settings, source_field: str | None = None
+    req: AlignmentRequest,
+    curves: CurveTable | None,
+    settings: Settings,
+    source_field: str | None = None,
+    *,
+    max_curves: int = MAX_CURVES,
+    max_rows: int = MAX_ROWS,
 ) -> AlignmentJob:
-    """The fully resolved request: the vehicles' records (and preset ids), the options, and the curves."""
+    """The fully resolved request: the vehicles' records (and preset ids), the options, and the curves (at most
+    ``max_curves`` and ``max_rows`` rows: a job's limits are larger than a request's)."""
     which = "vehicle" if req.vehicle is not None else "vehicles"
     refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
-    table = read_curves(req, curves, source_field)
-    if len(table) * len(refs) > MAX_ROWS:
+    table = read_curves(req, curves, source_field, max_curves)
+    if len(table) * len(refs) > max_rows:
         raise request_error(
             which,
-            f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {MAX_ROWS} per "
+            f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {max_rows} per "
             "request (split the alignment or the vehicles)",
         )
     vehicles = [resolve_vehicle(r) for r in refs]
@@ -228,7 +252,7 @@ def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
     return exc
 
 
-def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
+def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
     r = job.resolved
     case = Case(
         job.vehicles[index],
@@ -249,6 +273,7 @@ def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
             design_standard=r["design_standard"],
             side_friction_bound=r["side_friction_bound"],
             max_superelevation_percent=r["max_superelevation_percent"],
+            solve_pairs=solve_pairs,
         )
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
@@ -258,12 +283,37 @@ def _vehicle_answer(job: AlignmentJob, index: int) -> VehicleAnswer:
     return VehicleAnswer(index, r["presets"][index], r["saved_ids"][index], cols, pair_of_row.reshape(-1), tilt, checks)
 
 
-def solve_alignment(job: AlignmentJob) -> AlignmentAnswer:
-    """Every curve for every vehicle (blocking: called in a worker thread)."""
+def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
+    """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
+    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved)."""
     started = time.perf_counter()
-    answer = AlignmentAnswer(job.resolved, job.curves, [_vehicle_answer(job, k) for k in range(len(job.vehicles))])
+    vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
+    answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
     SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
     return answer
+
+
+def check_alignment(job: AlignmentJob) -> int:
+    """What :func:`solve_alignment` refuses for the request as a whole, found without solving every curve (a job
+    refuses it at submission): a vehicle the model cannot use, a superelevation that cannot be derived. Raises the
+    same errors, located the same way. Returns the number of distinct superelevation/grade pairs (the summary's
+    ``distinct_srt_solves``)."""
+    r, t = job.resolved, job.curves
+    try:
+        e = superelevation_used(
+            t.radius_m,
+            t.superelevation_percent,
+            t.posted_speed_kmh,
+            design_standard=r["design_standard"],
+            side_friction_bound=r["side_friction_bound"],
+            max_superelevation_percent=r["max_superelevation_percent"],
+        )
+    except InvalidInput as exc:
+        raise _located(exc, job, 0) from None
+    first = AlignmentJob(r, job.vehicles, t.sliced(0, 1), job.source)
+    for k in range(len(job.vehicles)):
+        _vehicle_answer(first, k)  # the refusals of the vehicle and the options, on one curve
+    return len(bank_grade_pairs(e, t.grade_percent)[0])
 
 
 # ---------------------------------------------------------------------------------------- rendering
@@ -318,27 +368,71 @@ def _summary(c: AlignmentColumns) -> dict[str, Any]:
     }
 
 
-def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
-    """The AlignmentResult JSON document, in chunks of rows (byte for byte the document pydantic would write)."""
-    r = answer.resolved
+def summary(c: AlignmentColumns) -> dict[str, Any]:
+    """A vehicle's summary over the curves of ``c`` (the ``summary`` of the answer)."""
+    return _summary(c)
+
+
+def merge_summaries(parts: list[dict[str, Any]], distinct_srt_solves: int) -> dict[str, Any]:
+    """The summary of a vehicle over all the curves from the summaries of consecutive slices of them (a job's parts):
+    counts add up, minimums are the smallest (None where a slice has none); the distinct SRT solves are those of the
+    whole alignment (``distinct_srt_solves``, from :func:`check_alignment`), not the sum of the slices'."""
+    out = dict(parts[0])
+    for p in parts[1:]:
+        for name, value in p.items():
+            if name.startswith("min_"):
+                known = [x for x in (out[name], value) if x is not None]
+                out[name] = min(known) if known else None
+            else:
+                out[name] += value
+    out["distinct_srt_solves"] = distinct_srt_solves
+    return out
+
+
+def json_head(resolved: dict[str, Any], curves: int) -> bytes:
+    """The AlignmentResult document up to its ``vehicles`` list (opened)."""
+    r = resolved
     head = {
         "model": r["model"],
         "stage": r["stage"] if r["model"] == "3d" else None,
         "design_standard": r["design_standard"],
         "side_friction_bound": r["side_friction_bound"],
         "max_superelevation_percent": r["max_superelevation_percent"],
-        "curves": len(answer.curves),
+        "curves": curves,
     }
-    yield orjson.dumps(head)[:-1] + b',"vehicles":['
+    return orjson.dumps(head)[:-1] + b',"vehicles":['
+
+
+def json_vehicle_head(
+    index: int, preset: str | None, saved_id: str | None, summary: dict[str, Any], *, first: bool
+) -> bytes:
+    """One vehicle's entry up to its ``rows`` list (opened); closed by :data:`JSON_VEHICLE_END`."""
+    vehicle = {"index": index, "preset": preset, "saved_vehicle_id": saved_id, "summary": summary}
+    return (b"" if first else b",") + orjson.dumps(vehicle)[:-1] + b',"rows":['
+
+
+JSON_VEHICLE_END = b"]}"
+
+
+def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> bytes:
+    """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets)."""
+    return orjson.dumps(_rows(answer, v, start, stop))[1:-1]
+
+
+def json_tail() -> bytes:
+    return b'],"engine_version":' + orjson.dumps(ENGINE_VERSION) + b"}"
+
+
+def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
+    """The AlignmentResult JSON document, in chunks of rows (byte for byte the document pydantic would write)."""
+    yield json_head(answer.resolved, len(answer.curves))
     n = len(answer.curves)
     for k, v in enumerate(answer.vehicles):
-        vehicle = {"index": v.index, "preset": v.preset, "saved_vehicle_id": v.saved_id, "summary": _summary(v.columns)}
-        yield (b"," if k else b"") + orjson.dumps(vehicle)[:-1] + b',"rows":['
+        yield json_vehicle_head(v.index, v.preset, v.saved_id, _summary(v.columns), first=k == 0)
         for start in range(0, n, ROWS_PER_CHUNK):
-            rows = orjson.dumps(_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n)))[1:-1]
-            yield (b"," if start else b"") + rows
-        yield b"]}"
-    yield b'],"engine_version":' + orjson.dumps(ENGINE_VERSION) + b"}"
+            yield (b"," if start else b"") + json_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n))
+        yield JSON_VEHICLE_END
+    yield json_tail()
 
 
 def csv_columns(resolved: dict[str, Any]) -> list[str]:
@@ -346,27 +440,32 @@ def csv_columns(resolved: dict[str, Any]) -> list[str]:
     return ["vehicle_index", "vehicle_preset", "vehicle_saved_id", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
 
 
+def csv_header(resolved: dict[str, Any]) -> bytes:
+    """The CSV answer's header row."""
+    return csv_line(csv_columns(resolved))
+
+
+def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str]) -> bytes:
+    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`)."""
+    preset = None if v.preset is None else Text(v.preset)
+    saved = None if v.saved_id is None else Text(v.saved_id)
+    return csv_lines(
+        columns,
+        (
+            {"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **flatten_targets(row)}
+            for row in _rows(answer, v, start, stop)
+        ),
+    )
+
+
 def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     """One CSV table in chunks: a row per vehicle and curve, the vehicle's index and preset first."""
     columns = csv_columns(answer.resolved)
-
-    def rows() -> Iterator[list[dict[str, Any]]]:
-        n = len(answer.curves)
-        for v in answer.vehicles:
-            preset = None if v.preset is None else Text(v.preset)
-            saved = None if v.saved_id is None else Text(v.saved_id)
-            for start in range(0, n, ROWS_PER_CHUNK):
-                yield [
-                    {
-                        "vehicle_index": v.index,
-                        "vehicle_preset": preset,
-                        "vehicle_saved_id": saved,
-                        **flatten_targets(row),
-                    }
-                    for row in _rows(answer, v, start, min(start + ROWS_PER_CHUNK, n))
-                ]
-
-    return to_csv_chunks(columns, rows())
+    yield csv_line(columns)
+    n = len(answer.curves)
+    for v in answer.vehicles:
+        for start in range(0, n, ROWS_PER_CHUNK):
+            yield csv_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), columns)
 
 
 def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:
@@ -393,6 +492,18 @@ class Streamed:
 JSON_TYPE, CSV_TYPE = "application/json", "text/csv; charset=utf-8"
 
 
+async def resolve_alignment_refs(request: Request, req: AlignmentRequest, settings: Settings) -> AlignmentRequest:
+    """``req`` with its saved vehicles, specs and fleet resolved (:func:`~app.vehicle_refs.resolve_vehicle_refs`);
+    a fleet larger than an assessment takes (:data:`MAX_VEHICLES`) is a 422 naming ``fleet``."""
+    fleet = req.fleet
+    req = await resolve_vehicle_refs(request, req, settings)
+    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
+        raise request_error(
+            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; an assessment takes at most {MAX_VEHICLES}"
+        )
+    return req
+
+
 async def compute_alignment(
     cache: ResultCache,
     request: Request,
@@ -404,12 +515,7 @@ async def compute_alignment(
     source_field: str | None = None,
 ) -> Computed | Streamed:
     """The assessment as a cached body (small answers) or a stream (large ones); the same bytes either way."""
-    fleet = req.fleet
-    req = await resolve_vehicle_refs(request, req, settings)
-    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
-        raise request_error(
-            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; an assessment takes at most {MAX_VEHICLES}"
-        )
+    req = await resolve_alignment_refs(request, req, settings)
     job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
     operation = "alignments-csv" if csv else "alignments"
     media_type = CSV_TYPE if csv else JSON_TYPE

@@ -112,6 +112,45 @@ class Settings(BaseSettings):
     )
     catalog_max_fleet_members: int = Field(100, ge=1, description="Vehicles in one fleet [vehicles].")
 
+    # ------------------------------------------------------------------------------------------- jobs
+    jobs_backend: Literal["inprocess", "redis"] = Field(
+        "inprocess",
+        description="inprocess: jobs run in threads of the API process, stored in its memory (nothing else to run). "
+        "redis: jobs stored in Redis (ROLLOVER_REDIS_URL) and run by `python -m app.jobs.worker` processes.",
+    )
+    jobs_result_ttl_s: int = Field(
+        24 * 3600, ge=1, description="How long a finished job and its result are kept (and an unfinished one) [s]."
+    )
+    jobs_workers: int = Field(1, ge=1, le=64, description="Worker threads of the inprocess backend [threads].")
+    jobs_max_bytes: int = Field(
+        1024 * 2**20,
+        ge=2**20,
+        description="Bound of the inprocess backend's store: all jobs' inputs and compressed results [bytes].",
+    )
+    jobs_part_size: int | None = Field(
+        None,
+        ge=1,
+        description="Units of work per part (rows, cases); default: the operation's (50,000 rows, 20,000 cases).",
+    )
+    jobs_lease_s: float = Field(
+        60.0,
+        gt=0,
+        description="A running part that has not reported for this long is taken to have lost its worker and is "
+        "queued again [s].",
+    )
+    jobs_max_attempts: int = Field(3, ge=1, le=20, description="Runs of one part before the job fails [runs].")
+    jobs_part_timeout_s: float = Field(1800.0, gt=0, description="Longest run of one part [s].")
+    jobs_queue: str = Field("rollover-jobs", pattern=r"^[A-Za-z0-9_.-]{1,64}$", description="RQ queue name.")
+
+    @model_validator(mode="after")
+    def _redis_jobs_need_a_secret(self) -> Settings:
+        if self.jobs_backend == "redis" and self.cache_secret is None:
+            raise ValueError(
+                "ROLLOVER_CACHE_SECRET is required with ROLLOVER_JOBS_BACKEND=redis: the API and every worker seal "
+                "and verify the stored jobs with it (generate one with `openssl rand -hex 32`)"
+            )
+        return self
+
     @field_validator("api_keys")
     @classmethod
     def _check_api_keys(cls, value: SecretStr) -> SecretStr:

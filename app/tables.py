@@ -77,13 +77,23 @@ def to_csv(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
 
 def to_csv_chunks(columns: Sequence[str], chunks: Iterable[Iterable[dict[str, Any]]]) -> Iterator[bytes]:
     """:func:`to_csv` in chunks: the header row, then one chunk of CSV lines per chunk of rows."""
-    yield (",".join(columns) + "\r\n").encode()  # column names are identifiers: never formulas
+    yield csv_line(columns)
     for rows in chunks:
-        buf = io.StringIO()
-        writer = _Writer(buf)
-        for row in rows:
-            writer.writerow([_cell(row.get(c)) for c in columns])
-        yield buf.getvalue().encode()
+        yield csv_lines(columns, rows)
+
+
+def csv_line(columns: Sequence[str]) -> bytes:
+    """The header row (column names are identifiers: never formulas)."""
+    return (",".join(columns) + "\r\n").encode()
+
+
+def csv_lines(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
+    """CSV lines of ``rows`` (no header); a column a row does not have is left empty."""
+    buf = io.StringIO()
+    writer = _Writer(buf)
+    for row in rows:
+        writer.writerow([_cell(row.get(c)) for c in columns])
+    return buf.getvalue().encode()
 
 
 def _parse_accept(accept: str) -> list[tuple[str, float]]:

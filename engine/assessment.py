@@ -20,7 +20,7 @@ Thesis Eqs. 9.1-9.3, Table 21; NTC Australia (2008) PBS scheme; NZTA (2008) SRT 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -336,6 +336,66 @@ def _standard_min_radius(std, posted, e, e_max) -> np.ndarray:
     return out
 
 
+def superelevation_used(
+    radius_m,
+    superelevation_percent,
+    posted_speed_kmh,
+    *,
+    design_standard: str = "aashto-2018",
+    side_friction_bound: str | None = None,
+    max_superelevation_percent: float | None = None,
+) -> np.ndarray:
+    """The superelevation each curve is assessed on by :func:`assess_alignment`: its own, or (nan) the design
+    standard's at its posted speed and ``max_superelevation_percent``, without solving any SRT.
+
+    Parameters
+    ----------
+    radius_m : curve radii [m]
+    superelevation_percent : superelevations, nan = derive [%]
+    posted_speed_kmh : posted speeds, nan = none [km/h]
+    design_standard : id of :data:`engine.standards.STANDARDS` [-]
+    side_friction_bound : Table 21 bound, ``thesis-table21`` only [-]
+    max_superelevation_percent : the road's e_max [%]
+
+    Raises
+    ------
+    InvalidRoad : the refusal :func:`assess_alignment` would raise for the same curves (``field`` names
+        ``curves[i].<field>``).
+    """
+    radius = np.asarray(radius_m, dtype=float).reshape(-1)
+    e = np.broadcast_to(np.asarray(superelevation_percent, dtype=float), radius.shape)
+    posted = np.broadcast_to(np.asarray(posted_speed_kmh, dtype=float), radius.shape)
+    std = standards.get_standard(design_standard, side_friction_bound)
+    return _derive_superelevation(std, radius, e, posted, max_superelevation_percent)
+
+
+def bank_grade_pairs(superelevation_percent: np.ndarray, grade_percent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct (superelevation, grade) pairs of some curves, shape (n, 2), and each curve's index into them:
+    one SRT solve per pair (the SRT does not depend on the radius).
+
+    Parameters
+    ----------
+    superelevation_percent : superelevations as used [%]
+    grade_percent : grades [%]
+    """
+    # a complex number sorts by its real, then imaginary part (faster than np.unique(..., axis=0))
+    keys, inverse = np.unique(superelevation_percent + 1j * grade_percent, return_inverse=True)
+    return np.stack((keys.real, keys.imag), axis=1), inverse.reshape(-1)
+
+
+def solve_bank_grade_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+    """The SRT of ``case`` on each (superelevation, grade) pair (rows of ``pairs``) in one batch, and why a pair has
+    none (:func:`engine.threshold.evaluate_arrays`); a pair's SRT does not depend on the others in the batch.
+
+    Parameters
+    ----------
+    case : the vehicle and SRT options (its road is replaced by each pair)
+    pairs : (n, 2) superelevation and grade [%]
+    """
+    srt, _, errors = evaluate_arrays(case, {"bank_percent": pairs[:, 0], "slope_percent": pairs[:, 1]})
+    return srt, errors
+
+
 def assess_alignment(
     case: Case,
     radius_m,
@@ -346,6 +406,7 @@ def assess_alignment(
     design_standard: str = standards.DEFAULT_DESIGN_STANDARD,
     side_friction_bound: str | None = None,
     max_superelevation_percent: float | None = None,
+    solve_pairs: Callable[[Case, np.ndarray], tuple[np.ndarray, dict[int, str]]] | None = None,
 ) -> AlignmentColumns:
     """Safe speed on every curve of an alignment, on arrays (one entry per curve).
 
@@ -367,6 +428,8 @@ def assess_alignment(
     design_standard : id of :data:`engine.standards.STANDARDS` [-]
     side_friction_bound : Table 21 bound, ``thesis-table21`` only [-]
     max_superelevation_percent : the road's e_max [%]
+    solve_pairs : replaces :func:`solve_bank_grade_pairs` (e.g. one that remembers the pairs it solved for a
+        batch assessed in slices) [-]
 
     Raises
     ------
@@ -382,11 +445,8 @@ def assess_alignment(
     check_columns(radius, e_given, grade, posted)
     std = standards.get_standard(design_standard, side_friction_bound)
     e = _derive_superelevation(std, radius, e_given, posted, max_superelevation_percent)
-    # distinct (e, grade) pairs: a complex number sorts by its real, then imaginary part (faster than axis=0)
-    keys, inverse = np.unique(e + 1j * grade, return_inverse=True)
-    pairs = np.stack((keys.real, keys.imag), axis=1)
-    inverse = inverse.reshape(-1)
-    srt_pairs, _, pair_errors = evaluate_arrays(case, {"bank_percent": pairs[:, 0], "slope_percent": pairs[:, 1]})
+    pairs, inverse = bank_grade_pairs(e, grade)
+    srt_pairs, pair_errors = (solve_pairs or solve_bank_grade_pairs)(case, pairs)
     srt = srt_pairs[inverse]
     friction = standards.side_friction_speed(std, radius, e)
     fric_speed = friction.speed_kmh

@@ -31,6 +31,8 @@ UNSTATABLE = {
     ("/v1/alignments/assess", "vehicles"): "100,000 rows (curves x vehicles)",
     # a product of the axes' lengths
     ("/v1/srt/sweep", "grid"): "at most 20,000 cases",
+    ("/v1/jobs", "request.vehicles"): "1,000,000 rows (curves x vehicles)",
+    ("/v1/jobs", "request.grid"): "1,000,000 cases (the product of the axes' lengths)",
     # query parameters cannot state a rule between two of them
     ("/v1/alignments/assess/csv", "side_friction_bound"): _TABLE21,
     ("/v1/alignments/assess/landxml", "side_friction_bound"): _TABLE21,

@@ -1,0 +1,79 @@
+"""What a job operation is (:class:`Operation`) and what it is given; the registry is :mod:`app.jobs.operations`.
+
+An operation says how to
+
+* **parse** the job's ``request`` exactly as its synchronous endpoint does (the same pydantic model, made job-sized:
+  only the size limits differ), raising the same :class:`~fastapi.exceptions.RequestValidationError` located under
+  ``("body", ...)`` (the API puts ``request`` in front);
+* **refs**: resolve its vehicle references (saved vehicles and fleets of the caller's key, builder specs) as the
+  synchronous endpoint does, with the submitting request (its bearer key), so a stored job holds records only;
+* **resolve** it with what only the API process has (presets, the caller's saved vehicles and fleets, the configured
+  SRT targets): :class:`ResolveContext` carries the settings and the caller's owner id;
+* **split** the resolved request into parts: a :class:`Prepared` with the inputs every part shares and each part's
+  own inputs, all self-contained (engine inputs only: a worker on another machine needs nothing but Redis). Whatever
+  the synchronous endpoint would refuse for the request as a whole is refused here, before the job exists;
+* **run a part** (in a worker) with a :class:`PartContext`: ``write`` the part's result fragments (per format and
+  section), report ``progress`` at each chunk (it raises :class:`~app.jobs.store.Stopped` when the job was cancelled);
+  it returns the part's metadata (e.g. the partial summaries), kept in the part's state;
+* **assemble** the result in order from the parts' metadata and fragments, byte for byte the synchronous answer.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable, Iterator
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+from pydantic import BaseModel
+from starlette.requests import Request
+
+from ..settings import Settings
+
+
+@dataclass(frozen=True)
+class ResolveContext:
+    """What resolution may use besides the request: the settings and the caller's owner id (None without keys)."""
+
+    settings: Settings
+    owner: str | None
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """A split job: inputs shared by every part (JSON), each part's (units of work, packed inputs), and the cache
+    key the synchronous answer would have per format (the result's ETag)."""
+
+    shared: dict[str, Any]
+    parts: list[tuple[int, bytes]]
+    etag: dict[str, str]
+
+
+class PartContext(Protocol):
+    def write(self, fmt: str, section: int, data: bytes) -> None: ...
+    def progress(self, done_units: int) -> None: ...
+
+
+#: (part, section) -> the fragment's bytes, in pieces
+Fragments = Callable[[int, int], Iterator[bytes]]
+
+
+@dataclass(frozen=True)
+class Operation:
+    name: str
+    description: str  # what it does and its limits (the OpenAPI description lists them)
+    request_model: type[BaseModel]  # the job-sized request model (published)
+    unit: str  # what progress counts ("rows", "cases")
+    part_units: int  # default units of work per part
+    csv: bool  # whether the result is also offered as CSV
+    parse: Callable[[Any], Any]
+    resolve: Callable[[Any, ResolveContext], Any]
+    split: Callable[[Any, int], Prepared]
+    run_part: Callable[[dict[str, Any], bytes, PartContext], dict[str, Any]]
+    assemble: Callable[[dict[str, Any], list[dict[str, Any]], str, Fragments], Iterator[bytes]]
+    #: resolves the parsed request's vehicle references (saved ``veh_`` ids, ``flt_`` fleets, builder specs) with
+    #: the submitting request's bearer key, in the API process, before :attr:`resolve` (None: nothing to resolve)
+    refs: Callable[[Request, Any, Settings], Awaitable[Any]] | None = None
+
+    @property
+    def formats(self) -> list[str]:
+        return ["json", "csv"] if self.csv else ["json"]

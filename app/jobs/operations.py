@@ -1,0 +1,10 @@
+"""The operations a job can run: adding one is one :class:`~app.jobs.base.Operation` entry here (its module
+defines it; see :mod:`app.jobs.base` for what an operation says: parse, resolve, split, run a part, assemble).
+"""
+
+from __future__ import annotations
+
+from . import op_alignments, op_sweep
+from .base import Operation
+
+OPERATIONS: dict[str, Operation] = {op.name: op for op in (op_alignments.OPERATION, op_sweep.OPERATION)}

@@ -1,0 +1,350 @@
+"""/v1/jobs on the embedded (in-process) backend: results byte-identical to the synchronous endpoints, the summary
+over parts, progress, cancellation, owners, expiry, refusals at submission, stored state that does not verify."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import orjson
+import pytest
+
+from app.jobs.store import PREFIX
+from app.settings import Settings
+
+from .conftest import make_client, random_curves, wait_for
+
+KEY_A = "key-a-0123456789abcdef"
+KEY_B = "key-b-0123456789abcdef"
+SWEEP = {
+    "vehicle": "table16-btrain",
+    "rear_llt_limit": 0.6,
+    "grid": {"bank_percent": [0, 2, 4, 6, 8], "slope_percent": [-4, 0, 4], "overweight_percent": [0, 10, 20, 30]},
+}
+
+
+def submit(client, operation: str, request: dict, headers=None):
+    return client.post("/v1/jobs", json={"operation": operation, "request": request}, headers=headers)
+
+
+def run(client, operation: str, request: dict, headers=None) -> tuple[str, dict]:
+    r = submit(client, operation, request, headers)
+    assert r.status_code == 202, r.text
+    location = r.headers["location"]
+    assert location == f"/v1/jobs/{r.json()['id']}"
+    return location, wait_for(client, location, headers=headers)
+
+
+# ------------------------------------------------------------------------------- byte-identical results
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_alignment_result_is_the_synchronous_answer_byte_for_byte(accept):
+    """Two vehicles, 3,000 curves split into parts of 500 rows (250 curves): the job's JSON and CSV are the bytes
+    POST /v1/alignments/assess answers, with the same ETag (its cache key)."""
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(3000, seed=2)}
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=500)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 12
+        assert status["done"] == status["total"] == 6000 and status["unit"] == "rows"
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    assert job.headers["content-type"] == sync.headers["content-type"]
+    assert job.headers["etag"] == sync.headers["etag"]
+    assert job.content == sync.content
+
+
+def test_alignment_csv_document_job_matches_synchronous_upload():
+    """Curves sent as CSV text: the same answer as the synchronous request with the same CSV."""
+    rows = random_curves(1200, seed=5)
+    text = "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\n" + "".join(
+        f"{c['id']},{c['radius_m']},{c['superelevation_percent']},{c['grade_percent']},{c['posted_speed_kmh']}\n"
+        for c in rows
+    )
+    req = {"vehicle": "table15-semitrailer", "csv": text}
+    with make_client(Settings(jobs_part_size=400)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 3
+        assert c.get(location + "/result").content == c.post("/v1/alignments/assess", json=req).content
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_sweep_result_is_the_synchronous_answer_byte_for_byte(accept):
+    """60 cases in blocks of 12 (the last two axes whole), parts of 2 blocks: the sync sweep's bytes."""
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=25)) as c:
+        location, status = run(c, "srt.sweep", SWEEP)
+        assert status["status"] == "done" and status["parts"]["total"] == 3 and status["total"] == 60
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/srt/sweep", json=SWEEP, headers=headers)
+    assert job.headers["etag"] == sync.headers["etag"]
+    assert job.content == sync.content
+
+
+def test_a_sweep_larger_than_the_synchronous_limit_runs_as_a_job():
+    """200 x 101 = 20,200 cases: refused by POST /v1/srt/sweep (at most 20,000), a job of 2 parts here."""
+    req = {
+        "vehicle": "table16-btrain",
+        "model": "rigid",
+        "grid": {"bank_percent": [i / 10 for i in range(200)], "overweight_percent": [i / 4 for i in range(101)]},
+    }
+    with make_client() as c:
+        assert c.post("/v1/srt/sweep", json=req).status_code == 422
+        location, status = run(c, "srt.sweep", req)
+        assert status["status"] == "done" and status["total"] == 20_200 and status["parts"]["total"] == 2
+        body = orjson.loads(c.get(location + "/result").content)
+    assert body["cases"] == len(body["rows"]) == 20_200
+    # the product order, first axis slowest: row i has bank i // 101 / 10 and overweight i % 101
+    for i in (0, 100, 101, 10_099, 20_199):
+        assert body["rows"][i]["bank_percent"] == (i // 101) / 10
+        assert body["rows"][i]["overweight_percent"] == (i % 101) / 4
+
+
+# ------------------------------------------------------------------------------------- the summary
+
+
+def test_summary_over_parts_counts_each_distinct_pair_once():
+    """1,000 curves drawing from 7 superelevation/grade pairs, in 10 parts that all share them: the summary's
+    distinct SRT solves is 7 (counted over the alignment, not summed over parts: 70), its counts and minimums are
+    those of all the rows (checked against the rows themselves), and the whole summary equals the synchronous one."""
+    curves = random_curves(1000, seed=11, pairs=7)
+    pairs = {(c["superelevation_percent"], c["grade_percent"]) for c in curves}
+    req = {"vehicle": "table16-btrain", "curves": curves}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["parts"]["total"] == 10
+        job = orjson.loads(c.get(location + "/result").content)
+        sync = orjson.loads(c.post("/v1/alignments/assess", json=req).content)
+    (vehicle,) = job["vehicles"]
+    summary, rows = vehicle["summary"], vehicle["rows"]
+    assert summary["distinct_srt_solves"] == len(pairs) == 7
+    assert summary["curves"] == len(rows) == 1000
+    assert summary["flagged"] == sum(r["flagged"] for r in rows)
+    assert summary["governed_by_rollover"] == sum(r["governed_by"] == "rollover" for r in rows)
+    assert summary["governed_by_side_friction"] == sum(r["governed_by"] == "side-friction" for r in rows)
+    assert summary["min_margin_kmh"] == min(r["margin_kmh"] for r in rows if r["margin_kmh"] is not None)
+    assert summary["min_safe_speed_kmh"] == min(r["safe_speed_kmh"] for r in rows if r["safe_speed_kmh"] is not None)
+    assert vehicle["summary"] == sync["vehicles"][0]["summary"]
+
+
+# ------------------------------------------------------------------------------------------- progress
+
+
+def test_progress_increases_while_a_part_is_solved():
+    """One part of 20,000 rows solved in chunks of 5,000: the status shows the progress between 0 and 1 while that
+    part runs (no part done yet), never going down, then 1."""
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(10_000, seed=3)}
+    with make_client() as c:
+        location = submit(c, "alignments.assess", req).headers["location"]
+        seen = []
+        while True:
+            s = c.get(location).json()
+            seen.append((s["progress"], s["parts"]["done"], s["done"]))
+            if s["status"] == "done":
+                break
+            time.sleep(0.01)
+    progress = [p for p, _, _ in seen]
+    assert progress == sorted(progress) and progress[-1] == 1.0
+    during = [p for p, parts_done, _ in seen if 0 < p < 1 and parts_done == 0]
+    assert during, seen
+    assert all(d % 5000 == 0 for p, _, d in seen if 0 < p < 1)  # reported at chunk boundaries
+
+
+def test_healthz_answers_while_a_job_runs():
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(10_000, seed=4)}
+    with make_client() as c:
+        location = submit(c, "alignments.assess", req).headers["location"]
+        assert c.get(location).json()["status"] in ("queued", "running")
+        assert c.get("/healthz").status_code == 200
+        wait_for(c, location)
+
+
+# ----------------------------------------------------------------------------------------- cancelling
+
+
+def test_cancel_a_queued_job_never_starts_and_a_running_one_stops():
+    """One worker thread: job A runs, job B waits. Cancelling B: 202 `cancelled`, none of its parts ever starts.
+    Cancelling A: it stops at its next chunk, its unfinished parts never finish. Their results are 409."""
+    big = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(20_000, seed=6)}
+    with make_client(Settings(jobs_part_size=10_000, jobs_workers=1)) as c:
+        a = submit(c, "alignments.assess", big).headers["location"]
+        b = submit(c, "alignments.assess", big).headers["location"]
+        wait_for(c, a, statuses=("running",))
+        r = c.delete(b)
+        assert r.status_code == 202 and r.json()["status"] == "cancelled" and r.json()["finished_at"] is not None
+        r = c.delete(a)
+        assert r.status_code == 202 and r.json()["status"] == "cancelled"
+        time.sleep(1.0)  # a part in flight reaches its next chunk boundary and stops
+        sa, sb = c.get(a).json(), c.get(b).json()
+        assert sb["status"] == "cancelled" and sb["started_at"] is None and sb["done"] == 0
+        assert sa["status"] == "cancelled" and sa["parts"]["done"] < sa["parts"]["total"]
+        time.sleep(1.0)
+        assert c.get(a).json()["parts"]["done"] == sa["parts"]["done"]  # nothing finished after the stop
+        r = c.get(b + "/result")
+        assert r.status_code == 409 and r.json()["job_status"] == "cancelled"
+        assert r.json()["type"] == "urn:rollover:problem:job-not-done"
+
+
+def test_result_before_done_is_409_saying_the_status_and_delete_of_a_finished_job_discards_it():
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(10_000, seed=7)}
+    with make_client() as c:
+        location = submit(c, "alignments.assess", req).headers["location"]
+        r = c.get(location + "/result")
+        assert r.status_code == 409 and r.json()["job_status"] in ("queued", "running")
+        assert r.headers["content-type"] == "application/problem+json"
+        wait_for(c, location)
+        assert c.delete(location).status_code == 204
+        assert c.get(location).status_code == 404
+
+
+# ------------------------------------------------------------------------------------------------ owners
+
+
+def test_jobs_are_visible_to_their_key_only(tmp_path):
+    settings = Settings(api_keys=f"{KEY_A},{KEY_B}", database_url=f"sqlite:///{tmp_path}/catalog.db")
+    a, b = {"Authorization": f"Bearer {KEY_A}"}, {"Authorization": f"Bearer {KEY_B}"}
+    with make_client(settings) as c:
+        assert submit(c, "srt.sweep", SWEEP).status_code == 401  # keys configured: a key is needed
+        location, status = run(c, "srt.sweep", SWEEP, headers=a)
+        assert status["status"] == "done"
+        for path in (location, location + "/result"):
+            assert c.get(path, headers=a).status_code == 200
+            other = c.get(path, headers=b)
+            assert other.status_code == 404 and other.json()["type"] == "urn:rollover:problem:job-not-found"
+            assert c.get(path).status_code == 401
+        assert c.delete(location, headers=b).status_code == 404
+        assert c.get(location, headers=a).status_code == 200  # B's delete did nothing
+
+
+def test_without_keys_a_job_needs_none_and_unknown_ids_are_404():
+    with make_client() as c:
+        _, status = run(c, "srt.sweep", SWEEP)
+        assert status["status"] == "done"
+        assert status["id"].startswith("job_") and len(status["id"]) == 4 + 22
+        for path in ("/v1/jobs/job_AAAAAAAAAAAAAAAAAAAAAA", "/v1/jobs/nope/result", "/v1/jobs/job_x"):
+            r = c.get(path)
+            assert r.status_code == 404 and r.headers["content-type"] == "application/problem+json"
+
+
+# ------------------------------------------------------------------------------------------------- expiry
+
+
+def test_a_finished_job_expires_after_the_ttl():
+    with make_client(Settings(jobs_result_ttl_s=1)) as c:
+        location, status = run(c, "srt.sweep", SWEEP)
+        assert status["status"] == "done"
+        assert c.get(location + "/result").status_code == 200
+        time.sleep(1.3)
+        assert c.get(location).status_code == 404
+        assert c.get(location + "/result").status_code == 404
+        assert c.app.state.jobs.kv.used_bytes == 0 or c.app.state.jobs.kv.purge() is None
+        assert c.app.state.jobs.kv.used_bytes == 0  # nothing of the job is left in memory
+
+
+# ------------------------------------------------------------------------------------ refusals at submission
+
+
+def _errors(r) -> list[tuple[str, str, str]]:
+    return sorted((e["field"], e["message"], e["type"]) for e in r.json()["errors"])
+
+
+@pytest.mark.parametrize(
+    "request_body",
+    [
+        {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 2.0}]},  # radius below 5 m
+        {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0, "bogus": 1}]},
+        {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0}, {"id": "A", "radius_m": 300.0}]},
+        {"vehicle": "table16-btrain"},  # no curves
+        {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,abc\n"},  # a CSV row that cannot be read
+        {"vehicle": "table14-semitrailer", "curves": [{"id": "A", "radius_m": 200.0, "superelevation_percent": 2.0}]},
+        {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0}]},  # no e and no e_max to derive it
+    ],
+)
+def test_a_bad_alignment_request_is_refused_at_submission_as_the_synchronous_endpoint_refuses_it(request_body):
+    """The same status and problem type, the same errors with their fields under `request.`: never a failed job."""
+    with make_client() as c:
+        sync = c.post("/v1/alignments/assess", json=request_body)
+        job = submit(c, "alignments.assess", request_body)
+        assert c.app.state.jobs.active_count() == 0  # no job was created
+    assert sync.status_code == job.status_code == 422
+    assert job.json()["type"] == sync.json()["type"]
+    assert _errors(job) == sorted((f"request.{f}", m, t) for f, m, t in _errors(sync))
+
+
+def test_a_bad_sweep_request_is_refused_like_the_synchronous_one():
+    body = {**SWEEP, "grid": {"bank_percent": [0, 99]}}
+    with make_client() as c:
+        sync, job = c.post("/v1/srt/sweep", json=body), submit(c, "srt.sweep", body)
+    assert sync.status_code == job.status_code == 422
+    assert _errors(job) == sorted((f"request.{f}", m, t) for f, m, t in _errors(sync))
+
+
+@pytest.mark.parametrize(
+    ("body", "field"),
+    [
+        ({"operation": "alignments.explode", "request": {}}, "operation"),
+        ({"request": {}}, "operation"),
+        ({"operation": "srt.sweep"}, "request"),
+        ({"operation": "srt.sweep", "request": [1]}, "request"),
+        ({"operation": "srt.sweep", "request": SWEEP, "priority": 1}, "priority"),
+    ],
+)
+def test_a_bad_job_is_a_422_naming_the_field(body, field):
+    with make_client() as c:
+        r = c.post("/v1/jobs", json=body)
+    assert r.status_code == 422 and r.json()["type"] == "urn:rollover:problem:validation-error"
+    assert field in {e["field"] for e in r.json()["errors"]}
+    if field == "operation" and "operation" in body:
+        assert "alignments.assess" in r.json()["detail"] and "srt.sweep" in r.json()["detail"]
+
+
+def test_an_unknown_preset_is_the_synchronous_404():
+    body = {"vehicle": "no-such-truck", "curves": [{"id": "A", "radius_m": 200.0, "superelevation_percent": 2.0}]}
+    with make_client() as c:
+        r = submit(c, "alignments.assess", body)
+    assert r.status_code == 404 and r.json()["type"] == "urn:rollover:problem:unknown-preset"
+
+
+# --------------------------------------------------------------------------- stored state that does not verify
+
+
+@pytest.mark.parametrize("suffix", ["", ":part:0"])
+def test_a_stored_value_that_does_not_verify_is_a_failed_job_with_the_reason(suffix):
+    """Tampered store (a record or a part state not sealed by this deployment): the job reads as failed with a
+    job-state-invalid problem naming the value, never a 500 and never used."""
+    with make_client() as c:
+        location, _ = run(c, "srt.sweep", SWEEP)
+        job_id = location.rsplit("/", 1)[1]
+        kv = c.app.state.jobs.kv
+        key = PREFIX + job_id + suffix
+        kv.set(key, b'{"status": "done"}', 60)
+        r = c.get(location)
+        assert r.status_code == 200
+        body = r.json()
+        assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
+        assert key in body["error"]["detail"]
+        assert c.get(location + "/result").status_code == 409
+
+
+def test_a_full_embedded_store_refuses_a_job_with_503():
+    """ROLLOVER_JOBS_MAX_BYTES (1 MiB) nearly used up by earlier jobs: a new job does not fit; 503 with
+    Retry-After, and nothing of it is stored."""
+    with make_client(Settings(jobs_max_bytes=2**20)) as c:
+        kv = c.app.state.jobs.kv
+        kv.set(PREFIX + "job_earlier:out", b"x" * (2**20 - 1000), 60)
+        r = submit(c, "alignments.assess", {"vehicle": "table16-btrain", "curves": random_curves(500, seed=9)})
+        assert r.status_code == 503 and r.headers["retry-after"] == "60"
+        assert r.json()["type"] == "urn:rollover:problem:jobs-storage-full"
+        assert kv.used_bytes == 2**20 - 1000 and kv.active() == []
+
+
+def test_metrics_count_jobs_and_part_durations():
+    with make_client() as c:
+        run(c, "srt.sweep", SWEEP)
+        text = c.get("/metrics").text
+    assert 'rollover_jobs_total{operation="srt.sweep",status="done"}' in text
+    assert 'rollover_job_part_seconds_count{operation="srt.sweep"}' in text
+    active = [line for line in text.splitlines() if line.startswith("rollover_jobs_active ")]
+    assert active and not math.isnan(float(active[0].split()[1]))

@@ -218,6 +218,32 @@ def test_jobs_are_visible_to_their_key_only(tmp_path):
         assert c.get(location, headers=a).status_code == 200  # B's delete did nothing
 
 
+def test_a_job_takes_the_callers_saved_vehicles_and_fleets(tmp_path):
+    """Saved vehicles and fleets are read with the submitting key, at submission (the stored job holds records):
+    the result is the synchronous answer for the same fleet and key; another key's fleet is a 404 naming it."""
+    settings = Settings(api_keys=f"{KEY_A},{KEY_B}", database_url=f"sqlite:///{tmp_path}/catalog.db")
+    a, b = {"Authorization": f"Bearer {KEY_A}"}, {"Authorization": f"Bearer {KEY_B}"}
+    with make_client(settings) as c:
+        record = {**c.get("/v1/vehicles/table16-btrain").json(), "cg_height_above_chassis_m": 1.5}
+        record = {k: v for k, v in record.items() if v is not None}
+        saved = c.post("/v1/vehicles", json={"title": "raised", "vehicle": record}, headers=a)
+        assert saved.status_code == 201, saved.text
+        vid = saved.json()["id"]
+        fid = c.post("/v1/fleets", json={"title": "f", "vehicles": ["table16-btrain", vid]}, headers=a).json()["id"]
+        req = {"fleet": fid, "curves": random_curves(300, seed=4)}
+        location, status = run(c, "alignments.assess", req, headers=a)
+        assert status["status"] == "done"
+        job = c.get(location + "/result", headers=a)
+        sync = c.post("/v1/alignments/assess", json=req, headers=a)
+        assert job.status_code == sync.status_code == 200 and job.content == sync.content
+        assert [v["saved_vehicle_id"] for v in job.json()["vehicles"]] == [None, vid]
+        other = submit(c, "alignments.assess", req, headers=b)
+        assert other.status_code == 404 and other.json()["id"] == fid
+        sweep = run(c, "srt.sweep", {**SWEEP, "vehicle": vid}, headers=a)[1]
+        assert sweep["status"] == "done"
+        assert submit(c, "srt.sweep", {**SWEEP, "vehicle": vid}, headers=b).status_code == 404
+
+
 def test_without_keys_a_job_needs_none_and_unknown_ids_are_404():
     with make_client() as c:
         _, status = run(c, "srt.sweep", SWEEP)

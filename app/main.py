@@ -25,6 +25,7 @@ from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, catalog, health, models, plots, road, srt, standards, vehicles
 from .routers.common import READ_BY_ROUTE
+from .routers.web import install_page
 from .settings import Settings, get_settings
 
 DESCRIPTION = """\
@@ -153,6 +154,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
     for module in (catalog, vehicles, srt, road, standards, alignments, plots, models, health):
         app.include_router(module.router)
+    install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
     Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
     app.add_middleware(FastPathMiddleware, paths=lambda: computed_paths(app.openapi()), cache=lambda: app.state.cache)

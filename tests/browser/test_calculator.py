@@ -73,9 +73,9 @@ def test_link_opens_the_btrain_with_its_srt_computed(page, api):
     ]
     assert [r[0] for r in rows] == ["general", "dangerous_goods"]
     for row, target in zip(rows, (0.35, 0.40), strict=True):
-        assert shown(row[1], " g") == target
+        assert shown(row[1], "") == target
         assert "below" in row[2]
-        assert shown(row[3], " g") == pytest.approx(expected["srt"] - target, abs=DISPLAY_G)
+        assert shown(row[3], "") == pytest.approx(expected["srt"] - target, abs=DISPLAY_G)
     # the four figures are the service's SVGs, inline, with the markers of both stages
     svgs = page.find_all("#plots svg")
     assert len(svgs) == 4

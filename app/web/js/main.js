@@ -72,16 +72,17 @@ async function compute() {
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
     const link = writeUrl(stateParams(v.params));
-    const { targets: _t, ...plotRequest } = request;
-    const figures = await results.showPlots({ vehicle: v.ref, ...plotRequest }, Boolean(modelInfo()?.curves));
-    page.last = { vehicle: v, request, result, figures, link, design: null, speed: null };
-    summary.update(page.last);
+    page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
     return page.last;
   });
   $("#results").setAttribute("aria-busy", "false");
   if (done) {
     status("");
-    await Promise.all([roadDesign(), curveSpeed()]);
+    // the figures, the road design and the curve speed of the same case, side by side
+    const { targets: _t, ...plotRequest } = done.request;
+    const figures = results.showPlots({ vehicle: done.vehicle.ref, ...plotRequest }, Boolean(modelInfo()?.curves));
+    await Promise.all([figures.then((f) => (done.figures = f)), roadDesign(), curveSpeed()]);
+    summary.update(done);
   }
   counted("computations");
 }
@@ -98,7 +99,6 @@ async function roadDesign() {
   if (design) {
     page.last.design = design;
     page.last.link = writeUrl(stateParams(v.params));
-    summary.update(page.last);
   }
 }
 
@@ -108,7 +108,6 @@ async function curveSpeed() {
   if (speed !== undefined) {
     page.last.speed = speed;
     page.last.link = writeUrl(stateParams(v.params));
-    summary.update(page.last);
   }
 }
 
@@ -235,12 +234,19 @@ async function init() {
   rememberDefaults();
   const params = applyParams();
   const wanted = vehicle.fromParams(params);
-  const [models, presets] = await Promise.all([api.get("/v1/models"), api.get("/v1/vehicles"), api.spec()]);
+  // what this deployment has (its OpenAPI document) decides which optional lists are read
+  const optional = (path) => api.has("get", path).then((yes) => (yes ? api.get(path) : null));
+  const [models, presets, standards, components] = await Promise.all([
+    api.get("/v1/models"),
+    api.get("/v1/vehicles"),
+    optional("/v1/design-standards"),
+    optional("/v1/components"),
+  ]);
   fillModels(models);
   vehicle.fillPresets(presets);
+  if (standards) road.fillStandards(standards);
+  if (components) vehicle.fillComponents(components);
   await showOptionalParts();
-  if (await api.has("get", "/v1/design-standards")) road.fillStandards(await api.get("/v1/design-standards"));
-  if (await api.has("get", "/v1/components")) vehicle.fillComponents(await api.get("/v1/components"));
   syncModel();
   document.body.dataset.ready = "true";
   if (wanted) await compute();

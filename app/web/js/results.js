@@ -17,9 +17,14 @@ export function verdict(check) {
   return el("span", { class: check.meets ? "verdict pass" : "verdict fail" }, check.meets ? "\u2713 meets" : "\u2717 below");
 }
 
+/** A snake_case name that may wrap after its underscores on a narrow screen. */
+function breakable(name) {
+  return name.split("_").flatMap((part, i) => (i ? ["_", el("wbr"), part] : [part]));
+}
+
 export function targetsTable(checks) {
   const body = checks.map((c) =>
-    el("tr", {}, el("td", {}, c.name), el("td", {}, srtText(c.target_g)), el("td", {}, verdict(c)), el("td", {}, `${signed(c.margin_g, 3)} g`)),
+    el("tr", {}, el("td", {}, breakable(c.name)), el("td", {}, fmt(c.target_g, 3)), el("td", {}, verdict(c)), el("td", {}, signed(c.margin_g, 3))),
   );
   return body;
 }

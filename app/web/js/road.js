@@ -72,6 +72,7 @@ export async function minRadius(vehicleRef, caseRequest) {
     speed_max_kmh: vmax,
   });
   const svgText = await api.postSvg("/v1/plots/min-radius", plotRequest); // refuses a bad range at its field
+  // the plot accepted the range: the table covers the same one (the standard's whole range by default)
   const lo = typeof vmin === "number" ? vmin : s.speed_range_kmh[0];
   const hi = typeof vmax === "number" ? vmax : s.speed_range_kmh[1];
   const base = drop({

@@ -83,7 +83,7 @@ export function update({ vehicle, request, result, figures, design, speed, link 
     el(
       "table",
       { class: "keep" },
-      el("thead", {}, el("tr", {}, ["Target", "Minimum SRT", "Verdict", "Margin"].map((h) => el("th", { scope: "col" }, h)))),
+      el("thead", {}, el("tr", {}, ["Target", "Minimum SRT [g]", "Verdict", "Margin [g]"].map((h) => el("th", { scope: "col" }, h)))),
       el("tbody", {}, targetsTable(result.targets)),
     ),
     el("p", { class: "verdict-line" }, verdictLine(result)),

@@ -103,6 +103,10 @@ def test_a_preset_without_3d_data_opens_with_a_model_it_supports(page):
     assert page.find('#model option[value="3d"]').get_attribute("disabled") is not None
     assert page.srt_g() == pytest.approx(0.376, rel=0.025)
     assert page.find("#trailer-angle").get_attribute("disabled") is not None  # the 2d model takes no trailer angle
+    # the page chose 2d for this vehicle, not the user: a 3D vehicle goes back to the default model
+    Select(page.find("#preset")).select_by_value("table16-btrain")
+    assert page.find("#model").get_attribute("value") == "3d"
+    assert page.find("#trailer-angle").get_attribute("disabled") is None
 
 
 def test_the_state_is_written_to_the_url_and_the_link_reproduces_it(page, api):
@@ -153,6 +157,15 @@ def test_validation_errors_are_shown_at_their_fields(page):
     assert page.field_error("#bank") == ""
 
 
+def test_a_pasted_text_that_is_not_json_is_refused_at_its_box(page):
+    page.open("?vehicle=table16-btrain")
+    page.find('input[name="source"][value="record"]').click()
+    page.type("#record-json", "{weight_kn: 300")
+    page.run("computations", lambda: page.find("#compute").click())
+    assert "not JSON" in page.field_error("#record-json")
+    assert page.driver.switch_to.active_element.get_attribute("id") == "record-json"
+
+
 def test_a_pasted_record_is_computed_and_its_errors_point_at_it(page, api):
     page.open("?vehicle=table16-btrain")
     page.find('input[name="source"][value="record"]').click()
@@ -191,6 +204,23 @@ def test_a_saved_vehicle_is_read_with_its_key_which_stays_out_of_the_link(page, 
     query = urlsplit(page.driver.current_url).query
     assert parse_qs(query)["vehicle"] == [vehicle_id]
     assert live_server.key not in page.driver.current_url
+
+
+def test_the_selected_preset_is_saved_under_the_key(page, api, live_server):
+    page.open("?vehicle=table22-truck")
+    page.find("#catalog-box summary").click()
+    page.type("#save-title", "Our truck (Table 22)")
+    page.find("#save-vehicle").click()  # without a key: refused at the key's box, nothing sent
+    WebDriverWait(page.driver, 10).until(lambda _: page.field_error("#api-key"))
+    assert "bearer key" in page.field_error("#api-key")
+    page.type("#api-key", live_server.key)
+    page.find("#save-vehicle").click()
+    WebDriverWait(page.driver, 20).until(lambda _: page.text("#save-info").startswith("Saved as veh_"))
+    vehicle_id = page.text("#save-info").split()[2]
+    saved = api.get(f"/v1/vehicles/{vehicle_id}", headers={"Authorization": f"Bearer {live_server.key}"}).json()
+    preset = api.get("/v1/vehicles/table22-truck").json()
+    assert saved["title"] == "Our truck (Table 22)"
+    assert saved["vehicle"] == {k: v for k, v in preset.items() if k not in ("id", "title", "source", "models")}
 
 
 # ------------------------------------------------------------------------------------------- builder
@@ -308,6 +338,31 @@ def test_an_uploaded_csv_shows_the_flagged_curves(page, api, tmp_path):
     page.find('#curves-table button[data-key="margin_kmh"]').click()
     order = [r.find_element("css selector", "td").text for r in page.find_all("#curves-table tbody tr")]
     assert order == sorted(margins, key=margins.get, reverse=True)
+
+
+LANDXML = """<?xml version="1.0"?>
+<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2"><Alignments>
+<Alignment name="A1" length="900" staStart="0"><CoordGeom>
+<Curve rot="cw" radius="45" length="60" staStart="100" name="K1"/>
+<Curve rot="ccw" radius="1500" length="90" staStart="400" name="K2"/>
+</CoordGeom></Alignment></Alignments></LandXML>
+"""
+
+
+def test_an_uploaded_landxml_alignment_takes_the_defaults_typed_on_the_page(page, tmp_path):
+    # K1: R = 45 m at 80 km/h is flagged -- Eq. 9.1 with any SRT below 0.5 g gives at most sqrt(127 x 0.5 x 45)
+    # = 53 km/h; K2: R = 1500 m with f >= 0.09 (Table 21's smallest) keeps sqrt(127 x 1500 x 0.13) = 157 km/h
+    path = tmp_path / "road.xml"
+    path.write_text(LANDXML)
+    page.open("?vehicle=table16-btrain")
+    page.find("#alignment-file").send_keys(str(path))
+    page.type("#al-posted", "80")
+    page.type("#al-e", "4")
+    page.run("assessments", lambda: page.find("#alignment-assess").click())
+    rows = {r.find_element("css selector", "td").text: r for r in page.find_all("#curves-table tbody tr")}
+    assert set(rows) == {"K1", "K2"}
+    assert "flagged" in rows["K1"].get_attribute("class") and "flagged" not in (rows["K2"].get_attribute("class") or "")
+    assert page.text("#alignment-summary").startswith("2 curves, 1 flagged")
 
 
 def test_an_unreadable_csv_row_is_shown_at_the_file_with_its_row(page, tmp_path):

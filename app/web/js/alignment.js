@@ -46,7 +46,9 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
     return ["/v1/alignments/assess", { ...common, landxml }];
   }
   if (!(await api.has("post", "/v1/routes/assess"))) {
-    throw new Error("this deployment cannot assess routes (no POST /v1/routes/assess): upload CSV or LandXML");
+    throw Object.assign(new Error("this deployment cannot assess routes (GeoJSON, GPX): upload CSV or LandXML"), {
+      control: $("#alignment-file"),
+    });
   }
   // the route's document: as text if the spec says the field is a string, else (GeoJSON) as the parsed object
   const schema = await api.requestSchema("post", "/v1/routes/assess");
@@ -207,9 +209,13 @@ export function outline(lines, result) {
   const k = Math.cos(lat0 * (Math.PI / 180));
   const xy = ([lon, lat]) => [lon * k, -lat];
   const pts = all.map(xy);
-  const xs = pts.map((p) => p[0]);
-  const ys = pts.map((p) => p[1]);
-  const [minX, maxX, minY, maxY] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
+  let [minX, maxX, minY, maxY] = [Infinity, -Infinity, Infinity, -Infinity]; // no spread: long routes
+  for (const [x, y] of pts) {
+    minX = Math.min(minX, x);
+    maxX = Math.max(maxX, x);
+    minY = Math.min(minY, y);
+    maxY = Math.max(maxY, y);
+  }
   const span = Math.max(maxX - minX, maxY - minY) || 1e-6;
   const pad = span * 0.04;
   const svg = svgEl("svg", {

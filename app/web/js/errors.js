@@ -10,7 +10,8 @@ const fieldsOf = (control) => control.dataset.field.split(" ");
 const visible = (node) => node.offsetParent !== null || node.getClientRects().length > 0;
 
 /** The visible control for a dotted API field inside `scope` (exact path first, then its parents). */
-export function controlFor(field, scope = document) {
+export function controlFor(dotted, scope = document) {
+  const field = dotted.replace(/\[(\d+)\]/g, ".$1"); // the engine's spec.payloads[0].x is spec.payloads.0.x
   const candidates = [field];
   if (field.startsWith("vehicle.spec.")) candidates.push(field.slice("vehicle.".length));
   const parts = field.split(".");

@@ -11,7 +11,7 @@ import * as road from "./road.js";
 import * as summary from "./summary.js";
 import * as vehicle from "./vehicle.js";
 
-const page = { models: [], last: null };
+const page = { models: [], last: null, modelChosen: false };
 
 const status = (text) => {
   $("#page-status").textContent = text;
@@ -50,6 +50,10 @@ function syncModel() {
   const supported = vehicle.supportedModels();
   const select = $("#model");
   for (const option of select.options) option.disabled = Boolean(supported) && !supported.includes(option.value);
+  // a model the page chose for the last vehicle goes back to the default when the vehicle supports it
+  if (!page.modelChosen && !select.querySelector(`option[value="${select.dataset.initial}"]`)?.disabled) {
+    select.value = select.dataset.initial;
+  }
   if (select.selectedOptions[0]?.disabled) select.value = supported[0];
   const m = modelInfo();
   if (!m) return;
@@ -159,7 +163,9 @@ function wire() {
     ev.preventDefault();
     await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
-      return road.limits(v.ref, caseFields());
+      const out = await road.limits(v.ref, caseFields());
+      if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec, caseFields());
+      return out;
     });
   });
   $("#alignment-form").addEventListener("submit", (ev) => {
@@ -180,31 +186,38 @@ function wire() {
     vehicle.describePreset();
     syncModel();
   });
-  $("#model").addEventListener("change", syncModel);
+  $("#model").addEventListener("change", () => {
+    page.modelChosen = true;
+    syncModel();
+  });
   $("#standard").addEventListener("change", road.describeStandard);
   $("#record-from-preset").addEventListener("click", () => {
     const p = vehicle.preset();
     if (p) $("#record-json").value = JSON.stringify(vehicle.presetRecord(p), null, 2);
   });
   const savedBox = $('[data-panel="saved"]');
-  $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#case-error"), vehicle.listSaved));
+  $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));
   $("#saved-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    guarded($("#saved-load"), savedBox, $("#case-error"), vehicle.loadSaved);
+    guarded($("#saved-load"), savedBox, $("#saved-error"), vehicle.loadSaved);
   });
   $("#saved-choice").addEventListener("change", () => {
     if ($("#saved-choice").value) $("#saved-id").value = $("#saved-choice").value;
   });
-  $("#save-vehicle").addEventListener("click", () =>
-    guarded($("#save-vehicle"), savedBox, $("#case-error"), async () => {
-      const previous = vehicle.source();
-      if (previous === "saved") throw Object.assign(new Error("choose the vehicle to save (preset, build or record) first"), { control: $("#save-title") });
+  $("#key-form").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    guarded($("#save-vehicle"), $("#catalog-box"), $("#save-error"), async () => {
+      if (vehicle.source() === "saved") {
+        throw Object.assign(new Error("this vehicle is saved already: choose a preset, a built vehicle or a record"), {
+          control: $("#save-title"),
+        });
+      }
       const v = await vehicle.current();
       const body = { title: $("#save-title").value.trim(), vehicle: v.built ? { spec: v.built.spec } : v.record };
       const saved = await api.post("/v1/vehicles", body, { key: vehicle.apiKey() });
       $("#save-info").textContent = `Saved as ${saved.id} (version ${saved.version}).`;
-    }),
-  );
+    });
+  });
   $("#copy-link").addEventListener("click", async () => {
     const v = await vehicle.current().catch(() => null);
     const link = writeUrl(stateParams(v ? v.params : {}));
@@ -243,6 +256,8 @@ async function init() {
     optional("/v1/components"),
   ]);
   fillModels(models);
+  page.modelChosen = Boolean(params.get("model"));
+  vehicle.initBuilder();
   vehicle.fillPresets(presets);
   if (standards) road.fillStandards(standards);
   if (components) vehicle.fillComponents(components);

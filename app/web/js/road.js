@@ -146,6 +146,24 @@ export async function superelevation() {
   return out;
 }
 
+/** A table of any rows (the keys of the first row as columns; numbers to four significant digits). */
+function genericTable(rows) {
+  const keys = rows.length ? Object.keys(rows[0]).filter((k) => typeof rows[0][k] !== "object" || rows[0][k] === null) : [];
+  const show = (v) => (typeof v === "number" ? String(Number(v.toPrecision(4))) : v ?? "-");
+  return table(keys.map((k) => ({ key: k, label: k, format: show })), rows);
+}
+
+/** For a built vehicle: the largest payload mass per load height (POST /v1/vehicles/payload-table). */
+export async function payloadTable(spec, caseRequest) {
+  const out = await api.post(
+    "/v1/vehicles/payload-table",
+    drop({ vehicle: { spec }, ...srtOptions(caseRequest), target_srt_g: value($("#limit-target")) }),
+  );
+  const rows = Array.isArray(out) ? out : out.rows || [];
+  $("#limits-result").append(el("h4", {}, "Largest payload mass by load height (the builder's spec)"), scroller("Payload table", genericTable(rows)));
+  return out;
+}
+
 export async function limits(vehicleRef, caseRequest) {
   const out = await api.post("/v1/srt/limits", {
     vehicle: vehicleRef,

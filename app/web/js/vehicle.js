@@ -28,6 +28,7 @@ export function presetRecord(entry) {
 
 export function showPanel(which) {
   for (const panel of $$("[data-panel]")) panel.hidden = panel.dataset.panel !== which;
+  if (which === "saved") $("#catalog-box").open = true; // the key is needed
   const radio = $(`input[name="source"][value="${which}"]`);
   if (radio && !radio.checked) radio.checked = true;
 }
@@ -104,6 +105,11 @@ export function specToForm(spec) {
   }
 }
 
+/** Each builder box answers for its spec path in problem details (`spec.rear.track_m`). */
+export function initBuilder() {
+  for (const c of $$("[data-spec]", $("#builder"))) c.dataset.field ??= `spec.${c.dataset.spec}`;
+}
+
 export function fillComponents(components) {
   state.components = components;
   const label = (entry) => entry.title || entry.name || entry.id;
@@ -155,16 +161,24 @@ export function showBuilt(built) {
   );
 }
 
-/** POST /v1/vehicles/build -> the answer (vehicle record, derivation, masses, notes). */
+/** POST /v1/vehicles/build -> its answer (vehicle record, derivation, masses, notes) and the spec built. */
 export async function build(spec) {
   const built = await api.post("/v1/vehicles/build", { spec });
-  state.built = { spec, ...built };
-  return built;
+  state.built = { ...built, spec };
+  return state.built;
 }
 
 // ------------------------------------------------------------------------------------------ saved vehicles
 
-export const apiKey = () => $("#api-key").value.trim();
+/** The bearer key typed on the page (a page-local refusal at its box when there is none). */
+export function apiKey() {
+  const key = $("#api-key").value.trim();
+  if (!key) {
+    $("#catalog-box").open = true;
+    throw Object.assign(new Error("enter the bearer key of your saved vehicles"), { control: $("#api-key") });
+  }
+  return key;
+}
 
 export async function loadSaved() {
   const id = $("#saved-id").value.trim();
@@ -259,7 +273,7 @@ export function fromParams(params) {
   if (id.startsWith("veh_")) {
     $("#saved-id").value = id;
     showPanel("saved");
-    return Boolean(apiKey());
+    return Boolean($("#api-key").value.trim());
   }
   $("#preset").dataset.pending = id;
   showPanel("preset");

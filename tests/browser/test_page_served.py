@@ -161,3 +161,35 @@ def test_each_url_parameter_is_named_after_the_api_field_it_feeds():
     pairs = [(a["data-param"], a["data-field"].split()[0]) for _, a in page_tags() if "data-param" in a]
     assert len(pairs) >= 17
     assert [(p, f) for p, f in pairs if f.split(".")[-1] != p] == []
+
+
+def _luminance(hex_colour: str) -> float:
+    """WCAG 2.1 relative luminance of an sRGB colour ``#rrggbb``."""
+    channels = [int(hex_colour[i : i + 2], 16) / 255 for i in (1, 3, 5)]
+    linear = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in channels]
+    return 0.2126 * linear[0] + 0.7152 * linear[1] + 0.0722 * linear[2]
+
+
+def contrast(a: str, b: str) -> float:
+    """WCAG 2.1 contrast ratio (L1 + 0.05) / (L2 + 0.05)."""
+    la, lb = sorted((_luminance(a), _luminance(b)), reverse=True)
+    return (la + 0.05) / (lb + 0.05)
+
+
+def test_contrast_closed_form():
+    # the ratio's end points: black on white 21:1, a colour on itself 1:1
+    assert contrast("#000000", "#ffffff") == pytest.approx(21.0)
+    assert contrast("#0b4f8a", "#0b4f8a") == pytest.approx(1.0)
+
+
+def test_text_colours_meet_wcag_aa_on_their_backgrounds():
+    css = (WEB_DIR / "css" / "page.css").read_text()
+    var = dict(re.findall(r"--([\w-]+):\s*(#[0-9a-fA-F]{6})", css))
+    pairs = [  # (text, background) as page.css uses them
+        ("ink", "paper"), ("ink", "panel"), ("muted", "paper"), ("muted", "panel"), ("accent", "paper"),
+        ("accent-ink", "accent"), ("pass", "pass-bg"), ("fail", "fail-bg"), ("fail", "paper"), ("ink", "flag-bg"),
+    ]  # fmt: skip
+    for text, background in pairs:
+        assert contrast(var[text], var[background]) >= 4.5, (text, background)  # WCAG 2.1 SC 1.4.3 (AA)
+    assert contrast("#5f6368", "#eceef1") >= 4.5  # disabled boxes: still readable
+    assert contrast(var["focus"], var["paper"]) >= 3.0  # the focus ring (SC 1.4.11, non-text)

@@ -28,6 +28,7 @@ from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
 from .routers.common import READ_BY_ROUTE
+from .routers.web import install_page
 from .settings import Settings, get_settings
 
 DESCRIPTION = """\
@@ -198,6 +199,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         health,
     ):
         app.include_router(module.router)
+    install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app

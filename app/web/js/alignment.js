@@ -1,0 +1,292 @@
+// Section 5: an alignment (CSV or LandXML: POST /v1/alignments/assess with the file's text, so any vehicle --
+// preset, saved, built or pasted -- can be assessed) or a route (GeoJSON or GPX: POST /v1/routes/assess, when
+// the deployment has it). A sortable table of the curves with their flags, the route's outline as an SVG with
+// the flagged curves marked (no map tiles: the page works offline), a progress bar (POST /v1/jobs when the
+// deployment has it, otherwise an indeterminate bar while the request runs) and downloads.
+
+import * as api from "./api.js";
+import { $, clear, download, el, fmt, scroller, signed, svgEl } from "./dom.js";
+import { value } from "./form.js";
+import { designFields, srtOptions } from "./road.js";
+
+export const state = { result: null, request: null, path: null, kind: null, rows: [], outline: null };
+
+const drop = (obj) => Object.fromEntries(Object.entries(obj).filter(([, v]) => v !== undefined));
+
+/** csv | landxml | geojson | gpx, from the file's name and, failing that, its first characters. */
+export function formatOf(name, text) {
+  const ext = (name.split(".").pop() || "").toLowerCase();
+  if (ext === "csv") return "csv";
+  if (ext === "gpx") return "gpx";
+  if (ext === "geojson" || ext === "json") return "geojson";
+  if (ext === "xml" || ext === "landxml") return /<gpx[\s>]/.test(text.slice(0, 2000)) ? "gpx" : "landxml";
+  const head = text.trimStart();
+  if (head.startsWith("{")) return "geojson";
+  if (head.startsWith("<")) return /<gpx[\s>]/.test(head.slice(0, 2000)) ? "gpx" : "landxml";
+  return "csv";
+}
+
+/** The request for the file: [path, body]. */
+export async function buildRequest(kind, text, vehicleRef, caseRequest) {
+  const common = drop({
+    vehicle: vehicleRef,
+    ...srtOptions(caseRequest),
+    targets: caseRequest.targets,
+    ...designFields(),
+    max_superelevation_percent: value($("#al-emax")),
+  });
+  if (kind === "csv") return ["/v1/alignments/assess", { ...common, csv: text }];
+  if (kind === "landxml") {
+    const landxml = drop({
+      document: text,
+      superelevation_percent: value($("#al-e")),
+      grade_percent: value($("#al-grade")),
+      posted_speed_kmh: value($("#al-posted")),
+    });
+    return ["/v1/alignments/assess", { ...common, landxml }];
+  }
+  if (!(await api.has("post", "/v1/routes/assess"))) {
+    throw Object.assign(new Error("this deployment cannot assess routes (GeoJSON, GPX): upload CSV or LandXML"), {
+      control: $("#alignment-file"),
+    });
+  }
+  // the route's document: as text if the spec says the field is a string, else (GeoJSON) as the parsed object
+  const schema = await api.requestSchema("post", "/v1/routes/assess");
+  const asText = schema?.properties?.[kind]?.type === "string";
+  const document = kind === "geojson" && !asText ? JSON.parse(text) : text;
+  const route = drop({
+    ...common,
+    [kind]: document,
+    superelevation_percent: value($("#al-e")),
+    posted_speed_kmh: value($("#al-posted")),
+  });
+  return ["/v1/routes/assess", route];
+}
+
+const JOB_OPERATION = { "/v1/alignments/assess": "alignments.assess", "/v1/routes/assess": "routes.assess" };
+const DONE = new Set(["succeeded", "success", "completed", "complete", "done", "finished"]);
+const FAILED = new Set(["failed", "failure", "error", "cancelled", "canceled"]);
+
+/** Run through the job API with progress, when the deployment has it; else one request. */
+export async function run(path, body, onProgress) {
+  if (!(await api.has("post", "/v1/jobs"))) return api.post(path, body);
+  const { response, data } = await api.call("POST", "/v1/jobs", { json: { operation: JOB_OPERATION[path], request: body } });
+  const location = response.headers.get("Location") || `/v1/jobs/${data.id}`;
+  for (;;) {
+    const job = await api.get(location);
+    if (typeof job.progress === "number") onProgress(job.progress);
+    if (DONE.has(job.status)) break;
+    if (FAILED.has(job.status)) {
+      throw new api.ApiError(job.error || job.problem || { title: `The job ${job.status}`, status: 0 });
+    }
+    await new Promise((r) => setTimeout(r, 250));
+  }
+  onProgress(1);
+  return api.get(`${location}/result`);
+}
+
+// ------------------------------------------------------------------------------------------ the table
+
+const COLUMNS = [
+  { key: "id", label: "Curve", text: true },
+  { key: "station_m", label: "Station [m]", format: (v) => fmt(v, 0) },
+  { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
+  { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
+  { key: "grade_percent", label: "Grade [%]", format: (v) => fmt(v, 1) },
+  { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3) },
+  { key: "rollover_speed_kmh", label: "Rollover speed [km/h]", format: (v) => fmt(v, 1) },
+  { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1) },
+  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
+  { key: "governed_by", label: "Governed by", text: true },
+  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
+  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => (v === null || v === undefined ? "-" : signed(v, 1)) },
+  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), text: true },
+  { key: "meets_standard_min_radius", label: "Meets Rmin", format: (v) => (v === null || v === undefined ? "-" : v ? "yes" : "no"), text: true },
+  { key: "error", label: "Error", text: true },
+];
+
+/** Rows of either answer: an alignment's vehicles[0].rows, or a route's curve features' properties. */
+export function rowsOf(result) {
+  if (result.vehicles) return result.vehicles[0].rows;
+  const features = result.curves?.features || [];
+  return features.map((f, i) => {
+    const p = f.properties || {};
+    const a = p.assessment || p.assessments?.[0] || {};
+    return { id: p.id ?? `${i + 1}`, station_m: p.start_m, ...p, ...a };
+  });
+}
+
+function compare(key, direction) {
+  return (a, b) => {
+    const x = a[key];
+    const y = b[key];
+    if (x === y) return 0;
+    if (x === null || x === undefined) return 1; // blanks last either way
+    if (y === null || y === undefined) return -1;
+    const order = typeof x === "number" && typeof y === "number" ? x - y : String(x).localeCompare(String(y), undefined, { numeric: true });
+    return direction === "ascending" ? order : -order;
+  };
+}
+
+function renderTable(box, rows, sort) {
+  const used = COLUMNS.filter((c) => rows.some((r) => r[c.key] !== undefined && r[c.key] !== null) || c.key === "flagged");
+  const sorted = sort ? [...rows].sort(compare(sort.key, sort.direction)) : rows;
+  const head = el(
+    "tr",
+    {},
+    used.map((c) =>
+      el(
+        "th",
+        { scope: "col", class: c.text ? "text" : null, "aria-sort": sort?.key === c.key ? sort.direction : "none" },
+        el("button", { type: "button", class: "sort", "data-key": c.key, title: `Sort by ${c.label}` }, c.label),
+      ),
+    ),
+  );
+  const body = sorted.map((r) =>
+    el("tr", { class: r.flagged ? "flagged" : null }, used.map((c) => el("td", { class: c.text ? "text" : null }, c.format ? c.format(r[c.key], r) : r[c.key] ?? "-"))),
+  );
+  const t = el("table", { id: "curves-table" }, el("caption", { class: "hint" }, "Select a column heading to sort."), el("thead", {}, head), el("tbody", {}, body));
+  clear(box).append(scroller("Assessed curves", t, true));
+  head.addEventListener("click", (ev) => {
+    const button = ev.target.closest("button.sort");
+    if (!button) return;
+    const key = button.dataset.key;
+    const direction = sort?.key === key && sort.direction === "ascending" ? "descending" : "ascending";
+    renderTable(box, rows, { key, direction });
+    box.querySelector(`button.sort[data-key="${key}"]`).focus();
+  });
+}
+
+// ------------------------------------------------------------------------------------------ the outline
+
+/** [[lon, lat], ...] polylines of a GeoJSON or GPX document (what the route is drawn from). */
+export function routeLines(kind, text) {
+  if (kind === "gpx") {
+    const doc = new DOMParser().parseFromString(text, "application/xml");
+    const lines = [];
+    for (const seg of doc.querySelectorAll("trkseg, rte")) {
+      const pts = Array.from(seg.querySelectorAll("trkpt, rtept")).map((p) => [Number(p.getAttribute("lon")), Number(p.getAttribute("lat"))]);
+      if (pts.length > 1) lines.push(pts);
+    }
+    return lines;
+  }
+  const geo = JSON.parse(text);
+  const lines = [];
+  const visit = (g) => {
+    if (!g) return;
+    if (g.type === "FeatureCollection") g.features.forEach((f) => visit(f.geometry));
+    else if (g.type === "Feature") visit(g.geometry);
+    else if (g.type === "LineString") lines.push(g.coordinates);
+    else if (g.type === "MultiLineString") lines.push(...g.coordinates);
+  };
+  visit(geo);
+  return lines;
+}
+
+/** Chainage [m] along a lon/lat polyline (equirectangular, adequate for locating curves on a sketch). */
+function chainage(points) {
+  const out = [0];
+  for (let i = 1; i < points.length; i += 1) {
+    const [x0, y0] = points[i - 1];
+    const [x1, y1] = points[i];
+    const k = Math.cos(((y0 + y1) / 2) * (Math.PI / 180));
+    const dx = (x1 - x0) * k * 111_320;
+    const dy = (y1 - y0) * 110_574;
+    out.push(out[i - 1] + Math.hypot(dx, dy));
+  }
+  return out;
+}
+
+function slice(points, s, start, end) {
+  return points.filter((_, i) => s[i] >= start && s[i] <= end);
+}
+
+/** A simple SVG outline of the route with the curves drawn over it, flagged ones in red. */
+export function outline(lines, result) {
+  const all = lines.flat();
+  if (!all.length) return null;
+  const lat0 = all.reduce((a, p) => a + p[1], 0) / all.length;
+  const k = Math.cos(lat0 * (Math.PI / 180));
+  const xy = ([lon, lat]) => [lon * k, -lat];
+  const pts = all.map(xy);
+  let [minX, maxX, minY, maxY] = [Infinity, -Infinity, Infinity, -Infinity]; // no spread: long routes
+  for (const [x, y] of pts) {
+    minX = Math.min(minX, x);
+    maxX = Math.max(maxX, x);
+    minY = Math.min(minY, y);
+    maxY = Math.max(maxY, y);
+  }
+  const span = Math.max(maxX - minX, maxY - minY) || 1e-6;
+  const pad = span * 0.04;
+  const svg = svgEl("svg", {
+    viewBox: `${minX - pad} ${minY - pad} ${maxX - minX + 2 * pad} ${maxY - minY + 2 * pad}`,
+    role: "img",
+    "aria-label": "Route outline; the assessed curves are drawn over it, flagged curves in red",
+    preserveAspectRatio: "xMidYMid meet",
+  });
+  const path = (points, cls, title) => {
+    const p = svgEl("polyline", { class: cls, points: points.map((q) => xy(q).join(",")).join(" ") });
+    if (title) p.append(Object.assign(svgEl("title"), { textContent: title }));
+    svg.append(p);
+  };
+  for (const line of lines) path(line, "route");
+  const main = lines[0];
+  const s = chainage(main);
+  for (const f of result.curves?.features || []) {
+    const p = f.properties || {};
+    const a = p.assessment || p.assessments?.[0] || {};
+    const flagged = Boolean(a.flagged ?? p.flagged);
+    let points = null;
+    if (f.geometry?.type === "LineString") points = f.geometry.coordinates;
+    else if (typeof p.start_m === "number" && typeof p.end_m === "number") points = slice(main, s, p.start_m, p.end_m);
+    if (points && points.length > 1) {
+      path(points, flagged ? "curve flagged" : "curve", `Curve ${p.id ?? ""}: R ${fmt(p.radius_m, 0)} m${flagged ? ", flagged" : ""}`);
+    }
+  }
+  return svg;
+}
+
+// ------------------------------------------------------------------------------------------ render
+
+function summaryLine(result) {
+  const s = result.vehicles ? result.vehicles[0].summary : result.summary || {};
+  const parts = [`${s.curves ?? rowsOf(result).length} curves`, `${s.flagged ?? 0} flagged`];
+  if (s.refused) parts.push(`${s.refused} refused`);
+  if (s.min_margin_kmh !== undefined && s.min_margin_kmh !== null) parts.push(`smallest margin ${signed(s.min_margin_kmh, 1)} km/h`);
+  if (s.min_safe_speed_kmh !== undefined && s.min_safe_speed_kmh !== null) parts.push(`lowest safe speed ${fmt(s.min_safe_speed_kmh, 1)} km/h`);
+  return parts.join(", ");
+}
+
+export function render(result, kind, lines) {
+  state.result = result;
+  state.kind = kind;
+  state.rows = rowsOf(result);
+  const box = clear($("#alignment-results"));
+  box.append(el("p", { id: "alignment-summary" }, `${summaryLine(result)}.`));
+  state.outline = lines ? outline(lines, result) : null;
+  if (state.outline) box.append(el("figure", { class: "outline" }, state.outline, el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")));
+  const downloads = el("div", { class: "actions" });
+  downloads.append(
+    el("button", { type: "button", id: "download-csv", onclick: downloadCsv }, "Download CSV"),
+    el("button", { type: "button", id: "download-json", onclick: () => save("json") }, kind === "geojson" || kind === "gpx" ? "Download GeoJSON" : "Download JSON"),
+  );
+  box.append(downloads);
+  const tableBox = el("div");
+  box.append(tableBox);
+  renderTable(tableBox, state.rows, null);
+}
+
+async function downloadCsv() {
+  const { path, request } = state;
+  const { data } = await api.call("POST", path, { json: request, accept: "text/csv", as: "blob" });
+  download("curves.csv", data);
+}
+
+function save() {
+  const { result } = state;
+  if (result.curves?.type === "FeatureCollection") {
+    download("curves.geojson", new Blob([JSON.stringify(result.curves)], { type: "application/geo+json" }));
+  } else {
+    download("assessment.json", new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
+  }
+}

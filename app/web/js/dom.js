@@ -1,0 +1,100 @@
+// Small DOM helpers: elements without innerHTML (the page runs under a strict Content-Security-Policy and
+// never parses markup from strings, except the service's own SVG figures through DOMParser), number formats,
+// downloads.
+
+/** An element with attributes (`class`, `text`, data-*, aria-*, properties for `on*`) and children. */
+export function el(tag, attrs = {}, ...children) {
+  const node = document.createElement(tag);
+  for (const [name, value] of Object.entries(attrs)) {
+    if (value === undefined || value === null || value === false) continue;
+    if (name === "class") node.className = value;
+    else if (name === "text") node.textContent = value;
+    else if (name.startsWith("on") && typeof value === "function") node.addEventListener(name.slice(2), value);
+    else node.setAttribute(name, value === true ? "" : String(value));
+  }
+  for (const child of children.flat()) {
+    if (child === undefined || child === null || child === false) continue;
+    node.append(child instanceof Node ? child : document.createTextNode(String(child)));
+  }
+  return node;
+}
+
+export const $ = (selector, root = document) => root.querySelector(selector);
+export const $$ = (selector, root = document) => Array.from(root.querySelectorAll(selector));
+
+export function clear(node) {
+  while (node.firstChild) node.firstChild.remove();
+  return node;
+}
+
+/** A number with `digits` decimals ("-" for null), e.g. fmt(0.33911, 3) -> "0.339". */
+export function fmt(value, digits = 3) {
+  if (value === null || value === undefined || Number.isNaN(value)) return "-";
+  return Number(value).toFixed(digits);
+}
+
+/** A signed number: "+0.012" / "-0.011". */
+export function signed(value, digits = 3) {
+  if (value === null || value === undefined) return "-";
+  const text = Math.abs(value).toFixed(digits);
+  return (value < 0 && Number(text) !== 0 ? "\u2212" : "+") + text;
+}
+
+const SVG_NS = "http://www.w3.org/2000/svg";
+
+/** The service's SVG text as an inline <svg> node: parsed as XML (scripts never run), anything active removed. */
+export function svgNode(text) {
+  const doc = new DOMParser().parseFromString(text, "image/svg+xml");
+  const root = doc.documentElement;
+  if (root.namespaceURI !== SVG_NS || root.localName !== "svg") throw new Error("not an SVG document");
+  for (const bad of root.querySelectorAll("script, foreignObject, style")) bad.remove();
+  for (const node of [root, ...root.querySelectorAll("*")]) {
+    for (const attr of Array.from(node.attributes)) {
+      const name = attr.name.toLowerCase();
+      if (name.startsWith("on") || ((name === "href" || name === "xlink:href") && !attr.value.startsWith("#"))) {
+        node.removeAttribute(attr.name);
+      }
+    }
+  }
+  const svg = document.importNode(root, true);
+  const title = svg.querySelector("title");
+  svg.setAttribute("role", "img");
+  if (title) svg.setAttribute("aria-label", title.textContent.trim());
+  svg.removeAttribute("width");
+  svg.removeAttribute("height");
+  return svg;
+}
+
+export function svgEl(tag, attrs = {}) {
+  const node = document.createElementNS(SVG_NS, tag);
+  for (const [name, value] of Object.entries(attrs)) node.setAttribute(name, String(value));
+  return node;
+}
+
+/** Offer a Blob as a file download. */
+export function download(filename, blob) {
+  const url = URL.createObjectURL(blob);
+  const a = el("a", { href: url, download: filename });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** A table: `columns` [{key, label, format?, text?}], `rows` objects; returns the <table>. */
+export function table(columns, rows, { caption, rowClass } = {}) {
+  const head = el("tr", {}, columns.map((c) => el("th", { scope: "col", class: c.text ? "text" : null }, c.label)));
+  const body = rows.map((row) =>
+    el(
+      "tr",
+      { class: rowClass ? rowClass(row) : null },
+      columns.map((c) => el("td", { class: c.text ? "text" : null }, c.format ? c.format(row[c.key], row) : row[c.key] ?? "-")),
+    ),
+  );
+  return el("table", {}, caption ? el("caption", { class: "hint" }, caption) : null, el("thead", {}, head), el("tbody", {}, body));
+}
+
+/** A horizontally scrollable, keyboard-focusable region around a wide table. */
+export function scroller(label, child, tall = false) {
+  return el("div", { class: tall ? "table-wrap tall" : "table-wrap", tabindex: "0", role: "region", "aria-label": label }, child);
+}

@@ -1,0 +1,272 @@
+// The calculator page: wiring. Loads what the deployment offers (its OpenAPI document, the models, presets,
+// design standards, components), restores the state from the URL and computes when the link names a vehicle.
+
+import * as alignment from "./alignment.js";
+import * as api from "./api.js";
+import { $, $$, el } from "./dom.js";
+import { clearErrors, localError, showError } from "./errors.js";
+import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
+import * as results from "./results.js";
+import * as road from "./road.js";
+import * as summary from "./summary.js";
+import * as vehicle from "./vehicle.js";
+
+const page = { models: [], last: null, modelChosen: false };
+
+const status = (text) => {
+  $("#page-status").textContent = text;
+};
+
+/** Run `task` with `button` disabled; errors go to the fields of `scope` or its form-level box. */
+async function guarded(button, scope, box, task) {
+  clearErrors(scope);
+  if (button) button.disabled = true;
+  try {
+    return await task();
+  } catch (err) {
+    if (err.control) localError(err.control, err.message);
+    else showError(err, scope, box);
+    return undefined;
+  } finally {
+    if (button) button.disabled = false;
+  }
+}
+
+// ------------------------------------------------------------------------------------------ models
+
+function fillModels(models) {
+  page.models = models;
+  const select = $("#model");
+  for (const m of models) select.append(el("option", { value: m.id }, `${m.name} (${m.id})`));
+  const initial = models.find((m) => m.default)?.id || models[0]?.id;
+  select.value = select.dataset.pending && models.some((m) => m.id === select.dataset.pending) ? select.dataset.pending : initial;
+  select.dataset.initial = initial;
+}
+
+const modelInfo = () => page.models.find((m) => m.id === $("#model").value);
+
+/** Enable the inputs the model takes, and only the models the vehicle supports. */
+function syncModel() {
+  const supported = vehicle.supportedModels();
+  const select = $("#model");
+  for (const option of select.options) option.disabled = Boolean(supported) && !supported.includes(option.value);
+  // a model the page chose for the last vehicle goes back to the default when the vehicle supports it
+  if (!page.modelChosen && !select.querySelector(`option[value="${select.dataset.initial}"]`)?.disabled) {
+    select.value = select.dataset.initial;
+  }
+  if (select.selectedOptions[0]?.disabled) select.value = supported[0];
+  const m = modelInfo();
+  if (!m) return;
+  for (const box of $$("[data-takes]")) {
+    const takes = m.takes.includes(box.dataset.takes);
+    box.classList.toggle("disabled", !takes);
+    for (const c of $$("input, select", box)) c.disabled = !takes;
+  }
+  $("#model-info").textContent = `${m.name}: ${m.summary} ${m.equation}; ${m.reference}.`;
+}
+
+// ------------------------------------------------------------------------------------------ computing
+
+async function compute() {
+  const section = $("#vehicle-section").parentElement;
+  const done = await guarded($("#compute"), section, $("#case-error"), async () => {
+    $("#results").setAttribute("aria-busy", "true");
+    const request = caseFields();
+    const v = await vehicle.current();
+    const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
+    results.showResult(result, modelInfo());
+    const link = writeUrl(stateParams(v.params));
+    page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
+    return page.last;
+  });
+  $("#results").setAttribute("aria-busy", "false");
+  if (done) {
+    status("");
+    // the figures, the road design and the curve speed of the same case, side by side
+    const { targets: _t, ...plotRequest } = done.request;
+    const figures = results.showPlots({ vehicle: done.vehicle.ref, ...plotRequest }, Boolean(modelInfo()?.curves));
+    await Promise.all([figures.then((f) => (done.figures = f)), roadDesign(), curveSpeed()]);
+    summary.update(done);
+  }
+  counted("computations");
+}
+
+/** Count finished runs on <body data-*> (how scripts and tests know that the page has answered). */
+function counted(name) {
+  document.body.dataset[name] = String(Number(document.body.dataset[name] || 0) + 1);
+}
+
+/** The road-design part of a computation (the minimum radius plot and table for the same vehicle and case). */
+async function roadDesign() {
+  const { vehicle: v, request } = page.last;
+  const design = await guarded($("#road-compute"), $("#road-section"), $("#road-error"), () => road.minRadius(v.ref, request));
+  if (design) {
+    page.last.design = design;
+    page.last.link = writeUrl(stateParams(v.params));
+  }
+}
+
+async function curveSpeed() {
+  const { vehicle: v, request } = page.last;
+  const speed = await guarded($("#speed-compute"), $("#speed-form"), $("#speed-error"), () => road.curveSpeed(v.ref, request));
+  if (speed !== undefined) {
+    page.last.speed = speed;
+    page.last.link = writeUrl(stateParams(v.params));
+  }
+}
+
+async function assessFile() {
+  const section = $("#alignment-section");
+  const bar = $("#alignment-progress");
+  await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
+    const file = $("#alignment-file").files[0];
+    if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
+    const text = await file.text();
+    const kind = alignment.formatOf(file.name, text);
+    const v = await vehicle.current();
+    const [path, request] = await alignment.buildRequest(kind, text, v.ref, caseFields());
+    $("#alignment-progress-box").hidden = false;
+    bar.removeAttribute("value"); // indeterminate until the job reports progress
+    try {
+      const result = await alignment.run(path, request, (p) => {
+        bar.value = p;
+      });
+      Object.assign(alignment.state, { path, request });
+      const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
+      alignment.render(result, kind, lines);
+    } finally {
+      $("#alignment-progress-box").hidden = true;
+    }
+  });
+  counted("assessments");
+}
+
+// ------------------------------------------------------------------------------------------ wiring
+
+function wire() {
+  $("#case-form").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    compute();
+  });
+  // the road forms recompute everything, so the figures, the tables and the summary describe one case
+  for (const id of ["#road-form", "#speed-form"]) {
+    $(id).addEventListener("submit", (ev) => {
+      ev.preventDefault();
+      compute();
+    });
+  }
+  $("#super-form").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation);
+  });
+  $("#limits-form").addEventListener("submit", async (ev) => {
+    ev.preventDefault();
+    await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
+      const v = await vehicle.current();
+      const out = await road.limits(v.ref, caseFields());
+      if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec, caseFields());
+      return out;
+    });
+  });
+  $("#alignment-form").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    assessFile();
+  });
+  $("#builder").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    compute();
+  });
+  for (const radio of $$('input[name="source"]')) {
+    radio.addEventListener("change", () => {
+      vehicle.showPanel(radio.value);
+      syncModel();
+    });
+  }
+  $("#preset").addEventListener("change", () => {
+    vehicle.describePreset();
+    syncModel();
+  });
+  $("#model").addEventListener("change", () => {
+    page.modelChosen = true;
+    syncModel();
+  });
+  $("#standard").addEventListener("change", road.describeStandard);
+  $("#record-from-preset").addEventListener("click", () => {
+    const p = vehicle.preset();
+    if (p) $("#record-json").value = JSON.stringify(vehicle.presetRecord(p), null, 2);
+  });
+  const savedBox = $('[data-panel="saved"]');
+  $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));
+  $("#saved-form").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    guarded($("#saved-load"), savedBox, $("#saved-error"), vehicle.loadSaved);
+  });
+  $("#saved-choice").addEventListener("change", () => {
+    if ($("#saved-choice").value) $("#saved-id").value = $("#saved-choice").value;
+  });
+  $("#key-form").addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    guarded($("#save-vehicle"), $("#catalog-box"), $("#save-error"), async () => {
+      if (vehicle.source() === "saved") {
+        throw Object.assign(new Error("this vehicle is saved already: choose a preset, a built vehicle or a record"), {
+          control: $("#save-title"),
+        });
+      }
+      const v = await vehicle.current();
+      const body = { title: $("#save-title").value.trim(), vehicle: v.built ? { spec: v.built.spec } : v.record };
+      const saved = await api.post("/v1/vehicles", body, { key: vehicle.apiKey() });
+      $("#save-info").textContent = `Saved as ${saved.id} (version ${saved.version}).`;
+    });
+  });
+  $("#copy-link").addEventListener("click", async () => {
+    const v = await vehicle.current().catch(() => null);
+    const link = writeUrl(stateParams(v ? v.params : {}));
+    try {
+      await navigator.clipboard.writeText(link);
+      status("The link is copied to the clipboard.");
+    } catch {
+      status(`Link: ${link}`);
+    }
+  });
+  $("#print").addEventListener("click", () => window.print());
+}
+
+async function showOptionalParts() {
+  for (const node of $$("[data-needs]")) {
+    const [method, path] = node.dataset.needs.split(" ");
+    node.hidden = !(await api.has(method, path));
+  }
+  if (await api.has("post", "/v1/routes/assess")) {
+    $("#alignment-file").accept += ",.geojson,.json,.gpx,application/geo+json,application/gpx+xml";
+    $("#alignment-formats").append(" Routes: GeoJSON (LineString) or GPX (track or route).");
+  }
+}
+
+async function init() {
+  wire();
+  rememberDefaults();
+  const params = applyParams();
+  const wanted = vehicle.fromParams(params);
+  // what this deployment has (its OpenAPI document) decides which optional lists are read
+  const optional = (path) => api.has("get", path).then((yes) => (yes ? api.get(path) : null));
+  const [models, presets, standards, components] = await Promise.all([
+    api.get("/v1/models"),
+    api.get("/v1/vehicles"),
+    optional("/v1/design-standards"),
+    optional("/v1/components"),
+  ]);
+  fillModels(models);
+  page.modelChosen = Boolean(params.get("model"));
+  vehicle.initBuilder();
+  vehicle.fillPresets(presets);
+  if (standards) road.fillStandards(standards);
+  if (components) vehicle.fillComponents(components);
+  await showOptionalParts();
+  syncModel();
+  document.body.dataset.ready = "true";
+  if (wanted) await compute();
+  else if (params.get("vehicle")?.startsWith("veh_")) status("Enter the bearer key of the saved vehicle, then compute.");
+  document.body.dataset.computed = "true";
+}
+
+init().catch((err) => status(`The page could not start: ${err.message}`));

@@ -1,0 +1,100 @@
+// Section 3: the SRT result (POST /v1/srt) and the curves against ay/g (POST /v1/plots/*, the service's SVGs).
+
+import * as api from "./api.js";
+import { $, clear, el, fmt, signed, svgNode } from "./dom.js";
+
+export const PLOTS = [
+  { path: "/v1/plots/tire-loads", caption: "Tire loads Fz1, Fz3, Fz17, Fz19 against ay/g (thesis Figs. 85-87, 92)" },
+  { path: "/v1/plots/llt", caption: "Lateral load transfer LLTf, LLTr against ay/g (Fig. 93)" },
+  { path: "/v1/plots/roll", caption: "Total roll angle against ay/g (Fig. 94)" },
+  { path: "/v1/plots/cg-path", caption: "CG path h1, h2 against ay/g (Figs. 96-97)" },
+];
+
+/** "0.339 g": the SRT as the page shows it everywhere (three decimals). */
+export const srtText = (srt) => `${fmt(srt, 3)} g`;
+
+export function verdict(check) {
+  return el("span", { class: check.meets ? "verdict pass" : "verdict fail" }, check.meets ? "\u2713 meets" : "\u2717 below");
+}
+
+/** A snake_case name that may wrap after its underscores on a narrow screen. */
+function breakable(name) {
+  return name.split("_").flatMap((part, i) => (i ? ["_", el("wbr"), part] : [part]));
+}
+
+export function targetsTable(checks) {
+  const body = checks.map((c) =>
+    el("tr", {}, el("td", {}, breakable(c.name)), el("td", {}, fmt(c.target_g, 3)), el("td", {}, verdict(c)), el("td", {}, signed(c.margin_g, 3))),
+  );
+  return body;
+}
+
+/** The list of the result's facts: [label, text] pairs (shared with the printed summary). */
+export function facts(result) {
+  const rows = [];
+  const sv = result.stage_values || {};
+  if ("srt_ts" in sv) rows.push(["SRT_ts (tyres and suspension)", srtText(sv.srt_ts)]);
+  if ("srt_3d" in sv) rows.push(["SRT_3D (full system)", srtText(sv.srt_3d)]);
+  rows.push(["Tilt-table angle atan(SRT)", `${fmt(result.tilt_table_angle_deg, 2)}\u00b0`]);
+  if (result.roll_angle_deg !== null) rows.push(["Roll angle at the limit", `${fmt(result.roll_angle_deg, 2)}\u00b0`]);
+  if (result.llt_front !== null) rows.push(["LLT front (LLTf)", fmt(result.llt_front, 3)]);
+  if (result.llt_rear !== null) rows.push(["LLT rear (LLTr)", fmt(result.llt_rear, 3)]);
+  if (result.cg_lateral_m !== null) rows.push(["CG lateral h1", `${fmt(result.cg_lateral_m, 3)} m`]);
+  if (result.cg_height_m !== null) rows.push(["CG height h2", `${fmt(result.cg_height_m, 3)} m`]);
+  const tl = result.tire_loads;
+  if (tl) {
+    const parts = [
+      ["Fz1", tl.front_outer_kn],
+      ["Fz3", tl.front_inner_kn],
+      ["Fz17", tl.rear_outer_kn],
+      ["Fz19", tl.rear_inner_kn],
+    ].filter(([, v]) => v !== null);
+    rows.push(["Tire loads [kN]", parts.map(([k, v]) => `${k} ${fmt(v, 1)}`).join(", ")]);
+  }
+  rows.push(["Limit", `${result.limit} (rear LLT limit ${result.rear_llt_limit})`]);
+  return rows;
+}
+
+export function factList(rows) {
+  return rows.flatMap(([k, v]) => [el("dt", {}, k), el("dd", {}, v)]);
+}
+
+export function showResult(result, modelInfo) {
+  $("#results-empty").hidden = true;
+  $("#results-body").hidden = false;
+  const out = $("#srt-value");
+  out.textContent = srtText(result.srt);
+  out.dataset.srt = String(result.srt);
+  out.title = `SRT = ${result.srt} g`;
+  const stage = result.stage ? `, stage ${result.stage}` : "";
+  $("#srt-context").textContent = `${modelInfo ? modelInfo.name : result.model} (${result.model}${stage}); engine ${result.engine_version}.`;
+  clear($("#targets-table tbody")).append(...targetsTable(result.targets));
+  clear($("#result-facts")).append(...factList(facts(result)));
+  clear($("#result-notes")).append(...result.notes.map((n) => el("li", {}, n)));
+  $("#engine-version").textContent = result.engine_version;
+}
+
+/** Draw the curves of the case (2d and 3d models); returns the figures (for the summary). */
+export async function showPlots(request, hasCurves) {
+  const box = clear($("#plots"));
+  $("#plots-none").hidden = hasCurves;
+  if (!hasCurves) return [];
+  const figures = PLOTS.map((p) => {
+    const fig = el("figure", { class: "plot", "aria-busy": "true" }, el("figcaption", {}, p.caption));
+    box.append(fig);
+    return fig;
+  });
+  await Promise.all(
+    PLOTS.map(async (p, i) => {
+      try {
+        const svg = svgNode(await api.postSvg(p.path, request));
+        figures[i].prepend(svg);
+      } catch (err) {
+        figures[i].append(el("p", { class: "form-error" }, `The figure could not be drawn: ${err.message}`));
+      } finally {
+        figures[i].setAttribute("aria-busy", "false");
+      }
+    }),
+  );
+  return figures;
+}

@@ -1,0 +1,191 @@
+// Section 4: road design. The minimum radius against design speed (Eq. 9.2 with the standard's side friction
+// against the vehicle's Eq. 9.3: POST /v1/plots/min-radius and /v1/min-radius), the curve speed for a radius
+// (POST /v1/curve-speed, Eq. 9.1), a curve's design superelevation (POST /v1/superelevation) and the acceptable
+// load height by overweight (POST /v1/srt/limits).
+
+import * as api from "./api.js";
+import { $, clear, el, fmt, scroller, svgNode, table } from "./dom.js";
+import { value } from "./form.js";
+import { srtText } from "./results.js";
+
+export const state = { standards: null, design: null, speed: null };
+
+const drop = (obj) => Object.fromEntries(Object.entries(obj).filter(([, v]) => v !== undefined));
+
+export function fillStandards(list) {
+  state.standards = list;
+  const select = clear($("#standard"));
+  for (const s of list.standards) select.append(el("option", { value: s.id }, s.title));
+  const pending = select.dataset.pending;
+  select.value = pending && list.standards.some((s) => s.id === pending) ? pending : list.default;
+  select.dataset.initial = list.default;
+  describeStandard();
+}
+
+export function standard() {
+  return state.standards?.standards.find((s) => s.id === $("#standard").value) || null;
+}
+
+export function describeStandard() {
+  const s = standard();
+  $("#bound-field").hidden = !s?.side_friction_bounds;
+  $("#bound").disabled = !s?.side_friction_bounds;
+  if (!s) return;
+  $("#standard-citation").textContent = `${s.citation} Design speeds ${s.speed_range_kmh[0]}-${s.speed_range_kmh[1]} km/h.`;
+  $("#vmin").placeholder = String(s.speed_range_kmh[0]);
+  $("#vmax").placeholder = String(s.speed_range_kmh[1]);
+}
+
+/** design_standard (+ side_friction_bound for thesis-table21) */
+export function designFields() {
+  return drop({ design_standard: $("#standard").value || undefined, side_friction_bound: value($("#bound")) });
+}
+
+/** The SRT options of a case request (no road, no targets): what the plot and alignment requests take. */
+export function srtOptions(caseRequest) {
+  const { road: _road, targets: _targets, ...rest } = caseRequest;
+  return rest;
+}
+
+/** The speeds of the table: the standard's tabulated design speeds inside the chosen range. */
+function tableSpeeds(lo, hi) {
+  const s = standard();
+  const speeds = (s ? s.speeds_kmh : []).filter((v) => v >= lo && v <= hi);
+  for (const v of [lo, hi]) if (!speeds.includes(v)) speeds.push(v);
+  return speeds.sort((a, b) => a - b);
+}
+
+/** Minimum radius against design speed: the plot and the table. Returns the state for the summary. */
+export async function minRadius(vehicleRef, caseRequest) {
+  const s = standard();
+  const e = value($("#road-e"));
+  const vmin = value($("#vmin"));
+  const vmax = value($("#vmax"));
+  const design = designFields();
+  const plotRequest = drop({
+    vehicle: vehicleRef,
+    ...srtOptions(caseRequest),
+    ...design,
+    superelevation_percent: e,
+    slope_percent: caseRequest.road?.slope_percent,
+    speed_min_kmh: vmin,
+    speed_max_kmh: vmax,
+  });
+  const svgText = await api.postSvg("/v1/plots/min-radius", plotRequest); // refuses a bad range at its field
+  // the plot accepted the range: the table covers the same one (the standard's whole range by default)
+  const lo = typeof vmin === "number" ? vmin : s.speed_range_kmh[0];
+  const hi = typeof vmax === "number" ? vmax : s.speed_range_kmh[1];
+  const base = drop({
+    vehicle: vehicleRef,
+    ...srtOptions(caseRequest),
+    road: drop({ slope_percent: caseRequest.road?.slope_percent }),
+    targets: caseRequest.targets,
+    ...design,
+    superelevation_percent: e,
+  });
+  const rows = await Promise.all(tableSpeeds(lo, hi).map((v) => api.post("/v1/min-radius", { ...base, design_speed_kmh: v })));
+  state.design = { svgText, rows, standard: s, superelevation: e };
+  render(state.design);
+  return state.design;
+}
+
+export function radiusTable(rows) {
+  return table(
+    [
+      { key: "design_speed_kmh", label: "V [km/h]", format: (v) => fmt(v, 0) },
+      { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },
+      { key: "side_friction_min_radius_m", label: "Eq. 9.2 R [m]", format: (v) => fmt(v, 1) },
+      { key: "rollover_min_radius_m", label: "Eq. 9.3 R [m]", format: (v) => fmt(v, 1) },
+      { key: "governing_min_radius_m", label: "Governing R [m]", format: (v) => fmt(v, 1) },
+      { key: "governed_by", label: "Governed by", text: true },
+    ],
+    rows,
+    { caption: "Minimum radius by design speed: Eq. 9.2 (side friction, f of the standard) and Eq. 9.3 (rollover)." },
+  );
+}
+
+export function radiusCaption(design) {
+  const srt = design.rows[0]?.srt;
+  return `${design.standard ? design.standard.title : ""}; superelevation ${design.superelevation} %; the vehicle's SRT on this bank: ${srtText(srt)}.`;
+}
+
+function render(design) {
+  const box = clear($("#road-results"));
+  const fig = el("figure", { class: "plot" }, el("figcaption", {}, "Minimum radius against design speed: Eq. 9.2 against Eq. 9.3 (thesis Figs. 108-114)"));
+  fig.prepend(svgNode(design.svgText));
+  box.append(
+    el("p", {}, radiusCaption(design)),
+    el("div", { class: "plot-and-table" }, fig, scroller("Minimum radius by design speed", radiusTable(design.rows))),
+  );
+}
+
+export async function curveSpeed(vehicleRef, caseRequest) {
+  const radius = value($("#radius"));
+  if (radius === undefined) {
+    state.speed = null;
+    $("#speed-result").textContent = "";
+    return null;
+  }
+  const out = await api.post("/v1/curve-speed", { vehicle: vehicleRef, ...caseRequest, radius_m: radius });
+  state.speed = out;
+  $("#speed-result").textContent = `On a curve of radius ${fmt(out.radius_m, 1)} m (the case's bank and grade): at most ${fmt(out.max_speed_kmh, 1)} km/h before rollover (SRT ${srtText(out.srt)}, V = sqrt(127 SRT R)).`;
+  return out;
+}
+
+export async function superelevation() {
+  const out = await api.post(
+    "/v1/superelevation",
+    drop({
+      ...designFields(),
+      design_speed_kmh: value($("#se-speed")),
+      radius_m: value($("#se-radius")),
+      max_superelevation_percent: value($("#se-emax")),
+    }),
+  );
+  $("#super-result").textContent = `Superelevation ${fmt(out.superelevation_percent, 2)} %, leaving side friction ${fmt(out.side_friction, 3)} (f_max ${fmt(out.f_max, 3)}); Rmin for e_max: ${fmt(out.min_radius_m, 1)} m. ${out.method}`;
+  return out;
+}
+
+/** A table of any rows (the keys of the first row as columns; numbers to four significant digits). */
+function genericTable(rows) {
+  const keys = rows.length ? Object.keys(rows[0]).filter((k) => typeof rows[0][k] !== "object" || rows[0][k] === null) : [];
+  const show = (v) => (typeof v === "number" ? String(Number(v.toPrecision(4))) : v ?? "-");
+  return table(keys.map((k) => ({ key: k, label: k, format: show })), rows);
+}
+
+/** For a built vehicle: the largest payload mass per load height (POST /v1/vehicles/payload-table). */
+export async function payloadTable(spec, caseRequest) {
+  const out = await api.post(
+    "/v1/vehicles/payload-table",
+    drop({ vehicle: { spec }, ...srtOptions(caseRequest), target_srt_g: value($("#limit-target")) }),
+  );
+  const rows = Array.isArray(out) ? out : out.rows || [];
+  $("#limits-result").append(el("h4", {}, "Largest payload mass by load height (the builder's spec)"), scroller("Payload table", genericTable(rows)));
+  return out;
+}
+
+export async function limits(vehicleRef, caseRequest) {
+  const out = await api.post("/v1/srt/limits", {
+    vehicle: vehicleRef,
+    ...caseRequest,
+    parameter: "cg_height_above_chassis_m",
+    target_srt_g: value($("#limit-target")),
+  });
+  const box = clear($("#limits-result"));
+  box.append(
+    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}; this vehicle: l12 = ${fmt(out.current_value, 3)} ${out.unit}.`),
+    scroller(
+      "Acceptable CG height by overweight",
+      table(
+        [
+          { key: "overweight_percent", label: "Overweight [%]", format: (v) => fmt(v, 0) },
+          { key: "value", label: `Largest l12 [${out.unit}]`, format: (v) => fmt(v, 3) },
+          { key: "status", label: "Status", text: true },
+          { key: "srt_at_limit", label: "SRT at the limit [g]", format: (v) => fmt(v, 3) },
+        ],
+        out.table || [],
+      ),
+    ),
+  );
+  return out;
+}

@@ -1,0 +1,281 @@
+// Section 1: where the vehicle comes from -- a preset, a saved vehicle (bearer key), the vehicle builder, or a
+// pasted record -- and what the computations send as `vehicle` (a preset id or a full record).
+
+import * as api from "./api.js";
+import { $, $$, clear, el, fmt, scroller, table } from "./dom.js";
+import { value } from "./form.js";
+
+export const state = {
+  presets: [], // GET /v1/vehicles
+  components: null, // GET /v1/components, when the deployment has it
+  saved: null, // the loaded saved vehicle (GET /v1/vehicles/{id})
+  built: null, // the last POST /v1/vehicles/build answer
+  baseSpec: null, // the spec the builder form was filled from (its parts without a box are kept)
+};
+
+const RECORD_META = ["id", "title", "source", "models"];
+
+export const source = () => $('input[name="source"]:checked').value;
+
+export function preset(id = $("#preset").value) {
+  return state.presets.find((p) => p.id === id) || null;
+}
+
+/** The record of a preset list entry (its record fields only). */
+export function presetRecord(entry) {
+  return Object.fromEntries(Object.entries(entry).filter(([k]) => !RECORD_META.includes(k)));
+}
+
+export function showPanel(which) {
+  for (const panel of $$("[data-panel]")) panel.hidden = panel.dataset.panel !== which;
+  if (which === "saved") $("#catalog-box").open = true; // the key is needed
+  const radio = $(`input[name="source"][value="${which}"]`);
+  if (radio && !radio.checked) radio.checked = true;
+}
+
+export function fillPresets(presets) {
+  state.presets = presets;
+  const select = clear($("#preset"));
+  for (const p of presets) select.append(el("option", { value: p.id }, `${p.title} (${p.id})`));
+  const pending = select.dataset.pending;
+  if (pending && !presets.some((p) => p.id === pending)) {
+    select.append(el("option", { value: pending }, `${pending} (not a known preset)`));
+  }
+  if (pending) select.value = pending;
+  describePreset();
+}
+
+export function describePreset() {
+  const p = preset();
+  $("#preset-source").textContent = p ? `Source: ${p.source}. Models: ${p.models.join(", ")}.` : "";
+}
+
+/** Models the current vehicle supports (a preset says; a record or a built vehicle: all, the service checks). */
+export function supportedModels() {
+  return source() === "preset" && preset() ? preset().models : null;
+}
+
+// ------------------------------------------------------------------------------------------ builder
+
+function setPath(obj, path, v) {
+  const keys = path.split(".");
+  let node = obj;
+  keys.slice(0, -1).forEach((k, i) => {
+    const nextIsIndex = /^\d+$/.test(keys[i + 1]);
+    node[k] ??= nextIsIndex ? [] : {};
+    node = node[k];
+  });
+  node[keys.at(-1)] = v;
+}
+
+function deletePath(obj, path) {
+  const keys = path.split(".");
+  const parent = keys.slice(0, -1).reduce((node, k) => (node == null ? undefined : node[k]), obj);
+  if (parent && typeof parent === "object") delete parent[keys.at(-1)];
+}
+
+/**
+ * The builder form as a VehicleSpec object: the spec the form was last filled from (a link, a saved spec) with
+ * the form's boxes over it -- an empty box removes its value, parts the form has no box for are kept.
+ */
+export function specFromForm() {
+  const spec = structuredClone(state.baseSpec || {});
+  for (const c of $$("[data-spec]", $("#builder"))) {
+    const v = value(c);
+    if (v === undefined) deletePath(spec, c.dataset.spec);
+    else setPath(spec, c.dataset.spec, v);
+  }
+  // a payload without a mass is no payload (its distribution box always has a value)
+  if (Array.isArray(spec.payloads)) spec.payloads = spec.payloads.filter((p) => p && p.mass_kg !== undefined);
+  if (Array.isArray(spec.payloads) && !spec.payloads.length) delete spec.payloads;
+  for (const part of ["deck", "front_unit"]) if (spec[part] && !Object.keys(spec[part]).length) delete spec[part];
+  return spec;
+}
+
+/** Fill the builder form from a spec (a link, a saved spec); what the form has no box for is kept aside. */
+export function specToForm(spec) {
+  state.baseSpec = structuredClone(spec);
+  for (const c of $$("[data-spec]", $("#builder"))) {
+    const v = c.dataset.spec.split(".").reduce((node, k) => (node == null ? undefined : node[k]), spec);
+    if (c.tagName === "SELECT" && (v === undefined || v === null)) continue; // keep the select's default
+    if (c.tagName === "SELECT" && !Array.from(c.options).some((o) => o.value === String(v))) {
+      c.append(el("option", { value: String(v) }, String(v))); // e.g. a library id before the library is listed
+    }
+    c.value = v === undefined || v === null ? "" : String(v);
+  }
+}
+
+/** Each builder box answers for its spec path in problem details (`spec.rear.track_m`). */
+export function initBuilder() {
+  for (const c of $$("[data-spec]", $("#builder"))) c.dataset.field ??= `spec.${c.dataset.spec}`;
+}
+
+export function fillComponents(components) {
+  state.components = components;
+  const label = (entry) => entry.title || entry.name || entry.id;
+  for (const [selectId, list] of [
+    ["#b-rear-tyre", components.tyres || []],
+    ["#b-rear-susp", components.suspensions || []],
+  ]) {
+    const select = $(selectId);
+    for (const entry of list) {
+      const known = Array.from(select.options).find((o) => o.value === entry.id);
+      if (known) known.textContent = label(entry);
+      else select.append(el("option", { value: entry.id }, label(entry)));
+    }
+  }
+}
+
+function derivationTable(built) {
+  const rows = Object.entries(built.derivation || {}).map(([field, d]) => ({ field, ...d }));
+  return scroller(
+    "How each record field was obtained",
+    table(
+      [
+        { key: "field", label: "Record field" },
+        { key: "value", label: "Value", format: (v) => (typeof v === "number" ? String(Number(v.toPrecision(6))) : v ?? "-") },
+        { key: "unit", label: "Unit", text: true },
+        { key: "method", label: "Method", text: true },
+        { key: "explanation", label: "How", text: true },
+        { key: "source", label: "Source", text: true },
+      ],
+      rows,
+    ),
+    true,
+  );
+}
+
+export function showBuilt(built) {
+  const box = clear($("#build-result"));
+  box.append(
+    el(
+      "p",
+      {},
+      `Built: W = ${fmt(built.vehicle.weight_kn, 2)} kN`,
+      built.gross_mass_kg !== undefined ? ` (gross ${fmt(built.gross_mass_kg, 0)} kg)` : "",
+      built.group_loads_kg ? `; static group loads ${Object.entries(built.group_loads_kg).map(([k, v]) => `${k} ${fmt(v, 0)} kg`).join(", ")}` : "",
+      ".",
+    ),
+    el("div", { class: "derivation" }, derivationTable(built)),
+    ...(built.notes || []).map((n) => el("p", { class: "hint" }, n)),
+  );
+}
+
+/** POST /v1/vehicles/build -> its answer (vehicle record, derivation, masses, notes) and the spec built. */
+export async function build(spec) {
+  const built = await api.post("/v1/vehicles/build", { spec });
+  state.built = { ...built, spec };
+  return state.built;
+}
+
+// ------------------------------------------------------------------------------------------ saved vehicles
+
+/** The bearer key typed on the page (a page-local refusal at its box when there is none). */
+export function apiKey() {
+  const key = $("#api-key").value.trim();
+  if (!key) {
+    $("#catalog-box").open = true;
+    throw Object.assign(new Error("enter the bearer key of your saved vehicles"), { control: $("#api-key") });
+  }
+  return key;
+}
+
+export async function loadSaved() {
+  const id = $("#saved-id").value.trim();
+  const saved = await api.get(`/v1/vehicles/${encodeURIComponent(id)}`, { key: apiKey() });
+  state.saved = saved;
+  $("#saved-info").textContent = `${saved.title} (${saved.id}, ${saved.kind}, version ${saved.version}).`;
+  return saved;
+}
+
+export async function listSaved() {
+  const page = await api.get("/v1/vehicles/saved?limit=200", { key: apiKey() });
+  const select = clear($("#saved-choice"));
+  select.append(el("option", { value: "" }, page.items.length ? "(choose)" : "(none saved under this key)"));
+  for (const item of page.items) select.append(el("option", { value: item.id }, `${item.title} (${item.id})`));
+  $("#saved-choice-field").hidden = false;
+  return page;
+}
+
+// ------------------------------------------------------------------------------------------ the reference
+
+/** Turn a `{"spec": ...}` or a record into what computations take (a built spec becomes its record). */
+async function resolveBody(body, label) {
+  if (body && typeof body === "object" && "spec" in body) {
+    if (!(await api.has("post", "/v1/vehicles/build"))) {
+      throw new Error("this deployment has no vehicle builder (POST /v1/vehicles/build) to turn the spec into a record");
+    }
+    const built = await build(body.spec);
+    return { ref: built.vehicle, label, built };
+  }
+  return { ref: body, label };
+}
+
+/**
+ * The vehicle for the computations: {ref, label, params} where ref is a preset id or a full record and params
+ * the URL parameters that reproduce it. A problem local to the page is thrown with `control` set.
+ */
+export async function current() {
+  const which = source();
+  if (which === "preset") {
+    const p = preset();
+    if (!p) {
+      const id = $("#preset").value; // an id from the link that is no preset: the service says which exist
+      return { ref: id, label: id, record: null, params: { vehicle: id } };
+    }
+    return { ref: p.id, label: `${p.title} (${p.id})`, record: presetRecord(p), params: { vehicle: p.id } };
+  }
+  if (which === "saved") {
+    const id = $("#saved-id").value.trim();
+    if (!state.saved || state.saved.id !== id) await loadSaved();
+    const saved = state.saved;
+    const resolved = await resolveBody(saved.vehicle, `${saved.title} (${saved.id})`);
+    return { ...resolved, record: resolved.ref, params: { vehicle: saved.id } };
+  }
+  if (which === "build") {
+    const spec = specFromForm();
+    const built = await build(spec);
+    showBuilt(built);
+    return { ref: built.vehicle, label: spec.title || `Built ${spec.unit_type}`, record: built.vehicle, built, params: { spec: JSON.stringify(spec) } };
+  }
+  const text = $("#record-json").value.trim();
+  let body;
+  try {
+    body = JSON.parse(text);
+  } catch (err) {
+    const e = new Error(`not JSON: ${err.message}`);
+    e.control = $("#record-json");
+    throw e;
+  }
+  const resolved = await resolveBody(body, body.title || "Pasted record");
+  const ref = resolved.ref && typeof resolved.ref === "object" ? presetRecord(resolved.ref) : resolved.ref;
+  return { ...resolved, ref, record: ref, params: { record: JSON.stringify(body) } };
+}
+
+/** Restore the vehicle from the URL parameters; returns whether there is one to compute. */
+export function fromParams(params) {
+  if (params.get("spec")) {
+    try {
+      specToForm(JSON.parse(params.get("spec")));
+      showPanel("build");
+      return true;
+    } catch {
+      return false;
+    }
+  }
+  if (params.get("record")) {
+    $("#record-json").value = params.get("record");
+    showPanel("record");
+    return true;
+  }
+  const id = params.get("vehicle");
+  if (!id) return false;
+  if (id.startsWith("veh_")) {
+    $("#saved-id").value = id;
+    showPanel("saved");
+    return Boolean($("#api-key").value.trim());
+  }
+  $("#preset").dataset.pending = id;
+  showPanel("preset");
+  return true;
+}

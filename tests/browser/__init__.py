@@ -1,0 +1,1 @@
+"""Browser tests of the calculator page (headless chromium against a real uvicorn)."""

@@ -9,7 +9,7 @@ import { $, clear, download, el, fmt, scroller, signed, svgEl } from "./dom.js";
 import { value } from "./form.js";
 import { designFields, srtOptions } from "./road.js";
 
-export const state = { result: null, request: null, path: null, kind: null, rows: [], outline: null };
+export const state = { result: null, request: null, path: null, kind: null, rows: [], outline: null, job: null };
 
 const drop = (obj) => Object.fromEntries(Object.entries(obj).filter(([, v]) => v !== undefined));
 
@@ -63,26 +63,52 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
   return ["/v1/routes/assess", route];
 }
 
-const JOB_OPERATION = { "/v1/alignments/assess": "alignments.assess", "/v1/routes/assess": "routes.assess" };
-const DONE = new Set(["succeeded", "success", "completed", "complete", "done", "finished"]);
-const FAILED = new Set(["failed", "failure", "error", "cancelled", "canceled"]);
+/** Alignments with more rows than this go through a job (POST /v1/jobs) with a progress bar; smaller ones and
+ * routes (the job API has no route operation: POST /v1/routes/assess answers up to 32 MiB at once) in one request. */
+export const JOB_ROWS = 5000;
 
-/** Run through the job API with progress, when the deployment has it; else one request. */
-export async function run(path, body, onProgress) {
-  if (!(await api.has("post", "/v1/jobs"))) return api.post(path, body);
-  const { response, data } = await api.call("POST", "/v1/jobs", { json: { operation: JOB_OPERATION[path], request: body } });
-  const location = response.headers.get("Location") || `/v1/jobs/${data.id}`;
-  for (;;) {
-    const job = await api.get(location);
-    if (typeof job.progress === "number") onProgress(job.progress);
-    if (DONE.has(job.status)) break;
-    if (FAILED.has(job.status)) {
-      throw new api.ApiError(job.error || job.problem || { title: `The job ${job.status}`, status: 0 });
+/** The curves of an alignment file (CSV data rows, LandXML <Curve> elements); routes: null. */
+export function rowCount(kind, text) {
+  if (kind === "csv") return text.split(/\r?\n/).filter((line) => line.trim()).length - 1;
+  if (kind === "landxml") return (text.match(/<(\w+:)?Curve[\s>/]/g) || []).length;
+  return null;
+}
+
+/** Whether the request goes through a job: an alignment above JOB_ROWS rows, when the deployment has jobs. */
+export async function wantsJob(path, rows) {
+  return path === "/v1/alignments/assess" && rows > JOB_ROWS && (await api.has("post", "/v1/jobs"));
+}
+
+/**
+ * An alignment assessment as a job (operation `alignments.assess`): submit, poll GET /v1/jobs/{id} (status,
+ * progress, done/total) reporting each status to `onStatus`, then read its result. `key`: the bearer key (needed
+ * when the deployment has keys). `signal` aborts the polling after the job was cancelled.
+ */
+export async function runJob(body, { key, onStatus, signal }) {
+  const submitted = await api.call("POST", "/v1/jobs", { json: { operation: "alignments.assess", request: body }, key });
+  const location = submitted.response.headers.get("Location") || `/v1/jobs/${submitted.data.id}`;
+  let job = submitted.data;
+  state.job = { location, key };
+  try {
+    for (;;) {
+      onStatus(job);
+      if (job.status === "done") break;
+      if (job.status === "failed" || job.status === "cancelled") {
+        throw new api.ApiError(job.error || { title: `The job was ${job.status}`, status: 0 });
+      }
+      await new Promise((resolve) => setTimeout(resolve, 250));
+      if (signal?.aborted) throw new api.ApiError({ title: "The job was cancelled", status: 0 });
+      job = await api.get(location, { key });
     }
-    await new Promise((r) => setTimeout(r, 250));
+    return await api.get(job.result || `${location}/result`, { key });
+  } finally {
+    state.job = null;
   }
-  onProgress(1);
-  return api.get(`${location}/result`);
+}
+
+/** Cancel the running job (DELETE /v1/jobs/{id}). */
+export async function cancelJob() {
+  if (state.job) await api.call("DELETE", state.job.location, { key: state.job.key });
 }
 
 // ------------------------------------------------------------------------------------------ the table
@@ -91,6 +117,8 @@ const COLUMNS = [
   { key: "id", label: "Curve", text: true },
   { key: "station_m", label: "Station [m]", format: (v) => fmt(v, 0) },
   { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
+  { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1) },
+  { key: "direction", label: "Turns", text: true },
   { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
   { key: "grade_percent", label: "Grade [%]", format: (v) => fmt(v, 1) },
   { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3) },
@@ -105,15 +133,17 @@ const COLUMNS = [
   { key: "error", label: "Error", text: true },
 ];
 
-/** Rows of either answer: an alignment's vehicles[0].rows, or a route's curve features' properties. */
+/** Rows of either answer: a route's curve features (the geometry in `properties`, the governing vehicle's row in
+ * `properties.assessment`), or an alignment's vehicles[0].rows. */
 export function rowsOf(result) {
-  if (result.vehicles) return result.vehicles[0].rows;
-  const features = result.curves?.features || [];
-  return features.map((f, i) => {
-    const p = f.properties || {};
-    const a = p.assessment || p.assessments?.[0] || {};
-    return { id: p.id ?? `${i + 1}`, station_m: p.start_m, ...p, ...a };
-  });
+  if (result.curves?.type === "FeatureCollection") {
+    return result.curves.features.map((f) => {
+      const { assessment, vehicles: _v, ...p } = f.properties;
+      // the curve's own radius and grade (null without elevations) stay; the assessment adds the rest
+      return { ...assessment, ...p, station_m: p.start_m, grade_percent: p.grade_percent ?? assessment.grade_percent };
+    });
+  }
+  return result.vehicles[0].rows;
 }
 
 function compare(key, direction) {
@@ -233,9 +263,8 @@ export function outline(lines, result) {
   const main = lines[0];
   const s = chainage(main);
   for (const f of result.curves?.features || []) {
-    const p = f.properties || {};
-    const a = p.assessment || p.assessments?.[0] || {};
-    const flagged = Boolean(a.flagged ?? p.flagged);
+    const p = f.properties;
+    const flagged = Boolean(p.assessment?.flagged);
     let points = null;
     if (f.geometry?.type === "LineString") points = f.geometry.coordinates;
     else if (typeof p.start_m === "number" && typeof p.end_m === "number") points = slice(main, s, p.start_m, p.end_m);
@@ -249,8 +278,10 @@ export function outline(lines, result) {
 // ------------------------------------------------------------------------------------------ render
 
 function summaryLine(result) {
-  const s = result.vehicles ? result.vehicles[0].summary : result.summary || {};
-  const parts = [`${s.curves ?? rowsOf(result).length} curves`, `${s.flagged ?? 0} flagged`];
+  const s = result.vehicles[0].summary;
+  const parts = [`${s.curves} curves`, `${s.flagged} flagged`];
+  if (typeof result.length_m === "number") parts.push(`route ${fmt(result.length_m / 1000, 2)} km`);
+  if (s.below_standard_min_radius) parts.push(`${s.below_standard_min_radius} below the standard's minimum radius`);
   if (s.refused) parts.push(`${s.refused} refused`);
   if (s.min_margin_kmh !== undefined && s.min_margin_kmh !== null) parts.push(`smallest margin ${signed(s.min_margin_kmh, 1)} km/h`);
   if (s.min_safe_speed_kmh !== undefined && s.min_safe_speed_kmh !== null) parts.push(`lowest safe speed ${fmt(s.min_safe_speed_kmh, 1)} km/h`);

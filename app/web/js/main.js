@@ -115,9 +115,39 @@ async function curveSpeed() {
   }
 }
 
+/** The progress bar of an alignment job: its value, and done/total in words. */
+function showJob(job) {
+  const bar = $("#alignment-progress");
+  bar.value = job.progress;
+  const unit = job.unit || "rows";
+  $("#alignment-progress-text").textContent = `${Math.round(100 * job.progress)} % (${job.done} of ${job.total} ${unit}; job ${job.status})`;
+}
+
+/** The bearer key when one is typed (a job is the key's own), else none: the service says if it needs one. */
+const typedKey = () => $("#api-key").value.trim() || undefined;
+
+/** A job; when the service wants a bearer key for jobs and none is typed, the same request synchronously. */
+async function jobOrRequest(path, request, signal) {
+  try {
+    return await alignment.runJob(request, { key: typedKey(), onStatus: showJob, signal });
+  } catch (err) {
+    if (!(err instanceof api.ApiError) || err.problem.status !== 401 || typedKey()) throw err;
+    $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";
+    $("#alignment-cancel").hidden = true;
+    return api.post(path, request);
+  }
+}
+
 async function assessFile() {
   const section = $("#alignment-section");
+  const box = $("#alignment-progress-box");
   const bar = $("#alignment-progress");
+  const cancel = $("#alignment-cancel");
+  const aborter = new AbortController();
+  const onCancel = async () => {
+    aborter.abort();
+    await alignment.cancelJob().catch(() => undefined);
+  };
   await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
     const file = $("#alignment-file").files[0];
     if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
@@ -125,18 +155,23 @@ async function assessFile() {
     const kind = alignment.formatOf(file.name, text);
     const v = await vehicle.current();
     const [path, request] = await alignment.buildRequest(kind, text, v.ref, caseFields());
-    $("#alignment-progress-box").hidden = false;
-    bar.removeAttribute("value"); // indeterminate until the job reports progress
+    const job = await alignment.wantsJob(path, alignment.rowCount(kind, text));
+    box.hidden = false;
+    bar.removeAttribute("value"); // indeterminate until the job reports progress (or the one request answers)
+    $("#alignment-progress-text").textContent = job ? "submitting the job" : "one request";
+    cancel.hidden = !job;
+    cancel.addEventListener("click", onCancel, { once: true });
+    let result;
     try {
-      const result = await alignment.run(path, request, (p) => {
-        bar.value = p;
-      });
-      Object.assign(alignment.state, { path, request });
-      const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
-      alignment.render(result, kind, lines);
+      result = job ? await jobOrRequest(path, request, aborter.signal) : await api.post(path, request);
     } finally {
-      $("#alignment-progress-box").hidden = true;
+      cancel.hidden = true;
+      cancel.removeEventListener("click", onCancel);
+      box.hidden = !job; // a job's bar stays, at 100 % or where it stopped
     }
+    Object.assign(alignment.state, { path, request });
+    const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
+    alignment.render(result, kind, lines);
   });
   counted("assessments");
 }
@@ -164,7 +199,7 @@ function wire() {
     await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
       const out = await road.limits(v.ref, caseFields());
-      if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec, caseFields());
+      if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
       return out;
     });
   });

@@ -4,7 +4,7 @@
 // load height by overweight (POST /v1/srt/limits).
 
 import * as api from "./api.js";
-import { $, clear, el, fmt, scroller, svgNode, table } from "./dom.js";
+import { $, clear, download, el, fmt, scroller, svgNode, table } from "./dom.js";
 import { value } from "./form.js";
 import { srtText } from "./results.js";
 
@@ -146,21 +146,50 @@ export async function superelevation() {
   return out;
 }
 
-/** A table of any rows (the keys of the first row as columns; numbers to four significant digits). */
-function genericTable(rows) {
-  const keys = rows.length ? Object.keys(rows[0]).filter((k) => typeof rows[0][k] !== "object" || rows[0][k] === null) : [];
-  const show = (v) => (typeof v === "number" ? String(Number(v.toPrecision(4))) : v ?? "-");
-  return table(keys.map((k) => ({ key: k, label: k, format: show })), rows);
+/** A payload-table limit in words: `found` its value, `always-met` at least the range's end, `never-met` none. */
+function limitText(limit, digits) {
+  if (limit.status === "never-met" || limit.value === null) return "none meets it";
+  return limit.status === "always-met" ? `\u2265 ${fmt(limit.value, digits)} (whole range)` : fmt(limit.value, digits);
 }
 
-/** For a built vehicle: the largest payload mass per load height (POST /v1/vehicles/payload-table). */
-export async function payloadTable(spec, caseRequest) {
-  const out = await api.post(
-    "/v1/vehicles/payload-table",
-    drop({ vehicle: { spec }, ...srtOptions(caseRequest), target_srt_g: value($("#limit-target")) }),
+function payloadRows(caption, rows, row, limit) {
+  return scroller(
+    caption,
+    table(
+      [
+        { key: row.key, label: row.label, format: (v) => fmt(v, row.digits) },
+        { key: "limit", label: limit.label, format: (v) => limitText(v, limit.digits) },
+        { key: "limit", label: "SRT at the limit [g]", format: (v) => fmt(v.srt_g, 3) },
+      ],
+      rows,
+      { caption, rowClass: (r) => (r.limit.status === "found" ? null : r.limit.status) },
+    ),
   );
-  const rows = Array.isArray(out) ? out : out.rows || [];
-  $("#limits-result").append(el("h4", {}, "Largest payload mass by load height (the builder's spec)"), scroller("Payload table", genericTable(rows)));
+}
+
+/**
+ * For a built vehicle: the acceptable payload tables (POST /v1/vehicles/payload-table {spec, target_srt_g}) --
+ * the largest payload mass at each load height and the largest load height at each payload mass (3D model, level
+ * road: the table takes no case).
+ */
+export async function payloadTable(spec) {
+  const request = { spec, target_srt_g: value($("#limit-target")) };
+  const out = await api.post("/v1/vehicles/payload-table", request);
+  const csv = async () => {
+    const { data } = await api.call("POST", "/v1/vehicles/payload-table", { json: request, accept: "text/csv", as: "blob" });
+    download("payload-table.csv", data);
+  };
+  $("#limits-result").append(
+    el("h4", {}, "Acceptable payload of the built vehicle"),
+    el("p", { id: "payload-info" }, `SRT of the spec as built ${srtText(out.srt_of_spec_g)} (3D model, level road); target ${srtText(out.target_srt_g)}.`),
+    el(
+      "div",
+      { class: "two", id: "payload-tables" },
+      payloadRows("Largest payload mass by load height", out.by_load_height, { key: "load_height_m", label: "Load height [m]", digits: 2 }, { label: "Largest payload [kg]", digits: 0 }),
+      payloadRows("Largest load height by payload mass", out.by_payload_mass, { key: "payload_mass_kg", label: "Payload [kg]", digits: 0 }, { label: "Largest load height [m]", digits: 2 }),
+    ),
+    el("div", { class: "actions" }, el("button", { type: "button", id: "payload-csv", onclick: csv }, "Download the payload table (CSV)")),
+  );
   return out;
 }
 

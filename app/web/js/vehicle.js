@@ -110,19 +110,51 @@ export function initBuilder() {
   for (const c of $$("[data-spec]", $("#builder"))) c.dataset.field ??= `spec.${c.dataset.spec}`;
 }
 
+/** The library's entries for the builder's tyre and suspension choices (GET /v1/components), and their boxes. */
+const LIBRARY = [
+  { select: "#b-rear-tyre", list: "tyres", boxes: { loaded_radius_m: "#b-rear-tyre-lr", stiffness_kn_per_m: "#b-rear-tyre-kt" } },
+  {
+    select: "#b-rear-susp",
+    list: "suspensions",
+    boxes: { stiffness_kn_per_m: "#b-rear-susp-k", height_m: "#b-rear-susp-h", spring_separation_m: "#b-rear-susp-b" },
+  },
+];
+
+/**
+ * Fill the tyre and suspension choices from the component library. A form not filled from a link starts with
+ * each list's first entry (the thesis's tyre and suspension), so the builder's defaults build a vehicle.
+ */
 export function fillComponents(components) {
   state.components = components;
-  const label = (entry) => entry.title || entry.name || entry.id;
-  for (const [selectId, list] of [
-    ["#b-rear-tyre", components.tyres || []],
-    ["#b-rear-susp", components.suspensions || []],
-  ]) {
-    const select = $(selectId);
-    for (const entry of list) {
+  for (const { select: id, list } of LIBRARY) {
+    const select = $(id);
+    for (const entry of components[list]) {
       const known = Array.from(select.options).find((o) => o.value === entry.id);
-      if (known) known.textContent = label(entry);
-      else select.append(el("option", { value: entry.id }, label(entry)));
+      if (known) known.textContent = entry.title;
+      else select.append(el("option", { value: entry.id }, entry.title));
     }
+    if (!state.baseSpec && !select.value && components[list].length) select.value = components[list][0].id;
+    select.addEventListener("change", describeComponents);
+  }
+  describeComponents();
+}
+
+/** Under each library choice: its values, with their sources folded; its values as the explicit boxes' placeholders. */
+export function describeComponents() {
+  for (const { select: id, list, boxes } of LIBRARY) {
+    const entry = (state.components?.[list] || []).find((e) => e.id === $(id).value);
+    for (const [key, box] of Object.entries(boxes)) $(box).placeholder = entry ? `${entry[key].value} (library)` : "";
+    const noteId = `${id.slice(1)}-values`;
+    $(`#${noteId}`)?.remove();
+    if (!entry) continue;
+    const keys = Object.keys(boxes);
+    const note = el(
+      "div",
+      { class: "hint component-values", id: noteId },
+      keys.map((k) => `${$(`label[for="${boxes[k].slice(1)}"]`).textContent.replace(/ \[.*\]$/, "")} ${entry[k].value} ${entry[k].unit}`).join(", "),
+      el("details", {}, el("summary", {}, "Sources"), el("ul", {}, keys.map((k) => el("li", {}, `${k}: ${entry[k].source}`)))),
+    );
+    $(id).closest(".field").append(note);
   }
 }
 

@@ -192,7 +192,7 @@ function wire() {
   }
   $("#super-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation);
+    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation).then(() => counted("superelevations"));
   });
   $("#limits-form").addEventListener("submit", async (ev) => {
     ev.preventDefault();
@@ -202,6 +202,7 @@ function wire() {
       if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
       return out;
     });
+    counted("limits");
   });
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();

@@ -1,0 +1,311 @@
+"""The calculator page against the builder, component library, design standards, superelevation, routes, jobs and
+payload-table endpoints, end to end in headless chromium against a real uvicorn server.
+
+Expected numbers come from closed forms worked here (Eq. 9.2, the DNIT superelevation distribution, the geometry
+of a synthetic route), published table cells (cited at each assertion), or the public API called directly for the
+same case -- never from the page itself.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from urllib.parse import parse_qs, quote, urlsplit
+
+import numpy as np
+import pytest
+from selenium.webdriver.support.ui import Select
+
+from tests.synthetic_routes import Arc, Tangent, curve_spans, layout, to_lonlat
+
+#: the page shows the SRT with three decimals: it can differ from the API's value by half a unit of the last one
+DISPLAY_G = 0.0005
+
+#: the spec the builder form's initial boxes make (app/web/index.html), without the tyre and suspension choices
+FORM_SPEC = {
+    "unit_type": "semitrailer",
+    "rear": {"axles": 3, "tyres_per_axle": 4, "track_m": 1.86, "centre_from_kingpin_m": 8.7},
+    "front": {"axles": 2, "tyres_per_axle": 4, "track_m": 1.86, "centre_from_kingpin_m": 0.2},
+    "tare": {"mass_kg": 8000, "cg_height_m": 1.1, "cg_from_kingpin_m": 6},
+    "payloads": [{"mass_kg": 24000, "deck_height_m": 1.4, "load_height_m": 3.6, "distribution": "uniform"}],
+    "deck": {"front_from_kingpin_m": -1, "length_m": 13},
+}
+
+
+def with_components(tyre_id: str, suspension_id: str) -> dict:
+    return {**FORM_SPEC, "rear": {**FORM_SPEC["rear"], "tyre": {"id": tyre_id}, "suspension": {"type": suspension_id}}}
+
+
+def table_rows(page, selector: str) -> list[list[str]]:
+    """The cells' texts of the rows matched by ``selector`` (read in one script: tables can be long)."""
+    script = """return Array.from(document.querySelectorAll(arguments[0]))
+      .map((tr) => Array.from(tr.cells).map((td) => td.textContent.trim()));"""
+    return page.driver.execute_script(script, selector)
+
+
+def curve_rows(page) -> list[dict]:
+    """The assessed curves table as dicts keyed by the API field of each column, with the row's class."""
+    script = """
+      const keys = Array.from(document.querySelectorAll('#curves-table thead button.sort')).map((b) => b.dataset.key);
+      const cells = (tr) => Array.from(tr.cells).map((td, i) => [keys[i], td.textContent.trim()]);
+      return Array.from(document.querySelectorAll('#curves-table tbody tr'))
+        .map((tr) => Object.assign({row_class: tr.className}, Object.fromEntries(cells(tr))));
+    """
+    return page.driver.execute_script(script)
+
+
+def choose_builder(page) -> None:
+    page.find('input[name="source"][value="build"]').click()
+    assert page.find("#builder").is_displayed()
+
+
+def ok(response):
+    assert response.status_code == 200, response.text
+    return response.json()
+
+
+# ------------------------------------------------------------------------------------------- the builder
+
+
+def test_the_builder_form_with_library_components_gives_the_srt_of_its_spec(page, api):
+    components = ok(api.get("/v1/components"))
+    page.open()
+    choose_builder(page)
+    # the choices are the library's, and a fresh form starts with each list's first entry
+    tyres = [o.get_attribute("value") for o in page.find_all("#b-rear-tyre option")]
+    suspensions = [o.get_attribute("value") for o in page.find_all("#b-rear-susp option")]
+    assert tyres == ["", *[t["id"] for t in components["tyres"]]]
+    assert suspensions == ["", *[s["id"] for s in components["suspensions"]]]
+    assert Select(page.find("#b-rear-tyre")).first_selected_option.get_attribute("value") == tyres[1]
+    # another tyre and suspension than the defaults: the last of each list
+    tyre, suspension = components["tyres"][-1], components["suspensions"][-1]
+    Select(page.find("#b-rear-tyre")).select_by_value(tyre["id"])
+    Select(page.find("#b-rear-susp")).select_by_value(suspension["id"])
+    assert str(tyre["loaded_radius_m"]["value"]) in page.find("#b-rear-tyre-lr").get_attribute("placeholder")
+    page.run("computations", lambda: page.find("#build-button").click())
+    spec = with_components(tyre["id"], suspension["id"])
+    # the spec the page built is in its link, and its SRT is the API's for the same spec
+    sent = json.loads(parse_qs(urlsplit(page.driver.current_url).query)["spec"][0])
+    assert sent == spec
+    expected = ok(api.post("/v1/srt", json={"vehicle": {"spec": spec}}))["srt"]
+    assert page.srt_g() == pytest.approx(expected, abs=DISPLAY_G)
+    # the derivation table: the record's lr and kT are the library tyre's, kLs the suspension's, method "library"
+    derivation = {cells[0]: cells for cells in table_rows(page, "#build-result table tbody tr")}
+    assert float(derivation["rolling_radius_m"][1]) == pytest.approx(tyre["loaded_radius_m"]["value"], rel=1e-5)
+    assert float(derivation["tire_stiffness_kn_per_m"][1]) == pytest.approx(tyre["stiffness_kn_per_m"]["value"])
+    assert float(derivation["suspension_stiffness_kn_per_m"][1]) == suspension["stiffness_kn_per_m"]["value"]
+    assert derivation["rolling_radius_m"][3] == "library"
+    assert derivation["rolling_radius_m"][5] == tyre["loaded_radius_m"]["source"]
+
+
+def test_builder_errors_are_shown_at_the_builder_boxes(page):
+    page.open()
+    choose_builder(page)
+    page.type("#b-rear-track", "-1")
+    page.run("computations", lambda: page.find("#build-button").click())
+    assert page.find("#b-rear-track").get_attribute("aria-invalid") == "true"
+    assert "spec.rear.track_m must be above 0" in page.field_error("#b-rear-track")
+    assert page.find("#results-body").is_displayed() is False  # nothing computed
+    # no library tyre and no loaded radius: the service asks for one at the loaded-radius box
+    page.type("#b-rear-track", "1.86")
+    Select(page.find("#b-rear-tyre")).select_by_value("")
+    page.run("computations", lambda: page.find("#build-button").click())
+    assert page.find("#b-rear-track").get_attribute("aria-invalid") is None
+    assert page.find("#b-rear-tyre-lr").get_attribute("aria-invalid") == "true"
+    assert "rolling_radius_m (lr) is unknown" in page.field_error("#b-rear-tyre-lr")
+
+
+def test_a_pasted_spec_with_an_error_is_refused_at_the_record_box_naming_the_spec_field(page):
+    bad = {"spec": {**with_components("thesis-michelin-xza", "thesis-steel-leaf"), "rear": {"axles": 3}}}
+    page.open("?record=" + quote(json.dumps(bad)))
+    message = page.field_error("#record-json")
+    assert page.find("#record-json").get_attribute("aria-invalid") == "true"
+    assert "spec.rear.track_m" in message  # the spec path the service names (Field required)
+
+
+def test_the_payload_table_of_a_built_vehicle_is_the_apis(page, api):
+    components = ok(api.get("/v1/components"))
+    spec = with_components(components["tyres"][0]["id"], components["suspensions"][0]["id"])
+    page.open()
+    choose_builder(page)  # the form's defaults, with the library's first tyre and suspension
+    page.run("computations", lambda: page.find("#build-button").click())
+    page.type("#limit-target", "0.35")
+    page.run("limits", lambda: page.find("#limits-compute").click())
+    expected = ok(api.post("/v1/vehicles/payload-table", json={"spec": spec, "target_srt_g": 0.35}))
+    srt = ok(api.post("/v1/srt", json={"vehicle": {"spec": spec}}))["srt"]
+    assert f"SRT of the spec as built {srt:.3f} g" in page.text("#payload-info")
+    assert page.srt_g() == pytest.approx(srt, abs=DISPLAY_G)  # the page's case is the level road, 3D model
+    shown = table_rows(page, "#payload-tables .table-wrap:first-child tbody tr")
+    assert [c[0] for c in shown] == [f"{r['load_height_m']:.2f}" for r in expected["by_load_height"]]
+    found = 0
+    for cells, row in zip(shown, expected["by_load_height"], strict=True):
+        limit = row["limit"]
+        if limit["status"] == "found":
+            found += 1
+            assert cells[1] == f"{limit['value']:.0f}"
+            assert cells[2] == "0.350"  # at the limit the SRT is the target
+        elif limit["status"] == "always-met":
+            assert cells[1].startswith("\u2265") and float(cells[2]) >= 0.35
+    assert found >= 1  # at 3.6 m (the spec's load height) the 24 t payload is below 0.35 g: a limit is found
+    # invariant: the higher the load, the smaller the largest payload
+    masses = [r["limit"]["value"] for r in expected["by_load_height"]]
+    assert masses == sorted(masses, reverse=True)
+    heights = table_rows(page, "#payload-tables .table-wrap:last-child tbody tr")
+    assert len(heights) == len(expected["by_payload_mass"])
+
+
+# ------------------------------------------------------------------------------------------- road design
+
+
+def test_dnit_1999_changes_the_minimum_radius_table_and_plot_to_the_apis(page, api):
+    page.open("?vehicle=table16-btrain")
+    aashto_plot = page.find("#road-results svg").get_attribute("outerHTML")
+    aashto_rows = table_rows(page, "#road-results table tbody tr")
+    Select(page.find("#standard")).select_by_value("dnit-1999")
+    page.run("computations", lambda: page.find("#road-compute").click())
+    assert parse_qs(urlsplit(page.driver.current_url).query)["design_standard"] == ["dnit-1999"]
+    standard = ok(api.get("/v1/design-standards/dnit-1999"))
+    assert standard["title"] in page.text("#road-results p")
+    rows = table_rows(page, "#road-results table tbody tr")
+    assert rows != aashto_rows and page.find("#road-results svg").get_attribute("outerHTML") != aashto_plot
+    assert [float(r[0]) for r in rows] == standard["speeds_kmh"]  # 30-120 km/h, every 10
+    # DNER IPR-706 (1999) Quadro 5.4.3.2, e_max = 8 %: the published R_min, which is Eq. 9.2 with Quadro 5.4.3.1's
+    # f_max rounded to 5 m (80 km/h: f = 0.14, R_min = 230 m)
+    published = standard["min_radius_table"]["8"]
+    assert published["80"] == 230.0
+    for cells in rows:
+        v, f, r92 = float(cells[0]), float(cells[1]), float(cells[2])
+        assert r92 == pytest.approx(v**2 / (127 * (0.08 + f)), abs=0.051)  # Eq. 9.2, shown to 0.1 m
+        assert 5 * round(r92 / 5) == published[f"{v:.0f}"]
+        answer = ok(api.post("/v1/min-radius", json={"vehicle": "table16-btrain", "design_standard": "dnit-1999",
+                                                    "design_speed_kmh": v, "superelevation_percent": 8}))  # fmt: skip
+        assert cells[1:5] == [
+            f"{answer['side_friction']:.3f}",
+            f"{answer['side_friction_min_radius_m']:.1f}",
+            f"{answer['rollover_min_radius_m']:.1f}",
+            f"{answer['governing_min_radius_m']:.1f}",
+        ]
+        assert cells[5] == answer["governed_by"]
+
+
+def superelevation_shown(page) -> tuple[float, float, float, float]:
+    text = page.text("#super-result")
+    e = float(text.split("Superelevation ")[1].split(" %")[0])
+    f = float(text.split("side friction ")[1].split(" ")[0])
+    f_max = float(text.split("f_max ")[1].split(")")[0])
+    r_min = float(text.split("Rmin for e_max: ")[1].split(" m")[0])
+    return e, f, f_max, r_min
+
+
+def test_the_superelevation_of_a_curve_for_the_chosen_standard(page, api):
+    page.open("?vehicle=table16-btrain")
+    for box, text in (("#se-speed", "80"), ("#se-radius", "400"), ("#se-emax", "8")):
+        page.type(box, text)
+    page.run("superelevations", lambda: page.find("#super-compute").click())
+    e, f, f_max, r_min = superelevation_shown(page)
+    # AASHTO 2018 Table 3-7 (metric) at 80 km/h: f_max = 0.14, R_min = 229 m for e_max = 8 %
+    assert f_max == 0.14
+    assert r_min == pytest.approx(80**2 / (127 * (0.08 + 0.14)), abs=0.05) and round(r_min) == 229
+    # the curve's balance (Eq. 9.2 at R): e + f = V^2 / (127 R); e shown to 0.01 %, f to 0.001
+    assert e / 100 + f == pytest.approx(80**2 / (127 * 400), abs=0.00005 + 0.0005)
+    body = {"design_speed_kmh": 80, "radius_m": 400, "max_superelevation_percent": 8}
+    answer = ok(api.post("/v1/superelevation", json=body))
+    assert (e, f) == (round(answer["superelevation_percent"], 2), round(answer["side_friction"], 3))
+    # DNIT 1999: e = e_max (2 R_min / R - R_min^2 / R^2) with R_min of Eq. 9.2 (f = 0.14 at 80 km/h)
+    Select(page.find("#standard")).select_by_value("dnit-1999")
+    page.run("superelevations", lambda: page.find("#super-compute").click())
+    e_dnit, _, _, _ = superelevation_shown(page)
+    rmin = 80**2 / (127 * (0.08 + 0.14))
+    assert e_dnit == pytest.approx(8 * (2 * rmin / 400 - (rmin / 400) ** 2), abs=0.005)
+    # below R_min: refused at the radius box
+    page.type("#se-radius", "100")
+    page.run("superelevations", lambda: page.find("#super-compute").click())
+    assert page.find("#se-radius").get_attribute("aria-invalid") == "true"
+    assert "below the minimum radius" in page.field_error("#se-radius")
+
+
+# ------------------------------------------------------------------------------------------- a GPX route
+
+#: a straight, a 150 m left arc 250 m long, a straight; vertices every 10 m with 1 m of GPS-like noise
+ROUTE = [Tangent(400.0), Arc(150.0, 250.0, "left"), Tangent(400.0)]
+ROUTE_RADIUS_M = 150.0
+
+
+def gpx_track(noise_m: float = 1.0, seed: int = 1, lat0: float = -27.6) -> str:
+    x, y, _ = layout(ROUTE, 10.0)
+    rng = np.random.default_rng(seed)
+    x, y = x + rng.normal(0, noise_m, x.size), y + rng.normal(0, noise_m, y.size)
+    lon, lat = to_lonlat(x, y, lat0)
+    points = "".join(f'<trkpt lat="{float(b)!r}" lon="{float(a)!r}"/>' for a, b in zip(lon, lat, strict=True))
+    return (
+        '<?xml version="1.0"?><gpx version="1.1" creator="test" xmlns="http://www.topografix.com/GPX/1/1">'
+        f"<trk><name>Test road</name><trkseg>{points}</trkseg></trk></gpx>"
+    )
+
+
+def test_an_uploaded_gpx_route_shows_its_curve_radius_within_its_uncertainty_and_flagged(page, api, tmp_path):
+    text = gpx_track()
+    path = tmp_path / "route.gpx"
+    path.write_text(text)
+    page.open("?vehicle=table16-btrain")
+    page.find("#alignment-file").send_keys(str(path))
+    page.type("#al-posted", "80")
+    page.type("#al-e", "6")
+    page.run("assessments", lambda: page.find("#alignment-assess").click())
+    rows = curve_rows(page)
+    assert len(rows) == 1  # no phantom curve on the straights
+    row = rows[0]
+    radius, std = float(row["radius_m"]), float(row["radius_std_m"])
+    # the designed radius within three of the service's own standard errors (and the display's 0.05 m)
+    assert std > 0 and abs(radius - ROUTE_RADIUS_M) <= 3 * std + 0.05
+    ((start, _end),) = curve_spans(ROUTE)
+    assert float(row["station_m"]) == pytest.approx(start, abs=60)  # as tests/api/test_routes_api.py
+    assert row["direction"] == "left"
+    # flagged: at 80 km/h and over, AASHTO Table 3-7 gives f <= 0.14, so the side-friction speed is at most
+    # sqrt(127 x 150 x (0.06 + 0.14)) = 61.7 km/h < 80 (and for any speed above 60 km/h, f <= 0.17: <= 66.2 km/h)
+    assert "flagged" in row["row_class"] and float(row["safe_speed_kmh"]) < math.sqrt(127 * 150 * (0.06 + 0.17))
+    assert page.text("#alignment-summary").startswith("1 curves, 1 flagged")
+    assert len(page.find_all("#alignment-results svg polyline.curve.flagged")) == 1
+    # the row is the API's answer to the same request
+    body = {"vehicle": "table16-btrain", "gpx": text, "posted_speed_kmh": 80, "superelevation_percent": 6}
+    answer = ok(api.post("/v1/routes/assess", json={**body, "max_superelevation_percent": 8}))
+    props = answer["curves"]["features"][0]["properties"]
+    assert row["radius_m"] == f"{props['radius_m']:.1f}" and row["radius_std_m"] == f"{props['radius_std_m']:.1f}"
+    assert row["safe_speed_kmh"] == f"{props['assessment']['safe_speed_kmh']:.1f}"
+
+
+# ------------------------------------------------------------------------------------------- a job
+
+
+def large_csv(rows: int) -> str:
+    lines = ["id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh"]
+    lines += [f"C{i},{40 + (i * 37) % 1500},{i % 9},0,{50 + 10 * (i % 5)}" for i in range(rows)]
+    return "\n".join(lines) + "\n"
+
+
+def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page, api, live_server, tmp_path):
+    text = large_csv(6000)  # above the page's 5,000 rows
+    path = tmp_path / "large.csv"
+    path.write_text(text)
+    page.open("?vehicle=table16-btrain")
+    page.find("#catalog-box summary").click()  # the jobs of a deployment with keys are the key's own
+    page.type("#api-key", live_server.key)
+    page.find("#alignment-file").send_keys(str(path))
+    page.network()
+    page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=180)
+    assert page.find("#alignment-progress-box").is_displayed()
+    assert float(page.find("#alignment-progress").get_attribute("value")) == 1.0
+    assert page.text("#alignment-progress-text") == "100 % (6000 of 6000 rows; job done)"
+    sent, _ = page.network()
+    paths = {urlsplit(u).path for u in sent.values()}
+    assert "/v1/jobs" in paths and "/v1/alignments/assess" not in paths
+    assert any(p.startswith("/v1/jobs/job_") and p.endswith("/result") for p in paths)
+    # the same table as the synchronous answer
+    answer = ok(api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "csv": text,
+                                                        "max_superelevation_percent": 8}))  # fmt: skip
+    expected = answer["vehicles"][0]
+    assert page.text("#alignment-summary").startswith(f"6000 curves, {expected['summary']['flagged']} flagged")
+    rows = curve_rows(page)
+    assert [r["id"] for r in rows] == [r["id"] for r in expected["rows"]]
+    assert [("flagged" in r["row_class"]) for r in rows] == [r["flagged"] for r in expected["rows"]]
+    assert [r["safe_speed_kmh"] for r in rows] == [f"{r['safe_speed_kmh']:.1f}" for r in expected["rows"]]

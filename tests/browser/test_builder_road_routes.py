@@ -309,3 +309,61 @@ def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page
     assert [r["id"] for r in rows] == [r["id"] for r in expected["rows"]]
     assert [("flagged" in r["row_class"]) for r in rows] == [r["flagged"] for r in expected["rows"]]
     assert [r["safe_speed_kmh"] for r in rows] == [f"{r['safe_speed_kmh']:.1f}" for r in expected["rows"]]
+
+
+# ------------------------------------------------------------------------------------------- a saved fleet
+
+FLEET_CSV = """id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh
+K1,60,4,0,60
+K2,300,6,0,80
+K3,1200,6,0,100
+"""
+
+
+def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet(page, api, live_server, tmp_path):
+    key = {"Authorization": f"Bearer {live_server.key}"}
+    vehicles = ["table16-btrain", "table15-semitrailer"]
+    fleet = api.post("/v1/fleets", json={"title": "Page fleet", "vehicles": vehicles}, headers=key)
+    assert fleet.status_code == 201, fleet.text
+    fleet_id = fleet.json()["id"]
+    csv_path, gpx_path = tmp_path / "fleet.csv", tmp_path / "route.gpx"
+    csv_path.write_text(FLEET_CSV)
+    gpx_path.write_text(gpx_track())
+    page.open("?vehicle=table16-btrain")
+    page.type("#al-fleet", fleet_id)
+    page.find("#alignment-file").send_keys(str(csv_path))
+    # a fleet needs the bearer key: refused at the key's box before any request
+    page.run("assessments", lambda: page.find("#alignment-assess").click())
+    assert "bearer key" in page.field_error("#api-key")
+    page.type("#api-key", live_server.key)
+    page.run("assessments", lambda: page.find("#alignment-assess").click())
+    body = {"fleet": fleet_id, "csv": FLEET_CSV, "max_superelevation_percent": 8}
+    answer = ok(api.post("/v1/alignments/assess", json=body, headers=key))
+    choice = Select(page.find("#al-vehicle-shown"))
+    assert [o.text for o in choice.options] == vehicles
+    for i, name in enumerate(vehicles):
+        choice.select_by_index(i)
+        rows = curve_rows(page)
+        expected = answer["vehicles"][i]["rows"]
+        assert [r["safe_speed_kmh"] for r in rows] == [f"{r['safe_speed_kmh']:.1f}" for r in expected]
+        assert [("flagged" in r["row_class"]) for r in rows] == [r["flagged"] for r in expected]
+        assert f"for {name}" in page.text("#alignment-summary")
+    # a route: without a superelevation or a posted speed the service names the speed (of its curve 0), which
+    # the page shows at the posted speed's box
+    page.find("#alignment-file").send_keys(str(gpx_path))
+    page.run("assessments", lambda: page.find("#alignment-assess").click())
+    assert "has neither superelevation_percent nor posted_speed_kmh" in page.field_error("#al-posted")
+    # each curve by its governing vehicle (the lowest safe speed), named in the Vehicle column. 60 km/h: with a
+    # superelevation from the distribution a curve below the standard's R_min for its speed refuses the whole
+    # route (AASHTO 2018 Table 3-7, e_max 8 %: 229 m at 80 km/h, 113 m at 60 km/h; the arc is 150 m)
+    page.type("#al-posted", "60")
+    page.run("assessments", lambda: page.find("#alignment-assess").click())
+    body = {"fleet": fleet_id, "gpx": gpx_path.read_text(), "posted_speed_kmh": 60, "max_superelevation_percent": 8}
+    route = ok(api.post("/v1/routes/assess", json=body, headers=key))
+    (feature,) = route["curves"]["features"]
+    props = feature["properties"]
+    safe = [v["safe_speed_kmh"] for v in props["vehicles"]]
+    assert props["governing_vehicle"] == safe.index(min(safe))
+    (row,) = curve_rows(page)
+    assert row["vehicle"] == vehicles[props["governing_vehicle"]]
+    assert row["safe_speed_kmh"] == f"{min(safe):.1f}"

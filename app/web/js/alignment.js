@@ -9,7 +9,7 @@ import { $, clear, download, el, fmt, scroller, signed, svgEl } from "./dom.js";
 import { value } from "./form.js";
 import { designFields, srtOptions } from "./road.js";
 
-export const state = { result: null, request: null, path: null, kind: null, rows: [], outline: null, job: null };
+export const state = { result: null, request: null, path: null, key: undefined, kind: null, rows: [], outline: null, job: null };
 
 const drop = (obj) => Object.fromEntries(Object.entries(obj).filter(([, v]) => v !== undefined));
 
@@ -26,10 +26,15 @@ export function formatOf(name, text) {
   return "csv";
 }
 
+/** The saved fleet typed in section 5 (`flt_...`): its vehicles are assessed instead of the page's vehicle. */
+export const fleetId = () => value($("#al-fleet")) || undefined;
+
 /** The request for the file: [path, body]. */
 export async function buildRequest(kind, text, vehicleRef, caseRequest) {
+  const fleet = fleetId();
   const common = drop({
-    vehicle: vehicleRef,
+    vehicle: fleet ? undefined : vehicleRef,
+    fleet,
     ...srtOptions(caseRequest),
     targets: caseRequest.targets,
     ...designFields(),
@@ -115,6 +120,7 @@ export async function cancelJob() {
 
 const COLUMNS = [
   { key: "id", label: "Curve", text: true },
+  { key: "vehicle", label: "Vehicle", text: true },
   { key: "station_m", label: "Station [m]", format: (v) => fmt(v, 0) },
   { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
   { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1) },
@@ -133,17 +139,27 @@ const COLUMNS = [
   { key: "error", label: "Error", text: true },
 ];
 
-/** Rows of either answer: a route's curve features (the geometry in `properties`, the governing vehicle's row in
- * `properties.assessment`), or an alignment's vehicles[0].rows. */
-export function rowsOf(result) {
+/** A vehicle of a multi-vehicle answer by name: its preset id, saved id, or its place. */
+export function vehicleLabel(entry, i) {
+  return entry?.preset || entry?.saved_vehicle_id || `vehicle ${i + 1}`;
+}
+
+/**
+ * Rows of either answer for vehicle `index` (null: a route's governing vehicle, the one with the lowest safe speed):
+ * a route's curve features (the geometry in `properties`, the assessment in `properties.assessment` or, per vehicle,
+ * `properties.vehicles[index]`), or an alignment's vehicles[index].rows.
+ */
+export function rowsOf(result, index = null) {
   if (result.curves?.type === "FeatureCollection") {
     return result.curves.features.map((f) => {
-      const { assessment, vehicles: _v, ...p } = f.properties;
+      const { assessment, vehicles, governing_vehicle: governing, ...p } = f.properties;
+      const row = index === null || !vehicles ? assessment : vehicles[index];
+      const vehicle = result.vehicles.length > 1 ? vehicleLabel(result.vehicles[index ?? governing], index ?? governing) : undefined;
       // the curve's own radius and grade (null without elevations) stay; the assessment adds the rest
-      return { ...assessment, ...p, station_m: p.start_m, grade_percent: p.grade_percent ?? assessment.grade_percent };
+      return { ...row, ...p, vehicle, station_m: p.start_m, grade_percent: p.grade_percent ?? row.grade_percent };
     });
   }
-  return result.vehicles[0].rows;
+  return result.vehicles[index ?? 0].rows;
 }
 
 function compare(key, direction) {
@@ -277,9 +293,16 @@ export function outline(lines, result) {
 
 // ------------------------------------------------------------------------------------------ render
 
-function summaryLine(result) {
-  const s = result.vehicles[0].summary;
+function summaryLine(result, index) {
+  const several = result.vehicles.length > 1;
+  if (index === null && several) {
+    // a fleet's route, each curve by its governing vehicle
+    const flagged = state.rows.filter((r) => r.flagged).length;
+    return `${state.rows.length} curves, ${flagged} flagged for their governing vehicle; ${result.vehicles.length} vehicles, route ${fmt(result.length_m / 1000, 2)} km`;
+  }
+  const s = result.vehicles[index ?? 0].summary;
   const parts = [`${s.curves} curves`, `${s.flagged} flagged`];
+  if (several) parts.push(`for ${vehicleLabel(result.vehicles[index], index)}`);
   if (typeof result.length_m === "number") parts.push(`route ${fmt(result.length_m / 1000, 2)} km`);
   if (s.below_standard_min_radius) parts.push(`${s.below_standard_min_radius} below the standard's minimum radius`);
   if (s.refused) parts.push(`${s.refused} refused`);
@@ -288,28 +311,43 @@ function summaryLine(result) {
   return parts.join(", ");
 }
 
+/** The vehicle choice of a multi-vehicle answer (a fleet): a route adds "the governing vehicle of each curve". */
+function vehicleChoice(result, route, onChange) {
+  const options = result.vehicles.map((v, i) => el("option", { value: String(i) }, vehicleLabel(v, i)));
+  if (route) options.unshift(el("option", { value: "" }, "the governing vehicle of each curve (lowest safe speed)"));
+  const select = el("select", { id: "al-vehicle-shown" }, options);
+  select.addEventListener("change", () => onChange(select.value === "" ? null : Number(select.value)));
+  return el("div", { class: "field" }, el("label", { for: "al-vehicle-shown" }, "Vehicle shown"), select);
+}
+
 export function render(result, kind, lines) {
+  const route = kind === "geojson" || kind === "gpx";
   state.result = result;
   state.kind = kind;
-  state.rows = rowsOf(result);
   const box = clear($("#alignment-results"));
-  box.append(el("p", { id: "alignment-summary" }, `${summaryLine(result)}.`));
+  const summary = el("p", { id: "alignment-summary" });
+  const tableBox = el("div");
+  const show = (index) => {
+    state.rows = rowsOf(result, index);
+    summary.textContent = `${summaryLine(result, index)}.`;
+    renderTable(tableBox, state.rows, null);
+  };
+  if (result.vehicles.length > 1) box.append(vehicleChoice(result, route, show));
+  box.append(summary);
   state.outline = lines ? outline(lines, result) : null;
   if (state.outline) box.append(el("figure", { class: "outline" }, state.outline, el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")));
   const downloads = el("div", { class: "actions" });
   downloads.append(
     el("button", { type: "button", id: "download-csv", onclick: downloadCsv }, "Download CSV"),
-    el("button", { type: "button", id: "download-json", onclick: () => save("json") }, kind === "geojson" || kind === "gpx" ? "Download GeoJSON" : "Download JSON"),
+    el("button", { type: "button", id: "download-json", onclick: () => save("json") }, route ? "Download GeoJSON" : "Download JSON"),
   );
-  box.append(downloads);
-  const tableBox = el("div");
-  box.append(tableBox);
-  renderTable(tableBox, state.rows, null);
+  box.append(downloads, tableBox);
+  show(route ? null : 0);
 }
 
 async function downloadCsv() {
-  const { path, request } = state;
-  const { data } = await api.call("POST", path, { json: request, accept: "text/csv", as: "blob" });
+  const { path, request, key } = state;
+  const { data } = await api.call("POST", path, { json: request, accept: "text/csv", as: "blob", key });
   download("curves.csv", data);
 }
 

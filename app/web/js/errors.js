@@ -1,5 +1,6 @@
 // Problem details shown where they belong: each `errors[]` entry next to the control whose `data-field` is its
-// dotted `field` (or, failing that, the nearest parent path: `vehicle.weight_kn` -> `vehicle`); anything
+// dotted `field` (or, failing that, the nearest parent path: `vehicle.weight_kn` -> `vehicle`, then its last
+// name: `curves.0.posted_speed_kmh` -> `posted_speed_kmh`); anything
 // without a matching control in the section's form-level message.
 
 import { ApiError } from "./api.js";
@@ -16,6 +17,8 @@ export function controlFor(dotted, scope = document) {
   if (field.startsWith("vehicle.spec.")) candidates.push(field.slice("vehicle.".length));
   const parts = field.split(".");
   for (let n = parts.length - 1; n > 0; n -= 1) candidates.push(parts.slice(0, n).join("."));
+  // a row's field of a table the request had no rows of (a route's `curves.0.posted_speed_kmh`): the field's name
+  if (parts.length > 1) candidates.push(parts.at(-1));
   for (const name of candidates) {
     const exact = $$("[data-field]", scope).filter((c) => fieldsOf(c).includes(name) && visible(c));
     if (exact.length) return exact[0];

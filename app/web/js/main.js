@@ -127,11 +127,11 @@ function showJob(job) {
 const typedKey = () => $("#api-key").value.trim() || undefined;
 
 /** A job; when the service wants a bearer key for jobs and none is typed, the same request synchronously. */
-async function jobOrRequest(path, request, signal) {
+async function jobOrRequest(path, request, key, signal) {
   try {
-    return await alignment.runJob(request, { key: typedKey(), onStatus: showJob, signal });
+    return await alignment.runJob(request, { key, onStatus: showJob, signal });
   } catch (err) {
-    if (!(err instanceof api.ApiError) || err.problem.status !== 401 || typedKey()) throw err;
+    if (!(err instanceof api.ApiError) || err.problem.status !== 401 || key) throw err;
     $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";
     $("#alignment-cancel").hidden = true;
     return api.post(path, request);
@@ -153,8 +153,11 @@ async function assessFile() {
     if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
     const text = await file.text();
     const kind = alignment.formatOf(file.name, text);
-    const v = await vehicle.current();
-    const [path, request] = await alignment.buildRequest(kind, text, v.ref, caseFields());
+    // a saved fleet is its key's own: the key goes with every request (else the key typed, if any, for a job)
+    const fleet = alignment.fleetId();
+    const key = fleet ? vehicle.apiKey() : typedKey();
+    const v = fleet ? null : await vehicle.current();
+    const [path, request] = await alignment.buildRequest(kind, text, v?.ref, caseFields());
     const job = await alignment.wantsJob(path, alignment.rowCount(kind, text));
     box.hidden = false;
     bar.removeAttribute("value"); // indeterminate until the job reports progress (or the one request answers)
@@ -163,13 +166,13 @@ async function assessFile() {
     cancel.addEventListener("click", onCancel, { once: true });
     let result;
     try {
-      result = job ? await jobOrRequest(path, request, aborter.signal) : await api.post(path, request);
+      result = job ? await jobOrRequest(path, request, key, aborter.signal) : await api.post(path, request, { key });
     } finally {
       cancel.hidden = true;
       cancel.removeEventListener("click", onCancel);
       box.hidden = !job; // a job's bar stays, at 100 % or where it stopped
     }
-    Object.assign(alignment.state, { path, request });
+    Object.assign(alignment.state, { path, request, key });
     const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
     alignment.render(result, kind, lines);
   });

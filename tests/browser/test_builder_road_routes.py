@@ -211,6 +211,12 @@ def test_the_superelevation_of_a_curve_for_the_chosen_standard(page, api):
     body = {"design_speed_kmh": 80, "radius_m": 400, "max_superelevation_percent": 8}
     answer = ok(api.post("/v1/superelevation", json=body))
     assert (e, f) == (round(answer["superelevation_percent"], 2), round(answer["side_friction"], 3))
+    # the table by radius: from R_min (e = e_max, f = f_max) down, each row balanced, e falling with the radius
+    rows = [[float(c) for c in cells] for cells in table_rows(page, "#super-table tbody tr")]
+    assert rows[0] == [r_min, 8.0, 0.14]
+    for radius, e_row, f_row in rows:
+        assert e_row / 100 + f_row == pytest.approx(80**2 / (127 * radius), abs=0.00005 + 0.0005 + 0.0001)
+    assert [r[1] for r in rows] == sorted((r[1] for r in rows), reverse=True) and len(rows) > 2
     # DNIT 1999: e = e_max (2 R_min / R - R_min^2 / R^2) with R_min of Eq. 9.2 (f = 0.14 at 80 km/h)
     Select(page.find("#standard")).select_by_value("dnit-1999")
     page.run("superelevations", lambda: page.find("#super-compute").click())

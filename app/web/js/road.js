@@ -132,17 +132,32 @@ export async function curveSpeed(vehicleRef, caseRequest) {
   return out;
 }
 
+/**
+ * A curve's design superelevation (POST /v1/superelevation) and, for the same design speed and e_max, the table of
+ * superelevation by radius from R_min (POST /v1/superelevation/table, when the deployment has it).
+ */
 export async function superelevation() {
-  const out = await api.post(
-    "/v1/superelevation",
-    drop({
-      ...designFields(),
-      design_speed_kmh: value($("#se-speed")),
-      radius_m: value($("#se-radius")),
-      max_superelevation_percent: value($("#se-emax")),
-    }),
-  );
+  const common = drop({ ...designFields(), design_speed_kmh: value($("#se-speed")), max_superelevation_percent: value($("#se-emax")) });
+  const out = await api.post("/v1/superelevation", { ...common, radius_m: value($("#se-radius")) });
   $("#super-result").textContent = `Superelevation ${fmt(out.superelevation_percent, 2)} %, leaving side friction ${fmt(out.side_friction, 3)} (f_max ${fmt(out.f_max, 3)}); Rmin for e_max: ${fmt(out.min_radius_m, 1)} m. ${out.method}`;
+  const box = clear($("#super-table"));
+  if (await api.has("post", "/v1/superelevation/table")) {
+    const t = await api.post("/v1/superelevation/table", common);
+    box.append(
+      scroller(
+        "Superelevation by radius",
+        table(
+          [
+            { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
+            { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
+            { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },
+          ],
+          t.rows,
+          { caption: `Superelevation by radius at ${fmt(t.design_speed_kmh, 0)} km/h, e_max ${fmt(t.max_superelevation_percent, 0)} % (${t.method}).` },
+        ),
+      ),
+    );
+  }
   return out;
 }
 

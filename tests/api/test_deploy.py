@@ -309,3 +309,16 @@ def test_ci_run_installs_redis_and_runs_the_suite_from_the_lock_in_its_own_venv(
 @pytest.mark.parametrize("name", ["Dockerfile", ".dockerignore", ".ci/run", "README.md", "scripts/lock.sh"])
 def test_files_exist(name):
     assert (ROOT / name).is_file()
+
+
+def test_the_readme_python_example_prints_what_the_readme_says():
+    """The "Use from Python" block runs as written (in a fresh interpreter) and prints the text block under it."""
+    import subprocess
+    import sys
+
+    section = README.split("## Use from Python", 1)[1].split("\n## ", 1)[0]
+    code = re.search(r"```python\n(.*?)```", section, flags=re.S).group(1)
+    printed = re.search(r"```text\n(.*?)```", section, flags=re.S).group(1)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout == printed

@@ -32,8 +32,16 @@ from .problems import InvalidRoute, request_error
 from .route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
 from .schemas.alignments import MAX_ROWS, MAX_VEHICLES
 from .schemas.routes import RouteCurves, RouteRequest, RouteResult
-from .service import Computed, SavedRef, cached, resolve_targets, resolve_vehicle
-from .service_alignments import AlignmentAnswer, AlignmentJob, _rows, _summary, csv_columns, solve_alignment
+from .service import Computed, cached, resolve_vehicle
+from .service_alignments import (
+    AlignmentAnswer,
+    AlignmentJob,
+    _rows,
+    _summary,
+    csv_columns,
+    resolved_assessment,
+    solve_alignment,
+)
 from .settings import Settings
 from .tables import GEOJSON_MEDIA_TYPE, Text, flatten_targets, to_csv
 from .vehicle_refs import resolve_vehicle_refs
@@ -148,20 +156,8 @@ def _document_digest(req: RouteRequest) -> str:
 
 
 def _resolved(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
-    vehicles = [resolve_vehicle(r) for r in refs]
     return {
-        "vehicles": [v.to_dict() for v in vehicles],
-        "presets": [r if isinstance(r, str) else None for r in refs],
-        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
-        "model": req.model,
-        "stage": req.stage,
-        "trailer_angle_deg": req.trailer_angle_deg,
-        "load": req.load.model_dump(),
-        "rear_llt_limit": req.rear_llt_limit,
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "max_superelevation_percent": req.max_superelevation_percent,
-        "targets": resolve_targets(req.targets, settings),
+        **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings),
         "route": {
             "format": "geojson" if req.geojson is not None else "gpx",
             "sha256": _document_digest(req),

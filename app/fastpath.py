@@ -23,7 +23,7 @@ from cachetools import LRUCache
 
 from . import cache as cache_module
 from .metrics import CACHE_LOOKUPS, FAST_PATH_HITS
-from .tables import wants_csv
+from .tables import wants_csv, wants_geojson
 
 #: raw request -> canonical key remembered per process (a few hundred bytes each)
 RAW_INDEX_ENTRIES = 65_536
@@ -71,13 +71,14 @@ class FastPathMiddleware:
         body = await _read_body(receive)
         if body is None:  # the client went away
             return
-        csv = wants_csv((_header(scope, b"accept") or b"").decode("latin-1"))
+        accept = (_header(scope, b"accept") or b"").decode("latin-1")
+        form = b"geojson" if wants_geojson(accept) else b"csv" if wants_csv(accept) else b""  # every negotiated form
         parts = (
             cache_module.ENGINE_VERSION.encode(),  # part of every key (read here so a test's change is seen)
             scope["path"].encode(),
             scope.get("query_string", b""),
             _header(scope, b"content-type") or b"",
-            b"csv" if csv else b"",
+            form,
             body,
         )
         raw_key = hashlib.blake2b(b"\0".join(parts)).digest()

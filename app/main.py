@@ -27,7 +27,7 @@ from .metrics import JOBS_ACTIVE
 from .netopts import set_nodelay_on_listening_sockets
 from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from .routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
-from .routers.common import READ_BY_ROUTE
+from .routers.common import ANSWER_MODELS, READ_BY_ROUTE
 from .routers.web import install_page
 from .settings import Settings, get_settings
 
@@ -99,7 +99,8 @@ def _problem_openapi(app: FastAPI) -> dict[str, Any]:
     schema = FastAPI.openapi(app)
     # the models of routes that read their body themselves (routers.common.json_body), with what they use
     _, defs = models_json_schema(
-        [(m, "validation") for m in READ_BY_ROUTE], ref_template="#/components/schemas/{model}"
+        [(m, "validation") for m in READ_BY_ROUTE] + [(m, "serialization") for m in ANSWER_MODELS],
+        ref_template="#/components/schemas/{model}",
     )
     components = schema.setdefault("components", {}).setdefault("schemas", {})
     for name, definition in defs.get("$defs", {}).items():

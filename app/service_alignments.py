@@ -37,6 +37,7 @@ from engine.assessment import (
 from engine.case import Case
 from engine.errors import InvalidInput
 from engine.loads import LoadCase
+from engine.vehicles import Vehicle
 
 from .alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
 from .cache import ResultCache, cache_key
@@ -166,6 +167,26 @@ class AlignmentJob:
         return len(self.curves) * len(self.vehicles)
 
 
+def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], settings: Settings) -> dict[str, Any]:
+    """What an assessment's answer depends on besides its curves (part of its cache key): the vehicles' records
+    (and preset ids, saved ids), the SRT options, the design standard, e_max and the targets. ``req`` is an
+    alignment or a route request (they share these fields)."""
+    return {
+        "vehicles": [v.to_dict() for v in vehicles],
+        "presets": [r if isinstance(r, str) else None for r in refs],
+        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
+        "model": req.model,
+        "stage": req.stage,
+        "trailer_angle_deg": req.trailer_angle_deg,
+        "load": req.load.model_dump(),
+        "rear_llt_limit": req.rear_llt_limit,
+        "design_standard": req.design_standard,
+        "side_friction_bound": req.bound,
+        "max_superelevation_percent": req.max_superelevation_percent,
+        "targets": resolve_targets(req.targets, settings),
+    }
+
+
 def resolve_alignment(
     req: AlignmentRequest,
     curves: CurveTable | None,
@@ -188,18 +209,7 @@ def resolve_alignment(
         )
     vehicles = [resolve_vehicle(r) for r in refs]
     resolved = {
-        "vehicles": [v.to_dict() for v in vehicles],
-        "presets": [r if isinstance(r, str) else None for r in refs],
-        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
-        "model": req.model,
-        "stage": req.stage,
-        "trailer_angle_deg": req.trailer_angle_deg,
-        "load": req.load.model_dump(),
-        "rear_llt_limit": req.rear_llt_limit,
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "max_superelevation_percent": req.max_superelevation_percent,
-        "targets": resolve_targets(req.targets, settings),
+        **resolved_assessment(req, refs, vehicles, settings),
         "curves": {"count": len(table), "sha256": _digest(table)},
     }
     source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")

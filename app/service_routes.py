@@ -31,11 +31,19 @@ from .cache import ResultCache
 from .problems import InvalidRoute, request_error
 from .route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
 from .schemas.alignments import MAX_ROWS, MAX_VEHICLES
-from .schemas.routes import RouteRequest, RouteResult
-from .service import Computed, SavedRef, cached, resolve_targets, resolve_vehicle
-from .service_alignments import AlignmentAnswer, AlignmentJob, _rows, _summary, csv_columns, solve_alignment
+from .schemas.routes import RouteCurves, RouteRequest, RouteResult
+from .service import Computed, cached, resolve_vehicle
+from .service_alignments import (
+    AlignmentAnswer,
+    AlignmentJob,
+    _rows,
+    _summary,
+    csv_columns,
+    resolved_assessment,
+    solve_alignment,
+)
 from .settings import Settings
-from .tables import Text, flatten_targets, to_csv
+from .tables import GEOJSON_MEDIA_TYPE, Text, flatten_targets, to_csv
 from .vehicle_refs import resolve_vehicle_refs
 
 #: the route's own columns in front of the alignment's in the CSV answer
@@ -148,20 +156,8 @@ def _document_digest(req: RouteRequest) -> str:
 
 
 def _resolved(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
-    vehicles = [resolve_vehicle(r) for r in refs]
     return {
-        "vehicles": [v.to_dict() for v in vehicles],
-        "presets": [r if isinstance(r, str) else None for r in refs],
-        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
-        "model": req.model,
-        "stage": req.stage,
-        "trailer_angle_deg": req.trailer_angle_deg,
-        "load": req.load.model_dump(),
-        "rear_llt_limit": req.rear_llt_limit,
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "max_superelevation_percent": req.max_superelevation_percent,
-        "targets": resolve_targets(req.targets, settings),
+        **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings),
         "route": {
             "format": "geojson" if req.geojson is not None else "gpx",
             "sha256": _document_digest(req),
@@ -217,23 +213,30 @@ def _governing(rows: list[dict[str, Any]]) -> int:
     return refused[0] if refused else int(np.argmin(speeds))
 
 
-def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> bytes:
+def _curves(geo: Geometry, answer: AlignmentAnswer) -> list[dict[str, Any]]:
+    """Each curve's geometry and its assessment (the governing vehicle's row, and every row with several)."""
     n = len(geo.curves)
     per_vehicle = [_rows(answer, v, 0, n) for v in answer.vehicles]
-    features = []
+    out = []
     for i, c in enumerate(geo.curves):
         rows = [pv[i] for pv in per_vehicle]
         g = _governing(rows)
-        props = {
-            "id": c.id,
-            **_geometry_fields(c),
-            "governing_vehicle": g,
-            "assessment": rows[g],
-            "vehicles": rows if len(rows) > 1 else None,
-        }
-        features.append({"type": "Feature", "geometry": {"type": "LineString", "coordinates": _coordinates(c)},
-                         "properties": props})  # fmt: skip
+        out.append(
+            {
+                "id": c.id,
+                **_geometry_fields(c),
+                "governing_vehicle": g,
+                "assessment": rows[g],
+                "vehicles": rows if len(rows) > 1 else None,
+            }
+        )
+    return out
+
+
+def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> bytes:
     r = answer.resolved
+    found = zip(_curves(geo, answer), geo.curves, strict=True)
+    curves = [{**props, "coordinates": _coordinates(c)} for props, c in found]
     out = {
         "model": r["model"],
         "stage": r["stage"] if r["model"] == "3d" else None,
@@ -261,10 +264,21 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
             }
             for v in answer.vehicles
         ],
-        "curves": {"type": "FeatureCollection", "features": features},
+        "curves": curves,
         "engine_version": ENGINE_VERSION,
     }
     return RouteResult.model_validate(out).model_dump_json().encode()  # the contract checked on the way out
+
+
+def route_geojson(geo: Geometry, answer: AlignmentAnswer) -> bytes:
+    """The curves as a GeoJSON FeatureCollection (RFC 7946): a LineString of its vertices per curve, the curve and
+    its assessment as the feature's properties."""
+    features = [
+        {"type": "Feature", "geometry": {"type": "LineString", "coordinates": _coordinates(c)}, "properties": props}
+        for props, c in zip(_curves(geo, answer), geo.curves, strict=True)
+    ]
+    doc = {"type": "FeatureCollection", "features": features}
+    return RouteCurves.model_validate(doc).model_dump_json().encode()
 
 
 def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
@@ -287,7 +301,15 @@ def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
 # ---------------------------------------------------------------------------------------- computing
 
 
-def _assess(req: RouteRequest, refs: list[Any], settings: Settings, csv: bool) -> tuple[dict[str, Any], bytes]:
+#: the answer's forms: (cache operation, media type, renderer)
+FORMS = {
+    "json": ("route", "application/json"),
+    "csv": ("route-csv", "text/csv; charset=utf-8"),
+    "geojson": ("route-geojson", GEOJSON_MEDIA_TYPE),
+}
+
+
+def _assess(req: RouteRequest, refs: list[Any], settings: Settings, form: str) -> tuple[dict[str, Any], bytes]:
     """Read, find, assess and render (blocking: called in a worker thread)."""
     parts = read_route(req)
     geo = find_route_curves(req, parts)
@@ -298,11 +320,15 @@ def _assess(req: RouteRequest, refs: list[Any], settings: Settings, csv: bool) -
     source = "geojson" if req.geojson is not None else "gpx"
     job = AlignmentJob(resolved, [resolve_vehicle(r) for r in refs], table, source)
     answer = solve_alignment(job)
-    return resolved, route_csv(geo, answer) if csv else route_json(req, geo, answer)
+    if form == "csv":
+        return resolved, route_csv(geo, answer)
+    if form == "geojson":
+        return resolved, route_geojson(geo, answer)
+    return resolved, route_json(req, geo, answer)
 
 
 async def assess_route(
-    cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, csv: bool
+    cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, form: str = "json"
 ) -> Computed:
     fleet = req.fleet
     req = await resolve_vehicle_refs(request, req, settings)
@@ -310,11 +336,10 @@ async def assess_route(
     if fleet is not None and len(refs) > MAX_VEHICLES:
         raise request_error("fleet", f"fleet {fleet} has {len(refs)} vehicles; a route takes at most {MAX_VEHICLES}")
     key_parts = await run_in_threadpool(_resolved, req, refs, settings)  # the key: the request, resolved
-    operation = "route-csv" if csv else "route"
-    media = "text/csv; charset=utf-8" if csv else "application/json"
+    operation, media = FORMS[form]
 
     async def produce() -> bytes:
-        _, body = await run_in_threadpool(_assess, req, refs, settings, csv)
+        _, body = await run_in_threadpool(_assess, req, refs, settings, form)
         return body
 
     return await cached(cache, operation, key_parts, produce, media)

@@ -125,6 +125,19 @@ def _quality(ranges: list[tuple[str, float]], media: str) -> tuple[float, int]:
     return best
 
 
+GEOJSON_MEDIA_TYPE = "application/geo+json"
+
+
+def wants_geojson(accept: str | None) -> bool:
+    """Whether ``Accept`` prefers ``application/geo+json`` (RFC 7946) to JSON and CSV (JSON on a tie)."""
+    if not accept:
+        return False
+    ranges = _parse_accept(accept)
+    q_geo, s_geo = _quality(ranges, GEOJSON_MEDIA_TYPE)
+    others = [_quality(ranges, m) for m in (JSON_MEDIA_TYPE, CSV_MEDIA_TYPE)]
+    return q_geo > 0 and all(q_geo > q or (q_geo == q and s_geo > s) for q, s in others)
+
+
 def wants_csv(accept: str | None) -> bool:
     """Whether ``Accept`` prefers ``text/csv`` to ``application/json`` (JSON on a tie or without the header)."""
     if not accept:

@@ -1,7 +1,7 @@
-"""Run the README's curl examples against the app (in process) and print them with their real output.
+"""Run the curl examples of docs/examples.md against the app (in process) and print them with their real output.
 
     python scripts/readme_examples.py           # print the Markdown block
-    python scripts/readme_examples.py --write   # replace the block between the README's example markers
+    python scripts/readme_examples.py --write   # replace the block between docs/examples.md's example markers
 
 Each example is the curl command a user types against `uvicorn app.main:app --host 127.0.0.1 --port 8000` and
 what it prints; the same request goes through the app here (a fresh in-memory cache, so the first call is a miss).
@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
-README = ROOT / "README.md"
+EXAMPLES_DOC = ROOT / "docs" / "examples.md"
 START, END = "<!-- examples:start -->", "<!-- examples:end -->"
 BASE = "http://127.0.0.1:8000"
 JSON_TOOL = " | python -m json.tool"
@@ -99,6 +99,10 @@ def ansi_c(text: str) -> str:
 
 
 BTRAIN = "table16-btrain"
+sys.path.insert(0, str(ROOT))
+from app.schemas.builder import EXAMPLE_SPEC  # noqa: E402
+from app.schemas.routes import EXAMPLE_GEOJSON  # noqa: E402
+
 CURVES_CSV = (
     "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\n"
     "C1,120,8,-4,70\nC2,350,6,0,90\nC3,90,8,2,60\nC4,600,8,-4,100\n"
@@ -256,6 +260,78 @@ EXAMPLES = [
         headers={"Content-Type": "text/csv"},
     ),
     Example(
+        "Minimum radius at 80 km/h to DNIT's table (IPR-706 Quadro 5.4.3.1 f_max) instead of AASHTO 2018's",
+        "POST",
+        "/v1/min-radius",
+        {"design_speed_kmh": 80, "superelevation_percent": 8, "vehicle": BTRAIN, "design_standard": "dnit-1999"},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(k, r[k]) for k in ("design_standard", '
+        '"side_friction", "side_friction_source", "side_friction_min_radius_m", "rollover_min_radius_m", '
+        '"governed_by")]\'',
+        heading="Design standards: `GET /v1/design-standards`, `POST /v1/superelevation`",
+    ),
+    Example(
+        "The design standards (id, speed range, citation)",
+        "GET",
+        "/v1/design-standards",
+        pipe=' | python -c \'import json,sys; [print(s["id"], s["speed_range_kmh"], "|", '
+        's["citation"][:100]) for s in json.load(sys.stdin)["standards"]]\'',
+    ),
+    Example(
+        "The superelevation a 300 m curve gets at 80 km/h with e_max 8 % (AASHTO Method 5)",
+        "POST",
+        "/v1/superelevation",
+        {"design_standard": "aashto-2018", "design_speed_kmh": 80, "radius_m": 300, "max_superelevation_percent": 8},
+    ),
+    Example(
+        "Build a semi-trailer from what can be measured (library tyre and suspension); the record's SRT-relevant "
+        "fields and how two of them were obtained",
+        "POST",
+        "/v1/vehicles/build",
+        {"spec": EXAMPLE_SPEC},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); v = r["vehicle"]; [print(k, v[k]) for k in '
+        '("weight_kn", "cg_height_above_chassis_m", "suspension_height_m", "tire_stiffness_kn_per_m")]; '
+        '[print(k, r["derivation"][k]) for k in ("weight_kn", "tire_stiffness_kn_per_m")]\'',
+        heading="The vehicle builder: `POST /v1/vehicles/build`, `GET /v1/components`",
+    ),
+    Example(
+        "The same spec straight into an SRT request (`vehicle: {spec: ...}`)",
+        "POST",
+        "/v1/srt",
+        {"vehicle": {"spec": EXAMPLE_SPEC}},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["srt"], [t["meets"] for t in '
+        'r["targets"]])\'',
+    ),
+    Example(
+        "The component library's tyres and suspensions (ids)",
+        "GET",
+        "/v1/components",
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print([t["id"] for t in r["tyres"]]); '
+        'print([s["id"] for s in r["suspensions"]])\'',
+    ),
+    Example(
+        "Acceptable payload by load height, and load height by payload, for a 0.45 g target (TERNZ's table)",
+        "POST",
+        "/v1/vehicles/payload-table",
+        {"spec": EXAMPLE_SPEC, "target_srt_g": 0.45, "load_heights_m": [2.0, 2.4, 2.8], "rows": 3},
+        headers={"Accept": "text/csv"},
+        pipe="",
+    ),
+    Example(
+        "A route as GeoJSON: the curves found in it (geometry) and their assessment for the B-train",
+        "POST",
+        "/v1/routes/assess",
+        {"vehicle": BTRAIN, "geojson": EXAMPLE_GEOJSON, "superelevation_percent": 6.0, "rear_llt_limit": 0.6},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(p["id"], p["direction"], '
+        'round(p["radius_m"], 1), "+-", p["radius_std_m"] and round(p["radius_std_m"], 1), "m;", '
+        'round(p["length_m"]), "m long;", '
+        'a["srt_g"], a["safe_speed_kmh"], a["governed_by"], a["margin_kmh"], a["flagged"]) for p in '
+        'r["curves"] for a in [p["assessment"]]]\'',
+        heading="Routes: `POST /v1/routes/assess`",
+        note="A GPX track goes in `gpx` (the file's text) instead; `Accept: application/geo+json` answers the curves "
+        "as a GeoJSON FeatureCollection for a GIS; [docs/routes.md](routes.md) explains the curve detection and its "
+        "accuracy.",
+    ),
+    Example(
         "Plot: tire normal loads against ay/g (thesis Fig. 92), saved and checked",
         "POST",
         "/v1/plots/tire-loads",
@@ -336,20 +412,20 @@ def render() -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--write", action="store_true", help="replace the example block in README.md")
+    parser.add_argument("--write", action="store_true", help="replace the example block in docs/examples.md")
     args = parser.parse_args(argv)
     block = render()
     if not args.write:
         print(block)
         return 0
-    text = README.read_text(encoding="utf-8")
+    text = EXAMPLES_DOC.read_text(encoding="utf-8")
     if START not in text or END not in text:
-        print(f"README.md has no {START} ... {END} block", file=sys.stderr)
+        print(f"docs/examples.md has no {START} ... {END} block", file=sys.stderr)
         return 1
     head, rest = text.split(START, 1)
     _, tail = rest.split(END, 1)
-    README.write_text(head + block + tail, encoding="utf-8")
-    print("README.md examples updated")
+    EXAMPLES_DOC.write_text(head + block + tail, encoding="utf-8")
+    print("docs/examples.md examples updated")
     return 0
 
 

@@ -61,6 +61,8 @@ def json_response(result: Computed) -> Response:
 
 #: request models read by their route itself (off the event loop), published in the spec by reference
 READ_BY_ROUTE: list[type] = []
+#: answer models a route renders itself under another media type (e.g. GeoJSON), published by reference
+ANSWER_MODELS: list[type] = []
 
 
 def json_body(model: type) -> dict[str, Any]:

@@ -11,10 +11,10 @@ from starlette.concurrency import run_in_threadpool
 from ..bodylimit import body_limit
 from ..deps import CacheDep, SettingsDep
 from ..problems import VEHICLE_REF_CODES
-from ..schemas.routes import ROUTE_BODY_LIMIT, RouteRequest, RouteResult
+from ..schemas.routes import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
 from ..service_routes import assess_route
-from ..tables import wants_csv
-from .common import computed_response, json_body, table_responses
+from ..tables import GEOJSON_MEDIA_TYPE, wants_csv, wants_geojson
+from .common import ANSWER_MODELS, computed_response, json_body, table_responses
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
 
@@ -33,11 +33,24 @@ def parse_route_request(body: bytes) -> RouteRequest:
         ) from None
 
 
+_RESPONSES = table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES)
+_RESPONSES[200] = {
+    **_RESPONSES[200],
+    "content": {
+        **_RESPONSES[200]["content"],
+        GEOJSON_MEDIA_TYPE: {"schema": {"$ref": "#/components/schemas/RouteCurves"}},
+    },
+    "description": "JSON by default; the curves as GeoJSON when `Accept` prefers `application/geo+json`; CSV (one "
+    "row per vehicle and curve) when it prefers `text/csv`.",
+}
+ANSWER_MODELS.append(RouteCurves)  # published in components/schemas (the GeoJSON answer refers to it)
+
+
 @router.post(
     "/assess",
     name="assess",
     response_model=RouteResult,
-    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
+    responses=_RESPONSES,
     openapi_extra={**body_limit(ROUTE_BODY_LIMIT), **json_body(RouteRequest)},
 )
 async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
@@ -47,9 +60,11 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     into tangents and curves (circular arcs with their spirals where resolved: radius, start and end chainage,
     deflection, direction, grade from the elevations; docs/routes.md says how and where it fails), and every curve
     is assessed for every vehicle: SRT on its superelevation and grade, rollover and side-friction speeds, the safe
-    speed, the margin against the posted speed and the standard's minimum radius. JSON: a GeoJSON FeatureCollection
-    of the curves with their assessment as properties (ready for a GIS); CSV with `Accept: text/csv`: one row per
-    vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex."""
+    speed, the margin against the posted speed and the standard's minimum radius. JSON: `curves`, each with its
+    geometry, vertices and assessment; GeoJSON with `Accept: application/geo+json`: the curves as a
+    FeatureCollection (RFC 7946) with the same properties, ready for a GIS; CSV with `Accept: text/csv`: one row
+    per vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex."""
     req = await run_in_threadpool(parse_route_request, await request.body())
-    csv = wants_csv(request.headers.get("accept"))
-    return computed_response(await assess_route(cache, request, req, settings, csv=csv), vary_accept=True)
+    accept = request.headers.get("accept")
+    form = "geojson" if wants_geojson(accept) else "csv" if wants_csv(accept) else "json"
+    return computed_response(await assess_route(cache, request, req, settings, form=form), vary_accept=True)

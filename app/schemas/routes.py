@@ -255,6 +255,17 @@ class RouteCurveProperties(OutputModel):
     )
 
 
+class RouteCurve(RouteCurveProperties):
+    """A curve found on the route with its assessment, and its vertices."""
+
+    coordinates: list[list[float]] = Field(
+        description=describe(
+            "The curve's vertices as in the route: [lon, lat] or [lon, lat, ele] (WGS84 degrees, metres).",
+            unit="deg, deg, m",
+        )
+    )
+
+
 class RouteFeature(OutputModel):
     type: Literal["Feature"] = Field(description=describe("GeoJSON object type.", unit="-"))
     geometry: dict[str, Any] = Field(
@@ -283,8 +294,8 @@ class RoutePartOut(OutputModel):
 
 
 class RouteResult(OutputModel):
-    """The route's curves as a GeoJSON FeatureCollection (ready for a GIS), each with its assessment, per-vehicle
-    summaries, and what was read."""
+    """The route's curves, each with its geometry, vertices and assessment; per-vehicle summaries; what was read.
+    `Accept: application/geo+json` answers the curves as a GeoJSON FeatureCollection instead (ready for a GIS)."""
 
     model: str = Field(description=describe("Model used.", unit="-"))
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
@@ -296,5 +307,5 @@ class RouteResult(OutputModel):
             "One entry per vehicle: its summary over the curves (`rows` empty: see `curves`).", unit="-"
         )
     )
-    curves: RouteCurves = Field(description=describe("The curves, a GeoJSON FeatureCollection.", unit="-"))
+    curves: list[RouteCurve] = Field(description=describe("The curves, in route order.", unit="-"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

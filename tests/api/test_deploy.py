@@ -20,6 +20,7 @@ from packaging.utils import canonicalize_name
 from .conftest import ROOT
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
+EXAMPLES = (ROOT / "docs" / "examples.md").read_text(encoding="utf-8")
 DOCKERFILE = (ROOT / "Dockerfile").read_text(encoding="utf-8")
 CI_RUN = ROOT / ".ci" / "run"
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
@@ -76,32 +77,53 @@ def test_readme_test_command_runs_the_whole_suite():
     assert "python -m pytest" in TEST and " -k " not in TEST and " -m " not in TEST.replace("python -m", "")
 
 
-def test_readme_has_a_curl_example_per_endpoint():
+def test_the_examples_have_a_curl_example_per_endpoint():
+    # docs/examples.md (written by scripts/readme_examples.py from real answers); the README links it
+    assert "docs/examples.md" in README
     for method, path in [
         ("GET", "/healthz"),
         ("GET", "/metrics"),
         ("GET", "/v1/vehicles"),
         ("GET", "/v1/vehicles/table16-btrain"),
         ("GET", "/v1/models"),
+        ("GET", "/v1/design-standards"),
+        ("GET", "/v1/components"),
         ("POST", "/v1/srt"),
         ("POST", "/v1/curve-speed"),
         ("POST", "/v1/min-radius"),
+        ("POST", "/v1/superelevation"),
+        ("POST", "/v1/vehicles/build"),
+        ("POST", "/v1/vehicles/payload-table"),
         ("POST", "/v1/srt/limits"),
         ("POST", "/v1/srt/sweep"),
         ("POST", "/v1/alignments/assess"),
         ("POST", "/v1/alignments/assess/csv"),
         ("POST", "/v1/alignments/assess/landxml"),
+        ("POST", "/v1/routes/assess"),
         ("POST", "/v1/plots/tire-loads"),
         ("POST", "/v1/plots/min-radius"),
     ]:
         # a URL with a query string is quoted for the shell
         pattern = rf"\$ curl -s[i]? (-X POST )?'?http://127\.0\.0\.1:8000{re.escape(path)}[ |'?]"
-        assert re.search(pattern, README), (method, path)
+        assert re.search(pattern, EXAMPLES), (method, path)
         if method == "POST":
-            assert re.search(rf"-X POST '?http://127\.0\.0\.1:8000{re.escape(path)}[ '?]", README), path
+            assert re.search(rf"-X POST '?http://127\.0\.0\.1:8000{re.escape(path)}[ '?]", EXAMPLES), path
     # each example shows its output (a line after the command that is not another command)
-    examples = re.findall(r"```console\n\$ (.*?)```", README, flags=re.S)
-    assert len(examples) >= 8 and all(len(e.strip().splitlines()) >= 2 for e in examples)
+    examples = re.findall(r"```console\n\$ (.*?)```", EXAMPLES, flags=re.S)
+    assert len(examples) >= 20 and all(len(e.strip().splitlines()) >= 2 for e in examples)
+
+
+def test_the_examples_are_what_the_app_answers_today():
+    """The block scripts/readme_examples.py writes is the one committed: an answer that changed fails here (run in a
+    fresh process: the metrics example counts this process's cache lookups)."""
+    import subprocess
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "scripts" / "readme_examples.py")], capture_output=True, text=True, cwd=ROOT
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.rstrip("\n") in EXAMPLES, "docs/examples.md is stale: python scripts/readme_examples.py --write"
 
 
 def test_readme_documents_every_setting():
@@ -287,3 +309,16 @@ def test_ci_run_installs_redis_and_runs_the_suite_from_the_lock_in_its_own_venv(
 @pytest.mark.parametrize("name", ["Dockerfile", ".dockerignore", ".ci/run", "README.md", "scripts/lock.sh"])
 def test_files_exist(name):
     assert (ROOT / name).is_file()
+
+
+def test_the_readme_python_example_prints_what_the_readme_says():
+    """The "Use from Python" block runs as written (in a fresh interpreter) and prints the text block under it."""
+    import subprocess
+    import sys
+
+    section = README.split("## Use from Python", 1)[1].split("\n## ", 1)[0]
+    code = re.search(r"```python\n(.*?)```", section, flags=re.S).group(1)
+    printed = re.search(r"```text\n(.*?)```", section, flags=re.S).group(1)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout == printed

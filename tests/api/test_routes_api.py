@@ -60,22 +60,37 @@ def post(client, body, status=200, **headers):
 def test_curves_found_with_their_radius_chainage_direction_and_grade(shared_client, lat0, noise, tolerance):
     body = {"vehicle": BTRAIN, "geojson": feature_collection(route(lat0, noise)), "superelevation_percent": 6.0}
     out = post(shared_client, body).json()
-    curves = [f["properties"] for f in out["curves"]["features"]]
+    curves = out["curves"]
     assert [c["direction"] for c in curves] == ["left", "right"]  # no phantom curve on the tangents
     for c, radius, (start, end) in zip(curves, (250.0, 600.0), curve_spans(ELEMENTS), strict=True):
         assert c["radius_m"] == pytest.approx(radius, rel=tolerance)
         assert c["grade_percent"] == pytest.approx(100 * GRADE, abs=0.3)
         assert c["start_m"] == pytest.approx(start, abs=60) and c["end_m"] == pytest.approx(end, abs=60)
     assert out["length_m"] == pytest.approx(sum(e.length_m for e in ELEMENTS), rel=0.01)
-    # each curve's geometry is the route's own vertices over the curve
-    first = out["curves"]["features"][0]
-    assert first["geometry"]["type"] == "LineString" and len(first["geometry"]["coordinates"]) >= 3
+    # each curve's vertices are the route's own over the curve
+    first = curves[0]
+    assert (
+        len(first["coordinates"]) >= 3 and len(first["coordinates"]) == first["vertices"][1] - first["vertices"][0] + 1
+    )
+
+
+def test_the_geojson_answer_is_a_feature_collection_of_the_same_curves(shared_client):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(45.0, 2.0)), "superelevation_percent": 6.0}
+    plain = post(shared_client, body).json()["curves"]
+    r = post(shared_client, body, accept="application/geo+json")
+    assert r.headers["content-type"] == "application/geo+json" and r.headers["vary"] == "Accept"
+    doc = r.json()
+    assert doc["type"] == "FeatureCollection" and len(doc["features"]) == len(plain) == 2
+    for f, c in zip(doc["features"], plain, strict=True):  # RFC 7946: a LineString of [lon, lat(, ele)]
+        assert f["type"] == "Feature" and f["geometry"] == {"type": "LineString", "coordinates": c["coordinates"]}
+        assert f["properties"] == {k: v for k, v in c.items() if k != "coordinates"}
+    assert r.headers["etag"] != post(shared_client, body).headers["etag"]  # its own representation
 
 
 def test_the_assessment_is_the_alignments(shared_client):
     body = {"vehicle": BTRAIN, "geojson": feature_collection(route(45.0)), "superelevation_percent": 6.0,
             "posted_speed_kmh": 80.0, "rear_llt_limit": 0.6}  # fmt: skip
-    curves = [f["properties"] for f in post(shared_client, body).json()["curves"]["features"]]
+    curves = post(shared_client, body).json()["curves"]
     table = [
         {"id": c["id"], "radius_m": c["radius_m"], "superelevation_percent": 6.0, "grade_percent": c["grade_percent"],
          "posted_speed_kmh": 80.0}
@@ -95,11 +110,9 @@ def test_gpx_and_geojson_give_the_same_curves(shared_client):
     coords = route(-35.0, 2.0)
     a = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords), "superelevation_percent": 4})
     b = post(shared_client, {"vehicle": BTRAIN, "gpx": gpx(coords), "superelevation_percent": 4})
-    fa, fb = (r.json()["curves"]["features"] for r in (a, b))
-    assert [f["properties"]["radius_m"] for f in fa] == [f["properties"]["radius_m"] for f in fb]
-    assert [f["properties"]["assessment"] | {"id": None} for f in fa] == [
-        f["properties"]["assessment"] | {"id": None} for f in fb
-    ]
+    fa, fb = (r.json()["curves"] for r in (a, b))
+    assert [f["radius_m"] for f in fa] == [f["radius_m"] for f in fb]
+    assert [f["assessment"] | {"id": None} for f in fa] == [f["assessment"] | {"id": None} for f in fb]
 
 
 def test_superelevation_from_the_feature_the_request_or_the_standard(shared_client):
@@ -108,28 +121,27 @@ def test_superelevation_from_the_feature_the_request_or_the_standard(shared_clie
     assert p["errors"][0]["field"] == "superelevation_percent" and "max_superelevation_percent" in p["detail"]
     derived = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords, posted_speed_kmh=70),
                                    "max_superelevation_percent": 8})  # fmt: skip
-    rows = [f["properties"]["assessment"] for f in derived.json()["curves"]["features"]]
+    rows = [c["assessment"] for c in derived.json()["curves"]]
     assert all(r["superelevation_source"] == "derived" for r in rows)
     e = [r["superelevation_percent"] for r in rows]
     assert e[0] > e[1] > 0  # the sharper curve gets more superelevation (AASHTO Method 5)
     given = post(shared_client, {"vehicle": BTRAIN, "geojson": feature_collection(coords, superelevation_percent=5),
                                  "superelevation_percent": 2, "max_superelevation_percent": 8})  # fmt: skip
-    assert {f["properties"]["assessment"]["superelevation_percent"] for f in given.json()["curves"]["features"]} == {5}
+    assert {c["assessment"]["superelevation_percent"] for c in given.json()["curves"]} == {5}
 
 
 def test_several_vehicles_and_csv(shared_client):
     body = {"vehicles": [BTRAIN, "table23-semitrailer"], "geojson": feature_collection(route(45.0)),
             "superelevation_percent": 6}  # fmt: skip
     out = post(shared_client, body).json()
-    for f in out["curves"]["features"]:
-        p = f["properties"]
+    for p in out["curves"]:
         speeds = [v["safe_speed_kmh"] for v in p["vehicles"]]
         assert (
             p["assessment"] == p["vehicles"][p["governing_vehicle"]] and min(speeds) == speeds[p["governing_vehicle"]]
         )
     text = post(shared_client, body, accept="text/csv").text
     rows = list(csv.DictReader(io.StringIO(text)))
-    assert len(rows) == 2 * len(out["curves"]["features"])
+    assert len(rows) == 2 * len(out["curves"])
     assert {r["vehicle_preset"] for r in rows} == {BTRAIN, "table23-semitrailer"} and rows[0]["direction"] == "left"
 
 

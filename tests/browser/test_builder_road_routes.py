@@ -14,7 +14,7 @@ from urllib.parse import parse_qs, quote, urlsplit
 
 import numpy as np
 import pytest
-from selenium.webdriver.support.ui import Select
+from selenium.webdriver.support.ui import Select, WebDriverWait
 
 from tests.synthetic_routes import Arc, Tangent, curve_spans, layout, to_lonlat
 
@@ -275,9 +275,16 @@ def test_an_uploaded_gpx_route_shows_its_curve_radius_within_its_uncertainty_and
     # the row is the API's answer to the same request
     body = {"vehicle": "table16-btrain", "gpx": text, "posted_speed_kmh": 80, "superelevation_percent": 6}
     answer = ok(api.post("/v1/routes/assess", json={**body, "max_superelevation_percent": 8}))
-    props = answer["curves"]["features"][0]["properties"]
+    props = answer["curves"][0]
     assert row["radius_m"] == f"{props['radius_m']:.1f}" and row["radius_std_m"] == f"{props['radius_std_m']:.1f}"
     assert row["safe_speed_kmh"] == f"{props['assessment']['safe_speed_kmh']:.1f}"
+    # the GeoJSON download is the same request again, with Accept: application/geo+json
+    page.network()
+    page.find("#download-json").click()
+    WebDriverWait(page.driver, 30).until(
+        lambda _: any(urlsplit(u).path == "/v1/routes/assess" for u in page.network()[0].values())
+    )
+    assert not [m for m in page.console() if "SEVERE" in m or "Error" in m]
 
 
 # ------------------------------------------------------------------------------------------- a job
@@ -366,8 +373,7 @@ def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet
     page.run("assessments", lambda: page.find("#alignment-assess").click())
     body = {"fleet": fleet_id, "gpx": gpx_path.read_text(), "posted_speed_kmh": 60, "max_superelevation_percent": 8}
     route = ok(api.post("/v1/routes/assess", json=body, headers=key))
-    (feature,) = route["curves"]["features"]
-    props = feature["properties"]
+    (props,) = route["curves"]
     safe = [v["safe_speed_kmh"] for v in props["vehicles"]]
     assert props["governing_vehicle"] == safe.index(min(safe))
     (row,) = curve_rows(page)

@@ -144,15 +144,24 @@ export function vehicleLabel(entry, i) {
   return entry?.preset || entry?.saved_vehicle_id || `vehicle ${i + 1}`;
 }
 
+/** Whether an answer is a route's (POST /v1/routes/assess: `parts` read from the document, `curves` found on them). */
+export const isRoute = (result) => Array.isArray(result.parts);
+
+/** A route's curves: the JSON answer's list (each with its `coordinates`), or a FeatureCollection's features. */
+export function routeCurves(result) {
+  if (Array.isArray(result.curves)) return result.curves;
+  return (result.curves?.features || []).map((f) => ({ ...f.properties, coordinates: f.geometry?.coordinates }));
+}
+
 /**
  * Rows of either answer for vehicle `index` (null: a route's governing vehicle, the one with the lowest safe speed):
- * a route's curve features (the geometry in `properties`, the assessment in `properties.assessment` or, per vehicle,
- * `properties.vehicles[index]`), or an alignment's vehicles[index].rows.
+ * a route's curves (the geometry, and the assessment in `assessment` or, per vehicle, `vehicles[index]`), or an
+ * alignment's vehicles[index].rows.
  */
 export function rowsOf(result, index = null) {
-  if (result.curves?.type === "FeatureCollection") {
-    return result.curves.features.map((f) => {
-      const { assessment, vehicles, governing_vehicle: governing, ...p } = f.properties;
+  if (isRoute(result)) {
+    return routeCurves(result).map((c) => {
+      const { assessment, vehicles, governing_vehicle: governing, coordinates: _xy, ...p } = c;
       const row = index === null || !vehicles ? assessment : vehicles[index];
       const vehicle = result.vehicles.length > 1 ? vehicleLabel(result.vehicles[index ?? governing], index ?? governing) : undefined;
       // the curve's own radius and grade (null without elevations) stay; the assessment adds the rest
@@ -278,11 +287,10 @@ export function outline(lines, result) {
   for (const line of lines) path(line, "route");
   const main = lines[0];
   const s = chainage(main);
-  for (const f of result.curves?.features || []) {
-    const p = f.properties;
+  for (const p of routeCurves(result)) {
     const flagged = Boolean(p.assessment?.flagged);
     let points = null;
-    if (f.geometry?.type === "LineString") points = f.geometry.coordinates;
+    if (Array.isArray(p.coordinates)) points = p.coordinates;
     else if (typeof p.start_m === "number" && typeof p.end_m === "number") points = slice(main, s, p.start_m, p.end_m);
     if (points && points.length > 1) {
       path(points, flagged ? "curve flagged" : "curve", `Curve ${p.id ?? ""}: R ${fmt(p.radius_m, 0)} m${flagged ? ", flagged" : ""}`);
@@ -351,10 +359,12 @@ async function downloadCsv() {
   download("curves.csv", data);
 }
 
-function save() {
-  const { result } = state;
-  if (result.curves?.type === "FeatureCollection") {
-    download("curves.geojson", new Blob([JSON.stringify(result.curves)], { type: "application/geo+json" }));
+/** The JSON answer; a route's curves as GeoJSON (the same request with Accept: application/geo+json). */
+async function save() {
+  const { path, request, key, result } = state;
+  if (isRoute(result)) {
+    const { data } = await api.call("POST", path, { json: request, accept: "application/geo+json", as: "blob", key });
+    download("curves.geojson", data);
   } else {
     download("assessment.json", new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   }

@@ -379,3 +379,21 @@ def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet
     (row,) = curve_rows(page)
     assert row["vehicle"] == vehicles[props["governing_vehicle"]]
     assert row["safe_speed_kmh"] == f"{min(safe):.1f}"
+
+
+def test_without_the_key_a_large_alignment_is_assessed_in_one_request(page, live_server, tmp_path):
+    # this server has bearer keys: its jobs are a key's own (401 without one), the synchronous endpoint is open
+    text = large_csv(5001)
+    path = tmp_path / "large.csv"
+    path.write_text(text)
+    page.open("?vehicle=table16-btrain")
+    assert page.find("#api-key").get_attribute("value") == ""
+    page.find("#alignment-file").send_keys(str(path))
+    page.network()
+    page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=180)
+    sent, _ = page.network()
+    paths = [urlsplit(u).path for u in sent.values()]
+    assert "/v1/jobs" in paths and "/v1/alignments/assess" in paths  # tried, refused, then one request
+    assert "a job needs the bearer key" in page.text("#alignment-progress-text")
+    assert page.text("#alignment-summary").startswith("5001 curves")
+    assert page.find_all("#alignment-error") and not page.find("#alignment-error").is_displayed()

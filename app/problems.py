@@ -215,11 +215,11 @@ async def _input_handler(request: Request, exc: InvalidInput) -> JSONResponse:
 
 
 async def _route_handler(request: Request, exc: InvalidRoute) -> JSONResponse:
-    field, loc = exc.source, ["body", exc.source]
-    if exc.source == "geojson" and exc.location:  # a JSON path into the document: name it as a request field
+    field, loc = exc.source, ["body", *exc.source.split(".")]  # `gpx`, `geojson`, or a job's `request.geojson`
+    if exc.source.split(".")[-1] == "geojson" and exc.location:  # a JSON path into the document: a request field
         path = re.sub(r"\[(\d+)\]", r".\1", exc.location)
-        field = f"geojson.{path}"
-        loc = ["body", "geojson", *(int(p) if p.isdigit() else p for p in path.split("."))]
+        field = f"{exc.source}.{path}"
+        loc = [*loc, *(int(p) if p.isdigit() else p for p in path.split("."))]
     error = {"field": field, "message": exc.reason, "type": "invalid-route", "loc": loc, "location": exc.location}
     return problem_response(request, 422, "invalid-route", "The route cannot be read", str(exc), errors=[error])
 

@@ -179,11 +179,16 @@ def _properties(props, where: str) -> dict:
     return out
 
 
+def _at(where: str, name: str) -> str:
+    """The JSON path of ``name`` inside the object at ``where`` ("" is the document itself)."""
+    return f"{where}.{name}" if where else name
+
+
 def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> list[RoutePart]:
     if not isinstance(geom, dict):
         raise RouteFormatError("the geometry must be a LineString or MultiLineString object", where, "geometry")
     kind = geom.get("type")
-    loc = f"{where}.coordinates"
+    loc = _at(where, "coordinates")
     if kind == "LineString":
         lon, lat, ele = _positions(geom.get("coordinates"), loc)
         return [_part(source, loc, "json", lon, lat, ele, props, budget)]
@@ -197,7 +202,7 @@ def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> li
             out.append(_part(f"{source} part {j}", f"{loc}[{j}]", "json", lon, lat, ele, props, budget))
         return out
     raise RouteFormatError(
-        f"geometry type {kind!r} is not a line; a route is a LineString or MultiLineString", f"{where}.type", "type"
+        f"geometry type {kind!r} is not a line; a route is a LineString or MultiLineString", _at(where, "type"), "type"
     )
 
 
@@ -225,9 +230,9 @@ def read_geojson(doc) -> list[RoutePart]:
             raise RouteFormatError(f"more than {MAX_PARTS} features", "features")
         items = [(f, f"features[{i}]") for i, f in enumerate(feats)]
     elif kind == "Feature":
-        items = [(doc, "feature")]
+        items = [(doc, "")]  # the document itself: its paths start at its members
     elif kind in ("LineString", "MultiLineString"):
-        return _geometry(doc, "geometry", "geometry", {}, budget)
+        return _geometry(doc, "", "geometry", {}, budget)
     else:
         raise RouteFormatError(
             f"type {kind!r}: expected FeatureCollection, Feature, LineString or MultiLineString", "type", "type"
@@ -236,10 +241,10 @@ def read_geojson(doc) -> list[RoutePart]:
     for feat, where in items:
         if not isinstance(feat, dict) or feat.get("type") != "Feature":
             raise RouteFormatError("must be a Feature object", where, "type")
-        props = _properties(feat.get("properties"), f"{where}.properties")
+        props = _properties(feat.get("properties"), _at(where, "properties"))
         if "id" in feat and "id" not in props:
             props["id"] = feat["id"]
-        parts.extend(_geometry(feat.get("geometry"), f"{where}.geometry", where, props, budget))
+        parts.extend(_geometry(feat.get("geometry"), _at(where, "geometry"), where or "feature", props, budget))
     if len(parts) > MAX_PARTS:
         raise RouteFormatError(f"more than {MAX_PARTS} line parts", "features")
     return parts

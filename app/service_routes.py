@@ -25,6 +25,7 @@ from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.geodesy import local_frame
 from engine.geometry import HorizontalCurve, find_curves
+from engine.vehicles import Vehicle
 
 from .alignment_io import CurveTable
 from .cache import ResultCache
@@ -155,7 +156,7 @@ def _document_digest(req: RouteRequest) -> str:
     return hashlib.sha256(doc).hexdigest()
 
 
-def _resolved(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
+def resolved_route(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
     return {
         **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings),
         "route": {
@@ -301,7 +302,7 @@ def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
 # ---------------------------------------------------------------------------------------- computing
 
 
-#: the answer's forms: (cache operation, media type, renderer)
+#: the answer's forms: (cache operation, media type)
 FORMS = {
     "json": ("route", "application/json"),
     "csv": ("route-csv", "text/csv; charset=utf-8"),
@@ -309,37 +310,50 @@ FORMS = {
 }
 
 
-def _assess(req: RouteRequest, refs: list[Any], settings: Settings, form: str) -> tuple[dict[str, Any], bytes]:
-    """Read, find, assess and render (blocking: called in a worker thread)."""
+def render_route(req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, ...]) -> dict[str, bytes]:
+    """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
+    ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets)."""
     parts = read_route(req)
     geo = find_route_curves(req, parts)
-    resolved = _resolved(req, refs, settings)
-    if len(geo.curves) * len(refs) > MAX_ROWS:
-        raise request_error("vehicles", f"{len(geo.curves)} curves x {len(refs)} vehicles; at most {MAX_ROWS} rows")
+    vehicles = [Vehicle.from_dict(v) for v in resolved["vehicles"]]
+    if len(geo.curves) * len(vehicles) > MAX_ROWS:
+        raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
     table = curve_table(req, geo)
     source = "geojson" if req.geojson is not None else "gpx"
-    job = AlignmentJob(resolved, [resolve_vehicle(r) for r in refs], table, source)
-    answer = solve_alignment(job)
-    if form == "csv":
-        return resolved, route_csv(geo, answer)
-    if form == "geojson":
-        return resolved, route_geojson(geo, answer)
-    return resolved, route_json(req, geo, answer)
+    answer = solve_alignment(AlignmentJob(resolved, vehicles, table, source))
+    renderers = {
+        "json": lambda: route_json(req, geo, answer),
+        "csv": lambda: route_csv(geo, answer),
+        "geojson": lambda: route_geojson(geo, answer),
+    }
+    return {form: renderers[form]() for form in forms}
+
+
+async def resolve_route_refs(request: Request, req: RouteRequest, settings: Settings) -> RouteRequest:
+    """``req`` with its saved vehicles, specs and fleet resolved (a fleet becomes ``vehicles``, at most
+    :data:`MAX_VEHICLES`)."""
+    fleet = req.fleet
+    req = await resolve_vehicle_refs(request, req, settings)
+    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
+        raise request_error(
+            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; a route takes at most {MAX_VEHICLES}"
+        )
+    return req
+
+
+def route_refs(req: RouteRequest) -> list[Any]:
+    return [req.vehicle] if req.vehicle is not None else list(req.vehicles)
 
 
 async def assess_route(
     cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, form: str = "json"
 ) -> Computed:
-    fleet = req.fleet
-    req = await resolve_vehicle_refs(request, req, settings)
-    refs = [req.vehicle] if req.vehicle is not None else list(req.vehicles)
-    if fleet is not None and len(refs) > MAX_VEHICLES:
-        raise request_error("fleet", f"fleet {fleet} has {len(refs)} vehicles; a route takes at most {MAX_VEHICLES}")
-    key_parts = await run_in_threadpool(_resolved, req, refs, settings)  # the key: the request, resolved
+    req = await resolve_route_refs(request, req, settings)
+    resolved = await run_in_threadpool(resolved_route, req, route_refs(req), settings)  # the key: resolved
     operation, media = FORMS[form]
 
     async def produce() -> bytes:
-        _, body = await run_in_threadpool(_assess, req, refs, settings, form)
-        return body
+        bodies = await run_in_threadpool(render_route, req, resolved, (form,))
+        return bodies[form]
 
-    return await cached(cache, operation, key_parts, produce, media)
+    return await cached(cache, operation, resolved, produce, media)

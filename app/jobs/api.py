@@ -207,7 +207,7 @@ def _under_request(exc: Exception) -> Exception:
         return RequestValidationError(errors)
     if isinstance(exc, InvalidAlignment):
         source = "request" if exc.source == "body" else f"request.{exc.source}"
-        return InvalidAlignment(exc.reason, source=source, location=exc.location, column=exc.column)
+        return type(exc)(exc.reason, source=source, location=exc.location, column=exc.column)  # InvalidRoute stays
     if isinstance(exc, InvalidInput) and exc.field is not None:
         out = type(exc)(str(exc), field=f"request.{engine_field(exc.field)}", value=exc.value)
         return out
@@ -310,7 +310,8 @@ _SUBMIT_DESCRIPTION = (
     "`Location: /v1/jobs/{id}`.\n\n"
     + "\n".join(f"* `{op.name}`: {op.description}" for op in OPERATIONS.values())
     + "\n\nLimits (beyond the JSON schema's): `alignments.assess` at most 1,000,000 rows (curves x vehicles); "
-    "`srt.sweep` at most 1,000,000 cases (the product of the axes' lengths)."
+    "`srt.sweep` at most 1,000,000 cases (the product of the axes' lengths); `routes.assess` the synchronous "
+    "request's (100,000 rows: curves x vehicles)."
 )
 
 

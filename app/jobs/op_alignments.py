@@ -25,9 +25,16 @@ from starlette.requests import Request
 from engine.assessment import solve_bank_grade_pairs
 from engine.vehicles import Vehicle
 
-from ..alignment_io import CURVE_ID_PATTERN, CurveTable
+from ..alignment_io import CurveTable
 from ..cache import cache_key
-from ..schemas.alignments import AlignmentRequest, CurveId, CurveIn, CurveOverrideIn, LandXmlIn
+from ..schemas.alignments import (
+    AlignmentRequest,
+    CurveId,
+    CurveIn,
+    CurveOverrideIn,
+    LandXmlIn,
+    keys_match_the_id_pattern,
+)
 from ..schemas.common import ABSENT, describe
 from ..service_alignments import (
     JSON_VEHICLE_END,
@@ -61,15 +68,6 @@ CHUNK_ROWS = 5_000
 _COLUMNS = ("radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh", "station_m")
 
 
-def _keys_match_the_id_pattern(schema: dict[str, Any]) -> None:
-    """JSON Schema's ``patternProperties`` lets a key that does not match through: say it in ``propertyNames`` too
-    (the synchronous request's LandXmlIn has the same gap)."""
-    for branch in schema.get("anyOf", []):
-        if branch.get("type") == "object":
-            branch.setdefault("propertyNames", {})["pattern"] = CURVE_ID_PATTERN
-            branch["additionalProperties"] = False
-
-
 class LandXmlJobIn(LandXmlIn):
     """A LandXML 1.2 document, as in the synchronous request, of up to 200,000,000 characters."""
 
@@ -84,7 +82,7 @@ class LandXmlJobIn(LandXmlIn):
         None,
         max_length=MAX_JOB_CURVES,
         description=LandXmlIn.model_fields["curve_overrides"].description,
-        json_schema_extra=_keys_match_the_id_pattern,
+        json_schema_extra=keys_match_the_id_pattern,
     )
 
 

@@ -3,7 +3,7 @@ vehicles (rollover, Eq. 9.1, against side friction with a design standard's f_ma
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
@@ -68,6 +68,15 @@ class CurveOverrideIn(InputModel):
     posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED, symbol="V")
 
 
+def keys_match_the_id_pattern(schema: dict[str, Any]) -> None:
+    """JSON Schema's ``patternProperties`` lets a key that does not match through: state the curve-id rule for every
+    key in ``propertyNames`` too, and no other key (a generated client and a validator then know it)."""
+    for branch in schema.get("anyOf", []):
+        if branch.get("type") == "object":
+            branch.setdefault("propertyNames", {})["pattern"] = CURVE_ID_PATTERN
+            branch["additionalProperties"] = False
+
+
 class LandXmlIn(InputModel):
     """A LandXML 1.2 document: every `CoordGeom/Curve` of every `Alignment` is a curve (its `radius`; its
     `staStart` is reported as the station; its `name` is the id, else `<alignment name>#<n>`). LandXML keeps
@@ -95,6 +104,7 @@ class LandXmlIn(InputModel):
     curve_overrides: dict[CurveId, CurveOverrideIn] | None = Field(
         None,
         max_length=MAX_CURVES,
+        json_schema_extra=keys_match_the_id_pattern,
         description=describe(
             "Per-curve values by curve id; an id that is not in the document is an error.", unit="%, km/h"
         ),

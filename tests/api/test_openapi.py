@@ -144,7 +144,10 @@ def test_computed_operations_declare_etag_and_x_cache(path):
 @pytest.mark.parametrize("path", sorted(TABLES))
 def test_table_operations_declare_json_and_csv(path):
     content = COMMITTED["paths"][path]["post"]["responses"]["200"]["content"]
-    assert set(content) == {"application/json", "text/csv"}
+    geojson = {"application/geo+json"} if path == "/v1/routes/assess" else set()  # the route's curves for a GIS
+    assert set(content) == {"application/json", "text/csv"} | geojson
+    if geojson:
+        assert content["application/geo+json"]["schema"] == {"$ref": "#/components/schemas/RouteCurves"}
 
 
 @pytest.mark.parametrize("path", sorted(PLOTS))

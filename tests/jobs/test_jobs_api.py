@@ -374,3 +374,39 @@ def test_metrics_count_jobs_and_part_durations():
     assert 'rollover_job_part_seconds_count{operation="srt.sweep"}' in text
     active = [line for line in text.splitlines() if line.startswith("rollover_jobs_active ")]
     assert active and not math.isnan(float(active[0].split()[1]))
+
+
+# ------------------------------------------------------------------------------------------------- routes
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_route_result_is_the_synchronous_answer_byte_for_byte(accept):
+    """A route as a job: the geometry read at submission, the curves found by the worker, the same bytes and ETag
+    as POST /v1/routes/assess (JSON and CSV), for two vehicles."""
+    from app.schemas.routes import EXAMPLE_GEOJSON
+
+    req = {
+        "vehicles": ["table16-btrain", "table23-semitrailer"],
+        "geojson": EXAMPLE_GEOJSON,
+        "superelevation_percent": 6.0,
+        "rear_llt_limit": 0.6,
+    }
+    headers = {"accept": accept} if accept else None
+    with make_client() as c:
+        location, status = run(c, "routes.assess", req)
+        assert status["status"] == "done" and status["unit"] == "vertices"
+        assert status["done"] == status["total"] == 14  # the example's 14 vertices
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/routes/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    assert job.headers["etag"] == sync.headers["etag"] and job.content == sync.content
+    if accept is None:
+        assert len(job.json()["curves"]) == 2
+
+
+def test_a_route_that_cannot_be_read_is_refused_at_submission():
+    bad = {"type": "LineString", "coordinates": [[10.0, 45.0], [10.001, 45.0], [45.0, 100.0]]}  # latitude 100
+    with make_client() as c:
+        r = submit(c, "routes.assess", {"vehicle": "table16-btrain", "geojson": bad, "superelevation_percent": 6})
+    assert r.status_code == 422, r.text
+    assert r.json()["errors"][0]["field"] == "request.geojson.coordinates.2" and "latitude" in r.json()["detail"]

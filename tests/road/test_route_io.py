@@ -111,7 +111,10 @@ def test_geojson_vertex_refusals_name_the_vertex(coords, location, message):
             "crs",
             "not WGS84",
         ),
-        ({"type": "MultiLineString", "coordinates": []}, "geometry.coordinates", "non-empty"),
+        # a bare geometry or Feature: the location is the JSON path from the document itself
+        ({"type": "MultiLineString", "coordinates": []}, "coordinates", "non-empty"),
+        ({"type": "LineString", "coordinates": [[10.0, 45.0], [10.0, 95.0]]}, "coordinates[1]", "latitude"),
+        (feature(line([[10.0, 45.0]])), "geometry.coordinates", "at least 2"),
     ],
 )
 def test_geojson_document_refusals(doc, location, message):

@@ -1,0 +1,85 @@
+"""The ``routes.assess`` job: :mod:`app.service_routes` (``POST /v1/routes/assess``) as a background job.
+
+A route is one part: its curves are found along the whole polyline (a curve may span what would be a part's
+boundary) and the answer's summaries are over all of them. It is quick (500 km of route in about 2 s), so the job
+exists for the caller who submits many routes, wants to poll rather than hold a connection, or fetches both JSON
+and CSV of one solve. The geometry is read at submission, so a document that cannot be read is a 422 at ``POST
+/v1/jobs`` (fields under ``request.``), never a failed job; the vehicles (presets, records, saved vehicles and
+fleets of the caller, specs) are resolved there too, and the stored job holds their records only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+import orjson
+from starlette.requests import Request
+
+from ..cache import cache_key
+from ..schemas.routes import RouteRequest
+from ..service_routes import read_route, render_route, resolve_route_refs, resolved_route, route_refs
+from ..settings import Settings
+from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+
+
+def parse(data: Any) -> RouteRequest:
+    return RouteRequest.model_validate(data)
+
+
+async def refs(request: Request, req: RouteRequest, settings: Settings) -> RouteRequest:
+    """Saved vehicles, fleets and specs resolved as ``POST /v1/routes/assess`` resolves them."""
+    return await resolve_route_refs(request, req, settings)
+
+
+def resolve(req: RouteRequest, ctx: ResolveContext) -> dict[str, Any]:
+    """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
+    resolved = resolved_route(req, route_refs(req), ctx.settings)
+    vertices = sum(int(p.lon_deg.size) for p in read_route(req))  # reading refuses bad geometry now (a 422)
+    stored = req.model_dump(mode="json", exclude={"vehicle", "vehicles", "fleet"}, exclude_unset=True)
+    return {"request": stored, "resolved": resolved, "vertices": vertices}
+
+
+def split(job: dict[str, Any], part_units: int) -> Prepared:
+    resolved = job["resolved"]
+    shared = {"request": job["request"], "resolved": resolved, "vertices": job["vertices"]}
+    etag = {"json": cache_key("route", resolved), "csv": cache_key("route-csv", resolved)}
+    return Prepared(shared, [(job["vertices"], b"{}")], etag)
+
+
+def request_of(shared: dict[str, Any]) -> RouteRequest:
+    """The stored request validated again, its vehicles given as the resolved records (the worker solves those)."""
+    return RouteRequest.model_validate({**shared["request"], "vehicles": shared["resolved"]["vehicles"]})
+
+
+def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
+    if orjson.loads(data) != {}:
+        raise ValueError("a route job has a single part without inputs of its own")
+    req = request_of(shared)
+    bodies = render_route(req, shared["resolved"], ("json", "csv"))
+    ctx.write("json", 0, bodies["json"])
+    ctx.write("csv", 0, bodies["csv"])
+    ctx.progress(shared["vertices"])
+    return {"bytes": {form: len(body) for form, body in bodies.items()}}
+
+
+def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, fragments: Fragments) -> Iterator[bytes]:
+    yield from fragments(0, 0)
+
+
+OPERATION = Operation(
+    name="routes.assess",
+    description="The route assessment of `POST /v1/routes/assess` (`request`: its JSON request) as a job: the "
+    "geometry is read at submission (a 422 when it cannot be), the curves are found and assessed by a worker; one "
+    "part; JSON or CSV.",
+    request_model=RouteRequest,
+    unit="vertices",
+    part_units=1,
+    csv=True,
+    parse=parse,
+    resolve=resolve,
+    split=split,
+    run_part=run_part,
+    assemble=assemble,
+    refs=refs,
+)

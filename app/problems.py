@@ -161,13 +161,19 @@ def _is_vehicle(before: list[str]) -> bool:
     return len(before) >= 2 and before[-2] == "vehicles" and before[-1].isdigit()
 
 
+def _untagged(loc: tuple[Any, ...] | list[Any]) -> list[Any]:
+    """``loc`` without the union tag pydantic puts after a vehicle: (body, vehicle, record, weight_kn) -> (body,
+    vehicle, weight_kn); (body, vehicles, 1, spec, spec, rear) -> (body, vehicles, 1, spec, rear)."""
+    head = 1 if loc and str(loc[0]) in ("body", "query", "path", "header") else 0
+    parts = [str(p) for p in loc[head:]]
+    kept = [p for i, p in enumerate(loc[head:]) if not (parts[i] in VEHICLE_TAGS and _is_vehicle(parts[:i]))]
+    return [*loc[:head], *kept]
+
+
 def _dotted(loc: tuple[Any, ...] | list[Any]) -> str:
-    parts = [str(p) for p in loc]
+    parts = [str(p) for p in _untagged(loc)]
     if parts and parts[0] in ("body", "query", "path", "header"):
         parts = parts[1:]
-    # drop the union tag pydantic puts after a vehicle: vehicle.record.weight_kn -> vehicle.weight_kn,
-    # vehicles.1.spec.spec.rear -> vehicles.1.spec.rear
-    parts = [p for i, p in enumerate(parts) if not (p in VEHICLE_TAGS and _is_vehicle(parts[:i]))]
     return ".".join(parts) or "body"
 
 
@@ -190,7 +196,7 @@ async def _validation_handler(request: Request, exc: RequestValidationError) -> 
             "field": _dotted(e.get("loc", ())),
             "message": str(e.get("msg")),
             "type": str(e.get("type")),
-            "loc": [p if isinstance(p, int) else str(p) for p in e.get("loc", ())],
+            "loc": [p if isinstance(p, int) else str(p) for p in _untagged(e.get("loc", ()))],
         }
         for e in errors
     ]

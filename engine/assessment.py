@@ -315,8 +315,14 @@ def _derive_superelevation(std, radius, e, posted, e_max) -> np.ndarray:
     for v in np.unique(posted[missing]):
         sel = missing & (posted == v)
         try:
-            out[sel] = standards.superelevation_table(std, float(v), e_max, radius[sel]).superelevation_percent
-        except InvalidRoad as exc:  # name the curve: the first of this speed below R_min or outside the range
+            # a curve sharper than the distribution's R_min at its posted speed has no design superelevation: it is
+            # assessed on e_max, the most a road built to this e_max has (its meets_standard_min_radius is false)
+            sharp = sel & (radius < standards.distribution_min_radius_m(std, float(v), e_max) * (1.0 - 1e-12))
+            out[sharp] = e_max
+            rest = sel & ~sharp
+            if np.any(rest):
+                out[rest] = standards.superelevation_table(std, float(v), e_max, radius[rest]).superelevation_percent
+        except InvalidRoad as exc:  # name the curve: the first of this speed outside the standard's range
             i = int(np.flatnonzero(sel)[0])
             raise InvalidRoad(f"curves[{i}]: {exc}", field=f"curves[{i}].{exc.field}", value=exc.value) from None
     return out

@@ -580,6 +580,16 @@ def _aashto_method5_f(std: DesignStandard, v: float, inv_r: np.ndarray, e_max: f
     return np.where(inv_r <= inv_r_pi, f1, f2)
 
 
+def distribution_min_radius_m(std: DesignStandard, speed_kmh: float, e_max_percent: float) -> float:
+    """The smallest radius the superelevation distribution takes [m]: Eq. 9.2's R_min with the standard's f_max, or
+    the published, rounded R_min where that is smaller (AASHTO rounds to the metre, sometimes down: 229 m for
+    229.06 m; between the two the curve is at R_min, e = e_max)."""
+    f_max = float(side_friction_factor(std, speed_kmh))
+    r_min = float(side_friction_min_radius_m(speed_kmh, e_max_percent, f_max))  # Eq. 9.2
+    published = std.min_radius_table.get(float(e_max_percent), {}).get(float(speed_kmh))
+    return min(r_min, published) if published is not None else r_min
+
+
 def _superelevation_arrays(std: DesignStandard, speed_kmh: float, e_max_percent: float, radii_m):
     """(e [%], f [-], R_min [m], f_max [-]) on an array of radii, refusing radii below R_min."""
     if std.superelevation_method is None:
@@ -603,10 +613,8 @@ def _superelevation_arrays(std: DesignStandard, speed_kmh: float, e_max_percent:
     v = float(speed_kmh)
     r = _check_radii(radii_m)
     r_min = float(side_friction_min_radius_m(v, e_max, f_max))  # Eq. 9.2
-    # the published, rounded R_min (AASHTO rounds to the metre, sometimes down: 229 m for 229.06 m) is a radius
-    # the standard allows: between it and Eq. 9.2's value the curve is at R_min (e = e_max)
     published = std.min_radius_table.get(e_max, {}).get(v)
-    limit = min(r_min, published) if published is not None else r_min
+    limit = distribution_min_radius_m(std, v, e_max)
     if np.any(r < limit * (1.0 - 1e-12)):
         first = float(r[r < limit * (1.0 - 1e-12)].flat[0]) if r.ndim else float(r)
         table = f" (published: {published:g} m)" if published is not None else ""
@@ -702,6 +710,7 @@ __all__ = [
     "SuperelevationResult",
     "SuperelevationTable",
     "check_design_speeds",
+    "distribution_min_radius_m",
     "get_standard",
     "meets_min_radius",
     "min_radius_array",

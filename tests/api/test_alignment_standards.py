@@ -98,6 +98,22 @@ def test_a_missing_superelevation_is_derived_from_the_standards_distribution(sha
     assert derived["srt_g"] == pytest.approx(srt, rel=1e-9)
 
 
+def test_a_curve_sharper_than_the_distributions_minimum_is_assessed_on_e_max_not_refused(shared_client):
+    # AASHTO 2018 Table 3-7 at 80 km/h, e_max 8 %: f_max 0.14, R_min 229 m. A 150 m curve has no design
+    # superelevation: it is assessed on e_max (the most the road has), fails the standard's minimum radius, and the
+    # rest of the alignment is assessed as usual
+    text = "id,radius_m,posted_speed_kmh\nK1,150,80\nK2,600,80\n"
+    out = post(shared_client, {"vehicle": BTRAIN, "csv": text, "max_superelevation_percent": 8.0}).json()
+    k1, k2 = out["vehicles"][0]["rows"]
+    assert k1["superelevation_percent"] == 8.0 and k1["superelevation_source"] == "derived"
+    assert k1["meets_standard_min_radius"] is False and k1["standard_min_radius_m"] == 229.0
+    assert k1["side_friction_speed_kmh"] == pytest.approx(
+        math.sqrt(127 * 150 * (0.08 + f_aashto(k1["side_friction_speed_kmh"]))), rel=1e-6
+    )
+    assert k1["flagged"]  # its safe speed is below the posted 80 km/h
+    assert k2["meets_standard_min_radius"] is True and 0 < k2["superelevation_percent"] < 8.0
+
+
 def test_a_missing_superelevation_without_e_max_is_refused_naming_the_curve(shared_client):
     body = {"vehicle": BTRAIN, "curves": [{"id": "D", "radius_m": 1000.0, "posted_speed_kmh": 80.0}]}
     p = post(shared_client, body, 422).json()

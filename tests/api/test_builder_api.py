@@ -72,6 +72,8 @@ def test_a_spec_the_builder_refuses_names_the_field(shared_client, change, field
     body = {"vehicle": {"spec": {**a_spec()["spec"], **change}}}
     p = post(shared_client, "/v1/srt", body, 422).json()
     assert p["errors"][0]["field"] == field and words in p["detail"]
+    loc = p["errors"][0]["loc"]  # the path into the body, each name once (no union tag)
+    assert loc[0] == "body" and ".".join(str(x) for x in loc[1:]) == field
     # the build endpoint names the same field, from its own body
     p = post(shared_client, "/v1/vehicles/build", body["vehicle"], 422).json()
     assert p["errors"][0]["field"] == field.removeprefix("vehicle.")
@@ -126,3 +128,12 @@ def test_the_payload_table_meets_the_target_and_is_monotone(shared_client):
     text = post(shared_client, "/v1/vehicles/payload-table", body, accept="text/csv").text
     table = list(csv.DictReader(io.StringIO(text)))
     assert [float(t["limit_value"]) for t in table if t["table"] == "by_load_height"] == masses
+
+
+def test_a_schema_error_in_a_spec_has_its_path_once_in_loc(shared_client):
+    spec = a_spec()["spec"]
+    spec["rear"] = {**spec["rear"], "tyre": {"id": 5}}  # not a string
+    p = post(shared_client, "/v1/srt", {"vehicle": {"spec": spec}}, 422).json()
+    e = p["errors"][0]
+    assert e["field"] == "vehicle.spec.rear.tyre.id"
+    assert e["loc"] == ["body", "vehicle", "spec", "rear", "tyre", "id"]  # pydantic's union tag left out

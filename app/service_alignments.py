@@ -262,6 +262,18 @@ def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
     return exc
 
 
+def as_fleet_error(exc: Exception, fleet: str | None, resolved: dict[str, Any]) -> Exception:
+    """An error named after a vehicle the request took from a fleet (``vehicles.1.front_track_m``) names the fleet,
+    the request's own field, and says which member in the message."""
+    field = getattr(exc, "field", None) or ""
+    if fleet is None or not isinstance(exc, InvalidInput) or not field.startswith("vehicles."):
+        return exc
+    index = int(field.split(".")[1])
+    member = resolved["saved_ids"][index] or resolved["presets"][index] or f"#{index}"
+    text = str(exc).removeprefix(f"vehicles[{index}]: ")
+    return type(exc)(f"fleet {fleet}, member {index} ({member}): {text}", field="fleet", value=fleet)
+
+
 def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
     r = job.resolved
     case = Case(
@@ -525,6 +537,7 @@ async def compute_alignment(
     source_field: str | None = None,
 ) -> Computed | Streamed:
     """The assessment as a cached body (small answers) or a stream (large ones); the same bytes either way."""
+    fleet = req.fleet
     req = await resolve_alignment_refs(request, req, settings)
     job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
     operation = "alignments-csv" if csv else "alignments"
@@ -539,7 +552,10 @@ async def compute_alignment(
     hit = answer is not None
     CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
     if answer is None:
-        answer = await run_in_threadpool(solve_alignment, job)
+        try:
+            answer = await run_in_threadpool(solve_alignment, job)
+        except InvalidInput as exc:
+            raise as_fleet_error(exc, fleet, job.resolved) from None
         cache.answers[answer_key] = answer
     if job.rows <= STREAM_ROWS:
         body = await run_in_threadpool(lambda: b"".join(render(answer, csv)))

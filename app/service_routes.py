@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -39,6 +40,7 @@ from .service_alignments import (
     AlignmentJob,
     _rows,
     _summary,
+    as_fleet_error,
     csv_columns,
     resolved_assessment,
     solve_alignment,
@@ -310,6 +312,22 @@ FORMS = {
 }
 
 
+_CURVE_FIELD = re.compile(r"^curves[\[.](\d+)\]?\.(\w+)$")
+
+
+def _named_after_the_route(exc: InvalidInput, table: CurveTable) -> InvalidInput:
+    """An error the assessment names after a row of its curve table (``curves[3].posted_speed_kmh``) is about a
+    curve the route request does not list: name the request's own field and say which curve in the message."""
+    m = _CURVE_FIELD.match(exc.field or "")
+    if m is None:
+        return exc
+    curve = table.ids[int(m.group(1))]
+    text = str(exc)
+    lead = re.match(r"^curves\[\d+\]", text)
+    message = f"the route's curve {curve}{text[lead.end() :]}" if lead else f"the route's curve {curve}: {text}"
+    return type(exc)(message, field=m.group(2), value=exc.value)
+
+
 def render_route(req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, ...]) -> dict[str, bytes]:
     """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
     ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets)."""
@@ -320,7 +338,10 @@ def render_route(req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, 
         raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
     table = curve_table(req, geo)
     source = "geojson" if req.geojson is not None else "gpx"
-    answer = solve_alignment(AlignmentJob(resolved, vehicles, table, source))
+    try:
+        answer = solve_alignment(AlignmentJob(resolved, vehicles, table, source))
+    except InvalidInput as exc:
+        raise _named_after_the_route(exc, table) from None
     renderers = {
         "json": lambda: route_json(req, geo, answer),
         "csv": lambda: route_csv(geo, answer),
@@ -348,12 +369,16 @@ def route_refs(req: RouteRequest) -> list[Any]:
 async def assess_route(
     cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, form: str = "json"
 ) -> Computed:
+    fleet = req.fleet
     req = await resolve_route_refs(request, req, settings)
     resolved = await run_in_threadpool(resolved_route, req, route_refs(req), settings)  # the key: resolved
     operation, media = FORMS[form]
 
     async def produce() -> bytes:
-        bodies = await run_in_threadpool(render_route, req, resolved, (form,))
+        try:
+            bodies = await run_in_threadpool(render_route, req, resolved, (form,))
+        except InvalidInput as exc:
+            raise as_fleet_error(exc, fleet, resolved) from None
         return bodies[form]
 
     return await cached(cache, operation, resolved, produce, media)

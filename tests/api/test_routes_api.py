@@ -163,3 +163,13 @@ def test_bad_gpx_names_the_point(shared_client):
     text = gpx(route(45.0)[:5]).replace('lat="', 'lat="9', 1)  # the first point's latitude becomes 9xx
     p = post(shared_client, {"vehicle": BTRAIN, "gpx": text, "superelevation_percent": 6}, 422).json()
     assert p["errors"][0]["field"] == "gpx" and "trkpt[1]" in p["errors"][0]["location"]
+
+
+def test_a_curve_error_names_the_route_requests_own_field_and_the_curve(shared_client):
+    # no posted speed anywhere and no superelevation: the distribution cannot be read for the first curve; the route
+    # request has no `curves`, so the error names its `posted_speed_kmh` and the curve by its id
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(45.0)), "max_superelevation_percent": 8}
+    p = post(shared_client, body, 422).json()
+    e = p["errors"][0]
+    assert e["field"] == "posted_speed_kmh" and e["loc"] == ["body", "posted_speed_kmh"]
+    assert "the route's curve features[0]-C1" in p["detail"]

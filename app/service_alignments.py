@@ -514,14 +514,15 @@ class Streamed:
 JSON_TYPE, CSV_TYPE = "application/json", "text/csv; charset=utf-8"
 
 
-async def resolve_alignment_refs(request: Request, req: AlignmentRequest, settings: Settings) -> AlignmentRequest:
-    """``req`` with its saved vehicles, specs and fleet resolved (:func:`~app.vehicle_refs.resolve_vehicle_refs`);
-    a fleet larger than an assessment takes (:data:`MAX_VEHICLES`) is a 422 naming ``fleet``."""
+async def resolve_alignment_refs(request: Request, req: Any, settings: Settings, what: str = "an assessment") -> Any:
+    """``req`` (an alignment or a route request) with its saved vehicles, specs and fleet resolved
+    (:func:`~app.vehicle_refs.resolve_vehicle_refs`); a fleet larger than ``what`` takes (:data:`MAX_VEHICLES`) is
+    a 422 naming ``fleet``."""
     fleet = req.fleet
     req = await resolve_vehicle_refs(request, req, settings)
     if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
         raise request_error(
-            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; an assessment takes at most {MAX_VEHICLES}"
+            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; {what} takes at most {MAX_VEHICLES}"
         )
     return req
 

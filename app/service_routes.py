@@ -32,7 +32,7 @@ from .alignment_io import CurveTable
 from .cache import ResultCache
 from .problems import InvalidRoute, request_error
 from .route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
-from .schemas.alignments import MAX_ROWS, MAX_VEHICLES
+from .schemas.alignments import MAX_ROWS
 from .schemas.routes import RouteCurves, RouteRequest, RouteResult
 from .service import Computed, cached, resolve_vehicle
 from .service_alignments import (
@@ -42,12 +42,12 @@ from .service_alignments import (
     _summary,
     as_fleet_error,
     csv_columns,
+    resolve_alignment_refs,
     resolved_assessment,
     solve_alignment,
 )
 from .settings import Settings
 from .tables import GEOJSON_MEDIA_TYPE, Text, flatten_targets, to_csv
-from .vehicle_refs import resolve_vehicle_refs
 
 #: the route's own columns in front of the alignment's in the CSV answer
 GEOMETRY_COLUMNS = (
@@ -352,14 +352,8 @@ def render_route(req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, 
 
 async def resolve_route_refs(request: Request, req: RouteRequest, settings: Settings) -> RouteRequest:
     """``req`` with its saved vehicles, specs and fleet resolved (a fleet becomes ``vehicles``, at most
-    :data:`MAX_VEHICLES`)."""
-    fleet = req.fleet
-    req = await resolve_vehicle_refs(request, req, settings)
-    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
-        raise request_error(
-            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; a route takes at most {MAX_VEHICLES}"
-        )
-    return req
+    :data:`MAX_VEHICLES`): the alignment's resolution, worded for a route."""
+    return await resolve_alignment_refs(request, req, settings, what="a route")
 
 
 def route_refs(req: RouteRequest) -> list[Any]:

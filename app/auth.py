@@ -73,7 +73,7 @@ def authenticate(credentials: HTTPAuthorizationCredentials | None, settings: Set
     return presented.decode()
 
 
-def require_owner(credentials: BearerDep, settings: SettingsDep) -> str:
+async def require_owner(credentials: BearerDep, settings: SettingsDep) -> str:
     """Dependency: the caller's owner id (403 problem when the catalog is disabled, 401 without a valid key)."""
     return authenticate(credentials, settings)
 

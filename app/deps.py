@@ -14,12 +14,12 @@ from .cache import ResultCache
 from .settings import Settings
 
 
-def get_app_settings(request: Request) -> Settings:
+async def get_app_settings(request: Request) -> Settings:
     """The settings of the app serving this request."""
     return request.app.state.settings
 
 
-def get_cache(request: Request) -> ResultCache:
+async def get_cache(request: Request) -> ResultCache:
     """The app's result cache (opened in the lifespan)."""
     return request.app.state.cache
 

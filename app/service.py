@@ -14,6 +14,7 @@ from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION, standards
@@ -94,6 +95,20 @@ def target_checks(srt_g: float, targets: dict[str, float]) -> list[dict[str, Any
     the targets themselves, so equal targets given in any order give the same body and the same cache key."""
     checks = sorted(check_targets(srt_g, targets), key=lambda c: (c.target_g, c.name))
     return [{"name": c.name, "target_g": c.target_g, "meets": c.meets, "margin_g": c.margin_g} for c in checks]
+
+
+def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list[dict[str, Any]]]:
+    """:func:`target_checks` of every SRT of ``srts`` at once (an alignment's distinct SRTs): the same dicts, the
+    same order; the targets are checked once, the comparisons and margins done on arrays."""
+    ordered = sorted(check_targets(0.0, targets), key=lambda c: (c.target_g, c.name))
+    per_target = [
+        [
+            {"name": c.name, "target_g": c.target_g, "meets": meets, "margin_g": margin}
+            for meets, margin in zip((srts >= c.target_g).tolist(), (srts - c.target_g).tolist(), strict=True)
+        ]
+        for c in ordered
+    ]
+    return [list(checks) for checks in zip(*per_target, strict=True)] if per_target else [[] for _ in srts]
 
 
 def srt_key(

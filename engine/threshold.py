@@ -204,8 +204,19 @@ def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarra
     return bad
 
 
+#: rows of one batch solve: larger batches are split into blocks of this many rows, in the rows' order (so the same
+#: request always gives the same bits). A row's answer does not depend on the rows solved with it beyond the
+#: fixed-point tolerance (tests/engine/test_sweep.py), and blocks whose arrays stay in the CPU's cache are faster than
+#: one pass over 100,000 rows (bench/bench_engine.py: 1.6-1.7 s against 2.1 s here) and bound the temporary arrays
+BATCH_ROWS = 16_384
+
+
 def evaluate_arrays(
-    case: Case, arrays: Mapping[str, Sequence[float]], *, chassis_closure: str = "chassis-constant"
+    case: Case,
+    arrays: Mapping[str, Sequence[float]],
+    *,
+    chassis_closure: str = "chassis-constant",
+    batch_rows: int = BATCH_ROWS,
 ) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
     """SRT [g] and roll [deg] of many cases of one vehicle, model and stage: ``case`` with each input of ``arrays``
     (keys of :data:`SWEEP_AXES`, equal-length arrays) varied row by row.
@@ -242,7 +253,11 @@ def evaluate_arrays(
             srt[i] = res.srt
             roll[i] = np.nan if res.roll_angle_deg is None else res.roll_angle_deg
         return srt, roll, errors
-    ay, rl = model.batch(case, {k: v[ok] for k, v in col.items()}, chassis_closure)
+    ay, rl = np.empty(ok.size), np.empty(ok.size)
+    for start in range(0, ok.size, batch_rows):
+        block = ok[start : start + batch_rows]
+        stop = start + block.size
+        ay[start:stop], rl[start:stop] = model.batch(case, {k: v[block] for k, v in col.items()}, chassis_closure)
     good = np.isfinite(ay) & (ay > 0)
     srt[ok[good]], roll[ok[good]] = ay[good], rl[good]
     for k in np.flatnonzero(~good):

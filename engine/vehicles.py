@@ -38,7 +38,7 @@ Moreno, G. G. (thesis), Tables 14-16, 22, 23; Eqs. 2.11, 4.1, 4.7, 4.14.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import dataclass, fields, replace
 from typing import Any
 
 from .errors import InvalidVehicle, MissingParameter, UnknownPreset
@@ -328,7 +328,9 @@ class Vehicle:
     chassis_torsional_stiffness_knm2_per_rad: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        # every field is a number, a string or None: no deep copy needed (dataclasses.asdict deep-copies each
+        # value, and this is called once or twice per request on the service's uncached path)
+        return {name: getattr(self, name) for name in _VEHICLE_FIELDS}
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Vehicle:
@@ -345,6 +347,8 @@ class Vehicle:
     def has_fifth_wheel(self) -> bool:
         return self.fifth_wheel_stiffness_kn_per_m is not None
 
+
+_VEHICLE_FIELDS = tuple(f.name for f in fields(Vehicle))
 
 #: the fifth wheel's geometry, needed by a model with a front mechanism group when kf is given
 FIFTH_WHEEL_FIELDS = ("fifth_wheel_height_m", "fifth_wheel_width_m")

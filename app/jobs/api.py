@@ -171,7 +171,7 @@ def status_body(view: JobView) -> dict[str, Any]:
 # ------------------------------------------------------------------------------------- dependencies
 
 
-def job_owner(request: Request, settings: SettingsDep) -> str | None:
+async def job_owner(request: Request, settings: SettingsDep) -> str | None:
     """The caller's owner id; None when no key is configured (then no key is needed). With keys, a valid one is
     required (401 problem otherwise). The header is read here, not through the bearer scheme's dependency, so the
     spec can say the key is optional (``security: [{}, {bearerAuth: []}]``)."""
@@ -187,7 +187,7 @@ def job_owner(request: Request, settings: SettingsDep) -> str | None:
 OwnerDep = Annotated[str | None, Depends(job_owner)]
 
 
-def get_jobs(request: Request) -> Backend:
+async def get_jobs(request: Request) -> Backend:
     return request.app.state.jobs
 
 

@@ -138,7 +138,9 @@ IfMatchOptional = Annotated[
 PageDep = Annotated[PageQuery, Query()]
 
 
-def writable_vehicle_owner(id: VehicleIdPath, credentials: BearerDep, settings: SettingsDep, request: Request) -> str:
+async def writable_vehicle_owner(
+    id: VehicleIdPath, credentials: BearerDep, settings: SettingsDep, request: Request
+) -> str:
     """PUT/DELETE /v1/vehicles/{id}: a path of its own (`/v1/vehicles/saved`, `/v1/vehicles/build`...) answers
     405 with its `Allow`; a preset is read-only (405, whoever asks); then the key (403/401); then an id that
     cannot be a saved vehicle's is 404."""

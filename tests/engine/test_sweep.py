@@ -7,7 +7,7 @@ import pytest
 
 from engine.case import Case
 from engine.loads import LoadCase, Road
-from engine.threshold import rollover_threshold, sweep
+from engine.threshold import evaluate_arrays, rollover_threshold, sweep
 from engine.vehicles import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -22,6 +22,30 @@ def test_3d_sweep_equals_single_solves_in_cartesian_order():
             Case(BTRAIN, road=Road(bank_percent=bank, slope_percent=slope), trailer_angle_deg=psi, rear_llt_limit=0.6)
         )
         assert srt == pytest.approx(one.srt, rel=1e-9)
+
+
+@pytest.mark.parametrize("model", ["3d", "2d"])
+def test_a_rows_answer_does_not_depend_on_the_rows_solved_with_it(model):
+    """evaluate_arrays solves large batches in blocks: any block size gives the same answers (to the fixed-point
+    tolerance: a converged row may take a few more iterations in a block whose other rows converge later), the same
+    refusals, and the same bits for the same request (the blocks are fixed by the rows' order)."""
+    rng = np.random.default_rng(3)
+    arrays = {
+        "bank_percent": rng.uniform(-10, 14, 60),
+        "lateral_offset_m": np.r_[rng.uniform(-0.2, 0.2, 59), 1.0],  # the last row is refused (outside the track)
+    }
+    if model == "3d":
+        arrays["slope_percent"] = rng.uniform(-9, 9, 60)
+    case = Case(BTRAIN, model=model)
+    whole = evaluate_arrays(case, arrays, batch_rows=1000)
+    assert set(whole[2]) == {59} and np.isfinite(whole[0][:59]).all()
+    for rows in (1, 7, 16):
+        srt, roll, errors = evaluate_arrays(case, arrays, batch_rows=rows)
+        assert errors == whole[2]
+        np.testing.assert_allclose(srt, whole[0], rtol=0, atol=1e-11)
+        np.testing.assert_allclose(roll, whole[1], rtol=0, atol=1e-9)
+        again = evaluate_arrays(case, arrays, batch_rows=rows)
+        assert again[0].tobytes() == srt.tobytes()
 
 
 def test_load_grid_like_table19_and_the_2d_and_closed_form_models():

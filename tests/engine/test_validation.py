@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from engine.case import Case
@@ -96,6 +98,16 @@ def test_unknown_preset_and_unknown_fields():
     assert "table16-btrain" in str(exc.value)
     with pytest.raises(InvalidVehicle, match="wings"):
         Vehicle.from_dict({**BTRAIN.to_dict(), "wings": 2})
+
+
+@pytest.mark.parametrize("preset_id", sorted(PRESETS))
+def test_a_vehicle_record_round_trips_through_its_dict(preset_id):
+    """to_dict skips dataclasses.asdict's deep copy: safe only while every field is a number, a string or None."""
+    vehicle = PRESETS[preset_id]
+    data = vehicle.to_dict()
+    assert data == dataclasses.asdict(vehicle) and list(data) == [f.name for f in dataclasses.fields(Vehicle)]
+    assert all(v is None or isinstance(v, int | float | str) for v in data.values())
+    assert Vehicle.from_dict(data) == vehicle
 
 
 def test_sweep_reports_refused_cases_per_row_and_keeps_the_others():

@@ -47,7 +47,7 @@ from .problems import InvalidAlignment, request_error
 from .schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from .service import Computed, SavedRef, resolve_targets, resolve_vehicle, target_checks_many
 from .settings import Settings
-from .tables import Text, csv_line, csv_lines, flatten_targets, target_columns
+from .tables import Text, csv_line, csv_lines_of_columns, target_columns
 from .vehicle_refs import resolve_vehicle_refs
 
 #: answers with more rows than this are streamed (and cached by reference), never built whole
@@ -350,8 +350,15 @@ def _opt(values: np.ndarray) -> list[float | None]:
 
 def _rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> list[dict[str, Any]]:
     """Rows [start, stop) of one vehicle, as CurveRow dicts in the schema's field order."""
+    columns = _row_columns(answer, v, start, stop)
+    names = list(columns)
+    return [dict(zip(names, values, strict=True)) for values in zip(*columns.values(), strict=True)]
+
+
+def _row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, list[Any]]:
+    """Rows [start, stop) of one vehicle, column by column (CurveRow's fields in the schema's order)."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
-    columns = {
+    return {
         "id": t.ids[sl],
         "station_m": _opt(t.station_m[sl]),
         "radius_m": c.radius_m[sl].tolist(),
@@ -374,8 +381,6 @@ def _rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> l
         "meets_standard_min_radius": [None if m < 0 else bool(m) for m in c.meets_standard_min_radius[sl].tolist()],
         "error": [None if k < 0 else c.errors[k] for k in c.error[sl].tolist()],
     }
-    names = list(columns)
-    return [dict(zip(names, values, strict=True)) for values in zip(*columns.values(), strict=True)]
 
 
 def _summary(c: AlignmentColumns) -> dict[str, Any]:
@@ -472,15 +477,17 @@ def csv_header(resolved: dict[str, Any]) -> bytes:
 
 def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str]) -> bytes:
     """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`)."""
-    preset = None if v.preset is None else Text(v.preset)
-    saved = None if v.saved_id is None else Text(v.saved_id)
-    return csv_lines(
-        columns,
-        (
-            {"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **flatten_targets(row)}
-            for row in _rows(answer, v, start, stop)
-        ),
-    )
+    rows = _row_columns(answer, v, start, stop)
+    n = stop - start
+    rows["vehicle_index"] = [v.index] * n
+    rows["vehicle_preset"] = [None if v.preset is None else Text(v.preset)] * n
+    rows["vehicle_saved_id"] = [None if v.saved_id is None else Text(v.saved_id)] * n
+    targets = rows.pop("targets")  # a list of checks per row (empty without an SRT) -> two columns per target
+    for name in {check["name"] for checks in targets for check in checks}:
+        by_name = [next((c for c in checks if c["name"] == name), None) for checks in targets]
+        rows[f"meets_{name}"] = [None if c is None else c["meets"] for c in by_name]
+        rows[f"margin_{name}_g"] = [None if c is None else c["margin_g"] for c in by_name]
+    return csv_lines_of_columns([rows.get(name, [None] * n) for name in columns])
 
 
 def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:

@@ -23,7 +23,9 @@ from cachetools import LRUCache
 
 from . import cache as cache_module
 from .metrics import CACHE_LOOKUPS, FAST_PATH_HITS
-from .tables import wants_csv, wants_geojson
+from .tables import WITH_GEOJSON, negotiate
+
+_FORM_KEYS = {"json": b"", "csv": b"csv", "geojson": b"geojson"}
 
 #: raw request -> canonical key remembered per process (a few hundred bytes each)
 RAW_INDEX_ENTRIES = 65_536
@@ -72,7 +74,7 @@ class FastPathMiddleware:
         if body is None:  # the client went away
             return
         accept = (_header(scope, b"accept") or b"").decode("latin-1")
-        form = b"geojson" if wants_geojson(accept) else b"csv" if wants_csv(accept) else b""  # every negotiated form
+        form = _FORM_KEYS[negotiate(accept, WITH_GEOJSON)]  # every negotiated form has its own key
         parts = (
             cache_module.ENGINE_VERSION.encode(),  # part of every key (read here so a test's change is seen)
             scope["path"].encode(),

@@ -13,6 +13,7 @@ every text cell is quoted, quotes inside doubled (RFC 4180). Numbers are never p
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
 
@@ -145,19 +146,32 @@ GEOJSON_MEDIA_TYPE = "application/geo+json"
 
 def wants_geojson(accept: str | None) -> bool:
     """Whether ``Accept`` prefers ``application/geo+json`` (RFC 7946) to JSON and CSV (JSON on a tie)."""
-    if not accept:
-        return False
-    ranges = _parse_accept(accept)
-    q_geo, s_geo = _quality(ranges, GEOJSON_MEDIA_TYPE)
-    others = [_quality(ranges, m) for m in (JSON_MEDIA_TYPE, CSV_MEDIA_TYPE)]
-    return q_geo > 0 and all(q_geo > q or (q_geo == q and s_geo > s) for q, s in others)
+    return negotiate(accept, WITH_GEOJSON) == "geojson"
 
 
 def wants_csv(accept: str | None) -> bool:
     """Whether ``Accept`` prefers ``text/csv`` to ``application/json`` (JSON on a tie or without the header)."""
+    return negotiate(accept) == "csv"
+
+
+#: the forms of an answer: a table's (JSON, CSV) and a route's (JSON, CSV, GeoJSON)
+TABLE_FORMS = ("json", "csv")
+WITH_GEOJSON = ("json", "csv", "geojson")
+
+
+@functools.lru_cache(maxsize=256)  # clients send the same few Accept headers: each is read once per process
+def negotiate(accept: str | None, offers: tuple[str, ...] = TABLE_FORMS) -> str:
+    """The form ``Accept`` prefers among ``offers``: GeoJSON when offered and preferred to both JSON and CSV, else CSV
+    when preferred to JSON, else JSON (on a tie, without the header, or when nothing offered is acceptable)."""
     if not accept:
-        return False
+        return "json"
     ranges = _parse_accept(accept)
-    q_csv, s_csv = _quality(ranges, CSV_MEDIA_TYPE)
     q_json, s_json = _quality(ranges, JSON_MEDIA_TYPE)
-    return q_csv > 0 and (q_csv > q_json or (q_csv == q_json and s_csv > s_json))
+    q_csv, s_csv = _quality(ranges, CSV_MEDIA_TYPE)
+    if "geojson" in offers:
+        q_geo, s_geo = _quality(ranges, GEOJSON_MEDIA_TYPE)
+        if q_geo > 0 and all(q_geo > q or (q_geo == q and s_geo > s) for q, s in ((q_json, s_json), (q_csv, s_csv))):
+            return "geojson"
+    if q_csv > 0 and (q_csv > q_json or (q_csv == q_json and s_csv > s_json)):
+        return "csv"
+    return "json"

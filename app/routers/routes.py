@@ -13,7 +13,7 @@ from ..deps import CacheDep, SettingsDep
 from ..problems import VEHICLE_REF_CODES
 from ..schemas.routes import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
 from ..service_routes import assess_route
-from ..tables import GEOJSON_MEDIA_TYPE, wants_csv, wants_geojson
+from ..tables import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 from .common import ANSWER_MODELS, computed_response, json_body, table_responses
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
@@ -66,5 +66,5 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     per vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex."""
     req = await run_in_threadpool(parse_route_request, await request.body())
     accept = request.headers.get("accept")
-    form = "geojson" if wants_geojson(accept) else "csv" if wants_csv(accept) else "json"
+    form = negotiate(accept, WITH_GEOJSON)
     return computed_response(await assess_route(cache, request, req, settings, form=form), vary_accept=True)

@@ -12,7 +12,6 @@ from typing import Any
 from fastapi import FastAPI
 from fastapi.routing import APIRoute
 from fastapi_offline import FastAPIOffline
-from prometheus_fastapi_instrumentator import Instrumentator
 from pydantic.json_schema import models_json_schema
 from starlette.concurrency import run_in_threadpool
 
@@ -22,6 +21,7 @@ from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_l
 from .cache import make_cache
 from .catalog import close_catalog, install_catalog_handlers, open_catalog
 from .fastpath import FastPathMiddleware
+from .httpmetrics import HttpMetricsMiddleware
 from .jobs import api as jobs_api
 from .logs import configure_logging, get_logger
 from .metrics import JOBS_ACTIVE
@@ -218,7 +218,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         app.include_router(module.router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
-        Instrumentator(excluded_handlers=["/metrics"]).instrument(app)
+        app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
     app.add_middleware(FastPathMiddleware, paths=lambda: computed_paths(app.openapi()), cache=lambda: app.state.cache)
     app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)

@@ -1,4 +1,4 @@
-"""Prometheus metrics of the service (besides the HTTP metrics of prometheus-fastapi-instrumentator).
+"""Prometheus metrics of the service: per request (:mod:`app.httpmetrics`), engine, cache and jobs.
 
 Defined once at import on the default registry, so several app instances in one process (tests) share them.
 """
@@ -7,6 +7,17 @@ from __future__ import annotations
 
 from prometheus_client import Counter, Gauge, Histogram
 
+HTTP_REQUESTS = Counter(
+    "http_requests_total",
+    "Requests by route (path template; none when no route matched), method and status class (2xx...).",
+    ["handler", "method", "status"],
+)
+HTTP_REQUEST_SECONDS = Histogram(
+    "http_request_duration_seconds",
+    "Wall time of a request in the app, by route and method [s] (the raw-body fast path's hits are not here).",
+    ["handler", "method"],
+    buckets=(0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0, 30.0),
+)
 SOLVE_SECONDS = Histogram(
     "rollover_solve_seconds",
     "Wall time of one engine computation (cache misses only) [s].",

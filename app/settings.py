@@ -58,7 +58,7 @@ class Settings(BaseSettings):
     log_level: Literal["DEBUG", "INFO", "WARNING", "ERROR"] = Field("INFO", description="Lowest level logged.")
     metrics: bool = Field(
         True,
-        description="Per-request HTTP metrics (prometheus-fastapi-instrumentator: http_requests_total, ...); false "
+        description="Per-request HTTP metrics (http_requests_total, http_request_duration_seconds); false "
         "leaves them out (GET /metrics still serves the service's own solve-time and cache counters).",
     )
     srt_target_general_g: float = Field(

@@ -14,7 +14,8 @@ Starts its own uvicorn processes on free ports (waits for /healthz, stops them a
   ``engine.assessment.assess_alignment`` alone in a fresh process;
 * the largest sweep (20,000 cases, ``POST /v1/srt/sweep``; streamed): wall time and peak RSS, against
   ``engine.threshold.sweep`` alone in a fresh process;
-* the instrumentator's share: cached-hit and ``/healthz`` throughput with ``ROLLOVER_METRICS=true`` and ``false``.
+* the per-request HTTP metrics' share (app.httpmetrics): cached-hit and ``/healthz`` throughput with
+  ``ROLLOVER_METRICS=true`` and ``false``.
 
 The machine is shared by wrk and the server (2 cores here): the ceilings are measured the same way, so the ratios
 compare like with like. The "issue 8 (before, reported)" column repeats the figures the issue gave before this work.
@@ -564,7 +565,7 @@ def measure_instrumentator(args) -> None:
             f"{what}, 1 worker, httptools/uvloop, wrk -t2 -c32, ROLLOVER_METRICS=true",
             fmt(with_metrics),
             f"ROLLOVER_METRICS=false: {fmt(without)}",
-            f"instrumentator's share: {1 - with_metrics.rps / without.rps:.0%} of the throughput",
+            f"HTTP metrics' share: {1 - with_metrics.rps / without.rps:.0%} of the throughput",
         )
 
 

@@ -41,7 +41,7 @@ async def healthz(cache: CacheDep) -> Health:
     },
 )
 def metrics() -> Response:
-    """Prometheus metrics: HTTP requests (prometheus-fastapi-instrumentator), engine solve time, cache lookups."""
+    """Prometheus metrics: HTTP requests (app.httpmetrics), engine solve time, cache lookups, jobs."""
     registry = REGISTRY
     if "PROMETHEUS_MULTIPROC_DIR" in os.environ:  # several uvicorn workers: aggregate their files
         from prometheus_client import multiprocess

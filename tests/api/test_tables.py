@@ -26,7 +26,7 @@ def test_a_small_table_is_written_as_spreadsheets_read_it():
     assert text.splitlines()[1] == ',false,-3,"\'=HYPERLINK(""x"",""y"")","table16-btrain",2.5,'
     assert text.endswith("\r\n") and text.count("\r\n") == 6
     rows = list(csv.reader(io.StringIO(text)))
-    assert [r[3] for r in rows] == ["C1", "'=HYPERLINK(\"x\",\"y\")", "'-2+3", "", 'say "hi"', "'@SUM(A1)"]
+    assert [r[3] for r in rows] == ["C1", '\'=HYPERLINK("x","y")', "'-2+3", "", 'say "hi"', "'@SUM(A1)"]
     assert [r[0] for r in rows] == ["1.5", "", "-4.0", "nan", "1e-05", "1e+16"]
 
 

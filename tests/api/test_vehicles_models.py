@@ -101,13 +101,11 @@ def test_metrics_count_solves_and_cache_lookups(client):
     assert 'rollover_solve_seconds_count{model="gillespie",operation="srt"}' in text
     assert 'rollover_cache_lookups_total{operation="srt",result="local"}' in text
     assert 'rollover_cache_lookups_total{operation="srt",result="miss"}' in text
-    assert "http_requests_total" in text  # prometheus-fastapi-instrumentator
+    assert 'http_requests_total{handler="/v1/srt",method="POST",status="2xx"}' in text  # app.httpmetrics
 
 
 @pytest.mark.parametrize("enabled", [True, False])
 def test_the_metrics_setting_installs_the_http_instrumentation_or_not(enabled):
-    # (the instrumentator's counters are process-wide and only the first instrumented app of a process records them,
-    # so the test looks for its middleware on the app rather than at the counters)
     from app.main import create_app
     from app.settings import Settings
 
@@ -115,9 +113,41 @@ def test_the_metrics_setting_installs_the_http_instrumentation_or_not(enabled):
 
     app = create_app(Settings(cache_backend="memory", metrics=enabled))
     names = [m.cls.__name__ for m in app.user_middleware]
-    assert ("PrometheusInstrumentatorMiddleware" in names) is enabled
+    assert ("HttpMetricsMiddleware" in names) is enabled
     assert "FastPathMiddleware" in names and "BodyLimitMiddleware" in names
     with make_client(Settings(cache_backend="memory", metrics=enabled)) as c:
+        before = _sample(c.get("/metrics").text, HEALTHZ_OK)  # process-wide counters: compare before and after
+        assert c.get("/healthz").status_code == 200
         # the service's own counters are served either way
         assert c.post("/v1/srt", json={"vehicle": "table16-btrain", "model": "rigid"}).status_code == 200
-        assert "rollover_cache_lookups_total" in c.get("/metrics").text
+        text = c.get("/metrics").text
+        assert "rollover_cache_lookups_total" in text
+        assert _sample(text, HEALTHZ_OK) == before + (1 if enabled else 0)
+
+
+HEALTHZ_OK = 'http_requests_total{handler="/healthz",method="GET",status="2xx"}'
+
+
+def _sample(text: str, series: str) -> float:
+    values = [float(line.rsplit(" ", 1)[1]) for line in text.splitlines() if line.startswith(series + " ")]
+    return values[0] if values else 0.0
+
+
+def test_http_metrics_name_the_route_template_not_the_path(client):
+    """handler is the route's template (one series for every vehicle id), a path no route matches is "none" (a scan
+    cannot create a series per path), /metrics is not counted, the status is grouped by class."""
+    series = {
+        "vehicle": 'http_requests_total{handler="/v1/vehicles/{id}",method="GET",status="2xx"}',
+        "missing": 'http_requests_total{handler="/v1/vehicles/{id}",method="GET",status="4xx"}',
+        "none": 'http_requests_total{handler="none",method="GET",status="4xx"}',
+        "latency": 'http_request_duration_seconds_count{handler="/v1/vehicles/{id}",method="GET"}',
+    }
+    before = {k: _sample(client.get("/metrics").text, s) for k, s in series.items()}
+    assert client.get("/v1/vehicles/table16-btrain").status_code == 200
+    assert client.get("/v1/vehicles/table14-semitrailer").status_code == 200
+    assert client.get("/v1/vehicles/no-such-vehicle").status_code == 404
+    assert client.get("/wp-admin/setup.php").status_code == 404
+    text = client.get("/metrics").text
+    after = {k: _sample(text, s) for k, s in series.items()}
+    assert {k: after[k] - before[k] for k in series} == {"vehicle": 2, "missing": 1, "none": 1, "latency": 3}
+    assert 'handler="/metrics"' not in text and "/v1/vehicles/table16-btrain" not in text

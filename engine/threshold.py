@@ -207,7 +207,7 @@ def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarra
 #: rows of one batch solve: larger batches are split into blocks of this many rows, in the rows' order (so the same
 #: request always gives the same bits). A row's answer does not depend on the rows solved with it beyond the
 #: fixed-point tolerance (tests/engine/test_sweep.py), and blocks whose arrays stay in the CPU's cache are faster than
-#: one pass over 100,000 rows (bench/bench_engine.py: 1.6-1.7 s against 2.1 s here) and bound the temporary arrays
+#: one pass over 100,000 rows (bench/bench_engine.py: 1.6-2.05 s against 2.1-2.2 s here) and bound the temporaries
 BATCH_ROWS = 16_384
 
 

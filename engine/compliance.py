@@ -80,12 +80,13 @@ def chassis_torque_split(rear_torque_knm, a_m, wheelbase_m, x):
     return rear_torque_knm * (wheelbase_m - a_m) / (a_m * x)
 
 
-def chassis_torque_components(front_torque_knm, trailer_angle_rad, xp=math):
+def chassis_torque_components(front_torque_knm, cos_psi, sin_psi):
     """Components of the front torque at a trailer/trailer angle psi: (Tf cos psi, Tf sin psi) (Eqs. 4.22-4.23).
 
-    ``xp`` supplies ``cos``/``sin``: :mod:`math` for floats, :mod:`numpy` for arrays.
+    Given psi's cosine and sine (floats or arrays): a solve evaluates this 70-odd times at one psi, so its caller
+    computes them once (:func:`engine.trailer3d._psi_angles`).
     """
-    return front_torque_knm * xp.cos(trailer_angle_rad), front_torque_knm * xp.sin(trailer_angle_rad)
+    return front_torque_knm * cos_psi, front_torque_knm * sin_psi
 
 
 def chassis_twist(rear_torque_knm, segment_length_m, torsional_rigidity_knm2):

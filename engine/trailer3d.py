@@ -71,7 +71,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .compliance import chassis_torque_split, chassis_twist, shear_torsion_coefficient
+from .compliance import chassis_torque_components, chassis_torque_split, chassis_twist, shear_torsion_coefficient
 from .errors import ConvergenceError, InvalidInput
 from .groups import (
     SCALAR,
@@ -320,7 +320,7 @@ def chassis_loads(m: TrailerModel, case: SolverCase, geo: Geometry, ay, t28, xp=
     f28y = (ry * f28x - mcz) / rx
     fy27 = -fy - f28y
     cp, sp = _psi_angles(case, xp)
-    tf_x, tf_y = t28 * cp, t28 * sp  # Eqs. 4.22-4.23 (compliance.chassis_torque_components, psi's cos/sin kept)
+    tf_x, tf_y = chassis_torque_components(t28, cp, sp)  # Eqs. 4.22-4.23
     tx27 = -(ry * f28z - rz * f28y + mcx) - tf_x
     my27 = -(rz * f28x - rx * f28z + mcy) - tf_y
     # loads on the groups: minus what they apply to the chassis; the front one in the front frame

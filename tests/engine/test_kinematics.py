@@ -86,10 +86,14 @@ def test_chassis_torsion_relations():
     assert compliance.chassis_torque_split(tr, a, big_l, 1.0) == pytest.approx(torque * (big_l - a) / big_l)
     # a rear section twice as stiff (x = 2) takes twice the share it would
     assert compliance.chassis_torque_split(tr, a, big_l, 2.0) == pytest.approx(torque * (big_l - a) / big_l / 2)
+
     # Eqs. 4.22-4.23: straight, the front torque is all roll; at right angles all pitch; at 30 deg, tan 30 of it
-    assert compliance.chassis_torque_components(10.0, 0.0) == pytest.approx((10.0, 0.0))
-    assert compliance.chassis_torque_components(10.0, math.pi / 2) == pytest.approx((0.0, 10.0), abs=1e-12)
-    tfx, tfy = compliance.chassis_torque_components(10.0, math.radians(30))
+    def components(torque, psi):
+        return compliance.chassis_torque_components(torque, math.cos(psi), math.sin(psi))
+
+    assert components(10.0, 0.0) == pytest.approx((10.0, 0.0))
+    assert components(10.0, math.pi / 2) == pytest.approx((0.0, 10.0), abs=1e-12)
+    tfx, tfy = components(10.0, math.radians(30))
     assert tfy / tfx == pytest.approx(0.5773502692)
     assert compliance.chassis_twist(-100.0, 1.26, None) == 0.0
     assert compliance.chassis_twist(-100.0, 1.26, 50000.0) == pytest.approx(100 * 1.26 / 50000)

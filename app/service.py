@@ -94,14 +94,18 @@ def resolve_targets(targets: dict[str, float] | None, settings: Settings) -> dic
 def target_checks(srt_g: float, targets: dict[str, float]) -> list[dict[str, Any]]:
     """``TargetCheckOut`` dicts for an SRT, in order of increasing target (then name): the order is fixed by
     the targets themselves, so equal targets given in any order give the same body and the same cache key."""
-    checks = sorted(check_targets(srt_g, targets), key=lambda c: (c.target_g, c.name))
+    checks = _in_target_order(check_targets(srt_g, targets))
     return [{"name": c.name, "target_g": c.target_g, "meets": c.meets, "margin_g": c.margin_g} for c in checks]
+
+
+def _in_target_order(checks: list[Any]) -> list[Any]:
+    return sorted(checks, key=lambda c: (c.target_g, c.name))
 
 
 def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list[dict[str, Any]]]:
     """:func:`target_checks` of every SRT of ``srts`` at once (an alignment's distinct SRTs): the same dicts, the
     same order; the targets are checked once, the comparisons and margins done on arrays."""
-    ordered = sorted(check_targets(0.0, targets), key=lambda c: (c.target_g, c.name))
+    ordered = _in_target_order(check_targets(0.0, targets))  # the targets checked, in order (the SRT is unused)
     per_target = [
         [
             {"name": c.name, "target_g": c.target_g, "meets": meets, "margin_g": margin}

@@ -47,7 +47,7 @@ from .problems import InvalidAlignment, request_error
 from .schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from .service import Computed, SavedRef, resolve_targets, resolve_vehicle, target_checks_many
 from .settings import Settings
-from .tables import Text, csv_line, csv_lines_of_columns, target_columns
+from .tables import Text, csv_line, csv_lines_of_columns, target_columns, target_columns_of
 from .vehicle_refs import resolve_vehicle_refs
 
 #: answers with more rows than this are streamed (and cached by reference), never built whole
@@ -482,11 +482,7 @@ def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, c
     rows["vehicle_index"] = [v.index] * n
     rows["vehicle_preset"] = [None if v.preset is None else Text(v.preset)] * n
     rows["vehicle_saved_id"] = [None if v.saved_id is None else Text(v.saved_id)] * n
-    targets = rows.pop("targets")  # a list of checks per row (empty without an SRT) -> two columns per target
-    for name in {check["name"] for checks in targets for check in checks}:
-        by_name = [next((c for c in checks if c["name"] == name), None) for checks in targets]
-        rows[f"meets_{name}"] = [None if c is None else c["meets"] for c in by_name]
-        rows[f"margin_{name}_g"] = [None if c is None else c["margin_g"] for c in by_name]
+    rows.update(target_columns_of(rows.pop("targets")))
     return csv_lines_of_columns([rows.get(name, [None] * n) for name in columns])
 
 

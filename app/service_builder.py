@@ -7,6 +7,7 @@ spec), re-pointing the engine's ``spec.<field>`` errors at where the spec sits i
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import orjson
@@ -66,6 +67,7 @@ async def compute_build(cache: ResultCache, req: BuildRequest) -> Computed:
     return await cached(cache, "vehicle-build", resolved, produce)
 
 
+@functools.cache  # the library is fixed at import: built once, not per request
 def component_library() -> ComponentLibrary:
     """Every library tyre and suspension with its values' sources, and what could not be sourced."""
     tyres = [

@@ -60,6 +60,18 @@ def flatten_targets(row: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def target_columns_of(checks_per_row: Sequence[Sequence[dict[str, Any]]]) -> dict[str, list[Any]]:
+    """:func:`flatten_targets` for a table given column by column: the rows' ``targets`` lists (one per row, empty
+    without an SRT) -> a ``meets_<name>`` and a ``margin_<name>_g`` column per target, None where a row has none."""
+    out: dict[str, list[Any]] = {}
+    names = {check["name"] for checks in checks_per_row for check in checks}
+    for name in names:
+        by_name = [next((c for c in checks if c["name"] == name), None) for checks in checks_per_row]
+        out[f"meets_{name}"] = [None if c is None else c["meets"] for c in by_name]
+        out[f"margin_{name}_g"] = [None if c is None else c["margin_g"] for c in by_name]
+    return out
+
+
 def to_csv(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
     """CSV text (UTF-8) with a header row; a column a row does not have is left empty."""
     return b"".join(to_csv_chunks(columns, [rows]))
@@ -142,11 +154,6 @@ def _quality(ranges: list[tuple[str, float]], media: str) -> tuple[float, int]:
 
 
 GEOJSON_MEDIA_TYPE = "application/geo+json"
-
-
-def wants_geojson(accept: str | None) -> bool:
-    """Whether ``Accept`` prefers ``application/geo+json`` (RFC 7946) to JSON and CSV (JSON on a tie)."""
-    return negotiate(accept, WITH_GEOJSON) == "geojson"
 
 
 def wants_csv(accept: str | None) -> bool:

@@ -45,6 +45,12 @@ from .errors import ConvergenceError
 
 HALF_PI = 0.5 * math.pi
 
+#: the fixed-point iteration stops when no state variable (lengths [m], angles [rad]) moves more than this in a step.
+#: The iteration contracts 20-50 times a step near the answer, so the state is then within about this of its fixed
+#: point and the SRT within about 1e-10 g of the exact one (tested against a 1e-14 solve): six orders below the
+#: thesis' four digits. A tighter value costs a step a decade (1e-13 took 9 steps a solve, this 7).
+FIXED_POINT_TOL = 1e-10
+
 
 class _ScalarMath:
     """The subset of numpy's ufunc names used here, bound to the ``math`` module (fast on floats)."""
@@ -372,7 +378,8 @@ def fixed_point_batch(step, x0, *, tol: float, max_iter: int):
             g = np.where(failed, x, g)  # a failed problem stays where it was
             f = g - x
             err = np.max(np.abs(f), axis=0) if f.size else np.zeros(failed.shape)
-            if not np.any(err >= tol):
+            converged = ~(err >= tol)
+            if np.all(converged):
                 return x, it, payload, failed
             if f_prev is None:
                 x_new = g
@@ -381,6 +388,8 @@ def fixed_point_batch(step, x0, *, tol: float, max_iter: int):
                 den = np.sum(df * df, axis=0)
                 gamma = np.where(den > 0, np.sum(f * df, axis=0) / np.where(den > 0, den, 1.0), 0.0)
                 x_new = g - gamma * (g - g_prev)
-            g_prev, f_prev, x = g, f, x_new
+            # a converged problem stays at the x it converged at (as it would alone): its answer does not depend on
+            # the other problems of the batch; its payload is recomputed at that same x
+            g_prev, f_prev, x = g, f, np.where(converged, x, x_new)
     failed |= err >= tol
     return x, max_iter, payload, failed

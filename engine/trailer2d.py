@@ -22,6 +22,7 @@ import numpy as np
 from .davies import PLANAR_YZ, solve_statics
 from .errors import ConvergenceError
 from .groups import (
+    FIXED_POINT_TOL,
     SCALAR,
     GroupGeometry,
     GroupParams,
@@ -119,7 +120,7 @@ def solve(
     *,
     start=None,
     xp=SCALAR,
-    tol: float = 1e-13,
+    tol: float = FIXED_POINT_TOL,
     max_iter: int = 200,
     forces=None,
 ) -> Solution2D:

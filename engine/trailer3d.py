@@ -74,6 +74,7 @@ import numpy as np
 from .compliance import chassis_torque_components, chassis_torque_split, chassis_twist, shear_torsion_coefficient
 from .errors import ConvergenceError, InvalidInput
 from .groups import (
+    FIXED_POINT_TOL,
     SCALAR,
     FifthWheelParams,
     GroupGeometry,
@@ -419,7 +420,7 @@ def solve(
     *,
     start: State | None = None,
     xp=SCALAR,
-    tol: float = 1e-13,
+    tol: float = FIXED_POINT_TOL,
     max_iter: int = 200,
     forces=None,
 ) -> Solution:

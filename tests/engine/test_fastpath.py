@@ -225,7 +225,6 @@ def test_eq_6_39_from_the_davies_coefficients_gives_the_same_srt(bank, slope, ps
     assert c52 > 0 and c53 > 0
 
 
-
 @pytest.mark.parametrize("row", CASES_3D)
 def test_the_fixed_point_tolerance_leaves_the_srt_exact_to_1e_9_g(row):
     """FIXED_POINT_TOL (1e-10 on the state) is a speed/accuracy choice: the limit it returns agrees with a solve

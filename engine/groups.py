@@ -29,6 +29,7 @@ numpy arrays (``xp=numpy``, for grids of cases).
 from __future__ import annotations
 
 import math
+import operator
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -335,8 +336,10 @@ def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
     for it in range(1, max_iter + 1):
         payload, gx = step(tuple(x), it)
         g = list(gx)
-        f = [a - b for a, b in zip(g, x, strict=True)]
-        err = max(abs(v) for v in f)
+        if len(g) != len(x):
+            raise ValueError(f"the step returned {len(g)} values for a state of {len(x)}")
+        f = list(map(operator.sub, g, x))  # map over operator: the same sums, a third of the interpreter's work
+        err = max(map(abs, f))
         if not math.isfinite(err):
             raise ConvergenceError(
                 "non-finite geometry: the vehicle is beyond its static stability limit", iterations=it
@@ -346,9 +349,9 @@ def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
         if f_prev is None:
             x_new = g
         else:
-            df = [a - b for a, b in zip(f, f_prev, strict=True)]
-            den = sum(v * v for v in df)
-            gamma = sum(a * b for a, b in zip(f, df, strict=True)) / den if den > 0 else 0.0
+            df = list(map(operator.sub, f, f_prev))
+            den = sum(map(operator.mul, df, df))
+            gamma = sum(map(operator.mul, f, df)) / den if den > 0 else 0.0
             x_new = [a - gamma * (a - b) for a, b in zip(g, g_prev, strict=True)]
         g_prev, f_prev, x = g, f, x_new
     raise ConvergenceError(

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
 
@@ -69,4 +69,18 @@ class RolloverResult:
     notes: list[str] = field(default_factory=list)  # caveats about this case (e.g. kingpin uplift)
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        """A plain dict, as ``dataclasses.asdict`` gives it (copies of the dicts and lists) without its recursive
+        deep copy of every float: the service does this for every answer."""
+        out = {name: getattr(self, name) for name in _RESULT_FIELDS}
+        out["stage_values"] = dict(self.stage_values)
+        out["parameters"] = dict(self.parameters)
+        out["notes"] = list(self.notes)
+        if self.tire_loads is not None:
+            out["tire_loads"] = {name: getattr(self.tire_loads, name) for name in _TIRE_LOAD_FIELDS}
+        if self.curves is not None:
+            out["curves"] = self.curves.to_dict()
+        return out
+
+
+_RESULT_FIELDS = tuple(f.name for f in fields(RolloverResult))
+_TIRE_LOAD_FIELDS = tuple(f.name for f in fields(TireLoads))

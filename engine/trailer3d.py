@@ -330,22 +330,18 @@ def chassis_loads(m: TrailerModel, case: SolverCase, geo: Geometry, ay, t28, xp=
     return ChassisLoads(px, py, pz, fr, (0.0 * fr, fy27, fr), tx27, my27, (f28x, f28y, f28z), t28, rear, front)
 
 
-def _reactions(m: TrailerModel, case: SolverCase, geo: Geometry, ay, t28, xp):
-    cl = chassis_loads(m, case, geo, ay, t28, xp)
-    rz_out, rz_in, _ = ground_reactions(geo.rear, *cl.rear_load)
-    fz_out, fz_in, _ = ground_reactions(geo.front, *cl.front_load)
-    return cl, fz_out, fz_in, rz_out, rz_in
-
-
 def _closure_residual(m: TrailerModel, case: SolverCase, geo: Geometry, ay, t28, xp, at_limit: bool):
     """Residuals of (roll-moment closure, limit condition), both affine in (ay, t28)."""
-    cl, f1, f3, f17, f19 = _reactions(m, case, geo, ay, t28, xp)
+    cl = chassis_loads(m, case, geo, ay, t28, xp)
+    f17, f19, _ = ground_reactions(geo.rear, *cl.rear_load)
     lam = case.llt_limit
     limit = (f17 - f19) - lam * (f17 + f19)
-    if m.closure == "torque-split":
+    if m.closure == "torque-split":  # the front tire loads are not needed
         a_eff = m.kingpin_to_cg - case.d2
         split = t28 - chassis_torque_split(cl.tx27, a_eff, m.wheelbase, m.torque_split_x)  # Eq. 4.21
-    elif at_limit:  # LLTr = lam and LLTf = rho lam: both linear
+        return split, limit
+    f1, f3, _ = ground_reactions(geo.front, *cl.front_load)
+    if at_limit:  # LLTr = lam and LLTf = rho lam: both linear
         split = (f1 - f3) - m.llt_ratio * lam * (f1 + f3)
     else:  # Fr (Fz1 - Fz3) = rho Ff (Fz17 - Fz19) with Fr, Ff fixed by ay
         split = (f17 + f19) * (f1 - f3) - m.llt_ratio * (f1 + f3) * (f17 - f19)

@@ -110,6 +110,23 @@ def test_a_vehicle_record_round_trips_through_its_dict(preset_id):
     assert Vehicle.from_dict(data) == vehicle
 
 
+@pytest.mark.parametrize(
+    "model,curves", [("3d", False), ("3d", True), ("2d", True), ("rigid-bank", False), ("chang", False)]
+)
+def test_a_result_dict_is_the_dataclass_dict_with_its_own_containers(model, curves):
+    """RolloverResult.to_dict skips dataclasses.asdict's recursion: the same dict, in the same order, and the
+    result's lists and dicts copied (a caller that edits the dict leaves the frozen result as it was)."""
+    result = rollover_threshold(Case(BTRAIN, model=model, road=Road(bank_percent=2.0)), include_curves=curves)
+    data = result.to_dict()
+    assert data == dataclasses.asdict(result) and list(data) == list(dataclasses.asdict(result))
+    assert (data["curves"] is not None) == curves
+    data["stage_values"]["x"] = data["parameters"]["x"] = 1.0
+    data["notes"].append("edited")
+    if curves:
+        data["curves"]["ay_g"].append(9.0)
+    assert result.to_dict() == dataclasses.asdict(result) and "edited" not in result.notes
+
+
 def test_sweep_reports_refused_cases_per_row_and_keeps_the_others():
     res = sweep(Case(BTRAIN), {"lateral_offset_m": [0.0, 0.5, 1.0]})
     assert set(res.errors) == {2}  # 1.0 m is outside the 0.93 m half track

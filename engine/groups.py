@@ -180,11 +180,13 @@ class FourBarGeometry(NamedTuple):
     top_b: object
     platform_angle: object  # roll of the upper link
     origin: tuple  # point of the upper link at its local y = 0 (the group's reference line)
+    platform_cos_sin: tuple  # (cos, sin) of platform_angle
 
 
-def _four_bar_geometry(origin, angle, width, separation, l_a, l_b, theta_a, xp) -> FourBarGeometry:
-    """Place a four-bar whose lower link has its local y = 0 at ``origin`` and roll ``angle``."""
-    c, s = xp.cos(angle), xp.sin(angle)
+def _four_bar_geometry(origin, angle, cos_sin, width, separation, l_a, l_b, theta_a, xp) -> FourBarGeometry:
+    """Place a four-bar whose lower link has its local y = 0 at ``origin`` and roll ``angle`` (whose cosine and sine
+    are ``cos_sin``: the caller has them already, and on arrays each costs as much as twenty products)."""
+    c, s = cos_sin
     ya = 0.5 * (width - separation)
     pa = (origin[0] + ya * c, origin[1] + ya * s)
     pb = (pa[0] + separation * c, pa[1] + separation * s)
@@ -196,7 +198,7 @@ def _four_bar_geometry(origin, angle, width, separation, l_a, l_b, theta_a, xp) 
     phi = ang_a + top_a
     cp, sp = xp.cos(phi), xp.sin(phi)
     up_origin = (ta[0] - ya * cp, ta[1] - ya * sp)
-    return FourBarGeometry(pa, ta, pb, tb, l_a, ang_a, ang_b, top_a, base_b, top_b, phi, up_origin)
+    return FourBarGeometry(pa, ta, pb, tb, l_a, ang_a, ang_b, top_a, base_b, top_b, phi, up_origin, (cp, sp))
 
 
 class GroupGeometry(NamedTuple):
@@ -208,23 +210,25 @@ class GroupGeometry(NamedTuple):
     fifth_wheel: FourBarGeometry | None
     top: tuple  # the group's load point: midpoint of its top link (joint 27 / 28) (y, z)
     top_angle: object  # roll of the top link [rad]
+    tire_cos_sin: tuple  # (cos, sin) of theta_tire
 
 
 def group_geometry(p: GroupParams, state, xp=SCALAR) -> GroupGeometry:
     """Positions and joint angles of a group in its plane from its state (Eqs. 4.2-4.19, Tables 4-5)."""
     l_out, l_in, l_a, l_b, th_a = state[:5]
     th_t, track = tire_system(l_out, l_in, p.axle_width, xp)
-    axle_origin = (-l_out * xp.sin(th_t), l_out * xp.cos(th_t))  # top of the outer tire column
-    susp = _four_bar_geometry(axle_origin, th_t, p.axle_width, p.spring_separation, l_a, l_b, th_a, xp)
+    tire_cs = ct, st = xp.cos(th_t), xp.sin(th_t)
+    axle_origin = (-l_out * st, l_out * ct)  # top of the outer tire column
+    susp = _four_bar_geometry(axle_origin, th_t, tire_cs, p.axle_width, p.spring_separation, l_a, l_b, th_a, xp)
     fw = None
-    origin, angle = susp.origin, susp.platform_angle
+    origin, angle, (c, s) = susp.origin, susp.platform_angle, susp.platform_cos_sin
     if p.fifth_wheel is not None:
         lf_a, lf_b, thf_a = state[5:8]
-        fw = _four_bar_geometry(origin, angle, p.axle_width, p.fifth_wheel.width, lf_a, lf_b, thf_a, xp)
-        origin, angle = fw.origin, fw.platform_angle
+        fw = _four_bar_geometry(origin, angle, (c, s), p.axle_width, p.fifth_wheel.width, lf_a, lf_b, thf_a, xp)
+        origin, angle, (c, s) = fw.origin, fw.platform_angle, fw.platform_cos_sin
     half = 0.5 * p.axle_width
-    top = (origin[0] + half * xp.cos(angle), origin[1] + half * xp.sin(angle))
-    return GroupGeometry(th_t, track, l_out, l_in, susp, fw, top, angle)
+    top = (origin[0] + half * c, origin[1] + half * s)
+    return GroupGeometry(th_t, track, l_out, l_in, susp, fw, top, angle, tire_cs)
 
 
 # ------------------------------------------------------------------------------ reduced statics
@@ -289,7 +293,7 @@ def group_statics(p: GroupParams, g: GroupGeometry, fy, fz, mx, xp=SCALAR) -> Gr
         fw = four_bar_statics(g.fifth_wheel, fy, fz, qy, qz, mx)
     susp = four_bar_statics(g.suspension, fy, fz, qy, qz, mx)
     fz_out, fz_in, fy_out = ground_reactions(g, fy, fz, mx)
-    s, c = xp.sin(g.theta_tire), xp.cos(g.theta_tire)
+    c, s = g.tire_cos_sin
     return GroupForces(fz_out, fz_in, fy_out, -fy_out * s + fz_out * c, fz_in * c, susp, fw)
 
 
@@ -326,7 +330,7 @@ def fixed_point(step, x0, *, vector: bool, tol: float, max_iter: int):
     problem failed).
     """
     if vector:
-        x, it, payload, failed = fixed_point_batch(step, x0, tol=tol, max_iter=max_iter)
+        x, it, payload, failed, _ = fixed_point_batch(step, x0, tol=tol, max_iter=max_iter)
         if failed.size and bool(np.all(failed)):
             raise ConvergenceError("every case of the batch left the valid geometry or did not converge", iterations=it)
         return x, it, payload
@@ -366,11 +370,14 @@ def fixed_point_batch(step, x0, *, tol: float, max_iter: int):
 
     A problem whose geometry becomes non-finite (it left the mechanism's valid geometry: the vehicle is at or
     beyond its static stability limit in that case) is frozen and marked failed; the others go on. Returns
-    ``(x, iterations, payload, failed)``, ``failed`` a boolean array (also set for problems that did not converge
-    in ``max_iter`` iterations); the payload's entries of failed problems are meaningless.
+    ``(x, iterations, payload, failed, steps)``, ``failed`` a boolean array (also set for problems that did not
+    converge in ``max_iter`` iterations), ``steps`` each problem's own iteration count (the step at which it
+    converged, as :func:`fixed_point` alone would report it); the payload's entries of failed problems are
+    meaningless.
     """
     x = np.stack(np.broadcast_arrays(*x0)).astype(float)
     failed = np.zeros(x.shape[1:], dtype=bool)
+    steps = np.zeros(failed.shape, dtype=int)
     g_prev = f_prev = None
     payload = None
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -382,8 +389,9 @@ def fixed_point_batch(step, x0, *, tol: float, max_iter: int):
             f = g - x
             err = np.max(np.abs(f), axis=0) if f.size else np.zeros(failed.shape)
             converged = ~(err >= tol)
+            steps = np.where((steps == 0) & converged, it, steps)
             if np.all(converged):
-                return x, it, payload, failed
+                return x, it, payload, failed, steps
             if f_prev is None:
                 x_new = g
             else:  # Anderson(1) per problem
@@ -395,4 +403,4 @@ def fixed_point_batch(step, x0, *, tol: float, max_iter: int):
             # the other problems of the batch; its payload is recomputed at that same x
             g_prev, f_prev, x = g, f, np.where(converged, x, x_new)
     failed |= err >= tol
-    return x, max_iter, payload, failed
+    return x, max_iter, payload, failed, np.where(steps == 0, max_iter, steps)

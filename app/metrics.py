@@ -20,9 +20,14 @@ HTTP_REQUEST_SECONDS = Histogram(
 )
 SOLVE_SECONDS = Histogram(
     "rollover_solve_seconds",
-    "Wall time of one engine computation (cache misses only) [s].",
+    "Wall time of one engine computation (cache misses only; solves handed over together each count their share) [s].",
     ["operation", "model"],
     buckets=(0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0),
+)
+SOLVE_BATCH_CASES = Histogram(
+    "rollover_solve_batch_cases",
+    "One-threshold solves handed to the engine together (app.coalesce): cases per engine call [-].",
+    buckets=(1, 2, 4, 8, 16, 32, 64),
 )
 CACHE_LOOKUPS = Counter(
     "rollover_cache_lookups_total",

@@ -9,7 +9,6 @@ parses another endpoint's cached bytes.
 
 from __future__ import annotations
 
-import asyncio
 import time
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
@@ -28,6 +27,7 @@ from engine.threshold import rollover_threshold
 from engine.vehicles import Vehicle, get_preset
 
 from .cache import ResultCache, cache_key
+from .coalesce import COALESCER
 from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from .schemas.srt import SrtInputs, SrtRequest, SrtResult
@@ -139,15 +139,12 @@ async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = No
     key = cache_key("engine-result", {**case.to_dict(), "curve_points": curve_points})
     result = cache.objects.get(key)
     if result is None:
-        started = time.perf_counter()
-        if curve_points is None:  # one threshold: about a millisecond, less than the hop to a worker thread costs
-            # but first a turn for the other connections: without it a saturated worker answered in arrival order no
-            # more (32 connections: p99 1.1-1.6 s against 0.35 s with this yield; bench/bench_service.py, uncached)
-            await asyncio.sleep(0)
-            result = rollover_threshold(case)
+        if curve_points is None:  # one threshold, on the event loop with the others waiting now (app.coalesce)
+            result = await COALESCER.threshold(case)
         else:  # the curves are tens of solves: not on the event loop
+            started = time.perf_counter()
             result = await run_in_threadpool(rollover_threshold, case, include_curves=True, curve_points=curve_points)
-        SOLVE_SECONDS.labels("srt", case.model).observe(time.perf_counter() - started)
+            SOLVE_SECONDS.labels("srt", case.model).observe(time.perf_counter() - started)
         cache.objects[key] = result
     return result
 

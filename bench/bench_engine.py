@@ -7,7 +7,9 @@ Measures
 3. the same solve on the Davies reference path (full 6 x 22 cut-set system per iteration);
 4. the Table 17 (4 x 7 x 12 = 336 cases) and Table 19 (9 x 7 x 5 = 315 cases) grids, 651 cases, by
    :func:`engine.threshold.sweep` (batched numpy fast path);
-5. where the time of one fast solve goes (per iteration: geometry, closures + limit, group statics).
+5. many one-threshold cases handed over together (:func:`engine.threshold.rollover_thresholds`, as the service's
+   coalescer does) against the same cases one at a time;
+6. where the time of one fast solve goes (per iteration: geometry, closures + limit, group statics).
 """
 
 from __future__ import annotations
@@ -24,8 +26,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from engine import trailer3d, trailer3d_davies
 from engine.case import Case
+from engine.loads import Road
 from engine.stepping import stage_model
-from engine.threshold import BATCH_ROWS, evaluate_arrays, rollover_threshold, sweep
+from engine.threshold import (
+    BATCH_ROWS,
+    MIN_ARRAY_CASES,
+    evaluate_arrays,
+    rollover_threshold,
+    rollover_thresholds,
+    sweep,
+)
 from engine.vehicles import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -100,6 +110,16 @@ def main() -> None:
     one_pass = timeit(lambda: evaluate_arrays(Case(BTRAIN), arrays, batch_rows=rows), 2)
     report(f"{rows:,} distinct bank/grade cases, blocks of {BATCH_ROWS:,} rows (evaluate_arrays)", blocks, 1, "s")
     report(f"{rows:,} distinct bank/grade cases, one pass (ceiling to beat)", one_pass, 1, "s")
+
+    # many one-threshold cases handed over together (app.coalesce): on arrays from MIN_ARRAY_CASES cases of one
+    # vehicle and stage, against the same cases one at a time (the ceiling to beat)
+    print(f"many cases, rollover_thresholds (on arrays from {MIN_ARRAY_CASES} cases) against one at a time:")
+    for k in (8, 16, 32, 64):
+        cases = [Case(BTRAIN, road=Road(bank_percent=float(b))) for b in rng.uniform(-4, 10, k)]
+        together = timeit(lambda cases=cases: rollover_thresholds(cases), 15)
+        alone = timeit(lambda cases=cases: [rollover_threshold(c) for c in cases], 15)
+        report(f"  {k} B-train cases, rollover_thresholds", together)
+        report(f"  {k} B-train cases, one at a time", alone)
 
     # where the time of one fast solve goes
     state = sol.state

@@ -356,21 +356,45 @@ def engine_srt_rate(seconds: float = 3.0) -> float:
     return n / (time.perf_counter() - started)
 
 
+def _batch_cases(url: str) -> tuple[float, float]:
+    """(engine calls, cases) of the server's coalesced one-threshold solves so far (``rollover_solve_batch_cases``)."""
+    text = httpx.get(url + "/metrics", timeout=10).text
+    values = {}
+    for line in text.splitlines():
+        name, _, value = line.partition(" ")
+        if name in ("rollover_solve_batch_cases_count", "rollover_solve_batch_cases_sum"):
+            values[name] = float(value)
+    return values.get("rollover_solve_batch_cases_count", 0.0), values.get("rollover_solve_batch_cases_sum", 0.0)
+
+
 def measure_uncached(args) -> None:
     script = WRK_THREADS + VARYING_SRT.replace("VEHICLE", BTRAIN) + WRK_DONE
-    with server("app.main:app", http="httptools", env={"ROLLOVER_CACHE_MAX_ENTRIES": "1000000"}) as srv:
-        warm_srt(srv)
-        res = wrk(srv.url, script, threads=2, connections=32, seconds=args.duration)
-    if res.others or res.status_errors or res.misses != res.requests:
-        raise SystemExit(f"uncached run: {res.misses} misses of {res.requests} answers ({res.others} others)")
+    runs = {}
+    for connections in (1, 32):  # each on a fresh server: every request a miss
+        with server("app.main:app", http="httptools", env={"ROLLOVER_CACHE_MAX_ENTRIES": "1000000"}) as srv:
+            warm_srt(srv)
+            calls0, cases0 = _batch_cases(srv.url)
+            res = wrk(srv.url, script, threads=min(2, connections), connections=connections, seconds=args.duration)
+            calls, cases = _batch_cases(srv.url)
+        if res.others or res.status_errors or res.misses != res.requests:
+            raise SystemExit(f"uncached run: {res.misses} misses of {res.requests} answers ({res.others} others)")
+        runs[connections] = res, (cases - cases0) / max(calls - calls0, 1.0)
     rate = engine_srt_rate()
+    (alone, alone_batch), (crowd, crowd_batch) = runs[1], runs[32]
     row(
         "uncached POST /v1/srt (each request a new bank angle; every X-Cache checked: miss), 1 worker, "
         "httptools/uvloop, wrk -t2 -c32",
-        fmt(res),
-        f"engine alone, in process: {rate:,.0f} solves/s",
-        f"{res.rps / rate:.0%} of the engine; >= 500 req/s: {verdict(res.rps >= 500)}",
+        f"{fmt(crowd)}; {crowd_batch:.1f} cases per engine call (app.coalesce)",
+        f"engine alone, one case at a time, in process: {rate:,.0f} solves/s",
+        f"{crowd.rps / rate:.0%} of the engine; >= 500 req/s: {verdict(crowd.rps >= 500)}",
         BEFORE["uncached"],
+    )
+    row(
+        "uncached POST /v1/srt, one connection (wrk -t1 -c1): a request alone is not held for company",
+        f"{fmt(alone)}; {alone_batch:.1f} cases per engine call",
+        f"engine alone: {1e3 / rate:.2f} ms a solve",
+        "",
+        "not quoted",
     )
 
 

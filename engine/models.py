@@ -67,11 +67,13 @@ class Model:
         """Whether the record has every field this model needs."""
         return all(getattr(vehicle, n) is not None for n in self.requires)
 
-    def check(self, case: Case) -> None:
-        """Refuse a case outside this model's domain, before solving: the vehicle, the road and load inputs
-        (within the engine's bounds, and only those the model accounts for), the stage and the LLT limit."""
+    def check(self, case: Case, *, vehicle: bool = True) -> None:
+        """Refuse a case outside this model's domain, before solving: the vehicle (unless ``vehicle`` is False: the
+        caller validated this record already), the road and load inputs (within the engine's bounds, and only those
+        the model accounts for), the stage and the LLT limit."""
         check_stage_and_limit(case)
-        self.validate(case.vehicle)
+        if vehicle:
+            self.validate(case.vehicle)
         check_case(case.vehicle, case.road, case.trailer_angle_deg, case.load)
         for key, name, get, exc in INPUTS:
             value = get(case)

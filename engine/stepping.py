@@ -18,6 +18,7 @@ Thesis Secs. 1.3, 5.2, 6.2 (Eqs. 5.22, 6.17-6.18), 7.2, 9.1-9.2.
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 import numpy as np
 
@@ -157,6 +158,54 @@ def solve_3d(
         stage_values["srt_3d"] = float(sols["full"][1].ay)
     curves = _curves_3d(m, sc, sol, curve_points, forces) if include_curves and sol.ay > 0 else None
     return _result_3d(case, sol, stage_values, curves, m)
+
+
+class _Row:
+    """Case ``i`` of a batch solution (nested named tuples of arrays and constants) read as a one-case solution:
+    each array element read is returned as a Python number, the constants as they are; only what is read is taken."""
+
+    __slots__ = ("_i", "_value")
+
+    def __init__(self, value, i: int) -> None:
+        self._value, self._i = value, i
+
+    def __getattr__(self, name: str):
+        return _take(getattr(self._value, name), self._i)
+
+    def __getitem__(self, k: int):
+        return _take(self._value[k], self._i)
+
+
+def _take(value, i: int):
+    if isinstance(value, np.ndarray):
+        return value.item(i) if value.ndim else value.item()
+    return _Row(value, i) if isinstance(value, tuple) else value
+
+
+def solve_3d_many(cases: list[Case], chassis_closure: str = "chassis-constant") -> list[RolloverResult | None]:
+    """:func:`solve_3d` of many cases of one vehicle and one stage (no curves, the reduced statics), solved together
+    on arrays: each result is the one :func:`solve_3d` gives (a converged case stops where it would alone, with its
+    own iteration count), or None for a case whose mechanism left its valid geometry (solve it alone for its error).
+    The cases must have passed the model's checks."""
+    first = cases[0]
+    one = [solver_case_3d(c) for c in cases]
+    sc = trailer3d.SolverCase(
+        **{f.name: np.array([getattr(c, f.name) for c in one]) for f in fields(trailer3d.SolverCase)}
+    )
+    stages = ("tires-suspension", "full") if first.stage == "full" else ("tires-suspension",)
+    sols = {st: (m := stage_model(first, st, chassis_closure), trailer3d.solve(m, sc, xp=ARRAY)) for st in stages}
+    m, sol = sols[first.stage]
+    ts_srt = sols["tires-suspension"][1].ay
+    out: list[RolloverResult | None] = []
+    for i, case in enumerate(cases):
+        if not all(math.isfinite(s.ay[i]) for _, s in sols.values()):
+            out.append(None)
+            continue
+        stage_values = {"srt_ts": float(ts_srt[i])}
+        if "full" in sols:
+            stage_values["srt_3d"] = float(sols["full"][1].ay[i])
+        out.append(_result_3d(case, _Row(sol, i), stage_values, None, m))
+    return out
 
 
 def _weight(case: Case, overweight_percent: np.ndarray) -> np.ndarray:

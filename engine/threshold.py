@@ -24,6 +24,7 @@ from .errors import InvalidInput, RolloverError
 from .models import get_model
 from .results import RolloverResult
 from .trailer3d import get_closure
+from .vehicles import Vehicle
 
 METHODS = ("reduced", "davies")
 
@@ -134,10 +135,69 @@ def rollover_threshold(
     result = model.solve(
         case, include_curves=include_curves, curve_points=curve_points, method=method, chassis_closure=chassis_closure
     )
+    return _finish(case, result)
+
+
+def _finish(case: Case, result: RolloverResult) -> RolloverResult:
+    """A model's result as the entry points give it: refused if the vehicle tips at rest, the friction note added."""
     if not result.srt > 0:
         raise _tips_at_rest(case, result.srt)
     note = _friction_note(case, result.srt)
     return replace(result, notes=[*result.notes, note]) if note else result
+
+
+#: fewest 3D cases of one vehicle and stage that :func:`rollover_thresholds` solves together on arrays: an array
+#: solve costs about as much as 15 one-case solves whatever its size up to a few hundred cases, so below this one case
+#: at a time is faster (``python bench/bench_engine.py``, the "many cases" rows)
+MIN_ARRAY_CASES = 16
+
+
+def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | RolloverError]:
+    """:func:`rollover_threshold` of each case with the default options (no curves, the reduced statics, the
+    default chassis closure): in each case's place its result, or the error it raises.
+
+    The 3D cases of one vehicle and stage, when there are at least :data:`MIN_ARRAY_CASES` of them, are solved
+    together on arrays (:func:`engine.stepping.solve_3d_many`); a converged case stops where it would alone, so its
+    result is the one :func:`rollover_threshold` gives, to rounding (tests/engine/test_sweep.py). The others, and a
+    case whose array solve failed (for its exact error), are solved one at a time.
+    """
+    from .stepping import solve_3d_many
+
+    out: list[RolloverResult | RolloverError | None] = [None] * len(cases)
+    groups: dict[tuple, list[int]] = {}
+    model_3d = get_model("3d")
+    valid: dict[int, Vehicle] = {}  # records validated in this call, by identity (kept alive here: ids stay unique)
+    for i, case in enumerate(cases):
+        if case.model != "3d":
+            continue
+        try:
+            if id(case.vehicle) not in valid:
+                model_3d.validate(case.vehicle)
+                valid[id(case.vehicle)] = case.vehicle
+            model_3d.check(case, vehicle=False)
+        except RolloverError:
+            continue  # solved alone below, for the error rollover_threshold gives (its checks' order)
+        groups.setdefault((case.vehicle, case.stage), []).append(i)
+    for rows in groups.values():
+        if len(rows) < MIN_ARRAY_CASES:
+            continue
+        for i, result in zip(rows, solve_3d_many([cases[i] for i in rows]), strict=True):
+            if result is not None:
+                out[i] = _finished_or_error(cases[i], result)
+    for i, case in enumerate(cases):
+        if out[i] is None:
+            try:
+                out[i] = rollover_threshold(case)
+            except RolloverError as exc:
+                out[i] = exc
+    return out  # type: ignore[return-value]
+
+
+def _finished_or_error(case: Case, result: RolloverResult) -> RolloverResult | RolloverError:
+    try:
+        return _finish(case, result)
+    except RolloverError as exc:
+        return exc
 
 
 # ------------------------------------------------------------------------------------- many cases

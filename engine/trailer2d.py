@@ -71,7 +71,7 @@ class Solution2D(NamedTuple):
     py: object
     pz: object
     forces: object  # GroupForces
-    iterations: int
+    iterations: object  # int; for a batch, each case's own count (an int array)
 
 
 def cg_position(m: PlanarModel, case: Case2D, g: GroupGeometry, xp=SCALAR):
@@ -141,8 +141,8 @@ def solve(
         x, it, (ay_k, g, cg, py, pz, f) = fixed_point(step, state, vector=False, tol=tol, max_iter=max_iter)
         return Solution2D(ay_k, tuple(x), g, cg, py, pz, f, it)
     # a batch: a case that leaves the valid geometry (or does not converge) gets ay = nan
-    x, it, (ay_k, g, cg, py, pz, f), failed = fixed_point_batch(step, state, tol=tol, max_iter=max_iter)
-    return Solution2D(np.where(failed, np.nan, ay_k), tuple(x), g, cg, py, pz, f, it)
+    x, _, (ay_k, g, cg, py, pz, f), failed, steps = fixed_point_batch(step, state, tol=tol, max_iter=max_iter)
+    return Solution2D(np.where(failed, np.nan, ay_k), tuple(x), g, cg, py, pz, f, steps)
 
 
 def srt_eq_5_22(h1, h2, e):

@@ -386,7 +386,7 @@ class Solution(NamedTuple):
     loads: ChassisLoads
     rear: object  # GroupForces
     front: object  # GroupForces
-    iterations: int
+    iterations: object  # int; for a batch, each case's own count (an int array)
 
 
 def forces_at(m: TrailerModel, case: SolverCase, state: State, ay=None, xp=SCALAR):
@@ -446,9 +446,10 @@ def solve(
         ay_k, geo, cl, rf, ff = out
         return Solution(ay_k, _unflat(x, shape), geo, cl, rf, ff, it)
     # a batch: a case that leaves the valid geometry (or does not converge) gets ay = nan, the others their value
-    x, it, out, failed = fixed_point_batch(step, _flat(state), tol=tol, max_iter=max_iter)
+    # (``iterations`` is then each case's own count, an array)
+    x, _, out, failed, steps = fixed_point_batch(step, _flat(state), tol=tol, max_iter=max_iter)
     ay_k, geo, cl, rf, ff = out
-    return Solution(np.where(failed, np.nan, ay_k), _unflat(x, shape), geo, cl, rf, ff, it)
+    return Solution(np.where(failed, np.nan, ay_k), _unflat(x, shape), geo, cl, rf, ff, steps)
 
 
 def _unflat(x, shape) -> State:

@@ -22,7 +22,8 @@ Public surface (everything in ``__all__``):
 
 - the case: :class:`Vehicle` (the record, :data:`FIELD_DOCS`), :data:`PRESETS` / :func:`get_preset`, :class:`Road`,
   :class:`LoadCase`, :class:`Case`;
-- the SRT: :func:`rollover_threshold` (one case), :func:`evaluate_cases`, :func:`sweep` (grids, Tables 17 and 19),
+- the SRT: :func:`rollover_threshold` (one case), :func:`rollover_thresholds` (many, each with its full result),
+  :func:`evaluate_cases`, :func:`sweep` (grids, Tables 17 and 19),
   the model registry :data:`MODELS`;
 - the road-design tools: targets and the tilt-table angle, inverse limits (:func:`parameter_limit`,
   :func:`limit_table`), curve assessment (:func:`assess_curves`), and the road formulas of Ch. 9
@@ -74,7 +75,14 @@ from .road import (  # noqa: E402
     side_friction_factor,
     side_friction_speed_kmh,
 )
-from .threshold import SWEEP_AXES, SweepResult, evaluate_cases, rollover_threshold, sweep  # noqa: E402
+from .threshold import (  # noqa: E402
+    SWEEP_AXES,
+    SweepResult,
+    evaluate_cases,
+    rollover_threshold,
+    rollover_thresholds,
+    sweep,
+)
 from .vehicles import FIELD_DOCS, PRESET_INFO, PRESETS, Vehicle, get_preset, validate_vehicle  # noqa: E402
 
 __all__ = [
@@ -124,6 +132,7 @@ __all__ = [
     "parameter_limit",
     "rollover_min_radius_m",
     "rollover_threshold",
+    "rollover_thresholds",
     "side_friction_factor",
     "side_friction_speed_kmh",
     "supported_models",

@@ -23,6 +23,7 @@ from .domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from .errors import InvalidInput, RolloverError
 from .models import get_model
 from .results import RolloverResult
+from .stepping import solve_3d_many
 from .trailer3d import get_closure
 from .vehicles import Vehicle
 
@@ -158,11 +159,9 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
 
     The 3D cases of one vehicle and stage, when there are at least :data:`MIN_ARRAY_CASES` of them, are solved
     together on arrays (:func:`engine.stepping.solve_3d_many`); a converged case stops where it would alone, so its
-    result is the one :func:`rollover_threshold` gives, to rounding (tests/engine/test_sweep.py). The others, and a
-    case whose array solve failed (for its exact error), are solved one at a time.
+    result is the one :func:`rollover_threshold` gives, to rounding (tests/engine/test_thresholds_many.py). The others,
+    and a case whose array solve failed (for its exact error), are solved one at a time.
     """
-    from .stepping import solve_3d_many
-
     out: list[RolloverResult | RolloverError | None] = [None] * len(cases)
     groups: dict[tuple, list[int]] = {}
     model_3d = get_model("3d")

@@ -83,11 +83,11 @@ def test_each_case_gets_the_answer_it_gets_alone_results_and_errors():
 
 
 def test_the_3d_groups_are_solved_on_arrays_and_a_case_does_not_depend_on_its_companions(monkeypatch):
-    import engine.stepping as stepping
+    import engine.threshold as threshold
 
     calls = []
-    real = stepping.solve_3d_many
-    monkeypatch.setattr(stepping, "solve_3d_many", lambda cases, *a: calls.append(len(cases)) or real(cases, *a))
+    real = threshold.solve_3d_many
+    monkeypatch.setattr(threshold, "solve_3d_many", lambda cases, *a: calls.append(len(cases)) or real(cases, *a))
     banks = np.linspace(-6, 10, 2 * MIN_ARRAY_CASES)
     cases = [Case(BTRAIN, road=Road(bank_percent=float(b))) for b in banks]
     whole = rollover_thresholds(cases)

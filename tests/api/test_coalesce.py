@@ -5,7 +5,6 @@ from __future__ import annotations
 import asyncio
 
 import httpx
-import pytest
 
 import app.coalesce as coalesce
 from app.main import create_app
@@ -15,6 +14,7 @@ from engine.errors import InvalidInput
 from engine.loads import Road
 from engine.threshold import MIN_ARRAY_CASES, rollover_threshold
 from engine.vehicles import PRESETS
+from tests.compare import assert_same_to_rounding
 
 from .conftest import make_client
 
@@ -39,22 +39,6 @@ async def _all_at_once(bodies: list[dict]) -> list[httpx.Response]:
             return await asyncio.gather(*(c.post("/v1/srt", json=b) for b in bodies))
 
 
-def _close(a, b, path="answer"):
-    assert type(a) is type(b), path
-    if isinstance(a, dict):
-        assert list(a) == list(b), path
-        for k in a:
-            _close(a[k], b[k], f"{path}.{k}")
-    elif isinstance(a, list):
-        assert len(a) == len(b), path
-        for k, (x, y) in enumerate(zip(a, b, strict=True)):
-            _close(x, y, f"{path}[{k}]")
-    elif isinstance(a, float):
-        assert a == pytest.approx(b, rel=1e-12, abs=1e-12), path
-    else:
-        assert a == b, path
-
-
 def test_concurrent_misses_are_solved_together_and_answer_as_alone(monkeypatch):
     sizes = []
     real = coalesce.rollover_thresholds
@@ -68,7 +52,7 @@ def test_concurrent_misses_are_solved_together_and_answer_as_alone(monkeypatch):
             assert got.status_code == alone.status_code, body
             assert got.status_code != 200 or got.headers["x-cache"] == "miss"
             if alone.status_code == 200:
-                _close(got.json(), alone.json())
+                assert_same_to_rounding(got.json(), alone.json())
                 assert got.headers["etag"] == alone.headers["etag"]
             else:  # the refusal of this request only, with its field
                 assert got.status_code == 422 and got.json() == alone.json()

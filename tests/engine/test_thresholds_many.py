@@ -5,13 +5,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 
 from engine.case import Case
 from engine.errors import RolloverError
 from engine.loads import LoadCase, Road
 from engine.threshold import MIN_ARRAY_CASES, rollover_threshold, rollover_thresholds
 from engine.vehicles import PRESETS
+from tests.compare import assert_same_to_rounding
 
 BTRAIN = PRESETS["table16-btrain"]
 
@@ -21,24 +21,6 @@ def _alone(case: Case):
         return rollover_threshold(case)
     except RolloverError as exc:
         return exc
-
-
-def _same(a, b, path="result"):
-    """Equal structure and values; floats to 1e-12 relative (rounding: the array and one-case paths may differ in a
-    last bit on some CPUs), everything else exactly, types included."""
-    assert type(a) is type(b), path
-    if isinstance(a, dict):
-        assert list(a) == list(b), path
-        for k in a:
-            _same(a[k], b[k], f"{path}.{k}")
-    elif isinstance(a, list):
-        assert len(a) == len(b), path
-        for k, (x, y) in enumerate(zip(a, b, strict=True)):
-            _same(x, y, f"{path}[{k}]")
-    elif isinstance(a, float):
-        assert a == pytest.approx(b, rel=1e-12, abs=1e-12), path
-    else:
-        assert a == b, path
 
 
 def _mixed_cases() -> list[Case]:
@@ -78,7 +60,8 @@ def test_each_case_gets_the_answer_it_gets_alone_results_and_errors():
             errors += 1
             assert type(got) is type(alone) and str(got) == str(alone) and got.field == alone.field
         else:
-            _same(got.to_dict(), alone.to_dict())  # srt, state at the limit, stage values, iterations, notes
+            # the SRT, the state at the limit, the stage values, the iteration count, the notes
+            assert_same_to_rounding(got.to_dict(), alone.to_dict())
     assert errors >= 3  # the refused bank, the tip at rest and the unknown stage at least
 
 
@@ -94,7 +77,7 @@ def test_the_3d_groups_are_solved_on_arrays_and_a_case_does_not_depend_on_its_co
     half = rollover_thresholds(cases[::2])
     assert calls == [2 * MIN_ARRAY_CASES, MIN_ARRAY_CASES]  # both on arrays
     for a, b in zip(whole[::2], half, strict=True):
-        _same(a.to_dict(), b.to_dict())
+        assert_same_to_rounding(a.to_dict(), b.to_dict())
     few = rollover_thresholds(cases[: MIN_ARRAY_CASES - 1])  # below the threshold: one at a time
     assert len(calls) == 2 and [r.srt for r in few] == [rollover_threshold(c).srt for c in cases[: MIN_ARRAY_CASES - 1]]
     assert all(math.isfinite(r.srt) and r.iterations >= 2 for r in whole)

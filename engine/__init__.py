@@ -33,7 +33,7 @@ Public surface (everything in ``__all__``):
 """
 
 #: bumped whenever a change can alter a number the engine returns (it is part of every cache key)
-ENGINE_VERSION = "1.1.0"
+ENGINE_VERSION = "1.2.0"
 __version__ = ENGINE_VERSION
 
 from .assessment import (  # noqa: E402

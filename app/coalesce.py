@@ -70,8 +70,8 @@ class SolveCoalescer:
         started = time.perf_counter()
         try:
             results: list = rollover_thresholds([case for case, _ in live])
-        except Exception as exc:  # a defect, not a refused case: every waiter fails (a 500), none waits forever
-            results = [exc] * len(live)
+        except Exception:  # a defect, not a refused case: solved one by one, it fails only the request that has it
+            results = [_alone(case) for case, _ in live]
         share = (time.perf_counter() - started) / len(live)
         SOLVE_BATCH_CASES.observe(len(live))
         for (case, future), result in zip(live, results, strict=True):
@@ -80,6 +80,13 @@ class SolveCoalescer:
                 future.set_exception(result)
             else:
                 future.set_result(result)
+
+
+def _alone(case: Case) -> RolloverResult | Exception:
+    try:
+        return rollover_thresholds([case])[0]
+    except Exception as exc:  # the defect itself: this request's 500; none waits forever
+        return exc
 
 
 #: the process's coalescer (the app layer's; the engine keeps no state)

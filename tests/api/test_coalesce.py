@@ -95,6 +95,28 @@ def test_an_engine_defect_fails_every_waiter_and_none_waits_forever(monkeypatch)
     assert [type(r) for r in _run(main())] == [RuntimeError] * 3
 
 
+def test_a_defect_in_one_case_fails_only_its_request(monkeypatch):
+    import engine.threshold
+
+    real = engine.threshold.rollover_threshold
+
+    def broken_at_3(case, **kwargs):
+        if case.road.bank_percent == 3.0:
+            raise RuntimeError("a defect in one case")
+        return real(case, **kwargs)
+
+    monkeypatch.setattr(engine.threshold, "rollover_threshold", broken_at_3)
+    cases = [Case(PRESETS["table14-semitrailer"], model="2d", road=Road(bank_percent=float(b))) for b in range(6)]
+
+    async def main():
+        co = coalesce.SolveCoalescer()
+        return await asyncio.gather(*(co.threshold(c) for c in cases), return_exceptions=True)
+
+    results = _run(main())
+    assert [type(r) for r in results].count(RuntimeError) == 1 and isinstance(results[3], RuntimeError)
+    assert [r.srt for k, r in enumerate(results) if k != 3] == [real(c).srt for k, c in enumerate(cases) if k != 3]
+
+
 def test_a_refused_case_raises_its_own_error_and_a_flush_takes_at_most_max_flush(monkeypatch):
     sizes = []
     real = coalesce.rollover_thresholds

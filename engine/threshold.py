@@ -164,23 +164,18 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
     """
     out: list[RolloverResult | RolloverError | None] = [None] * len(cases)
     groups: dict[tuple, list[int]] = {}
+    for i, case in enumerate(cases):
+        if case.model == "3d":
+            groups.setdefault((case.vehicle, case.stage), []).append(i)
     model_3d = get_model("3d")
     valid: dict[int, Vehicle] = {}  # records validated in this call, by identity (kept alive here: ids stay unique)
-    for i, case in enumerate(cases):
-        if case.model != "3d":
-            continue
-        try:
-            if id(case.vehicle) not in valid:
-                model_3d.validate(case.vehicle)
-                valid[id(case.vehicle)] = case.vehicle
-            model_3d.check(case, vehicle=False)
-        except RolloverError:
-            continue  # solved alone below, for the error rollover_threshold gives (its checks' order)
-        groups.setdefault((case.vehicle, case.stage), []).append(i)
     for rows in groups.values():
         if len(rows) < MIN_ARRAY_CASES:
+            continue  # one at a time below (checked there: a small group is not checked twice)
+        checked = [i for i in rows if _passes_3d_checks(model_3d, cases[i], valid)]
+        if len(checked) < MIN_ARRAY_CASES:
             continue
-        for i, result in zip(rows, solve_3d_many([cases[i] for i in rows]), strict=True):
+        for i, result in zip(checked, solve_3d_many([cases[i] for i in checked]), strict=True):
             if result is not None:
                 out[i] = _finished_or_error(cases[i], result)
     for i, case in enumerate(cases):
@@ -190,6 +185,19 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
             except RolloverError as exc:
                 out[i] = exc
     return out  # type: ignore[return-value]
+
+
+def _passes_3d_checks(model, case: Case, valid: dict[int, Vehicle]) -> bool:
+    """Whether ``case`` passes the 3D model's checks (its vehicle validated once per record in ``valid``); a case that
+    does not is solved alone, for the error :func:`rollover_threshold` gives (its checks in their order)."""
+    try:
+        if id(case.vehicle) not in valid:
+            model.validate(case.vehicle)
+            valid[id(case.vehicle)] = case.vehicle
+        model.check(case, vehicle=False)
+    except RolloverError:
+        return False
+    return True
 
 
 def _finished_or_error(case: Case, result: RolloverResult) -> RolloverResult | RolloverError:

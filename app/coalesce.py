@@ -9,12 +9,12 @@ time of 32 solves one by one, 64 in about a third (``python bench/bench_engine.p
 depend on the cases solved with it (a converged case stops where it would alone; tests/api/test_coalesce.py), so an
 answer is the same whether its request came alone or in a crowd.
 
-How: the first solve of a loop turn schedules a flush (``loop.call_soon``) and waits on a future; every solve that
-reaches this point before the flush runs (the requests the server read in the same turn) joins it. One waiting solve
-is solved exactly as before. A flush takes at most :data:`MAX_FLUSH` cases; the rest go to the next one, so other
-requests (``/healthz``) get the loop between flushes. Waiting on the future is also the request's turn for the other
-connections (without such a turn a saturated worker stopped answering in arrival order: p99 1.1-1.6 s at 32
-connections, bench/bench_service.py).
+How: the first waiting solve schedules a flush (``loop.call_soon``) and waits on a future; the flush runs once
+:data:`QUIET_TURNS` loop turns pass without a new waiting solve, so every solve that arrives meanwhile (the requests
+the server read in the same turns) joins it. One waiting solve is solved exactly as before. A flush takes at most
+:data:`MAX_FLUSH` cases; the rest go to the next one, so other requests (``/healthz``) get the loop between flushes.
+Waiting on the future is also the request's turn for the other connections (without such a turn a saturated worker
+stopped answering in arrival order: p99 1.1-1.6 s at 32 connections, bench/bench_service.py).
 """
 
 from __future__ import annotations

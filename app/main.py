@@ -17,6 +17,7 @@ from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
 
+from . import solvers
 from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
 from .cache import make_cache
 from .catalog import close_catalog, install_catalog_handlers, open_catalog
@@ -165,6 +166,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     @asynccontextmanager
     async def lifespan(app: FastAPI):
         app.state.cache = cache = make_cache(app.state.settings)
+        solvers.configure(app.state.settings.solve_threads)
         log = get_logger("rollover.app")
         nodelay = set_nodelay_on_listening_sockets()  # see app.netopts: --workers would otherwise wait ~40 ms
         log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend, tcp_nodelay_sockets=nodelay)

@@ -39,6 +39,7 @@ from engine.errors import InvalidInput
 from engine.loads import LoadCase
 from engine.vehicles import Vehicle
 
+from . import solvers
 from .alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
 from .cache import ResultCache, cache_key
 from .curves import curves_from_json
@@ -310,9 +311,10 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
 
 def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
-    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved)."""
+    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved); by default the pairs
+    are solved on the solver threads (:mod:`app.solvers`)."""
     started = time.perf_counter()
-    vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
+    vehicles = [_vehicle_answer(job, k, solve_pairs or solvers.solve_pairs) for k in range(len(job.vehicles))]
     answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
     SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
     return answer

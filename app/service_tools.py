@@ -27,6 +27,7 @@ from engine.errors import InvalidInput, RolloverError
 from engine.threshold import SweepResult as EngineSweep
 from engine.threshold import sweep
 
+from . import solvers
 from .cache import ResultCache, cache_key
 from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
@@ -196,7 +197,7 @@ def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
     """Every case of the grid (blocking: called in a worker thread), as arrays."""
     started = time.perf_counter()
     case = resolved["case"]
-    result = sweep(_case(case), resolved["grid"])
+    result = sweep(_case(case), resolved["grid"], block_map=solvers.block_map)
     SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
     order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, case["targets"]))
     return SweepAnswer(resolved, result, order)

@@ -15,6 +15,8 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from engine.assessment import DEFAULT_TARGETS
 
+from .solvers import default_threads
+
 #: shortest bearer key accepted in ROLLOVER_API_KEYS [characters]
 MIN_API_KEY_LENGTH = 16
 
@@ -122,6 +124,13 @@ class Settings(BaseSettings):
         24 * 3600, ge=1, description="How long a finished job and its result are kept (and an unfinished one) [s]."
     )
     jobs_workers: int = Field(1, ge=1, le=64, description="Worker threads of the inprocess backend [threads].")
+    solve_threads: int = Field(
+        default_factory=default_threads,
+        ge=1,
+        le=64,
+        description="Threads that solve the blocks of one large batch (alignment, route, sweep, job part) in parallel; "
+        "1 solves them one after another. Default: the process's cores, at most 4 [threads].",
+    )
     jobs_max_bytes: int = Field(
         1024 * 2**20,
         ge=2**20,

@@ -33,7 +33,7 @@ from .errors import InvalidInput, InvalidRoad, RolloverError
 from .loads import check_case
 from .models import get_model
 from .road import max_curve_speed_kmh
-from .threshold import evaluate_arrays, rollover_threshold
+from .threshold import BlockMap, evaluate_arrays, rollover_threshold
 from .vehicles import group_stiffness, static_axle_loads
 
 #: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
@@ -389,7 +389,9 @@ def bank_grade_pairs(superelevation_percent: np.ndarray, grade_percent: np.ndarr
     return np.stack((keys.real, keys.imag), axis=1), inverse.reshape(-1)
 
 
-def solve_bank_grade_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+def solve_bank_grade_pairs(
+    case: Case, pairs: np.ndarray, *, block_map: BlockMap = map
+) -> tuple[np.ndarray, dict[int, str]]:
     """The SRT of ``case`` on each (superelevation, grade) pair (rows of ``pairs``) in one batch, and why a pair has
     none (:func:`engine.threshold.evaluate_arrays`); a pair's SRT does not depend on the others in the batch.
 
@@ -397,8 +399,11 @@ def solve_bank_grade_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, d
     ----------
     case : the vehicle and SRT options (its road is replaced by each pair)
     pairs : (n, 2) superelevation and grade [%]
+    block_map : runs the batch's blocks (a thread pool's ``map`` runs them in parallel; the same bits either way) [-]
     """
-    srt, _, errors = evaluate_arrays(case, {"bank_percent": pairs[:, 0], "slope_percent": pairs[:, 1]})
+    srt, _, errors = evaluate_arrays(
+        case, {"bank_percent": pairs[:, 0], "slope_percent": pairs[:, 1]}, block_map=block_map
+    )
     return srt, errors
 
 

@@ -13,7 +13,7 @@ Thesis Secs. 1.3, 6.2 (Eqs. 6.17-6.18, 6.39), 7.2, 9.1-9.2, Tables 17 and 19; AA
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -277,6 +277,10 @@ def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarra
 #: one pass over 100,000 rows (bench/bench_engine.py: 1.6-2.05 s against 2.1-2.2 s here) and bound the temporaries
 BATCH_ROWS = 16_384
 
+#: how the blocks of a batch solve are run: ``map(function, blocks)`` or any function like it that yields the results
+#: in the blocks' order (e.g. ``concurrent.futures.ThreadPoolExecutor.map``)
+BlockMap = Callable[[Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], Iterable[np.ndarray]], Iterator]
+
 
 def evaluate_arrays(
     case: Case,
@@ -284,6 +288,7 @@ def evaluate_arrays(
     *,
     chassis_closure: str = "chassis-constant",
     batch_rows: int = BATCH_ROWS,
+    block_map: BlockMap = map,
 ) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
     """SRT [g] and roll [deg] of many cases of one vehicle, model and stage: ``case`` with each input of ``arrays``
     (keys of :data:`SWEEP_AXES`, equal-length arrays) varied row by row.
@@ -291,6 +296,10 @@ def evaluate_arrays(
     Returns ``(srt, roll, errors)``: arrays with nan where ``errors`` (row -> message) says why. The domain is
     checked with arrays (a row that may break a rule is checked alone, for its exact message); models with a batch
     solve run every valid row through it at once, a row whose mechanism leaves its valid geometry failing alone.
+
+    ``block_map`` runs the blocks of ``batch_rows`` rows (:data:`BlockMap`). The blocks are the same whichever runs
+    them, so the bits are too; a thread pool's ``map`` runs them in parallel, as the batch solve spends its time in
+    numpy, which releases the GIL (``bench/bench_engine.py``: about half the time with two threads on two cores).
     """
     model = get_model(case.model)
     get_closure(chassis_closure)
@@ -320,11 +329,14 @@ def evaluate_arrays(
             srt[i] = res.srt
             roll[i] = np.nan if res.roll_angle_deg is None else res.roll_angle_deg
         return srt, roll, errors
-    ay, rl = np.empty(ok.size), np.empty(ok.size)
-    for start in range(0, ok.size, batch_rows):
-        block = ok[start : start + batch_rows]
-        stop = start + block.size
-        ay[start:stop], rl[start:stop] = model.batch(case, {k: v[block] for k, v in col.items()}, chassis_closure)
+
+    def solve(block: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return model.batch(case, {k: v[block] for k, v in col.items()}, chassis_closure)
+
+    blocks = [ok[start : start + batch_rows] for start in range(0, ok.size, batch_rows)]
+    solved = list(block_map(solve, blocks)) if len(blocks) > 1 else [solve(blocks[0])]
+    ay = np.concatenate([a for a, _ in solved])
+    rl = np.concatenate([r for _, r in solved])
     good = np.isfinite(ay) & (ay > 0)
     srt[ok[good]], roll[ok[good]] = ay[good], rl[good]
     for k in np.flatnonzero(~good):
@@ -390,11 +402,18 @@ def with_axis(case: Case, axis: str, value: float) -> Case:
     return case.replace(rear_llt_limit=value)
 
 
-def sweep(case: Case, grid: Mapping[str, Sequence[float]], *, chassis_closure: str = "chassis-constant") -> SweepResult:
+def sweep(
+    case: Case,
+    grid: Mapping[str, Sequence[float]],
+    *,
+    chassis_closure: str = "chassis-constant",
+    block_map: BlockMap = map,
+) -> SweepResult:
     """SRT over the Cartesian product of ``grid`` (axes of :data:`SWEEP_AXES`) around ``case``, e.g. Tables 17, 19.
 
     The 3D and 2D models solve all cases at once (numpy arrays through the same fast path); a case the engine
     refuses or cannot solve gets an entry in ``errors`` instead of a number, and the others are kept.
+    ``block_map``: see :func:`evaluate_arrays`.
     """
     get_model(case.model)
     check_stage_and_limit(case)
@@ -409,6 +428,6 @@ def sweep(case: Case, grid: Mapping[str, Sequence[float]], *, chassis_closure: s
     mesh = np.meshgrid(*(np.asarray(grid[a], dtype=float) for a in axes), indexing="ij")
     values = np.stack([m.reshape(-1) for m in mesh], axis=1)  # product order: the first axis varies slowest
     srt, roll, errors = evaluate_arrays(
-        case, {a: values[:, k] for k, a in enumerate(axes)}, chassis_closure=chassis_closure
+        case, {a: values[:, k] for k, a in enumerate(axes)}, chassis_closure=chassis_closure, block_map=block_map
     )
     return SweepResult(case.model, case.stage if case.model == "3d" else None, axes, values, srt, roll, errors)

@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import logging
 
+from .. import solvers
 from ..logs import configure_logging, get_logger
 from ..settings import Settings, get_settings
 from .backends import RedisBackend
@@ -31,6 +32,7 @@ def perform_part(job_id: str, part: int, attempt: int) -> None:
     global _BACKEND
     if _BACKEND is None:
         _BACKEND = RedisBackend(get_settings())
+        solvers.configure(_BACKEND.settings.solve_threads)
     backend = _BACKEND
     run_part(backend.store, job_id, part, attempt, timeout_s=backend.settings.jobs_part_timeout_s)
 
@@ -44,6 +46,7 @@ def main(argv: list[str] | None = None, settings: Settings | None = None) -> Non
     args = parser.parse_args(argv)
     settings = settings or get_settings()
     configure_logging(settings.log_level)
+    solvers.configure(settings.solve_threads)
     from rq import SimpleWorker
     from rq.serializers import JSONSerializer
 

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 import pytest
 
 from engine.case import Case
 from engine.loads import LoadCase, Road
-from engine.threshold import evaluate_arrays, rollover_threshold, sweep
+from engine.threshold import BATCH_ROWS, evaluate_arrays, rollover_threshold, sweep
 from engine.vehicles import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -46,6 +48,33 @@ def test_a_rows_answer_does_not_depend_on_the_rows_solved_with_it(model):
         np.testing.assert_allclose(roll, whole[1], rtol=0, atol=1e-12)
         again = evaluate_arrays(case, arrays, batch_rows=rows)
         assert again[0].tobytes() == srt.tobytes()
+
+
+@pytest.mark.parametrize("model", ["3d", "2d"])
+def test_blocks_run_on_threads_give_the_same_bits(model):
+    """``block_map``: the blocks solved on a thread pool (in any order it finishes them) give the bits, refusals and
+    row order of the blocks solved one after another; each block is solved exactly once."""
+    rng = np.random.default_rng(5)
+    arrays = {"bank_percent": rng.uniform(-10, 14, 90), "lateral_offset_m": np.r_[rng.uniform(-0.2, 0.2, 89), 1.0]}
+    case = Case(BTRAIN, model=model)
+    serial = evaluate_arrays(case, arrays, batch_rows=8)
+    seen: list[int] = []
+
+    def pool_map(function, blocks):
+        blocks = list(blocks)
+        seen.extend(len(b) for b in blocks)
+        with ThreadPoolExecutor(4) as pool:
+            return list(pool.map(function, blocks))
+
+    threaded = evaluate_arrays(case, arrays, batch_rows=8, block_map=pool_map)
+    assert sorted(seen) == sorted([8] * 11 + [1])  # 89 rows solved (the refused one is not), in blocks of 8
+    assert threaded[0].tobytes() == serial[0].tobytes() and threaded[1].tobytes() == serial[1].tobytes()
+    assert threaded[2] == serial[2] == {89: serial[2][89]}
+    if model == "3d":  # sweep hands its blocks (of BATCH_ROWS rows) to the same block_map
+        seen.clear()
+        grid = {"bank_percent": np.linspace(-8, 12, BATCH_ROWS + 1)}
+        assert sweep(case, grid, block_map=pool_map).srt.tobytes() == sweep(case, grid).srt.tobytes()
+        assert seen == [BATCH_ROWS, 1]
 
 
 def test_load_grid_like_table19_and_the_2d_and_closed_form_models():

@@ -1,0 +1,71 @@
+"""The threads that solve the blocks of one large batch in parallel (``ROLLOVER_SOLVE_THREADS``).
+
+The engine's batch solve (:func:`engine.threshold.evaluate_arrays`) cuts a large batch into blocks of
+:data:`engine.threshold.BATCH_ROWS` rows and runs them through the ``block_map`` it is given. It spends its time in
+numpy, which releases the GIL on arrays this large, so blocks run in threads really run in parallel: a
+100,000-curve alignment's solve takes about half as long on two cores (``bench/bench_engine.py``). The blocks are the
+same whichever runs them, so the answer is bit for bit the one solved block after block.
+
+One pool per process, shared by every request, route and job of the process: a burst of large batches queues here
+for the cores instead of each taking its own threads. Set by :func:`configure` when the app starts.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+import numpy as np
+
+from engine.assessment import solve_bank_grade_pairs
+from engine.case import Case
+
+_lock = threading.Lock()
+_pool: ThreadPoolExecutor | None = None
+_threads = 1
+
+
+def default_threads() -> int:
+    """The cores this process may run on, at most 4 (a block is ~16,000 rows: more threads rarely have work)."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(4, cores))
+
+
+def configure(threads: int) -> None:
+    """Solve with ``threads`` threads from now on (1: block after block in the calling thread)."""
+    global _pool, _threads
+    with _lock:
+        if threads == _threads:
+            return
+        old, _pool, _threads = _pool, None, threads
+    if old is not None:
+        old.shutdown(wait=False)
+
+
+def _executor() -> ThreadPoolExecutor | None:
+    global _pool
+    with _lock:
+        if _pool is None and _threads > 1:
+            _pool = ThreadPoolExecutor(max_workers=_threads, thread_name_prefix="rollover-solve")
+        return _pool
+
+
+def block_map(function: Callable[[Any], Any], blocks: Iterable[Any]) -> Iterator[Any]:
+    """``map(function, blocks)`` on the solver threads (:data:`engine.threshold.BlockMap`): results in the blocks'
+    order. Never called from a solver thread itself (a block does not solve batches), so it cannot wait on itself."""
+    pool = _executor()
+    return map(function, blocks) if pool is None else pool.map(function, blocks)
+
+
+def solve_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+    """:func:`engine.assessment.solve_bank_grade_pairs` on the solver threads."""
+    return solve_bank_grade_pairs(case, pairs, block_map=block_map)
+
+
+__all__ = ["block_map", "configure", "default_threads", "solve_pairs"]

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import orjson
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION, standards
@@ -32,6 +33,7 @@ from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from .schemas.srt import SrtInputs, SrtRequest, SrtResult
 from .settings import Settings
+from .tables import json_template
 
 
 @dataclass(frozen=True)
@@ -114,6 +116,23 @@ def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list
         for c in ordered
     ]
     return [list(checks) for checks in zip(*per_target, strict=True)] if per_target else [[] for _ in srts]
+
+
+def target_checks_json_many(srts: np.ndarray, targets: dict[str, float]) -> list[bytes]:
+    """The JSON of each list of :func:`target_checks_many` (``orjson.dumps`` of it, byte for byte), written on columns
+    (:func:`app.tables.json_template`): no dict per SRT."""
+    ordered = _in_target_order(check_targets(0.0, targets))
+    if not ordered:
+        return [b"[]"] * len(srts)
+    fragments, columns = [b"["], []
+    for k, c in enumerate(ordered):
+        head = orjson.dumps({"name": c.name, "target_g": c.target_g, "meets": None})[: -len(b"null}")]
+        fragments[-1] += (b"," if k else b"") + head
+        fragments.append(b',"margin_g":')
+        fragments.append(b"}")
+        columns += [(srts >= c.target_g).tolist(), (srts - c.target_g).tolist()]
+    fragments[-1] += b"]"
+    return json_template(fragments, columns, b"\x00").split(b"\x00")[1:]
 
 
 def srt_key(

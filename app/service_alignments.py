@@ -16,6 +16,7 @@ import math
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -46,9 +47,16 @@ from .curves import curves_from_json
 from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from .problems import InvalidAlignment, request_error
 from .schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
-from .service import Computed, SavedRef, resolve_targets, resolve_vehicle, target_checks_many
+from .service import (
+    Computed,
+    SavedRef,
+    resolve_targets,
+    resolve_vehicle,
+    target_checks_json_many,
+    target_checks_many,
+)
 from .settings import Settings
-from .tables import Text, csv_line, csv_lines_of_columns, target_columns, target_columns_of
+from .tables import RawJson, Text, csv_line, csv_lines_of_columns, json_objects, target_columns, target_columns_of
 from .vehicle_refs import resolve_vehicle_refs
 
 #: answers with more rows than this are streamed (and cached by reference), never built whole
@@ -222,13 +230,31 @@ def resolve_alignment(
 
 @dataclass(frozen=True)
 class VehicleAnswer:
+    """One vehicle's rows as arrays; what is shared by the curves of one SRT is kept once per distinct SRT."""
+
     index: int
     preset: str | None
     saved_id: str | None
     columns: AlignmentColumns
     pair_of_row: np.ndarray  # distinct-SRT index of each row, for the shared tilt angle and target checks
-    tilt: list[float | None]  # per distinct SRT
-    checks: list[list[dict[str, Any]]]
+    srts: np.ndarray  # the distinct SRTs [g]; -1 for the rows without one
+    tilt_deg: np.ndarray  # per distinct SRT [deg]; nan without an SRT
+    targets: dict[str, float]
+
+    @cached_property
+    def tilt(self) -> list[float | None]:  # per distinct SRT
+        return [None if math.isnan(a) else a for a in self.tilt_deg.tolist()]
+
+    @cached_property
+    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: its target checks as dicts
+        solved = (self.srts >= 0).tolist()
+        return [c if ok else [] for c, ok in zip(target_checks_many(self.srts, self.targets), solved, strict=True)]
+
+    @cached_property
+    def checks_json(self) -> np.ndarray:  # per distinct SRT: the JSON of its ``checks`` (an object array, to index)
+        out = np.array(target_checks_json_many(self.srts, self.targets), dtype=object)
+        out[self.srts < 0] = b"[]"
+        return out
 
 
 @dataclass(frozen=True)
@@ -302,11 +328,9 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
         raise _located(exc, job, index) from None
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
-    solved = (srts >= 0).tolist()
-    angles = np.asarray(tilt_table_angle_deg(srts)).tolist()
-    tilt = [a if ok else None for a, ok in zip(angles, solved, strict=True)]
-    checks = [c if ok else [] for c, ok in zip(target_checks_many(srts, r["targets"]), solved, strict=True)]
-    return VehicleAnswer(index, r["presets"][index], r["saved_ids"][index], cols, pair_of_row.reshape(-1), tilt, checks)
+    tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
+    preset, saved = r["presets"][index], r["saved_ids"][index]
+    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r["targets"])
 
 
 def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
@@ -446,9 +470,46 @@ def json_vehicle_head(
 JSON_VEHICLE_END = b"]}"
 
 
+_SOURCE_JSON = np.array([b'"given"', b'"derived"'], dtype=object)
+_GOVERNED_JSON = np.array([orjson.dumps(g) for g in GOVERNED_BY], dtype=object)
+_MEETS_JSON = np.array([b"null", b"false", b"true"], dtype=object)  # by meets_standard_min_radius + 1
+
+
+def _json_row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, Any]:
+    """:func:`_row_columns` as :func:`app.tables.json_objects` writes them to the same JSON: a nan float is written
+    null as ``None`` is; the texts and the target checks already as JSON (:class:`~app.tables.RawJson`)."""
+    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    pairs = v.pair_of_row[sl]
+    errors = np.array([b"null", *map(orjson.dumps, c.errors)], dtype=object)
+    return {
+        "id": t.ids[sl],
+        "station_m": t.station_m[sl].tolist(),
+        "radius_m": c.radius_m[sl].tolist(),
+        "superelevation_percent": c.superelevation_percent[sl].tolist(),
+        "superelevation_source": RawJson(_SOURCE_JSON[c.superelevation_derived[sl].astype(np.intp)].tolist()),
+        "grade_percent": c.grade_percent[sl].tolist(),
+        "srt_g": c.srt_g[sl].tolist(),
+        "tilt_table_angle_deg": v.tilt_deg[pairs].tolist(),
+        "targets": RawJson(v.checks_json[pairs].tolist()),
+        "rollover_speed_kmh": c.rollover_speed_kmh[sl].tolist(),
+        "side_friction_speed_kmh": c.side_friction_speed_kmh[sl].tolist(),
+        "side_friction": c.side_friction[sl].tolist(),
+        "side_friction_clamped": c.side_friction_clamped[sl].tolist(),
+        "safe_speed_kmh": c.safe_speed_kmh[sl].tolist(),
+        "governed_by": RawJson(_GOVERNED_JSON[c.governed_by[sl]].tolist()),
+        "posted_speed_kmh": c.posted_speed_kmh[sl].tolist(),
+        "margin_kmh": c.margin_kmh[sl].tolist(),
+        "flagged": c.flagged[sl].tolist(),
+        "standard_min_radius_m": c.standard_min_radius_m[sl].tolist(),
+        "meets_standard_min_radius": RawJson(_MEETS_JSON[c.meets_standard_min_radius[sl] + 1].tolist()),
+        "error": RawJson(errors[c.error[sl] + 1].tolist()),
+    }
+
+
 def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> bytes:
-    """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets)."""
-    return orjson.dumps(_rows(answer, v, start, stop))[1:-1]
+    """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets): ``orjson.dumps`` of
+    :func:`_rows`, byte for byte, written column by column (:func:`app.tables.json_objects`)."""
+    return json_objects(_json_row_columns(answer, v, start, stop))
 
 
 def json_tail() -> bytes:

@@ -11,11 +11,16 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 import io
 import math
 
 import numpy as np
+import orjson
 import pytest
+
+from app.service_alignments import _rows, json_rows, parse_json_request, resolve_alignment, solve_alignment
+from app.settings import Settings
 
 BTRAIN = "table16-btrain"
 PATH = "/v1/alignments/assess"
@@ -503,3 +508,37 @@ def test_uploads_apply_the_json_forms_bounds(shared_client, radius, form):
     )
     if json_form is not None:
         assert json_form.status_code == 422
+
+
+def test_rows_written_by_columns_are_the_rows_as_dicts_byte_for_byte():
+    """The JSON writer (app.service_alignments.json_rows: column by column, a nan written as null, the texts and target
+    checks written once per distinct value) against orjson's JSON of the rows as dicts (the form the routes and
+    the schema use), on rows of every kind: given and derived superelevation, with and without a posted speed, a
+    station or none, refused (no SRT: no targets, no speeds, an error), a curve below the standard's minimum radius,
+    three targets (two equal), two vehicles."""
+    curves = [
+        {"id": "C1", "radius_m": 120.0, "superelevation_percent": 8.0, "grade_percent": -4.0, "posted_speed_kmh": 70.0},
+        {"id": "C2", "radius_m": 350.0, "posted_speed_kmh": 90.0},  # derived from the distribution (e_max given)
+        {"id": 'C,"3"', "radius_m": 600.0, "superelevation_percent": 8.0, "grade_percent": -4.0},  # no posted speed
+        # adverse crossfall past the rear LLT limit at rest: refused
+        {"id": "C4", "radius_m": 200.0, "superelevation_percent": -20.0, "posted_speed_kmh": 50.0},
+        {"id": "C5", "radius_m": 25.0, "superelevation_percent": 2.0, "grade_percent": 3.0, "posted_speed_kmh": 80.0},
+    ]
+    body = {
+        "vehicles": [BTRAIN, "table23-semitrailer"],
+        "rear_llt_limit": 0.2,
+        "max_superelevation_percent": 8.0,
+        "targets": {"a": 0.3, "b": 0.45, "c": 0.3},
+        "curves": curves,
+    }
+    req, table = parse_json_request(orjson.dumps(body))
+    table = dataclasses.replace(table, station_m=np.array([0.0, 150.5, np.nan, 900.0, 1200.0]))  # as from LandXML
+    answer = solve_alignment(resolve_alignment(req, table, Settings()))
+    for v in answer.vehicles:
+        rows = _rows(answer, v, 0, 5)
+        assert json_rows(answer, v, 0, 5) == orjson.dumps(rows)[1:-1]
+        assert json_rows(answer, v, 1, 4) == orjson.dumps(rows[1:4])[1:-1]
+        assert rows[1]["superelevation_source"] == "derived" and rows[2]["station_m"] is None
+        assert rows[3]["error"] and rows[3]["targets"] == [] and rows[3]["tilt_table_angle_deg"] is None
+        assert rows[4]["meets_standard_min_radius"] is False and rows[0]["meets_standard_min_radius"] is not None
+        assert [t["name"] for t in rows[0]["targets"]] == ["a", "c", "b"]

@@ -12,6 +12,8 @@ for the cores instead of each taking its own threads. Set by :func:`configure` w
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import os
 import threading
 from collections.abc import Callable, Iterable, Iterator
@@ -26,6 +28,17 @@ from engine.case import Case
 _lock = threading.Lock()
 _pool: ThreadPoolExecutor | None = None
 _threads = 1
+
+
+def _malloc_trim() -> Callable[[int], int] | None:
+    """glibc's ``malloc_trim`` (None elsewhere, e.g. musl): gives the free memory of every malloc arena back."""
+    try:
+        return ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6").malloc_trim
+    except (OSError, AttributeError):
+        return None
+
+
+_TRIM = _malloc_trim()
 
 
 def default_threads() -> int:
@@ -58,9 +71,18 @@ def _executor() -> ThreadPoolExecutor | None:
 
 def block_map(function: Callable[[Any], Any], blocks: Iterable[Any]) -> Iterator[Any]:
     """``map(function, blocks)`` on the solver threads (:data:`engine.threshold.BlockMap`): results in the blocks'
-    order. Never called from a solver thread itself (a block does not solve batches), so it cannot wait on itself."""
+    order. Never called from a solver thread itself (a block does not solve batches), so it cannot wait on itself.
+
+    Each thread allocates its blocks' temporaries in a malloc arena of its own, and glibc keeps what they free: a
+    100,000-curve alignment left the process ~70 MB larger with two threads than with one. So the arenas' free memory
+    is given back once the blocks are done (``malloc_trim``, a few milliseconds)."""
     pool = _executor()
-    return map(function, blocks) if pool is None else pool.map(function, blocks)
+    if pool is None:
+        return map(function, blocks)
+    results = list(pool.map(function, blocks))
+    if _TRIM is not None:
+        _TRIM(0)
+    return iter(results)
 
 
 def solve_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:

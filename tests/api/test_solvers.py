@@ -60,3 +60,18 @@ def test_pairs_solved_on_threads_are_the_pairs_solved_alone():
     alone, alone_errors = solve_bank_grade_pairs(case, pairs)
     assert srt.tobytes() == alone.tobytes()
     assert errors == alone_errors and list(errors) == [7]
+
+
+def test_free_memory_is_given_back_after_a_threaded_batch(monkeypatch):
+    """After the blocks of a threaded batch (not after a batch solved in the caller), the arenas are trimmed once,
+    when every block is done; glibc's malloc_trim is found on this (Linux, glibc) machine."""
+    assert solvers._malloc_trim() is not None
+    calls: list[tuple[int, int]] = []
+    done: list[int] = []
+    monkeypatch.setattr(solvers, "_TRIM", lambda pad: calls.append((pad, len(done))) or 1)
+    solvers.configure(2)
+    assert list(solvers.block_map(done.append, range(5))) == [None] * 5
+    assert calls == [(0, 5)]
+    solvers.configure(1)
+    list(solvers.block_map(done.append, range(5)))
+    assert calls == [(0, 5)]

@@ -27,6 +27,7 @@ from engine.errors import InvalidInput
 from ..auth import authenticate
 from ..bodylimit import body_limit
 from ..deps import SettingsDep
+from ..jsonpieces import loads_in_pieces
 from ..logs import get_logger
 from ..problems import InvalidAlignment, Problem, engine_field, error_responses, problem_response
 from ..routers.common import json_body
@@ -217,7 +218,7 @@ def _under_request(exc: Exception) -> Exception:
 def parse_submission(body: bytes) -> tuple[Operation, Any]:
     """The job's operation and its validated request (blocking: a million curves take a few seconds)."""
     try:
-        data = orjson.loads(body)
+        data = loads_in_pieces(body, ("request", "curves"))  # an alignment job's curves a slice at a time
     except orjson.JSONDecodeError as exc:
         raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
     if not isinstance(data, dict):

@@ -1,0 +1,145 @@
+"""``orjson.loads`` of a large request without holding the interpreter for the whole parse.
+
+A 100,000-curve alignment is a 12 MB JSON body. ``orjson.loads`` parses it in one C call that holds the GIL for
+0.1-0.3 s: the event loop, in another thread, cannot answer anything meanwhile (``/healthz`` took 110-120 ms,
+``bench/bench_service.py``). Nearly all of such a body is one list (``curves``), so :func:`loads_in_pieces` parses
+the document around that list, then the list a slice of elements at a time (a few milliseconds each); between two
+slices the other threads run.
+
+Where the list's elements begin and end is found by a lexical scan on numpy arrays (no Python per byte): the
+quotes, then the brackets, braces and commas outside strings and their depth. The scan needs no escapes: a body with
+a backslash anywhere is parsed at once, as is one without the list where it is expected, or with that key twice.
+
+The answer is always ``orjson.loads(body)``'s: every piece is parsed by orjson itself, the pieces rebuild the
+document exactly (the list's text is the pieces' texts joined by the commas between them, and each slice must give
+as many elements as it has), and on any doubt -- a piece that does not parse, a count that does not match -- the
+whole body is parsed at once, which gives orjson's own value or error. ``tests/api/test_jsonpieces.py`` checks it
+against ``orjson.loads`` on generated documents, valid and not.
+"""
+
+from __future__ import annotations
+
+import bisect
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import orjson
+
+#: bodies shorter than this are parsed at once (a 1 MB parse holds the GIL for about 10 ms) [bytes]
+SPLIT_BYTES = 1 << 20
+#: the list is parsed in slices of about this many bytes (~2 ms of orjson each) [bytes]
+PIECE_BYTES = 128 * 1024
+
+_WHITESPACE = b" \t\r\n"
+_QUOTE, _BACKSLASH, _COMMA, _COLON = 0x22, 0x5C, 0x2C, 0x3A
+_OPENS, _CLOSES = (0x7B, 0x5B), (0x7D, 0x5D)  # { [ and } ]
+
+
+class _Scan:
+    """The structure of a JSON text without escapes: its structural characters outside strings and their depth."""
+
+    def __init__(self, body: bytes) -> None:
+        a = np.frombuffer(body, dtype=np.uint8)
+        self.body = body
+        self.quotes = np.flatnonzero(a == _QUOTE)
+        marks = np.flatnonzero((a == 0x7B) | (a == 0x7D) | (a == 0x5B) | (a == 0x5D) | (a == _COMMA))
+        outside = (np.searchsorted(self.quotes, marks) & 1) == 0  # an even number of quotes before it
+        self.at = marks[outside]  # positions
+        kind = a[self.at]
+        step = np.isin(kind, _OPENS).astype(np.int64) - np.isin(kind, _CLOSES)
+        self.depth = np.cumsum(step)  # the depth just after each
+        self.kind = kind
+
+    def depth_at(self, pos: int) -> int:
+        i = int(np.searchsorted(self.at, pos))
+        return int(self.depth[i - 1]) if i else 0
+
+    def skip_whitespace(self, pos: int) -> int:
+        body = self.body
+        while pos < len(body) and body[pos] in _WHITESPACE:
+            pos += 1
+        return pos
+
+    def member(self, key: str, depth: int, lo: int, hi: int) -> int | None:
+        """Where the value of the one member ``key`` of the object at ``depth`` within ``[lo, hi)`` starts (None: not
+        there, or there twice)."""
+        token = orjson.dumps(key)
+        found, pos = [], self.body.find(token, lo, hi)
+        while pos >= 0:
+            opening = int(np.searchsorted(self.quotes, pos)) % 2 == 0  # the token's first quote opens a string
+            if opening and self.depth_at(pos) == depth:
+                colon = self.skip_whitespace(pos + len(token))
+                if colon < hi and self.body[colon] == _COLON:
+                    found.append(self.skip_whitespace(colon + 1))
+            pos = self.body.find(token, pos + 1, hi)
+        return found[0] if len(found) == 1 else None
+
+    def closing(self, opening: int) -> tuple[int, int] | None:
+        """Index (into ``at``) of the bracket or brace at position ``opening`` and of the one that closes it."""
+        i = int(np.searchsorted(self.at, opening))
+        if i >= len(self.at) or self.at[i] != opening:
+            return None
+        after = np.flatnonzero(self.depth[i:] == self.depth[i] - 1)
+        return (i, i + int(after[0])) if after.size else None
+
+
+def _locate(body: bytes, path: Sequence[str]) -> tuple[int, int, np.ndarray] | None:
+    """The list at ``path`` (keys from the top object down): its ``[``, its ``]`` and the commas between its
+    elements (positions); None when the scan cannot say (an escape, no such list, a key twice)."""
+    if body.find(b"\\") >= 0:
+        return None
+    scan = _Scan(body)
+    start = scan.skip_whitespace(0)
+    if start >= len(body) or body[start] != 0x7B:
+        return None
+    span = scan.closing(start)
+    for depth, key in enumerate(path, start=1):
+        if span is None:
+            return None
+        value = scan.member(key, depth, int(scan.at[span[0]]), int(scan.at[span[1]]))
+        last = depth == len(path)
+        if value is None or value >= len(body) or body[value] != (0x5B if last else 0x7B):
+            return None
+        span = scan.closing(value)
+    if span is None:
+        return None
+    i, j = span
+    inner = np.arange(i + 1, j)
+    commas = inner[(scan.kind[i + 1 : j] == _COMMA) & (scan.depth[i + 1 : j] == scan.depth[i])]
+    return int(scan.at[i]), int(scan.at[j]), scan.at[commas]
+
+
+def loads_in_pieces(
+    body: bytes, path: Sequence[str] = ("curves",), *, split_bytes: int = SPLIT_BYTES, piece_bytes: int = PIECE_BYTES
+) -> Any:
+    """``orjson.loads(body)`` (the same value, or the same ``orjson.JSONDecodeError``), the list at ``path`` of a large
+    body parsed a slice of elements at a time (see the module's doc)."""
+    found = _locate(body, path) if len(body) >= split_bytes else None
+    if found is None:
+        return orjson.loads(body)
+    opening, closing, commas = found
+    try:
+        data = orjson.loads(body[:opening] + b"[]" + body[closing + 1 :])
+        holder = data
+        for key in path[:-1]:
+            holder = holder[key]
+        if holder[path[-1]] != []:
+            return orjson.loads(body)
+        # element k lies between bounds[k] and bounds[k + 1]. Plain Python from here on: a numpy call in this loop
+        # would let go of the GIL and take it back at once, and a thread waiting for the GIL (the event loop) would
+        # starve, as it never sees the GIL held by one owner for a whole switch interval (CPython's convoy effect)
+        bounds = [opening, *commas.tolist(), closing]
+        items: list[Any] = []
+        first, last = 0, len(bounds) - 1
+        while first < last:
+            stop = max(first + 1, min(last, bisect.bisect_left(bounds, bounds[first] + piece_bytes)))
+            piece = orjson.loads(b"[" + body[bounds[first] + 1 : bounds[stop]] + b"]")
+            if len(piece) != stop - first:  # an empty element (`[1,,2]`, `[1,]`): not the list it seemed
+                return orjson.loads(body)
+            items += piece
+            first = stop
+        holder[path[-1]] = items
+        return data
+    except (orjson.JSONDecodeError, TypeError, KeyError):
+        return orjson.loads(body)  # orjson's own value or error for the whole body

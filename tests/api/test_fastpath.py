@@ -4,12 +4,16 @@ routing; If-None-Match with the current ETag is a 304."""
 from __future__ import annotations
 
 import asyncio
+import hashlib
+import threading
 from types import SimpleNamespace
 
+import orjson
 import pytest
 
 import app.routers.alignments
 import app.routers.srt
+from app import fastpath
 from app.fastpath import FastPathMiddleware, etag_matches
 
 BODY = b'{"vehicle": "table16-btrain", "model": "rigid"}'
@@ -30,6 +34,30 @@ def test_a_repeated_request_is_answered_before_routing(client, monkeypatch):
     assert again.headers["content-type"] == first.headers["content-type"]
     # the same request written differently is other bytes: it goes through the app (here: the broken route)
     other = client.post("/v1/srt", content=BODY.replace(b": ", b":"), headers=JSON)
+    assert other.status_code == 500
+
+
+def test_a_large_body_is_keyed_off_the_event_loop_the_same_way(client, monkeypatch):
+    """A body past HASH_IN_THREAD_BYTES is hashed in a worker thread (to the key it would have on the loop): a
+    repeated 4,000-curve alignment is answered by the fast path; one byte changed is not."""
+    curves = [
+        {"id": f"curve-{i:06d}", "radius_m": 150.0 + i, "superelevation_percent": 6.0, "grade_percent": -1.25}
+        for i in range(4_000)
+    ]
+    body = orjson.dumps({"vehicle": "table16-btrain", "curves": curves})
+    assert len(body) > fastpath.HASH_IN_THREAD_BYTES
+    hashed: list[str] = []
+    real = fastpath._raw_key
+    monkeypatch.setattr(fastpath, "_raw_key", lambda *a: hashed.append(threading.current_thread().name) or real(*a))
+    first = client.post("/v1/alignments/assess", content=body, headers=JSON)
+    assert first.status_code == 200 and first.headers["x-cache"] == "miss"
+    assert hashed and hashed[0] != threading.main_thread().name  # the TestClient's loop runs in the main thread
+    head = (b"x", b"/p", b"", b"", b"")
+    assert real(head, body) == hashlib.blake2b(b"\0".join((*head, body))).digest()
+    monkeypatch.setattr(app.routers.alignments, "compute_alignment", None)  # the route would fail
+    again = client.post("/v1/alignments/assess", content=body, headers=JSON)
+    assert again.status_code == 200 and again.headers["x-cache"] == "hit" and again.content == first.content
+    other = client.post("/v1/alignments/assess", content=body.replace(b"curve-", b"Curve-"), headers=JSON)
     assert other.status_code == 500
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import re
 from functools import lru_cache
+from operator import itemgetter, methodcaller
 from typing import Annotated, Any
 
 import numpy as np
@@ -58,6 +59,50 @@ def _refuse(index: int, item: Any, prefix: tuple = ("body", "curves")) -> None:
         ) from None
 
 
+_TYPES = {"id": {str}, "radius_m": {int, float}, "grade_percent": {int, float}}
+_OPTIONAL_TYPES = {int, float, type(None)}
+
+
+def _columns_at_once(items: list[Any]) -> CurveTable | None:
+    """The curves as columns when every one of them is plainly valid, checked column by column (``map`` and set
+    operations in C, no Python per curve: about half the time of the loop below); None when any curve may not be
+    (the loop then finds and reports it). Accepts exactly what the loop accepts, with the same columns."""
+    if set(map(type, items)) != {dict}:
+        return None
+    keysets = set(map(frozenset, items))
+    if not all(_REQUIRED <= k <= _FIELDS for k in keysets):
+        return None
+    everywhere = frozenset.intersection(*keysets)
+
+    def column(key: str, default: Any = None) -> list[Any]:  # itemgetter where every curve has the key: faster
+        return list(map(itemgetter(key) if key in everywhere else methodcaller("get", key, default), items))
+
+    ids, radius, grade = column("id"), column("radius_m"), column("grade_percent", 0.0)
+    e, posted = column("superelevation_percent"), column("posted_speed_kmh")
+    columns = {"id": ids, "radius_m": radius, "grade_percent": grade}
+    if not all(set(map(type, columns[k])) <= t for k, t in _TYPES.items()):
+        return None
+    if not (set(map(type, e)) <= _OPTIONAL_TYPES and set(map(type, posted)) <= _OPTIONAL_TYPES):
+        return None
+    lengths = set(map(len, ids))
+    if (
+        min(lengths) < 1
+        or max(lengths) > CURVE_ID_MAX_CHARS
+        or _CONTROL.search(" ".join(ids))
+        or len(set(ids)) < len(ids)
+    ):
+        return None
+    try:
+        r, g, ev, v = (np.array(c, dtype=float) for c in (radius, grade, e, posted))  # None -> nan
+    except OverflowError:  # an integer past the float range: the loop's error
+        return None
+    ok = _inside(r, "radius_m") & _inside(g, "slope_percent")
+    ok &= (np.isnan(ev) | _inside(ev, "bank_percent")) & (np.isnan(v) | _inside(v, "speed_kmh"))
+    if not ok.all():
+        return None
+    return CurveTable(ids, r, ev, g, v, np.full(len(ids), math.nan))
+
+
 def curves_from_json(items: Any, max_curves: int = MAX_CURVES) -> CurveTable:
     """The validated ``curves`` of a JSON request as columns (at most ``max_curves``: a job's limit is larger than a
     request's); a 422 naming the curve and field otherwise."""
@@ -68,6 +113,9 @@ def curves_from_json(items: Any, max_curves: int = MAX_CURVES) -> CurveTable:
             raise RequestValidationError(
                 [{**e, "loc": ("body", "curves", *e["loc"])} for e in exc.errors(include_url=False)]
             ) from None
+    fast = _columns_at_once(items)
+    if fast is not None:
+        return fast
     n = len(items)
     ids: list[str] = [""] * n
     radius, e, grade, posted = (np.full(n, math.nan) for _ in range(4))

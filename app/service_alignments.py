@@ -325,6 +325,7 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
             side_friction_bound=r["side_friction_bound"],
             max_superelevation_percent=r["max_superelevation_percent"],
             solve_pairs=solve_pairs,
+            block_map=solvers.block_map,
         )
     except InvalidInput as exc:
         raise _located(exc, job, index) from None

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
@@ -33,7 +33,7 @@ from .errors import InvalidInput, InvalidRoad, RolloverError
 from .loads import check_case
 from .models import get_model
 from .road import max_curve_speed_kmh
-from .threshold import BlockMap, evaluate_arrays, rollover_threshold
+from .threshold import BATCH_ROWS, BlockMap, evaluate_arrays, rollover_threshold
 from .vehicles import group_stiffness, static_axle_loads
 
 #: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
@@ -407,6 +407,20 @@ def solve_bank_grade_pairs(
     return srt, errors
 
 
+def _side_friction_in_blocks(std, radius: np.ndarray, e: np.ndarray, block_map: BlockMap):
+    """:func:`engine.standards.side_friction_speed` of the curves, in blocks of ``BATCH_ROWS`` through ``block_map``."""
+    if radius.size <= BATCH_ROWS:
+        return standards.side_friction_speed(std, radius, e)
+
+    def block(a: int) -> standards.SideFrictionSpeed:
+        return standards.side_friction_speed(std, radius[a : a + BATCH_ROWS], e[a : a + BATCH_ROWS])
+
+    parts = list(block_map(block, range(0, radius.size, BATCH_ROWS)))
+    return standards.SideFrictionSpeed(
+        *(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(standards.SideFrictionSpeed))
+    )
+
+
 def assess_alignment(
     case: Case,
     radius_m,
@@ -418,6 +432,7 @@ def assess_alignment(
     side_friction_bound: str | None = None,
     max_superelevation_percent: float | None = None,
     solve_pairs: Callable[[Case, np.ndarray], tuple[np.ndarray, dict[int, str]]] | None = None,
+    block_map: BlockMap = map,
 ) -> AlignmentColumns:
     """Safe speed on every curve of an alignment, on arrays (one entry per curve).
 
@@ -441,6 +456,8 @@ def assess_alignment(
     max_superelevation_percent : the road's e_max [%]
     solve_pairs : replaces :func:`solve_bank_grade_pairs` (e.g. one that remembers the pairs it solved for a
         batch assessed in slices) [-]
+    block_map : runs the side-friction speeds of blocks of :data:`~engine.threshold.BATCH_ROWS` curves (a thread
+        pool's ``map`` runs them in parallel; elementwise, so the same bits either way) [-]
 
     Raises
     ------
@@ -459,7 +476,7 @@ def assess_alignment(
     pairs, inverse = bank_grade_pairs(e, grade)
     srt_pairs, pair_errors = (solve_pairs or solve_bank_grade_pairs)(case, pairs)
     srt = srt_pairs[inverse]
-    friction = standards.side_friction_speed(std, radius, e)
+    friction = _side_friction_in_blocks(std, radius, e, block_map)
     fric_speed = friction.speed_kmh
     with np.errstate(invalid="ignore"):
         roll = np.where(np.isfinite(srt), max_curve_speed_kmh(np.where(np.isfinite(srt), srt, 0.0), radius), np.nan)

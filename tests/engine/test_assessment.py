@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import fields
 
 import numpy as np
 import pytest
 
 from engine.assessment import (
     Curve,
+    assess_alignment,
     assess_curves,
     check_targets,
     limit_table,
@@ -19,7 +22,7 @@ from engine.case import Case
 from engine.errors import InvalidInput, InvalidRoad
 from engine.loads import LoadCase, Road
 from engine.road import max_curve_speed_kmh, side_friction_speed_kmh
-from engine.threshold import rollover_threshold
+from engine.threshold import BATCH_ROWS, rollover_threshold
 from engine.vehicles import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -163,3 +166,30 @@ def test_a_curve_without_an_srt_is_flagged_with_its_reason():
     bad, ok = res.curves
     assert bad.srt_g is None and bad.error and bad.flagged
     assert ok.error is None
+
+
+def test_an_alignment_assessed_on_threads_is_the_same_bits():
+    """block_map: the side-friction speeds of blocks of BATCH_ROWS curves (and the pairs' solve) on a thread pool give
+    every column of the curves assessed in the calling thread, bit for bit."""
+    rng = np.random.default_rng(21)
+    n = BATCH_ROWS + 700
+    radius = rng.uniform(15, 3000, n)
+    e = rng.choice([2.0, 4.0, 6.0, 8.0, np.nan], n)  # nan: derived from the distribution at the posted speed
+    grade = rng.choice([-4.0, 0.0, 3.0], n)
+    posted = rng.choice([40.0, 60.0, 90.0], n)
+    case = Case(PRESETS["table16-btrain"])
+    blocks: list[int] = []
+
+    def pool_map(function, items):
+        items = list(items)
+        blocks.append(len(items))
+        with ThreadPoolExecutor(3) as pool:
+            return list(pool.map(function, items))
+
+    kwargs = {"design_standard": "aashto-2018", "max_superelevation_percent": 8.0}
+    alone = assess_alignment(case, radius, e, grade, posted, **kwargs)
+    threaded = assess_alignment(case, radius, e, grade, posted, block_map=pool_map, **kwargs)
+    assert blocks == [2]  # the side friction's two blocks (fewer distinct pairs than BATCH_ROWS: one block, no map)
+    for f in fields(alone):
+        a, b = getattr(alone, f.name), getattr(threaded, f.name)
+        assert (a.tobytes() == b.tobytes()) if isinstance(a, np.ndarray) else a == b, f.name

@@ -456,8 +456,9 @@ def assess_alignment(
     max_superelevation_percent : the road's e_max [%]
     solve_pairs : replaces :func:`solve_bank_grade_pairs` (e.g. one that remembers the pairs it solved for a
         batch assessed in slices) [-]
-    block_map : runs the side-friction speeds of blocks of :data:`~engine.threshold.BATCH_ROWS` curves (a thread
-        pool's ``map`` runs them in parallel; elementwise, so the same bits either way) [-]
+    block_map : runs the blocks of :data:`~engine.threshold.BATCH_ROWS` rows of the pairs' solve (unless
+        ``solve_pairs`` replaces it) and of the side-friction speeds (a thread pool's ``map`` runs them in parallel;
+        the same bits either way) [-]
 
     Raises
     ------
@@ -474,7 +475,10 @@ def assess_alignment(
     std = standards.get_standard(design_standard, side_friction_bound)
     e = _derive_superelevation(std, radius, e_given, posted, max_superelevation_percent)
     pairs, inverse = bank_grade_pairs(e, grade)
-    srt_pairs, pair_errors = (solve_pairs or solve_bank_grade_pairs)(case, pairs)
+    if solve_pairs is None:
+        srt_pairs, pair_errors = solve_bank_grade_pairs(case, pairs, block_map=block_map)
+    else:
+        srt_pairs, pair_errors = solve_pairs(case, pairs)
     srt = srt_pairs[inverse]
     friction = _side_friction_in_blocks(std, radius, e, block_map)
     fric_speed = friction.speed_kmh

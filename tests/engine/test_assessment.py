@@ -190,6 +190,11 @@ def test_an_alignment_assessed_on_threads_is_the_same_bits():
     alone = assess_alignment(case, radius, e, grade, posted, **kwargs)
     threaded = assess_alignment(case, radius, e, grade, posted, block_map=pool_map, **kwargs)
     assert blocks == [2]  # the side friction's two blocks (fewer distinct pairs than BATCH_ROWS: one block, no map)
+    pairs = np.stack([rng.uniform(0, 10, n), grade], axis=1)  # distinct superelevations: two blocks of pairs too
+    blocks.clear()
+    distinct = assess_alignment(case, radius, pairs[:, 0], grade, posted, block_map=pool_map)
+    assert blocks == [2, 2]
+    assert distinct.srt_g.tobytes() == assess_alignment(case, radius, pairs[:, 0], grade, posted).srt_g.tobytes()
     for f in fields(alone):
         a, b = getattr(alone, f.name), getattr(threaded, f.name)
         assert (a.tobytes() == b.tobytes()) if isinstance(a, np.ndarray) else a == b, f.name

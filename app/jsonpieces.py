@@ -30,6 +30,8 @@ import orjson
 SPLIT_BYTES = 1 << 20
 #: the list is parsed in slices of about this many bytes (~2 ms of orjson each) [bytes]
 PIECE_BYTES = 128 * 1024
+#: a key whose text (e.g. ``"curves"``) appears more often than this (as values, say) is not looked for [-]
+MAX_KEY_TEXTS = 64
 
 _WHITESPACE = b" \t\r\n"
 _QUOTE, _BACKSLASH, _COMMA, _COLON = 0x22, 0x5C, 0x2C, 0x3A
@@ -51,8 +53,11 @@ class _Scan:
         self.depth = np.cumsum(step)  # the depth just after each
         self.kind = kind
 
+    # the per-position look-ups below use bisect, not numpy: they run in Python loops, where a numpy call per step
+    # would let go of the GIL and take it back each time and starve a waiting thread (see loads_in_pieces)
+
     def depth_at(self, pos: int) -> int:
-        i = int(np.searchsorted(self.at, pos))
+        i = bisect.bisect_left(self.at, pos)
         return int(self.depth[i - 1]) if i else 0
 
     def skip_whitespace(self, pos: int) -> int:
@@ -63,11 +68,14 @@ class _Scan:
 
     def member(self, key: str, depth: int, lo: int, hi: int) -> int | None:
         """Where the value of the one member ``key`` of the object at ``depth`` within ``[lo, hi)`` starts (None: not
-        there, or there twice)."""
+        there, there twice, or the key's text found more than :data:`MAX_KEY_TEXTS` times: then each is not worth
+        looking at, and the whole body is parsed at once)."""
         token = orjson.dumps(key)
+        if self.body.count(token, lo, hi) > MAX_KEY_TEXTS:
+            return None
         found, pos = [], self.body.find(token, lo, hi)
         while pos >= 0:
-            opening = int(np.searchsorted(self.quotes, pos)) % 2 == 0  # the token's first quote opens a string
+            opening = bisect.bisect_left(self.quotes, pos) % 2 == 0  # the token's first quote opens a string
             if opening and self.depth_at(pos) == depth:
                 colon = self.skip_whitespace(pos + len(token))
                 if colon < hi and self.body[colon] == _COLON:

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from app import jsonpieces
-from app.jsonpieces import PIECE_BYTES, _locate, loads_in_pieces
+from app.jsonpieces import MAX_KEY_TEXTS, PIECE_BYTES, _locate, loads_in_pieces
 
 #: texts full of what the scan looks at: quotes are escaped by orjson (so a backslash appears: the whole-body path),
 #: commas, brackets, braces, colons, the key itself, whitespace
@@ -111,3 +111,13 @@ def test_a_large_body_is_parsed_in_short_calls(monkeypatch):
     assert loads_in_pieces(body) == {"vehicle": "table16-btrain", "curves": curves}
     assert len(body) > 80 * PIECE_BYTES and len(sizes) > 80
     assert max(sizes) < PIECE_BYTES + 200  # a slice ends at the first element past PIECE_BYTES
+
+
+def test_a_key_text_repeated_everywhere_is_not_looked_for():
+    """``"curves"`` as a value in every curve: past MAX_KEY_TEXTS the list is not looked for (each occurrence would
+    cost a look-up), and the body is parsed at once, to the same value."""
+    curves = [{"id": f"C{i}", "note": "curves", "radius_m": 100.0 + i} for i in range(MAX_KEY_TEXTS + 1)]
+    body = orjson.dumps({"vehicle": "x", "curves": curves})
+    assert _locate(body, ("curves",)) is None
+    assert _pieces(body) == orjson.loads(body)
+    assert _locate(orjson.dumps({"vehicle": "x", "curves": curves[:-2]}), ("curves",)) is not None

@@ -33,7 +33,7 @@ from .errors import InvalidInput, InvalidRoad, RolloverError
 from .loads import check_case
 from .models import get_model
 from .road import max_curve_speed_kmh
-from .threshold import BATCH_ROWS, BlockMap, evaluate_arrays, rollover_threshold
+from .threshold import BlockMap, evaluate_arrays, map_blocks, rollover_threshold
 from .vehicles import group_stiffness, static_axle_loads
 
 #: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
@@ -408,14 +408,15 @@ def solve_bank_grade_pairs(
 
 
 def _side_friction_in_blocks(std, radius: np.ndarray, e: np.ndarray, block_map: BlockMap):
-    """:func:`engine.standards.side_friction_speed` of the curves, in blocks of ``BATCH_ROWS`` through ``block_map``."""
-    if radius.size <= BATCH_ROWS:
-        return standards.side_friction_speed(std, radius, e)
+    """:func:`engine.standards.side_friction_speed` of the curves, in blocks run by ``block_map``
+    (:func:`engine.threshold.map_blocks`)."""
 
-    def block(a: int) -> standards.SideFrictionSpeed:
-        return standards.side_friction_speed(std, radius[a : a + BATCH_ROWS], e[a : a + BATCH_ROWS])
+    def block(rows: range) -> standards.SideFrictionSpeed:
+        return standards.side_friction_speed(std, radius[rows.start : rows.stop], e[rows.start : rows.stop])
 
-    parts = list(block_map(block, range(0, radius.size, BATCH_ROWS)))
+    parts = map_blocks(block, radius.size, block_map)
+    if len(parts) == 1:
+        return parts[0]
     return standards.SideFrictionSpeed(
         *(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(standards.SideFrictionSpeed))
     )

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -28,6 +29,7 @@ from .trailer3d import get_closure
 from .vehicles import Vehicle
 
 METHODS = ("reduced", "davies")
+T = TypeVar("T")
 
 #: tire-road friction coefficient against which every SRT is compared [-]. Assumed: the low end of the
 #: 0.8-1.0 peak lateral friction of truck tires on dry pavement; on a wet or worn road it is lower, so a
@@ -277,9 +279,17 @@ def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarra
 #: one pass over 100,000 rows (bench/bench_engine.py: 1.6-2.05 s against 2.1-2.2 s here) and bound the temporaries
 BATCH_ROWS = 16_384
 
-#: how the blocks of a batch solve are run: ``map(function, blocks)`` or any function like it that yields the results
-#: in the blocks' order (e.g. ``concurrent.futures.ThreadPoolExecutor.map``)
-BlockMap = Callable[[Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], Iterable[np.ndarray]], Iterator]
+#: how the blocks of a batch are run: ``map(function, blocks)`` or any function like it that yields the results in the
+#: blocks' order (e.g. ``concurrent.futures.ThreadPoolExecutor.map``)
+BlockMap = Callable[[Callable[[range], Any], Iterable[range]], Iterator[Any]]
+
+
+def map_blocks(function: Callable[[range], T], size: int, block_map: BlockMap = map, rows: int = BATCH_ROWS) -> list[T]:
+    """``function`` of each block of ``rows`` consecutive positions of ``range(size)`` (the last one shorter), in
+    order, run by ``block_map``; a single block is run in the caller. The blocks depend on ``size`` and ``rows`` only,
+    never on ``block_map``, so neither do the bits of an elementwise computation."""
+    blocks = [range(start, min(start + rows, size)) for start in range(0, size, rows)]
+    return [function(blocks[0])] if len(blocks) == 1 else list(block_map(function, blocks))
 
 
 def evaluate_arrays(
@@ -330,11 +340,11 @@ def evaluate_arrays(
             roll[i] = np.nan if res.roll_angle_deg is None else res.roll_angle_deg
         return srt, roll, errors
 
-    def solve(block: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        return model.batch(case, {k: v[block] for k, v in col.items()}, chassis_closure)
+    def solve(block: range) -> tuple[np.ndarray, np.ndarray]:
+        rows = ok[block.start : block.stop]
+        return model.batch(case, {k: v[rows] for k, v in col.items()}, chassis_closure)
 
-    blocks = [ok[start : start + batch_rows] for start in range(0, ok.size, batch_rows)]
-    solved = list(block_map(solve, blocks)) if len(blocks) > 1 else [solve(blocks[0])]
+    solved = map_blocks(solve, ok.size, block_map, batch_rows)
     ay = np.concatenate([a for a, _ in solved])
     rl = np.concatenate([r for _, r in solved])
     good = np.isfinite(ay) & (ay > 0)

@@ -338,10 +338,10 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
 
 def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
-    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved); by default the pairs
-    are solved on the solver threads (:mod:`app.solvers`)."""
+    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved); the blocks of the
+    pairs' solve and of the side-friction speeds run on the solver threads (:mod:`app.solvers`)."""
     started = time.perf_counter()
-    vehicles = [_vehicle_answer(job, k, solve_pairs or solvers.solve_pairs) for k in range(len(job.vehicles))]
+    vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
     answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
     SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
     return answer

@@ -20,11 +20,6 @@ from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-import numpy as np
-
-from engine.assessment import solve_bank_grade_pairs
-from engine.case import Case
-
 _lock = threading.Lock()
 _pool: ThreadPoolExecutor | None = None
 _threads = 1
@@ -85,9 +80,4 @@ def block_map(function: Callable[[Any], Any], blocks: Iterable[Any]) -> Iterator
     return iter(results)
 
 
-def solve_pairs(case: Case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
-    """:func:`engine.assessment.solve_bank_grade_pairs` on the solver threads."""
-    return solve_bank_grade_pairs(case, pairs, block_map=block_map)
-
-
-__all__ = ["block_map", "configure", "default_threads", "solve_pairs"]
+__all__ = ["block_map", "configure", "default_threads"]

@@ -22,6 +22,7 @@ from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
+from engine.assessment import solve_bank_grade_pairs
 from engine.vehicles import Vehicle
 
 from .. import solvers
@@ -128,7 +129,7 @@ class PairMemo:
         rows = [tuple(p) for p in pairs.tolist()]
         todo = [i for i, p in enumerate(rows) if p not in memo]
         if todo:
-            srt, errors = solvers.solve_pairs(case, pairs[todo])
+            srt, errors = solve_bank_grade_pairs(case, pairs[todo], block_map=solvers.block_map)
             for j, i in enumerate(todo):
                 memo[rows[i]] = (float(srt[j]), errors.get(j))
         found = [memo[p] for p in rows]

@@ -56,7 +56,7 @@ def test_pairs_solved_on_threads_are_the_pairs_solved_alone():
     pairs[7, 0] = 99.0
     case = Case(PRESETS["table16-btrain"])
     solvers.configure(3)
-    srt, errors = solvers.solve_pairs(case, pairs)
+    srt, errors = solve_bank_grade_pairs(case, pairs, block_map=solvers.block_map)
     alone, alone_errors = solve_bank_grade_pairs(case, pairs)
     assert srt.tobytes() == alone.tobytes()
     assert errors == alone_errors and list(errors) == [7]

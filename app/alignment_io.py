@@ -32,8 +32,8 @@ import numpy as np
 from defusedxml import ElementTree as SafeET
 from defusedxml.common import DefusedXmlException
 
-from engine.assessment import check_columns
 from engine.errors import InvalidRoad
+from engine.road import check_columns
 
 MAX_CURVES = 100_000
 #: one limit for a curve id in every form (JSON, CSV, LandXML): 1-100 characters, none of them a control character

@@ -44,7 +44,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from engine.errors import InvalidVehicle, MissingParameter
 from engine.models import get_model
-from engine.vehicles import PRESETS, Vehicle
+from engine.vehicle import PRESETS, Vehicle
 
 from .auth import CatalogDisabled, NotAuthenticated
 from .db import Database, repo

@@ -1,10 +1,10 @@
 """Concurrent one-threshold solves handed to the engine together.
 
 An uncached ``POST /v1/srt`` (and the SRT behind curve-speed, min-radius and the min-radius plot) is one call of
-:func:`engine.threshold.rollover_threshold`, about a millisecond on the event loop. When many arrive at once (a
+:func:`engine.models.rollover_threshold`, about a millisecond on the event loop. When many arrive at once (a
 client firing a batch, a page loading a fleet) they wait on the loop at the same moment; this module hands them to
-:func:`engine.threshold.rollover_thresholds` as one list, which solves the 3D cases of one vehicle and stage together
-on numpy arrays when there are enough of them (:data:`engine.threshold.MIN_ARRAY_CASES`): 32 cases in about half the
+:func:`engine.models.rollover_thresholds` as one list, which solves the 3D cases of one vehicle and stage together
+on numpy arrays when there are enough of them (:data:`engine.models.MIN_ARRAY_CASES`): 32 cases in about half the
 time of 32 solves one by one, 64 in about a third (``python bench/bench_engine.py``). A case's result does not
 depend on the cases solved with it (a converged case stops where it would alone; tests/api/test_coalesce.py), so an
 answer is the same whether its request came alone or in a crowd.
@@ -24,8 +24,8 @@ import time
 import weakref
 
 from engine.case import Case
+from engine.models import rollover_thresholds
 from engine.results import RolloverResult
-from engine.threshold import rollover_thresholds
 
 from .metrics import SOLVE_BATCH_CASES, SOLVE_SECONDS
 

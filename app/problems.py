@@ -181,7 +181,7 @@ def engine_field(field: str | None) -> str | None:
     """Engine field names are record names for the vehicle; prefix them so they point into the request."""
     if field is None:
         return None
-    from engine.vehicles import FIELD_DOCS
+    from engine.vehicle import FIELD_DOCS
 
     return f"vehicle.{field}" if field in FIELD_DOCS else field
 

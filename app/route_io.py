@@ -38,7 +38,7 @@ import numpy as np
 from defusedxml import ElementTree as SafeET
 from defusedxml.common import DefusedXmlException
 
-from engine.geodesy import segment_lengths_m
+from engine.route import segment_lengths_m
 
 MIN_VERTICES = 2
 MAX_SEGMENT_M = 10_000.0

@@ -18,14 +18,12 @@ import numpy as np
 import orjson
 from starlette.concurrency import run_in_threadpool
 
-from engine import ENGINE_VERSION, standards
-from engine.assessment import check_targets, tilt_table_angle_deg
-from engine.case import Case
-from engine.loads import LoadCase, Road
+from engine import ENGINE_VERSION
+from engine.case import Case, LoadCase, Road
+from engine.models import rollover_threshold
 from engine.results import RolloverResult
-from engine.road import max_curve_speed_kmh, min_radius
-from engine.threshold import rollover_threshold
-from engine.vehicles import Vehicle, get_preset
+from engine.road import check_targets, max_curve_speed_kmh, min_radius, side_friction_factor, tilt_table_angle_deg
+from engine.vehicle import Vehicle, get_preset
 
 from .cache import ResultCache, cache_key
 from .coalesce import COALESCER
@@ -270,7 +268,7 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
     road = Road(bank_percent=req.superelevation_percent, slope_percent=req.road.slope_percent)
     case = resolve_case(req, road=road) if req.srt is None else None
     if req.side_friction is None:  # refuse a speed outside the standard's range before solving for the SRT
-        standards.side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
+        side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
     resolved = {
         "design_speed_kmh": req.design_speed_kmh,
         "superelevation_percent": req.superelevation_percent,

@@ -27,7 +27,9 @@ from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
-from engine.assessment import (
+from engine.case import Case, LoadCase
+from engine.errors import InvalidInput
+from engine.road import (
     GOVERNED_BY,
     AlignmentColumns,
     assess_alignment,
@@ -35,10 +37,7 @@ from engine.assessment import (
     superelevation_used,
     tilt_table_angle_deg,
 )
-from engine.case import Case
-from engine.errors import InvalidInput
-from engine.loads import LoadCase
-from engine.vehicles import Vehicle
+from engine.vehicle import Vehicle
 
 from . import solvers
 from .alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml

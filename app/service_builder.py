@@ -14,9 +14,9 @@ import orjson
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
-from engine.builder import BuiltVehicle, PayloadTable, VehicleSpec, build_vehicle, payload_table
-from engine.components import NOT_FOUND, SUSPENSIONS, TYRES
 from engine.errors import InvalidInput
+from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
+from engine.vehicle.builder import BuiltVehicle, PayloadTable, VehicleSpec, build_vehicle, payload_table
 
 from .cache import ResultCache
 from .schemas.builder import (

@@ -12,13 +12,18 @@ from collections.abc import Callable
 
 import numpy as np
 
-from engine.case import Case
+from engine.case import Case, Road
 from engine.errors import InvalidRoad
-from engine.loads import Road
 from engine.results import RolloverResult
-from engine.road import rollover_min_radius_m, side_friction_min_radius_m
-from engine.standards import DesignStandard, check_design_speeds, get_standard, side_friction_factor
-from engine.vehicles import Vehicle
+from engine.road import (
+    DesignStandard,
+    check_design_speeds,
+    get_standard,
+    rollover_min_radius_m,
+    side_friction_factor,
+    side_friction_min_radius_m,
+)
+from engine.vehicle import Vehicle
 
 from .cache import ResultCache
 from .schemas.plots import MinRadiusPlotRequest, PlotRequest

@@ -2,7 +2,7 @@
 
 The document is read by :mod:`app.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
 feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
-(:func:`engine.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
+(:func:`engine.route.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
 curves then go through the same assessment as an alignment's (:func:`app.service_alignments.solve_alignment`:
 superelevation given, from a feature property, or derived from the standard; grade from the elevations), so a curve
 gets the same answer whether it came from a table or from geometry. The answer is a GeoJSON FeatureCollection of the
@@ -24,9 +24,8 @@ from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
-from engine.geodesy import local_frame
-from engine.geometry import HorizontalCurve, find_curves
-from engine.vehicles import Vehicle
+from engine.route import HorizontalCurve, find_curves, local_frame
+from engine.vehicle import Vehicle
 
 from .alignment_io import CurveTable
 from .cache import ResultCache

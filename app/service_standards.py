@@ -6,9 +6,16 @@ from __future__ import annotations
 import numpy as np
 import orjson
 
-from engine import standards
 from engine.errors import InvalidRoad
-from engine.road import FRICTION_BOUNDS
+from engine.road import (
+    FRICTION_BOUNDS,
+    STANDARDS,
+    DesignStandard,
+    get_standard,
+    min_radius_m,
+    superelevation_percent,
+    superelevation_table,
+)
 
 from .cache import ResultCache
 from .schemas.standards import (
@@ -27,7 +34,7 @@ from .tables import to_csv
 TABLE_COLUMNS = ("radius_m", "superelevation_percent", "side_friction")
 
 
-def standard_out(std: standards.DesignStandard) -> StandardOut:
+def standard_out(std: DesignStandard) -> StandardOut:
     """The published description of one standard (``thesis-table21`` at its default bound)."""
     return StandardOut(
         id=std.id,
@@ -46,21 +53,19 @@ def standard_out(std: standards.DesignStandard) -> StandardOut:
 
 
 def list_standards() -> StandardList:
-    return StandardList(
-        default=DEFAULT_DESIGN_STANDARD, standards=[standard_out(s) for s in standards.STANDARDS.values()]
-    )
+    return StandardList(default=DEFAULT_DESIGN_STANDARD, standards=[standard_out(s) for s in STANDARDS.values()])
 
 
 def get_standard_out(standard_id: str) -> StandardOut:
     """One standard by id (an unknown id is refused naming the known ones: a 404 from the router)."""
-    return standard_out(standards.get_standard(standard_id))
+    return standard_out(get_standard(standard_id))
 
 
 async def compute_superelevation(cache: ResultCache, req: SuperelevationRequest) -> Computed:
     resolved = req.model_dump(mode="json") | {"design_standard": req.design_standard}
 
     async def produce() -> bytes:
-        r = standards.superelevation_percent(
+        r = superelevation_percent(
             req.design_standard, req.design_speed_kmh, req.radius_m, req.max_superelevation_percent
         )
         out = SuperelevationResult(
@@ -84,7 +89,7 @@ def table_radii(req: SuperelevationTableRequest) -> np.ndarray:
     (default :data:`TABLE_RADIUS_SPAN` R_min) [m]."""
     if req.radii_m is not None:
         return np.asarray(req.radii_m, dtype=float)
-    r_min = standards.min_radius_m(
+    r_min = min_radius_m(
         req.design_standard, req.design_speed_kmh, req.max_superelevation_percent, tabulated=False
     ).radius_m
     r_max = TABLE_RADIUS_SPAN * r_min if req.radius_max_m is None else req.radius_max_m
@@ -102,7 +107,7 @@ async def compute_superelevation_table(cache: ResultCache, req: SuperelevationTa
     resolved = req.model_dump(mode="json") | {"design_standard": req.design_standard}
 
     async def produce() -> bytes:
-        t = standards.superelevation_table(
+        t = superelevation_table(
             req.design_standard, req.design_speed_kmh, req.max_superelevation_percent, table_radii(req)
         )
         rows = [

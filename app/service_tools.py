@@ -21,11 +21,11 @@ from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
 from engine import ENGINE_VERSION
-from engine.assessment import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
 from engine.case import Case
 from engine.errors import InvalidInput, RolloverError
-from engine.threshold import SweepResult as EngineSweep
-from engine.threshold import sweep
+from engine.models import SweepResult as EngineSweep
+from engine.models import sweep
+from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
 
 from . import solvers
 from .cache import ResultCache, cache_key
@@ -179,7 +179,7 @@ def sweep_cases(resolved: dict[str, Any]) -> int:
 
 @dataclass(frozen=True)
 class SweepAnswer:
-    """Every case of a grid as the engine's arrays (:class:`engine.threshold.SweepResult`) and the SRT targets they
+    """Every case of a grid as the engine's arrays (:class:`engine.models.SweepResult`) and the SRT targets they
     are checked against: rendered to JSON or CSV in chunks (:func:`sweep_json_chunks`, :func:`sweep_csv_chunks`)."""
 
     resolved: dict[str, Any]

@@ -13,7 +13,7 @@ from typing import Literal
 from pydantic import Field, SecretStr, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-from engine.assessment import DEFAULT_TARGETS
+from engine.road import DEFAULT_TARGETS
 
 from .solvers import default_threads
 

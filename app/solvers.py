@@ -1,7 +1,7 @@
 """The threads that solve the blocks of one large batch in parallel (``ROLLOVER_SOLVE_THREADS``).
 
-The engine's batch solve (:func:`engine.threshold.evaluate_arrays`) cuts a large batch into blocks of
-:data:`engine.threshold.BATCH_ROWS` rows and runs them through the ``block_map`` it is given. It spends its time in
+The engine's batch solve (:func:`engine.models.evaluate_arrays`) cuts a large batch into blocks of
+:data:`engine.models.BATCH_ROWS` rows and runs them through the ``block_map`` it is given. It spends its time in
 numpy, which releases the GIL on arrays this large, so blocks run in threads really run in parallel: a
 100,000-curve alignment's solve takes about half as long on two cores (``bench/bench_engine.py``). The blocks are the
 same whichever runs them, so the answer is bit for bit the one solved block after block.
@@ -65,7 +65,7 @@ def _executor() -> ThreadPoolExecutor | None:
 
 
 def block_map(function: Callable[[Any], Any], blocks: Iterable[Any]) -> Iterator[Any]:
-    """``map(function, blocks)`` on the solver threads (:data:`engine.threshold.BlockMap`): results in the blocks'
+    """``map(function, blocks)`` on the solver threads (:data:`engine.models.BlockMap`): results in the blocks'
     order. Never called from a solver thread itself (a block does not solve batches), so it cannot wait on itself.
 
     Each thread allocates its blocks' temporaries in a malloc arena of its own, and glibc keeps what they free: a

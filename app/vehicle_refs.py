@@ -24,7 +24,7 @@ from fastapi.security import HTTPAuthorizationCredentials
 from fastapi.security.utils import get_authorization_scheme_param
 from pydantic import BaseModel
 
-from engine.vehicles import Vehicle
+from engine.vehicle import Vehicle
 
 from . import catalog
 from .auth import authenticate

@@ -23,9 +23,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from engine.assessment import Curve, assess_curves  # noqa: E402
 from engine.case import Case  # noqa: E402
-from engine.vehicles import get_preset  # noqa: E402
+from engine.road import Curve, assess_curves  # noqa: E402
+from engine.vehicle import get_preset  # noqa: E402
 
 BTRAIN = "table16-btrain"
 PATH = "/v1/alignments/assess"

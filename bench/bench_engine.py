@@ -6,8 +6,8 @@ Measures
 2. one full ``rollover_threshold`` call (both stages, with the calibration solves), fast path;
 3. the same solve on the Davies reference path (full 6 x 22 cut-set system per iteration);
 4. the Table 17 (4 x 7 x 12 = 336 cases) and Table 19 (9 x 7 x 5 = 315 cases) grids, 651 cases, by
-   :func:`engine.threshold.sweep` (batched numpy fast path);
-5. many one-threshold cases handed over together (:func:`engine.threshold.rollover_thresholds`, as the service's
+   :func:`engine.models.threshold.sweep` (batched numpy fast path);
+5. many one-threshold cases handed over together (:func:`engine.models.threshold.rollover_thresholds`, as the service's
    coalescer does) against the same cases one at a time;
 6. where the time of one fast solve goes (per iteration: geometry, closures + limit, group statics).
 """
@@ -25,19 +25,19 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine import trailer3d, trailer3d_davies
-from engine.case import Case
-from engine.loads import Road
-from engine.stepping import stage_model
-from engine.threshold import (
+from engine.case import Case, Road
+from engine.models import (
     BATCH_ROWS,
     MIN_ARRAY_CASES,
     evaluate_arrays,
     rollover_threshold,
     rollover_thresholds,
+    stage_model,
     sweep,
+    trailer3d,
+    trailer3d_davies,
 )
-from engine.vehicles import PRESETS
+from engine.vehicle import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
 TABLE17 = {
@@ -133,7 +133,7 @@ def main() -> None:
     state = sol.state
     geo = trailer3d.geometry(m, case, state.rear, state.front, state.theta27)
     cl = trailer3d.chassis_loads(m, case, geo, sol.ay, sol.loads.t28)
-    from engine.groups import group_statics
+    from engine.models import group_statics
 
     per = {
         "geometry (Eqs. 4.2-4.19, 6.1-6.2)": lambda: trailer3d.geometry(

@@ -5,7 +5,7 @@ a third of them with clothoid transitions (Ls = 0.3 sqrt(R) ... of order 20-130 
 (tests/synthetic_routes.py; needs the test extra's geographiclib) and timed through
 
 * ``engine.geometry.find_curves`` on the plane coordinates, without noise and with 3 m of GPS-like noise;
-* ``engine.geodesy.local_frame`` + ``find_curves`` from longitude/latitude (the app's path);
+* ``engine.route.geodesy.local_frame`` + ``find_curves`` from longitude/latitude (the app's path);
 * ``app.route_io.read_geojson`` of the same route as a GeoJSON LineString (parsed dict).
 
 Prints figures only (median of the repeats) and how many curves were found against the design.
@@ -28,8 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from app.route_io import read_geojson  # noqa: E402
-from engine.geodesy import local_frame  # noqa: E402
-from engine.geometry import find_curves  # noqa: E402
+from engine.route import find_curves, local_frame  # noqa: E402
 from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
 
 

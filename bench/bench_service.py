@@ -13,7 +13,7 @@ Starts its own uvicorn processes on free ports (waits for /healthz, stops them a
   (VmHWM) and RSS after, the worst ``/healthz`` latency polled every 20 ms meanwhile from another process; against
   ``engine.assessment.assess_alignment`` alone in a fresh process;
 * the largest sweep (20,000 cases, ``POST /v1/srt/sweep``; streamed): wall time and peak RSS, against
-  ``engine.threshold.sweep`` alone in a fresh process;
+  ``engine.models.threshold.sweep`` alone in a fresh process;
 * the per-request HTTP metrics' share (app.httpmetrics): cached-hit and ``/healthz`` throughput with
   ``ROLLOVER_METRICS=true`` and ``false``.
 
@@ -341,10 +341,9 @@ def measure_cached(args) -> None:
 
 def engine_srt_rate(seconds: float = 3.0) -> float:
     """Distinct single solves per second of the engine in process (the bank angles the uncached run sends)."""
-    from engine.case import Case
-    from engine.loads import Road
-    from engine.threshold import rollover_threshold
-    from engine.vehicles import get_preset
+    from engine.case import Case, Road
+    from engine.models import rollover_threshold
+    from engine.vehicle import get_preset
 
     base = Case(get_preset(BTRAIN))
     rollover_threshold(base)  # the calibrated model is built once per vehicle and stage (memoised), as in the app
@@ -532,9 +531,9 @@ def measure_alignment(args) -> None:
         f"""
 import json, time, numpy as np
 from bench.bench_service import alignment_curves, BTRAIN
-from engine.assessment import assess_alignment
+from engine.road import assess_alignment
 from engine.case import Case
-from engine.vehicles import get_preset
+from engine.vehicle import get_preset
 c = alignment_curves({n})
 case = Case(get_preset(BTRAIN))
 t0 = time.perf_counter()
@@ -576,8 +575,8 @@ def measure_sweep(args) -> None:
         f"""
 import json, time
 from engine.case import Case
-from engine.threshold import sweep
-from engine.vehicles import get_preset
+from engine.models import sweep
+from engine.vehicle import get_preset
 case = Case(get_preset({BTRAIN!r}), rear_llt_limit=0.6)
 t0 = time.perf_counter()
 out = sweep(case, {grid!r})

@@ -13,11 +13,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine.case import Case
-from engine.loads import LoadCase
+from engine.case import Case, LoadCase
+from engine.models import rollover_threshold, sweep
 from engine.road import max_curve_speed_kmh
-from engine.threshold import rollover_threshold, sweep
-from engine.vehicles import PRESETS
+from engine.vehicle import PRESETS
 
 BTRAIN, T14 = PRESETS["table16-btrain"], PRESETS["table14-semitrailer"]
 SLOPES = [9, 8, 6, 4, 2, 0, -2, -4, -6, -8, -10, -12]

@@ -18,6 +18,19 @@ The science is the thesis this project implements:
     2016). Equation, table and figure numbers in this package's docstrings ("Eq. 6.18", "Table 16") are the
     thesis's.
 
+Layout (each subpackage has its own ``__all__``; the names below are re-exported here):
+
+- :mod:`engine.mechanics`: screw theory and the generic Davies statics (knows nothing of vehicles);
+- :mod:`engine.models`: the model registry, spring laws, axle groups, the 2D and 3D models, the closed forms, load
+  stepping and the SRT entry points;
+- :mod:`engine.vehicle`: the vehicle record, the presets, the component library; :mod:`engine.vehicle.builder`
+  (a vehicle from what can be measured);
+- :mod:`engine.road`: Eqs. 9.1-9.3, the design standards, superelevation, SRT targets, inverse limits, curve and
+  alignment assessment;
+- :mod:`engine.route`: geodesy, the noise model, circle and line fits, curve detection of surveyed routes;
+- :mod:`engine.case` (:class:`Case`, :class:`Road`, :class:`LoadCase`), :mod:`engine.results`,
+  :mod:`engine.errors`, :mod:`engine.domain` (the bounds of every scalar input) and :mod:`engine.bracket`.
+
 Public surface (everything in ``__all__``):
 
 - the case: :class:`Vehicle` (the record, :data:`FIELD_DOCS`), :data:`PRESETS` / :func:`get_preset`, :class:`Road`,
@@ -36,23 +49,8 @@ Public surface (everything in ``__all__``):
 ENGINE_VERSION = "1.2.0"
 __version__ = ENGINE_VERSION
 
-from .assessment import (  # noqa: E402
-    DEFAULT_TARGETS,
-    LIMIT_PARAMETERS,
-    AlignmentAssessment,
-    Curve,
-    CurveAssessment,
-    Limit,
-    LimitTableRow,
-    TargetCheck,
-    assess_curves,
-    check_targets,
-    limit_table,
-    parameter_limit,
-    tilt_table_angle_deg,
-)
-from .case import STAGES, Case  # noqa: E402
-from .errors import (  # noqa: E402
+from engine.case import STAGES, Case, LoadCase, Road  # noqa: E402
+from engine.errors import (  # noqa: E402
     ConvergenceError,
     InvalidInput,
     InvalidLoad,
@@ -63,19 +61,8 @@ from .errors import (  # noqa: E402
     RolloverError,
     UnknownPreset,
 )
-from .loads import LoadCase, Road  # noqa: E402
-from .models import MODELS, Model, get_model, supported_models  # noqa: E402
-from .results import Curves, RolloverResult, TireLoads  # noqa: E402
-from .road import (  # noqa: E402
-    MinRadius,
-    aashto_min_radius_m,
-    max_curve_speed_kmh,
-    min_radius,
-    rollover_min_radius_m,
-    side_friction_factor,
-    side_friction_speed_kmh,
-)
-from .threshold import (  # noqa: E402
+from engine.models.registry import MODELS, Model, get_model, supported_models  # noqa: E402
+from engine.models.threshold import (  # noqa: E402
     SWEEP_AXES,
     SweepResult,
     evaluate_cases,
@@ -83,7 +70,15 @@ from .threshold import (  # noqa: E402
     rollover_thresholds,
     sweep,
 )
-from .vehicles import FIELD_DOCS, PRESET_INFO, PRESETS, Vehicle, get_preset, validate_vehicle  # noqa: E402
+from engine.results import Curves, RolloverResult, TireLoads  # noqa: E402
+from engine.road.curves import AlignmentAssessment, Curve, CurveAssessment, assess_curves  # noqa: E402
+from engine.road.formulas import aashto_min_radius_m, max_curve_speed_kmh, rollover_min_radius_m  # noqa: E402
+from engine.road.limits import LIMIT_PARAMETERS, Limit, LimitTableRow, limit_table, parameter_limit  # noqa: E402
+from engine.road.min_radius import MinRadius, min_radius  # noqa: E402
+from engine.road.standards import side_friction_factor, side_friction_speed_kmh  # noqa: E402
+from engine.road.targets import DEFAULT_TARGETS, TargetCheck, check_targets, tilt_table_angle_deg  # noqa: E402
+from engine.vehicle.presets import PRESET_INFO, PRESETS, get_preset  # noqa: E402
+from engine.vehicle.record import FIELD_DOCS, Vehicle, validate_vehicle  # noqa: E402
 
 __all__ = [
     "DEFAULT_TARGETS",

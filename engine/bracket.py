@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 from scipy.optimize import brentq
 
-from .errors import ConvergenceError, InvalidInput
+from engine.errors import ConvergenceError, InvalidInput
 
 #: the bracket's bad end is bisected toward the good end at most this many times
 MAX_BISECTIONS = 60

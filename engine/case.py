@@ -11,13 +11,122 @@ Thesis Secs. 4.7 (load case), 6.2 (road), 9.1-9.2 (stages, lateral-load-transfer
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from .domain import check
-from .errors import InvalidInput
-from .loads import LoadCase, Road
-from .vehicles import Vehicle
+from engine.domain import check
+from engine.errors import InvalidInput, InvalidLoad
+from engine.vehicle.record import Vehicle
+
+#: the CG may lie behind the rear group by up to a quarter wheelbase (Table 16 moves the B-train's load
+#: 1.5 m rearward, 0.24 m behind its tridem); beyond that the kingpin uplift dominates the model
+MAX_CG_BEHIND_REAR_GROUP = 1.25
+
+
+@dataclass(frozen=True)
+class Road:
+    """Road geometry at the curve.
+
+    bank_percent : superelevation e = 100 tan(bank angle), positive toward the inside of the curve [%]
+    slope_percent : longitudinal grade, positive uphill in the direction of travel [%]
+    """
+
+    bank_percent: float = 0.0
+    slope_percent: float = 0.0
+
+    @property
+    def bank_rad(self) -> float:
+        return math.atan(self.bank_percent / 100.0)
+
+    @property
+    def slope_rad(self) -> float:
+        return math.atan(self.slope_percent / 100.0)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """Load condition of Sec. 4.7 / Fig. 46.
+
+    lateral_offset_m : d1, positive toward the outside of the turn (toward the outer tires) [m]
+    longitudinal_offset_m : d2, positive toward the front (CG at x = -a + d2, Table 8) [m]
+    vertical_offset_m : d3, positive up [m]
+    overweight_percent : extra weight over the nominal W, same CG [%]
+    """
+
+    lateral_offset_m: float = 0.0
+    longitudinal_offset_m: float = 0.0
+    vertical_offset_m: float = 0.0
+    overweight_percent: float = 0.0
+
+    def weight_kn(self, nominal_kn: float) -> float:
+        return nominal_kn * (1.0 + self.overweight_percent / 100.0)
+
+
+def check_road(road: Road, trailer_angle_deg: float = 0.0) -> None:
+    """Refuse road inputs outside the model's domain (:data:`engine.domain.BOUNDS`) naming the field."""
+    check("bank_percent", road.bank_percent, "road.bank_percent")
+    check("slope_percent", road.slope_percent, "road.slope_percent")
+    check("trailer_angle_deg", trailer_angle_deg)
+
+
+def check_load(
+    load: LoadCase,
+    *,
+    half_track_m: float,
+    cg_height_above_chassis_m: float,
+    wheelbase_m: float | None,
+    front_axle_to_cg_m: float | None,
+) -> None:
+    """Refuse a load case outside the bounds, that puts the CG outside the vehicle, or that removes the load."""
+    d1, d2, d3 = load.lateral_offset_m, load.longitudinal_offset_m, load.vertical_offset_m
+    for name in ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent"):
+        check(name, getattr(load, name), f"load.{name}")
+    if abs(d1) >= half_track_m:
+        raise InvalidLoad(
+            f"load.lateral_offset_m = {d1} m puts the CG outside the track (half track {half_track_m} m)",
+            field="load.lateral_offset_m",
+            value=d1,
+        )
+    if cg_height_above_chassis_m + d3 <= 0:
+        raise InvalidLoad(
+            f"load.vertical_offset_m = {d3} m puts the CG below the chassis (l12 = {cg_height_above_chassis_m} m)",
+            field="load.vertical_offset_m",
+            value=d3,
+        )
+    if wheelbase_m is not None and front_axle_to_cg_m is not None:
+        a_eff = front_axle_to_cg_m - d2
+        if not 0.0 < a_eff <= MAX_CG_BEHIND_REAR_GROUP * wheelbase_m:
+            raise InvalidLoad(
+                f"load.longitudinal_offset_m = {d2} m puts the CG at a - d2 = {a_eff:.3f} m behind the kingpin; "
+                f"it must be in (0, {MAX_CG_BEHIND_REAR_GROUP:g} L = {MAX_CG_BEHIND_REAR_GROUP * wheelbase_m:.3f}] m",
+                field="load.longitudinal_offset_m",
+                value=d2,
+            )
+
+
+def check_case(vehicle, road: Road, trailer_angle_deg: float, load: LoadCase) -> None:
+    """Check a road and load case against a vehicle record (its half track, l12, wheelbase, a)."""
+    check_road(road, trailer_angle_deg)
+    check_load(
+        load,
+        half_track_m=vehicle.rear_track_m / 2.0,
+        cg_height_above_chassis_m=vehicle.cg_height_above_chassis_m,
+        wheelbase_m=vehicle.wheelbase_m,
+        front_axle_to_cg_m=vehicle.front_axle_to_cg_m,
+    )
+
+
+def kingpin_uplift_note(a_eff_m: float, wheelbase_m: float | None) -> str | None:
+    """A note when the CG lies behind the rear group: Eq. 4.27 then lifts the kingpin (negative front load)."""
+    if wheelbase_m is None or a_eff_m <= wheelbase_m:
+        return None
+    return (
+        f"the CG is {a_eff_m - wheelbase_m:.2f} m behind the rear axle group: Eq. 4.27 gives a negative "
+        "load on the kingpin; the model's front unit is massless, so its tire loads come out negative where "
+        "the lead unit's own weight would keep them positive"
+    )
+
 
 #: the two stages of Ch. 9: the full system, and tires and suspension only
 STAGES = ("full", "tires-suspension")
@@ -30,12 +139,12 @@ class Case:
     Parameters
     ----------
     vehicle : the vehicle record (:class:`engine.vehicles.Vehicle`)
-    model : model id of :data:`engine.models.MODELS` (``"3d"`` by default) [-]
+    model : model id of :data:`engine.models.registry.MODELS` (``"3d"`` by default) [-]
     stage : 3D only: ``"full"`` (tires, suspension, fifth wheel, chassis) or ``"tires-suspension"`` (the first
         stage of Ch. 9) [-]
-    road : bank and slope (:class:`engine.loads.Road`) [%]
+    road : bank and slope (:class:`engine.case.Road`) [%]
     trailer_angle_deg : psi, the angle between the last two units of the combination (3D only) [deg]
-    load : CG offsets d1, d2, d3 and the overweight (:class:`engine.loads.LoadCase`) [m, %]
+    load : CG offsets d1, d2, d3 and the overweight (:class:`engine.case.LoadCase`) [m, %]
     rear_llt_limit : rear lateral load transfer at which the load ramp stops; 1 = rear inner tire lift-off
         (Eq. 2.5; Table 17 uses 0.6) [-]
     """

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import InvalidInput, InvalidLoad, InvalidRoad
+from engine.errors import InvalidInput, InvalidLoad, InvalidRoad
 
 
 @dataclass(frozen=True)

@@ -22,8 +22,8 @@ from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
-from engine.assessment import solve_bank_grade_pairs
-from engine.vehicles import Vehicle
+from engine.road import solve_bank_grade_pairs
+from engine.vehicle import Vehicle
 
 from .. import solvers
 from ..alignment_io import CurveTable

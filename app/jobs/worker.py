@@ -50,7 +50,7 @@ def main(argv: list[str] | None = None, settings: Settings | None = None) -> Non
     from rq import SimpleWorker
     from rq.serializers import JSONSerializer
 
-    import engine.assessment  # noqa: F401  (warm: the first part should not pay the imports)
+    import engine.road  # noqa: F401  (warm: the first part should not pay the imports)
 
     global _BACKEND
     backend = _BACKEND = RedisBackend(settings, reaper=True)

@@ -6,7 +6,7 @@ from typing import Annotated
 
 from fastapi import APIRouter, Path, Request, Response
 
-from engine.standards import STANDARDS
+from engine.road import STANDARDS
 
 from ..deps import CacheDep
 from ..problems import error_responses, problem_response

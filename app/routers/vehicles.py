@@ -9,7 +9,7 @@ from typing import Annotated
 from fastapi import APIRouter, Path, Request, Response
 
 from engine.models import supported_models
-from engine.vehicles import PRESET_INFO, PRESETS, get_preset
+from engine.vehicle import PRESET_INFO, PRESETS, get_preset
 
 from .. import catalog
 from ..auth import BearerDep, authenticate

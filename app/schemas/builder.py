@@ -17,9 +17,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, create_model
 
-from engine import builder as eb
-from engine.components import SUSPENSIONS, TYRES
-from engine.vehicles import FIELD_DOCS
+from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
+from engine.vehicle import builder as eb
 
 from .common import InputModel, OutputModel, describe, json_int
 

@@ -8,7 +8,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
-from engine.vehicles import Vehicle
+from engine.vehicle import Vehicle
 
 from .builder import SpecRef
 from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
@@ -70,7 +70,7 @@ SavedVehicleIn = Annotated[
 
 
 def _btrain_record() -> dict[str, Any]:
-    from engine.vehicles import get_preset
+    from engine.vehicle import get_preset
 
     return get_preset(EXAMPLE_PRESET).to_dict()
 

@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from engine.assessment import LIMIT_PARAMETERS
+from engine.road import LIMIT_PARAMETERS
 
 from .common import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
 from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut

@@ -8,7 +8,7 @@ from pydantic import ConfigDict, Field, model_validator
 
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
-from engine.standards import get_standard
+from engine.road import get_standard
 
 from .common import ABSENT, EXAMPLE_PRESET, bounded, describe, json_int, shape_error
 from .srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef

@@ -6,8 +6,7 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from engine.road import FRICTION_BOUNDS
-from engine.standards import STANDARDS
+from engine.road import FRICTION_BOUNDS, STANDARDS
 
 from .common import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
 from .srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef

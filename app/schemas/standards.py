@@ -8,8 +8,7 @@ from typing import Annotated, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from engine.domain import BOUNDS
-from engine.road import FRICTION_BOUNDS
-from engine.standards import DEFAULT_DESIGN_STANDARD, STANDARDS
+from engine.road import DEFAULT_DESIGN_STANDARD, FRICTION_BOUNDS, STANDARDS
 
 from .common import ABSENT, InputModel, OutputModel, bounded, describe, json_int, not_together_schema, shape_error
 

@@ -12,7 +12,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, create_model
 
-from engine.vehicles import FIELD_DOCS, FieldDoc
+from engine.vehicle import FIELD_DOCS, FieldDoc
 
 from .common import InputModel, OutputModel, describe, json_int
 

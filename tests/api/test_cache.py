@@ -9,7 +9,7 @@ import pytest
 
 import app.cache
 import app.service
-import engine.threshold
+import engine.models.threshold
 from app.settings import Settings
 
 from .conftest import make_client
@@ -122,13 +122,13 @@ def test_the_lru_is_bounded(monkeypatch):
 def test_curve_speed_reuses_the_cached_srt(client, monkeypatch):
     # the SRT request inside /v1/curve-speed resolves to the same key as /v1/srt with the same fields
     calls = []
-    real = engine.threshold.rollover_threshold  # a one-threshold solve (app.coalesce hands it to the engine)
+    real = engine.models.threshold.rollover_threshold  # a one-threshold solve (app.coalesce hands it to the engine)
 
     def counting(*args, **kwargs):
         calls.append(args)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(engine.threshold, "rollover_threshold", counting)
+    monkeypatch.setattr(engine.models.threshold, "rollover_threshold", counting)
     srt = client.post("/v1/srt", json={"vehicle": BTRAIN, "model": "navin"})
     assert len(calls) == 1
     out = client.post("/v1/curve-speed", json={"radius_m": 100, "vehicle": BTRAIN, "model": "navin"})

@@ -9,11 +9,10 @@ import httpx
 import app.coalesce as coalesce
 from app.main import create_app
 from app.settings import Settings
-from engine.case import Case
+from engine.case import Case, Road
 from engine.errors import InvalidInput
-from engine.loads import Road
-from engine.threshold import MIN_ARRAY_CASES, rollover_threshold
-from engine.vehicles import PRESETS
+from engine.models.threshold import MIN_ARRAY_CASES, rollover_threshold
+from engine.vehicle.presets import PRESETS
 from tests.compare import assert_same_to_rounding
 
 from .conftest import make_client
@@ -96,16 +95,16 @@ def test_an_engine_defect_fails_every_waiter_and_none_waits_forever(monkeypatch)
 
 
 def test_a_defect_in_one_case_fails_only_its_request(monkeypatch):
-    import engine.threshold
+    import engine.models.threshold
 
-    real = engine.threshold.rollover_threshold
+    real = engine.models.threshold.rollover_threshold
 
     def broken_at_3(case, **kwargs):
         if case.road.bank_percent == 3.0:
             raise RuntimeError("a defect in one case")
         return real(case, **kwargs)
 
-    monkeypatch.setattr(engine.threshold, "rollover_threshold", broken_at_3)
+    monkeypatch.setattr(engine.models.threshold, "rollover_threshold", broken_at_3)
     cases = [Case(PRESETS["table14-semitrailer"], model="2d", road=Road(bank_percent=float(b))) for b in range(6)]
 
     async def main():

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-import engine.threshold
+import engine.models.threshold
 from engine.errors import ConvergenceError, MechanismSingular
 
 BTRAIN = "table16-btrain"
@@ -105,7 +105,7 @@ def test_engine_arithmetic_errors_are_422_with_their_message(client, monkeypatch
     def failing(*args, **kwargs):
         raise exc
 
-    monkeypatch.setattr(engine.threshold, "rollover_threshold", failing)  # the one-case solve behind app.coalesce
+    monkeypatch.setattr(engine.models.threshold, "rollover_threshold", failing)  # the solve behind app.coalesce
     p = problem(client.post("/v1/srt", json={"vehicle": BTRAIN}), 422)
     assert p["type"] == f"urn:rollover:problem:{slug}"
     assert p["detail"] == str(exc)
@@ -115,7 +115,7 @@ def test_an_unexpected_exception_is_a_500_problem_without_a_stack_trace(client, 
     def broken(*args, **kwargs):
         raise RuntimeError("secret internal state")
 
-    monkeypatch.setattr(engine.threshold, "rollover_threshold", broken)
+    monkeypatch.setattr(engine.models.threshold, "rollover_threshold", broken)
     p = problem(client.post("/v1/srt", json={"vehicle": BTRAIN}), 500)
     assert p["type"] == "urn:rollover:problem:internal-error"
     assert "secret" not in str(p) and "Traceback" not in str(p)

@@ -15,7 +15,7 @@ import orjson
 import pytest
 
 from app.schemas.sweep import SweepGrid, SweepResult
-from engine.threshold import SWEEP_AXES
+from engine.models.threshold import SWEEP_AXES
 
 BTRAIN = "table16-btrain"
 

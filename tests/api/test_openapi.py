@@ -11,7 +11,7 @@ from openapi_spec_validator import validate
 
 from app.main import create_app
 from app.schemas.vehicles import METADATA_FIELDS, VehicleRecord
-from engine.vehicles import Vehicle
+from engine.vehicle.record import Vehicle
 
 from .conftest import ROOT
 

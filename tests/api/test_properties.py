@@ -11,7 +11,7 @@ import math
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from engine.vehicles import PRESETS
+from engine.vehicle.presets import PRESETS
 
 NUMERIC = [
     "weight_kn",

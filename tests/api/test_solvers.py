@@ -10,10 +10,10 @@ from pydantic import ValidationError
 
 from app import solvers
 from app.settings import Settings
-from engine.assessment import solve_bank_grade_pairs
 from engine.case import Case
-from engine.threshold import BATCH_ROWS
-from engine.vehicles import PRESETS
+from engine.models.threshold import BATCH_ROWS
+from engine.road.curves import solve_bank_grade_pairs
+from engine.vehicle.presets import PRESETS
 
 from .conftest import make_client
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from engine.vehicles import PRESETS
+from engine.vehicle.presets import PRESETS
 
 PRESET_IDS = ["table14-semitrailer", "table15-semitrailer", "table16-btrain", "table22-truck", "table23-semitrailer"]
 

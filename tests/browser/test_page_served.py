@@ -17,7 +17,7 @@ import engine
 from app.main import create_app
 from app.routers.web import WEB_DIR
 from app.settings import Settings
-from engine.builder import VehicleSpec
+from engine.vehicle.builder.spec import VehicleSpec
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -9,21 +9,15 @@ from dataclasses import fields
 import numpy as np
 import pytest
 
-from engine.assessment import (
-    Curve,
-    assess_alignment,
-    assess_curves,
-    check_targets,
-    limit_table,
-    parameter_limit,
-    tilt_table_angle_deg,
-)
-from engine.case import Case
+from engine.case import Case, LoadCase, Road
 from engine.errors import InvalidInput, InvalidRoad
-from engine.loads import LoadCase, Road
-from engine.road import max_curve_speed_kmh, side_friction_speed_kmh
-from engine.threshold import BATCH_ROWS, rollover_threshold
-from engine.vehicles import PRESETS
+from engine.models.threshold import BATCH_ROWS, rollover_threshold
+from engine.road.curves import Curve, assess_alignment, assess_curves
+from engine.road.formulas import max_curve_speed_kmh
+from engine.road.limits import limit_table, parameter_limit
+from engine.road.standards import side_friction_speed_kmh
+from engine.road.targets import check_targets, tilt_table_angle_deg
+from engine.vehicle.presets import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
 
@@ -94,7 +88,7 @@ def test_curve_assessment_shares_solves_and_picks_the_governing_speed():
     srt = rollover_threshold(Case(BTRAIN, road=Road(bank_percent=6.0, slope_percent=-4.0))).srt
     assert tight.srt_g == pytest.approx(srt, rel=1e-9) and wide.srt_g == tight.srt_g
     assert tight.rollover_speed_kmh == pytest.approx(float(max_curve_speed_kmh(srt, 60.0)))  # Eq. 9.1
-    assert tight.side_friction_speed_kmh == pytest.approx(side_friction_speed_kmh(60.0, 6.0))
+    assert tight.side_friction_speed_kmh == pytest.approx(side_friction_speed_kmh("thesis-table21", 60.0, 6.0))
     for c in res.curves:
         assert c.safe_speed_kmh == min(c.rollover_speed_kmh, c.side_friction_speed_kmh)
         assert c.governed_by == ("rollover" if c.rollover_speed_kmh < c.side_friction_speed_kmh else "side-friction")

@@ -16,7 +16,13 @@ import numpy as np
 import pytest
 
 from engine.bracket import bracketed_limit
-from engine.builder import (
+from engine.case import Case
+from engine.errors import InvalidInput, InvalidVehicle
+from engine.models.threshold import rollover_threshold
+from engine.vehicle.builder.build import build_vehicle
+from engine.vehicle.builder.payload_table import payload_table
+from engine.vehicle.builder.payloads import sloped_load_centroid, tank_liquid_cg_height_m
+from engine.vehicle.builder.spec import (
     G_M_PER_S2,
     METHODS,
     AxleGroupSpec,
@@ -28,13 +34,8 @@ from engine.builder import (
     TareSpec,
     TyreSpec,
     VehicleSpec,
-    build_vehicle,
-    payload_table,
-    sloped_load_centroid,
-    tank_liquid_cg_height_m,
 )
-from engine.case import Case
-from engine.components import (
+from engine.vehicle.components import (
     NOT_FOUND,
     SUSPENSIONS,
     TYRES,
@@ -42,9 +43,8 @@ from engine.components import (
     parse_tyre_size,
     roll_stiffness_from_spring_rate,
 )
-from engine.errors import InvalidInput, InvalidVehicle
-from engine.threshold import rollover_threshold
-from engine.vehicles import FIELD_DOCS, PRESETS
+from engine.vehicle.presets import PRESETS
+from engine.vehicle.record import FIELD_DOCS
 
 
 def srt(vehicle) -> float:

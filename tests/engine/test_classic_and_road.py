@@ -7,12 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from engine import classic, road
-from engine.case import Case
+from engine import road
+from engine.case import Case, LoadCase, Road
 from engine.errors import InvalidRoad
-from engine.loads import LoadCase, Road
-from engine.threshold import rollover_threshold
-from engine.vehicles import PRESETS
+from engine.models import classic
+from engine.models.threshold import rollover_threshold
+from engine.vehicle.presets import PRESETS
 
 TABLE14 = PRESETS["table14-semitrailer"]
 BTRAIN = PRESETS["table16-btrain"]
@@ -117,7 +117,7 @@ THESIS_EQUATIONS = {
 
 
 def test_the_registry_has_every_model_of_the_thesis_with_its_equation():
-    from engine.models import MODELS
+    from engine.models.registry import MODELS
 
     assert set(MODELS) == {"3d", "2d", *THESIS_EQUATIONS}
     for model_id, equation in THESIS_EQUATIONS.items():
@@ -130,7 +130,7 @@ def test_the_registry_has_every_model_of_the_thesis_with_its_equation():
 def test_each_model_refuses_every_input_it_does_not_account_for(model_id):
     """A non-zero road or load input outside a model's ``takes`` is refused naming the field, never ignored."""
     from engine.errors import InvalidInput
-    from engine.models import INPUTS, MODELS
+    from engine.models.registry import INPUTS, MODELS
 
     model = MODELS[model_id]
     nonzero = {
@@ -166,15 +166,15 @@ def test_table20_max_speed_on_120_m(srt, speed):
 
 
 def test_table21_side_friction_and_interpolation():
-    assert road.side_friction_factor(60.0) == pytest.approx(0.15)
-    assert road.side_friction_factor(60.0, "high") == pytest.approx(0.17)
-    assert road.side_friction_factor(30.0, "mid") == pytest.approx((0.17 + 0.28) / 2)
-    assert road.side_friction_factor(55.0) == pytest.approx(0.155)  # halfway between 50 and 60 km/h
-    assert road.side_friction_factor(np.array([80.0, 120.0])) == pytest.approx([0.14, 0.09])
+    assert road.side_friction_factor("thesis-table21", 60.0) == pytest.approx(0.15)
+    assert road.side_friction_factor("thesis-table21", 60.0, "high") == pytest.approx(0.17)
+    assert road.side_friction_factor("thesis-table21", 30.0, "mid") == pytest.approx((0.17 + 0.28) / 2)
+    assert road.side_friction_factor("thesis-table21", 55.0) == pytest.approx(0.155)  # halfway between 50 and 60 km/h
+    assert road.side_friction_factor("thesis-table21", np.array([80.0, 120.0])) == pytest.approx([0.14, 0.09])
     with pytest.raises(InvalidRoad, match="30-120"):
-        road.side_friction_factor(130.0)
+        road.side_friction_factor("thesis-table21", 130.0)
     with pytest.raises(InvalidRoad):
-        road.side_friction_factor(60.0, "median")
+        road.side_friction_factor("thesis-table21", 60.0, "median")
 
 
 def test_minimum_radius_both_criteria_and_which_governs():
@@ -203,9 +203,9 @@ def test_eq_9_2_has_the_srt_floor_on_e_plus_f():
 
 
 def test_side_friction_speed_solves_the_implicit_equation():
-    v = road.side_friction_speed_kmh(250.0, 6.0)
-    assert v == pytest.approx(math.sqrt(127 * 250 * (0.06 + road.side_friction_factor(v))), rel=1e-12)
-    many = road.side_friction_speed_kmh(np.array([15.0, 250.0, 5000.0]), np.array([0.0, 6.0, 2.0]))
+    v = road.side_friction_speed_kmh("thesis-table21", 250.0, 6.0)
+    assert v == pytest.approx(math.sqrt(127 * 250 * (0.06 + road.side_friction_factor("thesis-table21", v))), rel=1e-12)
+    many = road.side_friction_speed_kmh("thesis-table21", np.array([15.0, 250.0, 5000.0]), np.array([0.0, 6.0, 2.0]))
     assert many[1] == pytest.approx(v)
     assert many[0] == pytest.approx(math.sqrt(127 * 15 * 0.17))  # below 30 km/h: f(30) used
     assert many[2] == pytest.approx(math.sqrt(127 * 5000 * (0.02 + 0.09)))  # above 120 km/h: f(120)

@@ -12,9 +12,12 @@ from dataclasses import replace
 
 import pytest
 
-from engine.builder import AxleGroupSpec, SuspensionSpec, TyreSpec, build_vehicle
 from engine.case import Case
-from engine.components import (
+from engine.errors import InvalidVehicle
+from engine.models.threshold import rollover_threshold
+from engine.vehicle.builder.build import build_vehicle
+from engine.vehicle.builder.spec import AxleGroupSpec, SuspensionSpec, TyreSpec
+from engine.vehicle.components import (
     LOAD_INDEX_KG,
     NOT_FOUND,
     SUSPENSIONS,
@@ -26,8 +29,6 @@ from engine.components import (
     roll_stiffness_from_spring_rate,
     static_loaded_radius_m,
 )
-from engine.errors import InvalidVehicle
-from engine.threshold import rollover_threshold
 from tests.engine.test_builder import semitrailer
 
 GOODYEAR = "goodyear-g275msa-335-65r22.5-6.5bar"

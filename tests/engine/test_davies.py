@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from engine.davies import PLANAR_YZ, SPATIAL, Closure, cutset_matrix, incidence_matrix, solve_statics
 from engine.errors import MechanismSingular
-from engine.mechanism import Mechanism, custom_joint, external, joint
-from engine.screw import rot_x, screw_matrix, successive, unit_couple, unit_force
+from engine.mechanics.davies import PLANAR_YZ, SPATIAL, Closure, cutset_matrix, incidence_matrix, solve_statics
+from engine.mechanics.mechanism import Mechanism, custom_joint, external, joint
+from engine.mechanics.screw import rot_x, screw_matrix, successive, unit_couple, unit_force
 
 X = np.array([1.0, 0.0, 0.0])
 

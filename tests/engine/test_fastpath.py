@@ -7,12 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from engine import trailer2d, trailer3d, trailer3d_davies
 from engine.case import Case
-from engine.davies import solve_statics
 from engine.errors import MechanismSingular
-from engine.stepping import stage_model
-from engine.vehicles import PRESETS
+from engine.mechanics.davies import solve_statics
+from engine.models import trailer2d, trailer3d, trailer3d_davies
+from engine.models.stepping import stage_model
+from engine.vehicle.presets import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
 TRUCK = PRESETS["table22-truck"]
@@ -174,7 +174,7 @@ def test_planar_davies_system_is_square_and_determinate():
     m = trailer2d.build_model(v)
     case = trailer2d.Case2D(weight=250.0, bank=0.0, d1=0.0, d3=0.0, llt_limit=1.0)
     mech, _ = trailer2d.build_mechanism(m, case, m.group.rest_state())
-    from engine.davies import PLANAR_YZ
+    from engine.mechanics.davies import PLANAR_YZ
 
     sol = solve_statics(mech, {"Py": 90.0, "Pz": 250.0}, space=PLANAR_YZ)
     assert (sol.n_equations, sol.n_unknowns, sol.rank, sol.nullity) == (27, 27, 27, 0)

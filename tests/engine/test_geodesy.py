@@ -9,7 +9,7 @@ import pytest
 from geographiclib.geodesic import Geodesic
 
 from engine.errors import InvalidInput
-from engine.geodesy import WGS84_A_M, WGS84_F, local_frame, segment_lengths_m, turning_angles_rad
+from engine.route.geodesy import WGS84_A_M, WGS84_F, local_frame, segment_lengths_m, turning_angles_rad
 
 GEOD = Geodesic.WGS84
 #: smallest radius of curvature of WGS84, the meridian radius at the equator a (1 - e^2) [m]

@@ -26,18 +26,14 @@ import math
 import numpy as np
 import pytest
 
-from engine.assessment import assess_curves
 from engine.case import Case
 from engine.errors import InvalidInput
-from engine.geodesy import local_frame
-from engine.geometry import (
-    curvature_noise_per_m,
-    find_curves,
-    fit_circle,
-    spiral_length_m,
-    vertex_noise_m,
-)
-from engine.vehicles import PRESETS
+from engine.road.curves import assess_curves
+from engine.route.detect import find_curves, spiral_length_m
+from engine.route.fit import fit_circle
+from engine.route.geodesy import local_frame
+from engine.route.noise import curvature_noise_per_m, vertex_noise_m
+from engine.vehicle.presets import PRESETS
 from tests.synthetic_routes import Arc, Spiral, Tangent, curve_spans, layout, spiral_curve, to_lonlat
 
 LATITUDES = (0.0, 45.0, 60.0, -35.0)

@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from engine import compliance
-from engine.groups import ARRAY, four_bar, tire_system
+from engine.models import springs as compliance
+from engine.models.groups import ARRAY, four_bar, tire_system
 
 
 def _circle_intersection_upper(c1, r1, c2, r2):

@@ -9,13 +9,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine import trailer3d
-from engine.case import Case
+from engine.case import Case, LoadCase, Road
 from engine.errors import ConvergenceError, InvalidVehicle
-from engine.loads import LoadCase, Road
-from engine.stepping import stage_model
-from engine.threshold import rollover_threshold
-from engine.vehicles import PRESETS, static_axle_loads
+from engine.models import trailer3d
+from engine.models.stepping import stage_model
+from engine.models.threshold import rollover_threshold
+from engine.vehicle.presets import PRESETS
+from engine.vehicle.record import static_axle_loads
 
 BTRAIN = PRESETS["table16-btrain"]
 TABLE14 = PRESETS["table14-semitrailer"]

@@ -9,10 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.case import Case
-from engine.loads import LoadCase, Road
-from engine.threshold import rollover_threshold, sweep
-from engine.vehicles import PRESETS
+from engine.case import Case, LoadCase, Road
+from engine.models.threshold import rollover_threshold, sweep
+from engine.vehicle.presets import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
 TABLE14 = PRESETS["table14-semitrailer"]

@@ -7,10 +7,9 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pytest
 
-from engine.case import Case
-from engine.loads import LoadCase, Road
-from engine.threshold import BATCH_ROWS, evaluate_arrays, rollover_threshold, sweep
-from engine.vehicles import PRESETS
+from engine.case import Case, LoadCase, Road
+from engine.models.threshold import BATCH_ROWS, evaluate_arrays, rollover_threshold, sweep
+from engine.vehicle.presets import PRESETS
 
 BTRAIN = PRESETS["table16-btrain"]
 

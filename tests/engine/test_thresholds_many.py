@@ -6,11 +6,10 @@ import math
 
 import numpy as np
 
-from engine.case import Case
+from engine.case import Case, LoadCase, Road
 from engine.errors import RolloverError
-from engine.loads import LoadCase, Road
-from engine.threshold import MIN_ARRAY_CASES, rollover_threshold, rollover_thresholds
-from engine.vehicles import PRESETS
+from engine.models.threshold import MIN_ARRAY_CASES, rollover_threshold, rollover_thresholds
+from engine.vehicle.presets import PRESETS
 from tests.compare import assert_same_to_rounding
 
 BTRAIN = PRESETS["table16-btrain"]
@@ -66,7 +65,7 @@ def test_each_case_gets_the_answer_it_gets_alone_results_and_errors():
 
 
 def test_the_3d_groups_are_solved_on_arrays_and_a_case_does_not_depend_on_its_companions(monkeypatch):
-    import engine.threshold as threshold
+    import engine.models.threshold as threshold
 
     calls = []
     real = threshold.solve_3d_many

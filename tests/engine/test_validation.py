@@ -6,11 +6,11 @@ import dataclasses
 
 import pytest
 
-from engine.case import Case
+from engine.case import Case, LoadCase, Road
 from engine.errors import InvalidInput, InvalidLoad, InvalidRoad, InvalidVehicle, MissingParameter, UnknownPreset
-from engine.loads import LoadCase, Road
-from engine.threshold import rollover_threshold, sweep
-from engine.vehicles import PRESETS, Vehicle, get_preset
+from engine.models.threshold import rollover_threshold, sweep
+from engine.vehicle.presets import PRESETS, get_preset
+from engine.vehicle.record import Vehicle
 
 BTRAIN = PRESETS["table16-btrain"]
 

@@ -10,8 +10,8 @@ import pytest
 
 import app.route_io as rio
 from app.route_io import RouteFormatError, read_geojson, read_gpx
-from engine.geodesy import local_frame
-from engine.geometry import find_curves
+from engine.route.detect import find_curves
+from engine.route.geodesy import local_frame
 from tests.synthetic_routes import Arc, Tangent, layout, to_lonlat
 
 

@@ -20,7 +20,7 @@ displacements about parallel x axes (Tables 4-5, 9-10), which in the group's pla
 The in-plane statics of a group is statically determinate once the load on its top platform is known
 (Sec. 5.1.4: 27 equations for 27 unknowns in 2D), and is written here by hand: this is the reduced form of
 the Davies solution used by the fast path; ``tests/engine/test_fastpath.py`` checks it against
-:func:`engine.davies.solve_statics` to 1e-9.
+:func:`engine.mechanics.solve_statics` to 1e-9.
 
 Every function works elementwise on floats (``xp=SCALAR``, the ``math`` module, fast for one case) or on
 numpy arrays (``xp=numpy``, for grids of cases).
@@ -35,14 +35,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .compliance import (
+from engine.errors import ConvergenceError
+from engine.models.springs import (
     fifth_wheel_height,
     leaf_spring_height,
     shear_torsion_coefficient,
     tire_radius,
     torsion_angle,
 )
-from .errors import ConvergenceError
 
 HALF_PI = 0.5 * math.pi
 
@@ -112,7 +112,7 @@ def group_params(
 
     ``static_load_kn`` is the group's nominal static load: the lengths lr and ls hold at half of it per side.
     """
-    from .vehicles import group_stiffness
+    from engine.vehicle.record import group_stiffness
 
     v = vehicle
     k = group_stiffness(v, which)

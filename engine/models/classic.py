@@ -24,7 +24,7 @@ lre, L, h5 (Navin)  L - a + d2, wheelbase_m, lr + ls + lf (the kingpin height; l
 ==================  =====================================================================================
 
 Models that do not contain a road or load effect refuse it instead of ignoring it (the ``takes`` of each
-model in :data:`engine.models.MODELS`): only rigid-bank, Chang and Navin take a bank angle; none of them takes
+model in :data:`engine.models.registry.MODELS`): only rigid-bank, Chang and Navin take a bank angle; none of them takes
 slope, trailer angle or a lateral-load-transfer limit below 1.
 
 References
@@ -37,9 +37,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .case import Case
-from .errors import InvalidLoad
-from .vehicles import cg_height_m, group_stiffness, static_axle_loads
+from engine.case import Case
+from engine.errors import InvalidLoad
+from engine.vehicle.record import cg_height_m, group_stiffness, static_axle_loads
 
 # ------------------------------------------------------------------------------- the formulas
 

@@ -1,7 +1,7 @@
 """Horizontal curves of a route from its geometry: a polyline in a local metric frame -> tangents and curves.
 
 Input: vertices x (east), y (north) [m] in travel order, optionally z (elevation) [m], e.g. a GIS centreline
-or a GPS track after :func:`engine.geodesy.local_frame`. Output: each horizontal curve with the radius of its
+or a GPS track after :func:`engine.route.geodesy.local_frame`. Output: each horizontal curve with the radius of its
 circular part, the chainage of the whole curve (spirals included) and of the arc, the deflection, the
 direction, the transition spiral lengths when they are resolved, the grade over the curve and the range of
 input vertices it covers. The method works on the *curvature diagram* (curvature against chainage), in which
@@ -98,15 +98,11 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 from scipy.special import ndtr
 
-from .assessment import Curve
-from .errors import InvalidInput
+from engine.errors import InvalidInput
+from engine.road.curves import Curve
+from engine.route.fit import CircleFit, fit_circle, fit_line
+from engine.route.noise import G1, G2, HEADING_NOISE_RAD, curvature_noise_per_m, heading_noise_rad, vertex_noise_m
 
-#: Eq. 1 constant: integral of the squared second derivative of a unit Gaussian, 3 / (8 sqrt(pi))
-_G2 = 3.0 / (8.0 * math.sqrt(math.pi))
-#: and of the squared first derivative, 1 / (4 sqrt(pi)) (heading noise)
-_G1 = 1.0 / (4.0 * math.sqrt(math.pi))
-#: heading noise allowed after the light smoothing that precedes the heading (step 3) [rad]
-HEADING_NOISE_RAD = 0.03
 #: the refinement scale keeps the curvature noise below this fraction of the curve's peak curvature
 PEAK_NOISE_FRACTION = 0.1
 #: the circle is fitted on the middle of the equivalent simple curve (R times the deflection)
@@ -121,8 +117,7 @@ SHAPE_NOISE_FRACTION = 0.02
 #: ladder factor between refinement scales
 SCALE_FACTOR = 1.5
 #: gaussian_filter1d truncation [standard deviations]
-_TRUNCATE = 4.0
-
+TRUNCATE = 4.0
 
 # ------------------------------------------------------------------------------------------ records
 
@@ -174,73 +169,6 @@ class RouteCurves:
     noise_m: float  # position noise sigma used (given or estimated) [m]
     detection_smoothing_m: float  # tau_d [m]
     tangent_curvature_per_m: float  # curvature threshold of a tangent, 1/max_radius_m [1/m]
-
-
-# ------------------------------------------------------------------------------------ noise model
-
-
-def curvature_noise_per_m(noise_m: float, spacing_m: float, scale_m):
-    """Standard deviation of the Gaussian-smoothed curvature from white position noise [1/m] (Eq. 1).
-
-    sd = sigma sqrt(h int G''^2) = sigma sqrt(3 h / (8 sqrt(pi))) tau^-2.5 for lateral noise sigma at vertex
-    spacing h and a Gaussian of standard deviation tau (valid for tau several times h).
-
-    Parameters
-    ----------
-    noise_m : float
-        Position noise sigma of the vertices [m].
-    spacing_m : float
-        Vertex spacing h [m].
-    scale_m : float or array_like
-        Smoothing scale tau [m].
-    """
-    return noise_m * np.sqrt(_G2 * spacing_m) * np.asarray(scale_m, dtype=float) ** -2.5  # Eq. 1
-
-
-def heading_noise_rad(noise_m: float, spacing_m: float, scale_m):
-    """Standard deviation of the Gaussian-smoothed heading from white position noise [rad].
-
-    sd = sigma sqrt(h / (4 sqrt(pi))) tau^-1.5 (the first-derivative counterpart of Eq. 1).
-
-    Parameters
-    ----------
-    noise_m : float
-        Position noise sigma [m].
-    spacing_m : float
-        Vertex spacing h [m].
-    scale_m : float or array_like
-        Smoothing scale tau [m].
-    """
-    return noise_m * np.sqrt(_G1 * spacing_m) * np.asarray(scale_m, dtype=float) ** -1.5
-
-
-def vertex_noise_m(x_m, y_m) -> float:
-    """Robust estimate of the position noise sigma of polyline vertices [m] (step 1 of the method).
-
-    The Menger curvature k of each vertex triple is 1/R for noise-free points on a circle at any spacing;
-    the differences of k between neighbouring triples, times the mean of a b / 2 (a, b the triple's two
-    segment lengths), have variance 5 sigma^2 under white lateral noise sigma. sigma = 1.4826 MAD / sqrt(5).
-    Returns 0 for fewer than 8 vertices.
-
-    Parameters
-    ----------
-    x_m, y_m : array_like
-        Vertices, consecutive vertices distinct [m].
-    """
-    x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
-    if x.size < 8:
-        return 0.0
-    dx, dy = np.diff(x), np.diff(y)
-    seg = np.hypot(dx, dy)
-    a, b = seg[:-1], seg[1:]
-    c = np.hypot(x[2:] - x[:-2], y[2:] - y[:-2])
-    cross = dx[:-1] * dy[1:] - dy[:-1] * dx[1:]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        k = np.where(c > 0, 2.0 * cross / (a * b * c), 0.0)  # Menger curvature
-    w = a * b / 2.0
-    r = np.diff(k) * 0.5 * (w[:-1] + w[1:])
-    mad = np.median(np.abs(r - np.median(r)))
-    return float(1.4826 * mad / math.sqrt(5.0))
 
 
 # -------------------------------------------------------------------------------- blurred clothoid
@@ -300,73 +228,6 @@ def _ramp_crossing(level: float, length_m: float, scale_m: float) -> float:
     return float(np.interp(length_m / scale_m, _RAMP_LAMS, _RAMP_CROSS[level]) * scale_m)
 
 
-# ----------------------------------------------------------------------------------- circle fit
-
-
-@dataclass(frozen=True)
-class CircleFit:
-    xc_m: float
-    yc_m: float
-    radius_m: float
-    rms_m: float  # root-mean-square distance of the points from the circle
-    radius_std_m: float | None  # standard error of the radius (None with 3 points: no redundancy)
-    n_points: int = 0
-
-
-def fit_circle(x_m, y_m, *, iterations: int = 10) -> CircleFit:
-    """Geometric least-squares circle through points (Gauss-Newton from Kasa's algebraic fit) [1].
-
-    Minimises sum (|p_i - c| - R)^2. The points are centred first, so routes far from the origin keep their
-    precision.
-
-    Parameters
-    ----------
-    x_m, y_m : array_like
-        At least 3 points [m].
-    iterations : int
-        Gauss-Newton iterations at most.
-    """
-    x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
-    if x.size < 3:
-        raise InvalidInput(f"a circle needs at least 3 points, got {x.size}", field="points", value=int(x.size))
-    x0, y0 = x.mean(), y.mean()
-    u, v = x - x0, y - y0
-    scale = max(float(np.sqrt(np.mean(u * u + v * v))), 1e-12)
-    u, v = u / scale, v / scale
-    # Kasa: u^2 + v^2 + D u + E v + F = 0 in the least-squares sense
-    a = np.column_stack((u, v, np.ones_like(u)))
-    sol, *_ = np.linalg.lstsq(a, -(u * u + v * v), rcond=None)
-    a_c, b_c = -sol[0] / 2, -sol[1] / 2
-    r = math.sqrt(max(a_c * a_c + b_c * b_c - sol[2], 1e-12))
-    p = np.array([a_c, b_c, r])
-    for _ in range(iterations):
-        du, dv = u - p[0], v - p[1]
-        d = np.maximum(np.hypot(du, dv), 1e-15)
-        res = d - p[2]
-        jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
-        try:
-            step = np.linalg.solve(jac.T @ jac, -(jac.T @ res))
-        except np.linalg.LinAlgError:
-            break
-        p = p + step
-        if np.all(np.abs(step) <= 1e-10 * (1.0 + np.abs(p))):
-            break
-    du, dv = u - p[0], v - p[1]
-    d = np.hypot(du, dv)
-    res = d - p[2]
-    rms = float(np.sqrt(np.mean(res * res))) * scale
-    std = None
-    if x.size > 3:
-        jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
-        s2 = float(res @ res) / (x.size - 3)
-        try:
-            cov = np.linalg.inv(jac.T @ jac) * s2
-            std = float(math.sqrt(max(cov[2, 2], 0.0))) * scale
-        except np.linalg.LinAlgError:
-            std = None
-    return CircleFit(x0 + p[0] * scale, y0 + p[1] * scale, abs(p[2]) * scale, rms, std, int(x.size))
-
-
 # ------------------------------------------------------------------------------------- helpers
 
 
@@ -403,7 +264,7 @@ def _smooth(a: np.ndarray, scale_m: float, step_m: float, mode: str = "nearest")
     """Gaussian smoothing; ``mode="constant"`` pads with 0 (a curvature that continues straight)."""
     if scale_m <= 0.0:
         return a
-    return gaussian_filter1d(a, scale_m / step_m, mode=mode, truncate=_TRUNCATE)
+    return gaussian_filter1d(a, scale_m / step_m, mode=mode, truncate=TRUNCATE)
 
 
 def _smooth_path(
@@ -418,7 +279,7 @@ def _smooth_path(
     if scale_m <= 0.0:
         return xs, ys
     sig = scale_m / step_m
-    pad = math.ceil(_TRUNCATE * sig) + 1
+    pad = math.ceil(TRUNCATE * sig) + 1
     fit_n = min(xs.size, max(3, math.ceil(end_m / step_m)))
     out = []
     for a in (xs, ys):
@@ -428,7 +289,7 @@ def _smooth_path(
         before = np.polyval(head, np.arange(-pad, 0, dtype=float))
         after = np.polyval(tail, np.arange(fit_n, fit_n + pad, dtype=float))
         full = np.concatenate((before, a, after))
-        out.append(gaussian_filter1d(full, sig, mode="nearest", truncate=_TRUNCATE)[pad:-pad])
+        out.append(gaussian_filter1d(full, sig, mode="nearest", truncate=TRUNCATE)[pad:-pad])
     return out[0], out[1]
 
 
@@ -587,10 +448,10 @@ def _refine(
     that holds its peak.
     """
     n = kappa.size
-    reach = math.ceil(_TRUNCATE * ladder[-1] / h)
+    reach = math.ceil(TRUNCATE * ladder[-1] / h)
     lo, hi = max(0, i0 - reach), min(n, i1 + reach)
     for tau in ladder:
-        pad = math.ceil(_TRUNCATE * extra(tau) / h) + 1
+        pad = math.ceil(TRUNCATE * extra(tau) / h) + 1
         a0, b0 = max(0, lo - pad), min(n, hi + pad)
         if tau == ladder[-1]:  # the detection scale: already smoothed over the whole route
             k_r = sign * k_d[a0:b0]
@@ -627,17 +488,6 @@ def _refine(
             _refine(kappa, theta, k_d, sign, i0 + int(a), i0 + int(b), *args)
 
 
-def _line_fit(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Total least-squares line: a point on it and its unit direction, oriented from the first point."""
-    cx, cy = float(x.mean()), float(y.mean())
-    dx, dy = x - cx, y - cy
-    angle = 0.5 * math.atan2(2.0 * float(dx @ dy), float(dx @ dx) - float(dy @ dy))  # principal axis
-    u = np.array([math.cos(angle), math.sin(angle)])
-    if u[0] * (x[-1] - x[0]) + u[1] * (y[-1] - y[0]) < 0:
-        u = -u
-    return np.array([cx, cy]), u
-
-
 @dataclass
 class _Side:
     """The curve's end on one side, from the fitted circle and the fitted tangent line."""
@@ -651,7 +501,7 @@ class _Side:
 def _side(chain, xv, yv, sel: np.ndarray, centre: np.ndarray, radius: float, entry: bool) -> _Side | None:
     if sel.size < 4 or chain[sel[-1]] - chain[sel[0]] < 20.0:
         return None
-    c, u = _line_fit(xv[sel], yv[sel])
+    c, u = fit_line(xv[sel], yv[sel])
     ref = sel[-1] if entry else sel[0]  # the tangent vertex nearest the curve
     q = np.array([xv[ref], yv[ref]])
     foot_along = float((centre - c) @ u)
@@ -955,7 +805,7 @@ def _line(chain, xv, yv, sel: np.ndarray, entry: bool, sigma: float) -> _Line | 
     """The tangent next to a curve, fitted by total least squares (None when too short to fit)."""
     if sel.size < 4 or chain[sel[-1]] - chain[sel[0]] < 20.0:
         return None
-    c, u = _line_fit(xv[sel], yv[sel])
+    c, u = fit_line(xv[sel], yv[sel])
     ref = sel[-1] if entry else sel[0]
     length = float(chain[sel[-1]] - chain[sel[0]])
     sd = sigma * math.sqrt(12.0 / sel.size) / length  # slope of a least-squares line over n points on length L
@@ -1106,11 +956,11 @@ def find_curves(
     # step 3: light smoothing so that the heading noise stays below HEADING_NOISE_RAD
     tau_h = step_m
     if sigma > 0:
-        tau_h = max(tau_h, (sigma * math.sqrt(_G1 * h_v) / HEADING_NOISE_RAD) ** (2.0 / 3.0))
+        tau_h = max(tau_h, (sigma * math.sqrt(G1 * h_v) / HEADING_NOISE_RAD) ** (2.0 / 3.0))
     tau_min = max(step_m, h_v, tau_h)
     tau_d = tau_min
     if sigma > 0:
-        tau_d = max(tau_min, (significance * sigma * math.sqrt(_G2 * h_v) / kt) ** 0.4)
+        tau_d = max(tau_min, (significance * sigma * math.sqrt(G2 * h_v) / kt) ** 0.4)
     chain = _chainage(xv, yv, seg, step_m, tau_h, sigma, h_v)
     total = float(chain[-1])
     chain_in = np.maximum.accumulate(np.where(keep, np.repeat(chain, np.diff(np.append(idx, n_in))), 0.0))
@@ -1185,7 +1035,7 @@ def _chainage(xv, yv, seg, step_m, tau_h, sigma, h_v) -> np.ndarray:
     h = float(s[1] - s[0])
     xs, ys = np.interp(s, chain, xv), np.interp(s, chain, yv)
     gap = math.ceil(h_v / h) + 1  # samples interpolated from the segment's own vertices
-    k = np.arange(max(math.ceil(_TRUNCATE * tau_h / h), 1))
+    k = np.arange(max(math.ceil(TRUNCATE * tau_h / h), 1))
     w = np.exp(-0.5 * ((k + gap) * h / tau_h) ** 2)
     pad = gap + k.size + 1
     dx = np.zeros(m - 1)

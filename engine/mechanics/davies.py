@@ -35,8 +35,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import MechanismSingular
-from .mechanism import Mechanism
+from engine.errors import MechanismSingular
+from engine.mechanics.mechanism import Mechanism
 
 #: rows of the 6-vector wrench [Mx, My, Mz, Fx, Fy, Fz] kept for a spatial (lambda = 6) mechanism
 SPATIAL = (0, 1, 2, 3, 4, 5)

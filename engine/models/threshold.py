@@ -19,14 +19,14 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from .case import Case, check_stage_and_limit
-from .domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
-from .errors import InvalidInput, RolloverError
-from .models import get_model
-from .results import RolloverResult
-from .stepping import solve_3d_many
-from .trailer3d import get_closure
-from .vehicles import Vehicle
+from engine.case import Case, check_stage_and_limit
+from engine.domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
+from engine.errors import InvalidInput, RolloverError
+from engine.models.registry import get_model
+from engine.models.stepping import solve_3d_many
+from engine.models.trailer3d import get_closure
+from engine.results import RolloverResult
+from engine.vehicle.record import Vehicle
 
 METHODS = ("reduced", "davies")
 T = TypeVar("T")
@@ -114,7 +114,7 @@ def rollover_threshold(
     curve_points : number of points of the curves, 2-401 [-]
     method : ``"reduced"`` (the hand-reduced statics, fast) or ``"davies"`` (the full Davies statics at every
         iteration, the reference path) [-]
-    chassis_closure : the 3D model's roll-moment closure, an id of :data:`engine.trailer3d.CLOSURES` [-]
+    chassis_closure : the 3D model's roll-moment closure, an id of :data:`engine.models.trailer3d.CLOSURES` [-]
 
     Returns
     -------
@@ -160,7 +160,7 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
     default chassis closure): in each case's place its result, or the error it raises.
 
     The 3D cases of one vehicle and stage, when there are at least :data:`MIN_ARRAY_CASES` of them, are solved
-    together on arrays (:func:`engine.stepping.solve_3d_many`); a converged case stops where it would alone, so its
+    together on arrays (:func:`engine.models.solve_3d_many`); a converged case stops where it would alone, so its
     result is the one :func:`rollover_threshold` gives, to rounding (tests/engine/test_thresholds_many.py). The others,
     and a case whose array solve failed (for its exact error), are solved one at a time.
     """
@@ -242,8 +242,8 @@ def case_at(case: Case, columns: Mapping[str, np.ndarray], i: int) -> Case:
 def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarray:
     """Rows that may break a domain rule (a vectorised over-approximation of :meth:`Model.check`): they are checked
     one by one for their exact message; every other row is known to pass."""
-    from .domain import BOUNDS
-    from .loads import MAX_CG_BEHIND_REAR_GROUP
+    from engine.case import MAX_CG_BEHIND_REAR_GROUP
+    from engine.domain import BOUNDS
 
     v = case.vehicle
     bad = np.zeros(len(col["bank_percent"]), dtype=bool)

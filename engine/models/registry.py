@@ -4,7 +4,7 @@ An entry says what the model is (id, name, equations, reference, one-line summar
 fields beyond the rear group's, whether it models the front group as a mechanism), which road and load inputs it
 accounts for (``takes``: it refuses the others when non-zero, rather than ignore them), whether it has curves
 against ay/g, and how to solve one case (``solve``) and many cases of one vehicle at once (``batch``, None when
-the model is solved case by case). :func:`engine.threshold.rollover_threshold`, the sweeps, the vehicle
+the model is solved case by case). :func:`engine.models.rollover_threshold`, the sweeps, the vehicle
 validation, the presets' model lists and the HTTP layer's model list all read this table: adding a model is one
 entry here.
 
@@ -20,12 +20,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from . import classic, stepping
-from .case import Case, check_stage_and_limit
-from .errors import InvalidInput, InvalidLoad, InvalidRoad
-from .loads import check_case
-from .results import RolloverResult
-from .vehicles import Vehicle, validate_vehicle
+from engine.case import Case, check_case, check_stage_and_limit
+from engine.errors import InvalidInput, InvalidLoad, InvalidRoad
+from engine.models import classic, stepping
+from engine.results import RolloverResult
+from engine.vehicle.record import Vehicle, validate_vehicle
 
 #: every road/load input a model may account for: (name in ``takes``, request field, getter, error class)
 INPUTS: tuple[tuple[str, str, Callable[[Case], float], type[InvalidInput]], ...] = (

@@ -2,7 +2,7 @@
 
 The lateral acceleration is raised from rest until the rear inner tire lifts off (Fz19 = 0) or the rear lateral
 load transfer reaches the case's ``rear_llt_limit``. Because the model is elastic (path independent), the state
-at any ay is the consistent geometry/force solution at that ay: :func:`engine.trailer3d.solve` finds the limit
+at any ay is the consistent geometry/force solution at that ay: :func:`engine.models.trailer3d.solve` finds the limit
 directly (the limit condition is one more linear equation at frozen geometry), and the curves of Figs. 92-97 are
 the same solution at intermediate ay, each started from the previous one.
 
@@ -22,19 +22,18 @@ from dataclasses import fields
 
 import numpy as np
 
-from . import trailer2d, trailer3d
-from .case import Case
-from .domain import DEFAULT_CURVE_POINTS
-from .groups import ARRAY
-from .loads import kingpin_uplift_note
-from .results import Curves, RolloverResult, TireLoads
+from engine.case import Case, kingpin_uplift_note
+from engine.domain import DEFAULT_CURVE_POINTS
+from engine.models import trailer2d, trailer3d
+from engine.models.groups import ARRAY
+from engine.results import Curves, RolloverResult, TireLoads
 
 
 def _davies_forces(model: str):
     """The Davies reference statics of a model (imported only when asked for: it is the slow path)."""
     if model == "2d":
         return trailer2d.davies_forces_at
-    from .trailer3d_davies import davies_forces_at
+    from engine.models.trailer3d_davies import davies_forces_at
 
     return davies_forces_at
 
@@ -214,7 +213,7 @@ def _weight(case: Case, overweight_percent: np.ndarray) -> np.ndarray:
 
 def batch_3d(base: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassis-constant"):
     """(SRT [g], roll [deg]) arrays of many cases of one vehicle and stage, solved at once with numpy arrays:
-    ``col`` holds every case input as an array (:func:`engine.threshold.evaluate_arrays`). A case whose mechanism
+    ``col`` holds every case input as an array (:func:`engine.models.evaluate_arrays`). A case whose mechanism
     leaves its valid geometry gets nan, the others their value."""
     m = stage_model(base, None, chassis_closure)
     sc = trailer3d.SolverCase(

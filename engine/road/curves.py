@@ -1,189 +1,21 @@
-"""Road-design and compliance tools built on the SRT (the thesis's Ch. 9.6 and 11 proposals).
-
-* **Targets**: whether an SRT meets configurable minimums (defaults: 0.35 g general freight, 0.40 g
-  dangerous goods, as in Australia's Performance-Based Standards and New Zealand's SRT rule) and by how
-  much; the tilt-table angle ``atan(SRT)`` a tilt test would show.
-* **Inverse limits**: for a target SRT, the largest CG height above the chassis, overweight or outward
-  lateral offset d1 -- or the smallest spring separation -- at which the vehicle still meets it, found
-  exactly by Brent's bracketed root finder on the engine; and the table of that limit over a range of
-  overweights (the exact counterpart of the TERNZ calculator's table of acceptable mass/load-height pairs).
-* **Curve assessment**: for each horizontal curve (radius, superelevation, grade), the SRT on that bank
-  and grade, the rollover speed (Eq. 9.1), the side-friction speed sqrt(127 R (0.01 e + f)) with f from
-  Table 21, the governing safe speed and the margin against the posted speed. The SRT does not depend on
-  the radius, so curves sharing bank and grade share one solve (all distinct pairs in one batched solve).
-
-References
-----------
-Thesis Eqs. 9.1-9.3, Table 21; NTC Australia (2008) PBS scheme; NZTA (2008) SRT calculator (TERNZ).
-"""
+"""Curve and alignment assessment: the safe speed on every horizontal curve (Eq. 9.1 against side friction)."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from . import standards
-from .bracket import bracketed_limit
-from .case import Case
-from .domain import BOUNDS, MAX_OVERWEIGHT_PERCENT, check
-from .errors import InvalidInput, InvalidRoad, RolloverError
-from .loads import check_case
-from .models import get_model
-from .road import max_curve_speed_kmh
-from .threshold import BlockMap, evaluate_arrays, map_blocks, rollover_threshold
-from .vehicles import group_stiffness, static_axle_loads
-
-#: default SRT targets [g]: PBS (Australia) / NZ rule: 0.35 g general, 0.40 g dangerous goods (tankers)
-DEFAULT_TARGETS = {"general": 0.35, "dangerous_goods": 0.40}
-
-
-# ------------------------------------------------------------------------------------- targets
-
-
-@dataclass(frozen=True)
-class TargetCheck:
-    name: str
-    target_g: float
-    meets: bool
-    margin_g: float  # srt - target
-
-
-def check_targets(srt_g: float, targets: dict[str, float] | None = None) -> list[TargetCheck]:
-    """Whether ``srt_g`` meets each target (SRT >= target) and the margin SRT - target [g]."""
-    targets = DEFAULT_TARGETS if targets is None else targets
-    out = []
-    for name, t in targets.items():
-        check("target_srt_g", t, f"targets.{name}")
-        out.append(TargetCheck(name, float(t), srt_g >= t, srt_g - t))
-    return out
-
-
-def tilt_table_angle_deg(srt_g):
-    """Tilt-table angle equivalent to an SRT: a rigid vehicle tips at tan(angle) = SRT [deg]."""
-    return np.degrees(np.arctan(srt_g))
-
-
-# -------------------------------------------------------------------------------- inverse limits
-
-LIMIT_PARAMETERS = {
-    # name: (direction, description). "max": the SRT falls as the parameter grows; "min": it rises.
-    "cg_height_above_chassis_m": ("max", "largest CG height above the chassis l12 [m]"),
-    "overweight_percent": ("max", "largest overweight [%]"),
-    "lateral_offset_m": ("max", "largest lateral CG offset toward the outside of the turn d1 [m]"),
-    "spring_separation_m": ("min", "smallest lateral separation between the springs b [m]"),
-}
-
-
-@dataclass(frozen=True)
-class Limit:
-    parameter: str
-    kind: str  # "max" or "min"
-    value: float | None  # the limit; None when no value in the range meets the target
-    status: str  # "found", "always-met" (the whole range meets it), "never-met"
-    range: tuple[float, float]  # the physically admissible range searched
-    srt_at_limit: float | None
-    evaluations: int
-
-
-def with_parameter(case: Case, parameter: str, value: float) -> Case:
-    """The case with one :data:`LIMIT_PARAMETERS` entry set to ``value`` (a vehicle field or a load input)."""
-    if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
-        return case.replace(vehicle=case.vehicle.replace(**{parameter: value}))
-    return case.replace(load=replace(case.load, **{parameter: value}))
-
-
-def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
-    """Admissible range of the parameter: inside the bounds :func:`engine.vehicles.validate_vehicle` enforces.
-
-    For l12 and b that is Rill's condition k_theta > W_group l12 (Eq. 2.17) for every group the model uses
-    (both groups in 3D), with the groups' nominal static loads, as the validation applies it.
-    """
-    vehicle, load = case.vehicle, case.load
-    front_load, rear_load = static_axle_loads(vehicle)
-    groups = [("rear", rear_load)]
-    if get_model(case.model).front_group and vehicle.front_axles is not None and front_load > 0:
-        groups.append(("front", front_load))
-    if parameter == "cg_height_above_chassis_m":
-        lo = max(0.05, -load.vertical_offset_m + 0.05)
-        bound = min(group_stiffness(vehicle, g).roll_stiffness(vehicle.spring_separation_m) / w for g, w in groups)
-        return lo, 0.98 * bound - load.vertical_offset_m
-    if parameter == "overweight_percent":
-        return -50.0, MAX_OVERWEIGHT_PERCENT
-    if parameter == "lateral_offset_m":
-        half = vehicle.rear_track_m / 2
-        return -0.9 * half, 0.9 * half
-    # spring separation: from Rill's bound up to the narrowest axle
-    width = min(vehicle.rear_axle_width_m, (vehicle.front_axle_width_m or math.inf) if len(groups) > 1 else math.inf)
-    l12 = vehicle.cg_height_above_chassis_m
-    b_min = 1.02 * max(math.sqrt(2 * w * l12 / group_stiffness(vehicle, g).suspension_side_kn_per_m) for g, w in groups)
-    return b_min, width * (1 - 1e-6) - 1e-6
-
-
-def _margin(case: Case, parameter: str, target: float):
-    """SRT minus the target as a function of the parameter; None where the value makes the case unsolvable."""
-
-    def g(x: float) -> float | None:
-        try:
-            return rollover_threshold(with_parameter(case, parameter, x)).srt - target
-        except RolloverError:  # collapse, tipping at rest, SRT outside the mechanism's range
-            return None
-
-    return g
-
-
-def parameter_limit(case: Case, target_srt_g: float, parameter: str, *, xtol: float = 1e-6) -> Limit:
-    """The limit of one parameter at which the SRT of ``case`` equals ``target_srt_g`` (Brent's method, bracketed).
-
-    The SRT is monotonic in each parameter over its admissible range (decreasing in l12, overweight and
-    outward d1; increasing in b), so the bracket holds one root. ``status`` says when the whole range
-    meets the target ("always-met": the limit is the range's end, or the last solvable value where the
-    vehicle would collapse before missing the target) or none of it does ("never-met").
-    """
-    if parameter not in LIMIT_PARAMETERS:
-        raise InvalidInput(
-            f"parameter must be one of {', '.join(LIMIT_PARAMETERS)}", field="parameter", value=parameter
-        )
-    check("target_srt_g", target_srt_g)
-    # errors that do not depend on the searched value (a model that needs a missing field, a road outside the
-    # domain...) are the caller's: let them through as they are, before searching
-    get_model(case.model).validate(case.vehicle)
-    check_case(case.vehicle, case.road, case.trailer_angle_deg, case.load)
-    kind = LIMIT_PARAMETERS[parameter][0]
-    lo, hi = parameter_range(case, parameter)
-    good, bad = (lo, hi) if kind == "max" else (hi, lo)
-    try:
-        r = bracketed_limit(_margin(case, parameter, target_srt_g), good, bad, xtol=xtol, field=parameter)
-    except InvalidInput as e:
-        raise InvalidInput(
-            f"no value of {parameter} in [{lo:.4g}, {hi:.4g}] can be solved for this case", field=parameter
-        ) from e
-    srt = None if r.margin is None else target_srt_g + r.margin
-    return Limit(parameter, kind, r.value, r.status, (lo, hi), srt, r.evaluations)
-
-
-@dataclass(frozen=True)
-class LimitTableRow:
-    overweight_percent: float
-    limit: Limit
-
-
-def limit_table(case: Case, target_srt_g: float, parameter: str, overweights: Sequence[float]) -> list[LimitTableRow]:
-    """The limit of ``parameter`` for each overweight (TERNZ's table of acceptable mass / load-height pairs)."""
-    if parameter == "overweight_percent":
-        raise InvalidInput("the table runs over overweights; pick another parameter", field="parameter")
-    return [
-        LimitTableRow(
-            float(ow),
-            parameter_limit(
-                case.replace(load=replace(case.load, overweight_percent=float(ow))), target_srt_g, parameter
-            ),
-        )
-        for ow in overweights
-    ]
-
+from engine.case import Case
+from engine.domain import BOUNDS, check
+from engine.errors import InvalidInput, InvalidRoad
+from engine.models.threshold import BlockMap, evaluate_arrays, map_blocks
+from engine.road import standards
+from engine.road.formulas import max_curve_speed_kmh
+from engine.road.min_radius import min_radius_array
+from engine.road.superelevation import distribution_min_radius_m, superelevation_table
 
 # ----------------------------------------------------------------------------- curve assessment
 
@@ -317,11 +149,11 @@ def _derive_superelevation(std, radius, e, posted, e_max) -> np.ndarray:
         try:
             # a curve sharper than the distribution's R_min at its posted speed has no design superelevation: it is
             # assessed on e_max, the most a road built to this e_max has (its meets_standard_min_radius is false)
-            sharp = sel & (radius < standards.distribution_min_radius_m(std, float(v), e_max) * (1.0 - 1e-12))
+            sharp = sel & (radius < distribution_min_radius_m(std, float(v), e_max) * (1.0 - 1e-12))
             out[sharp] = e_max
             rest = sel & ~sharp
             if np.any(rest):
-                out[rest] = standards.superelevation_table(std, float(v), e_max, radius[rest]).superelevation_percent
+                out[rest] = superelevation_table(std, float(v), e_max, radius[rest]).superelevation_percent
         except InvalidRoad as exc:  # name the curve: the first of this speed outside the standard's range
             i = int(np.flatnonzero(sel)[0])
             raise InvalidRoad(f"curves[{i}]: {exc}", field=f"curves[{i}].{exc.field}", value=exc.value) from None
@@ -338,7 +170,7 @@ def _standard_min_radius(std, posted, e, e_max) -> np.ndarray:
     known &= emax <= standards.E_MAX_LIMIT_PERCENT
     if not np.any(known):
         return out
-    out[known] = standards.min_radius_array(std, posted[known], emax[known])
+    out[known] = min_radius_array(std, posted[known], emax[known])
     return out
 
 
@@ -393,7 +225,7 @@ def solve_bank_grade_pairs(
     case: Case, pairs: np.ndarray, *, block_map: BlockMap = map
 ) -> tuple[np.ndarray, dict[int, str]]:
     """The SRT of ``case`` on each (superelevation, grade) pair (rows of ``pairs``) in one batch, and why a pair has
-    none (:func:`engine.threshold.evaluate_arrays`); a pair's SRT does not depend on the others in the batch.
+    none (:func:`engine.models.evaluate_arrays`); a pair's SRT does not depend on the others in the batch.
 
     Parameters
     ----------
@@ -409,7 +241,7 @@ def solve_bank_grade_pairs(
 
 def _side_friction_in_blocks(std, radius: np.ndarray, e: np.ndarray, block_map: BlockMap):
     """:func:`engine.standards.side_friction_speed` of the curves, in blocks run by ``block_map``
-    (:func:`engine.threshold.map_blocks`)."""
+    (:func:`engine.models.map_blocks`)."""
 
     def block(rows: range) -> standards.SideFrictionSpeed:
         return standards.side_friction_speed(std, radius[rows.start : rows.stop], e[rows.start : rows.stop])
@@ -457,7 +289,7 @@ def assess_alignment(
     max_superelevation_percent : the road's e_max [%]
     solve_pairs : replaces :func:`solve_bank_grade_pairs` (e.g. one that remembers the pairs it solved for a
         batch assessed in slices) [-]
-    block_map : runs the blocks of :data:`~engine.threshold.BATCH_ROWS` rows of the pairs' solve (unless
+    block_map : runs the blocks of :data:`~engine.models.BATCH_ROWS` rows of the pairs' solve (unless
         ``solve_pairs`` replaces it) and of the side-friction speeds (a thread pool's ``map`` runs them in parallel;
         the same bits either way) [-]
 

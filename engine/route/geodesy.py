@@ -50,7 +50,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidInput
+from engine.errors import InvalidInput
 
 #: WGS84 semi-major axis [m] [1]
 WGS84_A_M = 6378137.0

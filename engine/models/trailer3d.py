@@ -56,7 +56,7 @@ unknowns here). The in-plane statics of each group is determinate; what is not:
 
 The remaining null space (out-of-plane force and moment distributions inside the groups, e.g. the pitch
 moment shared by the front tires) touches none of the quantities reported; the Davies reference path
-checks that with the null-space test of :func:`engine.davies.solve_statics`.
+checks that with the null-space test of :func:`engine.mechanics.solve_statics`.
 
 The rollover limit is the rear inner tire lifting off (Fz19 = 0, Eq. 6.18) or, more generally, the rear
 lateral load transfer reaching ``llt_limit`` (Table 17 uses 0.6).
@@ -71,9 +71,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .compliance import chassis_torque_components, chassis_torque_split, chassis_twist, shear_torsion_coefficient
-from .errors import ConvergenceError, InvalidInput
-from .groups import (
+from engine.errors import ConvergenceError, InvalidInput
+from engine.models.groups import (
     FIXED_POINT_TOL,
     SCALAR,
     FifthWheelParams,
@@ -87,7 +86,13 @@ from .groups import (
     group_params,
     group_statics,
 )
-from .vehicles import Vehicle
+from engine.models.springs import (
+    chassis_torque_components,
+    chassis_torque_split,
+    chassis_twist,
+    shear_torsion_coefficient,
+)
+from engine.vehicle.record import Vehicle
 
 #: the stages of Ch. 9 (see :func:`build_model`)
 STAGES = ("full", "tires-suspension")
@@ -176,7 +181,7 @@ def build_model(vehicle: Vehicle, stage: str = "full", closure: str = "chassis-c
         compliance and the chassis' torsional flexibility (rho from the record, twist from G Jr) [-]
     closure : id of :data:`CLOSURES`; ``"chassis-constant"`` calibrates x on :func:`reference_case` [-]
     forces : the statics solver used by the calibration (default the fast path; the Davies reference path
-        :func:`engine.trailer3d_davies.davies_forces_at` for cross-checks)
+        :func:`engine.models.trailer3d_davies.davies_forces_at` for cross-checks)
     """
     c = get_closure(closure)
     v = vehicle

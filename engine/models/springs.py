@@ -84,7 +84,7 @@ def chassis_torque_components(front_torque_knm, cos_psi, sin_psi):
     """Components of the front torque at a trailer/trailer angle psi: (Tf cos psi, Tf sin psi) (Eqs. 4.22-4.23).
 
     Given psi's cosine and sine (floats or arrays): a solve evaluates this 70-odd times at one psi, so its caller
-    computes them once (:func:`engine.trailer3d._psi_angles`).
+    computes them once (:func:`engine.models.trailer3d._psi_angles`).
     """
     return front_torque_knm * cos_psi, front_torque_knm * sin_psi
 

@@ -61,13 +61,13 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from .errors import InvalidVehicle
+from engine.errors import InvalidVehicle
 
 INCH_M = 0.0254  # exact, by definition of the inch
 
-_THESIS = "Moreno, G. G., Static rollover threshold of long combination vehicles (doctoral thesis)"
-_T16 = f"{_THESIS}, Table 16 (B-train trailer)"
-_T15 = f"{_THESIS}, Table 15 (TruckSim semi-trailer, Ch. 8)"
+THESIS = "Moreno, G. G., Static rollover threshold of long combination vehicles (doctoral thesis)"
+_T16 = f"{THESIS}, Table 16 (B-train trailer)"
+_T15 = f"{THESIS}, Table 15 (TruckSim semi-trailer, Ch. 8)"
 
 
 @dataclass(frozen=True)
@@ -357,7 +357,7 @@ class SuspensionEntry:
 _T16_LS = Sourced(0.205, "m", f"{_T16}: 'initial suspension height ls 0.205 m'")
 _T16_B = Sourced(0.95, "m", f"{_T16}: 'lateral separation between the springs b 0.95 m'")
 _HARWOOD_RANGE = (
-    f"{_THESIS}, Ch. 9: 'Harwood et al. (2003) reported that the range of values for the stiffness of the "
+    f"{THESIS}, Ch. 9: 'Harwood et al. (2003) reported that the range of values for the stiffness of the "
     "suspension per axle is kLs = (1500-2400) kN/m'"
 )
 _RANGE_GEOMETRY = "; the range gives no height or spring spacing: Table 16's are used with it"

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .screw import unit_couple, unit_force
+from engine.mechanics.screw import unit_couple, unit_force
 
 
 @dataclass(frozen=True)

@@ -19,9 +19,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .davies import PLANAR_YZ, solve_statics
-from .errors import ConvergenceError
-from .groups import (
+from engine.errors import ConvergenceError
+from engine.mechanics.davies import PLANAR_YZ, solve_statics
+from engine.mechanics.mechanism import Mechanism, external, joint
+from engine.mechanics.screw import rot_x, screw_matrix, unit_force
+from engine.models.groups import (
     FIXED_POINT_TOL,
     SCALAR,
     GroupGeometry,
@@ -33,9 +35,7 @@ from .groups import (
     group_params,
     group_statics,
 )
-from .mechanism import Mechanism, external, joint
-from .screw import rot_x, screw_matrix, unit_force
-from .vehicles import Vehicle, static_axle_loads
+from engine.vehicle.record import Vehicle, static_axle_loads
 
 
 @dataclass(frozen=True)
@@ -95,7 +95,7 @@ def _top_load(g: GroupGeometry, cg, py, pz):
 
 def forces_at(m: PlanarModel, case: Case2D, state, ay=None, xp=SCALAR):
     """Geometry and forces at a frozen state; ``ay=None`` solves the limit (LLT = llt_limit) exactly."""
-    from .groups import ground_reactions
+    from engine.models.groups import ground_reactions
 
     g = group_geometry(m.group, state, xp)
     cg = cg_position(m, case, g, xp)
@@ -212,7 +212,7 @@ REPORTED = ("Fz1", "Fz3", "Fy1", "FT2", "FT5", "FLS7", "FLS10", "Tx6")
 
 def davies_forces_at(m: PlanarModel, case: Case2D, state, ay=None, xp=SCALAR):
     """Drop-in replacement of :func:`forces_at` solving the planar Davies statics (Eq. 5.14)."""
-    from .groups import FourBarForces, GroupForces
+    from engine.models.groups import FourBarForces, GroupForces
 
     mech, cg = build_mechanism(m, case, state)
     g = group_geometry(m.group, state)

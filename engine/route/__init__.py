@@ -1,0 +1,75 @@
+"""Surveyed routes: WGS84 to a local frame, the noise of a track, circle fits and curve detection.
+
+- :mod:`~engine.route.geodesy`: a route's longitude/latitude to a local metric frame;
+- :mod:`~engine.route.noise`: the noise model of a sampled polyline;
+- :mod:`~engine.route.fit`: least-squares circles and lines;
+- :mod:`~engine.route.detect`: the horizontal curves of a polyline (the method in its docstring).
+"""
+
+from .detect import (
+    FIT_FRACTION,
+    PATH_FIT_VERTICES,
+    PEAK_NOISE_FRACTION,
+    PRECISE_FRACTION,
+    SCALE_FACTOR,
+    SHAPE_NOISE_FRACTION,
+    TRUNCATE,
+    HorizontalCurve,
+    RouteCurves,
+    find_curves,
+    spiral_length_m,
+)
+from .fit import (
+    CircleFit,
+    fit_circle,
+    fit_line,
+)
+from .geodesy import (
+    WGS84_A_M,
+    WGS84_E2,
+    WGS84_F,
+    LocalFrame,
+    ecef_m,
+    local_frame,
+    segment_lengths_m,
+    turning_angles_rad,
+)
+from .noise import (
+    G1,
+    G2,
+    HEADING_NOISE_RAD,
+    curvature_noise_per_m,
+    heading_noise_rad,
+    vertex_noise_m,
+)
+
+__all__ = [
+    "FIT_FRACTION",
+    "G1",
+    "G2",
+    "HEADING_NOISE_RAD",
+    "PATH_FIT_VERTICES",
+    "PEAK_NOISE_FRACTION",
+    "PRECISE_FRACTION",
+    "SCALE_FACTOR",
+    "SHAPE_NOISE_FRACTION",
+    "TRUNCATE",
+    "WGS84_A_M",
+    "WGS84_E2",
+    "WGS84_F",
+    "CircleFit",
+    "HorizontalCurve",
+    "LocalFrame",
+    "RouteCurves",
+    "curvature_noise_per_m",
+    "ecef_m",
+    "find_curves",
+    "fit_circle",
+    "fit_line",
+    "heading_noise_rad",
+    "local_frame",
+    "segment_lengths_m",
+    "spiral_length_m",
+    "turning_angles_rad",
+    "vertex_noise_m",
+]

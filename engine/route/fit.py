@@ -1,0 +1,87 @@
+"""Least-squares circle (Chernov 2010: Kasa's fit, then Gauss-Newton) and line fits of route vertices."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from engine.errors import InvalidInput
+
+# ----------------------------------------------------------------------------------- circle fit
+
+
+@dataclass(frozen=True)
+class CircleFit:
+    xc_m: float
+    yc_m: float
+    radius_m: float
+    rms_m: float  # root-mean-square distance of the points from the circle
+    radius_std_m: float | None  # standard error of the radius (None with 3 points: no redundancy)
+    n_points: int = 0
+
+
+def fit_circle(x_m, y_m, *, iterations: int = 10) -> CircleFit:
+    """Geometric least-squares circle through points (Gauss-Newton from Kasa's algebraic fit) [1].
+
+    Minimises sum (|p_i - c| - R)^2. The points are centred first, so routes far from the origin keep their
+    precision.
+
+    Parameters
+    ----------
+    x_m, y_m : array_like
+        At least 3 points [m].
+    iterations : int
+        Gauss-Newton iterations at most.
+    """
+    x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
+    if x.size < 3:
+        raise InvalidInput(f"a circle needs at least 3 points, got {x.size}", field="points", value=int(x.size))
+    x0, y0 = x.mean(), y.mean()
+    u, v = x - x0, y - y0
+    scale = max(float(np.sqrt(np.mean(u * u + v * v))), 1e-12)
+    u, v = u / scale, v / scale
+    # Kasa: u^2 + v^2 + D u + E v + F = 0 in the least-squares sense
+    a = np.column_stack((u, v, np.ones_like(u)))
+    sol, *_ = np.linalg.lstsq(a, -(u * u + v * v), rcond=None)
+    a_c, b_c = -sol[0] / 2, -sol[1] / 2
+    r = math.sqrt(max(a_c * a_c + b_c * b_c - sol[2], 1e-12))
+    p = np.array([a_c, b_c, r])
+    for _ in range(iterations):
+        du, dv = u - p[0], v - p[1]
+        d = np.maximum(np.hypot(du, dv), 1e-15)
+        res = d - p[2]
+        jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
+        try:
+            step = np.linalg.solve(jac.T @ jac, -(jac.T @ res))
+        except np.linalg.LinAlgError:
+            break
+        p = p + step
+        if np.all(np.abs(step) <= 1e-10 * (1.0 + np.abs(p))):
+            break
+    du, dv = u - p[0], v - p[1]
+    d = np.hypot(du, dv)
+    res = d - p[2]
+    rms = float(np.sqrt(np.mean(res * res))) * scale
+    std = None
+    if x.size > 3:
+        jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
+        s2 = float(res @ res) / (x.size - 3)
+        try:
+            cov = np.linalg.inv(jac.T @ jac) * s2
+            std = float(math.sqrt(max(cov[2, 2], 0.0))) * scale
+        except np.linalg.LinAlgError:
+            std = None
+    return CircleFit(x0 + p[0] * scale, y0 + p[1] * scale, abs(p[2]) * scale, rms, std, int(x.size))
+
+
+def fit_line(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Total least-squares line: a point on it and its unit direction, oriented from the first point."""
+    cx, cy = float(x.mean()), float(y.mean())
+    dx, dy = x - cx, y - cy
+    angle = 0.5 * math.atan2(2.0 * float(dx @ dy), float(dx @ dx) - float(dy @ dy))  # principal axis
+    u = np.array([math.cos(angle), math.sin(angle)])
+    if u[0] * (x[-1] - x[0]) + u[1] * (y[-1] - y[0]) < 0:
+        u = -u
+    return np.array([cx, cy]), u

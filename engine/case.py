@@ -17,6 +17,7 @@ from typing import Any
 
 from engine.domain import check
 from engine.errors import InvalidInput, InvalidLoad
+from engine.vehicle.combination import Combination
 from engine.vehicle.record import Vehicle
 
 #: the CG may lie behind the rear group by up to a quarter wheelbase (Table 16 moves the B-train's load
@@ -138,8 +139,10 @@ class Case:
 
     Parameters
     ----------
-    vehicle : the vehicle record (:class:`engine.vehicles.Vehicle`)
-    model : model id of :data:`engine.models.registry.MODELS` (``"3d"`` by default) [-]
+    vehicle : the vehicle record (:class:`engine.vehicle.Vehicle`) or a combination
+        (:class:`engine.vehicle.Combination`)
+    model : model id of :data:`engine.models.MODELS`; default ``"3d"`` for a record, ``"combination"`` (the
+        whole-combination model) for a combination [-]
     stage : 3D only: ``"full"`` (tires, suspension, fifth wheel, chassis) or ``"tires-suspension"`` (the first
         stage of Ch. 9) [-]
     road : bank and slope (:class:`engine.case.Road`) [%]
@@ -149,13 +152,17 @@ class Case:
         (Eq. 2.5; Table 17 uses 0.6) [-]
     """
 
-    vehicle: Vehicle
-    model: str = "3d"
+    vehicle: Vehicle | Combination
+    model: str | None = None
     stage: str = "full"
     road: Road = field(default_factory=Road)
     trailer_angle_deg: float = 0.0
     load: LoadCase = field(default_factory=LoadCase)
     rear_llt_limit: float = 1.0
+
+    def __post_init__(self) -> None:
+        if self.model is None:
+            object.__setattr__(self, "model", "combination" if isinstance(self.vehicle, Combination) else "3d")
 
     def replace(self, **changes: Any) -> Case:
         """A copy with some inputs changed (``case.replace(road=Road(bank_percent=6))``)."""
@@ -181,9 +188,11 @@ class Case:
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Case:
         """The inverse of :meth:`to_dict` (the vehicle as a record dict)."""
+        v = data["vehicle"]
+        vehicle = Combination.from_dict(v["combination"]) if "combination" in v else Vehicle.from_dict(v)
         return cls(
-            vehicle=Vehicle.from_dict(data["vehicle"]),
-            model=data.get("model", "3d"),
+            vehicle=vehicle,
+            model=data.get("model"),
             stage=data.get("stage", "full"),
             road=Road(**data.get("road", {})),
             trailer_angle_deg=data.get("trailer_angle_deg", 0.0),

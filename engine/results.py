@@ -40,6 +40,91 @@ class TireLoads:
 
 
 @dataclass(frozen=True)
+class LiftEvent:
+    """An axle group's inner tyres leaving the road: the unit, the group and the lateral acceleration [g]."""
+
+    unit: str
+    group: str
+    ay_g: float
+
+
+@dataclass(frozen=True)
+class GroupState:
+    """One axle group at a roll-coupled unit's limit.
+
+    llt : lateral load transfer (Fz_outer - Fz_inner) / (Fz_outer + Fz_inner) [-]
+    outer_kn / inner_kn : the normal loads of the outer and inner tyre lines [kN]
+    axle_roll_deg : the axle's roll relative to the road (tyre deflection) [deg]
+    suspension_moment_knm : the roll moment the suspension passes between the axle and the sprung mass [kN m]
+    lifted : the inner tyres are off the road [-]
+    """
+
+    unit: str
+    group: str
+    llt: float
+    outer_kn: float
+    inner_kn: float
+    axle_roll_deg: float
+    suspension_moment_knm: float
+    lifted: bool
+
+
+@dataclass(frozen=True)
+class CouplingState:
+    """A coupling at a roll-coupled unit's limit: the roll moment it passes [kN m] and the vertical load [kN]."""
+
+    towing_unit: str
+    towed_unit: str
+    kind: str
+    roll_moment_knm: float
+    vertical_load_kn: float
+
+
+@dataclass(frozen=True)
+class RollCoupledUnitResult:
+    """The SRT of one roll-coupled unit (units joined by fifth wheels / B-couplings) and its state there.
+
+    units : the ids of its units, front to rear [-]
+    srt : the largest lateral acceleration it holds, or where a group reached the LLT limit [g]
+    limit : ``"rollover"`` (the largest ay it holds: past it every equilibrium needs less) or ``"llt-limit"``
+    ended_by : what happened at the limit, in words [-]
+    roll_angle_deg : each unit's sprung-mass roll relative to the road [deg]
+    groups / couplings : the state of every group and coupling at the limit
+    lift_sequence : the groups whose inner tyres left the road, in order, up to the limit
+    """
+
+    units: tuple[str, ...]
+    srt: float
+    limit: str
+    ended_by: str
+    roll_angle_deg: dict[str, float]
+    groups: tuple[GroupState, ...]
+    couplings: tuple[CouplingState, ...]
+    lift_sequence: tuple[LiftEvent, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class CombinationDetail:
+    """The whole-combination answer: every roll-coupled unit, the governing one, and the ratio for the 3D model.
+
+    governing : index into ``roll_coupled_units`` of the lowest SRT [-]
+    last_unit_front_llt_ratio : LLTf/LLTr of the last unit (its front support is the towing unit's group under
+        its coupling) when its own group reaches the LLT limit, or at its roll-coupled unit's limit if that
+        comes first [-]
+    """
+
+    roll_coupled_units: tuple[RollCoupledUnitResult, ...]
+    governing: int
+    last_unit_front_llt_ratio: float | None
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
 class RolloverResult:
     """Static rollover threshold of one vehicle on one road with one load case.
 
@@ -67,6 +152,7 @@ class RolloverResult:
     parameters: dict[str, float] = field(default_factory=dict)
     curves: Curves | None = None
     notes: list[str] = field(default_factory=list)  # caveats about this case (e.g. kingpin uplift)
+    combination: CombinationDetail | None = None  # the whole-combination model's per-unit answer
 
     def to_dict(self) -> dict[str, Any]:
         """A plain dict, as ``dataclasses.asdict`` gives it (copies of the dicts and lists) without its recursive
@@ -79,6 +165,8 @@ class RolloverResult:
             out["tire_loads"] = {name: getattr(self.tire_loads, name) for name in _TIRE_LOAD_FIELDS}
         if self.curves is not None:
             out["curves"] = self.curves.to_dict()
+        if self.combination is not None:
+            out["combination"] = self.combination.to_dict()
         return out
 
 

@@ -22,10 +22,11 @@ import numpy as np
 from engine.case import Case, check_stage_and_limit
 from engine.domain import DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.errors import InvalidInput, RolloverError
-from engine.models.registry import get_model
+from engine.models.registry import get_model, record_view
 from engine.models.stepping import solve_3d_many
 from engine.models.trailer3d import get_closure
 from engine.results import RolloverResult
+from engine.vehicle.combination import Combination
 from engine.vehicle.record import Vehicle
 
 METHODS = ("reduced", "davies")
@@ -131,13 +132,15 @@ def rollover_threshold(
     model = get_model(case.model)
     _check_options(curve_points, method, chassis_closure)
     if include_curves and not model.curves:
-        raise InvalidInput(
-            f"the {model.id} model is a closed form; it has no curves against ay/g", field="include_curves", value=True
-        )
+        raise InvalidInput(f"the {model.id} model has no curves against ay/g", field="include_curves", value=True)
+    case, note = record_view(case)
     model.check(case)
-    result = model.solve(
+    solve = model.solve_combination if isinstance(case.vehicle, Combination) else model.solve
+    result = solve(
         case, include_curves=include_curves, curve_points=curve_points, method=method, chassis_closure=chassis_closure
     )
+    if note is not None:
+        result = replace(result, notes=[note, *result.notes])
     return _finish(case, result)
 
 

@@ -119,7 +119,7 @@ THESIS_EQUATIONS = {
 def test_the_registry_has_every_model_of_the_thesis_with_its_equation():
     from engine.models.registry import MODELS
 
-    assert set(MODELS) == {"3d", "2d", *THESIS_EQUATIONS}
+    assert set(MODELS) == {"3d", "2d", "combination", *THESIS_EQUATIONS}  # and the whole-combination model
     for model_id, equation in THESIS_EQUATIONS.items():
         assert MODELS[model_id].equation == equation
         assert not MODELS[model_id].curves and MODELS[model_id].batch is None

@@ -1,0 +1,773 @@
+"""The whole-combination static roll model: every unit, every axle group, every coupling, solved step by step.
+
+In the tradition of the UMTRI static roll models (Ervin 1986; Winkler and Fancher 1992; Winkler and Ervin 1999),
+each roll-coupled unit of a :class:`~engine.vehicle.combination.Combination` (units joined by fifth wheels or
+B-couplings) is a set of rigid bodies in the roll plane:
+
+* a **sprung mass** per unit, rolling by phi_u relative to the road;
+* an **axle** per axle group, rolling by phi_g relative to the road by the deflection of its tyres.
+
+Laws (small angles, all per group): the tyres give the roll moment ``M_t = k_side T^2/2 phi_g`` until the inner
+line's load ``N/2 - M_t/T`` reaches zero (lift-off), then ``M_t = N T/2``; the suspension passes
+``M_s = K_s dz(phi_u - phi_g, lash)`` (``dz`` a dead zone of half-width ``lash``) about its roll centre at height
+``h_r``, through which it also passes the sprung mass's lateral force; a fifth wheel passes
+``M_c = K_c dz(phi_towed - phi_towing, lash)`` at its height; a pintle passes forces but no moment.
+
+Equilibrium, per axle g of unit u (moments about the road below the group's centre, + outward)::
+
+    M_t,g = M_s,g + l(ay) (S0_g h_r,g + W_a,g h_a,g) + phi_g (S_g h_r,g + n0 W_a,g h_a,g)
+
+and per sprung mass u (moments about the road below the unit; its lateral position drops out when its supports'
+normal loads satisfy the unit's own pitch balance, as they do by construction)::
+
+    l W_u h_u + n(ay) W_u d1_u + phi_u n0 W_u h_u + sum_towing (l V0_c h_c + phi_u V_c h_c + M_c)
+        = sum_groups (l S0_g h_r,g + phi_u S_g h_r,g + M_s,g) + sum_towed_by (l V0_c h_c + phi_u V_c h_c + M_c)
+
+with the normal-weight and lateral factors of the road ``n(ay) = cos(b) cos(s) + ay sin(b)`` and
+``l(ay) = ay cos(b) - sin(b) cos(s)`` (bank b, grade s; the 3D model's Eqs. 4.24-4.26), the normal loads per unit
+normal factor ``N0``, ``S0 = N0 - W_a``, ``V0`` (:func:`engine.vehicle.combination.static_loads`), and, in the
+second-order (P-Delta) terms ``phi (...)``, the static normal loads on that road ``S``, ``V``, ``n0 = cos(b)cos(s)``.
+Summed over a roll-coupled unit the equations are its moment balance about the road (tested).
+
+**The stepped solution.** Every law is piecewise linear, so between two events (a group lifting off, a lash being
+taken up) the equilibrium path is a straight line in (phi, ay). From the unloaded state the path is followed event by
+event: the direction is the null vector of the current regime's equations; the next event is the first inequality
+that reaches its bound; the new regime's direction is oriented into its own interior. The **SRT of a roll-coupled
+unit** is the largest ay on the path (past it every equilibrium needs less: the vehicle rolls over), or the ay at
+which a group other than a steer group reaches the requested LLT limit. A load offset d1 is applied first, at
+zero lateral force (ay = tan(b) cos(s)). :mod:`engine.models.combination_reference` solves the same equations as a
+general nonlinear equilibrium with scipy; the two agree on random vehicles (``tests/engine/test_combination.py``).
+
+**Reading.** The P-Delta terms use the normal loads at rest on that road; on a level road they are exact, on a bank
+the neglected term (ay sin b) phi lowers the roll moment by about 2 % of its value per 6 % of bank at the limit
+(``python bench/bench_combination.py`` prints the bound for the presets).
+
+References
+----------
+.. [1] Ervin, R. D. (1986), The dependence of truck roll stability on size and weight variables, Int. J. Vehicle
+   Design 7(5-6); Winkler, C. B. and Fancher, P. S. (1992), ESV; Winkler, C. B. and Ervin, R. D. (1999),
+   *Rollover of heavy commercial vehicles*, UMTRI-99-19: the static roll model of roll-coupled units.
+.. [2] Moreno (thesis), Eqs. 2.5 (LLT), 2.11 (roll stiffness of two springs), 4.24-4.27 (actions on a banked,
+   sloped road; the load split).
+.. [3] Allgower, E. L. and Georg, K. (1990), *Numerical Continuation Methods*, Springer, Ch. 12: following the
+   solution path of a piecewise-linear system (null vector of each linear piece, orientation across pieces).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from engine.errors import ConvergenceError, InvalidLoad
+from engine.results import (
+    CombinationDetail,
+    CouplingState,
+    GroupState,
+    LiftEvent,
+    RollCoupledUnitResult,
+)
+from engine.vehicle.combination import (
+    Combination,
+    UnitLoad,
+    kingpin_group,
+    loaded_units,
+    roll_coupled_units,
+    static_loads,
+)
+
+#: lift-off states of a group's tyres and dead-zone states of a suspension or coupling
+LINEAR, LIFTED, LIFTED_OUT = 0, 1, -1
+BAND, PLUS, MINUS = 0, 1, -1
+#: a constraint this close to its bound [kN m or rad, scaled] counts as reached
+TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class RoadFactors:
+    """The road's factors on the weight: normal ``n(ay) = n0 + n1 ay``, lateral ``l(ay) = l0 + l1 ay`` [-], and
+    ``grade = sin(grade)`` (positive uphill) [-]."""
+
+    n0: float
+    n1: float
+    l0: float
+    l1: float
+    grade: float
+
+    @classmethod
+    def of(cls, bank_percent: float, slope_percent: float) -> RoadFactors:
+        b, s = math.atan(bank_percent / 100.0), math.atan(slope_percent / 100.0)
+        cb, sb, cs, ss = math.cos(b), math.sin(b), math.cos(s), math.sin(s)
+        return cls(n0=cb * cs, n1=sb, l0=-sb * cs, l1=cb, grade=ss)
+
+    @property
+    def neutral_ay(self) -> float:
+        """The ay at which the road plane feels no lateral force: l(ay) = 0 [g]."""
+        return -self.l0 / self.l1
+
+
+@dataclass
+class Tyres:
+    """The tyres of one group as a roll element on DOF ``dof`` (the axle)."""
+
+    dof: int
+    unit: int
+    group: int
+    k: float  # roll stiffness k_side T^2/2 [kN m/rad]
+    cap_normal: float  # N0 T/2: the lift-off moment per unit normal factor [kN m]
+    cap_grade: float  # L T/2 per unit sin(grade) [kN m]
+    track: float
+    normal_kn: float  # N0
+    grade_kn: float  # L
+    steer: bool
+
+
+@dataclass
+class DeadZone:
+    """A suspension or fifth wheel: moment K dz(q_i - q_j, lash) acting +M on DOF i and -M on DOF j."""
+
+    i: int
+    j: int
+    k: float
+    lash: float  # half-width [rad]
+    kind: str  # "suspension" or "coupling"
+    ref: tuple[int, int]  # (unit, group) or (coupling index, -1)
+
+
+@dataclass
+class System:
+    """One roll-coupled unit's equations: ``R(q, ay) = sum(elements) - P q - l(ay) lat - n(ay) off = 0``."""
+
+    units: tuple[int, ...]
+    n: int
+    body: dict[int, int]  # unit index -> DOF
+    axle: dict[tuple[int, int], int]  # (unit, group) -> DOF
+    P: np.ndarray  # P-Delta (destabilising) stiffness [kN m/rad]
+    lat: np.ndarray  # lateral-load pattern [kN m per unit lateral factor]
+    off: np.ndarray  # load-offset moments W d1 [kN m per unit normal factor]
+    weights: np.ndarray  # sprung weights on the body DOFs (the outward-roll measure) [kN]
+    tyres: list[Tyres]
+    zones: list[DeadZone]
+    couplings: list[tuple[int, float, float]]  # (coupling index, V0, V grade) of every coupling inside or at the edge
+    road: RoadFactors = field(default=None)  # type: ignore[assignment]
+
+    def cap(self, t: Tyres, ay: float) -> float:
+        """The group's lift-off moment N(ay) T/2 [kN m]."""
+        r = self.road
+        return (r.n0 + r.n1 * ay) * t.cap_normal + r.grade * t.cap_grade
+
+
+def build_systems(c: Combination, bank_percent: float, slope_percent: float, load: UnitLoad) -> list[System]:
+    """The equations of each roll-coupled unit of ``c`` on that road with that load case."""
+    road = RoadFactors.of(bank_percent, slope_percent)
+    lu = loaded_units(c, load)
+    st = static_loads(c, lu)
+    out = []
+    for members in roll_coupled_units(c):
+        body = {u: k for k, u in enumerate(members)}
+        axle = {}
+        for u in members:
+            for j in range(len(c.units[u].groups)):
+                axle[(u, j)] = len(body) + len(axle)
+        n = len(body) + len(axle)
+        P, lat, off, weights = np.zeros((n, n)), np.zeros(n), np.zeros(n), np.zeros(n)
+        tyres, zones, coupl = [], [], []
+        for u in members:
+            unit, lw = c.units[u], lu[u]
+            b = body[u]
+            weights[b] = lw.weight_kn
+            lat[b] += lw.weight_kn * lw.cg_height_m
+            P[b, b] += road.n0 * lw.weight_kn * lw.cg_height_m
+            off[b] += lw.weight_kn * lw.lateral_offset_m
+            for j, g in enumerate(unit.groups):
+                a = axle[(u, j)]
+                wa = g.unsprung_weight_kn
+                n0g, lg = st.normal_kn[(u, j)], st.grade_kn[(u, j)]
+                s0 = n0g - wa  # through the suspension, per unit normal factor
+                s_static = road.n0 * s0 + road.grade * lg
+                lat[a] += s0 * g.roll_centre_height_m + wa * g.unsprung_cg_height_m
+                P[a, a] += s_static * g.roll_centre_height_m + road.n0 * wa * g.unsprung_cg_height_m
+                lat[b] -= s0 * g.roll_centre_height_m
+                P[b, b] -= s_static * g.roll_centre_height_m
+                tyres.append(
+                    Tyres(
+                        a, u, j, g.tyre_roll_stiffness_knm_per_rad, n0g * g.track_m / 2.0, lg * g.track_m / 2.0,
+                        g.track_m, n0g, lg, g.steer,
+                    )
+                )  # fmt: skip
+                zones.append(
+                    DeadZone(b, a, g.suspension_roll_stiffness_knm_per_rad, math.radians(g.lash_deg), "suspension",
+                             (u, j))
+                )  # fmt: skip
+        for i, cp in enumerate(c.couplings):
+            towing, towed = i, i + 1
+            v0, vg = st.coupling_kn[i], st.coupling_grade_kn[i]
+            v_static = road.n0 * v0 + road.grade * vg
+            touched = False
+            if towing in body:  # the towed unit's front presses on this unit at the coupling
+                lat[body[towing]] += v0 * cp.height_m
+                P[body[towing], body[towing]] += v_static * cp.height_m
+                touched = True
+            if towed in body:  # and this unit rests on it
+                lat[body[towed]] -= v0 * cp.height_m
+                P[body[towed], body[towed]] -= v_static * cp.height_m
+                touched = True
+            if touched:
+                coupl.append((i, v0, vg))
+            if cp.transmits_roll and towing in body and towed in body:
+                zones.append(
+                    DeadZone(body[towed], body[towing], cp.roll_stiffness_knm_per_rad, math.radians(cp.lash_deg),
+                             "coupling", (i, -1))
+                )  # fmt: skip
+        out.append(System(members, n, body, axle, P, lat, off, weights, tyres, zones, coupl, road))
+    return out
+
+
+# ------------------------------------------------------------------------------------------- the path
+
+
+@dataclass
+class Regime:
+    tyre: list[int]
+    zone: list[int]
+
+
+def _assemble(s: System, rg: Regime, phase: int):
+    """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1)."""
+    n, r = s.n, s.road
+    J = -s.P.copy()
+    jp = np.zeros(n)
+    k = np.zeros(n)
+    ay0 = r.neutral_ay
+    if phase == 2:
+        jp -= r.l1 * s.lat + r.n1 * s.off
+        k -= r.l0 * s.lat + r.n0 * s.off
+    else:  # at ay0: no lateral force; the offsets scaled by t
+        jp -= (r.n0 + r.n1 * ay0) * s.off
+    for t, state in zip(s.tyres, rg.tyre, strict=True):
+        if state == LINEAR:
+            J[t.dof, t.dof] += t.k
+        else:
+            sign = float(state)
+            if phase == 2:
+                jp[t.dof] += sign * r.n1 * t.cap_normal
+                k[t.dof] += sign * (r.n0 * t.cap_normal + r.grade * t.cap_grade)
+            else:
+                k[t.dof] += sign * s.cap(t, ay0)
+    for z, state in zip(s.zones, rg.zone, strict=True):
+        if state == BAND and z.lash > 0:
+            continue
+        J[z.i, z.i] += z.k
+        J[z.j, z.j] += z.k
+        J[z.i, z.j] -= z.k
+        J[z.j, z.i] -= z.k
+        if z.lash > 0:
+            off = -z.k * z.lash * state  # PLUS: K (d - lash); MINUS: K (d + lash)
+            k[z.i] += off
+            k[z.j] -= off
+    return J, jp, k
+
+
+def _constraints(s: System, rg: Regime, phase: int, llt_limit: float | None, watch: int | None):
+    """The inequalities ``a . (q, p) + b >= 0`` bounding the current piece, with what crossing each one means:
+    ``("tyre", index, new state)``, ``("zone", index, new state)``, ``("stop", ...)``, ``("watch", index)``."""
+    n, r = s.n, s.road
+    rows, ends = [], []
+    ay0 = r.neutral_ay
+
+    def cap_row(t: Tyres):  # (coefficient of p, constant) of the lift-off moment
+        if phase == 2:
+            return r.n1 * t.cap_normal, r.n0 * t.cap_normal + r.grade * t.cap_grade
+        return 0.0, s.cap(t, ay0)
+
+    for idx, (t, state) in enumerate(zip(s.tyres, rg.tyre, strict=True)):
+        cp, cc = cap_row(t)
+        a = np.zeros(n + 1)
+        if state == LINEAR:
+            a[t.dof], a[n] = -t.k, cp  # cap - K q >= 0
+            rows.append((a, cc)), ends.append(("tyre", idx, LIFTED))
+            a2 = np.zeros(n + 1)
+            a2[t.dof], a2[n] = t.k, cp  # K q + cap >= 0
+            rows.append((a2, cc)), ends.append(("tyre", idx, LIFTED_OUT))
+            if phase == 2 and llt_limit is not None and not t.steer:
+                a3 = np.zeros(n + 1)
+                a3[t.dof], a3[n] = -t.k, llt_limit * cp  # L cap - K q >= 0
+                rows.append((a3, llt_limit * cc)), ends.append(("stop", idx, None))
+        elif state == LIFTED:
+            a[t.dof], a[n] = t.k, -cp  # K q - cap >= 0
+            rows.append((a, -cc)), ends.append(("tyre", idx, LINEAR))
+        else:
+            a[t.dof], a[n] = -t.k, -cp  # -K q - cap >= 0
+            rows.append((a, -cc)), ends.append(("tyre", idx, LINEAR))
+    for idx, (z, state) in enumerate(zip(s.zones, rg.zone, strict=True)):
+        if z.lash <= 0:
+            continue
+        a = np.zeros(n + 1)
+        if state == BAND:
+            a[z.i], a[z.j] = -1.0, 1.0  # lash - d >= 0
+            rows.append((a, z.lash)), ends.append(("zone", idx, PLUS))
+            a2 = np.zeros(n + 1)
+            a2[z.i], a2[z.j] = 1.0, -1.0  # d + lash >= 0
+            rows.append((a2, z.lash)), ends.append(("zone", idx, MINUS))
+        elif state == PLUS:
+            a[z.i], a[z.j] = 1.0, -1.0  # d - lash >= 0
+            rows.append((a, -z.lash)), ends.append(("zone", idx, BAND))
+        else:
+            a[z.i], a[z.j] = -1.0, 1.0  # -d - lash >= 0
+            rows.append((a, -z.lash)), ends.append(("zone", idx, BAND))
+    if phase == 1:
+        a = np.zeros(n + 1)
+        a[n] = -1.0  # 1 - t >= 0
+        rows.append((a, 1.0)), ends.append(("stop", -1, None))
+    return rows, ends
+
+
+def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
+    """The unit null vector of [J | jp] (the direction of the piece's solution line)."""
+    try:
+        dq = np.linalg.solve(J, -jp)
+        if np.all(np.isfinite(dq)) and np.linalg.norm(dq) < 1e12:
+            d = np.append(dq, 1.0)
+            return d / np.linalg.norm(d)
+    except np.linalg.LinAlgError:
+        pass
+    _, _, vt = np.linalg.svd(np.column_stack([J, jp]))
+    return vt[-1]
+
+
+@dataclass
+class _Vertex:
+    z: np.ndarray
+    regime: Regime
+    event: tuple | None
+
+
+def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float | None, watch: int | None,
+           orient: float):  # fmt: skip
+    """Follow the path from ``z0`` event by event. Returns the vertices (state, regime, event that ended the piece)
+    and why it ended: ``"stop"`` (t = 1, or a group at the LLT limit) or ``"end"`` (the last piece, no more events)."""
+    n = s.n
+    vertices = [_Vertex(z0.copy(), Regime(list(rg.tyre), list(rg.zone)), None)]
+    z = z0.copy()
+    last = None
+    prev_d = None
+    max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
+    for _ in range(max_steps):
+        J, jp, _k = _assemble(s, rg, phase)
+        d = _null_direction(J, jp)
+        rows, ends = _constraints(s, rg, phase, llt_limit, watch)
+        # orientation: the first piece by the outward roll of the sprung masses; a later one into its own interior
+        if last is None:
+            w = float(s.weights @ d[:n])
+            if w == 0.0:
+                w = d[n]
+            if w * orient < 0:
+                d = -d
+        else:
+            kind, idx, previous = last
+            into = _entering_row(s, rg, phase, kind, idx, previous, llt_limit)
+            rate = float(into @ d) if into is not None else 0.0
+            if abs(rate) > 1e-14:
+                d = d if rate > 0 else -d
+            elif prev_d is not None and float(prev_d @ d) < 0:
+                d = -d
+        best, which = math.inf, None
+        for (a, b), end in zip(rows, ends, strict=True):
+            rate = float(a @ d)
+            if rate >= -1e-15:
+                continue
+            value = float(a @ z) + b
+            scale = max(1.0, float(np.abs(a[:n]).sum() + abs(a[n])))
+            tau = max(value, 0.0) / -rate if value > -TOL * scale else 0.0
+            if tau < best:
+                best, which = tau, end
+        if which is None:
+            vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), ("end", d)))
+            return vertices, "end"
+        z = z + best * d
+        prev_d = d
+        vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), which))
+        kind, idx, state = which
+        if kind == "stop":
+            return vertices, "stop"
+        if phase == 2 and kind == "tyre" and state == LIFTED and sum(x == LINEAR for x in rg.tyre) == 1:
+            # the last group in contact on both sides lifts: the unit stands on its outer wheels, and past this
+            # point every equilibrium needs less ay (the path beyond is no state a vehicle passes through)
+            rg.tyre[idx] = state
+            vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), ("all-lifted", idx, state)))
+            return vertices, "all-lifted"
+        if kind == "tyre":
+            previous, rg.tyre[idx] = rg.tyre[idx], state
+        else:
+            previous, rg.zone[idx] = rg.zone[idx], state
+        last = (kind, idx, previous)
+    raise ConvergenceError(f"the roll path did not end within {max_steps} events", iterations=max_steps)
+
+
+def _entering_row(s: System, rg: Regime, phase: int, kind: str, idx: int, previous: int, llt_limit):
+    """The gradient of the new state's constraint on the boundary just crossed (the one leading back to
+    ``previous``): the path must move away from it, into the new state."""
+    rows, ends = _constraints(s, rg, phase, llt_limit, None)
+    for (a, _b), (k2, i2, st) in zip(rows, ends, strict=True):
+        if k2 == kind and i2 == idx and st == previous:
+            return a
+    return None
+
+
+# ------------------------------------------------------------------------------------------- results
+
+
+@dataclass(frozen=True)
+class UnitSolution:
+    """The path of one roll-coupled unit and its limit."""
+
+    system: System
+    vertices: list
+    peak: int  # index of the vertex at the limit
+    limit: str
+    watch: tuple[float, np.ndarray, Regime] | None  # (ay, z, regime) when the watched group reached the limit
+
+
+def _state_at(s: System, rg: Regime, ay: float) -> np.ndarray:
+    """The equilibrium roll angles of one regime at a given ay (its equations solved for q)."""
+    J, jp, k = _assemble(s, rg, 2)
+    return np.linalg.solve(J, -(jp * ay + k))
+
+
+def _consistent(s: System, q: np.ndarray, ay: float) -> Regime:
+    """The regime the state ``q`` lies in, each element's state read off its own law."""
+    tyres = []
+    for t in s.tyres:
+        m, cap = t.k * q[t.dof], s.cap(t, ay)
+        tyres.append(LIFTED if m > cap else LIFTED_OUT if m < -cap else LINEAR)
+    zones = []
+    for z in s.zones:
+        d = q[z.i] - q[z.j]
+        zones.append(BAND if z.lash <= 0 or abs(d) <= z.lash else PLUS if d > 0 else MINUS)
+    return Regime(tyres, zones)
+
+
+def _residual(s: System, q: np.ndarray, ay: float) -> np.ndarray:
+    """The net restoring moment on every DOF, from the laws themselves (the gradient of :func:`_potential`)."""
+    r = s.road
+    out = -(s.P @ q) - (r.l0 + r.l1 * ay) * s.lat - (r.n0 + r.n1 * ay) * s.off
+    for t in s.tyres:
+        cap = s.cap(t, ay)
+        out[t.dof] += min(cap, max(-cap, t.k * q[t.dof]))
+    for z in s.zones:
+        d = q[z.i] - q[z.j]
+        m = z.k * (d - z.lash if d > z.lash else d + z.lash if d < -z.lash else 0.0)
+        out[z.i] += m
+        out[z.j] -= m
+    return out
+
+
+def _potential(s: System, q: np.ndarray, ay: float) -> float:
+    """The potential energy of the roll degrees of freedom at a fixed ay [kN m rad]: springs and dead zones, tyres
+    up to lift-off and their constant moment beyond, minus the P-Delta work and the loads' work."""
+    r = s.road
+    v = -0.5 * float(q @ s.P @ q) - float(((r.l0 + r.l1 * ay) * s.lat + (r.n0 + r.n1 * ay) * s.off) @ q)
+    for t in s.tyres:
+        cap, x = s.cap(t, ay), q[t.dof]
+        v += 0.5 * t.k * x * x if abs(t.k * x) <= cap else cap * abs(x) - cap * cap / (2.0 * t.k)
+    for z in s.zones:
+        d = abs(q[z.i] - q[z.j])
+        if d > z.lash:
+            v += 0.5 * z.k * (d - z.lash) ** 2
+    return v
+
+
+def _settled(s: System, q: np.ndarray, ay: float) -> tuple[np.ndarray, Regime] | None:
+    """``q`` polished to its regime's exact equilibrium, if that lies in the same regime and is stable."""
+    rg = _consistent(s, q, ay)
+    try:
+        exact = _state_at(s, rg, ay)
+    except np.linalg.LinAlgError:
+        return None
+    again = _consistent(s, exact, ay)
+    if again.tyre != rg.tyre or again.zone != rg.zone:
+        return None
+    J, _jp, _k = _assemble(s, rg, 2)
+    if np.linalg.eigvalsh(0.5 * (J + J.T))[0] <= 0:
+        return None
+    return exact, rg
+
+
+def _start(s: System) -> tuple[np.ndarray, Regime]:
+    """The state at rest on the road with the load offsets (zero lateral force: ay = tan(b) cos(s)): a stable
+    equilibrium, a minimum of the potential energy (every law derives from one, so the residual is its gradient).
+
+    Inside a lash a sprung mass has no stiffness of its own and leans until a lash is taken up. First guess: every
+    lash taken up in the sense its element is loaded at rest, or, where nothing loads it, in the sense the first
+    lateral acceleration loads it (both from the equations without lash), a coupling left free where that leaves it
+    inside its lash. When that guess is not an equilibrium in its own regime, the potential is minimised (BFGS from
+    the state without lash, leaning outward) and the minimum polished in its regime."""
+    n = s.n
+    ay0 = s.road.neutral_ay
+    lashless = System(s.units, n, s.body, s.axle, s.P, s.lat, s.off, s.weights, s.tyres,
+                      [DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], s.couplings, s.road)  # fmt: skip
+    linear = Regime([LINEAR] * len(s.tyres), [BAND] * len(s.zones))
+    q0 = _state_at(lashless, linear, ay0)
+    if not any(z.lash > 0 for z in s.zones):
+        found = _settled(s, q0, ay0)
+        if found is None:
+            raise InvalidLoad("the vehicle does not stand at rest with this load case", field="load.lateral_offset_m")
+        return np.append(found[0], ay0), found[1]
+    J, jp, _k = _assemble(lashless, linear, 2)
+    dq = np.linalg.solve(J, -jp)  # how the first ay loads each element
+    zones = []
+    for z in s.zones:
+        d, dd = q0[z.i] - q0[z.j], dq[z.i] - dq[z.j]
+        if z.lash <= 0:
+            zones.append(BAND)
+        elif abs(d) > 1e-12:
+            zones.append(PLUS if d > 0 else MINUS)
+        else:
+            zones.append(BAND if z.kind == "coupling" else PLUS if dd >= 0 else MINUS)
+    guess = Regime([LINEAR] * len(s.tyres), zones)
+    for _ in range(len(s.zones) + 2):
+        try:
+            q = _state_at(s, guess, ay0)
+        except np.linalg.LinAlgError:
+            break
+        found = _settled(s, q, ay0)
+        if found is not None:
+            return np.append(found[0], ay0), found[1]
+        guess = _consistent(s, q, ay0)
+    from scipy.optimize import minimize
+
+    lean = np.zeros(n)
+    for z in s.zones:  # start leaning outward just past every lash
+        lean[z.i] += 1.01 * z.lash
+    res = minimize(lambda x: _potential(s, x, ay0), q0 + lean, jac=lambda x: _residual(s, x, ay0), method="BFGS",
+                   options={"gtol": 1e-10, "maxiter": 2000})  # fmt: skip
+    found = _settled(s, res.x, ay0)
+    if found is None:
+        raise ConvergenceError("no stable state at rest was found for this load case (the vehicle may fall over)")
+    return np.append(found[0], ay0), found[1]
+
+
+def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:
+    """The stepped solution of one roll-coupled unit: from its state at rest with the load offsets (:func:`_start`),
+    ay up to the limit (the largest ay on the path, or a non-steer group at ``llt_limit`` < 1)."""
+    n = s.n
+    z, rg = _start(s)
+    if any(state != LINEAR for state in rg.tyre):
+        raise InvalidLoad(
+            "the load offset lifts a group off the road at rest: the vehicle would tip over",
+            field="load.lateral_offset_m",
+        )
+    z[n] = s.road.neutral_ay
+    limit = llt_limit if llt_limit < 1.0 else None
+    vs, why = _trace(s, z, rg, 2, limit, watch_tyre, orient=1.0)
+    ays = [v.z[n] for v in vs]
+    if why == "stop":
+        peak = int(np.argmax(ays))
+        limit_kind = "llt-limit" if peak == len(vs) - 1 else "rollover"
+    else:
+        if why == "end" and vs[-1].event[1][n] > 1e-12:
+            raise ConvergenceError("the roll path never turns: no rollover limit was found")
+        peak = int(np.argmax(ays))
+        limit_kind = "rollover"
+    watch = _watched(s, vs, peak, watch_tyre, llt_limit)
+    return UnitSolution(s, vs, peak, limit_kind, watch)
+
+
+def _describe(s: System, c: Combination, event) -> str:
+    kind, idx, state = event
+    if kind == "tyre":
+        t = s.tyres[idx]
+        g, u = c.units[t.unit].groups[t.group], c.units[t.unit]
+        if state == LIFTED:
+            return f"the inner tyres of group {g.id!r} of {u.id!r} lift off"
+        return f"group {g.id!r} of {u.id!r} changes contact"
+    if kind == "zone":
+        z = s.zones[idx]
+        if z.kind == "suspension":
+            u, j = z.ref
+            return f"the lash of the {c.units[u].groups[j].id!r} suspension of {c.units[u].id!r} is taken up"
+        return f"the fifth-wheel lash behind {c.units[z.ref[0]].id!r} is taken up"
+    t = s.tyres[idx]
+    return f"group {c.units[t.unit].groups[t.group].id!r} of {c.units[t.unit].id!r} reaches the LLT limit"
+
+
+def _watched(s: System, vs, peak, watch_tyre, llt_limit):
+    """(ay, z, regime) where the watched tyres first reach the LLT limit (lift off at 1), at or before the peak."""
+    if watch_tyre is None:
+        return None
+    n = s.n
+    t = s.tyres[watch_tyre]
+    for k in range(1, peak + 1):
+        a, b = vs[k - 1].z, vs[k].z
+        rg = vs[k - 1].regime
+        if rg.tyre[watch_tyre] != LINEAR:
+            return b[n], b, vs[k].regime
+        la, lb = _llt_linear(s, t, a), _llt_linear(s, t, b)
+        if lb >= llt_limit - 1e-12:
+            f = (llt_limit - la) / (lb - la) if lb != la else 1.0
+            z = a + f * (b - a)
+            return z[n], z, rg
+    return None
+
+
+def _llt_linear(s: System, t: Tyres, z: np.ndarray) -> float:
+    return t.k * z[t.dof] / s.cap(t, z[s.n])
+
+
+def _tyre_moment(s: System, t: Tyres, state: int, z: np.ndarray) -> float:
+    if state == LINEAR:
+        return t.k * z[t.dof]
+    return state * s.cap(t, z[s.n])
+
+
+def _zone_moment(z_el: DeadZone, state: int, z: np.ndarray) -> float:
+    d = z[z_el.i] - z[z_el.j]
+    if z_el.lash <= 0:
+        return z_el.k * d
+    if state == BAND:
+        return 0.0
+    return z_el.k * (d - z_el.lash * state)
+
+
+def unit_result(c: Combination, sol: UnitSolution) -> RollCoupledUnitResult:
+    """The answer of one roll-coupled unit, in words and numbers."""
+    s, vs = sol.system, sol.vertices
+    n = s.n
+    v = vs[sol.peak]
+    z, rg = v.z, _regime_at(vs, sol.peak)
+    ay = float(z[n])
+    groups = []
+    for idx, t in enumerate(s.tyres):
+        m = _tyre_moment(s, t, rg.tyre[idx], z)
+        cap = s.cap(t, ay)
+        normal = 2.0 * cap / t.track
+        susp = next(zz for zz in s.zones if zz.kind == "suspension" and zz.ref == (t.unit, t.group))
+        sidx = s.zones.index(susp)
+        groups.append(
+            GroupState(
+                unit=c.units[t.unit].id,
+                group=c.units[t.unit].groups[t.group].id,
+                llt=float(m / cap),
+                outer_kn=float(normal / 2.0 + m / t.track),
+                inner_kn=float(normal / 2.0 - m / t.track),
+                axle_roll_deg=math.degrees(z[t.dof]),
+                suspension_moment_knm=float(_zone_moment(susp, rg.zone[sidx], z)),
+                lifted=bool(rg.tyre[idx] == LIFTED or m >= cap * (1.0 - 1e-9)),
+            )
+        )
+    couplings = []
+    r = s.road
+    for i, v0, vg in s.couplings:
+        zone = next((k for k, zz in enumerate(s.zones) if zz.kind == "coupling" and zz.ref == (i, -1)), None)
+        moment = _zone_moment(s.zones[zone], rg.zone[zone], z) if zone is not None else 0.0
+        couplings.append(
+            CouplingState(
+                towing_unit=c.units[i].id,
+                towed_unit=c.units[i + 1].id,
+                kind=c.couplings[i].kind,
+                roll_moment_knm=float(moment),
+                vertical_load_kn=float((r.n0 + r.n1 * ay) * v0 + r.grade * vg),
+            )
+        )
+    lifts = []
+    for k in range(1, sol.peak + 1):
+        e = vs[k].event
+        if e and e[0] == "tyre" and e[2] == LIFTED:
+            t = s.tyres[e[1]]
+            lifts.append(LiftEvent(c.units[t.unit].id, c.units[t.unit].groups[t.group].id, float(vs[k].z[n])))
+    event = vs[sol.peak].event
+    if event is not None and event[0] == "all-lifted":
+        event = ("tyre", event[1], event[2])
+    if sol.limit == "llt-limit":
+        ended = _describe(s, c, event)
+    elif event is not None and event[0] != "end":
+        ended = (
+            f"the largest lateral acceleration it holds, reached when {_describe(s, c, event)}; past it every "
+            "equilibrium needs less (the vehicle rolls over)"
+        )
+    else:
+        ended = "the largest lateral acceleration it holds"
+    return RollCoupledUnitResult(
+        units=tuple(c.units[u].id for u in s.units),
+        srt=ay,
+        limit=sol.limit,
+        ended_by=ended,
+        roll_angle_deg={c.units[u].id: math.degrees(z[s.body[u]]) for u in s.units},
+        groups=tuple(groups),
+        couplings=tuple(couplings),
+        lift_sequence=tuple(lifts),
+    )
+
+
+def _regime_at(vs, k: int) -> Regime:
+    """The regime in force *at* vertex k: the state before its event switched anything (the limit's own state)."""
+    return vs[k].regime
+
+
+def front_llt_ratio(c: Combination, systems: list[System], sols: list[UnitSolution]) -> float | None:
+    """LLTf/LLTr of the last unit at its watched state (see :class:`engine.results.CombinationDetail`)."""
+    if len(c.units) < 2 or not c.couplings[-1].transmits_roll:
+        return None
+    s, sol = systems[-1], sols[-1]
+    fu, fg = kingpin_group(c, len(c.units) - 1)
+    last = len(c.units) - 1
+    t_front = next(i for i, t in enumerate(s.tyres) if (t.unit, t.group) == (fu, fg))
+    t_rear = next(i for i, t in enumerate(s.tyres) if t.unit == last)
+    if sol.watch is not None:
+        ay, z, rg = sol.watch
+    else:
+        z, rg = sol.vertices[sol.peak].z, _regime_at(sol.vertices, sol.peak)
+        ay = z[s.n]
+
+    def llt(i):
+        t = s.tyres[i]
+        return _tyre_moment(s, t, rg.tyre[i], z) / s.cap(t, ay)
+
+    rear = llt(t_rear)
+    return float(llt(t_front) / rear) if rear > 0 else None
+
+
+def solve_combination(
+    c: Combination, *, bank_percent: float = 0.0, slope_percent: float = 0.0, load: UnitLoad | None = None,
+    llt_limit: float = 1.0,
+) -> CombinationDetail:  # fmt: skip
+    """Every roll-coupled unit's SRT and state, the governing one, and LLTf/LLTr of the last unit.
+
+    Parameters
+    ----------
+    c : the combination (validated by :func:`engine.vehicle.combination.validate_combination`)
+    bank_percent, slope_percent : the road (+ bank toward the inside of the curve, + grade uphill) [%]
+    load : the load case of the load-carrying units (:class:`engine.vehicle.combination.UnitLoad`)
+    llt_limit : 1 for the largest ay each unit holds; below 1, the ay at which a non-steer group's LLT reaches it [-]
+    """
+    load = load or UnitLoad()
+    systems = build_systems(c, bank_percent, slope_percent, load)
+    last = len(c.units) - 1
+    sols = []
+    for s in systems:
+        watch = None
+        if last in s.body and len(c.units) > 1:
+            watch = next(i for i, t in enumerate(s.tyres) if t.unit == last)
+        sols.append(solve_unit(s, llt_limit, watch))
+    results = tuple(unit_result(c, sol) for sol in sols)
+    governing = min(range(len(results)), key=lambda k: results[k].srt)
+    return CombinationDetail(results, governing, front_llt_ratio(c, systems, sols))
+
+
+def rigid_srt(c: Combination, *, bank_percent: float = 0.0, slope_percent: float = 0.0,
+              load: UnitLoad | None = None) -> list[float]:  # fmt: skip
+    """The rigid-vehicle SRT of each roll-coupled unit: every group at lift-off with no roll,
+    ``sum_g N_g T_g/2 = l(ay) sum(W h) + n(ay) sum(W d1)`` solved for ay (on a level road ``sum(N T/2 - W d1) /
+    sum(W h)``; Eq. 2.6 for one unit) [g]."""
+    out = []
+    for s in build_systems(c, bank_percent, slope_percent, load or UnitLoad()):
+        r = s.road
+        cap_n = sum(t.cap_normal for t in s.tyres)
+        cap_g = sum(t.cap_grade for t in s.tyres)
+        lat, off = float(s.lat.sum()), float(s.off.sum())
+        # (n0 + n1 ay) cap_n + grade cap_g = (l0 + l1 ay) lat + (n0 + n1 ay) off
+        out.append(
+            (r.l0 * lat + r.n0 * off - r.n0 * cap_n - r.grade * cap_g) / (r.n1 * cap_n - r.l1 * lat - r.n1 * off)
+        )
+    return out

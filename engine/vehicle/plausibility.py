@@ -1,0 +1,162 @@
+"""Plausibility of measurable inputs: the range a heavy vehicle's masses, heights, lengths and stiffnesses can take,
+and the unit slip that most likely explains a value outside it.
+
+A value outside its range is refused (:class:`~engine.errors.InvalidVehicle`) naming the field as the user typed it
+and, where multiplying or dividing by 1000 (or 100) would put it inside the range, the slip that explains it: "31.5
+kg is not a semitrailer's mass; in tonnes?". The ranges are deliberately wide (a value inside one can still be
+wrong); each says where it comes from, or that it is assumed and why.
+
+References
+----------
+.. [1] Council Directive 96/53/EC (as amended by (EU) 2015/719), Annex I: maximum authorised axle loads (single
+   non-driving axle 10 t, driving axle 11.5 t), heights (4.00 m) and widths (2.55 m, 2.60 m conditioned bodies).
+.. [2] CONTRAN Resolucao 210/2006 (Brazil): maximum height 4.40 m, width 2.60 m.
+.. [3] 23 CFR 658.17 (USA): 20,000 lb (9.07 t) on a single axle.
+.. [4] TruckSim 2022.1 example datasets (Mechanical Simulation Corp.), as committed in the public repository
+   github.com/Steve-Krug/Axicle, folder 04-Trucksim (see :mod:`engine.vehicle.components`): unsprung masses of
+   362-679 kg per axle, tyre vertical rates of 750-980 N/mm, suspension roll stiffnesses of 436-657 kN m/rad per
+   axle, fifth-wheel roll stiffness 100 kN m/deg (5730 kN m/rad) with 1 deg of lash.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from engine.errors import InvalidVehicle
+
+
+@dataclass(frozen=True)
+class Range:
+    """Where a measurable quantity of a heavy vehicle lies: [minimum, maximum] in ``unit``, and why."""
+
+    minimum: float
+    maximum: float
+    unit: str
+    why: str
+    #: the unit slips worth suggesting: (factor that brings the value into range, what the user likely typed in)
+    slips: tuple[tuple[float, str], ...] = ()
+
+    def contains(self, value: float) -> bool:
+        return self.minimum <= value <= self.maximum
+
+
+_MASS_SLIPS = ((1000.0, "tonnes"), (1 / 9.81 * 1000.0, "kN"))
+_LENGTH_SLIPS = ((1e-3, "millimetres"), (1e-2, "centimetres"))
+
+RANGES: dict[str, Range] = {
+    "unit_mass_kg": Range(
+        300.0,
+        80_000.0,
+        "kg",
+        "assumed: a converter dolly's sprung mass is about 1,300 kg [4]; 80 t is above any unit of the heaviest "
+        "combinations the cited rules allow",
+        _MASS_SLIPS,
+    ),
+    "axle_load_kg": Range(
+        300.0,
+        20_000.0,
+        "kg per axle",
+        "assumed: above the lightest axle's own mass (362 kg, [4]) and below 1.7 times the largest regulated "
+        "single-axle load, 11.5 t (EU Dir. 96/53/EC [1]; 10 t in Brazil, 9.07 t in the USA [3])",
+        _MASS_SLIPS,
+    ),
+    "unsprung_mass_kg": Range(
+        50.0,
+        2_000.0,
+        "kg per axle",
+        "assumed bracket around the sourced 362-679 kg per axle (TruckSim examples [4])",
+        _MASS_SLIPS,
+    ),
+    "height_m": Range(
+        0.05,
+        4.40,
+        "m",
+        "at most the tallest legal heavy vehicle, 4.40 m (CONTRAN Res. 210/2006 [2]; the EU allows 4.00 m [1])",
+        _LENGTH_SLIPS,
+    ),
+    "track_m": Range(
+        1.0,
+        2.60,
+        "m",
+        "at most the widest legal vehicle, 2.60 m (CONTRAN Res. 210/2006 [2], EU Dir. 96/53/EC [1]); a track "
+        "under 1 m is no heavy vehicle's",
+        _LENGTH_SLIPS,
+    ),
+    "spring_spacing_m": Range(
+        0.3,
+        2.60,
+        "m",
+        "from 0.3 m (assumed) up to the widest legal vehicle, 2.60 m (the springs sit inside the track)",
+        _LENGTH_SLIPS,
+    ),
+    "position_m": Range(
+        -5.0,
+        30.0,
+        "m",
+        "assumed: a point of a unit lies within 30 m behind its reference (the longest legal semitrailer is 13.6 m "
+        "to 14.6 m) and at most 5 m ahead of it",
+        _LENGTH_SLIPS,
+    ),
+    "tyre_stiffness_kn_per_m": Range(
+        200.0,
+        5_000.0,
+        "kN/m per tyre",
+        "assumed bracket, about a quarter to five times the sourced 750-980 kN/m (TruckSim examples [4]; the "
+        "thesis's 840 and 980 kN/m)",
+        ((1e-3, "N/m"),),
+    ),
+    "suspension_roll_stiffness_knm_per_rad": Range(
+        20.0,
+        20_000.0,
+        "kN m/rad per axle",
+        "assumed bracket around the sourced 436-657 kN m/rad (TruckSim examples [4]) and the thesis's leaf springs "
+        "(kLs b^2/2 = 812-1128 kN m/rad)",
+        ((1e-3, "N m/rad"),),
+    ),
+    "coupling_roll_stiffness_knm_per_rad": Range(
+        100.0,
+        200_000.0,
+        "kN m/rad",
+        "assumed bracket around the sourced fifth wheels: 5730 kN m/rad (100 kN m/deg) and 28,650 kN m/rad "
+        "(500 kN m/deg) (TruckSim examples [4])",
+        ((1e-3, "N m/rad"),),
+    ),
+    "lash_deg": Range(
+        0.0,
+        2.0,
+        "deg each way",
+        "assumed: twice the only sourced lash, 1 deg each way of TruckSim's default fifth wheel [4]; no source "
+        "for suspension lash could be read (docs/combinations.md)",
+    ),
+}
+
+
+def check_plausible(quantity: str, value: object, field: str, what: str) -> float:
+    """``value`` as a float if it is a finite number inside :data:`RANGES` ``[quantity]``, else
+    :class:`InvalidVehicle` naming ``field`` and the likely unit slip.
+
+    Parameters
+    ----------
+    quantity : key of :data:`RANGES` [-]
+    value : the value as given [the range's unit]
+    field : the field's path as the user typed it (``combination.units[1].sprung_mass_kg``) [-]
+    what : the thing it belongs to, for the message (``"the semitrailer 'trailer'"``) [-]
+    """
+    r = RANGES[quantity]
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise InvalidVehicle(f"{field} must be a finite number in {r.unit}, got {value!r}", field=field, value=value)
+    v = float(value)
+    if r.contains(v):
+        return v
+    hint = ""
+    for factor, typed in r.slips:
+        if r.contains(v * factor):
+            hint = f"; typed in {typed}? ({v:g} {typed} would be {v * factor:g} {r.unit.split(' ')[0]})"
+            break
+    raise InvalidVehicle(
+        f"{field} = {v:g} {r.unit} is not plausible for {what}: expected {r.minimum:g} to {r.maximum:g} "
+        f"{r.unit} ({r.why}){hint}",
+        field=field,
+        value=value,
+    )

@@ -154,13 +154,27 @@ def test_readme_documents_every_setting():
 BASE_IMAGE = re.compile(r"python:3\.11\.\d+-slim-(bookworm|trixie)(@sha256:[0-9a-f]{64})?")
 
 
+def global_args() -> dict[str, str]:
+    """The ARGs declared before the first FROM (the only ones a FROM line can use), with their defaults."""
+    args = {}
+    for word, rest in dockerfile_instructions():
+        if word == "FROM":
+            break
+        if word == "ARG":
+            name, _, default = rest.partition("=")
+            args[name] = default
+    return args
+
+
 def test_dockerfile_is_multi_stage_slim_debian_pinned_to_one_exact_tag():
     froms = [rest.split()[0] for word, rest in dockerfile_instructions() if word == "FROM"]
     assert len(froms) >= 2
-    for image in froms:
-        assert BASE_IMAGE.fullmatch(image), image  # not a moving tag such as python:3.11-slim
-    # the runtime stage runs the build stage's virtualenv, whose python is a symlink to the base image's interpreter
-    assert len(set(froms)) == 1
+    # every stage is FROM the one build argument (scripts/image/check.sh gives a stand-in), so all stages have the
+    # same base: the runtime stage runs the build stage's virtualenv, whose python is a symlink to the base image's
+    # interpreter. Its default is the pinned official image: a plain `docker build` uses that
+    assert set(froms) == {"${BASE_IMAGE}"}
+    image = global_args()["BASE_IMAGE"]
+    assert BASE_IMAGE.fullmatch(image), image  # not a moving tag such as python:3.11-slim
 
 
 def test_dockerfile_runs_as_a_non_root_user():
@@ -202,13 +216,35 @@ def test_dockerfile_installs_the_locked_dependencies_in_their_own_layer_before_t
     assert first_copy < deps < min(later)
     assert {s for _, src in copies for s in src[:-1]} >= {"pyproject.toml", "README.md", "app", "engine"}
     # then the project itself (packages engine* and app*) without dependencies, after its source is copied
-    project = next(i for i, rest in runs if re.search(r"install --no-deps \.$", rest))
+    project = next(i for i, rest in runs if re.search(r"install .*--no-deps \.$", rest))
     assert project > max(later)
     assert PYPROJECT["tool"]["setuptools"]["packages"]["find"]["include"] == ["engine*", "app*"]
     # the runtime stage takes the installed virtualenv and puts it on the PATH, so `uvicorn` is the one installed
     final = stages()[-1]
     assert any(w == "COPY" and "--from=build" in rest and "/opt/venv" in rest for w, rest in final)
     assert any(w == "ENV" and "/opt/venv/bin" in rest for w, rest in final)
+
+
+def test_the_build_takes_an_optional_wheelhouse_and_checks_every_hash_either_way():
+    """WHEELHOUSE (empty by default) adds --no-index --find-links to both installs; --require-hashes stays."""
+    import subprocess
+
+    build = stages()[0]
+    assert ("ARG", 'WHEELHOUSE=""') in build
+    option = '${WHEELHOUSE:+--no-index --find-links "$WHEELHOUSE"}'
+    installs = [rest for w, rest in build if w == "RUN" and " install " in rest]
+    assert len(installs) == 2 and all(option in rest for rest in installs)
+    assert all("--require-hashes" in rest for rest in installs if "-r requirements/runtime.txt" in rest)
+    # what the shell makes of it (a RUN is `/bin/sh -c`, its ARGs in the environment)
+    for value, argv in [("", []), ("/wheelhouse", ["--no-index", "--find-links", "/wheelhouse"])]:
+        done = subprocess.run(
+            ["sh", "-c", f'for a in {option}; do echo "$a"; done'],
+            env={"WHEELHOUSE": value, "PATH": os.environ.get("PATH", "/usr/bin:/bin")},
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        assert done.stdout.splitlines() == argv
 
 
 def test_the_runtime_image_has_no_installer():

@@ -352,8 +352,9 @@ def test_ci_run_installs_redis_and_runs_the_suite_from_the_lock_in_its_own_venv(
     assert 'PATH="$PWD/.venv-ci/bin:$PATH"' in activate
     assert deps.startswith("python -m pip install") and "--require-hashes -r requirements/test.txt" in deps
     assert project.startswith("python -m pip install") and project.endswith("--no-deps -e .")
-    # then the README test command's second half: the whole suite
-    assert lines[-1] == TEST.split(" && ")[-1] == "python -m pytest"
+    # then the README test command's second half: the whole suite, and after it the image check
+    assert lines[-2] == TEST.split(" && ")[-1] == "python -m pytest"
+    assert lines[-1] == "bash scripts/image/check.sh"
     if os.name == "posix":
         assert os.access(CI_RUN, os.X_OK), ".ci/run must be executable"
 
@@ -374,3 +375,63 @@ def test_the_readme_python_example_prints_what_the_readme_says():
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stdout == printed
+
+
+# ------------------------------------------------------------------------------------- the image, built and run
+IMAGE_CHECK = ROOT / "scripts" / "image" / "check.sh"
+
+
+def test_the_image_check_builds_the_dockerfile_on_a_stand_in_and_runs_the_image_s_own_cmd():
+    """scripts/image/check.sh (run by .ci/run) is the image built and run; here only what it is made of."""
+    text = IMAGE_CHECK.read_text(encoding="utf-8")
+    assert text.startswith("#!/usr/bin/env bash") and "set -euo pipefail" in text
+    if os.name == "posix":
+        assert os.access(IMAGE_CHECK, os.X_OK)
+    assert "debootstrap --variant=minbase" in text and "python3 -m venv /usr/local" in text
+    assert "buildah bud --isolation chroot --network host --format docker" in text
+    for arg in (
+        "--build-arg BASE_IMAGE=",
+        "--build-arg WHEELHOUSE=/wheelhouse",
+        '--volume "$WHEELHOUSE:/wheelhouse:ro"',
+    ):
+        assert arg in text
+    assert "--require-hashes" in text  # the wheelhouse is downloaded against the lock's hashes too
+    # the CMD and the port are the image's (buildah inspect), not a copy of the Dockerfile's
+    assert 'config.get("Cmd")' in text and "ExposedPorts" in text
+    assert "app.main:app" not in text and "uvicorn" not in text
+    assert "/healthz" in text and "/v1/srt" in text and "table16-btrain" in text and "SERVICE_UID=10001" in text
+    # without its tools it skips, unless CI=true (then it installs them and fails on anything that does not work)
+    assert "skipped: " in text and 'in_ci() { [ "${CI:-}" = "true" ]; }' in text and "apt-get install -y" in text
+    # what it caches stays out of git and out of the build context
+    assert ".cache/" in (ROOT / ".gitignore").read_text().splitlines()
+    assert ".cache" in (ROOT / ".dockerignore").read_text().splitlines()
+
+
+def test_the_stand_in_lock_is_the_lock_as_the_running_python_reads_it():
+    """scripts/image/standin.py lock: the entries whose markers hold, without the marker, with all their hashes."""
+    import importlib.util
+    import sys
+
+    from packaging.markers import Marker
+
+    spec = importlib.util.spec_from_file_location("standin", ROOT / "scripts" / "image" / "standin.py")
+    standin = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(standin)
+    text = (ROOT / "requirements" / "runtime.txt").read_text(encoding="utf-8")
+    lines = standin.lock(text)
+    names = [line.split("==")[0] for line in lines]
+    assert len(names) == len(set(names)) and set(names) <= set(locked("runtime"))
+    assert all(";" not in line and " --hash=sha256:" in line for line in lines)
+    # async-timeout is locked for python_full_version < '3.11.3' (Debian bookworm's python is 3.11.2)
+    old_python = Marker("python_full_version < '3.11.3'").evaluate()
+    assert ("async-timeout" in names) == old_python
+    assert "numpy" in names and "scipy" in names
+    hashes = {name: len(re.findall(r"--hash=", line)) for name, line in zip(names, lines, strict=True)}
+    assert hashes["numpy"] > 10  # every file of the version, as in the lock
+    tags = standin.tags()
+    assert tags[:3] == [
+        f"--python-version={sys.version_info[0]}.{sys.version_info[1]}",
+        "--implementation=cp",
+        f"--abi=cp{sys.version_info[0]}{sys.version_info[1]}",
+    ]
+    assert any(t.startswith("--platform=") for t in tags)

@@ -435,3 +435,126 @@ def test_the_stand_in_lock_is_the_lock_as_the_running_python_reads_it():
         f"--abi=cp{sys.version_info[0]}{sys.version_info[1]}",
     ]
     assert any(t.startswith("--platform=") for t in tags)
+
+
+# ------------------------------------------------------------------------------------------------ compose.yaml
+COMPOSE = ROOT / "compose.yaml"
+#: schema/compose-spec.json of the Compose Specification (github.com/compose-spec/compose-spec, Apache-2.0), at
+#: commit 170098ba07d9f53c383a41bfd4c5166b0a4529a6: what `docker compose config` validates a file against
+COMPOSE_SCHEMA = ROOT / "tests" / "api" / "compose-spec.json"
+#: the settings compose.yaml takes from the environment (or an .env file), as a user would give them
+COMPOSE_ENV = {
+    "ROLLOVER_CACHE_SECRET": "0123456789abcdef" * 4,
+    "ROLLOVER_API_KEYS": "key-one-0123456789abcdef,key-two-0123456789abcdef",
+    "POSTGRES_PASSWORD": "fedcba9876543210",
+}
+
+
+def interpolate(value, env: dict[str, str]):
+    """Compose's ${VAR}, ${VAR:-default} and ${VAR:?error} in every string of a parsed compose file."""
+    if isinstance(value, dict):
+        return {k: interpolate(v, env) for k, v in value.items()}
+    if isinstance(value, list):
+        return [interpolate(v, env) for v in value]
+    if not isinstance(value, str):
+        return value
+
+    def one(m: re.Match) -> str:
+        name, op, arg = m.group(1), m.group(2), m.group(3)
+        if env.get(name):
+            return env[name]
+        if op == "?":
+            raise KeyError(f"{name}: {arg}")
+        return arg if op == "-" else ""
+
+    return re.sub(r"\$\{(\w+)(?::([-?])([^}]*))?\}", one, value)
+
+
+def compose() -> dict:
+    import yaml
+
+    return yaml.safe_load(COMPOSE.read_text(encoding="utf-8"))
+
+
+def test_compose_file_is_valid_against_the_compose_specification():
+    """docker compose cannot run here: the file is checked against the specification's own JSON schema."""
+    import jsonschema
+
+    schema = json.loads(COMPOSE_SCHEMA.read_text(encoding="utf-8"))
+    validator = jsonschema.Draft7Validator(schema)
+    errors = [f"{list(e.path)}: {e.message}" for e in validator.iter_errors(compose())]
+    assert not errors
+    # and it would catch a mistake
+    broken = compose()
+    broken["services"]["worker"]["replica"] = 2
+    assert list(validator.iter_errors(broken))
+
+
+def test_compose_runs_the_api_its_job_workers_redis_and_postgres_with_the_service_s_own_settings(monkeypatch):
+    from urllib.parse import urlsplit
+
+    from app.settings import Settings
+
+    services = compose()["services"]
+    assert set(services) == {"api", "worker", "redis", "postgres"}
+    known = {f"ROLLOVER_{name.upper()}" for name in Settings.model_fields}
+    for name, service in services.items():
+        for key in service.get("environment", {}):
+            assert not key.startswith("ROLLOVER_") or key in known, (name, key)
+    api, worker = services["api"], services["worker"]
+    # the same image: the server (its CMD) and the job worker (README "Long batches as jobs")
+    assert api["image"] == worker["image"] and api["build"] == worker["build"] == "."
+    assert "command" not in api and worker["command"] == ["python", "-m", "app.jobs.worker"]
+    assert (ROOT / "app" / "jobs" / "worker.py").is_file()
+    assert re.fullmatch(r"\$\{WORKERS:-\d+\}", str(worker["deploy"]["replicas"]))
+    # the image's HEALTHCHECK polls the server, which a worker does not run
+    assert worker["healthcheck"] == {"disable": True} and "healthcheck" not in api
+    # the API publishes the port the image exposes
+    exposed = [rest for word, rest in dockerfile_instructions() if word == "EXPOSE"]
+    assert [p.rsplit(":", 1)[1] for p in api["ports"]] == exposed
+    # the secrets are the user's, required from the environment, never written in the file
+    for env in (api["environment"], worker["environment"], services["postgres"]["environment"]):
+        for key in ("ROLLOVER_CACHE_SECRET", "ROLLOVER_API_KEYS", "POSTGRES_PASSWORD"):
+            assert key not in env or env[key].startswith(f"${{{key}:?"), key
+    with pytest.raises(KeyError, match="ROLLOVER_CACHE_SECRET"):
+        interpolate(worker["environment"], {})
+
+    api_env, worker_env = interpolate(api["environment"], COMPOSE_ENV), interpolate(worker["environment"], COMPOSE_ENV)
+    # the API and the workers share the job store, its queue and the secret that seals it
+    for key in ("ROLLOVER_JOBS_BACKEND", "ROLLOVER_REDIS_URL", "ROLLOVER_CACHE_SECRET"):
+        assert api_env[key] == worker_env[key], key
+    assert api_env["ROLLOVER_JOBS_BACKEND"] == "redis" and api_env["ROLLOVER_CACHE_BACKEND"] == "redis"
+    assert urlsplit(api_env["ROLLOVER_REDIS_URL"]).hostname == "redis"
+    # the catalog is on (keys) and in the PostgreSQL service, as its user and database
+    db = urlsplit(api_env["ROLLOVER_DATABASE_URL"])
+    pg = interpolate(services["postgres"]["environment"], COMPOSE_ENV)
+    assert db.scheme == "postgresql+psycopg" and db.hostname == "postgres" and db.port == 5432
+    assert (db.username, db.password, db.path) == (
+        pg["POSTGRES_USER"],
+        pg["POSTGRES_PASSWORD"],
+        "/" + pg["POSTGRES_DB"],
+    )
+    assert api_env["ROLLOVER_API_KEYS"] == COMPOSE_ENV["ROLLOVER_API_KEYS"]
+    # several server processes in the container: prometheus-client's multiprocess directory on a tmpfs
+    assert int(api_env["WEB_CONCURRENCY"]) >= 1 and api_env["PROMETHEUS_MULTIPROC_DIR"] in api["tmpfs"]
+    # the service accepts what each container is given
+    for env in (api_env, worker_env):
+        for key in list(os.environ):
+            if key.startswith("ROLLOVER_"):
+                monkeypatch.delenv(key)
+        for key, value in env.items():
+            monkeypatch.setenv(key, value)
+        settings = Settings()
+        assert settings.jobs_backend == "redis" and settings.cache_secret is not None
+    assert Settings().solve_threads == 1  # the worker's: one part on one thread, one worker per core
+    # the API and the workers start once Redis (and PostgreSQL) answer
+    assert api["depends_on"] == {n: {"condition": "service_healthy"} for n in ("redis", "postgres")}
+    assert worker["depends_on"] == {"redis": {"condition": "service_healthy"}}
+    assert services["redis"]["healthcheck"]["test"][:2] == ["CMD", "redis-cli"]
+    assert services["postgres"]["healthcheck"]["test"][:2] == ["CMD", "pg_isready"]
+    # the job store is not evicted to make room, and Redis and PostgreSQL keep their data on volumes
+    assert "noeviction" in services["redis"]["command"]
+    for name in ("redis", "postgres"):
+        assert re.fullmatch(r"(redis|postgres):\d+(\.\d+)?-bookworm", services[name]["image"])
+        volume = services[name]["volumes"][0].split(":")[0]
+        assert volume in compose()["volumes"]

@@ -14,8 +14,9 @@
 # 3. buildah bud of the Dockerfile as it is, given --build-arg BASE_IMAGE=<the stand-in> and the wheelhouse
 #    (--build-arg WHEELHOUSE=/wheelhouse, mounted read-only; the build still installs --require-hashes).
 # 4. The image's own CMD (read from the image) started in a container, then: GET /healthz and POST /v1/srt answer
-#    200 (the Table 16 B-train's SRT, 0.339 g), the server runs as uid 10001, there is no pip in the image; and the
-#    image's size is printed. Everything it made (containers, images) is removed at the end, pass or fail.
+#    200 (the Table 16 B-train's SRT, 0.339 g), the server runs as uid 10001, there is no pip in the image, the job
+#    worker's entry point starts, the server stops on SIGTERM; and the image's size is printed. Everything it made
+#    (containers, images) is removed at the end, pass or fail.
 #
 # Where buildah or debootstrap is missing (or not root) it prints "skipped: ..." and exits 0, unless CI=true: then
 # it installs them with apt-get and fails loudly on anything that does not work. The stand-in's root file system and
@@ -316,6 +317,11 @@ for python in python /usr/local/bin/python /usr/bin/python3; do
         || fail "$python in the image imports pip"
 done
 say "no pip in the image (no file named pip*, and python, /usr/local/bin/python, /usr/bin/python3 cannot import it)"
+
+# the job worker's entry point (compose.yaml's worker command) is in the image too and starts
+buildah run --isolation chroot --network host "$RUN_CTR" -- python -m app.jobs.worker --help >"$TMP/worker.txt" 2>&1 \
+    || { cat "$TMP/worker.txt" >&2; fail "python -m app.jobs.worker --help in the image"; }
+say "python -m app.jobs.worker --help runs in the image (the compose file's worker command)"
 
 # it stops when asked (docker stop: SIGTERM, then SIGKILL after 10 s)
 kill "$SERVER_PID"

@@ -400,6 +400,8 @@ def test_the_image_check_builds_the_dockerfile_on_a_stand_in_and_runs_the_image_
     assert 'config.get("Cmd")' in text and "ExposedPorts" in text
     assert "app.main:app" not in text and "uvicorn" not in text
     assert "/healthz" in text and "/v1/srt" in text and "table16-btrain" in text and "SERVICE_UID=10001" in text
+    # the compose file's worker command is started in the image too
+    assert " ".join(compose()["services"]["worker"]["command"]) + " --help" in text
     # without its tools it skips, unless CI=true (then it installs them and fails on anything that does not work)
     assert "skipped: " in text and 'in_ci() { [ "${CI:-}" = "true" ]; }' in text and "apt-get install -y" in text
     # what it caches stays out of git and out of the build context

@@ -3,20 +3,20 @@
 # README "Deployment": workers, the database volume, pinning the base image by digest, regenerating the lock.
 # Debian slim (not Alpine: numpy and scipy have manylinux wheels for glibc, none for musl). Both stages use the SAME
 # exact tag: the virtualenv's python is a symlink to the base image's /usr/local/bin/python3.11.
-# BASE_IMAGE is a build argument only so that scripts/image/check.sh can build this file on a stand-in base where
-# the official image cannot be pulled (docs/deployment.md); a plain `docker build` uses the pinned tag below.
+# BASE_IMAGE is a build argument so that scripts/image/check.sh can build this file on a stand-in base where the
+# official image cannot be pulled (docs/deployment.md), or a digest be given; a plain `docker build` uses this tag.
 ARG BASE_IMAGE=python:3.11.17-slim-bookworm
 
 # ---- build stage: a virtualenv from the lock, then the project ---------------------------------------------------
 FROM ${BASE_IMAGE} AS build
 ENV PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
-# WHEELHOUSE (empty by default: pip reads the package index) names a directory of wheels mounted into the build, for
-# a build without the index (scripts/image/check.sh: buildah bud --volume DIR:/wheelhouse:ro --build-arg
-# WHEELHOUSE=/wheelhouse). Either way every file is checked against the lock's sha256.
-ARG WHEELHOUSE=""
 WORKDIR /src
 # a virtualenv without pip: the base image's pip installs into it (pip --python), so the venv never holds an installer
 RUN python -m venv --without-pip /opt/venv
+# WHEELHOUSE (empty by default: pip reads the package index) names a directory of wheels mounted into the build, for
+# a build without the index (scripts/image/check.sh: buildah bud --volume DIR:/wheelhouse:ro --build-arg
+# WHEELHOUSE=/wheelhouse). Either way the dependency install checks every file against the lock's sha256.
+ARG WHEELHOUSE=""
 # dependency layer: only the lock is copied, so it is rebuilt only when the lock changes (scripts/lock.sh). Every file
 # is checked against its locked sha256 and is a wheel (nothing compiled here). The numpy and scipy test suites
 # (about 50 MB) are left out of the image: they are never imported by the service.

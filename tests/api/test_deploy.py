@@ -1,7 +1,7 @@
 """The README's two commands, the Dockerfile, the lock files and .ci/run agree with each other and with pyproject.toml.
 
-There is no Docker engine on the CI machines, so the Dockerfile is checked by parsing it (its steps were run by hand
-in a scratch directory: see the README's Deployment section).
+There is no Docker engine on the CI machines: the Dockerfile is checked here by parsing it, and built and run with
+buildah on a stand-in base by scripts/image/check.sh, which .ci/run calls after this suite (docs/deployment.md).
 """
 
 from __future__ import annotations
@@ -359,7 +359,19 @@ def test_ci_run_installs_redis_and_runs_the_suite_from_the_lock_in_its_own_venv(
         assert os.access(CI_RUN, os.X_OK), ".ci/run must be executable"
 
 
-@pytest.mark.parametrize("name", ["Dockerfile", ".dockerignore", ".ci/run", "README.md", "scripts/lock.sh"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "Dockerfile",
+        ".dockerignore",
+        ".ci/run",
+        "README.md",
+        "scripts/lock.sh",
+        "scripts/image/check.sh",
+        "compose.yaml",
+        "docs/deployment.md",
+    ],
+)
 def test_files_exist(name):
     assert (ROOT / name).is_file()
 
@@ -404,6 +416,13 @@ def test_the_image_check_builds_the_dockerfile_on_a_stand_in_and_runs_the_image_
     assert " ".join(compose()["services"]["worker"]["command"]) + " --help" in text
     # without its tools it skips, unless CI=true (then it installs them and fails on anything that does not work)
     assert "skipped: " in text and 'in_ci() { [ "${CI:-}" = "true" ]; }' in text and "apt-get install -y" in text
+    # docs/deployment.md quotes the size line it prints, with the date it was measured
+    assert 'say "image size: $SIZE (buildah images, uncompressed)' in text
+    doc = (ROOT / "docs" / "deployment.md").read_text(encoding="utf-8")
+    assert "bash scripts/image/check.sh" in doc and "docs/deployment.md" in README
+    assert re.search(
+        r"On \d{4}-\d\d-\d\d it printed:\n\n```text\nimage check: image size: \d+ MB \(buildah images", doc
+    )
     # what it caches stays out of git and out of the build context
     assert ".cache/" in (ROOT / ".gitignore").read_text().splitlines()
     assert ".cache" in (ROOT / ".dockerignore").read_text().splitlines()

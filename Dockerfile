@@ -3,29 +3,37 @@
 # README "Deployment": workers, the database volume, pinning the base image by digest, regenerating the lock.
 # Debian slim (not Alpine: numpy and scipy have manylinux wheels for glibc, none for musl). Both stages use the SAME
 # exact tag: the virtualenv's python is a symlink to the base image's /usr/local/bin/python3.11.
+# BASE_IMAGE is a build argument so that scripts/image/check.sh can build this file on a stand-in base where the
+# official image cannot be pulled (docs/deployment.md), or a digest be given; a plain `docker build` uses this tag.
+ARG BASE_IMAGE=python:3.11.17-slim-bookworm
 
 # ---- build stage: a virtualenv from the lock, then the project ---------------------------------------------------
-FROM python:3.11.17-slim-bookworm AS build
+FROM ${BASE_IMAGE} AS build
 ENV PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
 WORKDIR /src
 # a virtualenv without pip: the base image's pip installs into it (pip --python), so the venv never holds an installer
 RUN python -m venv --without-pip /opt/venv
+# WHEELHOUSE (empty by default: pip reads the package index) names a directory of wheels mounted into the build, for
+# a build without the index (scripts/image/check.sh: buildah bud --volume DIR:/wheelhouse:ro --build-arg
+# WHEELHOUSE=/wheelhouse). Either way the dependency install checks every file against the lock's sha256.
+ARG WHEELHOUSE=""
 # dependency layer: only the lock is copied, so it is rebuilt only when the lock changes (scripts/lock.sh). Every file
 # is checked against its locked sha256 and is a wheel (nothing compiled here). The numpy and scipy test suites
 # (about 50 MB) are left out of the image: they are never imported by the service.
 COPY requirements/runtime.txt requirements/runtime.txt
 RUN pip --python /opt/venv/bin/python install --require-hashes --no-deps --only-binary=:all: \
-        -r requirements/runtime.txt \
+        ${WHEELHOUSE:+--no-index --find-links "$WHEELHOUSE"} -r requirements/runtime.txt \
     && find /opt/venv/lib/python3.11/site-packages/numpy /opt/venv/lib/python3.11/site-packages/scipy \
         -depth -type d -name tests -exec rm -rf {} +
-# project layer: a change to the code rebuilds only this (a few hundred kilobytes)
+# project layer: a change to the code rebuilds only this (a few hundred kilobytes); pip builds it with the
+# setuptools pyproject.toml asks for (from the index, or from the wheelhouse)
 COPY pyproject.toml README.md ./
 COPY engine ./engine
 COPY app ./app
-RUN pip --python /opt/venv/bin/python install --no-deps .
+RUN pip --python /opt/venv/bin/python install ${WHEELHOUSE:+--no-index --find-links "$WHEELHOUSE"} --no-deps .
 
 # ---- runtime stage: the virtualenv only, as a non-root user -------------------------------------------------------
-FROM python:3.11.17-slim-bookworm
+FROM ${BASE_IMAGE}
 # no installer in the runtime image: the base image's pip, setuptools and wheel and ensurepip's bundled copies go
 # (the virtualenv never had them); then the service's user and its data directory
 RUN python -m pip uninstall --yes --quiet --disable-pip-version-check pip setuptools wheel \

@@ -1,7 +1,7 @@
 """The README's two commands, the Dockerfile, the lock files and .ci/run agree with each other and with pyproject.toml.
 
-There is no Docker engine on the CI machines, so the Dockerfile is checked by parsing it (its steps were run by hand
-in a scratch directory: see the README's Deployment section).
+There is no Docker engine on the CI machines: the Dockerfile is checked here by parsing it, and built and run with
+buildah on a stand-in base by scripts/image/check.sh, which .ci/run calls after this suite (docs/deployment.md).
 """
 
 from __future__ import annotations
@@ -154,13 +154,27 @@ def test_readme_documents_every_setting():
 BASE_IMAGE = re.compile(r"python:3\.11\.\d+-slim-(bookworm|trixie)(@sha256:[0-9a-f]{64})?")
 
 
+def global_args() -> dict[str, str]:
+    """The ARGs declared before the first FROM (the only ones a FROM line can use), with their defaults."""
+    args = {}
+    for word, rest in dockerfile_instructions():
+        if word == "FROM":
+            break
+        if word == "ARG":
+            name, _, default = rest.partition("=")
+            args[name] = default
+    return args
+
+
 def test_dockerfile_is_multi_stage_slim_debian_pinned_to_one_exact_tag():
     froms = [rest.split()[0] for word, rest in dockerfile_instructions() if word == "FROM"]
     assert len(froms) >= 2
-    for image in froms:
-        assert BASE_IMAGE.fullmatch(image), image  # not a moving tag such as python:3.11-slim
-    # the runtime stage runs the build stage's virtualenv, whose python is a symlink to the base image's interpreter
-    assert len(set(froms)) == 1
+    # every stage is FROM the one build argument (scripts/image/check.sh gives a stand-in), so all stages have the
+    # same base: the runtime stage runs the build stage's virtualenv, whose python is a symlink to the base image's
+    # interpreter. Its default is the pinned official image: a plain `docker build` uses that
+    assert set(froms) == {"${BASE_IMAGE}"}
+    image = global_args()["BASE_IMAGE"]
+    assert BASE_IMAGE.fullmatch(image), image  # not a moving tag such as python:3.11-slim
 
 
 def test_dockerfile_runs_as_a_non_root_user():
@@ -202,13 +216,35 @@ def test_dockerfile_installs_the_locked_dependencies_in_their_own_layer_before_t
     assert first_copy < deps < min(later)
     assert {s for _, src in copies for s in src[:-1]} >= {"pyproject.toml", "README.md", "app", "engine"}
     # then the project itself (packages engine* and app*) without dependencies, after its source is copied
-    project = next(i for i, rest in runs if re.search(r"install --no-deps \.$", rest))
+    project = next(i for i, rest in runs if re.search(r"install .*--no-deps \.$", rest))
     assert project > max(later)
     assert PYPROJECT["tool"]["setuptools"]["packages"]["find"]["include"] == ["engine*", "app*"]
     # the runtime stage takes the installed virtualenv and puts it on the PATH, so `uvicorn` is the one installed
     final = stages()[-1]
     assert any(w == "COPY" and "--from=build" in rest and "/opt/venv" in rest for w, rest in final)
     assert any(w == "ENV" and "/opt/venv/bin" in rest for w, rest in final)
+
+
+def test_the_build_takes_an_optional_wheelhouse_and_checks_every_hash_either_way():
+    """WHEELHOUSE (empty by default) adds --no-index --find-links to both installs; --require-hashes stays."""
+    import subprocess
+
+    build = stages()[0]
+    assert ("ARG", 'WHEELHOUSE=""') in build
+    option = '${WHEELHOUSE:+--no-index --find-links "$WHEELHOUSE"}'
+    installs = [rest for w, rest in build if w == "RUN" and " install " in rest]
+    assert len(installs) == 2 and all(option in rest for rest in installs)
+    assert all("--require-hashes" in rest for rest in installs if "-r requirements/runtime.txt" in rest)
+    # what the shell makes of it (a RUN is `/bin/sh -c`, its ARGs in the environment)
+    for value, argv in [("", []), ("/wheelhouse", ["--no-index", "--find-links", "/wheelhouse"])]:
+        done = subprocess.run(
+            ["sh", "-c", f'for a in {option}; do echo "$a"; done'],
+            env={"WHEELHOUSE": value, "PATH": os.environ.get("PATH", "/usr/bin:/bin")},
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        assert done.stdout.splitlines() == argv
 
 
 def test_the_runtime_image_has_no_installer():
@@ -316,13 +352,26 @@ def test_ci_run_installs_redis_and_runs_the_suite_from_the_lock_in_its_own_venv(
     assert 'PATH="$PWD/.venv-ci/bin:$PATH"' in activate
     assert deps.startswith("python -m pip install") and "--require-hashes -r requirements/test.txt" in deps
     assert project.startswith("python -m pip install") and project.endswith("--no-deps -e .")
-    # then the README test command's second half: the whole suite
-    assert lines[-1] == TEST.split(" && ")[-1] == "python -m pytest"
+    # then the README test command's second half: the whole suite, and after it the image check
+    assert lines[-2] == TEST.split(" && ")[-1] == "python -m pytest"
+    assert lines[-1] == "bash scripts/image/check.sh"
     if os.name == "posix":
         assert os.access(CI_RUN, os.X_OK), ".ci/run must be executable"
 
 
-@pytest.mark.parametrize("name", ["Dockerfile", ".dockerignore", ".ci/run", "README.md", "scripts/lock.sh"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "Dockerfile",
+        ".dockerignore",
+        ".ci/run",
+        "README.md",
+        "scripts/lock.sh",
+        "scripts/image/check.sh",
+        "compose.yaml",
+        "docs/deployment.md",
+    ],
+)
 def test_files_exist(name):
     assert (ROOT / name).is_file()
 
@@ -338,3 +387,195 @@ def test_the_readme_python_example_prints_what_the_readme_says():
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stdout == printed
+
+
+# ------------------------------------------------------------------------------------- the image, built and run
+IMAGE_CHECK = ROOT / "scripts" / "image" / "check.sh"
+
+
+def test_the_image_check_builds_the_dockerfile_on_a_stand_in_and_runs_the_image_s_own_cmd():
+    """scripts/image/check.sh (run by .ci/run) is the image built and run; here only what it is made of."""
+    text = IMAGE_CHECK.read_text(encoding="utf-8")
+    assert text.startswith("#!/usr/bin/env bash") and "set -euo pipefail" in text
+    if os.name == "posix":
+        assert os.access(IMAGE_CHECK, os.X_OK)
+    assert "debootstrap --variant=minbase" in text and "python3 -m venv /usr/local" in text
+    assert "buildah bud --isolation chroot --network host --format docker" in text
+    for arg in (
+        "--build-arg BASE_IMAGE=",
+        "--build-arg WHEELHOUSE=/wheelhouse",
+        '--volume "$WHEELHOUSE:/wheelhouse:ro"',
+    ):
+        assert arg in text
+    assert "--require-hashes" in text  # the wheelhouse is downloaded against the lock's hashes too
+    # the CMD and the port are the image's (buildah inspect), not a copy of the Dockerfile's
+    assert 'config.get("Cmd")' in text and "ExposedPorts" in text
+    assert "app.main:app" not in text and "uvicorn" not in text
+    assert "/healthz" in text and "/v1/srt" in text and "table16-btrain" in text and "SERVICE_UID=10001" in text
+    # the compose file's worker command is started in the image too
+    assert " ".join(compose()["services"]["worker"]["command"]) + " --help" in text
+    # without its tools it skips, unless CI=true (then it installs them and fails on anything that does not work)
+    assert "skipped: " in text and 'in_ci() { [ "${CI:-}" = "true" ]; }' in text and "apt-get install -y" in text
+    # docs/deployment.md quotes the size line it prints, with the date it was measured
+    assert 'say "image size: $SIZE (buildah images, uncompressed)' in text
+    doc = (ROOT / "docs" / "deployment.md").read_text(encoding="utf-8")
+    assert "bash scripts/image/check.sh" in doc and "docs/deployment.md" in README
+    assert re.search(
+        r"On \d{4}-\d\d-\d\d it printed:\n\n```text\nimage check: image size: \d+ MB \(buildah images", doc
+    )
+    # what it caches stays out of git and out of the build context
+    assert ".cache/" in (ROOT / ".gitignore").read_text().splitlines()
+    assert ".cache" in (ROOT / ".dockerignore").read_text().splitlines()
+
+
+def test_the_stand_in_lock_is_the_lock_as_the_running_python_reads_it():
+    """scripts/image/standin.py lock: the entries whose markers hold, without the marker, with all their hashes."""
+    import importlib.util
+    import sys
+
+    from packaging.markers import Marker
+
+    spec = importlib.util.spec_from_file_location("standin", ROOT / "scripts" / "image" / "standin.py")
+    standin = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(standin)
+    text = (ROOT / "requirements" / "runtime.txt").read_text(encoding="utf-8")
+    lines = standin.lock(text)
+    names = [line.split("==")[0] for line in lines]
+    assert len(names) == len(set(names)) and set(names) <= set(locked("runtime"))
+    assert all(";" not in line and " --hash=sha256:" in line for line in lines)
+    # async-timeout is locked for python_full_version < '3.11.3' (Debian bookworm's python is 3.11.2)
+    old_python = Marker("python_full_version < '3.11.3'").evaluate()
+    assert ("async-timeout" in names) == old_python
+    assert "numpy" in names and "scipy" in names
+    hashes = {name: len(re.findall(r"--hash=", line)) for name, line in zip(names, lines, strict=True)}
+    assert hashes["numpy"] > 10  # every file of the version, as in the lock
+    tags = standin.tags()
+    assert tags[:3] == [
+        f"--python-version={sys.version_info[0]}.{sys.version_info[1]}",
+        "--implementation=cp",
+        f"--abi=cp{sys.version_info[0]}{sys.version_info[1]}",
+    ]
+    assert any(t.startswith("--platform=") for t in tags)
+
+
+# ------------------------------------------------------------------------------------------------ compose.yaml
+COMPOSE = ROOT / "compose.yaml"
+#: schema/compose-spec.json of the Compose Specification (github.com/compose-spec/compose-spec, Apache-2.0), at
+#: commit 170098ba07d9f53c383a41bfd4c5166b0a4529a6: what `docker compose config` validates a file against
+COMPOSE_SCHEMA = ROOT / "tests" / "api" / "compose-spec.json"
+#: the settings compose.yaml takes from the environment (or an .env file), as a user would give them
+COMPOSE_ENV = {
+    "ROLLOVER_CACHE_SECRET": "0123456789abcdef" * 4,
+    "ROLLOVER_API_KEYS": "key-one-0123456789abcdef,key-two-0123456789abcdef",
+    "POSTGRES_PASSWORD": "fedcba9876543210",
+}
+
+
+def interpolate(value, env: dict[str, str]):
+    """Compose's ${VAR}, ${VAR:-default} and ${VAR:?error} in every string of a parsed compose file."""
+    if isinstance(value, dict):
+        return {k: interpolate(v, env) for k, v in value.items()}
+    if isinstance(value, list):
+        return [interpolate(v, env) for v in value]
+    if not isinstance(value, str):
+        return value
+
+    def one(m: re.Match) -> str:
+        name, op, arg = m.group(1), m.group(2), m.group(3)
+        if env.get(name):
+            return env[name]
+        if op == "?":
+            raise KeyError(f"{name}: {arg}")
+        return arg if op == "-" else ""
+
+    return re.sub(r"\$\{(\w+)(?::([-?])([^}]*))?\}", one, value)
+
+
+def compose() -> dict:
+    import yaml
+
+    return yaml.safe_load(COMPOSE.read_text(encoding="utf-8"))
+
+
+def test_compose_file_is_valid_against_the_compose_specification():
+    """docker compose cannot run here: the file is checked against the specification's own JSON schema."""
+    import jsonschema
+
+    schema = json.loads(COMPOSE_SCHEMA.read_text(encoding="utf-8"))
+    validator = jsonschema.Draft7Validator(schema)
+    errors = [f"{list(e.path)}: {e.message}" for e in validator.iter_errors(compose())]
+    assert not errors
+    # and it would catch a mistake
+    broken = compose()
+    broken["services"]["worker"]["replica"] = 2
+    assert list(validator.iter_errors(broken))
+
+
+def test_compose_runs_the_api_its_job_workers_redis_and_postgres_with_the_service_s_own_settings(monkeypatch):
+    from urllib.parse import urlsplit
+
+    from app.settings import Settings
+
+    services = compose()["services"]
+    assert set(services) == {"api", "worker", "redis", "postgres"}
+    known = {f"ROLLOVER_{name.upper()}" for name in Settings.model_fields}
+    for name, service in services.items():
+        for key in service.get("environment", {}):
+            assert not key.startswith("ROLLOVER_") or key in known, (name, key)
+    api, worker = services["api"], services["worker"]
+    # the same image: the server (its CMD) and the job worker (README "Long batches as jobs")
+    assert api["image"] == worker["image"] and api["build"] == worker["build"] == "."
+    assert "command" not in api and worker["command"] == ["python", "-m", "app.jobs.worker"]
+    assert (ROOT / "app" / "jobs" / "worker.py").is_file()
+    assert re.fullmatch(r"\$\{WORKERS:-\d+\}", str(worker["deploy"]["replicas"]))
+    # the image's HEALTHCHECK polls the server, which a worker does not run
+    assert worker["healthcheck"] == {"disable": True} and "healthcheck" not in api
+    # the API publishes the port the image exposes
+    exposed = [rest for word, rest in dockerfile_instructions() if word == "EXPOSE"]
+    assert [p.rsplit(":", 1)[1] for p in api["ports"]] == exposed
+    # the secrets are the user's, required from the environment, never written in the file
+    for env in (api["environment"], worker["environment"], services["postgres"]["environment"]):
+        for key in ("ROLLOVER_CACHE_SECRET", "ROLLOVER_API_KEYS", "POSTGRES_PASSWORD"):
+            assert key not in env or env[key].startswith(f"${{{key}:?"), key
+    with pytest.raises(KeyError, match="ROLLOVER_CACHE_SECRET"):
+        interpolate(worker["environment"], {})
+
+    api_env, worker_env = interpolate(api["environment"], COMPOSE_ENV), interpolate(worker["environment"], COMPOSE_ENV)
+    # the API and the workers share the job store, its queue and the secret that seals it
+    for key in ("ROLLOVER_JOBS_BACKEND", "ROLLOVER_REDIS_URL", "ROLLOVER_CACHE_SECRET"):
+        assert api_env[key] == worker_env[key], key
+    assert api_env["ROLLOVER_JOBS_BACKEND"] == "redis" and api_env["ROLLOVER_CACHE_BACKEND"] == "redis"
+    assert urlsplit(api_env["ROLLOVER_REDIS_URL"]).hostname == "redis"
+    # the catalog is on (keys) and in the PostgreSQL service, as its user and database
+    db = urlsplit(api_env["ROLLOVER_DATABASE_URL"])
+    pg = interpolate(services["postgres"]["environment"], COMPOSE_ENV)
+    assert db.scheme == "postgresql+psycopg" and db.hostname == "postgres" and db.port == 5432
+    assert (db.username, db.password, db.path) == (
+        pg["POSTGRES_USER"],
+        pg["POSTGRES_PASSWORD"],
+        "/" + pg["POSTGRES_DB"],
+    )
+    assert api_env["ROLLOVER_API_KEYS"] == COMPOSE_ENV["ROLLOVER_API_KEYS"]
+    # several server processes in the container: prometheus-client's multiprocess directory on a tmpfs
+    assert int(api_env["WEB_CONCURRENCY"]) >= 1 and api_env["PROMETHEUS_MULTIPROC_DIR"] in api["tmpfs"]
+    # the service accepts what each container is given
+    for env in (api_env, worker_env):
+        for key in list(os.environ):
+            if key.startswith("ROLLOVER_"):
+                monkeypatch.delenv(key)
+        for key, value in env.items():
+            monkeypatch.setenv(key, value)
+        settings = Settings()
+        assert settings.jobs_backend == "redis" and settings.cache_secret is not None
+    assert Settings().solve_threads == 1  # the worker's: one part on one thread, one worker per core
+    # the API and the workers start once Redis (and PostgreSQL) answer
+    assert api["depends_on"] == {n: {"condition": "service_healthy"} for n in ("redis", "postgres")}
+    assert worker["depends_on"] == {"redis": {"condition": "service_healthy"}}
+    assert services["redis"]["healthcheck"]["test"][:2] == ["CMD", "redis-cli"]
+    assert services["postgres"]["healthcheck"]["test"][:2] == ["CMD", "pg_isready"]
+    # the job store is not evicted to make room, and Redis and PostgreSQL keep their data on volumes
+    assert "noeviction" in services["redis"]["command"]
+    for name in ("redis", "postgres"):
+        assert re.fullmatch(r"(redis|postgres):\d+(\.\d+)?-bookworm", services[name]["image"])
+        volume = services[name]["volumes"][0].split(":")[0]
+        assert volume in compose()["volumes"]

@@ -34,7 +34,9 @@ Layout (each subpackage has its own ``__all__``; the names below are re-exported
 Public surface (everything in ``__all__``):
 
 - the case: :class:`Vehicle` (the record, :data:`FIELD_DOCS`), :data:`PRESETS` / :func:`get_preset`, :class:`Road`,
-  :class:`LoadCase`, :class:`Case`;
+  :class:`LoadCase`, :class:`Case`; a :class:`Combination` of :class:`Unit` s, :class:`AxleGroup` s and
+  :class:`Coupling` s, :data:`COMBINATIONS` / :func:`get_combination` (``Case(get_combination("btrain-table16"))``
+  solves it with the whole-combination model);
 - the SRT: :func:`rollover_threshold` (one case), :func:`rollover_thresholds` (many, each with its full result),
   :func:`evaluate_cases`, :func:`sweep` (grids, Tables 17 and 19),
   the model registry :data:`MODELS`;
@@ -77,10 +79,20 @@ from engine.road.limits import LIMIT_PARAMETERS, Limit, LimitTableRow, limit_tab
 from engine.road.min_radius import MinRadius, min_radius  # noqa: E402
 from engine.road.standards import side_friction_factor, side_friction_speed_kmh  # noqa: E402
 from engine.road.targets import DEFAULT_TARGETS, TargetCheck, check_targets, tilt_table_angle_deg  # noqa: E402
+from engine.vehicle.combination import (  # noqa: E402
+    AxleGroup,
+    Combination,
+    Coupling,
+    Unit,
+    validate_combination,
+)
+from engine.vehicle.combination_presets import COMBINATION_INFO, COMBINATIONS, get_combination  # noqa: E402
 from engine.vehicle.presets import PRESET_INFO, PRESETS, get_preset  # noqa: E402
 from engine.vehicle.record import FIELD_DOCS, Vehicle, validate_vehicle  # noqa: E402
 
 __all__ = [
+    "COMBINATIONS",
+    "COMBINATION_INFO",
     "DEFAULT_TARGETS",
     "ENGINE_VERSION",
     "FIELD_DOCS",
@@ -91,8 +103,11 @@ __all__ = [
     "STAGES",
     "SWEEP_AXES",
     "AlignmentAssessment",
+    "AxleGroup",
     "Case",
+    "Combination",
     "ConvergenceError",
+    "Coupling",
     "Curve",
     "CurveAssessment",
     "Curves",
@@ -113,12 +128,14 @@ __all__ = [
     "SweepResult",
     "TargetCheck",
     "TireLoads",
+    "Unit",
     "UnknownPreset",
     "Vehicle",
     "aashto_min_radius_m",
     "assess_curves",
     "check_targets",
     "evaluate_cases",
+    "get_combination",
     "get_model",
     "get_preset",
     "limit_table",
@@ -133,5 +150,6 @@ __all__ = [
     "supported_models",
     "sweep",
     "tilt_table_angle_deg",
+    "validate_combination",
     "validate_vehicle",
 ]

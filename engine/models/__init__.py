@@ -7,7 +7,9 @@
   :mod:`~engine.models.trailer3d_davies`): the developed 2D (Ch. 5) and 3D (Ch. 6) models;
 - :mod:`~engine.models.stepping`: the quasi-static load ramp to the limit;
 - :mod:`~engine.models.classic`: the closed forms of Ch. 2;
-- :mod:`~engine.models.threshold`: the entry points (one case, many cases, grids).
+- :mod:`~engine.models.threshold`: the entry points (one case, many cases, grids);
+- :mod:`~engine.models.combination`: the whole-combination static roll model (every unit, group and coupling),
+  and :mod:`~engine.models.combination_reference`, the same equations solved as a general nonlinear equilibrium.
 """
 
 from .classic import (
@@ -28,6 +30,24 @@ from .classic import (
     solve_rill,
     solve_winkler,
     winkler,
+)
+from .combination import (
+    TOL,
+    DeadZone,
+    Regime,
+    RoadFactors,
+    System,
+    Tyres,
+    UnitSolution,
+    build_systems,
+    front_llt_ratio,
+    rigid_srt,
+    solve_combination,
+    solve_unit,
+    unit_result,
+)
+from .combination_reference import (
+    reference_srt,
 )
 from .groups import (
     ARRAY,
@@ -58,6 +78,8 @@ from .registry import (
     MODELS,
     Model,
     get_model,
+    last_unit_record,
+    record_view,
     supported_models,
 )
 from .springs import (
@@ -165,12 +187,14 @@ __all__ = [
     "STAGES",
     "SWEEP_AXES",
     "TIRE_ROAD_FRICTION",
+    "TOL",
     "BlockMap",
     "Case2D",
     "ChassisClosure",
     "ChassisLoads",
     "ClassicResult",
     "DaviesForces",
+    "DeadZone",
     "FifthWheelParams",
     "FourBarForces",
     "FourBarGeometry",
@@ -180,16 +204,22 @@ __all__ = [
     "GroupParams",
     "Model",
     "PlanarModel",
+    "Regime",
+    "RoadFactors",
     "Solution",
     "Solution2D",
     "SolverCase",
     "State",
     "SweepResult",
+    "System",
     "TrailerModel",
+    "Tyres",
+    "UnitSolution",
     "batch_2d",
     "batch_3d",
     "build_mechanism",
     "build_model",
+    "build_systems",
     "calibrate_chassis_constant",
     "case_at",
     "cg_actions",
@@ -210,6 +240,7 @@ __all__ = [
     "forces_at",
     "four_bar",
     "four_bar_statics",
+    "front_llt_ratio",
     "geometry",
     "get_closure",
     "get_model",
@@ -220,15 +251,19 @@ __all__ = [
     "group_next_state",
     "group_params",
     "group_statics",
+    "last_unit_record",
     "leaf_spring_height",
     "leaf_spring_rate",
     "map_blocks",
     "navin",
     "next_state",
+    "record_view",
     "reference_case",
+    "reference_srt",
     "rest_state",
     "rigid",
     "rigid_bank",
+    "rigid_srt",
     "rill",
     "rill_roll_angles",
     "rollover_threshold",
@@ -240,12 +275,14 @@ __all__ = [
     "solve_3d",
     "solve_3d_many",
     "solve_chang",
+    "solve_combination",
     "solve_gillespie",
     "solve_loads",
     "solve_navin",
     "solve_rigid",
     "solve_rigid_bank",
     "solve_rill",
+    "solve_unit",
     "solve_winkler",
     "solver_case_3d",
     "srt_eq_5_22",
@@ -256,6 +293,7 @@ __all__ = [
     "tire_radius",
     "tire_system",
     "torsion_angle",
+    "unit_result",
     "winkler",
     "with_axis",
 ]

@@ -26,7 +26,7 @@ normal loads satisfy the unit's own pitch balance, as they do by construction)::
 with the normal-weight and lateral factors of the road ``n(ay) = cos(b) cos(s) + ay sin(b)`` and
 ``l(ay) = ay cos(b) - sin(b) cos(s)`` (bank b, grade s; the 3D model's Eqs. 4.24-4.26), the normal loads per unit
 normal factor ``N0``, ``S0 = N0 - W_a``, ``V0`` (:func:`engine.vehicle.combination.static_loads`), and, in the
-second-order (P-Delta) terms ``phi (...)``, the static normal loads on that road ``S``, ``V``, ``n0 = cos(b)cos(s)``.
+second-order (P-Delta) terms ``phi (...)``, the normal loads ``S``, ``V`` at the normal factor ``n0`` of the limit.
 Summed over a roll-coupled unit the equations are its moment balance about the road (tested).
 
 **The stepped solution.** Every law is piecewise linear, so between two events (a group lifting off, a lash being
@@ -38,9 +38,9 @@ which a group other than a steer group reaches the requested LLT limit. A load o
 zero lateral force (ay = tan(b) cos(s)). :mod:`engine.models.combination_reference` solves the same equations as a
 general nonlinear equilibrium with scipy; the two agree on random vehicles (``tests/engine/test_combination.py``).
 
-**Reading.** The P-Delta terms use the normal loads at rest on that road; on a level road they are exact, on a bank
-the neglected term (ay sin b) phi lowers the roll moment by about 2 % of its value per 6 % of bank at the limit
-(``python bench/bench_combination.py`` prints the bound for the presets).
+**Bank.** On a bank the normal loads grow with ay, and the P-Delta terms with them: the path is solved with those
+terms at one normal factor, brought to the limit's own by a fixed point (:func:`solve_unit`), so the limit is the
+exact equilibrium there.
 
 References
 ----------
@@ -56,7 +56,7 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -151,6 +151,12 @@ class System:
     zones: list[DeadZone]
     couplings: list[tuple[int, float, float]]  # (coupling index, V0, V grade) of every coupling inside or at the edge
     road: RoadFactors = field(default=None)  # type: ignore[assignment]
+    P_normal: np.ndarray = field(default=None)  # type: ignore[assignment]  # P per unit normal factor
+    P_grade: np.ndarray = field(default=None)  # type: ignore[assignment]  # P per unit sin(grade)
+
+    def at_normal(self, normal: float) -> System:
+        """The same equations with the P-Delta terms at the normal factor ``normal``."""
+        return replace(self, P=normal * self.P_normal + self.road.grade * self.P_grade)
 
     def cap(self, t: Tyres, ay: float) -> float:
         """The group's lift-off moment N(ay) T/2 [kN m]."""
@@ -171,25 +177,27 @@ def build_systems(c: Combination, bank_percent: float, slope_percent: float, loa
             for j in range(len(c.units[u].groups)):
                 axle[(u, j)] = len(body) + len(axle)
         n = len(body) + len(axle)
-        P, lat, off, weights = np.zeros((n, n)), np.zeros(n), np.zeros(n), np.zeros(n)
+        Pn, Pg = np.zeros((n, n)), np.zeros((n, n))  # P-Delta per unit normal factor, per unit sin(grade)
+        lat, off, weights = np.zeros(n), np.zeros(n), np.zeros(n)
         tyres, zones, coupl = [], [], []
         for u in members:
             unit, lw = c.units[u], lu[u]
             b = body[u]
             weights[b] = lw.weight_kn
             lat[b] += lw.weight_kn * lw.cg_height_m
-            P[b, b] += road.n0 * lw.weight_kn * lw.cg_height_m
+            Pn[b, b] += lw.weight_kn * lw.cg_height_m
             off[b] += lw.weight_kn * lw.lateral_offset_m
             for j, g in enumerate(unit.groups):
                 a = axle[(u, j)]
                 wa = g.unsprung_weight_kn
                 n0g, lg = st.normal_kn[(u, j)], st.grade_kn[(u, j)]
                 s0 = n0g - wa  # through the suspension, per unit normal factor
-                s_static = road.n0 * s0 + road.grade * lg
                 lat[a] += s0 * g.roll_centre_height_m + wa * g.unsprung_cg_height_m
-                P[a, a] += s_static * g.roll_centre_height_m + road.n0 * wa * g.unsprung_cg_height_m
+                Pn[a, a] += s0 * g.roll_centre_height_m + wa * g.unsprung_cg_height_m
+                Pg[a, a] += lg * g.roll_centre_height_m
                 lat[b] -= s0 * g.roll_centre_height_m
-                P[b, b] -= s_static * g.roll_centre_height_m
+                Pn[b, b] -= s0 * g.roll_centre_height_m
+                Pg[b, b] -= lg * g.roll_centre_height_m
                 tyres.append(
                     Tyres(
                         a, u, j, g.tyre_roll_stiffness_knm_per_rad, n0g * g.track_m / 2.0, lg * g.track_m / 2.0,
@@ -203,15 +211,16 @@ def build_systems(c: Combination, bank_percent: float, slope_percent: float, loa
         for i, cp in enumerate(c.couplings):
             towing, towed = i, i + 1
             v0, vg = st.coupling_kn[i], st.coupling_grade_kn[i]
-            v_static = road.n0 * v0 + road.grade * vg
             touched = False
             if towing in body:  # the towed unit's front presses on this unit at the coupling
                 lat[body[towing]] += v0 * cp.height_m
-                P[body[towing], body[towing]] += v_static * cp.height_m
+                Pn[body[towing], body[towing]] += v0 * cp.height_m
+                Pg[body[towing], body[towing]] += vg * cp.height_m
                 touched = True
             if towed in body:  # and this unit rests on it
                 lat[body[towed]] -= v0 * cp.height_m
-                P[body[towed], body[towed]] -= v_static * cp.height_m
+                Pn[body[towed], body[towed]] -= v0 * cp.height_m
+                Pg[body[towed], body[towed]] -= vg * cp.height_m
                 touched = True
             if touched:
                 coupl.append((i, v0, vg))
@@ -220,7 +229,8 @@ def build_systems(c: Combination, bank_percent: float, slope_percent: float, loa
                     DeadZone(body[towed], body[towing], cp.roll_stiffness_knm_per_rad, math.radians(cp.lash_deg),
                              "coupling", (i, -1))
                 )  # fmt: skip
-        out.append(System(members, n, body, axle, P, lat, off, weights, tyres, zones, coupl, road))
+        P = road.n0 * Pn + road.grade * Pg  # at rest; solve_unit moves it to the limit's normal factor
+        out.append(System(members, n, body, axle, P, lat, off, weights, tyres, zones, coupl, road, Pn, Pg))
     return out
 
 
@@ -428,6 +438,10 @@ class UnitSolution:
     limit: str
     watch: tuple[float, np.ndarray, Regime] | None  # (ay, z, regime) when the watched group reached the limit
 
+    @property
+    def srt(self) -> float:
+        return float(self.vertices[self.peak].z[self.system.n])
+
 
 def _state_at(s: System, rg: Regime, ay: float) -> np.ndarray:
     """The equilibrium roll angles of one regime at a given ay (its equations solved for q)."""
@@ -505,8 +519,7 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
     the state without lash, leaning outward) and the minimum polished in its regime."""
     n = s.n
     ay0 = s.road.neutral_ay
-    lashless = System(s.units, n, s.body, s.axle, s.P, s.lat, s.off, s.weights, s.tyres,
-                      [DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], s.couplings, s.road)  # fmt: skip
+    lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones])
     linear = Regime([LINEAR] * len(s.tyres), [BAND] * len(s.zones))
     q0 = _state_at(lashless, linear, ay0)
     if not any(z.lash > 0 for z in s.zones):
@@ -550,7 +563,32 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
 
 def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:
     """The stepped solution of one roll-coupled unit: from its state at rest with the load offsets (:func:`_start`),
-    ay up to the limit (the largest ay on the path, or a non-steer group at ``llt_limit`` < 1)."""
+    ay up to the limit (the largest ay on the path, or a non-steer group at ``llt_limit`` < 1).
+
+    On a bank the normal load grows with ay (``n(ay) = n0 + sin(b) ay``) and with it the P-Delta terms: each piece of
+    the path is solved with those terms at one normal factor, and that factor is brought to the limit's own (a fixed
+    point on the SRT, secant steps), so the state at the limit is the exact equilibrium there. The states before it
+    (the earlier lift-offs) carry the limit's factor: on a 10 % bank they are a few thousandths of a g off theirs."""
+    sol = _solve_unit_at(s, llt_limit, watch_tyre)
+    r = s.road
+    if r.n1 == 0.0:
+        return sol
+    a0, g0 = sol.srt, None
+    a1 = a0
+    for _ in range(30):
+        sol = _solve_unit_at(s.at_normal(r.n0 + r.n1 * a1), llt_limit, watch_tyre)
+        g1 = sol.srt - a1
+        if abs(g1) <= 1e-13:
+            return sol
+        if g0 is None or g1 == g0:
+            a0, g0, a1 = a1, g1, sol.srt
+        else:
+            a0, g0, a1 = a1, g1, a1 - g1 * (a1 - a0) / (g1 - g0)
+    raise ConvergenceError("the normal factor of the P-Delta terms did not settle at the limit")
+
+
+def _solve_unit_at(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:
+    """:func:`solve_unit` with the P-Delta terms at the system's own normal factor."""
     n = s.n
     z, rg = _start(s)
     if any(state != LINEAR for state in rg.tyre):

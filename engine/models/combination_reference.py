@@ -64,7 +64,7 @@ class _Equations:
     def residual(self, phi_body: np.ndarray, phi_axle: np.ndarray, ay: float) -> np.ndarray:
         c, st = self.c, self.st
         normal, lateral = self.factors(ay)
-        n_static = self.cb * self.cs
+        n_static = normal  # the P-Delta terms at this ay's normal factor
         body = dict(zip(self.members, phi_body, strict=True))
         axle = dict(zip(self.groups, phi_axle, strict=True))
         r_body = {u: 0.0 for u in self.members}

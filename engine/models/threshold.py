@@ -168,8 +168,26 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
     and a case whose array solve failed (for its exact error), are solved one at a time.
     """
     out: list[RolloverResult | RolloverError | None] = [None] * len(cases)
+    notes: dict[int, str] = {}
+    cases = list(cases)
+    views: dict[tuple, tuple[Case, str | None] | RolloverError] = {}
+    for i, case in enumerate(cases):  # a 3D case of a combination: its last unit's record, solved once per vehicle
+        if case.model == "3d" and isinstance(case.vehicle, Combination):
+            key = (case.vehicle, case.rear_llt_limit)
+            if key not in views:
+                try:
+                    views[key] = record_view(case.replace(road=type(case.road)(), load=type(case.load)()))
+                except RolloverError as exc:
+                    views[key] = exc
+            view = views[key]
+            if isinstance(view, RolloverError):
+                out[i] = view
+                continue
+            cases[i], notes[i] = case.replace(vehicle=view[0].vehicle), view[1]
     groups: dict[tuple, list[int]] = {}
     for i, case in enumerate(cases):
+        if out[i] is not None:
+            continue
         if case.model == "3d":
             groups.setdefault((case.vehicle, case.stage), []).append(i)
     model_3d = get_model("3d")
@@ -182,11 +200,14 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
             continue
         for i, result in zip(checked, solve_3d_many([cases[i] for i in checked]), strict=True):
             if result is not None:
+                if i in notes:
+                    result = replace(result, notes=[notes[i], *result.notes])
                 out[i] = _finished_or_error(cases[i], result)
     for i, case in enumerate(cases):
         if out[i] is None:
             try:
-                out[i] = rollover_threshold(case)
+                result = rollover_threshold(case)
+                out[i] = replace(result, notes=[notes[i], *result.notes]) if i in notes else result
             except RolloverError as exc:
                 out[i] = exc
     return out  # type: ignore[return-value]
@@ -264,10 +285,13 @@ def _suspect_rows(model, case: Case, col: Mapping[str, np.ndarray]) -> np.ndarra
         "overweight_percent": "overweight",
     }
     for axis, key in keys.items():
-        if key not in model.takes:
+        if key not in (model.combination_takes if isinstance(v, Combination) else model.takes):
             bad |= col[axis] != 0
-    if "rear_llt_limit" not in model.takes:
+    takes = model.combination_takes if isinstance(v, Combination) else model.takes
+    if "rear_llt_limit" not in takes:
         bad |= col["rear_llt_limit"] != 1.0
+    if isinstance(v, Combination):  # every row is checked by the combination model's own solve
+        return bad
     bad |= np.abs(col["lateral_offset_m"]) >= v.rear_track_m / 2.0
     bad |= v.cg_height_above_chassis_m + col["vertical_offset_m"] <= 0
     if v.wheelbase_m is not None and v.front_axle_to_cg_m is not None:
@@ -318,6 +342,8 @@ def evaluate_arrays(
     get_closure(chassis_closure)
     check_stage_and_limit(case)
     model.validate(case.vehicle)  # one vehicle for every row: a bad record is the caller's error, not a row's
+    if isinstance(case.vehicle, Combination) and model.solve_combination is None:
+        case, _note = record_view(case)  # a record model sees the combination's last unit, the same for every row
     n = len(next(iter(arrays.values()))) if arrays else 1
     col = _columns(case, n, arrays)
     srt, roll = np.full(n, np.nan), np.full(n, np.nan)

@@ -7,11 +7,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from engine.bracket import bracketed_limit
-from engine.case import Case, check_case
-from engine.domain import MAX_OVERWEIGHT_PERCENT, check
+from engine.case import Case
+from engine.domain import BOUNDS, MAX_OVERWEIGHT_PERCENT, check
 from engine.errors import InvalidInput, RolloverError
-from engine.models.registry import get_model
+from engine.models.registry import get_model, record_view
 from engine.models.threshold import rollover_threshold
+from engine.vehicle.combination import Combination
 from engine.vehicle.record import group_stiffness, static_axle_loads
 
 # -------------------------------------------------------------------------------- inverse limits
@@ -22,7 +23,10 @@ LIMIT_PARAMETERS = {
     "overweight_percent": ("max", "largest overweight [%]"),
     "lateral_offset_m": ("max", "largest lateral CG offset toward the outside of the turn d1 [m]"),
     "spring_separation_m": ("min", "smallest lateral separation between the springs b [m]"),
+    "vertical_offset_m": ("max", "largest vertical CG offset d3 (the load raised) [m]"),
 }
+#: the parameters that change a vehicle record's fields: a combination takes the load-case ones only
+RECORD_PARAMETERS = ("cg_height_above_chassis_m", "spring_separation_m")
 
 
 @dataclass(frozen=True)
@@ -38,7 +42,7 @@ class Limit:
 
 def with_parameter(case: Case, parameter: str, value: float) -> Case:
     """The case with one :data:`LIMIT_PARAMETERS` entry set to ``value`` (a vehicle field or a load input)."""
-    if parameter in ("cg_height_above_chassis_m", "spring_separation_m"):
+    if parameter in RECORD_PARAMETERS:
         return case.replace(vehicle=case.vehicle.replace(**{parameter: value}))
     return case.replace(load=replace(case.load, **{parameter: value}))
 
@@ -50,6 +54,14 @@ def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
     (both groups in 3D), with the groups' nominal static loads, as the validation applies it.
     """
     vehicle, load = case.vehicle, case.load
+    if parameter == "overweight_percent":
+        return -50.0, MAX_OVERWEIGHT_PERCENT
+    if parameter == "vertical_offset_m":
+        b = BOUNDS["vertical_offset_m"]
+        return max(b.minimum, _lowest_d3(case) + 0.01), b.maximum
+    if isinstance(vehicle, Combination):  # lateral offset: inside the narrowest track of the load-carrying units
+        half = min(g.track_m for u in vehicle.units if u.carries_load for g in u.groups) / 2
+        return -0.9 * half, 0.9 * half
     front_load, rear_load = static_axle_loads(vehicle)
     groups = [("rear", rear_load)]
     if get_model(case.model).front_group and vehicle.front_axles is not None and front_load > 0:
@@ -58,8 +70,6 @@ def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
         lo = max(0.05, -load.vertical_offset_m + 0.05)
         bound = min(group_stiffness(vehicle, g).roll_stiffness(vehicle.spring_separation_m) / w for g, w in groups)
         return lo, 0.98 * bound - load.vertical_offset_m
-    if parameter == "overweight_percent":
-        return -50.0, MAX_OVERWEIGHT_PERCENT
     if parameter == "lateral_offset_m":
         half = vehicle.rear_track_m / 2
         return -0.9 * half, 0.9 * half
@@ -68,6 +78,14 @@ def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
     l12 = vehicle.cg_height_above_chassis_m
     b_min = 1.02 * max(math.sqrt(2 * w * l12 / group_stiffness(vehicle, g).suspension_side_kn_per_m) for g, w in groups)
     return b_min, width * (1 - 1e-6) - 1e-6
+
+
+def _lowest_d3(case: Case) -> float:
+    """The lowest d3 that keeps the CG above the chassis (a record) or above the roll centres (a combination) [m]."""
+    v = case.vehicle
+    if isinstance(v, Combination):
+        return max(max(g.roll_centre_height_m for g in u.groups) - u.cg_height_m for u in v.units if u.carries_load)
+    return -v.cg_height_above_chassis_m
 
 
 def _margin(case: Case, parameter: str, target: float):
@@ -97,8 +115,15 @@ def parameter_limit(case: Case, target_srt_g: float, parameter: str, *, xtol: fl
     check("target_srt_g", target_srt_g)
     # errors that do not depend on the searched value (a model that needs a missing field, a road outside the
     # domain...) are the caller's: let them through as they are, before searching
-    get_model(case.model).validate(case.vehicle)
-    check_case(case.vehicle, case.road, case.trailer_angle_deg, case.load)
+    case, _note = record_view(case)  # a record model sees a combination's last unit
+    if isinstance(case.vehicle, Combination) and parameter in RECORD_PARAMETERS:
+        raise InvalidInput(
+            f"{parameter} is a field of a vehicle record; for a combination search overweight_percent, "
+            "lateral_offset_m or vertical_offset_m (they apply to its load-carrying units)",
+            field="parameter",
+            value=parameter,
+        )
+    get_model(case.model).check(case)
     kind = LIMIT_PARAMETERS[parameter][0]
     lo, hi = parameter_range(case, parameter)
     good, bad = (lo, hi) if kind == "max" else (hi, lo)

@@ -167,6 +167,8 @@ class RolloverResult:
             out["curves"] = self.curves.to_dict()
         if self.combination is not None:
             out["combination"] = self.combination.to_dict()
+        else:  # only the whole-combination model has it
+            del out["combination"]
         return out
 
 

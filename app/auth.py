@@ -19,8 +19,8 @@ from typing import Annotated
 from fastapi import Depends
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
-from .deps import SettingsDep
-from .settings import Settings
+from app.deps import SettingsDep
+from app.settings import Settings
 
 _DOMAIN = b"rollover-owner-v1\x00"
 

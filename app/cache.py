@@ -34,10 +34,9 @@ from typing import Any
 import orjson
 from cachetools import LRUCache
 
+from app.logs import get_logger
+from app.metrics import CACHE_REJECTED, REDIS_FAILURES
 from engine import ENGINE_VERSION
-
-from .logs import get_logger
-from .metrics import CACHE_REJECTED, REDIS_FAILURES
 
 REDIS_PREFIX = "rollover:"
 ENVELOPE_MAGIC = b"ROLLOVER1"

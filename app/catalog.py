@@ -42,17 +42,13 @@ from sqlalchemy.exc import OperationalError
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from engine.errors import InvalidVehicle, MissingParameter
-from engine.models import get_model
-from engine.vehicle import PRESETS, Vehicle
-
-from .auth import CatalogDisabled, NotAuthenticated
-from .db import Database, repo
-from .db import upgrade as upgrade_database
-from .logs import get_logger
-from .problems import _http_handler, problem_response
-from .schemas.builder import SpecRef, VehicleSpecIn
-from .schemas.catalog import (
+from app.auth import CatalogDisabled, NotAuthenticated
+from app.db import Database, repo
+from app.db import upgrade as upgrade_database
+from app.logs import get_logger
+from app.problems import _http_handler, problem_response
+from app.schemas.builder import SpecRef, VehicleSpecIn
+from app.schemas.catalog import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
     TITLE_MAX_LENGTH,
@@ -65,9 +61,12 @@ from .schemas.catalog import (
     SavedVehiclePage,
     VehicleWrite,
 )
-from .schemas.vehicles import VehicleRecord
-from .service_builder import build_spec
-from .settings import Settings
+from app.schemas.vehicles import VehicleRecord
+from app.service_builder import build_spec
+from app.settings import Settings
+from engine.errors import InvalidVehicle, MissingParameter
+from engine.models import get_model
+from engine.vehicle import PRESETS, Vehicle
 
 SAVED_VEHICLE_ID = re.compile(SAVED_VEHICLE_ID_PATTERN)
 FLEET_ID = re.compile(FLEET_ID_PATTERN)

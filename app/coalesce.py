@@ -23,11 +23,10 @@ import asyncio
 import time
 import weakref
 
+from app.metrics import SOLVE_BATCH_CASES, SOLVE_SECONDS
 from engine.case import Case
 from engine.models import rollover_thresholds
 from engine.results import RolloverResult
-
-from .metrics import SOLVE_BATCH_CASES, SOLVE_SECONDS
 
 #: loop turns without a new waiting solve before a flush: a request read in one turn reaches this point in the next
 QUIET_TURNS = 2

@@ -20,10 +20,9 @@ import numpy as np
 from fastapi.exceptions import RequestValidationError
 from pydantic import Field, TypeAdapter, ValidationError
 
+from app.alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
+from app.schemas.alignments import CurveIn
 from engine.domain import BOUNDS
-
-from .alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
-from .schemas.alignments import CurveIn
 
 _CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
 _REQUIRED = frozenset(("id", "radius_m"))  # the superelevation may be left out: it is then derived

@@ -22,9 +22,9 @@ from typing import Any
 from cachetools import LRUCache
 from starlette.concurrency import run_in_threadpool
 
-from . import cache as cache_module
-from .metrics import CACHE_LOOKUPS, FAST_PATH_HITS
-from .tables import WITH_GEOJSON, negotiate
+from app import cache as cache_module
+from app.metrics import CACHE_LOOKUPS, FAST_PATH_HITS
+from app.tables import WITH_GEOJSON, negotiate
 
 _FORM_KEYS = {"json": b"", "csv": b"csv", "geojson": b"geojson"}
 

@@ -18,7 +18,7 @@ import time
 from collections.abc import Awaitable, Callable, MutableMapping
 from typing import Any
 
-from .metrics import HTTP_REQUEST_SECONDS, HTTP_REQUESTS
+from app.metrics import HTTP_REQUEST_SECONDS, HTTP_REQUESTS
 
 Scope = MutableMapping[str, Any]
 Receive = Callable[[], Awaitable[MutableMapping[str, Any]]]

@@ -15,23 +15,22 @@ from fastapi_offline import FastAPIOffline
 from pydantic.json_schema import models_json_schema
 from starlette.concurrency import run_in_threadpool
 
+from app import solvers
+from app.bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
+from app.cache import make_cache
+from app.catalog import close_catalog, install_catalog_handlers, open_catalog
+from app.fastpath import FastPathMiddleware
+from app.httpmetrics import HttpMetricsMiddleware
+from app.jobs import api as jobs_api
+from app.logs import configure_logging, get_logger
+from app.metrics import JOBS_ACTIVE
+from app.netopts import set_nodelay_on_listening_sockets
+from app.problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
+from app.routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
+from app.routers.common import ANSWER_MODELS, READ_BY_ROUTE
+from app.routers.web import install_page
+from app.settings import Settings, get_settings
 from engine import ENGINE_VERSION
-
-from . import solvers
-from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
-from .cache import make_cache
-from .catalog import close_catalog, install_catalog_handlers, open_catalog
-from .fastpath import FastPathMiddleware
-from .httpmetrics import HttpMetricsMiddleware
-from .jobs import api as jobs_api
-from .logs import configure_logging, get_logger
-from .metrics import JOBS_ACTIVE
-from .netopts import set_nodelay_on_listening_sockets
-from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
-from .routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
-from .routers.common import ANSWER_MODELS, READ_BY_ROUTE
-from .routers.web import install_page
-from .settings import Settings, get_settings
 
 DESCRIPTION = """\
 Static rollover threshold (SRT) of heavy vehicles and the curve design that follows from it: the maximum speed on

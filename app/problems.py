@@ -35,6 +35,8 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
+from app.logs import get_logger
+from app.metrics import ENGINE_ERRORS
 from engine.errors import (
     ConvergenceError,
     InvalidInput,
@@ -45,9 +47,6 @@ from engine.errors import (
     MissingParameter,
     UnknownPreset,
 )
-
-from .logs import get_logger
-from .metrics import ENGINE_ERRORS
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
 TYPE_PREFIX = "urn:rollover:problem:"

@@ -18,20 +18,19 @@ import numpy as np
 import orjson
 from starlette.concurrency import run_in_threadpool
 
+from app.cache import ResultCache, cache_key
+from app.coalesce import COALESCER
+from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
+from app.schemas.srt import SrtInputs, SrtRequest, SrtResult
+from app.settings import Settings
+from app.tables import json_template
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase, Road
 from engine.models import rollover_threshold
 from engine.results import RolloverResult
 from engine.road import check_targets, max_curve_speed_kmh, min_radius, side_friction_factor, tilt_table_angle_deg
 from engine.vehicle import Vehicle, get_preset
-
-from .cache import ResultCache, cache_key
-from .coalesce import COALESCER
-from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
-from .schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
-from .schemas.srt import SrtInputs, SrtRequest, SrtResult
-from .settings import Settings
-from .tables import json_template
 
 
 @dataclass(frozen=True)

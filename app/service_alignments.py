@@ -26,6 +26,25 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
+from app import solvers
+from app.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from app.cache import ResultCache, cache_key
+from app.curves import curves_from_json
+from app.jsonpieces import loads_in_pieces
+from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.problems import InvalidAlignment, request_error
+from app.schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
+from app.service import (
+    Computed,
+    SavedRef,
+    resolve_targets,
+    resolve_vehicle,
+    target_checks_json_many,
+    target_checks_many,
+)
+from app.settings import Settings
+from app.tables import RawJson, Text, csv_line, csv_lines_of_columns, json_objects, target_columns, target_columns_of
+from app.vehicle_refs import resolve_vehicle_refs
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase
 from engine.errors import InvalidInput
@@ -38,26 +57,6 @@ from engine.road import (
     tilt_table_angle_deg,
 )
 from engine.vehicle import Vehicle
-
-from . import solvers
-from .alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
-from .cache import ResultCache, cache_key
-from .curves import curves_from_json
-from .jsonpieces import loads_in_pieces
-from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
-from .problems import InvalidAlignment, request_error
-from .schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
-from .service import (
-    Computed,
-    SavedRef,
-    resolve_targets,
-    resolve_vehicle,
-    target_checks_json_many,
-    target_checks_many,
-)
-from .settings import Settings
-from .tables import RawJson, Text, csv_line, csv_lines_of_columns, json_objects, target_columns, target_columns_of
-from .vehicle_refs import resolve_vehicle_refs
 
 #: answers with more rows than this are streamed (and cached by reference), never built whole
 STREAM_ROWS = 5_000

@@ -13,13 +13,8 @@ from typing import Any
 import orjson
 from starlette.concurrency import run_in_threadpool
 
-from engine import ENGINE_VERSION
-from engine.errors import InvalidInput
-from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
-from engine.vehicle.builder import BuiltVehicle, PayloadTable, VehicleSpec, build_vehicle, payload_table
-
-from .cache import ResultCache
-from .schemas.builder import (
+from app.cache import ResultCache
+from app.schemas.builder import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
@@ -28,8 +23,12 @@ from .schemas.builder import (
     SuspensionOut,
     TyreOut,
 )
-from .service import Computed, cached
-from .tables import Text, to_csv
+from app.service import Computed, cached
+from app.tables import Text, to_csv
+from engine import ENGINE_VERSION
+from engine.errors import InvalidInput
+from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
+from engine.vehicle.builder import BuiltVehicle, PayloadTable, VehicleSpec, build_vehicle, payload_table
 
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")
 

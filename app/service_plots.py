@@ -12,6 +12,11 @@ from collections.abc import Callable
 
 import numpy as np
 
+from app.cache import ResultCache
+from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
+from app.service import Computed, SavedRef, cached, resolve_case, solve, srt_key
+from app.settings import Settings
+from app.svg import Marker, Panel, Series, line_chart
 from engine.case import Case, Road
 from engine.errors import InvalidRoad
 from engine.results import RolloverResult
@@ -24,12 +29,6 @@ from engine.road import (
     side_friction_min_radius_m,
 )
 from engine.vehicle import Vehicle
-
-from .cache import ResultCache
-from .schemas.plots import MinRadiusPlotRequest, PlotRequest
-from .service import Computed, SavedRef, cached, resolve_case, solve, srt_key
-from .settings import Settings
-from .svg import Marker, Panel, Series, line_chart
 
 SVG_MEDIA_TYPE = "image/svg+xml"
 SVG_VERSION = 2  # 2: the caption names the design standard

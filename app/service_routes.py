@@ -22,19 +22,14 @@ import orjson
 from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
-from engine import ENGINE_VERSION
-from engine.errors import InvalidInput
-from engine.route import HorizontalCurve, find_curves, local_frame
-from engine.vehicle import Vehicle
-
-from .alignment_io import CurveTable
-from .cache import ResultCache
-from .problems import InvalidRoute, request_error
-from .route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
-from .schemas.alignments import MAX_ROWS
-from .schemas.routes import RouteCurves, RouteRequest, RouteResult
-from .service import Computed, cached, resolve_vehicle
-from .service_alignments import (
+from app.alignment_io import CurveTable
+from app.cache import ResultCache
+from app.problems import InvalidRoute, request_error
+from app.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
+from app.schemas.alignments import MAX_ROWS
+from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
+from app.service import Computed, cached, resolve_vehicle
+from app.service_alignments import (
     AlignmentAnswer,
     AlignmentJob,
     _rows,
@@ -45,8 +40,12 @@ from .service_alignments import (
     resolved_assessment,
     solve_alignment,
 )
-from .settings import Settings
-from .tables import GEOJSON_MEDIA_TYPE, Text, flatten_targets, to_csv
+from app.settings import Settings
+from app.tables import GEOJSON_MEDIA_TYPE, Text, flatten_targets, to_csv
+from engine import ENGINE_VERSION
+from engine.errors import InvalidInput
+from engine.route import HorizontalCurve, find_curves, local_frame
+from engine.vehicle import Vehicle
 
 #: the route's own columns in front of the alignment's in the CSV answer
 GEOMETRY_COLUMNS = (

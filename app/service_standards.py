@@ -6,6 +6,19 @@ from __future__ import annotations
 import numpy as np
 import orjson
 
+from app.cache import ResultCache
+from app.schemas.standards import (
+    DEFAULT_DESIGN_STANDARD,
+    TABLE_RADIUS_SPAN,
+    StandardList,
+    StandardOut,
+    SuperelevationRequest,
+    SuperelevationResult,
+    SuperelevationTableRequest,
+    SuperelevationTableResult,
+)
+from app.service import Computed, cached
+from app.tables import to_csv
 from engine.errors import InvalidRoad
 from engine.road import (
     FRICTION_BOUNDS,
@@ -16,20 +29,6 @@ from engine.road import (
     superelevation_percent,
     superelevation_table,
 )
-
-from .cache import ResultCache
-from .schemas.standards import (
-    DEFAULT_DESIGN_STANDARD,
-    TABLE_RADIUS_SPAN,
-    StandardList,
-    StandardOut,
-    SuperelevationRequest,
-    SuperelevationResult,
-    SuperelevationTableRequest,
-    SuperelevationTableResult,
-)
-from .service import Computed, cached
-from .tables import to_csv
 
 TABLE_COLUMNS = ("radius_m", "superelevation_percent", "side_friction")
 

@@ -20,22 +20,21 @@ import orjson
 from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
+from app import solvers
+from app.cache import ResultCache, cache_key
+from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
+from app.schemas.sweep import SweepRequest
+from app.service import Computed, cached, resolve_case, resolve_targets, srt_key, target_checks
+from app.service_alignments import CSV_TYPE, JSON_TYPE, Streamed
+from app.settings import Settings
+from app.tables import flatten_targets, target_columns, to_csv_chunks
 from engine import ENGINE_VERSION
 from engine.case import Case
 from engine.errors import InvalidInput, RolloverError
 from engine.models import SweepResult as EngineSweep
 from engine.models import sweep
 from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
-
-from . import solvers
-from .cache import ResultCache, cache_key
-from .metrics import CACHE_LOOKUPS, SOLVE_SECONDS
-from .schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
-from .schemas.sweep import SweepRequest
-from .service import Computed, cached, resolve_case, resolve_targets, srt_key, target_checks
-from .service_alignments import CSV_TYPE, JSON_TYPE, Streamed
-from .settings import Settings
-from .tables import flatten_targets, target_columns, to_csv_chunks
 
 
 def _srt_case(req, settings: Settings) -> dict[str, Any]:

@@ -23,15 +23,15 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
-from .bodylimit import body_limit
-from .problems import InvalidAlignment
-from .schemas.alignments import (
+from app.bodylimit import body_limit
+from app.problems import InvalidAlignment
+from app.schemas.alignments import (
     MAX_VEHICLES,
     AlignmentRequest,
     LandXmlIn,
 )
-from .schemas.common import describe
-from .schemas.srt import LoadIn
+from app.schemas.common import describe
+from app.schemas.srt import LoadIn
 
 OPTIONS = (
     "model",

@@ -24,14 +24,13 @@ from fastapi.security import HTTPAuthorizationCredentials
 from fastapi.security.utils import get_authorization_scheme_param
 from pydantic import BaseModel
 
+from app import catalog
+from app.auth import authenticate
+from app.schemas.builder import SpecRef
+from app.service import SavedRef
+from app.service_builder import build_spec
+from app.settings import Settings
 from engine.vehicle import Vehicle
-
-from . import catalog
-from .auth import authenticate
-from .schemas.builder import SpecRef
-from .service import SavedRef
-from .service_builder import build_spec
-from .settings import Settings
 
 
 def _credentials(request: Request) -> HTTPAuthorizationCredentials | None:

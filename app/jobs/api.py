@@ -22,24 +22,23 @@ from fastapi.security.utils import get_authorization_scheme_param
 from pydantic import ConfigDict, Field, RootModel, ValidationError, create_model
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
+from app.auth import authenticate
+from app.bodylimit import body_limit
+from app.deps import SettingsDep
+from app.jobs.backends import Backend
+from app.jobs.base import Operation, ResolveContext
+from app.jobs.kv import StorageFull
+from app.jobs.operations import OPERATIONS
+from app.jobs.store import JobNotFound, JobView, problem
+from app.jsonpieces import loads_in_pieces
+from app.logs import get_logger
+from app.problems import InvalidAlignment, Problem, engine_field, error_responses, problem_response
+from app.routers.common import json_body
+from app.schemas.common import InputModel, OutputModel, describe
+from app.service_alignments import CSV_TYPE, JSON_TYPE
+from app.settings import Settings
+from app.tables import wants_csv
 from engine.errors import InvalidInput
-
-from ..auth import authenticate
-from ..bodylimit import body_limit
-from ..deps import SettingsDep
-from ..jsonpieces import loads_in_pieces
-from ..logs import get_logger
-from ..problems import InvalidAlignment, Problem, engine_field, error_responses, problem_response
-from ..routers.common import json_body
-from ..schemas.common import InputModel, OutputModel, describe
-from ..service_alignments import CSV_TYPE, JSON_TYPE
-from ..settings import Settings
-from ..tables import wants_csv
-from .backends import Backend
-from .base import Operation, ResolveContext
-from .kv import StorageFull
-from .operations import OPERATIONS
-from .store import JobNotFound, JobView, problem
 
 #: a job's request body: 1,000,000 curves as JSON are about 100 MB; a LandXML document of 200 M characters [bytes]
 JOBS_BODY_LIMIT = 256 * 2**20
@@ -481,6 +480,6 @@ async def cancel(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
 
 
 def open_jobs(settings: Settings) -> Backend:
-    from .backends import make_backend
+    from app.jobs.backends import make_backend
 
     return make_backend(settings)

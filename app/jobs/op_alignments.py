@@ -22,13 +22,11 @@ from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
-from engine.road import solve_bank_grade_pairs
-from engine.vehicle import Vehicle
-
-from .. import solvers
-from ..alignment_io import CurveTable
-from ..cache import cache_key
-from ..schemas.alignments import (
+from app import solvers
+from app.alignment_io import CurveTable
+from app.cache import cache_key
+from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.schemas.alignments import (
     AlignmentRequest,
     CurveId,
     CurveIn,
@@ -36,8 +34,8 @@ from ..schemas.alignments import (
     LandXmlIn,
     keys_match_the_id_pattern,
 )
-from ..schemas.common import ABSENT, describe
-from ..service_alignments import (
+from app.schemas.common import ABSENT, describe
+from app.service_alignments import (
     JSON_VEHICLE_END,
     AlignmentJob,
     check_alignment,
@@ -55,8 +53,9 @@ from ..service_alignments import (
     summary,
     validate_request_data,
 )
-from ..settings import Settings
-from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.settings import Settings
+from engine.road import solve_bank_grade_pairs
+from engine.vehicle import Vehicle
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
 MAX_JOB_CURVES = 1_000_000

@@ -16,11 +16,11 @@ from typing import Any
 import orjson
 from starlette.requests import Request
 
-from ..cache import cache_key
-from ..schemas.routes import RouteRequest
-from ..service_routes import read_route, render_route, resolve_route_refs, resolved_route, route_refs
-from ..settings import Settings
-from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.cache import cache_key
+from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.schemas.routes import RouteRequest
+from app.service_routes import read_route, render_route, resolve_route_refs, resolved_route, route_refs
+from app.settings import Settings
 
 
 def parse(data: Any) -> RouteRequest:

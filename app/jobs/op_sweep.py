@@ -19,13 +19,13 @@ import orjson
 from pydantic import Field, model_validator
 from starlette.requests import Request
 
-from ..cache import cache_key
-from ..schemas.common import describe, shape_error
-from ..schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
-from ..service_tools import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
-from ..settings import Settings
-from ..vehicle_refs import resolve_vehicle_refs
-from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.cache import cache_key
+from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.schemas.common import describe, shape_error
+from app.schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
+from app.service_tools import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
+from app.settings import Settings
+from app.vehicle_refs import resolve_vehicle_refs
 
 #: a job's limit (the synchronous request's: 20,000 cases)
 MAX_JOB_CASES = 1_000_000

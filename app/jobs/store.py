@@ -38,10 +38,10 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from ..cache import seal, unseal
-from ..logs import get_logger
-from ..metrics import JOB_PART_RETRIES, JOBS
-from .kv import KV, PREFIX
+from app.cache import seal, unseal
+from app.jobs.kv import KV, PREFIX
+from app.logs import get_logger
+from app.metrics import JOB_PART_RETRIES, JOBS
 
 JOB_ID_PREFIX = "job_"
 RECORD_TYPE = "application/vnd.rollover.job+json"

@@ -8,10 +8,11 @@ from fastapi import APIRouter, Query, Request, Response
 from fastapi.responses import StreamingResponse
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
-from ..bodylimit import body_limit
-from ..deps import CacheDep, SettingsDep
-from ..problems import VEHICLE_REF_CODES
-from ..schemas.alignments import (
+from app.bodylimit import body_limit
+from app.deps import CacheDep, SettingsDep
+from app.problems import VEHICLE_REF_CODES
+from app.routers.common import computed_response, json_body, table_responses
+from app.schemas.alignments import (
     ALIGNMENT_CSV_EXAMPLE,
     ALIGNMENT_JSON_LIMIT,
     ALIGNMENT_LANDXML_EXAMPLE,
@@ -20,11 +21,10 @@ from ..schemas.alignments import (
     AlignmentRequest,
     AlignmentResult,
 )
-from ..service import Computed
-from ..service_alignments import Streamed, compute_alignment, parse_json_request
-from ..tables import wants_csv
-from ..uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload, upload_body
-from .common import computed_response, json_body, table_responses
+from app.service import Computed
+from app.service_alignments import Streamed, compute_alignment, parse_json_request
+from app.tables import wants_csv
+from app.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload, upload_body
 
 router = APIRouter(prefix="/v1/alignments", tags=["alignments"])
 

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Request, Response
 
-from ..deps import CacheDep
-from ..problems import error_responses
-from ..schemas.builder import (
+from app.deps import CacheDep
+from app.problems import error_responses
+from app.routers.common import computed_response, computed_responses, json_response, table_responses
+from app.schemas.builder import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
@@ -15,9 +16,8 @@ from ..schemas.builder import (
     SuspensionOut,
     TyreOut,
 )
-from ..service_builder import component_library, compute_build, compute_payload_table
-from ..tables import wants_csv
-from .common import computed_response, computed_responses, json_response, table_responses
+from app.service_builder import component_library, compute_build, compute_payload_table
+from app.tables import wants_csv
 
 router = APIRouter(prefix="/v1", tags=["builder"])
 

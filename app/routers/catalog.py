@@ -14,11 +14,11 @@ from fastapi import APIRouter, Depends, Header, Path, Query, Request, Response
 from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from .. import catalog
-from ..auth import BearerDep, OwnerDep, authenticate
-from ..deps import SettingsDep
-from ..problems import Problem
-from ..schemas.catalog import (
+from app import catalog
+from app.auth import BearerDep, OwnerDep, authenticate
+from app.deps import SettingsDep
+from app.problems import Problem
+from app.schemas.catalog import (
     EXAMPLE_FLEET_ID,
     EXAMPLE_VEHICLE_ID,
     FLEET_ID_PATTERN,

@@ -7,11 +7,10 @@ import os
 from fastapi import APIRouter, Response
 from prometheus_client import CONTENT_TYPE_LATEST, REGISTRY, CollectorRegistry, generate_latest
 
+from app.deps import CacheDep
+from app.problems import error_responses
+from app.schemas.meta import Health
 from engine import ENGINE_VERSION
-
-from ..deps import CacheDep
-from ..problems import error_responses
-from ..schemas.meta import Health
 
 router = APIRouter(tags=["health"])
 

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from fastapi import APIRouter
 
+from app.problems import error_responses
+from app.schemas.meta import ModelInfoOut
 from engine.models import MODELS
-
-from ..problems import error_responses
-from ..schemas.meta import ModelInfoOut
 
 router = APIRouter(prefix="/v1/models", tags=["models"])
 

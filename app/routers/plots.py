@@ -6,12 +6,12 @@ from typing import Any
 
 from fastapi import APIRouter, Request, Response
 
-from ..deps import CacheDep, SettingsDep
-from ..problems import VEHICLE_REF_CODES, error_responses
-from ..schemas.plots import MinRadiusPlotRequest, PlotRequest
-from ..service_plots import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
-from ..vehicle_refs import resolve_vehicle_refs
-from .common import CACHE_HEADERS, computed_response
+from app.deps import CacheDep, SettingsDep
+from app.problems import VEHICLE_REF_CODES, error_responses
+from app.routers.common import CACHE_HEADERS, computed_response
+from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
+from app.service_plots import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
+from app.vehicle_refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1/plots", tags=["plots"])
 

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Request, Response
 
-from ..deps import CacheDep, SettingsDep
-from ..problems import VEHICLE_REF_CODES
-from ..schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
-from ..service import compute_curve_speed, compute_min_radius
-from ..vehicle_refs import resolve_vehicle_refs
-from .common import computed_responses, json_response
+from app.deps import CacheDep, SettingsDep
+from app.problems import VEHICLE_REF_CODES
+from app.routers.common import computed_responses, json_response
+from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
+from app.service import compute_curve_speed, compute_min_radius
+from app.vehicle_refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1", tags=["road"])
 

@@ -8,13 +8,13 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
-from ..bodylimit import body_limit
-from ..deps import CacheDep, SettingsDep
-from ..problems import VEHICLE_REF_CODES
-from ..schemas.routes import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
-from ..service_routes import assess_route
-from ..tables import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
-from .common import ANSWER_MODELS, computed_response, json_body, table_responses
+from app.bodylimit import body_limit
+from app.deps import CacheDep, SettingsDep
+from app.problems import VEHICLE_REF_CODES
+from app.routers.common import ANSWER_MODELS, computed_response, json_body, table_responses
+from app.schemas.routes import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
+from app.service_routes import assess_route
+from app.tables import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
 

@@ -4,18 +4,18 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Request, Response
 
-from ..bodylimit import body_limit
-from ..deps import CacheDep, SettingsDep
-from ..problems import VEHICLE_REF_CODES
-from ..schemas.limits import LimitsRequest, LimitsResult
-from ..schemas.srt import SrtRequest, SrtResult
-from ..schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
-from ..service import compute_srt
-from ..service_tools import compute_limits, compute_sweep
-from ..tables import wants_csv
-from ..vehicle_refs import resolve_vehicle_refs
-from .alignments import answer as table_answer
-from .common import computed_response, computed_responses, json_response, table_responses
+from app.bodylimit import body_limit
+from app.deps import CacheDep, SettingsDep
+from app.problems import VEHICLE_REF_CODES
+from app.routers.alignments import answer as table_answer
+from app.routers.common import computed_response, computed_responses, json_response, table_responses
+from app.schemas.limits import LimitsRequest, LimitsResult
+from app.schemas.srt import SrtRequest, SrtResult
+from app.schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
+from app.service import compute_srt
+from app.service_tools import compute_limits, compute_sweep
+from app.tables import wants_csv
+from app.vehicle_refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1", tags=["srt"])
 

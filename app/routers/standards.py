@@ -6,11 +6,10 @@ from typing import Annotated
 
 from fastapi import APIRouter, Path, Request, Response
 
-from engine.road import STANDARDS
-
-from ..deps import CacheDep
-from ..problems import error_responses, problem_response
-from ..schemas.standards import (
+from app.deps import CacheDep
+from app.problems import error_responses, problem_response
+from app.routers.common import computed_response, computed_responses, json_response, table_responses
+from app.schemas.standards import (
     StandardList,
     StandardOut,
     SuperelevationRequest,
@@ -18,9 +17,9 @@ from ..schemas.standards import (
     SuperelevationTableRequest,
     SuperelevationTableResult,
 )
-from ..service_standards import compute_superelevation, compute_superelevation_table, get_standard_out, list_standards
-from ..tables import wants_csv
-from .common import computed_response, computed_responses, json_response, table_responses
+from app.service_standards import compute_superelevation, compute_superelevation_table, get_standard_out, list_standards
+from app.tables import wants_csv
+from engine.road import STANDARDS
 
 router = APIRouter(prefix="/v1", tags=["standards"])
 

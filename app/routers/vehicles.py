@@ -8,16 +8,15 @@ from typing import Annotated
 
 from fastapi import APIRouter, Path, Request, Response
 
+from app import catalog
+from app.auth import BearerDep, authenticate
+from app.deps import SettingsDep
+from app.problems import Problem, error_responses
+from app.routers.catalog import problem_responses
+from app.schemas.catalog import SavedVehicle
+from app.schemas.vehicles import VehiclePreset
 from engine.models import supported_models
 from engine.vehicle import PRESET_INFO, PRESETS, get_preset
-
-from .. import catalog
-from ..auth import BearerDep, authenticate
-from ..deps import SettingsDep
-from ..problems import Problem, error_responses
-from ..schemas.catalog import SavedVehicle
-from ..schemas.vehicles import VehiclePreset
-from .catalog import problem_responses
 
 router = APIRouter(prefix="/v1/vehicles", tags=["vehicles"])
 

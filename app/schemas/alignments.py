@@ -7,10 +7,19 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from ..alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
-from .catalog import FLEET_ID_PATTERN
-from .common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, exactly_one_schema, shape_error
-from .srt import (
+from app.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
+from app.schemas.catalog import FLEET_ID_PATTERN
+from app.schemas.common import (
+    ABSENT,
+    EXAMPLE_PRESET,
+    InputModel,
+    OutputModel,
+    bounded,
+    describe,
+    exactly_one_schema,
+    shape_error,
+)
+from app.schemas.srt import (
     TARGETS_OUT,
     TILT_OUT,
     VEHICLE_DESCRIPTION,
@@ -19,7 +28,7 @@ from .srt import (
     TargetCheckOut,
     VehicleRef,
 )
-from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 MAX_VEHICLES = 10
 #: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)

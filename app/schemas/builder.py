@@ -17,10 +17,9 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, create_model
 
+from app.schemas.common import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
 from engine.vehicle import builder as eb
-
-from .common import InputModel, OutputModel, describe, json_int
 
 #: thesis symbols a spec field's description may start with ("kLs, vertical rate ...")
 _SYMBOLS = {d.symbol for d in FIELD_DOCS.values()} | {"kLs", "kT", "lr", "ls", "b", "kf", "lf", "b1", "k_theta"}

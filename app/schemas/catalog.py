@@ -8,11 +8,10 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
+from app.schemas.builder import SpecRef
+from app.schemas.common import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from app.schemas.vehicles import VehiclePreset, VehicleRecord
 from engine.vehicle import Vehicle
-
-from .builder import SpecRef
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, describe
-from .vehicles import VehiclePreset, VehicleRecord
 
 #: a saved vehicle's id: ``veh_`` + 22 url-safe base64 characters (128 random bits); a fleet's: ``flt_`` + 22
 SAVED_VEHICLE_ID_PATTERN = r"^veh_[A-Za-z0-9_-]{22}$"

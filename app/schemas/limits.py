@@ -6,10 +6,9 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.schemas.common import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
+from app.schemas.srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.road import LIMIT_PARAMETERS
-
-from .common import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
-from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 
 # "cg_height_above_chassis_m", "overweight_percent", "lateral_offset_m", "spring_separation_m"
 LimitParameter = Literal[tuple(LIMIT_PARAMETERS)]  # type: ignore[valid-type]

@@ -6,13 +6,12 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.schemas.common import ABSENT, EXAMPLE_PRESET, bounded, describe, json_int, shape_error
+from app.schemas.srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
+from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 from engine.road import get_standard
-
-from .common import ABSENT, EXAMPLE_PRESET, bounded, describe, json_int, shape_error
-from .srt import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
-from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 #: the models with curves against ay/g
 CurveModelId = Literal[tuple(m.id for m in MODELS.values() if m.curves)]  # type: ignore[valid-type]

@@ -6,11 +6,10 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.schemas.common import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
+from app.schemas.srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
+from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from engine.road import FRICTION_BOUNDS, STANDARDS
-
-from .common import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
-from .srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
-from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
 #: either a given SRT (and none of the SRT request fields) or a vehicle (the SRT is computed), never both

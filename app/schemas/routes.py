@@ -7,12 +7,21 @@ from typing import Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from ..route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
-from .alignments import MAX_VEHICLES, CurveRow, VehicleAssessment
-from .catalog import FLEET_ID_PATTERN
-from .common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, exactly_one_schema, shape_error
-from .srt import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
-from .standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
+from app.schemas.alignments import MAX_VEHICLES, CurveRow, VehicleAssessment
+from app.schemas.catalog import FLEET_ID_PATTERN
+from app.schemas.common import (
+    ABSENT,
+    EXAMPLE_PRESET,
+    InputModel,
+    OutputModel,
+    bounded,
+    describe,
+    exactly_one_schema,
+    shape_error,
+)
+from app.schemas.srt import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
+from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 #: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX
 ROUTE_BODY_LIMIT = 32 * 2**20

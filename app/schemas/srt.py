@@ -6,12 +6,11 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, WithJsonSchema
 
+from app.schemas.builder import SpecRef
+from app.schemas.common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
+from app.schemas.vehicles import VehicleRecord
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
-
-from .builder import SpecRef
-from .common import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
-from .vehicles import VehicleRecord
 
 # "3d", "2d", "rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin"
 ModelId = Literal[tuple(MODELS)]  # type: ignore[valid-type]

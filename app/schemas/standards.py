@@ -7,10 +7,18 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.schemas.common import (
+    ABSENT,
+    InputModel,
+    OutputModel,
+    bounded,
+    describe,
+    json_int,
+    not_together_schema,
+    shape_error,
+)
 from engine.domain import BOUNDS
 from engine.road import DEFAULT_DESIGN_STANDARD, FRICTION_BOUNDS, STANDARDS
-
-from .common import ABSENT, InputModel, OutputModel, bounded, describe, json_int, not_together_schema, shape_error
 
 __all__ = [
     "DEFAULT_DESIGN_STANDARD",

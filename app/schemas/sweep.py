@@ -7,10 +7,9 @@ from typing import Annotated, Any
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.schemas.common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
+from app.schemas.srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.domain import BOUNDS
-
-from .common import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
-from .srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 
 MAX_AXIS_VALUES = 200
 MAX_CASES = 20_000

@@ -12,9 +12,8 @@ from typing import Annotated, Any
 
 from pydantic import Field, create_model
 
+from app.schemas.common import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, FieldDoc
-
-from .common import InputModel, OutputModel, describe, json_int
 
 #: preset metadata that GET /v1/vehicles/{id} adds to a record (accepted and ignored in a posted record)
 METADATA_FIELDS = ("id", "title", "source", "models")

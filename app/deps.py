@@ -10,7 +10,7 @@ from typing import Annotated
 
 from fastapi import Depends, Request
 
-from app.cache import ResultCache
+from app.compute.cache import ResultCache
 from app.settings import Settings
 
 

@@ -22,7 +22,7 @@ from typing import Any
 from cachetools import LRUCache
 from starlette.concurrency import run_in_threadpool
 
-from app import cache as cache_module
+from app.compute import cache as cache_module
 from app.metrics import CACHE_LOOKUPS, FAST_PATH_HITS
 from app.tables import WITH_GEOJSON, negotiate
 

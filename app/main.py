@@ -15,10 +15,10 @@ from fastapi_offline import FastAPIOffline
 from pydantic.json_schema import models_json_schema
 from starlette.concurrency import run_in_threadpool
 
-from app import solvers
 from app.bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
-from app.cache import make_cache
 from app.catalog import close_catalog, install_catalog_handlers, open_catalog
+from app.compute import solvers
+from app.compute.cache import make_cache
 from app.fastpath import FastPathMiddleware
 from app.httpmetrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api

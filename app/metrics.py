@@ -26,7 +26,7 @@ SOLVE_SECONDS = Histogram(
 )
 SOLVE_BATCH_CASES = Histogram(
     "rollover_solve_batch_cases",
-    "One-threshold solves handed to the engine together (app.coalesce): cases per engine call [-].",
+    "One-threshold solves handed to the engine together (app.compute.coalescer): cases per engine call [-].",
     buckets=(1, 2, 4, 8, 16, 32, 64),
 )
 CACHE_LOOKUPS = Counter(

@@ -10,7 +10,6 @@ parses another endpoint's cached bytes.
 from __future__ import annotations
 
 import time
-from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -18,9 +17,10 @@ import numpy as np
 import orjson
 from starlette.concurrency import run_in_threadpool
 
-from app.cache import ResultCache, cache_key
-from app.coalesce import COALESCER
-from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.compute.cache import ResultCache, cache_key
+from app.compute.coalescer import COALESCER
+from app.compute.results import Computed, cached
+from app.metrics import SOLVE_SECONDS
 from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.schemas.srt import SrtInputs, SrtRequest, SrtResult
 from app.settings import Settings
@@ -31,21 +31,6 @@ from engine.models import rollover_threshold
 from engine.results import RolloverResult
 from engine.road import check_targets, max_curve_speed_kmh, min_radius, side_friction_factor, tilt_table_angle_deg
 from engine.vehicle import Vehicle, get_preset
-
-
-@dataclass(frozen=True)
-class Computed:
-    """A response body with its cache key, whether it came from the cache, and its media type."""
-
-    body: bytes
-    key: str
-    hit: bool
-    media_type: str = "application/json"
-
-    @property
-    def etag(self) -> str:
-        return f'"{self.key}"'
-
 
 # ------------------------------------------------------------------------------------- resolution
 
@@ -155,7 +140,7 @@ async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = No
     key = cache_key("engine-result", {**case.to_dict(), "curve_points": curve_points})
     result = cache.objects.get(key)
     if result is None:
-        if curve_points is None:  # one threshold, on the event loop with the others waiting now (app.coalesce)
+        if curve_points is None:  # one threshold, on the event loop with the others waiting now (app.compute.coalescer)
             result = await COALESCER.threshold(case)
         else:  # the curves are tens of solves: not on the event loop
             started = time.perf_counter()
@@ -172,46 +157,6 @@ def srt_result(result: RolloverResult, targets: dict[str, float]) -> SrtResult:
     data["targets"] = target_checks(result.srt, targets)
     data["engine_version"] = ENGINE_VERSION
     return SrtResult.model_validate(data)
-
-
-async def _lookup(cache: ResultCache, operation: str, key: str) -> bytes | None:
-    lookup = await cache.get(key)
-    CACHE_LOOKUPS.labels(operation, lookup.tier or "miss").inc()
-    return lookup.value
-
-
-async def cached(
-    cache: ResultCache,
-    operation: str,
-    resolved: dict[str, Any],
-    produce: Callable[[], Awaitable[bytes]],
-    media_type: str = "application/json",
-) -> Computed:
-    """The body for ``resolved`` from the cache, or from ``produce()`` (then stored under the same key)."""
-    key = cache_key(operation, resolved)
-    body = await _lookup(cache, operation, key)
-    if body is not None:
-        return Computed(body, key, True, media_type)
-    body = await produce()
-    await cache.set(key, body, media_type)
-    return Computed(body, key, False, media_type)
-
-
-async def cached_csv(
-    cache: ResultCache,
-    operation: str,
-    resolved: dict[str, Any],
-    json_body: Callable[[], Awaitable[Computed]],
-    render: Callable[[bytes], bytes],
-) -> Computed:
-    """The CSV form of a JSON answer, cached under its own key (``<operation>-csv``: its own ETag), rendered from
-    the JSON body (itself from the cache or computed) on a miss."""
-
-    async def produce() -> bytes:
-        body = (await json_body()).body
-        return await run_in_threadpool(render, body)  # 100,000 rows take a while: not on the event loop
-
-    return await cached(cache, f"{operation}-csv", resolved, produce, "text/csv; charset=utf-8")
 
 
 async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -> Computed:

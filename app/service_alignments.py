@@ -26,16 +26,16 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
-from app import solvers
 from app.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
-from app.cache import ResultCache, cache_key
+from app.compute import solvers
+from app.compute.cache import ResultCache, cache_key
+from app.compute.results import Computed, Streamed
 from app.curves import curves_from_json
 from app.jsonpieces import loads_in_pieces
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.problems import InvalidAlignment, request_error
 from app.schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from app.service import (
-    Computed,
     SavedRef,
     resolve_targets,
     resolve_vehicle,
@@ -337,7 +337,7 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
 def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
     :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved); the blocks of the
-    pairs' solve and of the side-friction speeds run on the solver threads (:mod:`app.solvers`)."""
+    pairs' solve and of the side-friction speeds run on the solver threads (:mod:`app.compute.solvers`)."""
     started = time.perf_counter()
     vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
     answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
@@ -565,20 +565,6 @@ def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:
 
 
 # ---------------------------------------------------------------------------------------- the flow
-
-
-@dataclass(frozen=True)
-class Streamed:
-    """A large answer: its chunks, the key it would have, and its media type (sent as a streamed response)."""
-
-    chunks: Iterator[bytes]
-    key: str
-    hit: bool
-    media_type: str
-
-    @property
-    def etag(self) -> str:
-        return f'"{self.key}"'
 
 
 JSON_TYPE, CSV_TYPE = "application/json", "text/csv; charset=utf-8"

@@ -13,7 +13,8 @@ from typing import Any
 import orjson
 from starlette.concurrency import run_in_threadpool
 
-from app.cache import ResultCache
+from app.compute.cache import ResultCache
+from app.compute.results import Computed, cached
 from app.schemas.builder import (
     BuildRequest,
     BuildResult,
@@ -23,7 +24,6 @@ from app.schemas.builder import (
     SuspensionOut,
     TyreOut,
 )
-from app.service import Computed, cached
 from app.tables import Text, to_csv
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput

@@ -12,9 +12,10 @@ from collections.abc import Callable
 
 import numpy as np
 
-from app.cache import ResultCache
+from app.compute.cache import ResultCache
+from app.compute.results import Computed, cached
 from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
-from app.service import Computed, SavedRef, cached, resolve_case, solve, srt_key
+from app.service import SavedRef, resolve_case, solve, srt_key
 from app.settings import Settings
 from app.svg import Marker, Panel, Series, line_chart
 from engine.case import Case, Road

@@ -23,12 +23,13 @@ from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
 from app.alignment_io import CurveTable
-from app.cache import ResultCache
+from app.compute.cache import ResultCache
+from app.compute.results import Computed, cached
 from app.problems import InvalidRoute, request_error
 from app.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
 from app.schemas.alignments import MAX_ROWS
 from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
-from app.service import Computed, cached, resolve_vehicle
+from app.service import resolve_vehicle
 from app.service_alignments import (
     AlignmentAnswer,
     AlignmentJob,

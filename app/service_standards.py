@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 import orjson
 
-from app.cache import ResultCache
+from app.compute.cache import ResultCache
+from app.compute.results import Computed, cached
 from app.schemas.standards import (
     DEFAULT_DESIGN_STANDARD,
     TABLE_RADIUS_SPAN,
@@ -17,7 +18,6 @@ from app.schemas.standards import (
     SuperelevationTableRequest,
     SuperelevationTableResult,
 )
-from app.service import Computed, cached
 from app.tables import to_csv
 from engine.errors import InvalidRoad
 from engine.road import (

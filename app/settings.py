@@ -13,7 +13,7 @@ from typing import Literal
 from pydantic import Field, SecretStr, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-from app.solvers import default_threads
+from app.compute.solvers import default_threads
 from engine.road import DEFAULT_TARGETS
 
 #: shortest bearer key accepted in ROLLOVER_API_KEYS [characters]

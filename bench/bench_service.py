@@ -382,7 +382,7 @@ def measure_uncached(args) -> None:
     row(
         "uncached POST /v1/srt (each request a new bank angle; every X-Cache checked: miss), 1 worker, "
         "httptools/uvloop, wrk -t2 -c32",
-        f"{fmt(crowd)}; {crowd_batch:.1f} cases per engine call (app.coalesce)",
+        f"{fmt(crowd)}; {crowd_batch:.1f} cases per engine call (app.compute.coalescer)",
         f"engine alone, one case at a time, in process: {rate:,.0f} solves/s",
         f"{crowd.rps / rate:.0%} of the engine; >= 500 req/s: {verdict(crowd.rps >= 500)}",
         BEFORE["uncached"],

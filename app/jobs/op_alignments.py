@@ -22,9 +22,9 @@ from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
-from app import solvers
 from app.alignment_io import CurveTable
-from app.cache import cache_key
+from app.compute import solvers
+from app.compute.cache import cache_key
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.schemas.alignments import (
     AlignmentRequest,

@@ -16,7 +16,7 @@ from typing import Any
 import orjson
 from starlette.requests import Request
 
-from app.cache import cache_key
+from app.compute.cache import cache_key
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.schemas.routes import RouteRequest
 from app.service_routes import read_route, render_route, resolve_route_refs, resolved_route, route_refs

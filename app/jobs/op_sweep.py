@@ -19,7 +19,7 @@ import orjson
 from pydantic import Field, model_validator
 from starlette.requests import Request
 
-from app.cache import cache_key
+from app.compute.cache import cache_key
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.schemas.common import describe, shape_error
 from app.schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest

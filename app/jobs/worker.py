@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 import logging
 
-from app import solvers
+from app.compute import solvers
 from app.jobs.backends import RedisBackend
 from app.jobs.runner import run_part
 from app.logs import configure_logging, get_logger

@@ -9,6 +9,7 @@ from fastapi.responses import StreamingResponse
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from app.bodylimit import body_limit
+from app.compute.results import Computed, Streamed
 from app.deps import CacheDep, SettingsDep
 from app.problems import VEHICLE_REF_CODES
 from app.routers.common import computed_response, json_body, table_responses
@@ -21,8 +22,7 @@ from app.schemas.alignments import (
     AlignmentRequest,
     AlignmentResult,
 )
-from app.service import Computed
-from app.service_alignments import Streamed, compute_alignment, parse_json_request
+from app.service_alignments import compute_alignment, parse_json_request
 from app.tables import wants_csv
 from app.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload, upload_body
 

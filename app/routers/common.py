@@ -6,8 +6,8 @@ from typing import Any
 
 from fastapi import Response
 
+from app.compute.results import Computed
 from app.problems import error_responses
-from app.service import Computed
 
 CACHE_HEADERS: dict[str, Any] = {
     "ETag": {

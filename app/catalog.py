@@ -45,8 +45,8 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from app.auth import CatalogDisabled, NotAuthenticated
 from app.db import Database, repo
 from app.db import upgrade as upgrade_database
+from app.http.problems import http_handler, problem_response
 from app.logs import get_logger
-from app.problems import _http_handler, problem_response
 from app.schemas.builder import SpecRef, VehicleSpecIn
 from app.schemas.catalog import (
     FLEET_ID_PATTERN,
@@ -275,11 +275,11 @@ async def _http_handler_with_full_allow(request: Request, exc: StarletteHTTPExce
         allowed = documented_methods(request.app, request.url.path)
         if allowed:
             exc.headers = {**(exc.headers or {}), "Allow": ", ".join(sorted(allowed))}
-    return await _http_handler(request, exc)
+    return await http_handler(request, exc)
 
 
 def install_catalog_handlers(app: FastAPI) -> None:
-    """Map the catalog's errors to problem details (call after :func:`app.problems.install_problem_handlers`)."""
+    """Map the catalog's errors to problem details (call after :func:`app.http.problems.install_problem_handlers`)."""
     app.add_exception_handler(StarletteHTTPException, _http_handler_with_full_allow)
     app.add_exception_handler(CatalogProblem, _catalog_problem_handler)
     app.add_exception_handler(CatalogDisabled, _disabled_handler)

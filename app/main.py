@@ -7,27 +7,24 @@ from __future__ import annotations
 
 import gc
 from contextlib import asynccontextmanager
-from typing import Any
 
 from fastapi import FastAPI
-from fastapi.routing import APIRoute
 from fastapi_offline import FastAPIOffline
-from pydantic.json_schema import models_json_schema
 from starlette.concurrency import run_in_threadpool
 
-from app.bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
 from app.catalog import close_catalog, install_catalog_handlers, open_catalog
 from app.compute import solvers
 from app.compute.cache import make_cache
-from app.fastpath import FastPathMiddleware
-from app.httpmetrics import HttpMetricsMiddleware
+from app.http.bodylimit import BodyLimitMiddleware, spec_limits
+from app.http.fastpath import FastPathMiddleware
+from app.http.netopts import set_nodelay_on_listening_sockets
+from app.http.openapi import computed_paths, operation_id, problem_openapi
+from app.http.problems import install_problem_handlers, problem_bytes
+from app.http.request_metrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
-from app.netopts import set_nodelay_on_listening_sockets
-from app.problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
 from app.routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
-from app.routers.common import ANSWER_MODELS, READ_BY_ROUTE
 from app.routers.web import install_page
 from app.settings import Settings, get_settings
 from engine import ENGINE_VERSION
@@ -88,57 +85,6 @@ TAGS = [
 ]
 
 
-def operation_id(route: APIRoute) -> str:
-    """Stable operation ids ``<tag>-<route name>`` (e.g. ``srt-compute_srt``) for readable client methods."""
-    return f"{route.tags[0]}-{route.name}" if route.tags else route.name
-
-
-def _problem_openapi(app: FastAPI) -> dict[str, Any]:
-    """The generated spec with every error response moved to ``application/problem+json``."""
-    if app.openapi_schema is not None:
-        return app.openapi_schema
-    schema = FastAPI.openapi(app)
-    # the models of routes that read their body themselves (routers.common.json_body), with what they use
-    _, defs = models_json_schema(
-        [(m, "validation") for m in READ_BY_ROUTE] + [(m, "serialization") for m in ANSWER_MODELS],
-        ref_template="#/components/schemas/{model}",
-    )
-    components = schema.setdefault("components", {}).setdefault("schemas", {})
-    for name, definition in defs.get("$defs", {}).items():
-        components.setdefault(name, definition)
-    for path_item in schema.get("paths", {}).values():
-        for operation in path_item.values():
-            if "requestBody" in operation:  # every body has a limit: state it, and declare the 413
-                limit = operation.setdefault(EXTENSION, DEFAULT_LIMIT)
-                text = f"Body limit: {describe_limit(limit)}; a larger body is refused with 413 before it is read."
-                operation["description"] = f"{operation.get('description', '').rstrip()}\n\n{text}".lstrip()
-                operation["responses"].setdefault(
-                    "413",
-                    {
-                        "description": error_responses(413)[413]["description"],
-                        "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
-                    },
-                )
-            if "401" in operation.get("responses", {}) and "security" not in operation:
-                # accepts saved vehicles by id: the bearer key is optional (presets and records need none)
-                operation["security"] = [{}, {"bearerAuth": []}]
-            for code, response in operation.get("responses", {}).items():
-                content = response.get("content", {})
-                if code.isdigit() and int(code) >= 400 and "application/json" in content:
-                    response["content"] = {PROBLEM_MEDIA_TYPE: content["application/json"]}
-    app.openapi_schema = schema
-    return schema
-
-
-def computed_paths(spec: dict[str, Any]) -> set[str]:
-    """The POST operations whose answer carries the cache's ETag (the ones the fast path can answer)."""
-    return {
-        path
-        for path, item in spec.get("paths", {}).items()
-        if "ETag" in item.get("post", {}).get("responses", {}).get("200", {}).get("headers", {})
-    }
-
-
 def _active_jobs(jobs) -> float:
     try:
         return float(jobs.active_count())
@@ -167,7 +113,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         app.state.cache = cache = make_cache(app.state.settings)
         solvers.configure(app.state.settings.solve_threads)
         log = get_logger("rollover.app")
-        nodelay = set_nodelay_on_listening_sockets()  # see app.netopts: --workers would otherwise wait ~40 ms
+        nodelay = set_nodelay_on_listening_sockets()  # see app.http.netopts: --workers would otherwise wait ~40 ms
         log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend, tcp_nodelay_sockets=nodelay)
         if cache.redis is not None:
             await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
@@ -223,7 +169,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
     app.add_middleware(FastPathMiddleware, paths=lambda: computed_paths(app.openapi()), cache=lambda: app.state.cache)
     app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)
-    app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]
+    app.openapi = lambda: problem_openapi(app)  # type: ignore[method-assign]
     return app
 
 

@@ -1,4 +1,4 @@
-"""Prometheus metrics of the service: per request (:mod:`app.httpmetrics`), engine, cache and jobs.
+"""Prometheus metrics of the service: per request (:mod:`app.http.request_metrics`), engine, cache and jobs.
 
 Defined once at import on the default registry, so several app instances in one process (tests) share them.
 """

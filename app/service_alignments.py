@@ -31,9 +31,10 @@ from app.compute import solvers
 from app.compute.cache import ResultCache, cache_key
 from app.compute.results import Computed, Streamed
 from app.curves import curves_from_json
+from app.http.negotiation import CSV_TYPE, JSON_TYPE
+from app.http.problems import InvalidAlignment, request_error
 from app.jsonpieces import loads_in_pieces
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
-from app.problems import InvalidAlignment, request_error
 from app.schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from app.service import (
     SavedRef,
@@ -565,9 +566,6 @@ def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:
 
 
 # ---------------------------------------------------------------------------------------- the flow
-
-
-JSON_TYPE, CSV_TYPE = "application/json", "text/csv; charset=utf-8"
 
 
 async def resolve_alignment_refs(request: Request, req: Any, settings: Settings, what: str = "an assessment") -> Any:

@@ -25,7 +25,8 @@ from starlette.concurrency import run_in_threadpool
 from app.alignment_io import CurveTable
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
-from app.problems import InvalidRoute, request_error
+from app.http.negotiation import GEOJSON_MEDIA_TYPE
+from app.http.problems import InvalidRoute, request_error
 from app.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
 from app.schemas.alignments import MAX_ROWS
 from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
@@ -42,7 +43,7 @@ from app.service_alignments import (
     solve_alignment,
 )
 from app.settings import Settings
-from app.tables import GEOJSON_MEDIA_TYPE, Text, flatten_targets, to_csv
+from app.tables import Text, flatten_targets, to_csv
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.route import HorizontalCurve, find_curves, local_frame

@@ -8,7 +8,7 @@ query::
 
 The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` (fields and bounds
 taken from the JSON request's own, so the two forms cannot drift); the body (bounded by the route's body limit,
-:mod:`app.bodylimit`) is decoded,
+:mod:`app.http.bodylimit`) is decoded,
 and the equivalent JSON request (``{"vehicle": ..., "csv": "<the file>"}``) goes through the same service and
 cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``body`` and the row or element.
 """
@@ -23,14 +23,13 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
-from app.bodylimit import body_limit
-from app.problems import InvalidAlignment
+from app.http.problems import InvalidAlignment
+from app.http.schemas import describe
 from app.schemas.alignments import (
     MAX_VEHICLES,
     AlignmentRequest,
     LandXmlIn,
 )
-from app.schemas.common import describe
 from app.schemas.srt import LoadIn
 
 OPTIONS = (
@@ -140,11 +139,3 @@ async def landxml_upload(request: Request, query) -> AlignmentRequest:
         raise InvalidAlignment("the body is empty: send the LandXML file", source="body", location=None, column=None)
     defaults = {n: getattr(query, n) for n in LANDXML_DEFAULTS}
     return upload_request(query, landxml={"document": text, **defaults})
-
-
-def upload_body(media_type: str, limit: int, example: str | None = None) -> dict[str, Any]:
-    """OpenAPI ``requestBody`` of an upload operation (the route reads the body itself), with its body limit."""
-    content: dict[str, Any] = {"schema": {"type": "string", "minLength": 1}}
-    if example is not None:
-        content["example"] = example
-    return {"requestBody": {"required": True, "content": {media_type: content}}, **body_limit(limit)}

@@ -23,8 +23,12 @@ from pydantic import ConfigDict, Field, RootModel, ValidationError, create_model
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from app.auth import authenticate
-from app.bodylimit import body_limit
 from app.deps import SettingsDep
+from app.http.bodies import json_body
+from app.http.bodylimit import body_limit
+from app.http.negotiation import CSV_TYPE, JSON_TYPE, wants_csv
+from app.http.problems import InvalidAlignment, Problem, engine_field, error_responses, problem_response
+from app.http.schemas import InputModel, OutputModel, describe
 from app.jobs.backends import Backend
 from app.jobs.base import Operation, ResolveContext
 from app.jobs.kv import StorageFull
@@ -32,12 +36,7 @@ from app.jobs.operations import OPERATIONS
 from app.jobs.store import JobNotFound, JobView, problem
 from app.jsonpieces import loads_in_pieces
 from app.logs import get_logger
-from app.problems import InvalidAlignment, Problem, engine_field, error_responses, problem_response
-from app.routers.common import json_body
-from app.schemas.common import InputModel, OutputModel, describe
-from app.service_alignments import CSV_TYPE, JSON_TYPE
 from app.settings import Settings
-from app.tables import wants_csv
 from engine.errors import InvalidInput
 
 #: a job's request body: 1,000,000 curves as JSON are about 100 MB; a LandXML document of 200 M characters [bytes]

@@ -25,6 +25,7 @@ from starlette.requests import Request
 from app.alignment_io import CurveTable
 from app.compute import solvers
 from app.compute.cache import cache_key
+from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.schemas.alignments import (
     AlignmentRequest,
@@ -34,7 +35,6 @@ from app.schemas.alignments import (
     LandXmlIn,
     keys_match_the_id_pattern,
 )
-from app.schemas.common import ABSENT, describe
 from app.service_alignments import (
     JSON_VEHICLE_END,
     AlignmentJob,

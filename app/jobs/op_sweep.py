@@ -20,8 +20,8 @@ from pydantic import Field, model_validator
 from starlette.requests import Request
 
 from app.compute.cache import cache_key
+from app.http.schemas import describe, shape_error
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
-from app.schemas.common import describe, shape_error
 from app.schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
 from app.service_tools import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
 from app.settings import Settings

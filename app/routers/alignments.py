@@ -5,14 +5,14 @@ from __future__ import annotations
 from typing import Annotated
 
 from fastapi import APIRouter, Query, Request, Response
-from fastapi.responses import StreamingResponse
-from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
+from starlette.concurrency import run_in_threadpool
 
-from app.bodylimit import body_limit
-from app.compute.results import Computed, Streamed
 from app.deps import CacheDep, SettingsDep
-from app.problems import VEHICLE_REF_CODES
-from app.routers.common import computed_response, json_body, table_responses
+from app.http.bodies import json_body, upload_body
+from app.http.bodylimit import body_limit
+from app.http.negotiation import wants_csv
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import table_answer, table_responses
 from app.schemas.alignments import (
     ALIGNMENT_CSV_EXAMPLE,
     ALIGNMENT_JSON_LIMIT,
@@ -23,18 +23,9 @@ from app.schemas.alignments import (
     AlignmentResult,
 )
 from app.service_alignments import compute_alignment, parse_json_request
-from app.tables import wants_csv
-from app.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload, upload_body
+from app.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload
 
 router = APIRouter(prefix="/v1/alignments", tags=["alignments"])
-
-
-def answer(result: Computed | Streamed) -> Response:
-    """A whole body with its headers, or a streamed one (chunked) with the same headers."""
-    if isinstance(result, Computed):
-        return computed_response(result, vary_accept=True)
-    headers = {"ETag": result.etag, "X-Cache": "hit" if result.hit else "miss", "Vary": "Accept"}
-    return StreamingResponse(iterate_in_threadpool(result.chunks), media_type=result.media_type, headers=headers)
 
 
 ASSESSMENT = """For each horizontal curve and each vehicle: the SRT on the curve's bank and grade, the rollover
@@ -63,7 +54,7 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     # 100,000 curves are 15 MB of JSON: read and validated in a worker thread, the curves as columns
     body, curves = await run_in_threadpool(parse_json_request, await request.body())
     csv = wants_csv(request.headers.get("accept"))
-    return answer(await compute_alignment(cache, request, body, curves, settings, csv=csv))
+    return table_answer(await compute_alignment(cache, request, body, curves, settings, csv=csv))
 
 
 @router.post(
@@ -85,7 +76,7 @@ async def assess_csv(
 ) -> Response:
     body = await csv_upload(request, query)
     csv = wants_csv(request.headers.get("accept"))
-    return answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
 
 
 @router.post(
@@ -107,4 +98,4 @@ async def assess_landxml(
 ) -> Response:
     body = await landxml_upload(request, query)
     csv = wants_csv(request.headers.get("accept"))
-    return answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))

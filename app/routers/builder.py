@@ -5,8 +5,9 @@ from __future__ import annotations
 from fastapi import APIRouter, Request, Response
 
 from app.deps import CacheDep
-from app.problems import error_responses
-from app.routers.common import computed_response, computed_responses, json_response, table_responses
+from app.http.negotiation import wants_csv
+from app.http.problems import error_responses
+from app.http.responses import computed_response, computed_responses, json_response, table_responses
 from app.schemas.builder import (
     BuildRequest,
     BuildResult,
@@ -17,7 +18,6 @@ from app.schemas.builder import (
     TyreOut,
 )
 from app.service_builder import component_library, compute_build, compute_payload_table
-from app.tables import wants_csv
 
 router = APIRouter(prefix="/v1", tags=["builder"])
 

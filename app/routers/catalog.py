@@ -17,7 +17,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from app import catalog
 from app.auth import BearerDep, OwnerDep, authenticate
 from app.deps import SettingsDep
-from app.problems import Problem
+from app.http.problems import Problem
 from app.schemas.catalog import (
     EXAMPLE_FLEET_ID,
     EXAMPLE_VEHICLE_ID,

@@ -8,7 +8,7 @@ from fastapi import APIRouter, Response
 from prometheus_client import CONTENT_TYPE_LATEST, REGISTRY, CollectorRegistry, generate_latest
 
 from app.deps import CacheDep
-from app.problems import error_responses
+from app.http.problems import error_responses
 from app.schemas.meta import Health
 from engine import ENGINE_VERSION
 
@@ -40,7 +40,7 @@ async def healthz(cache: CacheDep) -> Health:
     },
 )
 def metrics() -> Response:
-    """Prometheus metrics: HTTP requests (app.httpmetrics), engine solve time, cache lookups, jobs."""
+    """Prometheus metrics: HTTP requests (app.http.request_metrics), engine solve time, cache lookups, jobs."""
     registry = REGISTRY
     if "PROMETHEUS_MULTIPROC_DIR" in os.environ:  # several uvicorn workers: aggregate their files
         from prometheus_client import multiprocess

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter
 
-from app.problems import error_responses
+from app.http.problems import error_responses
 from app.schemas.meta import ModelInfoOut
 from engine.models import MODELS
 

@@ -7,8 +7,8 @@ from typing import Any
 from fastapi import APIRouter, Request, Response
 
 from app.deps import CacheDep, SettingsDep
-from app.problems import VEHICLE_REF_CODES, error_responses
-from app.routers.common import CACHE_HEADERS, computed_response
+from app.http.problems import VEHICLE_REF_CODES, error_responses
+from app.http.responses import CACHE_HEADERS, computed_response
 from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
 from app.service_plots import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
 from app.vehicle_refs import resolve_vehicle_refs

@@ -5,8 +5,8 @@ from __future__ import annotations
 from fastapi import APIRouter, Request, Response
 
 from app.deps import CacheDep, SettingsDep
-from app.problems import VEHICLE_REF_CODES
-from app.routers.common import computed_responses, json_response
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import computed_responses, json_response
 from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.service import compute_curve_speed, compute_min_radius
 from app.vehicle_refs import resolve_vehicle_refs

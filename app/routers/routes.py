@@ -8,13 +8,14 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
-from app.bodylimit import body_limit
 from app.deps import CacheDep, SettingsDep
-from app.problems import VEHICLE_REF_CODES
-from app.routers.common import ANSWER_MODELS, computed_response, json_body, table_responses
+from app.http.bodies import json_body
+from app.http.bodylimit import body_limit
+from app.http.negotiation import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import ANSWER_MODELS, computed_response, table_responses
 from app.schemas.routes import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
 from app.service_routes import assess_route
-from app.tables import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
 

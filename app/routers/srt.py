@@ -4,17 +4,16 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Request, Response
 
-from app.bodylimit import body_limit
 from app.deps import CacheDep, SettingsDep
-from app.problems import VEHICLE_REF_CODES
-from app.routers.alignments import answer as table_answer
-from app.routers.common import computed_response, computed_responses, json_response, table_responses
+from app.http.bodylimit import body_limit
+from app.http.negotiation import wants_csv
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import computed_response, computed_responses, json_response, table_answer, table_responses
 from app.schemas.limits import LimitsRequest, LimitsResult
 from app.schemas.srt import SrtRequest, SrtResult
 from app.schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
 from app.service import compute_srt
 from app.service_tools import compute_limits, compute_sweep
-from app.tables import wants_csv
 from app.vehicle_refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1", tags=["srt"])

@@ -7,8 +7,9 @@ from typing import Annotated
 from fastapi import APIRouter, Path, Request, Response
 
 from app.deps import CacheDep
-from app.problems import error_responses, problem_response
-from app.routers.common import computed_response, computed_responses, json_response, table_responses
+from app.http.negotiation import wants_csv
+from app.http.problems import error_responses, problem_response
+from app.http.responses import computed_response, computed_responses, json_response, table_responses
 from app.schemas.standards import (
     StandardList,
     StandardOut,
@@ -18,7 +19,6 @@ from app.schemas.standards import (
     SuperelevationTableResult,
 )
 from app.service_standards import compute_superelevation, compute_superelevation_table, get_standard_out, list_standards
-from app.tables import wants_csv
 from engine.road import STANDARDS
 
 router = APIRouter(prefix="/v1", tags=["standards"])

@@ -11,7 +11,7 @@ from fastapi import APIRouter, Path, Request, Response
 from app import catalog
 from app.auth import BearerDep, authenticate
 from app.deps import SettingsDep
-from app.problems import Problem, error_responses
+from app.http.problems import Problem, error_responses
 from app.routers.catalog import problem_responses
 from app.schemas.catalog import SavedVehicle
 from app.schemas.vehicles import VehiclePreset

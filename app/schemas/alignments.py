@@ -8,8 +8,7 @@ from typing import Annotated, Any, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from app.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
-from app.schemas.catalog import FLEET_ID_PATTERN
-from app.schemas.common import (
+from app.http.schemas import (
     ABSENT,
     EXAMPLE_PRESET,
     InputModel,
@@ -19,6 +18,7 @@ from app.schemas.common import (
     exactly_one_schema,
     shape_error,
 )
+from app.schemas.catalog import FLEET_ID_PATTERN
 from app.schemas.srt import (
     TARGETS_OUT,
     TILT_OUT,

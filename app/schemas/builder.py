@@ -17,7 +17,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, create_model
 
-from app.schemas.common import InputModel, OutputModel, describe, json_int
+from app.http.schemas import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
 from engine.vehicle import builder as eb
 

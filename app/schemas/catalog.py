@@ -8,8 +8,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
+from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, describe
 from app.schemas.builder import SpecRef
-from app.schemas.common import EXAMPLE_PRESET, InputModel, OutputModel, describe
 from app.schemas.vehicles import VehiclePreset, VehicleRecord
 from engine.vehicle import Vehicle
 

@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.schemas.common import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
+from app.http.schemas import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
 from app.schemas.srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.road import LIMIT_PARAMETERS
 

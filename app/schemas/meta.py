@@ -6,7 +6,7 @@ from typing import Literal
 
 from pydantic import Field
 
-from app.schemas.common import OutputModel, describe
+from app.http.schemas import OutputModel, describe
 
 
 class ModelInfoOut(OutputModel):

@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.schemas.common import (
+from app.http.schemas import (
     ABSENT,
     InputModel,
     OutputModel,

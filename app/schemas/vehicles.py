@@ -12,7 +12,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, create_model
 
-from app.schemas.common import InputModel, OutputModel, describe, json_int
+from app.http.schemas import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, FieldDoc
 
 #: preset metadata that GET /v1/vehicles/{id} adds to a record (accepted and ignored in a posted record)

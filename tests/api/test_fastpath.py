@@ -13,8 +13,8 @@ import pytest
 
 import app.routers.alignments
 import app.routers.srt
-from app import fastpath
-from app.fastpath import FastPathMiddleware, etag_matches
+from app.http import fastpath
+from app.http.fastpath import FastPathMiddleware, etag_matches
 
 BODY = b'{"vehicle": "table16-btrain", "model": "rigid"}'
 JSON = {"content-type": "application/json"}
@@ -133,7 +133,7 @@ def test_tcp_nodelay_is_set_on_listening_sockets_and_inherited_without_leaking_d
     import os
     import socket
 
-    from app.netopts import set_nodelay_on_listening_sockets
+    from app.http.netopts import set_nodelay_on_listening_sockets
 
     listening = socket.socket(socket.AF_INET, socket.SOCK_STREAM)  # proto 0, as uvicorn --workers binds it
     listening.bind(("127.0.0.1", 0))

@@ -23,8 +23,8 @@ from cachetools import LRUCache
 from starlette.concurrency import run_in_threadpool
 
 from app.compute import cache as cache_module
+from app.http.negotiation import WITH_GEOJSON, negotiate
 from app.metrics import CACHE_LOOKUPS, FAST_PATH_HITS
-from app.tables import WITH_GEOJSON, negotiate
 
 _FORM_KEYS = {"json": b"", "csv": b"csv", "geojson": b"geojson"}
 

@@ -258,7 +258,9 @@ async def _convergence_handler(request: Request, exc: ConvergenceError) -> JSONR
     )
 
 
-async def _http_handler(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+async def http_handler(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+    """A Starlette HTTP error (404, 405, ...) as a problem (``about:blank``, the status phrase as its title); the
+    catalog wraps it to complete ``Allow``."""
     from http import HTTPStatus
 
     try:
@@ -286,11 +288,11 @@ def install_problem_handlers(app: FastAPI) -> None:
     app.add_exception_handler(InvalidAlignment, _alignment_handler)
     app.add_exception_handler(MechanismSingular, _singular_handler)
     app.add_exception_handler(ConvergenceError, _convergence_handler)
-    app.add_exception_handler(StarletteHTTPException, _http_handler)
+    app.add_exception_handler(StarletteHTTPException, http_handler)
     app.add_exception_handler(Exception, _internal_handler)
 
 
-#: OpenAPI ``responses`` entries; :func:`app.main.custom_openapi` moves their schema to problem+json
+#: OpenAPI ``responses`` entries; :func:`app.http.openapi.problem_openapi` moves their schema to problem+json
 def error_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
     text = {
         400: "Malformed request body (not JSON).",

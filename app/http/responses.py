@@ -1,13 +1,16 @@
-"""Pieces shared by the routers: the computed-response headers and their OpenAPI declaration."""
+"""A computed answer as an HTTP response (whole or streamed, with its ETag and X-Cache) and its OpenAPI
+declaration."""
 
 from __future__ import annotations
 
 from typing import Any
 
 from fastapi import Response
+from fastapi.responses import StreamingResponse
+from starlette.concurrency import iterate_in_threadpool
 
-from app.compute.results import Computed
-from app.problems import error_responses
+from app.compute.results import Computed, Streamed
+from app.http.problems import error_responses
 
 CACHE_HEADERS: dict[str, Any] = {
     "ETag": {
@@ -59,15 +62,14 @@ def json_response(result: Computed) -> Response:
     )
 
 
-#: request models read by their route itself (off the event loop), published in the spec by reference
-READ_BY_ROUTE: list[type] = []
 #: answer models a route renders itself under another media type (e.g. GeoJSON), published by reference
 ANSWER_MODELS: list[type] = []
 
 
-def json_body(model: type) -> dict[str, Any]:
-    """``openapi_extra`` of a route that reads and validates its JSON body itself (in a worker thread: a large
-    body would hold the event loop): the request body is the model's schema, added to the spec's components."""
-    READ_BY_ROUTE.append(model)
-    ref = {"$ref": f"#/components/schemas/{model.__name__}"}
-    return {"requestBody": {"required": True, "content": {"application/json": {"schema": ref}}}}
+def table_answer(result: Computed | Streamed) -> Response:
+    """A table's answer (JSON or CSV by ``Accept``, so ``Vary: Accept``): a whole body with its headers, or a
+    streamed one (chunked) with the same headers."""
+    if isinstance(result, Computed):
+        return computed_response(result, vary_accept=True)
+    headers = {"ETag": result.etag, "X-Cache": "hit" if result.hit else "miss", "Vary": "Accept"}
+    return StreamingResponse(iterate_in_threadpool(result.chunks), media_type=result.media_type, headers=headers)

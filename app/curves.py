@@ -20,7 +20,7 @@ import numpy as np
 from fastapi.exceptions import RequestValidationError
 from pydantic import Field, TypeAdapter, ValidationError
 
-from app.alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
+from app.formats.alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
 from app.schemas.alignments import CurveIn
 from engine.domain import BOUNDS
 

@@ -20,11 +20,11 @@ from starlette.concurrency import run_in_threadpool
 from app.compute.cache import ResultCache, cache_key
 from app.compute.coalescer import COALESCER
 from app.compute.results import Computed, cached
+from app.formats.json_rows import json_template
 from app.metrics import SOLVE_SECONDS
 from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.schemas.srt import SrtInputs, SrtRequest, SrtResult
 from app.settings import Settings
-from app.tables import json_template
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase, Road
 from engine.models import rollover_threshold
@@ -102,7 +102,7 @@ def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list
 
 def target_checks_json_many(srts: np.ndarray, targets: dict[str, float]) -> list[bytes]:
     """The JSON of each list of :func:`target_checks_many` (``orjson.dumps`` of it, byte for byte), written on columns
-    (:func:`app.tables.json_template`): no dict per SRT."""
+    (:func:`app.formats.json_rows.json_template`): no dict per SRT."""
     ordered = _in_target_order(check_targets(0.0, targets))
     if not ordered:
         return [b"[]"] * len(srts)

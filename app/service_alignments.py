@@ -1,12 +1,12 @@
 """Alignment assessment (POST /v1/alignments/assess and its uploads): curves -> engine -> rows, as columns.
 
 The curves come from a JSON list (read into columns by :mod:`app.curves`), a CSV text or a LandXML document
-(:mod:`app.alignment_io`); all three become one :class:`~app.alignment_io.CurveTable`, so the same curves share one
-cache entry whatever form they came in. The engine assesses each vehicle on arrays
-(:func:`engine.assessment.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the
-answer is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV in chunks. A small answer is
-rendered whole and cached as bytes (and served by the fast path on a repeat); a large one is streamed, never built
-as one document, and cached by reference, as its arrays. Streamed or whole, the bytes are the same.
+(:mod:`app.formats.alignment_io`); all three become one :class:`~app.formats.alignment_io.CurveTable`, so the same
+curves share one cache entry whatever form they came in. The engine assesses each vehicle on arrays
+(:func:`engine.assessment.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the answer
+is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV in chunks. A small answer is rendered
+whole and cached as bytes (and served by the fast path on a repeat); a large one is streamed, never built as one
+document, and cached by reference, as its arrays. Streamed or whole, the bytes are the same.
 """
 
 from __future__ import annotations
@@ -26,14 +26,16 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
-from app.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
 from app.compute import solvers
 from app.compute.cache import ResultCache, cache_key
 from app.compute.results import Computed, Streamed
 from app.curves import curves_from_json
+from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from app.formats.json_rows import RawJson, json_objects
+from app.formats.jsonpieces import loads_in_pieces
+from app.formats.tables import Text, csv_line, csv_lines_of_columns, target_columns, target_columns_of
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
-from app.jsonpieces import loads_in_pieces
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from app.service import (
@@ -44,7 +46,6 @@ from app.service import (
     target_checks_many,
 )
 from app.settings import Settings
-from app.tables import RawJson, Text, csv_line, csv_lines_of_columns, json_objects, target_columns, target_columns_of
 from app.vehicle_refs import resolve_vehicle_refs
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase
@@ -95,7 +96,8 @@ _PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curv
 def parse_json_request(body: bytes) -> tuple[AlignmentRequest, CurveTable | None]:
     """The JSON request, validated: its ``curves`` (if any) read into columns by :func:`app.curves.curves_from_json`
     (fast), everything else by the request model itself. Runs in a worker thread: 100,000 curves are 12 MB, parsed a
-    slice of curves at a time (:func:`app.jsonpieces.loads_in_pieces`: the event loop is not held up meanwhile)."""
+    slice of curves at a time (:func:`app.formats.jsonpieces.loads_in_pieces`: the event loop is not held up
+    meanwhile)."""
     try:
         data = loads_in_pieces(body, ("curves",))
     except orjson.JSONDecodeError as exc:
@@ -478,8 +480,9 @@ _MEETS_JSON = np.array([b"null", b"false", b"true"], dtype=object)  # by meets_s
 
 
 def _json_row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, Any]:
-    """:func:`_row_columns` as :func:`app.tables.json_objects` writes them to the same JSON: a nan float is written
-    null as ``None`` is; the texts and the target checks already as JSON (:class:`~app.tables.RawJson`)."""
+    """:func:`_row_columns` as :func:`app.formats.json_rows.json_objects` writes them to the same JSON: a nan float is
+    written null as ``None`` is; the texts and the target checks already as JSON
+    (:class:`~app.formats.json_rows.RawJson`)."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
     pairs = v.pair_of_row[sl]
     errors = np.array([b"null", *map(orjson.dumps, c.errors)], dtype=object)
@@ -510,7 +513,7 @@ def _json_row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, sto
 
 def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> bytes:
     """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets): ``orjson.dumps`` of
-    :func:`_rows`, byte for byte, written column by column (:func:`app.tables.json_objects`)."""
+    :func:`_rows`, byte for byte, written column by column (:func:`app.formats.json_rows.json_objects`)."""
     return json_objects(_json_row_columns(answer, v, start, stop))
 
 

@@ -15,6 +15,7 @@ from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
+from app.formats.tables import Text, to_csv
 from app.schemas.builder import (
     BuildRequest,
     BuildResult,
@@ -24,7 +25,6 @@ from app.schemas.builder import (
     SuspensionOut,
     TyreOut,
 )
-from app.tables import Text, to_csv
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES

@@ -1,4 +1,4 @@
-"""The plot endpoints: the thesis's figures as SVG (app.svg), from the cached SRT computation.
+"""The plot endpoints: the thesis's figures as SVG (app.formats.svg), from the cached SRT computation.
 
 The curves against ay/g are the engine's :class:`~engine.results.Curves` of the memoised result of the case (so
 the four figures of one case cost one solve); the SVG is cached under its own key, which holds the resolved SRT
@@ -14,10 +14,10 @@ import numpy as np
 
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
+from app.formats.svg import Marker, Panel, Series, line_chart
 from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
 from app.service import SavedRef, resolve_case, solve, srt_key
 from app.settings import Settings
-from app.svg import Marker, Panel, Series, line_chart
 from engine.case import Case, Road
 from engine.errors import InvalidRoad
 from engine.results import RolloverResult

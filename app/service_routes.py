@@ -1,6 +1,6 @@
 """Route assessment (POST /v1/routes/assess): geometry -> horizontal curves -> the alignment assessment.
 
-The document is read by :mod:`app.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
+The document is read by :mod:`app.formats.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
 feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
 (:func:`engine.route.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
 curves then go through the same assessment as an alignment's (:func:`app.service_alignments.solve_alignment`:
@@ -22,12 +22,13 @@ import orjson
 from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
-from app.alignment_io import CurveTable
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
+from app.formats.alignment_io import CurveTable
+from app.formats.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
+from app.formats.tables import Text, flatten_targets, to_csv
 from app.http.negotiation import GEOJSON_MEDIA_TYPE
 from app.http.problems import InvalidRoute, request_error
-from app.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
 from app.schemas.alignments import MAX_ROWS
 from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
 from app.service import resolve_vehicle
@@ -43,7 +44,6 @@ from app.service_alignments import (
     solve_alignment,
 )
 from app.settings import Settings
-from app.tables import Text, flatten_targets, to_csv
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.route import HorizontalCurve, find_curves, local_frame

@@ -8,6 +8,7 @@ import orjson
 
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
+from app.formats.tables import to_csv
 from app.schemas.standards import (
     DEFAULT_DESIGN_STANDARD,
     TABLE_RADIUS_SPAN,
@@ -18,7 +19,6 @@ from app.schemas.standards import (
     SuperelevationTableRequest,
     SuperelevationTableResult,
 )
-from app.tables import to_csv
 from engine.errors import InvalidRoad
 from engine.road import (
     FRICTION_BOUNDS,

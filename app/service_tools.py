@@ -23,13 +23,13 @@ from starlette.concurrency import run_in_threadpool
 from app.compute import solvers
 from app.compute.cache import ResultCache, cache_key
 from app.compute.results import Computed, Streamed, cached
+from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
 from app.schemas.sweep import SweepRequest
 from app.service import resolve_case, resolve_targets, srt_key, target_checks
 from app.settings import Settings
-from app.tables import flatten_targets, target_columns, to_csv_chunks
 from engine import ENGINE_VERSION
 from engine.case import Case
 from engine.errors import InvalidInput, RolloverError

@@ -15,14 +15,13 @@ cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``bod
 
 from __future__ import annotations
 
-import codecs
-import re
 from typing import Annotated, Any
 
 from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
+from app.formats.uploads import decode_csv, decode_xml
 from app.http.problems import InvalidAlignment
 from app.http.schemas import describe
 from app.schemas.alignments import (
@@ -77,35 +76,6 @@ LandXmlUploadQuery = create_model(
     **{n: _field(LoadIn, n) for n in LOAD},
     **{n: _field(LandXmlIn, n) for n in LANDXML_DEFAULTS},
 )
-
-
-def decode_csv(data: bytes) -> str:
-    try:
-        return data.decode("utf-8-sig")  # a BOM (spreadsheet exports) is not part of the first column's name
-    except UnicodeDecodeError as exc:
-        raise InvalidAlignment(
-            f"the CSV is not UTF-8 text (byte {exc.start})", source="body", location=None, column=None
-        ) from None
-
-
-def decode_xml(data: bytes) -> str:
-    """XML bytes as text: UTF-8 (with or without BOM), or the encoding its XML declaration names."""
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        pass
-    declared = re.match(rb"""\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""", data)
-    if declared:
-        try:
-            return data.decode(codecs.lookup(declared.group(1).decode()).name)
-        except (LookupError, UnicodeDecodeError):
-            pass
-    raise InvalidAlignment(
-        "the document is neither UTF-8 nor in the encoding its XML declaration names",
-        source="body",
-        location="LandXML",
-        column=None,
-    )
 
 
 def upload_request(query, **document: Any) -> AlignmentRequest:

@@ -24,6 +24,7 @@ from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from app.auth import authenticate
 from app.deps import SettingsDep
+from app.formats.jsonpieces import loads_in_pieces
 from app.http.bodies import json_body
 from app.http.bodylimit import body_limit
 from app.http.negotiation import CSV_TYPE, JSON_TYPE, wants_csv
@@ -34,7 +35,6 @@ from app.jobs.base import Operation, ResolveContext
 from app.jobs.kv import StorageFull
 from app.jobs.operations import OPERATIONS
 from app.jobs.store import JobNotFound, JobView, problem
-from app.jsonpieces import loads_in_pieces
 from app.logs import get_logger
 from app.settings import Settings
 from engine.errors import InvalidInput

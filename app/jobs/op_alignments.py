@@ -22,9 +22,9 @@ from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
-from app.alignment_io import CurveTable
 from app.compute import solvers
 from app.compute.cache import cache_key
+from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.schemas.alignments import (

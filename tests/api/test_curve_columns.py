@@ -13,8 +13,8 @@ from hypothesis import strategies as st
 from pydantic import TypeAdapter, ValidationError
 
 from app import curves as curves_module
-from app.alignment_io import CURVE_ID_MAX_CHARS
 from app.curves import curves_from_json
+from app.formats.alignment_io import CURVE_ID_MAX_CHARS
 from app.schemas.alignments import CurveIn
 
 _SCHEMA = TypeAdapter(list[CurveIn])

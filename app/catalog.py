@@ -13,7 +13,7 @@ validation with a 409 problem (logged, never served).
 
 What is checked, on write and again on every read (a row is never trusted because it is in the database):
 
-* a record: the :class:`~app.schemas.vehicles.VehicleRecord` schema, then the engine's
+* a record: the :class:`~app.vehicles.schemas.VehicleRecord` schema, then the engine's
   ``validate_vehicle(..., model="3d")``; a record without the 3D fields (``MissingParameter``) is checked as a
   2D record instead, so a 2D vehicle may be saved; any other engine refusal is a 422 naming ``vehicle.<field>``;
 * a spec: :func:`validate_spec`: the builder's schema and the build itself (422 naming ``vehicle.spec.<field>``);
@@ -47,7 +47,6 @@ from app.db import Database, repo
 from app.db import upgrade as upgrade_database
 from app.http.problems import http_handler, problem_response
 from app.logs import get_logger
-from app.schemas.builder import SpecRef, VehicleSpecIn
 from app.schemas.catalog import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
@@ -61,9 +60,10 @@ from app.schemas.catalog import (
     SavedVehiclePage,
     VehicleWrite,
 )
-from app.schemas.vehicles import VehicleRecord
-from app.service_builder import build_spec
 from app.settings import Settings
+from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
+from app.vehicles.builder_service import build_spec
+from app.vehicles.schemas import VehicleRecord
 from engine.errors import InvalidVehicle, MissingParameter
 from engine.models import get_model
 from engine.vehicle import PRESETS, Vehicle
@@ -345,7 +345,7 @@ async def _run(fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
 # ------------------------------------------------------------------------------------- vehicle validation
 def validate_spec(spec: dict[str, Any]) -> None:
     """A stored or sent builder spec checked as the builder reads it: the request schema, then the build itself
-    (:func:`app.service_builder.build_spec`: the physics, the component library, the ratings).
+    (:func:`app.vehicles.builder_service.build_spec`: the physics, the component library, the ratings).
 
     Raises :class:`~engine.errors.InvalidVehicle` naming ``vehicle.spec.<field>`` (a 422 problem), or pydantic's
     ``ValidationError`` (a ``ValueError``) for a stored spec that no longer fits the schema.

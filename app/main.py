@@ -24,9 +24,11 @@ from app.http.request_metrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
-from app.routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
+from app.routers import alignments, catalog, health, models, plots, road, routes, srt, standards
 from app.routers.web import install_page
 from app.settings import Settings, get_settings
+from app.vehicles import builder_router
+from app.vehicles import router as vehicles_router
 from engine import ENGINE_VERSION
 
 DESCRIPTION = """\
@@ -83,6 +85,23 @@ TAGS = [
     {"name": "models", "description": "The available models, their equations and references."},
     {"name": "health", "description": "Liveness and Prometheus metrics."},
 ]
+
+
+#: every router, in the order they match: the catalog's GET /v1/vehicles/saved before the presets' GET /v1/vehicles/{id}
+ROUTERS = (
+    catalog.router,
+    builder_router.router,
+    vehicles_router.router,
+    srt.router,
+    road.router,
+    standards.router,
+    alignments.router,
+    routes.router,
+    plots.router,
+    jobs_api.router,
+    models.router,
+    health.router,
+)
 
 
 def _active_jobs(jobs) -> float:
@@ -147,22 +166,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.cache = None
     install_problem_handlers(app)
     install_catalog_handlers(app)
-    # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
-    for module in (
-        catalog,
-        builder,
-        vehicles,
-        srt,
-        road,
-        standards,
-        alignments,
-        routes,
-        plots,
-        jobs_api,
-        models,
-        health,
-    ):
-        app.include_router(module.router)
+    for router in ROUTERS:
+        app.include_router(router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         app.add_middleware(HttpMetricsMiddleware)

@@ -10,7 +10,6 @@ parses another endpoint's cached bytes.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -25,34 +24,15 @@ from app.metrics import SOLVE_SECONDS
 from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.schemas.srt import SrtInputs, SrtRequest, SrtResult
 from app.settings import Settings
+from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase, Road
 from engine.models import rollover_threshold
 from engine.results import RolloverResult
 from engine.road import check_targets, max_curve_speed_kmh, min_radius, side_friction_factor, tilt_table_angle_deg
-from engine.vehicle import Vehicle, get_preset
+from engine.vehicle import Vehicle
 
 # ------------------------------------------------------------------------------------- resolution
-
-
-@dataclass(frozen=True)
-class SavedRef:
-    """A saved vehicle resolved: its id (reported back in batch answers) and its engine record."""
-
-    id: str
-    vehicle: Vehicle
-
-
-def resolve_vehicle(ref: Any) -> Vehicle:
-    """A preset id -> the preset's record (UnknownPreset -> 404); a record -> the engine record; an engine record
-    (a saved vehicle or a spec resolved by :func:`app.vehicle_refs.resolve_vehicle_refs`) as it is."""
-    if isinstance(ref, Vehicle):
-        return ref
-    if isinstance(ref, SavedRef):
-        return ref.vehicle
-    if isinstance(ref, str):
-        return get_preset(ref)
-    return Vehicle.from_dict(ref.record())
 
 
 def resolve_case(req: SrtInputs, *, road: Road | None = None, vehicle: Vehicle | None = None) -> Case:

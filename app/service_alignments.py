@@ -38,15 +38,9 @@ from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
-from app.service import (
-    SavedRef,
-    resolve_targets,
-    resolve_vehicle,
-    target_checks_json_many,
-    target_checks_many,
-)
+from app.service import resolve_targets, target_checks_json_many, target_checks_many
 from app.settings import Settings
-from app.vehicle_refs import resolve_vehicle_refs
+from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase
 from engine.errors import InvalidInput
@@ -573,7 +567,7 @@ def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:
 
 async def resolve_alignment_refs(request: Request, req: Any, settings: Settings, what: str = "an assessment") -> Any:
     """``req`` (an alignment or a route request) with its saved vehicles, specs and fleet resolved
-    (:func:`~app.vehicle_refs.resolve_vehicle_refs`); a fleet larger than ``what`` takes (:data:`MAX_VEHICLES`) is
+    (:func:`~app.vehicles.refs.resolve_vehicle_refs`); a fleet larger than ``what`` takes (:data:`MAX_VEHICLES`) is
     a 422 naming ``fleet``."""
     fleet = req.fleet
     req = await resolve_vehicle_refs(request, req, settings)

@@ -31,7 +31,6 @@ from app.http.negotiation import GEOJSON_MEDIA_TYPE
 from app.http.problems import InvalidRoute, request_error
 from app.schemas.alignments import MAX_ROWS
 from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
-from app.service import resolve_vehicle
 from app.service_alignments import (
     AlignmentAnswer,
     AlignmentJob,
@@ -44,6 +43,7 @@ from app.service_alignments import (
     solve_alignment,
 )
 from app.settings import Settings
+from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.route import HorizontalCurve, find_curves, local_frame

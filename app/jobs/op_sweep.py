@@ -25,7 +25,7 @@ from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveCo
 from app.schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
 from app.service_tools import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
 from app.settings import Settings
-from app.vehicle_refs import resolve_vehicle_refs
+from app.vehicles.refs import resolve_vehicle_refs
 
 #: a job's limit (the synchronous request's: 20,000 cases)
 MAX_JOB_CASES = 1_000_000

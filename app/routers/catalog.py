@@ -2,7 +2,7 @@
 
 Every operation needs ``Authorization: Bearer <key>`` (one of ``ROLLOVER_API_KEYS``) and sees only that key's
 rows. ``GET /v1/vehicles`` (the preset list) and ``GET /v1/vehicles/{id}`` (a preset, or a saved vehicle with
-its key) are in ``app.routers.vehicles``. Changes need ``If-Match`` with the ETag of the version they replace.
+its key) are in ``app.vehicles.router``. Changes need ``If-Match`` with the ETag of the version they replace.
 """
 
 from __future__ import annotations

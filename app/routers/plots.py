@@ -11,7 +11,7 @@ from app.http.problems import VEHICLE_REF_CODES, error_responses
 from app.http.responses import CACHE_HEADERS, computed_response
 from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
 from app.service_plots import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
-from app.vehicle_refs import resolve_vehicle_refs
+from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1/plots", tags=["plots"])
 

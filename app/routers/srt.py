@@ -14,7 +14,7 @@ from app.schemas.srt import SrtRequest, SrtResult
 from app.schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
 from app.service import compute_srt
 from app.service_tools import compute_limits, compute_sweep
-from app.vehicle_refs import resolve_vehicle_refs
+from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1", tags=["srt"])
 

@@ -9,8 +9,8 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, describe
-from app.schemas.builder import SpecRef
-from app.schemas.vehicles import VehiclePreset, VehicleRecord
+from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.schemas import VehiclePreset, VehicleRecord
 from engine.vehicle import Vehicle
 
 #: a saved vehicle's id: ``veh_`` + 22 url-safe base64 characters (128 random bits); a fleet's: ``flt_`` + 22

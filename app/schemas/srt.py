@@ -7,8 +7,8 @@ from typing import Annotated, Any, Literal
 from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, WithJsonSchema
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
-from app.schemas.builder import SpecRef
-from app.schemas.vehicles import VehicleRecord
+from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.schemas import VehicleRecord
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 

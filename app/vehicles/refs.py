@@ -17,6 +17,7 @@ may mean another record tomorrow, or be sent by another key.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 from fastapi import Request
@@ -26,11 +27,30 @@ from pydantic import BaseModel
 
 from app import catalog
 from app.auth import authenticate
-from app.schemas.builder import SpecRef
-from app.service import SavedRef
-from app.service_builder import build_spec
 from app.settings import Settings
-from engine.vehicle import Vehicle
+from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.builder_service import build_spec
+from engine.vehicle import Vehicle, get_preset
+
+
+@dataclass(frozen=True)
+class SavedRef:
+    """A saved vehicle resolved: its id (reported back in batch answers) and its engine record."""
+
+    id: str
+    vehicle: Vehicle
+
+
+def resolve_vehicle(ref: Any) -> Vehicle:
+    """A preset id -> the preset's record (UnknownPreset -> 404); a record -> the engine record; an engine record
+    (a saved vehicle or a spec resolved by :func:`app.vehicles.refs.resolve_vehicle_refs`) as it is."""
+    if isinstance(ref, Vehicle):
+        return ref
+    if isinstance(ref, SavedRef):
+        return ref.vehicle
+    if isinstance(ref, str):
+        return get_preset(ref)
+    return Vehicle.from_dict(ref.record())
 
 
 def _credentials(request: Request) -> HTTPAuthorizationCredentials | None:

@@ -16,7 +16,7 @@ from starlette.concurrency import run_in_threadpool
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
 from app.formats.tables import Text, to_csv
-from app.schemas.builder import (
+from app.vehicles.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,

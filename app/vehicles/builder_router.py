@@ -8,7 +8,7 @@ from app.deps import CacheDep
 from app.http.negotiation import wants_csv
 from app.http.problems import error_responses
 from app.http.responses import computed_response, computed_responses, json_response, table_responses
-from app.schemas.builder import (
+from app.vehicles.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
@@ -17,7 +17,7 @@ from app.schemas.builder import (
     SuspensionOut,
     TyreOut,
 )
-from app.service_builder import component_library, compute_build, compute_payload_table
+from app.vehicles.builder_service import component_library, compute_build, compute_payload_table
 
 router = APIRouter(prefix="/v1", tags=["builder"])
 

@@ -14,7 +14,7 @@ from app.deps import SettingsDep
 from app.http.problems import Problem, error_responses
 from app.routers.catalog import problem_responses
 from app.schemas.catalog import SavedVehicle
-from app.schemas.vehicles import VehiclePreset
+from app.vehicles.schemas import VehiclePreset
 from engine.models import supported_models
 from engine.vehicle import PRESET_INFO, PRESETS, get_preset
 

@@ -12,7 +12,8 @@ from fastapi import FastAPI
 from fastapi_offline import FastAPIOffline
 from starlette.concurrency import run_in_threadpool
 
-from app.catalog import close_catalog, install_catalog_handlers, open_catalog
+from app.catalog import router as catalog_router
+from app.catalog.service import close_catalog, install_catalog_handlers, open_catalog
 from app.compute import solvers
 from app.compute.cache import make_cache
 from app.http.bodylimit import BodyLimitMiddleware, spec_limits
@@ -24,7 +25,7 @@ from app.http.request_metrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
-from app.routers import alignments, catalog, health, models, plots, road, routes, srt, standards
+from app.routers import alignments, health, models, plots, road, routes, srt, standards
 from app.routers.web import install_page
 from app.settings import Settings, get_settings
 from app.vehicles import builder_router
@@ -89,7 +90,7 @@ TAGS = [
 
 #: every router, in the order they match: the catalog's GET /v1/vehicles/saved before the presets' GET /v1/vehicles/{id}
 ROUTERS = (
-    catalog.router,
+    catalog_router.router,
     builder_router.router,
     vehicles_router.router,
     srt.router,

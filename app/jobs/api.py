@@ -22,7 +22,7 @@ from fastapi.security.utils import get_authorization_scheme_param
 from pydantic import ConfigDict, Field, RootModel, ValidationError, create_model
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
-from app.auth import authenticate
+from app.catalog.auth import authenticate
 from app.deps import SettingsDep
 from app.formats.jsonpieces import loads_in_pieces
 from app.http.bodies import json_body

@@ -7,6 +7,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
 from app.http.schemas import (
     ABSENT,
@@ -18,7 +19,6 @@ from app.http.schemas import (
     exactly_one_schema,
     shape_error,
 )
-from app.schemas.catalog import FLEET_ID_PATTERN
 from app.schemas.srt import (
     TARGETS_OUT,
     TILT_OUT,

@@ -7,6 +7,7 @@ from typing import Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
 from app.http.schemas import (
     ABSENT,
@@ -19,7 +20,6 @@ from app.http.schemas import (
     shape_error,
 )
 from app.schemas.alignments import MAX_VEHICLES, CurveRow, VehicleAssessment
-from app.schemas.catalog import FLEET_ID_PATTERN
 from app.schemas.srt import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 

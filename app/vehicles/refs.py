@@ -25,8 +25,8 @@ from fastapi.security import HTTPAuthorizationCredentials
 from fastapi.security.utils import get_authorization_scheme_param
 from pydantic import BaseModel
 
-from app import catalog
-from app.auth import authenticate
+from app.catalog import service as catalog
+from app.catalog.auth import authenticate
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef
 from app.vehicles.builder_service import build_spec

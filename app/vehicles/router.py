@@ -1,5 +1,5 @@
 """GET /v1/vehicles and GET /v1/vehicles/{id}: the thesis presets as full vehicle records, and (with the owner's
-bearer key) a saved vehicle by its ``veh_...`` id. Saving, changing, listing saved vehicles: ``app.routers.catalog``.
+bearer key) a saved vehicle by its ``veh_...`` id. Saving, changing, listing saved vehicles: ``app.catalog.router``.
 """
 
 from __future__ import annotations
@@ -8,12 +8,12 @@ from typing import Annotated
 
 from fastapi import APIRouter, Path, Request, Response
 
-from app import catalog
-from app.auth import BearerDep, authenticate
+from app.catalog import service as catalog
+from app.catalog.auth import BearerDep, authenticate
+from app.catalog.router import problem_responses
+from app.catalog.schemas import SavedVehicle
 from app.deps import SettingsDep
 from app.http.problems import Problem, error_responses
-from app.routers.catalog import problem_responses
-from app.schemas.catalog import SavedVehicle
 from app.vehicles.schemas import VehiclePreset
 from engine.models import supported_models
 from engine.vehicle import PRESET_INFO, PRESETS, get_preset

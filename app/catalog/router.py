@@ -14,11 +14,9 @@ from fastapi import APIRouter, Depends, Header, Path, Query, Request, Response
 from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from app import catalog
-from app.auth import BearerDep, OwnerDep, authenticate
-from app.deps import SettingsDep
-from app.http.problems import Problem
-from app.schemas.catalog import (
+from app.catalog import service as catalog
+from app.catalog.auth import BearerDep, OwnerDep, authenticate
+from app.catalog.schemas import (
     EXAMPLE_FLEET_ID,
     EXAMPLE_VEHICLE_ID,
     FLEET_ID_PATTERN,
@@ -30,6 +28,8 @@ from app.schemas.catalog import (
     SavedVehiclePage,
     VehicleWrite,
 )
+from app.deps import SettingsDep
+from app.http.problems import Problem
 
 router = APIRouter(tags=["catalog"])
 

@@ -1,7 +1,7 @@
 """Saved vehicles and fleets: the rules between the HTTP routes and the database.
 
 For the computations (wired by the HTTP layer): :func:`catalog_db` gives the request's :class:`Database`,
-:func:`app.auth.authenticate` the caller's owner id, and
+:func:`app.catalog.auth.authenticate` the caller's owner id, and
 
 * :func:`resolve_saved_vehicle` ``(db, owner, id) -> dict``: the stored vehicle body, usable as the ``vehicle``
   of any request (a full record, or ``{"spec": {...}}`` for the builder);
@@ -42,12 +42,8 @@ from sqlalchemy.exc import OperationalError
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from app.auth import CatalogDisabled, NotAuthenticated
-from app.db import Database, repo
-from app.db import upgrade as upgrade_database
-from app.http.problems import http_handler, problem_response
-from app.logs import get_logger
-from app.schemas.catalog import (
+from app.catalog.auth import CatalogDisabled, NotAuthenticated
+from app.catalog.schemas import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
     TITLE_MAX_LENGTH,
@@ -60,6 +56,10 @@ from app.schemas.catalog import (
     SavedVehiclePage,
     VehicleWrite,
 )
+from app.db import Database, repo
+from app.db import upgrade as upgrade_database
+from app.http.problems import http_handler, problem_response
+from app.logs import get_logger
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
 from app.vehicles.builder_service import build_spec
@@ -710,7 +710,7 @@ async def resolve_saved_vehicle(db: Database, owner: str, id: str) -> dict[str, 
     db : Database
         The catalog database (:func:`catalog_db` of the request).
     owner : str
-        The caller's owner id (:func:`app.auth.authenticate` of the request's bearer key).
+        The caller's owner id (:func:`app.catalog.auth.authenticate` of the request's bearer key).
     id : str
         A saved vehicle id (``veh_...``).
 

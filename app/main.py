@@ -25,9 +25,11 @@ from app.http.request_metrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
-from app.routers import alignments, health, models, plots, road, routes, srt, standards
+from app.road import router as road_router
+from app.routers import alignments, health, models, plots, routes, standards
 from app.routers.web import install_page
 from app.settings import Settings, get_settings
+from app.srt import router as srt_router
 from app.vehicles import builder_router
 from app.vehicles import router as vehicles_router
 from engine import ENGINE_VERSION
@@ -93,8 +95,8 @@ ROUTERS = (
     catalog_router.router,
     builder_router.router,
     vehicles_router.router,
-    srt.router,
-    road.router,
+    srt_router.router,
+    road_router.router,
     standards.router,
     alignments.router,
     routes.router,

@@ -38,8 +38,8 @@ from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.schemas.alignments import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
-from app.service import resolve_targets, target_checks_json_many, target_checks_many
 from app.settings import Settings
+from app.srt.service import resolve_targets, target_checks_json_many, target_checks_many
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase

@@ -29,7 +29,7 @@ from app.schemas.alignments import (
     AlignmentRequest,
     LandXmlIn,
 )
-from app.schemas.srt import LoadIn
+from app.srt.schemas import LoadIn
 
 OPTIONS = (
     "model",

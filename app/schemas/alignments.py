@@ -19,7 +19,8 @@ from app.http.schemas import (
     exactly_one_schema,
     shape_error,
 )
-from app.schemas.srt import (
+from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.srt.schemas import (
     TARGETS_OUT,
     TILT_OUT,
     VEHICLE_DESCRIPTION,
@@ -28,7 +29,6 @@ from app.schemas.srt import (
     TargetCheckOut,
     VehicleRef,
 )
-from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 
 MAX_VEHICLES = 10
 #: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)

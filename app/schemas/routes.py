@@ -20,8 +20,8 @@ from app.http.schemas import (
     shape_error,
 )
 from app.schemas.alignments import MAX_VEHICLES, CurveRow, VehicleAssessment
-from app.schemas.srt import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 
 #: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX
 ROUTE_BODY_LIMIT = 32 * 2**20

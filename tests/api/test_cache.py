@@ -8,7 +8,7 @@ import orjson
 import pytest
 
 import app.compute.cache
-import app.service
+import app.srt.service
 import engine.models.threshold
 from app.settings import Settings
 

@@ -12,7 +12,7 @@ import orjson
 import pytest
 
 import app.routers.alignments
-import app.routers.srt
+import app.srt.router
 from app.http import fastpath
 from app.http.fastpath import FastPathMiddleware, etag_matches
 
@@ -27,7 +27,7 @@ def test_a_repeated_request_is_answered_before_routing(client, monkeypatch):
     def must_not_run(*args, **kwargs):
         raise AssertionError("the route ran: the fast path did not answer")
 
-    monkeypatch.setattr(app.routers.srt, "compute_srt", must_not_run)
+    monkeypatch.setattr(app.srt.router, "compute_srt", must_not_run)
     again = client.post("/v1/srt", content=BODY, headers=JSON)
     assert again.status_code == 200 and again.headers["x-cache"] == "hit"
     assert again.content == first.content and again.headers["etag"] == first.headers["etag"]

@@ -1,10 +1,14 @@
-"""Mapping between the HTTP schemas and the engine, and the cached computations.
+"""The static rollover threshold (POST /v1/srt), and the SRT pieces every other computation uses.
 
 Data flows one way: validated request -> engine :class:`~engine.case.Case` (preset expanded, defaults filled) ->
 cache key (derived from the case) -> engine (in a worker thread) -> result object -> response body (JSON bytes,
 stored as is in the cache). A computation that needs another one's result (the SRT inside a curve speed, a
 minimum radius or a plot) asks :func:`solve` for the engine's result object, memoised per process: it never
 parses another endpoint's cached bytes.
+
+Public for the other features (road, plots, limits, sweep, alignments, routes): :func:`resolve_case` (an SRT
+request's engine case), :func:`resolve_targets` and the target checks, :func:`srt_key` / :func:`base_case_key` (what
+a key holds of an SRT request), :func:`solve` and :func:`srt_result`.
 """
 
 from __future__ import annotations
@@ -21,15 +25,14 @@ from app.compute.coalescer import COALESCER
 from app.compute.results import Computed, cached
 from app.formats.json_rows import json_template
 from app.metrics import SOLVE_SECONDS
-from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
-from app.schemas.srt import SrtInputs, SrtRequest, SrtResult
 from app.settings import Settings
+from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
 from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase, Road
 from engine.models import rollover_threshold
 from engine.results import RolloverResult
-from engine.road import check_targets, max_curve_speed_kmh, min_radius, side_friction_factor, tilt_table_angle_deg
+from engine.road import check_targets, tilt_table_angle_deg
 from engine.vehicle import Vehicle
 
 # ------------------------------------------------------------------------------------- resolution
@@ -110,6 +113,19 @@ def srt_key(
     }
 
 
+def base_case_key(req: SrtInputs, settings: Settings) -> dict[str, Any]:
+    """The resolved base case of a limits or sweep request (no curves: those fields would only blur the key), as
+    :func:`srt_key` without the curve fields: what their cache keys hold of the SRT request."""
+    base = srt_key(resolve_case(req), resolve_targets(req.targets, settings))
+    del base["include_curves"], base["curve_points"]
+    return base
+
+
+def case_of_key(resolved_case: dict[str, Any]) -> Case:
+    """The engine case of :func:`base_case_key`'s dict (the inverse, targets left out)."""
+    return Case.from_dict({k: v for k, v in resolved_case.items() if k != "targets"})
+
+
 # -------------------------------------------------------------------------------------- computing
 
 
@@ -149,86 +165,3 @@ async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -
         return srt_result(await solve(cache, case, curve_points=points), targets).model_dump_json().encode()
 
     return await cached(cache, "srt", resolved, produce)
-
-
-async def _srt_for(
-    cache: ResultCache, req: CurveSpeedRequest | MinRadiusRequest, case: Case | None, targets: dict[str, float]
-) -> tuple[float, str, SrtResult | None]:
-    """(srt, source, the SRT result or None) for a curve-speed/min-radius request."""
-    if case is None:
-        return req.srt, "given", None
-    result = srt_result(await solve(cache, case), targets)
-    return result.srt, "computed", result
-
-
-async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest, settings: Settings) -> Computed:
-    targets = resolve_targets(req.targets, settings)
-    case = resolve_case(req) if req.srt is None else None
-    resolved = {
-        "radius_m": req.radius_m,
-        "srt": req.srt,
-        "srt_request": None if case is None else srt_key(case, targets),
-    }
-
-    async def produce() -> bytes:
-        srt, source, inner = await _srt_for(cache, req, case, targets)
-        speed = float(max_curve_speed_kmh(srt, req.radius_m))  # Eq. 9.1; the SRT already contains the bank
-        out = CurveSpeedResult(
-            max_speed_kmh=speed,
-            radius_m=req.radius_m,
-            srt=srt,
-            srt_source=source,
-            srt_result=inner,
-            engine_version=ENGINE_VERSION,
-        )
-        return out.model_dump_json().encode()
-
-    return await cached(cache, "curve-speed", resolved, produce)
-
-
-async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings: Settings) -> Computed:
-    # Eq. 9.3 needs the SRT on this curve's bank: the bank is the superelevation
-    targets = resolve_targets(req.targets, settings)
-    road = Road(bank_percent=req.superelevation_percent, slope_percent=req.road.slope_percent)
-    case = resolve_case(req, road=road) if req.srt is None else None
-    if req.side_friction is None:  # refuse a speed outside the standard's range before solving for the SRT
-        side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
-    resolved = {
-        "design_speed_kmh": req.design_speed_kmh,
-        "superelevation_percent": req.superelevation_percent,
-        "side_friction": req.side_friction,
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "srt": req.srt,
-        "srt_request": None if case is None else srt_key(case, targets),
-    }
-
-    async def produce() -> bytes:
-        srt, source, inner = await _srt_for(cache, req, case, targets)
-        r = min_radius(
-            req.design_speed_kmh,
-            req.superelevation_percent,
-            srt,
-            side_friction=req.side_friction,
-            design_standard=req.design_standard,
-            bound=req.bound,
-        )
-        out = MinRadiusResult(
-            side_friction_min_radius_m=r.side_friction_min_radius_m,
-            aashto_min_radius_m=r.side_friction_min_radius_m,
-            rollover_min_radius_m=r.rollover_min_radius_m,
-            governing_min_radius_m=r.governing_min_radius_m,
-            governed_by=r.governed_by,
-            side_friction=r.side_friction,
-            side_friction_source=r.side_friction_source,
-            design_standard=r.design_standard,
-            design_speed_kmh=req.design_speed_kmh,
-            superelevation_percent=req.superelevation_percent,
-            srt=srt,
-            srt_source=source,
-            srt_result=inner,
-            engine_version=ENGINE_VERSION,
-        )
-        return out.model_dump_json().encode()
-
-    return await cached(cache, "min-radius", resolved, produce)

@@ -7,8 +7,8 @@ from typing import Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
-from app.schemas.srt import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
 from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.srt.schemas import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
 from engine.road import FRICTION_BOUNDS, STANDARDS
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")

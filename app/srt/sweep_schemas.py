@@ -8,7 +8,7 @@ from typing import Annotated, Any
 from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
-from app.schemas.srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
+from app.srt.schemas import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.domain import BOUNDS
 
 MAX_AXIS_VALUES = 200

@@ -9,11 +9,12 @@ from app.http.bodylimit import body_limit
 from app.http.negotiation import wants_csv
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_response, computed_responses, json_response, table_answer, table_responses
-from app.schemas.limits import LimitsRequest, LimitsResult
-from app.schemas.srt import SrtRequest, SrtResult
-from app.schemas.sweep import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
-from app.service import compute_srt
-from app.service_tools import compute_limits, compute_sweep
+from app.srt.limits_schemas import LimitsRequest, LimitsResult
+from app.srt.limits_service import compute_limits
+from app.srt.schemas import SrtRequest, SrtResult
+from app.srt.service import compute_srt
+from app.srt.sweep_schemas import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
+from app.srt.sweep_service import compute_sweep
 from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1", tags=["srt"])

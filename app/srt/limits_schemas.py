@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
-from app.schemas.srt import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
+from app.srt.schemas import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.road import LIMIT_PARAMETERS
 
 # "cg_height_above_chassis_m", "overweight_percent", "lateral_offset_m", "spring_separation_m"

@@ -1,10 +1,10 @@
-"""Inverse limits (POST /v1/srt/limits) and grid sweeps (POST /v1/srt/sweep): request -> engine -> body.
+"""Grid sweeps (POST /v1/srt/sweep): the SRT over the Cartesian product of up to eight axes.
 
-Same flow as :mod:`app.service`: the fully resolved request (preset expanded, defaults and targets filled) is the
-cache key; the engine runs in a worker thread. The limits answer is JSON bytes. The sweep's answer is kept as the
-engine's arrays (:class:`SweepAnswer`) and rendered to JSON or CSV in chunks, like the alignment assessment
-(:mod:`app.service_alignments`): a small grid is rendered whole and cached as bytes (served by the fast path on a
-repeat), a large one is streamed and cached by reference, as its arrays. Streamed or whole, the bytes are the same.
+Same flow as :mod:`app.srt.service`: the fully resolved request (preset expanded, defaults and targets filled) is the
+cache key; the engine runs in a worker thread. The sweep's answer is kept as the engine's arrays (:class:`SweepAnswer`)
+and rendered to JSON or CSV in chunks, like the alignment assessment (:mod:`app.service_alignments`): a small grid is
+rendered whole and cached as bytes (served by the fast path on a repeat), a large one is streamed and cached by
+reference, as its arrays. Streamed or whole, the bytes are the same.
 """
 
 from __future__ import annotations
@@ -26,142 +26,13 @@ from app.compute.results import Computed, Streamed, cached
 from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
-from app.schemas.limits import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
-from app.schemas.sweep import SweepRequest
-from app.service import resolve_case, resolve_targets, srt_key, target_checks
 from app.settings import Settings
+from app.srt.service import base_case_key, case_of_key, target_checks
+from app.srt.sweep_schemas import SweepRequest
 from engine import ENGINE_VERSION
-from engine.case import Case
-from engine.errors import InvalidInput, RolloverError
 from engine.models import SweepResult as EngineSweep
 from engine.models import sweep
-from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
-
-
-def _srt_case(req, settings: Settings) -> dict[str, Any]:
-    """The resolved base case of a limits or sweep request (no curves: those fields would only blur the key)."""
-    base = srt_key(resolve_case(req), resolve_targets(req.targets, settings))
-    del base["include_curves"], base["curve_points"]
-    return base
-
-
-def _case(resolved_case: dict[str, Any]) -> Case:
-    return Case.from_dict({k: v for k, v in resolved_case.items() if k != "targets"})
-
-
-# ------------------------------------------------------------------------------------------ limits
-
-
-def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
-    table = None
-    if req.parameter != "overweight_percent":
-        table = list(req.overweights_percent) if req.overweights_percent is not None else list(DEFAULT_OVERWEIGHTS)
-    target = req.target_srt_g if req.target_srt_g is not None else settings.srt_target_general_g
-    return {
-        "case": _srt_case(req, settings),
-        "parameter": req.parameter,
-        "target_srt_g": target,
-        "overweights_percent": table,
-    }
-
-
-def _limit_out(limit: Limit, targets: dict[str, float]) -> dict[str, Any]:
-    srt = limit.srt_at_limit
-    return {
-        "value": limit.value,
-        "status": limit.status,
-        "range_min": limit.range[0],
-        "range_max": limit.range[1],
-        "srt_at_limit": srt,
-        "evaluations": limit.evaluations,
-        "tilt_table_angle_deg": None if srt is None else float(tilt_table_angle_deg(srt)),
-        "targets": [] if srt is None else target_checks(srt, targets),
-    }
-
-
-def _current_value(case: Case, parameter: str) -> float:
-    holder, name = PARAMETER_INFO[parameter][2].split(".")
-    return float(getattr(case.vehicle if holder == "vehicle" else case.load, name))
-
-
-def solve_limits(resolved: dict[str, Any]) -> bytes:
-    """The limit and its table (blocking: called in a worker thread) -> LimitsResult JSON bytes."""
-    started = time.perf_counter()
-    case = resolved["case"]
-    base = _case(case)
-    parameter, target = resolved["parameter"], resolved["target_srt_g"]
-    try:
-        limit = parameter_limit(base, target, parameter)
-    except InvalidInput as exc:
-        if exc.field != parameter:
-            raise
-        cause = exc.__cause__
-        if isinstance(cause, InvalidInput) and cause.field is not None:
-            raise cause from None  # e.g. a MissingParameter: its own field says more than the searched one
-        # the base case cannot be solved at the range's good end: point at the request's field
-        raise type(exc)(str(exc), field="parameter", value=parameter) from exc
-    table = None
-    if resolved["overweights_percent"] is not None:
-        table = []
-        for ow in resolved["overweights_percent"]:
-            try:
-                (row,) = limit_table(base, target, parameter, [ow])
-            except RolloverError as exc:  # one row the engine cannot solve is reported, not dropped
-                table.append(
-                    {
-                        "overweight_percent": ow,
-                        "value": None,
-                        "status": "refused",
-                        "srt_at_limit": None,
-                        "evaluations": 0,
-                        "error": str(exc),
-                    }
-                )
-                continue
-            table.append(
-                {
-                    "overweight_percent": row.overweight_percent,
-                    "value": row.limit.value,
-                    "status": row.limit.status,
-                    "srt_at_limit": row.limit.srt_at_limit,
-                    "evaluations": row.limit.evaluations,
-                    "error": None,
-                }
-            )
-    SOLVE_SECONDS.labels("srt-limits", case["model"]).observe(time.perf_counter() - started)
-    unit, symbol, _ = PARAMETER_INFO[parameter]
-    return (
-        LimitsResult.model_validate(
-            {
-                "parameter": parameter,
-                "kind": limit.kind,
-                "unit": unit,
-                "symbol": symbol,
-                "description": LIMIT_PARAMETERS[parameter][1],
-                "target_srt_g": target,
-                "current_value": _current_value(base, parameter),
-                "limit": _limit_out(limit, case["targets"]),
-                "table": table,
-                "model": case["model"],
-                "stage": case["stage"] if case["model"] == "3d" else None,
-                "engine_version": ENGINE_VERSION,
-            }
-        )
-        .model_dump_json()
-        .encode()
-    )
-
-
-async def compute_limits(cache: ResultCache, req: LimitsRequest, settings: Settings) -> Computed:
-    resolved = resolve_limits(req, settings)
-
-    async def produce() -> bytes:
-        return await run_in_threadpool(solve_limits, resolved)
-
-    return await cached(cache, "srt-limits", resolved, produce)
-
-
-# ------------------------------------------------------------------------------------------- sweep
+from engine.road import tilt_table_angle_deg
 
 #: sweeps with more cases than this are streamed (and their answer cached by reference), never built whole
 STREAM_ROWS = 5_000
@@ -169,7 +40,7 @@ ROWS_PER_CHUNK = 1_000
 
 
 def resolve_sweep(req: SweepRequest, settings: Settings) -> dict[str, Any]:
-    return {"case": _srt_case(req, settings), "grid": req.grid.axes()}
+    return {"case": base_case_key(req, settings), "grid": req.grid.axes()}
 
 
 def sweep_cases(resolved: dict[str, Any]) -> int:
@@ -197,7 +68,7 @@ def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
     """Every case of the grid (blocking: called in a worker thread), as arrays."""
     started = time.perf_counter()
     case = resolved["case"]
-    result = sweep(_case(case), resolved["grid"], block_map=solvers.block_map)
+    result = sweep(case_of_key(case), resolved["grid"], block_map=solvers.block_map)
     SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
     order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, case["targets"]))
     return SweepAnswer(resolved, result, order)
@@ -205,7 +76,7 @@ def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
 
 def _sweep_rows(answer: SweepAnswer, start: int, stop: int) -> list[dict[str, Any]]:
     """Rows [start, stop) as SweepRow dicts in the schema's field order (the swept axes only, then the results); the
-    target checks as :func:`app.service.target_checks` makes them (SRT >= target, SRT - target), on arrays."""
+    target checks as :func:`app.srt.service.target_checks` makes them (SRT >= target, SRT - target), on arrays."""
     r = answer.result
     goals = np.array([goal for _, goal in answer.targets], dtype=float)
     srt, values = r.srt[start:stop], r.values[start:stop]

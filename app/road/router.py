@@ -7,8 +7,8 @@ from fastapi import APIRouter, Request, Response
 from app.deps import CacheDep, SettingsDep
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_responses, json_response
-from app.schemas.road import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
-from app.service import compute_curve_speed, compute_min_radius
+from app.road.schemas import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
+from app.road.service import compute_curve_speed, compute_min_radius
 from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1", tags=["road"])

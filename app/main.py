@@ -26,7 +26,8 @@ from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
 from app.road import router as road_router
-from app.routers import alignments, health, models, plots, routes, standards
+from app.road import standards_router
+from app.routers import alignments, health, models, plots, routes
 from app.routers.web import install_page
 from app.settings import Settings, get_settings
 from app.srt import router as srt_router
@@ -97,7 +98,7 @@ ROUTERS = (
     vehicles_router.router,
     srt_router.router,
     road_router.router,
-    standards.router,
+    standards_router.router,
     alignments.router,
     routes.router,
     plots.router,

@@ -7,7 +7,7 @@ from typing import Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
-from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
 from engine.road import FRICTION_BOUNDS, STANDARDS
 

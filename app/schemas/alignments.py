@@ -19,7 +19,7 @@ from app.http.schemas import (
     exactly_one_schema,
     shape_error,
 )
-from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import (
     TARGETS_OUT,
     TILT_OUT,

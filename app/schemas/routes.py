@@ -19,8 +19,8 @@ from app.http.schemas import (
     exactly_one_schema,
     shape_error,
 )
+from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.schemas.alignments import MAX_VEHICLES, CurveRow, VehicleAssessment
-from app.schemas.standards import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 
 #: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX

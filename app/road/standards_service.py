@@ -9,7 +9,7 @@ import orjson
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
 from app.formats.tables import to_csv
-from app.schemas.standards import (
+from app.road.standards_schemas import (
     DEFAULT_DESIGN_STANDARD,
     TABLE_RADIUS_SPAN,
     StandardList,

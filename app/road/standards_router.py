@@ -10,7 +10,7 @@ from app.deps import CacheDep
 from app.http.negotiation import wants_csv
 from app.http.problems import error_responses, problem_response
 from app.http.responses import computed_response, computed_responses, json_response, table_responses
-from app.schemas.standards import (
+from app.road.standards_schemas import (
     StandardList,
     StandardOut,
     SuperelevationRequest,
@@ -18,7 +18,12 @@ from app.schemas.standards import (
     SuperelevationTableRequest,
     SuperelevationTableResult,
 )
-from app.service_standards import compute_superelevation, compute_superelevation_table, get_standard_out, list_standards
+from app.road.standards_service import (
+    compute_superelevation,
+    compute_superelevation_table,
+    get_standard_out,
+    list_standards,
+)
 from engine.road import STANDARDS
 
 router = APIRouter(prefix="/v1", tags=["standards"])

@@ -12,6 +12,7 @@ from fastapi import FastAPI
 from fastapi_offline import FastAPIOffline
 from starlette.concurrency import run_in_threadpool
 
+from app.alignments import router as alignments_router
 from app.catalog import router as catalog_router
 from app.catalog.service import close_catalog, install_catalog_handlers, open_catalog
 from app.compute import solvers
@@ -27,7 +28,7 @@ from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
 from app.road import router as road_router
 from app.road import standards_router
-from app.routers import alignments, health, models, plots, routes
+from app.routers import health, models, plots, routes
 from app.routers.web import install_page
 from app.settings import Settings, get_settings
 from app.srt import router as srt_router
@@ -99,7 +100,7 @@ ROUTERS = (
     srt_router.router,
     road_router.router,
     standards_router.router,
-    alignments.router,
+    alignments_router.router,
     routes.router,
     plots.router,
     jobs_api.router,

@@ -3,7 +3,7 @@
 The document is read by :mod:`app.formats.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
 feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
 (:func:`engine.route.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
-curves then go through the same assessment as an alignment's (:func:`app.service_alignments.solve_alignment`:
+curves then go through the same assessment as an alignment's (:func:`app.alignments.service.solve_alignment`:
 superelevation given, from a feature property, or derived from the standard; grade from the elevations), so a curve
 gets the same answer whether it came from a table or from geometry. The answer is a GeoJSON FeatureCollection of the
 curves (a GIS reads it as it is), or CSV: one row per curve and vehicle.
@@ -22,6 +22,16 @@ import orjson
 from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
+from app.alignments import rows as alignment_rows
+from app.alignments.schemas import MAX_ROWS
+from app.alignments.service import (
+    AlignmentAnswer,
+    AlignmentJob,
+    as_fleet_error,
+    resolve_alignment_refs,
+    resolved_assessment,
+    solve_alignment,
+)
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
 from app.formats.alignment_io import CurveTable
@@ -29,19 +39,7 @@ from app.formats.route_io import RouteFormatError, RoutePart, read_geojson, read
 from app.formats.tables import Text, flatten_targets, to_csv
 from app.http.negotiation import GEOJSON_MEDIA_TYPE
 from app.http.problems import InvalidRoute, request_error
-from app.schemas.alignments import MAX_ROWS
 from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
-from app.service_alignments import (
-    AlignmentAnswer,
-    AlignmentJob,
-    _rows,
-    _summary,
-    as_fleet_error,
-    csv_columns,
-    resolve_alignment_refs,
-    resolved_assessment,
-    solve_alignment,
-)
 from app.settings import Settings
 from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION
@@ -219,7 +217,7 @@ def _governing(rows: list[dict[str, Any]]) -> int:
 def _curves(geo: Geometry, answer: AlignmentAnswer) -> list[dict[str, Any]]:
     """Each curve's geometry and its assessment (the governing vehicle's row, and every row with several)."""
     n = len(geo.curves)
-    per_vehicle = [_rows(answer, v, 0, n) for v in answer.vehicles]
+    per_vehicle = [alignment_rows.rows(answer, v, 0, n) for v in answer.vehicles]
     out = []
     for i, c in enumerate(geo.curves):
         rows = [pv[i] for pv in per_vehicle]
@@ -262,7 +260,7 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
                 "index": v.index,
                 "preset": v.preset,
                 "saved_vehicle_id": v.saved_id,
-                "summary": _summary(v.columns),
+                "summary": alignment_rows.summary(v.columns),
                 "rows": [],
             }
             for v in answer.vehicles
@@ -287,13 +285,13 @@ def route_geojson(geo: Geometry, answer: AlignmentAnswer) -> bytes:
 def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
     """One row per vehicle and curve: the vehicle, the curve's geometry, then the alignment's columns."""
     n = len(geo.curves)
-    base = csv_columns(answer.resolved)
+    base = alignment_rows.csv_columns(answer.resolved)
     columns = [*base[:3], *GEOMETRY_COLUMNS, *base[3:]]
     rows = []
     for v in answer.vehicles:
         preset = None if v.preset is None else Text(v.preset)
         saved = None if v.saved_id is None else Text(v.saved_id)
-        for c, row in zip(geo.curves, _rows(answer, v, 0, n), strict=True):
+        for c, row in zip(geo.curves, alignment_rows.rows(answer, v, 0, n), strict=True):
             fields = {k: x for k, x in _geometry_fields(c).items() if k in GEOMETRY_COLUMNS}
             fields["part"] = Text(fields["part"])
             rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **fields,

@@ -7,6 +7,7 @@ from typing import Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.alignments.schemas import MAX_VEHICLES, CurveRow, VehicleAssessment
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
 from app.http.schemas import (
@@ -20,7 +21,6 @@ from app.http.schemas import (
     shape_error,
 )
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
-from app.schemas.alignments import MAX_VEHICLES, CurveRow, VehicleAssessment
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 
 #: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX

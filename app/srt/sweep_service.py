@@ -2,7 +2,7 @@
 
 Same flow as :mod:`app.srt.service`: the fully resolved request (preset expanded, defaults and targets filled) is the
 cache key; the engine runs in a worker thread. The sweep's answer is kept as the engine's arrays (:class:`SweepAnswer`)
-and rendered to JSON or CSV in chunks, like the alignment assessment (:mod:`app.service_alignments`): a small grid is
+and rendered to JSON or CSV in chunks, like the alignment assessment (:mod:`app.alignments.service`): a small grid is
 rendered whole and cached as bytes (served by the fast path on a repeat), a large one is streamed and cached by
 reference, as its arrays. Streamed or whole, the bytes are the same.
 """

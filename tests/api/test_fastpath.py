@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import orjson
 import pytest
 
-import app.routers.alignments
+import app.alignments.router
 import app.srt.router
 from app.http import fastpath
 from app.http.fastpath import FastPathMiddleware, etag_matches
@@ -54,7 +54,7 @@ def test_a_large_body_is_keyed_off_the_event_loop_the_same_way(client, monkeypat
     assert hashed and hashed[0] != threading.main_thread().name  # the TestClient's loop runs in the main thread
     head = (b"x", b"/p", b"", b"", b"")
     assert real(head, body) == hashlib.blake2b(b"\0".join((*head, body))).digest()
-    monkeypatch.setattr(app.routers.alignments, "compute_alignment", None)  # the route would fail
+    monkeypatch.setattr(app.alignments.router, "compute_alignment", None)  # the route would fail
     again = client.post("/v1/alignments/assess", content=body, headers=JSON)
     assert again.status_code == 200 and again.headers["x-cache"] == "hit" and again.content == first.content
     other = client.post("/v1/alignments/assess", content=body.replace(b"curve-", b"Curve-"), headers=JSON)

@@ -7,13 +7,7 @@ from typing import Annotated
 from fastapi import APIRouter, Query, Request, Response
 from starlette.concurrency import run_in_threadpool
 
-from app.deps import CacheDep, SettingsDep
-from app.http.bodies import json_body, upload_body
-from app.http.bodylimit import body_limit
-from app.http.negotiation import wants_csv
-from app.http.problems import VEHICLE_REF_CODES
-from app.http.responses import table_answer, table_responses
-from app.schemas.alignments import (
+from app.alignments.schemas import (
     ALIGNMENT_CSV_EXAMPLE,
     ALIGNMENT_JSON_LIMIT,
     ALIGNMENT_LANDXML_EXAMPLE,
@@ -22,8 +16,14 @@ from app.schemas.alignments import (
     AlignmentRequest,
     AlignmentResult,
 )
-from app.service_alignments import compute_alignment, parse_json_request
-from app.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload
+from app.alignments.service import compute_alignment, parse_json_request
+from app.alignments.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload
+from app.deps import CacheDep, SettingsDep
+from app.http.bodies import json_body, upload_body
+from app.http.bodylimit import body_limit
+from app.http.negotiation import wants_csv
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import table_answer, table_responses
 
 router = APIRouter(prefix="/v1/alignments", tags=["alignments"])
 

@@ -2,7 +2,7 @@
 
 Validating 100,000 ``CurveIn`` models with pydantic takes over a second and holds the GIL; the same rules checked
 here on arrays take a tenth of that, in plain Python and numpy that let other threads (and the event loop) run.
-The schema stays the one published (:class:`app.schemas.alignments.CurveIn`): every curve the fast check cannot
+The schema stays the one published (:class:`app.alignments.schemas.CurveIn`): every curve the fast check cannot
 clear is validated by pydantic itself, which gives the exact error the JSON form always gave (its type, location
 and message), so the two cannot disagree on an error; ``tests/api/test_curve_columns.py`` checks that they agree
 on acceptance too.
@@ -20,8 +20,8 @@ import numpy as np
 from fastapi.exceptions import RequestValidationError
 from pydantic import Field, TypeAdapter, ValidationError
 
+from app.alignments.schemas import CurveIn
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
-from app.schemas.alignments import CurveIn
 from engine.domain import BOUNDS
 
 _CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")

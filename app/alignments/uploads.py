@@ -21,14 +21,14 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
-from app.formats.uploads import decode_csv, decode_xml
-from app.http.problems import InvalidAlignment
-from app.http.schemas import describe
-from app.schemas.alignments import (
+from app.alignments.schemas import (
     MAX_VEHICLES,
     AlignmentRequest,
     LandXmlIn,
 )
+from app.formats.uploads import decode_csv, decode_xml
+from app.http.problems import InvalidAlignment
+from app.http.schemas import describe
 from app.srt.schemas import LoadIn
 
 OPTIONS = (

@@ -28,8 +28,9 @@ from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
 from app.road import router as road_router
 from app.road import standards_router
-from app.routers import health, models, plots, routes
+from app.routers import health, models, plots
 from app.routers.web import install_page
+from app.routes import router as routes_router
 from app.settings import Settings, get_settings
 from app.srt import router as srt_router
 from app.vehicles import builder_router
@@ -101,7 +102,7 @@ ROUTERS = (
     road_router.router,
     standards_router.router,
     alignments_router.router,
-    routes.router,
+    routes_router.router,
     plots.router,
     jobs_api.router,
     models.router,

@@ -100,7 +100,7 @@ def ansi_c(text: str) -> str:
 
 BTRAIN = "table16-btrain"
 sys.path.insert(0, str(ROOT))
-from app.schemas.routes import EXAMPLE_GEOJSON  # noqa: E402
+from app.routes.schemas import EXAMPLE_GEOJSON  # noqa: E402
 from app.vehicles.builder_schemas import EXAMPLE_SPEC  # noqa: E402
 
 CURVES_CSV = (

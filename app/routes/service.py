@@ -39,7 +39,7 @@ from app.formats.route_io import RouteFormatError, RoutePart, read_geojson, read
 from app.formats.tables import Text, flatten_targets, to_csv
 from app.http.negotiation import GEOJSON_MEDIA_TYPE
 from app.http.problems import InvalidRoute, request_error
-from app.schemas.routes import RouteCurves, RouteRequest, RouteResult
+from app.routes.schemas import RouteCurves, RouteRequest, RouteResult
 from app.settings import Settings
 from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION

@@ -14,8 +14,8 @@ from app.http.bodylimit import body_limit
 from app.http.negotiation import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import ANSWER_MODELS, computed_response, table_responses
-from app.schemas.routes import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
-from app.service_routes import assess_route
+from app.routes.schemas import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
+from app.routes.service import assess_route
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
 

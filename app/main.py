@@ -26,9 +26,10 @@ from app.http.request_metrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.metrics import JOBS_ACTIVE
+from app.plots import router as plots_router
 from app.road import router as road_router
 from app.road import standards_router
-from app.routers import health, models, plots
+from app.routers import health, models
 from app.routers.web import install_page
 from app.routes import router as routes_router
 from app.settings import Settings, get_settings
@@ -103,7 +104,7 @@ ROUTERS = (
     standards_router.router,
     alignments_router.router,
     routes_router.router,
-    plots.router,
+    plots_router.router,
     jobs_api.router,
     models.router,
     health.router,

@@ -9,8 +9,8 @@ from fastapi import APIRouter, Request, Response
 from app.deps import CacheDep, SettingsDep
 from app.http.problems import VEHICLE_REF_CODES, error_responses
 from app.http.responses import CACHE_HEADERS, computed_response
-from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
-from app.service_plots import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
+from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
+from app.plots.service import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
 from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1/plots", tags=["plots"])

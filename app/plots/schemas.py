@@ -108,7 +108,7 @@ class MinRadiusPlotRequest(SrtOptions, DesignOptions):
 
     @model_validator(mode="after")
     def _speed_range(self) -> MinRadiusPlotRequest:
-        # (that the speeds lie in the standard's range is the engine's check: app.service_plots.plot_min_radius)
+        # (that the speeds lie in the standard's range is the engine's check: app.plots.service.plot_min_radius)
         v0, v1 = self.speed_min_kmh, self.speed_max_kmh
         if v0 is not None and v1 is not None and v1 <= v0:
             raise shape_error("MinRadiusPlotRequest", "speed_max_kmh", f"must be above speed_min_kmh ({v0:g} km/h)", v1)

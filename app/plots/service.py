@@ -15,7 +15,7 @@ import numpy as np
 from app.compute.cache import ResultCache
 from app.compute.results import Computed, cached
 from app.formats.svg import Marker, Panel, Series, line_chart
-from app.schemas.plots import MinRadiusPlotRequest, PlotRequest
+from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
 from app.settings import Settings
 from app.srt.service import resolve_case, solve, srt_key
 from app.vehicles.refs import SavedRef

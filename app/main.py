@@ -25,11 +25,11 @@ from app.http.problems import install_problem_handlers, problem_bytes
 from app.http.request_metrics import HttpMetricsMiddleware
 from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
+from app.meta.router import health_router, models_router
 from app.metrics import JOBS_ACTIVE
 from app.plots import router as plots_router
 from app.road import router as road_router
 from app.road import standards_router
-from app.routers import health, models
 from app.routers.web import install_page
 from app.routes import router as routes_router
 from app.settings import Settings, get_settings
@@ -106,8 +106,8 @@ ROUTERS = (
     routes_router.router,
     plots_router.router,
     jobs_api.router,
-    models.router,
-    health.router,
+    models_router,
+    health_router,
 )
 
 

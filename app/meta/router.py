@@ -1,4 +1,5 @@
-"""GET /healthz and GET /metrics (Prometheus text format)."""
+"""What the service says about itself: GET /healthz, GET /metrics (Prometheus text format) and GET /v1/models (the
+available models with their equation numbers and references)."""
 
 from __future__ import annotations
 
@@ -9,13 +10,15 @@ from prometheus_client import CONTENT_TYPE_LATEST, REGISTRY, CollectorRegistry, 
 
 from app.deps import CacheDep
 from app.http.problems import error_responses
-from app.schemas.meta import Health
+from app.meta.schemas import Health, ModelInfoOut
 from engine import ENGINE_VERSION
+from engine.models import MODELS
 
-router = APIRouter(tags=["health"])
+health_router = APIRouter(tags=["health"])
+models_router = APIRouter(prefix="/v1/models", tags=["models"])
 
 
-@router.get("/healthz", response_model=Health, responses=error_responses(500))
+@health_router.get("/healthz", response_model=Health, responses=error_responses(500))
 async def healthz(cache: CacheDep) -> Health:
     """Liveness and cache state. Always 200 while the service answers, Redis or not."""
     redis = await cache.ping()
@@ -28,7 +31,7 @@ async def healthz(cache: CacheDep) -> Health:
     )
 
 
-@router.get(
+@health_router.get(
     "/metrics",
     response_class=Response,
     responses={
@@ -48,3 +51,21 @@ def metrics() -> Response:
         registry = CollectorRegistry()
         multiprocess.MultiProcessCollector(registry)
     return Response(generate_latest(registry), media_type=CONTENT_TYPE_LATEST)
+
+
+@models_router.get("", response_model=list[ModelInfoOut], responses=error_responses(500))
+def list_models() -> list[ModelInfoOut]:
+    """Every model id accepted by `model`, with the thesis equations, the reference and the inputs it uses."""
+    return [
+        ModelInfoOut(
+            id=m.id,
+            name=m.name,
+            equation=m.equation,
+            reference=m.reference,
+            takes=list(m.takes),
+            summary=m.summary,
+            curves=m.curves,
+            default=m.id == "3d",
+        )
+        for m in MODELS.values()
+    ]

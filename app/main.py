@@ -27,10 +27,10 @@ from app.jobs import api as jobs_api
 from app.logs import configure_logging, get_logger
 from app.meta.router import health_router, models_router
 from app.metrics import JOBS_ACTIVE
+from app.page import install_page
 from app.plots import router as plots_router
 from app.road import router as road_router
 from app.road import standards_router
-from app.routers.web import install_page
 from app.routes import router as routes_router
 from app.settings import Settings, get_settings
 from app.srt import router as srt_router

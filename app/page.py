@@ -4,6 +4,9 @@ The page is the API's first client: it calls nothing but the public ``/v1`` oper
 see which ones this deployment has). It loads nothing from another host, and its Content-Security-Policy says so:
 scripts, styles, images, fonts and requests from this origin only, no inline script or style, no plug-ins, no
 framing. It is not part of the OpenAPI document, which describes the JSON API.
+
+This module sits beside ``app/web/``, not in it: everything in that folder is served as it is (and installed as
+package data), so no Python file belongs there.
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ from starlette.responses import Response
 from starlette.staticfiles import StaticFiles
 
 #: the page's files, installed with the package (pyproject's package-data)
-WEB_DIR = Path(__file__).resolve().parent.parent / "web"
+WEB_DIR = Path(__file__).resolve().parent / "web"
 #: where the assets are served
 ASSETS_PATH = "/web"
 

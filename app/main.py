@@ -23,7 +23,8 @@ from app.http.netopts import set_nodelay_on_listening_sockets
 from app.http.openapi import computed_paths, operation_id, problem_openapi
 from app.http.problems import install_problem_handlers, problem_bytes
 from app.http.request_metrics import HttpMetricsMiddleware
-from app.jobs import api as jobs_api
+from app.jobs import router as jobs_router
+from app.jobs.service import open_jobs
 from app.logs import configure_logging, get_logger
 from app.meta.router import health_router, models_router
 from app.metrics import JOBS_ACTIVE
@@ -105,7 +106,7 @@ ROUTERS = (
     alignments_router.router,
     routes_router.router,
     plots_router.router,
-    jobs_api.router,
+    jobs_router.router,
     models_router,
     health_router,
 )
@@ -144,7 +145,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         if cache.redis is not None:
             await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
         await open_catalog(app, app.state.settings)  # opens and migrates the database when ROLLOVER_API_KEYS is set
-        app.state.jobs = jobs = jobs_api.open_jobs(app.state.settings)  # in-process threads, or Redis + RQ workers
+        app.state.jobs = jobs = open_jobs(app.state.settings)  # in-process threads, or Redis + RQ workers
         JOBS_ACTIVE.set_function(lambda: _active_jobs(jobs))
         app.openapi()  # built now, not by the first request (the body limits are read from it): ~1-2 s
         _freeze_startup_objects()

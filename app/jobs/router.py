@@ -8,35 +8,30 @@ ownerless: once keys are configured nobody sees it (a job is visible only to the
 
 from __future__ import annotations
 
-import time
 from collections.abc import Iterator
-from datetime import UTC, datetime
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Any
 
-import orjson
 from fastapi import APIRouter, Depends, Request, Response
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, StreamingResponse
 from fastapi.security import HTTPAuthorizationCredentials
 from fastapi.security.utils import get_authorization_scheme_param
-from pydantic import ConfigDict, Field, RootModel, ValidationError, create_model
 from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
 
 from app.catalog.auth import authenticate
 from app.deps import SettingsDep
-from app.formats.jsonpieces import loads_in_pieces
 from app.http.bodies import json_body
 from app.http.bodylimit import body_limit
 from app.http.negotiation import CSV_TYPE, JSON_TYPE, wants_csv
-from app.http.problems import InvalidAlignment, Problem, engine_field, error_responses, problem_response
-from app.http.schemas import InputModel, OutputModel, describe
+from app.http.problems import InvalidAlignment, Problem, error_responses, problem_response
 from app.jobs.backends import Backend
 from app.jobs.base import Operation, ResolveContext
 from app.jobs.kv import StorageFull
 from app.jobs.operations import OPERATIONS
-from app.jobs.store import JobNotFound, JobView, problem
+from app.jobs.schemas import JobStatus, JobSubmission
+from app.jobs.service import parse_submission, prepare, status_body, under_request, visible_job
+from app.jobs.store import JobView, problem
 from app.logs import get_logger
-from app.settings import Settings
 from engine.errors import InvalidInput
 
 #: a job's request body: 1,000,000 curves as JSON are about 100 MB; a LandXML document of 200 M characters [bytes]
@@ -46,125 +41,6 @@ SEND_PIECE = 256 * 2**10
 
 router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
 _log = get_logger("rollover.jobs")
-
-
-# ------------------------------------------------------------------------------------------ schemas
-
-
-def _submission_model() -> type[RootModel]:
-    variants = []
-    for op in OPERATIONS.values():
-        name = "".join(p.capitalize() for p in op.name.replace(".", "_").split("_")) + "Job"
-        variants.append(
-            create_model(
-                name,
-                __base__=InputModel,
-                __doc__=op.description,
-                operation=(Literal[op.name], Field(description=describe("The operation to run.", unit="-"))),
-                request=(
-                    op.request_model,
-                    Field(description=describe("Its request, as the synchronous endpoint takes it.", unit="-")),
-                ),
-            )
-        )
-    union = Annotated[Union[tuple(variants)], Field(discriminator="operation")]  # noqa: UP007
-    return create_model("JobSubmission", __base__=RootModel[union], __doc__="A job: `operation` and its `request`.")
-
-
-JobSubmission = _submission_model()
-
-
-class JobParts(OutputModel):
-    total: int = Field(description=describe("Parts of the job (independent units a worker takes).", unit="-"))
-    queued: int = Field(description=describe("Parts waiting for a worker.", unit="-"))
-    running: int = Field(description=describe("Parts being computed.", unit="-"))
-    done: int = Field(description=describe("Parts finished.", unit="-"))
-    failed: int = Field(description=describe("Parts that failed.", unit="-"))
-
-
-class JobStatus(OutputModel):
-    """A job's status and progress."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    id: str = Field(description=describe("The job's id: `job_` + 22 url-safe characters (128 random bits).", unit="-"))
-    operation: str | None = Field(
-        description=describe("The operation (null when the stored job cannot be read).", unit="-")
-    )
-    status: Literal["queued", "running", "done", "failed", "cancelled"] = Field(
-        description=describe("Where the job is.", unit="-")
-    )
-    progress: float = Field(
-        ge=0, le=1, description=describe("Work done / total work, updated while it runs.", unit="-")
-    )
-    unit: str | None = Field(
-        description=describe("What `done` and `total` count: `rows` (alignments), `cases` (sweep).", unit="-")
-    )
-    done: int = Field(
-        description=describe(
-            "Units of work done (a lost worker's part counts again from 0).", unit="rows or cases (see `unit`)"
-        )
-    )
-    total: int = Field(description=describe("Units of work of the job.", unit="rows or cases (see `unit`)"))
-    parts: JobParts = Field(description=describe("The parts by status.", unit="-"))
-    retries: int = Field(description=describe("Part runs started again after their worker was lost.", unit="-"))
-    created_at: str | None = Field(description=describe("When the job was submitted (RFC 3339, UTC).", unit="-"))
-    started_at: str | None = Field(description=describe("When its first part started (RFC 3339, UTC).", unit="-"))
-    finished_at: str | None = Field(
-        description=describe("When it became done, failed or cancelled (RFC 3339, UTC).", unit="-")
-    )
-    expires_at: str | None = Field(
-        description=describe(
-            "When a finished job and its result are deleted (ROLLOVER_JOBS_RESULT_TTL_S after it finished; RFC 3339, "
-            "UTC).",
-            unit="-",
-        )
-    )
-    formats: list[str] = Field(
-        description=describe("The result's formats: `json`, and `csv` when the operation offers it.", unit="-")
-    )
-    result: str | None = Field(description=describe("The result's path, when done.", unit="-"))
-    error: Problem | None = Field(
-        description=describe("Why it failed (a problem-details object), when failed.", unit="-")
-    )
-
-
-def _rfc3339(t: float | None) -> str | None:
-    if t is None:
-        return None
-    return datetime.fromtimestamp(t, UTC).isoformat(timespec="milliseconds").replace("+00:00", "Z")
-
-
-def status_body(view: JobView) -> dict[str, Any]:
-    record, status = view.record, view.status
-    total = view.total_units
-    done = total if status == "done" else min(view.done_units, total)
-    finished = view.finished_at
-    if view.invalid is not None:
-        error = problem("job-state-invalid", "The job's stored state cannot be used", view.invalid, 500)
-    else:
-        error = view.stop.error if view.stop is not None and view.stop.status == "failed" else None
-    return {
-        "id": view.id,
-        "operation": record.operation if record else None,
-        "status": status,
-        "progress": 1.0 if status == "done" else (done / total if total else 0.0),
-        "unit": record.unit if record else None,
-        "done": done,
-        "total": total,
-        "parts": {
-            "total": len(view.parts),
-            **{s: view.count(s) for s in ("queued", "running", "done", "failed")},
-        },
-        "retries": view.retries,
-        "created_at": _rfc3339(record.created_at if record else None),
-        "started_at": _rfc3339(view.started_at),
-        "finished_at": _rfc3339(finished),
-        "expires_at": _rfc3339(finished + record.ttl_s if finished is not None and record else None),
-        "formats": record.formats if record else [],
-        "result": f"/v1/jobs/{view.id}/result" if status == "done" else None,
-        "error": error,
-    }
 
 
 # ------------------------------------------------------------------------------------- dependencies
@@ -193,69 +69,6 @@ async def get_jobs(request: Request) -> Backend:
 JobsDep = Annotated[Backend, Depends(get_jobs)]
 
 
-# ------------------------------------------------------------------------------------- submission
-
-
-def _under_request(exc: Exception) -> Exception:
-    """An error of the inner request, located under ``request`` (``curves.3.radius_m`` -> ``request.curves.3...``)."""
-    if isinstance(exc, RequestValidationError):
-        errors = []
-        for e in exc.errors():
-            loc = tuple(e.get("loc", ()))
-            errors.append({**e, "loc": ("body", "request", *(loc[1:] if loc[:1] == ("body",) else loc))})
-        return RequestValidationError(errors)
-    if isinstance(exc, InvalidAlignment):
-        source = "request" if exc.source == "body" else f"request.{exc.source}"
-        return type(exc)(exc.reason, source=source, location=exc.location, column=exc.column)  # InvalidRoute stays
-    if isinstance(exc, InvalidInput) and exc.field is not None:
-        out = type(exc)(str(exc), field=f"request.{engine_field(exc.field)}", value=exc.value)
-        return out
-    return exc
-
-
-def parse_submission(body: bytes) -> tuple[Operation, Any]:
-    """The job's operation and its validated request (blocking: a million curves take a few seconds)."""
-    try:
-        data = loads_in_pieces(body, ("request", "curves"))  # an alignment job's curves a slice at a time
-    except orjson.JSONDecodeError as exc:
-        raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
-    if not isinstance(data, dict):
-        raise RequestValidationError([{"type": "dict_type", "loc": ("body",), "msg": "Input should be an object"}])
-    known = ", ".join(OPERATIONS)
-    errors = []
-    for name in sorted(set(data) - {"operation", "request"}):
-        errors.append({"type": "extra_forbidden", "loc": ("body", name), "msg": "Extra inputs are not permitted"})
-    operation = data.get("operation")
-    if "operation" not in data:
-        errors.append({"type": "missing", "loc": ("body", "operation"), "msg": f"Field required (one of {known})"})
-    elif not isinstance(operation, str) or operation not in OPERATIONS:
-        msg = f"unknown operation {operation!r}; one of {known}"
-        errors.append({"type": "literal_error", "loc": ("body", "operation"), "msg": msg, "input": operation})
-    if "request" not in data:
-        errors.append({"type": "missing", "loc": ("body", "request"), "msg": "Field required"})
-    elif not isinstance(data["request"], dict):
-        errors.append({"type": "dict_type", "loc": ("body", "request"), "msg": "Input should be an object"})
-    if errors:
-        raise RequestValidationError(errors)
-    op = OPERATIONS[operation]
-    try:
-        return op, op.parse(data["request"])
-    except ValidationError as exc:  # the request model's own errors
-        errors = [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
-        raise _under_request(RequestValidationError(errors)) from None
-    except RequestValidationError as exc:
-        raise _under_request(exc) from None
-
-
-def prepare(op: Operation, parsed: Any, ctx: ResolveContext):
-    """Resolve and split (blocking), every refusal located under ``request``."""
-    try:
-        resolved = op.resolve(parsed, ctx)
-        return op.split(resolved, ctx.settings.jobs_part_size or op.part_units)
-    except (RequestValidationError, InvalidAlignment, InvalidInput) as exc:
-        raise _under_request(exc) from None
-
-
 def _storage_full(request: Request, exc: StorageFull) -> Response:
     return problem_response(
         request, 503, "jobs-storage-full", "The job store is full", str(exc), headers={"Retry-After": "60"}
@@ -270,24 +83,6 @@ def _not_found(request: Request, job_id: str) -> Response:
         "No such job",
         f"no job {job_id!r} for this caller (it does not exist, has expired or was deleted, or belongs to another key)",
     )
-
-
-def _visible(backend: Backend, job_id: str, owner: str | None) -> JobView | None:
-    """The job when the caller may see it (a lost worker's parts queued again on the way)."""
-    if not job_id.startswith("job_") or len(job_id) > 64:
-        return None
-    try:
-        view = backend.store.view(job_id)
-    except JobNotFound:
-        return None
-    if view.record is not None and view.record.owner != owner:
-        return None
-    if view.status == "running":
-        now, lease = time.time(), backend.store.lease_s
-        if any(p is not None and p.status == "running" and (p.heartbeat_at or 0) + lease <= now for p in view.parts):
-            backend.dispatch(job_id, backend.store.reap(job_id, now))
-            view = backend.store.view(job_id)
-    return view
 
 
 # ------------------------------------------------------------------------------------------ routes
@@ -341,7 +136,7 @@ async def submit(request: Request, owner: OwnerDep, settings: SettingsDep, jobs:
         try:
             parsed = await op.refs(request, parsed, settings)
         except (RequestValidationError, InvalidAlignment, InvalidInput) as exc:
-            raise _under_request(exc) from None
+            raise under_request(exc) from None
     prepared = await run_in_threadpool(prepare, op, parsed, ResolveContext(settings, owner))
     try:
         record = await run_in_threadpool(
@@ -372,7 +167,7 @@ async def submit(request: Request, owner: OwnerDep, settings: SettingsDep, jobs:
     description="The job's status, progress (updated while it runs), timestamps and, when failed, the problem.",
 )
 async def status(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) -> Response:
-    view = await run_in_threadpool(_visible, jobs, job_id, owner)
+    view = await run_in_threadpool(visible_job, jobs, job_id, owner)
     if view is None:
         return _not_found(request, job_id)
     return JSONResponse(status_body(view))
@@ -424,7 +219,7 @@ def _result_chunks(jobs: Backend, view: JobView, op: Operation, fmt: str) -> Ite
     "request, streamed from the stored parts.",
 )
 async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) -> Response:
-    view = await run_in_threadpool(_visible, jobs, job_id, owner)
+    view = await run_in_threadpool(visible_job, jobs, job_id, owner)
     if view is None:
         return _not_found(request, job_id)
     op = OPERATIONS.get(view.record.operation) if view.record is not None else None
@@ -467,7 +262,7 @@ async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
     "-> 202 with its status; delete a finished one and its result -> 204.",
 )
 async def cancel(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) -> Response:
-    view = await run_in_threadpool(_visible, jobs, job_id, owner)
+    view = await run_in_threadpool(visible_job, jobs, job_id, owner)
     if view is None:
         return _not_found(request, job_id)
     if view.status in ("queued", "running"):
@@ -476,9 +271,3 @@ async def cancel(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
         return JSONResponse(status_body(view), status_code=202)
     await run_in_threadpool(jobs.store.discard, view)
     return Response(status_code=204)
-
-
-def open_jobs(settings: Settings) -> Backend:
-    from app.jobs.backends import make_backend
-
-    return make_backend(settings)

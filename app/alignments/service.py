@@ -391,5 +391,4 @@ async def compute_alignment(
         body = await run_in_threadpool(lambda: b"".join(render(answer, csv)))
         await cache.set(key, body, media_type)
         return Computed(body, key, hit, media_type)
-    request.state.raw_reusable = False  # not kept as bytes: the fast path has nothing to serve it from
     return Streamed(render(answer, csv), key, hit, media_type)

@@ -1,14 +1,18 @@
 """The cache-hit fast path: an answer already known for the same request bytes is sent before any model is built.
 
-A pure ASGI middleware in front of FastAPI, for the computed POST operations. It keys the *raw* request (path,
+A pure ASGI middleware in front of FastAPI, for the routes that opt in where they are defined (:func:`replayable` on
+the endpoint: a computed POST whose answer is the cache's body for its ``ETag``). It keys the *raw* request (path,
 query string, content type, the negotiated representation, body bytes) to the canonical cache key (the ``ETag``)
 that the full path derived from it last time. When that key's body is still in the in-process cache, the answer
 goes out at once: no routing, no JSON parsing, no validation, no thread hop. Otherwise the request goes through the
-app as usual and, if its answer carries an ``ETag``, the raw key is remembered for next time.
+app as usual and, if its answer carries an ``ETag`` whose body the in-process cache now holds, the raw key is
+remembered for next time (a streamed answer is not kept as bytes: there is nothing to replay it from).
 
-A request whose answer does not depend on its bytes alone (it names a saved vehicle, which its owner may edit) is
-marked not reusable by the service (``request.state.raw_reusable = False``) and is never answered from here: its
-canonical key is derived again each time, from the record as it is now.
+A request with credentials (an ``Authorization`` header) is never answered from here nor remembered: it may name a
+saved vehicle or a fleet, which its owner may edit and no other key may read, so the same bytes may mean another
+record tomorrow or be refused to another caller. Its canonical key is derived again each time, from the record as
+it is now (the full path still answers it from the cache). Nothing downstream has to say so: an answer that depends
+on who asks cannot be computed without that header.
 
 ``If-None-Match`` with the current ``ETag`` is answered ``304 Not Modified`` (no body), on either path.
 """
@@ -16,7 +20,7 @@ canonical key is derived again each time, from the record as it is now.
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Awaitable, Callable, MutableMapping
+from collections.abc import Awaitable, Callable, Iterable, MutableMapping
 from typing import Any
 
 from cachetools import LRUCache
@@ -24,6 +28,7 @@ from starlette.concurrency import run_in_threadpool
 
 from app.compute import cache as cache_module
 from app.http.negotiation import WITH_GEOJSON, negotiate
+from app.http.route_table import api_routes
 from app.metrics import CACHE_LOOKUPS, FAST_PATH_HITS
 
 _FORM_KEYS = {"json": b"", "csv": b"csv", "geojson": b"geojson"}
@@ -55,6 +60,32 @@ def _header(scope: Scope, name: bytes) -> bytes | None:
     return None
 
 
+#: the attribute :func:`replayable` sets on a route's endpoint
+REPLAY_ATTRIBUTE = "rollover_replayable"
+
+
+def replayable(endpoint: Callable[..., Any]) -> Callable[..., Any]:
+    """Declare, on a computed POST route's endpoint, that a repeated request may be answered from its raw bytes: its
+    200 answer is the result cache's body for its ``ETag`` and depends on the request's path, query, content type,
+    ``Accept`` and body alone (what depends on the caller's identity is never replayed, see the module). Routes
+    without it always go through the app."""
+    setattr(endpoint, REPLAY_ATTRIBUTE, True)
+    return endpoint
+
+
+def replayable_paths(routes: Iterable[Any]) -> set[str]:
+    """The paths of the routes (an app's ``app.routes``) whose endpoint is :func:`replayable` (fixed POST paths: the
+    raw key has no template)."""
+    paths = set()
+    for route in api_routes(routes):
+        if not getattr(route.endpoint, REPLAY_ATTRIBUTE, False):
+            continue
+        if "POST" not in (route.methods or ()) or "{" in route.path:
+            raise ValueError(f"{route.path}: only a fixed POST path can be replayed from its raw bytes")
+        paths.add(route.path)
+    return paths
+
+
 def etag_matches(if_none_match: bytes | None, etag: bytes) -> bool:
     """RFC 9110 weak comparison of If-None-Match against an entity tag (``*`` matches any)."""
     if not if_none_match:
@@ -69,7 +100,7 @@ class FastPathMiddleware:
 
     def __init__(self, app, *, paths: Callable[[], set[str]], cache: Callable[[], Any]) -> None:
         self.app = app
-        self._paths = paths  # () -> the computed POST paths (read once, from the routes)
+        self._paths = paths  # () -> the paths of the replayable routes (read once, from the route table)
         self.paths: set[str] | None = None
         self.cache = cache  # () -> the app's ResultCache (opened in the lifespan)
         self.index: LRUCache = LRUCache(maxsize=RAW_INDEX_ENTRIES)
@@ -86,6 +117,10 @@ class FastPathMiddleware:
         body = await _read_body(receive)
         if body is None:  # the client went away
             return
+        inm = _header(scope, b"if-none-match")
+        if _header(scope, b"authorization") is not None:  # may depend on who asks: never replayed (see the module)
+            await self._through_app(scope, body, None, inm, receive, send)
+            return
         accept = (_header(scope, b"accept") or b"").decode("latin-1")
         form = _FORM_KEYS[negotiate(accept, WITH_GEOJSON)]  # every negotiated form has its own key
         head = (
@@ -99,7 +134,6 @@ class FastPathMiddleware:
             raw_key = _raw_key(head, body)
         else:  # hashlib lets go of the GIL: in a thread, a 12 MB body's 25 ms are not the event loop's
             raw_key = await run_in_threadpool(_raw_key, head, body)
-        inm = _header(scope, b"if-none-match")
         known = self.index.get(raw_key)
         cache = self.cache()
         if known is not None and cache is not None:
@@ -112,7 +146,7 @@ class FastPathMiddleware:
                 return
         await self._through_app(scope, body, raw_key, inm, receive, send)
 
-    async def _through_app(self, scope: Scope, body: bytes, raw_key: bytes, inm, receive: Receive, send: Send):
+    async def _through_app(self, scope: Scope, body: bytes, raw_key: bytes | None, inm, receive: Receive, send: Send):
         replayed = False
 
         async def replay() -> MutableMapping[str, Any]:
@@ -129,9 +163,9 @@ class FastPathMiddleware:
                 headers = dict(message.get("headers") or [])
                 etag = headers.get(b"etag")
                 if message["status"] == 200 and etag is not None:
-                    reusable = scope.get("state", {}).get("raw_reusable", True)
                     key = etag.strip(b'"').decode()
-                    if reusable:
+                    cache = self.cache()
+                    if raw_key is not None and cache is not None and key in cache.local:  # what can be replayed
                         operation = key.split(":")[1] if key.count(":") >= 2 else "?"
                         media = headers.get(b"content-type", b"application/json").decode()
                         self.index[raw_key] = (key, operation, media, b"vary" in headers)

@@ -56,12 +56,3 @@ def problem_openapi(app: FastAPI) -> dict[str, Any]:
                     response["content"] = {PROBLEM_MEDIA_TYPE: content["application/json"]}
     app.openapi_schema = schema
     return schema
-
-
-def computed_paths(spec: dict[str, Any]) -> set[str]:
-    """The POST operations whose answer carries the cache's ETag (the ones the fast path can answer)."""
-    return {
-        path
-        for path, item in spec.get("paths", {}).items()
-        if "ETag" in item.get("post", {}).get("responses", {}).get("200", {}).get("headers", {})
-    }

@@ -5,6 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter, Request, Response
 
 from app.deps import CacheDep, SettingsDep
+from app.http.fastpath import replayable
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_responses, json_response
 from app.road.schemas import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
@@ -20,6 +21,7 @@ router = APIRouter(prefix="/v1", tags=["road"])
     response_model=CurveSpeedResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
+@replayable
 async def curve_speed(body: CurveSpeedRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Maximum speed on a curve of radius R before rollover, V = sqrt(127 SRT R) [km/h] (Eq. 9.1).
 
@@ -35,6 +37,7 @@ async def curve_speed(body: CurveSpeedRequest, request: Request, cache: CacheDep
     response_model=MinRadiusResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
+@replayable
 async def min_radius(body: MinRadiusRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (side friction: the design standard's
     f_max, AASHTO 2018 by default, unless `side_friction` is given), Eq. 9.3 (rollover, the SRT on that bank and

@@ -11,6 +11,7 @@ from starlette.concurrency import run_in_threadpool
 from app.deps import CacheDep, SettingsDep
 from app.http.bodies import json_body
 from app.http.bodylimit import body_limit
+from app.http.fastpath import replayable
 from app.http.negotiation import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import ANSWER_MODELS, computed_response, table_responses
@@ -54,6 +55,7 @@ ANSWER_MODELS.append(RouteCurves)  # published in components/schemas (the GeoJSO
     responses=_RESPONSES,
     openapi_extra={**body_limit(ROUTE_BODY_LIMIT), **json_body(RouteRequest)},
 )
+@replayable
 async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The horizontal curves of a route given as geometry, each assessed like a curve of an alignment.
 

@@ -6,6 +6,7 @@ from fastapi import APIRouter, Request, Response
 
 from app.deps import CacheDep, SettingsDep
 from app.http.bodylimit import body_limit
+from app.http.fastpath import replayable
 from app.http.negotiation import wants_csv
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_response, computed_responses, json_response, table_answer, table_responses
@@ -26,6 +27,7 @@ router = APIRouter(prefix="/v1", tags=["srt"])
     response_model=SrtResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
+@replayable
 async def srt(body: SrtRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Static rollover threshold (g) of a vehicle on a road with a load case, the roll angle, the stage values,
     the state at the limit and, with `include_curves`, the curves against ay/g; whether the SRT meets each
@@ -40,6 +42,7 @@ async def srt(body: SrtRequest, request: Request, cache: CacheDep, settings: Set
     response_model=LimitsResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
+@replayable
 async def limits(body: LimitsRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """For a target SRT, the largest CG height above the chassis, overweight or lateral offset d1 -- or the
     smallest spring separation -- at which the vehicle still meets it (Brent's bracketed root finder on the
@@ -56,10 +59,11 @@ async def limits(body: LimitsRequest, request: Request, cache: CacheDep, setting
     responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
     openapi_extra=body_limit(SWEEP_BODY_LIMIT),
 )
+@replayable
 async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The SRT over the Cartesian product of up to eight axes (bank, slope, trailer angle, d1, d2, d3,
     overweight, rear LLT limit; at most 20,000 cases), like the thesis's Tables 17 and 19, in one call; JSON, or
     CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
     body = await resolve_vehicle_refs(request, body, settings)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_sweep(cache, request, body, settings, csv=csv))
+    return table_answer(await compute_sweep(cache, body, settings, csv=csv))

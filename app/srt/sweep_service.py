@@ -17,7 +17,6 @@ from typing import Any
 
 import numpy as np
 import orjson
-from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
 from app.compute import solvers
@@ -136,9 +135,7 @@ def solve_sweep(resolved: dict[str, Any]) -> bytes:
     return b"".join(sweep_json_chunks(sweep_answer(resolved)))
 
 
-async def compute_sweep(
-    cache: ResultCache, request: Request, req: SweepRequest, settings: Settings, *, csv: bool
-) -> Computed | Streamed:
+async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed | Streamed:
     """The sweep as a cached body (up to :data:`STREAM_ROWS` cases) or a stream (more); the same bytes either way.
 
     The engine's answer is kept by reference (``cache.answers``), so the JSON and CSV forms of one grid share one
@@ -164,5 +161,4 @@ async def compute_sweep(
         return await cached(cache, operation, resolved, produce, media_type)
     found, hit = await answer()
     CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
-    request.state.raw_reusable = False  # not kept as bytes: the fast path has nothing to serve it from
     return Streamed(render_sweep(found, csv), cache_key(operation, resolved), hit, media_type)

@@ -10,9 +10,9 @@ A computation's ``vehicle`` (and the alignment's ``vehicles`` or ``fleet``) may 
 
 :func:`resolve_vehicle_refs` replaces every saved id, fleet and spec of a validated request by the engine's
 :class:`~engine.vehicles.Vehicle` before the service sees it, so the cache key is derived from the resolved record:
-editing a saved vehicle changes its key and never serves a stale answer. A request that names a saved vehicle or a
-fleet is marked not reusable by the raw-body fast path (``request.state.raw_reusable = False``): the same bytes
-may mean another record tomorrow, or be sent by another key.
+editing a saved vehicle changes its key and never serves a stale answer. Reading one needs the caller's bearer key,
+so the raw-body fast path (:mod:`app.http.fastpath`), which never replays a request with credentials, never answers
+such a request from its bytes.
 """
 
 from __future__ import annotations
@@ -85,13 +85,11 @@ class _Resolver:
         if isinstance(ref, SpecRef):
             return build_spec(ref.engine_spec(), where).vehicle
         if isinstance(ref, str) and ref.startswith(catalog.SAVED_VEHICLE_PREFIX):
-            self.request.state.raw_reusable = False
             db = await catalog.catalog_db(self.request)
             return self.stored(ref, await catalog.resolve_saved_vehicle(db, await self.owner(), ref), where)
         return ref
 
     async def fleet(self, fleet_id: str) -> list[Any]:
-        self.request.state.raw_reusable = False
         db = await catalog.catalog_db(self.request)
         members = await catalog.resolve_fleet(db, await self.owner(), fleet_id)
         return [id if body is None else self.stored(id, body, f"fleet[{i}]") for i, (id, body) in enumerate(members)]

@@ -18,7 +18,7 @@ from app.catalog.service import close_catalog, install_catalog_handlers, open_ca
 from app.compute import solvers
 from app.compute.cache import make_cache
 from app.http.bodylimit import BodyLimitMiddleware, spec_limits
-from app.http.fastpath import FastPathMiddleware, replayable_paths
+from app.http.fastpath import FastPathMiddleware, replay_table
 from app.http.netopts import set_nodelay_on_listening_sockets
 from app.http.openapi import operation_id, problem_openapi
 from app.http.problems import install_problem_handlers, problem_bytes
@@ -180,7 +180,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
-    app.add_middleware(FastPathMiddleware, paths=lambda: replayable_paths(app.routes), cache=lambda: app.state.cache)
+    app.add_middleware(FastPathMiddleware, routes=lambda: replay_table(app.routes), cache=lambda: app.state.cache)
     app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)
     app.openapi = lambda: problem_openapi(app)  # type: ignore[method-assign]
     return app

@@ -22,7 +22,7 @@ from app.deps import CacheDep, SettingsDep
 from app.http.bodies import json_body, upload_body
 from app.http.bodylimit import body_limit
 from app.http.fastpath import replayable
-from app.http.negotiation import wants_csv
+from app.http.negotiation import TABLE_FORMS, wants_csv
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import table_answer, table_responses
 
@@ -51,7 +51,7 @@ over 5,000 rows are streamed (chunked; the same bytes as a whole answer) and cac
 The curves are a JSON list (`curves`), CSV text (`csv`) or a LandXML 1.2 document (`landxml`); the same files can
 also be sent as they are to `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`.""",
 )
-@replayable
+@replayable("alignments", offers=TABLE_FORMS)
 async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     # 100,000 curves are 15 MB of JSON: read and validated in a worker thread, the curves as columns
     body, curves = await run_in_threadpool(parse_json_request, await request.body())
@@ -73,7 +73,7 @@ optionally `grade_percent`, `posted_speed_kmh`), the options are query parameter
 presets). The same request as `POST /v1/alignments/assess` with `csv`: same answer, same cache entry. A rule the
 query's schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
 )
-@replayable
+@replayable("alignments", offers=TABLE_FORMS)
 async def assess_csv(
     request: Request, query: Annotated[CsvUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
@@ -96,7 +96,7 @@ superelevation / grade / posted-speed defaults for every curve are query paramet
 JSON form's `curve_overrides`). The same request as `POST /v1/alignments/assess` with `landxml`. A rule the query's
 schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
 )
-@replayable
+@replayable("alignments", offers=TABLE_FORMS)
 async def assess_landxml(
     request: Request, query: Annotated[LandXmlUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:

@@ -21,17 +21,19 @@ from __future__ import annotations
 
 import hashlib
 from collections.abc import Awaitable, Callable, Iterable, MutableMapping
+from dataclasses import dataclass
 from typing import Any
 
 from cachetools import LRUCache
 from starlette.concurrency import run_in_threadpool
 
 from app.compute import cache as cache_module
-from app.http.negotiation import WITH_GEOJSON, negotiate
+from app.http.negotiation import negotiate
 from app.http.route_table import api_routes
 from app.metrics import CACHE_LOOKUPS, FAST_PATH_HITS
 
-_FORM_KEYS = {"json": b"", "csv": b"csv", "geojson": b"geojson"}
+#: the form part of a raw key: one key per form a route negotiates
+_FORM_KEYS = {"": b"", "json": b"", "csv": b"csv", "geojson": b"geojson"}
 
 #: raw request -> canonical key remembered per process (a few hundred bytes each)
 RAW_INDEX_ENTRIES = 65_536
@@ -61,29 +63,53 @@ def _header(scope: Scope, name: bytes) -> bytes | None:
 
 
 #: the attribute :func:`replayable` sets on a route's endpoint
-REPLAY_ATTRIBUTE = "rollover_replayable"
+REPLAY_ATTRIBUTE = "rollover_replay"
 
 
-def replayable(endpoint: Callable[..., Any]) -> Callable[..., Any]:
+@dataclass(frozen=True)
+class Replay:
+    """A route's opt-in to the fast path (:func:`replayable`): the cache operation of its answer and the forms it
+    negotiates from ``Accept`` (none: its answer has one form)."""
+
+    operation: str
+    offers: tuple[str, ...] = ()
+
+    def form(self, accept: str) -> str:
+        """The form of the answer to ``accept``, as the route itself negotiates it ("" for a route of one form)."""
+        return negotiate(accept, self.offers) if self.offers else ""
+
+    def operation_of(self, form: str) -> str:
+        """The cache operation of the answer in ``form``: ``<operation>`` for JSON (or the one form), else
+        ``<operation>-<form>`` (``alignments-csv``, ``route-geojson``), as the services name their keys."""
+        return self.operation if form in ("", "json") else f"{self.operation}-{form}"
+
+
+def replayable(operation: str, *, offers: tuple[str, ...] = ()) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
     """Declare, on a computed POST route's endpoint, that a repeated request may be answered from its raw bytes: its
-    200 answer is the result cache's body for its ``ETag`` and depends on the request's path, query, content type,
-    ``Accept`` and body alone (what depends on the caller's identity is never replayed, see the module). Routes
-    without it always go through the app."""
-    setattr(endpoint, REPLAY_ATTRIBUTE, True)
-    return endpoint
+    200 answer is the result cache's body for its ``ETag`` (cached as ``operation``, see :meth:`Replay.operation_of`)
+    and depends on the request's path, query, content type, ``Accept`` (negotiated among ``offers``, e.g.
+    :data:`~app.http.negotiation.TABLE_FORMS`) and body alone (what depends on the caller's identity is never
+    replayed, see the module). Routes without it always go through the app."""
+
+    def declare(endpoint: Callable[..., Any]) -> Callable[..., Any]:
+        setattr(endpoint, REPLAY_ATTRIBUTE, Replay(operation, tuple(offers)))
+        return endpoint
+
+    return declare
 
 
-def replayable_paths(routes: Iterable[Any]) -> set[str]:
-    """The paths of the routes (an app's ``app.routes``) whose endpoint is :func:`replayable` (fixed POST paths: the
-    raw key has no template)."""
-    paths = set()
+def replay_table(routes: Iterable[Any]) -> dict[str, Replay]:
+    """path -> :class:`Replay` of the routes (an app's ``app.routes``) whose endpoint is :func:`replayable` (fixed
+    POST paths: the raw key has no template)."""
+    table = {}
     for route in api_routes(routes):
-        if not getattr(route.endpoint, REPLAY_ATTRIBUTE, False):
+        replay = getattr(route.endpoint, REPLAY_ATTRIBUTE, None)
+        if replay is None:
             continue
         if "POST" not in (route.methods or ()) or "{" in route.path:
             raise ValueError(f"{route.path}: only a fixed POST path can be replayed from its raw bytes")
-        paths.add(route.path)
-    return paths
+        table[route.path] = replay
+    return table
 
 
 def etag_matches(if_none_match: bytes | None, etag: bytes) -> bool:
@@ -98,10 +124,10 @@ def etag_matches(if_none_match: bytes | None, etag: bytes) -> bool:
 class FastPathMiddleware:
     """Answer a repeated computed request from the in-process cache before the app sees it."""
 
-    def __init__(self, app, *, paths: Callable[[], set[str]], cache: Callable[[], Any]) -> None:
+    def __init__(self, app, *, routes: Callable[[], dict[str, Replay]], cache: Callable[[], Any]) -> None:
         self.app = app
-        self._paths = paths  # () -> the paths of the replayable routes (read once, from the route table)
-        self.paths: set[str] | None = None
+        self._routes = routes  # () -> path -> Replay of the replayable routes (read once, from the route table)
+        self.routes: dict[str, Replay] | None = None
         self.cache = cache  # () -> the app's ResultCache (opened in the lifespan)
         self.index: LRUCache = LRUCache(maxsize=RAW_INDEX_ENTRIES)
 
@@ -109,9 +135,10 @@ class FastPathMiddleware:
         if scope["type"] != "http" or scope["method"] != "POST":
             await self.app(scope, receive, send)
             return
-        if self.paths is None:
-            self.paths = self._paths()
-        if scope["path"] not in self.paths:
+        if self.routes is None:
+            self.routes = self._routes()
+        declared = self.routes.get(scope["path"])
+        if declared is None:
             await self.app(scope, receive, send)
             return
         body = await _read_body(receive)
@@ -122,13 +149,13 @@ class FastPathMiddleware:
             await self._through_app(scope, body, None, inm, receive, send)
             return
         accept = (_header(scope, b"accept") or b"").decode("latin-1")
-        form = _FORM_KEYS[negotiate(accept, WITH_GEOJSON)]  # every negotiated form has its own key
+        form = declared.form(accept)
         head = (
             cache_module.ENGINE_VERSION.encode(),  # part of every key (read here so a test's change is seen)
             scope["path"].encode(),
             scope.get("query_string", b""),
             _header(scope, b"content-type") or b"",
-            form,
+            _FORM_KEYS[form],  # every negotiated form has its own key
         )
         if len(body) < HASH_IN_THREAD_BYTES:
             raw_key = _raw_key(head, body)
@@ -137,11 +164,11 @@ class FastPathMiddleware:
         known = self.index.get(raw_key)
         cache = self.cache()
         if known is not None and cache is not None:
-            key, operation, media_type, vary = known
+            key, media_type, vary = known
             cached = cache.local.get(key)
             if cached is not None:
                 FAST_PATH_HITS.inc()
-                CACHE_LOOKUPS.labels(operation, "local").inc()
+                CACHE_LOOKUPS.labels(declared.operation_of(form), "local").inc()  # from the route table
                 await _answer(send, cached, key, media_type, vary, not_modified=etag_matches(inm, f'"{key}"'.encode()))
                 return
         await self._through_app(scope, body, raw_key, inm, receive, send)
@@ -166,9 +193,8 @@ class FastPathMiddleware:
                     key = etag.strip(b'"').decode()
                     cache = self.cache()
                     if raw_key is not None and cache is not None and key in cache.local:  # what can be replayed
-                        operation = key.split(":")[1] if key.count(":") >= 2 else "?"
                         media = headers.get(b"content-type", b"application/json").decode()
-                        self.index[raw_key] = (key, operation, media, b"vary" in headers)
+                        self.index[raw_key] = (key, media, b"vary" in headers)
                     if etag_matches(inm, etag):
                         state["not_modified"] = True
                         kept = [(k, v) for k, v in message["headers"] if k in (b"etag", b"x-cache", b"vary")]

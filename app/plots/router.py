@@ -31,7 +31,7 @@ def svg_responses(what: str) -> dict[int | str, dict[str, Any]]:
 
 @router.post("/tire-loads", name="tire_loads", response_class=Response,
              responses=svg_responses("Fz1, Fz3, Fz17, Fz19 against ay/g"))  # fmt: skip
-@replayable
+@replayable("plot-tire-loads")
 async def tire_loads(body: PlotRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Tire normal loads against ay/g (thesis Figs. 85-87, 92): Fz1, Fz3 (front outer/inner; 3d only), Fz17,
     Fz19 (rear outer/inner), with markers at SRT_ts and SRT_3D (3d full stage) or the SRT."""
@@ -40,7 +40,7 @@ async def tire_loads(body: PlotRequest, request: Request, cache: CacheDep, setti
 
 
 @router.post("/llt", name="llt", response_class=Response, responses=svg_responses("LLTf, LLTr against ay/g"))
-@replayable
+@replayable("plot-llt")
 async def llt(body: PlotRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Front and rear lateral load transfer against ay/g (thesis Fig. 93); LLTf for the 3d model only."""
     body = await resolve_vehicle_refs(request, body, settings)
@@ -48,7 +48,7 @@ async def llt(body: PlotRequest, request: Request, cache: CacheDep, settings: Se
 
 
 @router.post("/roll", name="roll", response_class=Response, responses=svg_responses("theta against ay/g"))
-@replayable
+@replayable("plot-roll")
 async def roll(body: PlotRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Total body roll angle theta_3D (2D: theta1 + theta6 + theta8) against ay/g (thesis Fig. 94)."""
     body = await resolve_vehicle_refs(request, body, settings)
@@ -57,7 +57,7 @@ async def roll(body: PlotRequest, request: Request, cache: CacheDep, settings: S
 
 @router.post("/cg-path", name="cg_path", response_class=Response,
              responses=svg_responses("h1 and h2 against ay/g, two panels"))  # fmt: skip
-@replayable
+@replayable("plot-cg-path")
 async def cg_path(body: PlotRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The CG's path: its lateral position h1 and height h2 against ay/g, two panels (thesis Figs. 96-97)."""
     body = await resolve_vehicle_refs(request, body, settings)
@@ -66,7 +66,7 @@ async def cg_path(body: PlotRequest, request: Request, cache: CacheDep, settings
 
 @router.post("/min-radius", name="min_radius", response_class=Response,
              responses=svg_responses("Rmin of Eqs. 9.2 and 9.3 against the design speed"))  # fmt: skip
-@replayable
+@replayable("plot-min-radius")
 async def min_radius(body: MinRadiusPlotRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Minimum radius against design speed for one superelevation (thesis Figs. 108-114): Eq. 9.2 with the design
     standard's f_max (AASHTO 2018 by default; `thesis-table21` draws the thesis's figures) against rollover Eq. 9.3

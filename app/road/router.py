@@ -21,7 +21,7 @@ router = APIRouter(prefix="/v1", tags=["road"])
     response_model=CurveSpeedResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
-@replayable
+@replayable("curve-speed")
 async def curve_speed(body: CurveSpeedRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Maximum speed on a curve of radius R before rollover, V = sqrt(127 SRT R) [km/h] (Eq. 9.1).
 
@@ -37,7 +37,7 @@ async def curve_speed(body: CurveSpeedRequest, request: Request, cache: CacheDep
     response_model=MinRadiusResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
-@replayable
+@replayable("min-radius")
 async def min_radius(body: MinRadiusRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (side friction: the design standard's
     f_max, AASHTO 2018 by default, unless `side_friction` is given), Eq. 9.3 (rollover, the SRT on that bank and

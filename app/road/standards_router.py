@@ -8,7 +8,7 @@ from fastapi import APIRouter, Path, Request, Response
 
 from app.deps import CacheDep
 from app.http.fastpath import replayable
-from app.http.negotiation import wants_csv
+from app.http.negotiation import TABLE_FORMS, wants_csv
 from app.http.problems import error_responses, problem_response
 from app.http.responses import computed_response, computed_responses, json_response, table_responses
 from app.road.standards_schemas import (
@@ -72,7 +72,7 @@ def get_design_standard(
     response_model=SuperelevationResult,
     responses=computed_responses(400, 422, 500),
 )
-@replayable
+@replayable("superelevation")
 async def superelevation(body: SuperelevationRequest, cache: CacheDep) -> Response:
     """Design superelevation of a curve by the standard's distribution: AASHTO Method 5 (Green Book Secs.
     3.3.5-3.3.6, with the standard's running speeds) or DNIT's e = e_max (2 R_min/R - R_min^2/R^2), with the side
@@ -87,7 +87,7 @@ async def superelevation(body: SuperelevationRequest, cache: CacheDep) -> Respon
     response_model=SuperelevationTableResult,
     responses=table_responses(400, 422, 500),
 )
-@replayable
+@replayable("superelevation-table", offers=TABLE_FORMS)
 async def superelevation_table(body: SuperelevationTableRequest, request: Request, cache: CacheDep) -> Response:
     """The design superelevation and the side friction it leaves over a set of radii, for one design speed and
     e_max (JSON, or CSV when `Accept` prefers `text/csv`)."""

@@ -55,7 +55,7 @@ ANSWER_MODELS.append(RouteCurves)  # published in components/schemas (the GeoJSO
     responses=_RESPONSES,
     openapi_extra={**body_limit(ROUTE_BODY_LIMIT), **json_body(RouteRequest)},
 )
-@replayable
+@replayable("route", offers=WITH_GEOJSON)
 async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The horizontal curves of a route given as geometry, each assessed like a curve of an alignment.
 

@@ -7,7 +7,7 @@ from fastapi import APIRouter, Request, Response
 from app.deps import CacheDep, SettingsDep
 from app.http.bodylimit import body_limit
 from app.http.fastpath import replayable
-from app.http.negotiation import wants_csv
+from app.http.negotiation import TABLE_FORMS, wants_csv
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_response, computed_responses, json_response, table_answer, table_responses
 from app.srt.limits_schemas import LimitsRequest, LimitsResult
@@ -27,7 +27,7 @@ router = APIRouter(prefix="/v1", tags=["srt"])
     response_model=SrtResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
-@replayable
+@replayable("srt")
 async def srt(body: SrtRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Static rollover threshold (g) of a vehicle on a road with a load case, the roll angle, the stage values,
     the state at the limit and, with `include_curves`, the curves against ay/g; whether the SRT meets each
@@ -42,7 +42,7 @@ async def srt(body: SrtRequest, request: Request, cache: CacheDep, settings: Set
     response_model=LimitsResult,
     responses=computed_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
 )
-@replayable
+@replayable("srt-limits")
 async def limits(body: LimitsRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """For a target SRT, the largest CG height above the chassis, overweight or lateral offset d1 -- or the
     smallest spring separation -- at which the vehicle still meets it (Brent's bracketed root finder on the
@@ -59,7 +59,7 @@ async def limits(body: LimitsRequest, request: Request, cache: CacheDep, setting
     responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
     openapi_extra=body_limit(SWEEP_BODY_LIMIT),
 )
-@replayable
+@replayable("srt-sweep", offers=TABLE_FORMS)
 async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The SRT over the Cartesian product of up to eight axes (bank, slope, trailer angle, d1, d2, d3,
     overweight, rear LLT limit; at most 20,000 cases), like the thesis's Tables 17 and 19, in one call; JSON, or

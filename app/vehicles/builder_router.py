@@ -6,7 +6,7 @@ from fastapi import APIRouter, Request, Response
 
 from app.deps import CacheDep
 from app.http.fastpath import replayable
-from app.http.negotiation import wants_csv
+from app.http.negotiation import TABLE_FORMS, wants_csv
 from app.http.problems import error_responses
 from app.http.responses import computed_response, computed_responses, json_response, table_responses
 from app.vehicles.builder_schemas import (
@@ -29,7 +29,7 @@ router = APIRouter(prefix="/v1", tags=["builder"])
     response_model=BuildResult,
     responses=computed_responses(400, 404, 422, 500),
 )
-@replayable
+@replayable("vehicle-build")
 async def build(body: BuildRequest, cache: CacheDep) -> Response:
     """The full vehicle record a measurable spec describes (unit type, axle groups with their tyres and suspension,
     tare and payloads with deck and load heights, front-unit data), with the derivation of every record field: its
@@ -45,7 +45,7 @@ async def build(body: BuildRequest, cache: CacheDep) -> Response:
     response_model=PayloadTableResult,
     responses=table_responses(400, 404, 422, 500),
 )
-@replayable
+@replayable("payload-table", offers=TABLE_FORMS)
 async def payload_table(body: PayloadTableRequest, request: Request, cache: CacheDep) -> Response:
     """The acceptable payload table of a built vehicle for an SRT target (TERNZ's results page): the largest payload
     mass at each load height and the largest load height at each payload mass, each a root of SRT - target found

@@ -14,7 +14,7 @@ import pytest
 import app.alignments.router
 import app.srt.router
 from app.http import fastpath
-from app.http.fastpath import FastPathMiddleware, etag_matches
+from app.http.fastpath import FastPathMiddleware, Replay, etag_matches
 
 BODY = b'{"vehicle": "table16-btrain", "model": "rigid"}'
 JSON = {"content-type": "application/json"}
@@ -109,7 +109,8 @@ def test_an_answer_marked_not_reusable_is_never_served_by_its_bytes():
         await send({"type": "http.response.body", "body": b"{}"})
 
     cache = SimpleNamespace(local={"1:srt:k": b"{}"})
-    mw = FastPathMiddleware(inner, paths=lambda: {"/saved", "/preset"}, cache=lambda: cache)
+    routes = {"/saved": Replay("srt"), "/preset": Replay("srt")}
+    mw = FastPathMiddleware(inner, routes=lambda: routes, cache=lambda: cache)
 
     async def call(path):
         sent = []

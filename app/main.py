@@ -17,7 +17,7 @@ from app.catalog import router as catalog_router
 from app.catalog.service import close_catalog, install_catalog_handlers, open_catalog
 from app.compute import solvers
 from app.compute.cache import make_cache
-from app.http.bodylimit import BodyLimitMiddleware, spec_limits
+from app.http.bodylimit import BodyLimitMiddleware, route_limits
 from app.http.fastpath import FastPathMiddleware, replay_table
 from app.http.netopts import set_nodelay_on_listening_sockets
 from app.http.openapi import operation_id, problem_openapi
@@ -147,7 +147,6 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         await open_catalog(app, app.state.settings)  # opens and migrates the database when ROLLOVER_API_KEYS is set
         app.state.jobs = jobs = open_jobs(app.state.settings)  # in-process threads, or Redis + RQ workers
         JOBS_ACTIVE.set_function(lambda: _active_jobs(jobs))
-        app.openapi()  # built now, not by the first request (the body limits are read from it): ~1-2 s
         _freeze_startup_objects()
         try:
             yield
@@ -181,8 +180,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
     app.add_middleware(FastPathMiddleware, routes=lambda: replay_table(app.routes), cache=lambda: app.state.cache)
-    app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)
-    app.openapi = lambda: problem_openapi(app)  # type: ignore[method-assign]
+    app.add_middleware(BodyLimitMiddleware, limits=lambda: route_limits(app.routes), problem=problem_bytes)
+    app.openapi = lambda: problem_openapi(app)  # type: ignore[method-assign]  # built on first use, once per process
     return app
 
 

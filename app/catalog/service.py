@@ -59,6 +59,7 @@ from app.catalog.schemas import (
 from app.db import Database, repo
 from app.db import upgrade as upgrade_database
 from app.http.problems import http_handler, problem_response
+from app.http.route_table import documented_paths
 from app.logs import get_logger
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
@@ -259,12 +260,13 @@ _HTTP_METHODS = {"get", "put", "post", "delete", "patch", "head", "options", "tr
 
 def documented_methods(app: FastAPI, path: str) -> set[str]:
     """The methods the OpenAPI document declares for the resource at ``path`` (a literal path such as
-    ``/v1/vehicles/saved`` wins over a template such as ``/v1/vehicles/{id}``); empty when none matches."""
-    paths = app.openapi().get("paths", {})
+    ``/v1/vehicles/saved`` wins over a template such as ``/v1/vehicles/{id}``), read from the route table; empty when
+    none matches."""
+    paths = documented_paths(app.routes)
     for template in sorted(paths, key=lambda t: t.count("{")):
         pattern = re.sub(r"\\\{[^/]*?\\\}", "[^/]+", re.escape(template))
         if re.fullmatch(pattern, path):
-            return {m.upper() for m in paths[template] if m in _HTTP_METHODS}
+            return {m for m in paths[template] if m.lower() in _HTTP_METHODS}
     return set()
 
 

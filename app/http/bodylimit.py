@@ -4,13 +4,16 @@ A pure ASGI middleware in front of the app: a ``Content-Length`` over the route'
 (nothing of the body is read); a chunked body (no ``Content-Length``) is counted as it streams in and refused as
 soon as it passes the limit. Each route declares its limit, sized to the largest request it accepts, with
 :func:`body_limit` in its ``openapi_extra`` (``x-body-limit-bytes``); routes without one get
-:data:`DEFAULT_LIMIT`. The OpenAPI document states each limit in the operation's description and declares the 413.
+:data:`DEFAULT_LIMIT`. The middleware reads the limits from the routes (:func:`route_limits`); the OpenAPI document
+states the same limits in each operation's description and declares the 413 (:func:`spec_limits` reads them back).
 """
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, MutableMapping
+from collections.abc import Awaitable, Callable, Iterable, MutableMapping
 from typing import Any
+
+from app.http.route_table import api_routes
 
 KIB, MIB = 1024, 1024 * 1024
 
@@ -27,13 +30,25 @@ def body_limit(limit: int) -> dict[str, int]:
 
 def spec_limits(spec: dict[str, Any]) -> dict[str, int]:
     """path -> limit [bytes] of every operation with a body in an OpenAPI document (the declared ``x-body-limit-
-    bytes``, else the default): the spec and the middleware read the same number."""
+    bytes``, else the default): the numbers :func:`route_limits` gives the middleware."""
     return {
         path: op.get(EXTENSION, DEFAULT_LIMIT)
         for path, item in spec.get("paths", {}).items()
         for op in item.values()
         if isinstance(op, dict) and "requestBody" in op
     }
+
+
+def route_limits(routes: Iterable[Any]) -> dict[str, int]:
+    """path -> limit [bytes] of every documented route with a body (an app's ``app.routes``): what
+    :func:`spec_limits` reads from the OpenAPI document, read from the routes' own declarations (a body parameter, or
+    a ``requestBody`` in ``openapi_extra``; the limit from :func:`body_limit`, else the default)."""
+    limits = {}
+    for route in api_routes(routes):
+        extra = route.openapi_extra or {}
+        if route.include_in_schema and (route.body_field is not None or "requestBody" in extra):
+            limits[route.path_format] = extra.get(EXTENSION, DEFAULT_LIMIT)
+    return limits
 
 
 def describe_limit(limit: int) -> str:

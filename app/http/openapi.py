@@ -1,11 +1,20 @@
 """The OpenAPI document as the service publishes it: stable operation ids, every error response as
 ``application/problem+json``, every request body's limit stated (and its 413 declared), the models of routes that
-read their own body, and the optional bearer key of the computations that accept saved vehicles."""
+read their own body, and the optional bearer key of the computations that accept saved vehicles.
+
+The document is built when it is first asked for (``GET /openapi.json``, which ``/docs`` and ``/redoc`` load, or
+``app.openapi()``), not at start-up: nothing else reads it (the body limits, the fast path and the catalog's ``Allow``
+read the route table, :mod:`app.http.route_table`). Building it takes about a second, so it is built once per process
+for every app whose document would be the same (:func:`document_key`: the metadata and the route table; no setting
+changes either today) and shared by them, read-only.
+"""
 
 from __future__ import annotations
 
+import threading
 from typing import Any
 
+import orjson
 from fastapi import FastAPI
 from fastapi.routing import APIRoute
 from pydantic.json_schema import models_json_schema
@@ -14,6 +23,7 @@ from app.http.bodies import READ_BY_ROUTE
 from app.http.bodylimit import DEFAULT_LIMIT, EXTENSION, describe_limit
 from app.http.problems import PROBLEM_MEDIA_TYPE, error_responses
 from app.http.responses import ANSWER_MODELS
+from app.http.route_table import api_routes
 
 
 def operation_id(route: APIRoute) -> str:
@@ -21,10 +31,42 @@ def operation_id(route: APIRoute) -> str:
     return f"{route.tags[0]}-{route.name}" if route.tags else route.name
 
 
+#: the documents built in this process, by :func:`document_key` (a test session makes about a hundred apps)
+_DOCUMENTS: dict[tuple[Any, ...], dict[str, Any]] = {}
+_BUILDING = threading.Lock()
+
+
+def document_key(app: FastAPI) -> tuple[Any, ...]:
+    """What the app's document is built from: its metadata, its documented routes (path, methods, operation id and the
+    endpoint: the route's declaration is the endpoint's decorator, made once per process) and the models published by
+    reference. Two apps with equal keys have equal documents."""
+    metadata = orjson.dumps(
+        [app.title, app.version, app.summary, app.description, app.openapi_tags, app.servers, app.openapi_version],
+        option=orjson.OPT_SORT_KEYS,
+    )
+    routes = tuple(
+        (r.path_format, tuple(sorted(r.methods or ())), r.unique_id, r.endpoint)
+        for r in api_routes(app.routes)
+        if r.include_in_schema  # the others (the page, the docs pages: made per app) are not in it
+    )
+    return metadata, routes, tuple(READ_BY_ROUTE), tuple(ANSWER_MODELS)
+
+
 def problem_openapi(app: FastAPI) -> dict[str, Any]:
+    """The app's document (:func:`build_document`), built once per process for every app with the same
+    :func:`document_key`. Shared: never change the dict it returns."""
+    if app.openapi_schema is None:
+        key = document_key(app)
+        with _BUILDING:  # two first requests at once build it once
+            document = _DOCUMENTS.get(key)
+            if document is None:
+                document = _DOCUMENTS[key] = build_document(app)
+        app.openapi_schema = document
+    return app.openapi_schema
+
+
+def build_document(app: FastAPI) -> dict[str, Any]:
     """The generated spec with every error response moved to ``application/problem+json``."""
-    if app.openapi_schema is not None:
-        return app.openapi_schema
     schema = FastAPI.openapi(app)
     # the models of routes that read their body themselves (app.http.bodies.json_body), with what they use
     _, defs = models_json_schema(
@@ -54,5 +96,4 @@ def problem_openapi(app: FastAPI) -> dict[str, Any]:
                 content = response.get("content", {})
                 if code.isdigit() and int(code) >= 400 and "application/json" in content:
                     response["content"] = {PROBLEM_MEDIA_TYPE: content["application/json"]}
-    app.openapi_schema = schema
     return schema

@@ -21,3 +21,13 @@ def api_routes(routes: Iterable[Any]) -> Iterator[Any]:
     for route in expand(list(routes)) if expand is not None else routes:
         if isinstance(getattr(route, "original_route", route), routing.APIRoute):
             yield route
+
+
+def documented_paths(routes: Iterable[Any]) -> dict[str, set[str]]:
+    """path template -> the methods the OpenAPI document declares for it (upper case): the routes in the schema,
+    as the document lists them, without building it."""
+    paths: dict[str, set[str]] = {}
+    for route in api_routes(routes):
+        if route.include_in_schema:
+            paths.setdefault(route.path_format, set()).update(route.methods or ())
+    return paths

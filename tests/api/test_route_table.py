@@ -1,14 +1,19 @@
-"""What the middlewares read from the route table agrees with the published document and with the services: the
-replayable routes are the computed POST operations, and each one's declared cache operation is the one its ETag
-names in every form it negotiates."""
+"""What the middlewares and handlers read from the route table agrees with the published document and with the
+services: the replayable routes are the computed POST operations, each one's declared cache operation is the one its
+ETag names in every form it negotiates, the body limits and the documented paths are the document's; the document
+itself is built on first use, once per process."""
 
 from __future__ import annotations
 
 import orjson
 import pytest
 
+from app.http.bodylimit import route_limits, spec_limits
 from app.http.fastpath import replay_table
+from app.http.openapi import build_document
+from app.http.route_table import documented_paths
 from app.main import create_app
+from app.settings import Settings
 
 APP = create_app()
 SPEC = APP.openapi()
@@ -46,3 +51,26 @@ def test_each_declared_operation_is_the_one_its_etag_names(client, path, form):
     r = client.post(url, content=body, headers={"content-type": media, "accept": ACCEPT[form]})
     assert r.status_code == 200, r.text
     assert r.headers["etag"].strip('"').split(":")[1] == TABLE[path].operation_of(form)
+
+
+def test_the_body_limits_of_the_routes_are_the_documents():
+    assert route_limits(APP.routes) == spec_limits(SPEC)
+
+
+def test_the_documented_paths_of_the_routes_are_the_documents():
+    methods = {"get", "put", "post", "delete", "patch", "head", "options", "trace"}
+    assert documented_paths(APP.routes) == {
+        path: {m.upper() for m in item if m in methods} for path, item in SPEC["paths"].items()
+    }
+
+
+def test_the_document_is_built_on_first_use_and_once_per_process():
+    from fastapi.testclient import TestClient
+
+    fresh = create_app(Settings(cache_backend="memory", metrics=False))
+    with TestClient(fresh) as client:
+        assert client.get("/healthz").status_code == 200
+        assert fresh.openapi_schema is None  # started and answering without it
+        assert client.get("/openapi.json").json() == SPEC
+    assert fresh.openapi_schema is SPEC  # the same settings-independent document: built once, shared
+    assert build_document(create_app()) == SPEC  # and building it again gives the same

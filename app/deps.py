@@ -10,8 +10,8 @@ from typing import Annotated
 
 from fastapi import Depends, Request
 
-from .cache import ResultCache
-from .settings import Settings
+from app.compute.cache import ResultCache
+from app.settings import Settings
 
 
 async def get_app_settings(request: Request) -> Settings:

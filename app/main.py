@@ -7,31 +7,37 @@ from __future__ import annotations
 
 import gc
 from contextlib import asynccontextmanager
-from typing import Any
 
 from fastapi import FastAPI
-from fastapi.routing import APIRoute
 from fastapi_offline import FastAPIOffline
-from pydantic.json_schema import models_json_schema
 from starlette.concurrency import run_in_threadpool
 
+from app.alignments import router as alignments_router
+from app.catalog import router as catalog_router
+from app.catalog.service import close_catalog, install_catalog_handlers, open_catalog
+from app.compute import solvers
+from app.compute.cache import make_cache
+from app.http.bodylimit import BodyLimitMiddleware, route_limits
+from app.http.fastpath import FastPathMiddleware, replay_table
+from app.http.netopts import set_nodelay_on_listening_sockets
+from app.http.openapi import operation_id, problem_openapi
+from app.http.problems import install_problem_handlers, problem_bytes
+from app.http.request_metrics import HttpMetricsMiddleware
+from app.jobs import router as jobs_router
+from app.jobs.service import open_jobs
+from app.logs import configure_logging, get_logger
+from app.meta.router import health_router, models_router
+from app.metrics import JOBS_ACTIVE
+from app.page import install_page
+from app.plots import router as plots_router
+from app.road import router as road_router
+from app.road import standards_router
+from app.routes import router as routes_router
+from app.settings import Settings, get_settings
+from app.srt import router as srt_router
+from app.vehicles import builder_router
+from app.vehicles import router as vehicles_router
 from engine import ENGINE_VERSION
-
-from . import solvers
-from .bodylimit import DEFAULT_LIMIT, EXTENSION, BodyLimitMiddleware, describe_limit, spec_limits
-from .cache import make_cache
-from .catalog import close_catalog, install_catalog_handlers, open_catalog
-from .fastpath import FastPathMiddleware
-from .httpmetrics import HttpMetricsMiddleware
-from .jobs import api as jobs_api
-from .logs import configure_logging, get_logger
-from .metrics import JOBS_ACTIVE
-from .netopts import set_nodelay_on_listening_sockets
-from .problems import PROBLEM_MEDIA_TYPE, error_responses, install_problem_handlers, problem_bytes
-from .routers import alignments, builder, catalog, health, models, plots, road, routes, srt, standards, vehicles
-from .routers.common import ANSWER_MODELS, READ_BY_ROUTE
-from .routers.web import install_page
-from .settings import Settings, get_settings
 
 DESCRIPTION = """\
 Static rollover threshold (SRT) of heavy vehicles and the curve design that follows from it: the maximum speed on
@@ -89,55 +95,21 @@ TAGS = [
 ]
 
 
-def operation_id(route: APIRoute) -> str:
-    """Stable operation ids ``<tag>-<route name>`` (e.g. ``srt-compute_srt``) for readable client methods."""
-    return f"{route.tags[0]}-{route.name}" if route.tags else route.name
-
-
-def _problem_openapi(app: FastAPI) -> dict[str, Any]:
-    """The generated spec with every error response moved to ``application/problem+json``."""
-    if app.openapi_schema is not None:
-        return app.openapi_schema
-    schema = FastAPI.openapi(app)
-    # the models of routes that read their body themselves (routers.common.json_body), with what they use
-    _, defs = models_json_schema(
-        [(m, "validation") for m in READ_BY_ROUTE] + [(m, "serialization") for m in ANSWER_MODELS],
-        ref_template="#/components/schemas/{model}",
-    )
-    components = schema.setdefault("components", {}).setdefault("schemas", {})
-    for name, definition in defs.get("$defs", {}).items():
-        components.setdefault(name, definition)
-    for path_item in schema.get("paths", {}).values():
-        for operation in path_item.values():
-            if "requestBody" in operation:  # every body has a limit: state it, and declare the 413
-                limit = operation.setdefault(EXTENSION, DEFAULT_LIMIT)
-                text = f"Body limit: {describe_limit(limit)}; a larger body is refused with 413 before it is read."
-                operation["description"] = f"{operation.get('description', '').rstrip()}\n\n{text}".lstrip()
-                operation["responses"].setdefault(
-                    "413",
-                    {
-                        "description": error_responses(413)[413]["description"],
-                        "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
-                    },
-                )
-            if "401" in operation.get("responses", {}) and "security" not in operation:
-                # accepts saved vehicles by id: the bearer key is optional (presets and records need none)
-                operation["security"] = [{}, {"bearerAuth": []}]
-            for code, response in operation.get("responses", {}).items():
-                content = response.get("content", {})
-                if code.isdigit() and int(code) >= 400 and "application/json" in content:
-                    response["content"] = {PROBLEM_MEDIA_TYPE: content["application/json"]}
-    app.openapi_schema = schema
-    return schema
-
-
-def computed_paths(spec: dict[str, Any]) -> set[str]:
-    """The POST operations whose answer carries the cache's ETag (the ones the fast path can answer)."""
-    return {
-        path
-        for path, item in spec.get("paths", {}).items()
-        if "ETag" in item.get("post", {}).get("responses", {}).get("200", {}).get("headers", {})
-    }
+#: every router, in the order they match: the catalog's GET /v1/vehicles/saved before the presets' GET /v1/vehicles/{id}
+ROUTERS = (
+    catalog_router.router,
+    builder_router.router,
+    vehicles_router.router,
+    srt_router.router,
+    road_router.router,
+    standards_router.router,
+    alignments_router.router,
+    routes_router.router,
+    plots_router.router,
+    jobs_router.router,
+    models_router,
+    health_router,
+)
 
 
 def _active_jobs(jobs) -> float:
@@ -168,14 +140,13 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         app.state.cache = cache = make_cache(app.state.settings)
         solvers.configure(app.state.settings.solve_threads)
         log = get_logger("rollover.app")
-        nodelay = set_nodelay_on_listening_sockets()  # see app.netopts: --workers would otherwise wait ~40 ms
+        nodelay = set_nodelay_on_listening_sockets()  # see app.http.netopts: --workers would otherwise wait ~40 ms
         log.info("startup", engine_version=ENGINE_VERSION, cache_backend=cache.backend, tcp_nodelay_sockets=nodelay)
         if cache.redis is not None:
             await cache.ping()  # logs redis_unavailable once if it is down; the service starts anyway
         await open_catalog(app, app.state.settings)  # opens and migrates the database when ROLLOVER_API_KEYS is set
-        app.state.jobs = jobs = jobs_api.open_jobs(app.state.settings)  # in-process threads, or Redis + RQ workers
+        app.state.jobs = jobs = open_jobs(app.state.settings)  # in-process threads, or Redis + RQ workers
         JOBS_ACTIVE.set_function(lambda: _active_jobs(jobs))
-        app.openapi()  # built now, not by the first request (the body limits are read from it): ~1-2 s
         _freeze_startup_objects()
         try:
             yield
@@ -202,29 +173,15 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.cache = None
     install_problem_handlers(app)
     install_catalog_handlers(app)
-    # catalog first: its GET /v1/vehicles/saved must match before the presets' GET /v1/vehicles/{id}
-    for module in (
-        catalog,
-        builder,
-        vehicles,
-        srt,
-        road,
-        standards,
-        alignments,
-        routes,
-        plots,
-        jobs_api,
-        models,
-        health,
-    ):
-        app.include_router(module.router)
+    for router in ROUTERS:
+        app.include_router(router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app
-    app.add_middleware(FastPathMiddleware, paths=lambda: computed_paths(app.openapi()), cache=lambda: app.state.cache)
-    app.add_middleware(BodyLimitMiddleware, limits=lambda: spec_limits(app.openapi()), problem=problem_bytes)
-    app.openapi = lambda: _problem_openapi(app)  # type: ignore[method-assign]
+    app.add_middleware(FastPathMiddleware, routes=lambda: replay_table(app.routes), cache=lambda: app.state.cache)
+    app.add_middleware(BodyLimitMiddleware, limits=lambda: route_limits(app.routes), problem=problem_bytes)
+    app.openapi = lambda: problem_openapi(app)  # type: ignore[method-assign]  # built on first use, once per process
     return app
 
 

@@ -1,4 +1,4 @@
-"""Prometheus metrics of the service: per request (:mod:`app.httpmetrics`), engine, cache and jobs.
+"""Prometheus metrics of the service: per request (:mod:`app.http.request_metrics`), engine, cache and jobs.
 
 Defined once at import on the default registry, so several app instances in one process (tests) share them.
 """
@@ -26,7 +26,7 @@ SOLVE_SECONDS = Histogram(
 )
 SOLVE_BATCH_CASES = Histogram(
     "rollover_solve_batch_cases",
-    "One-threshold solves handed to the engine together (app.coalesce): cases per engine call [-].",
+    "One-threshold solves handed to the engine together (app.compute.coalescer): cases per engine call [-].",
     buckets=(1, 2, 4, 8, 16, 32, 64),
 )
 CACHE_LOOKUPS = Counter(

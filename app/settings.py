@@ -13,9 +13,8 @@ from typing import Literal
 from pydantic import Field, SecretStr, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
+from app.compute.solvers import default_threads
 from engine.road import DEFAULT_TARGETS
-
-from .solvers import default_threads
 
 #: shortest bearer key accepted in ROLLOVER_API_KEYS [characters]
 MIN_API_KEY_LENGTH = 16

@@ -111,7 +111,7 @@ def main() -> None:
     one_pass = timeit(lambda: evaluate_arrays(Case(BTRAIN), arrays, batch_rows=rows), 2)
     report(f"{rows:,} distinct bank/grade cases, blocks of {BATCH_ROWS:,} rows (evaluate_arrays)", blocks, 1, "s")
     report(f"{rows:,} distinct bank/grade cases, one pass (ceiling to beat)", one_pass, 1, "s")
-    # the same blocks on threads (app.solvers: block_map=a pool's map): numpy lets go of the GIL, the same bits
+    # the same blocks on threads (app.compute.solvers: block_map=a pool's map): numpy lets go of the GIL, the same bits
     threads = max(1, min(4, len(os.sched_getaffinity(0))))
     with ThreadPoolExecutor(threads) as pool:
         on_threads = timeit(lambda: evaluate_arrays(Case(BTRAIN), arrays, block_map=pool.map), 2)
@@ -119,7 +119,7 @@ def main() -> None:
     assert same == evaluate_arrays(Case(BTRAIN), arrays)[0].tobytes(), "threaded blocks changed the bits"
     report(f"{rows:,} distinct bank/grade cases, the blocks on {threads} threads (block_map)", on_threads, 1, "s")
 
-    # many one-threshold cases handed over together (app.coalesce): on arrays from MIN_ARRAY_CASES cases of one
+    # many one-threshold cases handed over together (app.compute.coalescer): on arrays from MIN_ARRAY_CASES cases of one
     # vehicle and stage, against the same cases one at a time (the ceiling to beat)
     print(f"many cases, rollover_thresholds (on arrays from {MIN_ARRAY_CASES} cases) against one at a time:")
     for k in (8, 16, 32, 64):

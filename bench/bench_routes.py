@@ -6,7 +6,7 @@ a third of them with clothoid transitions (Ls = 0.3 sqrt(R) ... of order 20-130 
 
 * ``engine.geometry.find_curves`` on the plane coordinates, without noise and with 3 m of GPS-like noise;
 * ``engine.route.geodesy.local_frame`` + ``find_curves`` from longitude/latitude (the app's path);
-* ``app.route_io.read_geojson`` of the same route as a GeoJSON LineString (parsed dict).
+* ``app.formats.route_io.read_geojson`` of the same route as a GeoJSON LineString (parsed dict).
 
 Prints figures only (median of the repeats) and how many curves were found against the design.
 
@@ -27,7 +27,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from app.route_io import read_geojson  # noqa: E402
+from app.formats.route_io import read_geojson  # noqa: E402
 from engine.route import find_curves, local_frame  # noqa: E402
 from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
 

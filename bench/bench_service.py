@@ -8,13 +8,13 @@ Starts its own uvicorn processes on free ports (waits for /healthz, stops them a
 * uncached ``POST /v1/srt`` (every request a new bank angle: a new cache key; each answer's ``X-Cache`` is checked)
   against the engine alone (``rollover_threshold`` on the same cases, in process);
 * ``--workers 2`` against 1 worker: latency of one kept-alive connection (``wrk -t1 -c1``) for ``/healthz`` and a
-  cached ``/v1/srt`` (Nagle + delayed ACK would add ~40 ms a request: app/netopts.py);
+  cached ``/v1/srt`` (Nagle + delayed ACK would add ~40 ms a request: app/http/netopts.py);
 * a 100,000-curve alignment (every bank/grade pair distinct: 100,000 SRT solves): wall time, the server's peak RSS
   (VmHWM) and RSS after, the worst ``/healthz`` latency polled every 20 ms meanwhile from another process; against
   ``engine.assessment.assess_alignment`` alone in a fresh process;
 * the largest sweep (20,000 cases, ``POST /v1/srt/sweep``; streamed): wall time and peak RSS, against
   ``engine.models.threshold.sweep`` alone in a fresh process;
-* the per-request HTTP metrics' share (app.httpmetrics): cached-hit and ``/healthz`` throughput with
+* the per-request HTTP metrics' share (app.http.request_metrics): cached-hit and ``/healthz`` throughput with
   ``ROLLOVER_METRICS=true`` and ``false``.
 
 The machine is shared by wrk and the server (2 cores here): the ceilings are measured the same way, so the ratios
@@ -382,7 +382,7 @@ def measure_uncached(args) -> None:
     row(
         "uncached POST /v1/srt (each request a new bank angle; every X-Cache checked: miss), 1 worker, "
         "httptools/uvloop, wrk -t2 -c32",
-        f"{fmt(crowd)}; {crowd_batch:.1f} cases per engine call (app.coalesce)",
+        f"{fmt(crowd)}; {crowd_batch:.1f} cases per engine call (app.compute.coalescer)",
         f"engine alone, one case at a time, in process: {rate:,.0f} solves/s",
         f"{crowd.rps / rate:.0%} of the engine; >= 500 req/s: {verdict(crowd.rps >= 500)}",
         BEFORE["uncached"],

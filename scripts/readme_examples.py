@@ -100,8 +100,8 @@ def ansi_c(text: str) -> str:
 
 BTRAIN = "table16-btrain"
 sys.path.insert(0, str(ROOT))
-from app.schemas.builder import EXAMPLE_SPEC  # noqa: E402
-from app.schemas.routes import EXAMPLE_GEOJSON  # noqa: E402
+from app.routes.schemas import EXAMPLE_GEOJSON  # noqa: E402
+from app.vehicles.builder_schemas import EXAMPLE_SPEC  # noqa: E402
 
 CURVES_CSV = (
     "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\n"

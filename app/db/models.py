@@ -1,7 +1,7 @@
 """The catalog's tables as SQLAlchemy 2 typed ORM classes: saved vehicles, fleets and their members.
 
 ``vehicles.body`` and the member lists hold what the owner saved; they are validated again on every read
-(``app.catalog``), so a damaged row is refused with a problem, never served as it is.
+(``app.catalog.service``), so a damaged row is refused with a problem, never served as it is.
 
 The body is JSON *text* (``Text``), not a ``JSON``/``JSONB`` column, on both databases: the stored bytes are
 exactly the canonical JSON the service wrote (JSONB would reorder keys and normalise numbers), and a row whose

@@ -1,6 +1,6 @@
 """Persistence of saved vehicles and fleets: each function is one transaction on a :class:`Database`.
 
-Plain values in and out (the stored JSON text is returned as text: ``app.catalog`` parses and validates it),
+Plain values in and out (the stored JSON text is returned as text: ``app.catalog.service`` parses and validates it),
 and the errors below; no HTTP here. Every query is scoped to the owner: another owner's row is "not found".
 
 Writes take the owner's write lock (:meth:`Database.write`) and check what they must under it: the count

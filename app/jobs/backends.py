@@ -14,11 +14,11 @@ import threading
 from concurrent.futures import ThreadPoolExecutor
 from typing import Protocol
 
-from ..logs import get_logger
-from ..settings import Settings
-from .kv import MemoryKV, RedisKV
-from .runner import run_part
-from .store import JobStore
+from app.jobs.kv import MemoryKV, RedisKV
+from app.jobs.runner import run_part
+from app.jobs.store import JobStore
+from app.logs import get_logger
+from app.settings import Settings
 
 _log = get_logger("rollover.jobs")
 

@@ -27,7 +27,7 @@ from typing import Any, Protocol
 from pydantic import BaseModel
 from starlette.requests import Request
 
-from ..settings import Settings
+from app.settings import Settings
 
 
 @dataclass(frozen=True)

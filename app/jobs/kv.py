@@ -2,7 +2,7 @@
 
 Both hold bytes under string keys with an expiry, an atomic read-modify-write (:meth:`KV.update`) and a set of the
 active job ids. Nothing here trusts or interprets a value: the job store seals what it writes and verifies what it
-reads (:func:`app.cache.seal` / :func:`app.cache.unseal`).
+reads (:func:`app.compute.cache.seal` / :func:`app.compute.cache.unseal`).
 
 :class:`MemoryKV` bounds the total bytes it holds (``max_bytes``): a write past the bound raises :class:`StorageFull`
 (the job store turns it into a refused submission or a failed part). Expired entries are dropped when read and by

@@ -1,12 +1,12 @@
-"""The ``alignments.assess`` job: :mod:`app.service_alignments` (``POST /v1/alignments/assess``) at up to 1,000,000
+"""The ``alignments.assess`` job: :mod:`app.alignments.service` (``POST /v1/alignments/assess``) at up to 1,000,000
 rows, split into parts of curves.
 
 A part is a range of curves for every vehicle (at most :data:`PART_ROWS` rows); a worker solves and renders it in
 chunks of :data:`CHUNK_ROWS` rows (its progress reports) with the synchronous endpoint's own renderers, and keeps
 per vehicle the rows as JSON and as CSV (compressed) and the summary of its curves. The answer opens each vehicle
-with the summary over ALL curves: :func:`~app.service_alignments.merge_summaries` adds the parts' counts and takes
+with the summary over ALL curves: :func:`~app.alignments.service.merge_summaries` adds the parts' counts and takes
 the smallest of their minimums, and the distinct SRT solves are counted over the whole alignment at submission
-(:func:`~app.service_alignments.check_alignment`), not summed over the parts (two parts may share a pair).
+(:func:`~app.alignments.service.check_alignment`), not summed over the parts (two parts may share a pair).
 """
 
 from __future__ import annotations
@@ -22,25 +22,8 @@ from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
-from engine.road import solve_bank_grade_pairs
-from engine.vehicle import Vehicle
-
-from .. import solvers
-from ..alignment_io import CurveTable
-from ..cache import cache_key
-from ..schemas.alignments import (
-    AlignmentRequest,
-    CurveId,
-    CurveIn,
-    CurveOverrideIn,
-    LandXmlIn,
-    keys_match_the_id_pattern,
-)
-from ..schemas.common import ABSENT, describe
-from ..service_alignments import (
+from app.alignments.rows import (
     JSON_VEHICLE_END,
-    AlignmentJob,
-    check_alignment,
     csv_columns,
     csv_header,
     csv_rows,
@@ -49,14 +32,32 @@ from ..service_alignments import (
     json_tail,
     json_vehicle_head,
     merge_summaries,
+    summary,
+)
+from app.alignments.schemas import (
+    AlignmentRequest,
+    CurveId,
+    CurveIn,
+    CurveOverrideIn,
+    LandXmlIn,
+    keys_match_the_id_pattern,
+)
+from app.alignments.service import (
+    AlignmentJob,
+    check_alignment,
     resolve_alignment,
     resolve_alignment_refs,
     solve_alignment,
-    summary,
     validate_request_data,
 )
-from ..settings import Settings
-from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.compute import solvers
+from app.compute.cache import cache_key
+from app.formats.alignment_io import CurveTable
+from app.http.schemas import ABSENT, describe
+from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.settings import Settings
+from engine.road import solve_bank_grade_pairs
+from engine.vehicle import Vehicle
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
 MAX_JOB_CURVES = 1_000_000

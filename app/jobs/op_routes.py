@@ -1,4 +1,4 @@
-"""The ``routes.assess`` job: :mod:`app.service_routes` (``POST /v1/routes/assess``) as a background job.
+"""The ``routes.assess`` job: :mod:`app.routes.service` (``POST /v1/routes/assess``) as a background job.
 
 A route is one part: its curves are found along the whole polyline (a curve may span what would be a part's
 boundary) and the answer's summaries are over all of them. It is quick (500 km of route in about 2 s), so the job
@@ -16,11 +16,11 @@ from typing import Any
 import orjson
 from starlette.requests import Request
 
-from ..cache import cache_key
-from ..schemas.routes import RouteRequest
-from ..service_routes import read_route, render_route, resolve_route_refs, resolved_route, route_refs
-from ..settings import Settings
-from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.compute.cache import cache_key
+from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.routes.schemas import RouteRequest
+from app.routes.service import read_route, render_route, resolve_route_refs, resolved_route, route_refs
+from app.settings import Settings
 
 
 def parse(data: Any) -> RouteRequest:

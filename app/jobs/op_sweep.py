@@ -4,7 +4,7 @@ The cases are the Cartesian product of the axes, the first varying slowest; fixi
 each leaves a *block* of consecutive cases that is itself a grid (the last axes, whole). The block is the largest
 such grid of at most :data:`PART_CASES` cases, and a part is a run of consecutive blocks. Each block goes through
 the synchronous endpoint's own computation and rendering (:func:`_render_block`, the one boundary with
-:mod:`app.service_tools`); its rows are kept as JSON and CSV fragments, in order. The answer's ``cases`` and
+:mod:`app.srt.sweep_service`); its rows are kept as JSON and CSV fragments, in order. The answer's ``cases`` and
 ``refused`` count every block's.
 """
 
@@ -19,13 +19,13 @@ import orjson
 from pydantic import Field, model_validator
 from starlette.requests import Request
 
-from ..cache import cache_key
-from ..schemas.common import describe, shape_error
-from ..schemas.sweep import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
-from ..service_tools import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
-from ..settings import Settings
-from ..vehicle_refs import resolve_vehicle_refs
-from .base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.compute.cache import cache_key
+from app.http.schemas import describe, shape_error
+from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.settings import Settings
+from app.srt.sweep_schemas import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
+from app.srt.sweep_service import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
+from app.vehicles.refs import resolve_vehicle_refs
 
 #: a job's limit (the synchronous request's: 20,000 cases)
 MAX_JOB_CASES = 1_000_000
@@ -61,7 +61,7 @@ class SweepJobRequest(SweepRequest):
 
 
 def _render_block(resolved: dict[str, Any]) -> tuple[bytes, bytes]:
-    """The synchronous sweep's JSON and CSV bodies for one (sub-)grid: the one call into :mod:`app.service_tools`
+    """The synchronous sweep's JSON and CSV bodies for one (sub-)grid: the one call into :mod:`app.srt.sweep_service`
     (to follow it when the sweep is rendered in chunks)."""
     answer = sweep_answer(resolved)  # one solve, both renderings
     return b"".join(sweep_json_chunks(answer)), b"".join(sweep_csv_chunks(answer))

@@ -4,8 +4,8 @@ defines it; see :mod:`app.jobs.base` for what an operation says: parse, resolve,
 
 from __future__ import annotations
 
-from . import op_alignments, op_routes, op_sweep
-from .base import Operation
+from app.jobs import op_alignments, op_routes, op_sweep
+from app.jobs.base import Operation
 
 OPERATIONS: dict[str, Operation] = {
     op.name: op for op in (op_alignments.OPERATION, op_routes.OPERATION, op_sweep.OPERATION)

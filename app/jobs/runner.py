@@ -14,13 +14,12 @@ import zlib
 from collections.abc import Callable
 from typing import Any
 
+from app.jobs.kv import StorageFull
+from app.jobs.operations import OPERATIONS
+from app.jobs.store import JobRecord, JobStore, Stopped, problem
+from app.logs import get_logger
+from app.metrics import JOB_PART_SECONDS
 from engine.errors import RolloverError
-
-from ..logs import get_logger
-from ..metrics import JOB_PART_SECONDS
-from .kv import StorageFull
-from .operations import OPERATIONS
-from .store import JobRecord, JobStore, Stopped, problem
 
 _log = get_logger("rollover.jobs")
 #: zlib level of the fragments: 1 compresses the rows 5-8x at a few hundred MB/s

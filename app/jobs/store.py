@@ -1,10 +1,10 @@
 """The job store: jobs, their parts and their results over a key-value layer (:mod:`app.jobs.kv`), the same logic for
 the embedded and the Redis backends.
 
-Keys (``rollover:job:<id>`` + suffix), each value sealed with the deployment's HMAC (:func:`app.cache.seal`, over the
-key, a media type and the body) and verified when read back (:func:`app.cache.unseal`), then parsed with a pydantic
-model: a value that does not verify or parse is never used, the job it belongs to is reported ``failed`` with the
-reason, and the event is logged (``job_entry_rejected``).
+Keys (``rollover:job:<id>`` + suffix), each value sealed with the deployment's HMAC
+(:func:`app.compute.cache.seal`, over the key, a media type and the body) and verified when read back
+(:func:`app.compute.cache.unseal`), then parsed with a pydantic model: a value that does not verify or parse is never
+used, the job it belongs to is reported ``failed`` with the reason, and the event is logged (``job_entry_rejected``).
 
 =====================  ======================================================================================
 suffix                 value
@@ -38,10 +38,10 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from ..cache import seal, unseal
-from ..logs import get_logger
-from ..metrics import JOB_PART_RETRIES, JOBS
-from .kv import KV, PREFIX
+from app.compute.cache import seal, unseal
+from app.jobs.kv import KV, PREFIX
+from app.logs import get_logger
+from app.metrics import JOB_PART_RETRIES, JOBS
 
 JOB_ID_PREFIX = "job_"
 RECORD_TYPE = "application/vnd.rollover.job+json"

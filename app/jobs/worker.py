@@ -17,11 +17,11 @@ from __future__ import annotations
 import argparse
 import logging
 
-from .. import solvers
-from ..logs import configure_logging, get_logger
-from ..settings import Settings, get_settings
-from .backends import RedisBackend
-from .runner import run_part
+from app.compute import solvers
+from app.jobs.backends import RedisBackend
+from app.jobs.runner import run_part
+from app.logs import configure_logging, get_logger
+from app.settings import Settings, get_settings
 
 #: this process's backend: the worker's (with its reaper), or one made from the environment on first use
 _BACKEND: RedisBackend | None = None

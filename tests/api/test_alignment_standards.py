@@ -11,7 +11,7 @@ import numpy as np
 import orjson
 import pytest
 
-from app.schemas.alignments import AlignmentResult
+from app.alignments.schemas import AlignmentResult
 
 PATH = "/v1/alignments/assess"
 BTRAIN = "table16-btrain"
@@ -150,7 +150,7 @@ def many_curves(n: int, seed: int = 3) -> list[dict]:
 
 @pytest.mark.parametrize("accept", ["application/json", "text/csv"])
 def test_a_large_answer_is_streamed_and_is_the_same_bytes_as_a_whole_one(client, accept):
-    from app.service_alignments import STREAM_ROWS
+    from app.alignments.service import STREAM_ROWS
 
     curves = many_curves(STREAM_ROWS + 700)
     body = {"vehicles": [BTRAIN, "table23-semitrailer"], "curves": curves, "rear_llt_limit": 0.6}

@@ -19,7 +19,9 @@ import numpy as np
 import orjson
 import pytest
 
-from app.service_alignments import _rows, json_rows, parse_json_request, resolve_alignment, solve_alignment
+from app.alignments.rows import json_rows
+from app.alignments.rows import rows as _rows
+from app.alignments.service import parse_json_request, resolve_alignment, solve_alignment
 from app.settings import Settings
 
 BTRAIN = "table16-btrain"
@@ -511,7 +513,7 @@ def test_uploads_apply_the_json_forms_bounds(shared_client, radius, form):
 
 
 def test_rows_written_by_columns_are_the_rows_as_dicts_byte_for_byte():
-    """The JSON writer (app.service_alignments.json_rows: column by column, a nan written as null, the texts and target
+    """The JSON writer (app.alignments.service.json_rows: column by column, a nan written as null, the texts and target
     checks written once per distinct value) against orjson's JSON of the rows as dicts (the form the routes and
     the schema use), on rows of every kind: given and derived superelevation, with and without a posted speed, a
     station or none, refused (no SRT: no targets, no speeds, an error), a curve below the standard's minimum radius,

@@ -7,10 +7,10 @@ import asyncio
 import orjson
 import pytest
 
-from app.bodylimit import DEFAULT_LIMIT, BodyLimitMiddleware, spec_limits
+from app.alignments.schemas import ALIGNMENT_JSON_LIMIT, CSV_UPLOAD_LIMIT, LANDXML_UPLOAD_LIMIT
+from app.http.bodylimit import DEFAULT_LIMIT, BodyLimitMiddleware, spec_limits
+from app.http.problems import problem_bytes
 from app.main import create_app
-from app.problems import problem_bytes
-from app.schemas.alignments import ALIGNMENT_JSON_LIMIT, CSV_UPLOAD_LIMIT, LANDXML_UPLOAD_LIMIT
 
 APP = create_app()
 

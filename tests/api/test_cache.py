@@ -7,8 +7,8 @@ import hashlib
 import orjson
 import pytest
 
-import app.cache
-import app.service
+import app.compute.cache
+import app.srt.service
 import engine.models.threshold
 from app.settings import Settings
 
@@ -103,7 +103,7 @@ def test_any_change_of_input_is_a_new_entry(client):
 
 def test_a_new_engine_version_never_serves_a_stale_answer(client, monkeypatch):
     old = client.post("/v1/srt", json=RIGID)
-    monkeypatch.setattr(app.cache, "ENGINE_VERSION", "9.9.9")
+    monkeypatch.setattr(app.compute.cache, "ENGINE_VERSION", "9.9.9")
     new = client.post("/v1/srt", json=RIGID)
     assert new.headers["x-cache"] == "miss"
     assert new.headers["etag"].startswith('"9.9.9:srt:') and new.headers["etag"] != old.headers["etag"]
@@ -122,7 +122,8 @@ def test_the_lru_is_bounded(monkeypatch):
 def test_curve_speed_reuses_the_cached_srt(client, monkeypatch):
     # the SRT request inside /v1/curve-speed resolves to the same key as /v1/srt with the same fields
     calls = []
-    real = engine.models.threshold.rollover_threshold  # a one-threshold solve (app.coalesce hands it to the engine)
+    # a one-threshold solve (app.compute.coalescer hands it to the engine)
+    real = engine.models.threshold.rollover_threshold
 
     def counting(*args, **kwargs):
         calls.append(args)

@@ -17,12 +17,12 @@ import pytest
 from sqlalchemy import text
 from structlog.testing import capture_logs
 
-from app import catalog
-from app.auth import owner_of
-from app.catalog import CatalogProblem, resolve_fleet, resolve_saved_vehicle
+from app.catalog import service as catalog
+from app.catalog.auth import owner_of
+from app.catalog.service import CatalogProblem, resolve_fleet, resolve_saved_vehicle
 from app.db import Database, repo
-from app.schemas.vehicles import METADATA_FIELDS
 from app.settings import Settings
+from app.vehicles.schemas import METADATA_FIELDS
 
 from .conftest import a_spec, make_client
 

@@ -1,4 +1,5 @@
-"""Concurrent uncached SRT requests solved together (app.coalesce): the same answers as alone, refusals per request."""
+"""Concurrent uncached SRT requests solved together (app.compute.coalescer): the same answers as alone, refusals per
+request."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import asyncio
 
 import httpx
 
-import app.coalesce as coalesce
+import app.compute.coalescer as coalesce
 from app.main import create_app
 from app.settings import Settings
 from engine.case import Case, Road

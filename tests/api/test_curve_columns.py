@@ -1,5 +1,5 @@
-"""app.curves.curves_from_json: the JSON curves read into columns agree with the published schema (CurveIn, strict)
-on what they accept, and its two ways of reading them (column by column, curve by curve) agree on everything."""
+"""app.alignments.curves.curves_from_json: the JSON curves read into columns agree with the published schema (CurveIn,
+strict) on what they accept, and its two ways of reading them (column by column, curve by curve) agree on everything."""
 
 from __future__ import annotations
 
@@ -12,10 +12,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from pydantic import TypeAdapter, ValidationError
 
-from app import curves as curves_module
-from app.alignment_io import CURVE_ID_MAX_CHARS
-from app.curves import curves_from_json
-from app.schemas.alignments import CurveIn
+from app.alignments import curves as curves_module
+from app.alignments.curves import curves_from_json
+from app.alignments.schemas import CurveIn
+from app.formats.alignment_io import CURVE_ID_MAX_CHARS
 
 _SCHEMA = TypeAdapter(list[CurveIn])
 

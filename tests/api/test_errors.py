@@ -105,7 +105,8 @@ def test_engine_arithmetic_errors_are_422_with_their_message(client, monkeypatch
     def failing(*args, **kwargs):
         raise exc
 
-    monkeypatch.setattr(engine.models.threshold, "rollover_threshold", failing)  # the solve behind app.coalesce
+    # the solve behind app.compute.coalescer
+    monkeypatch.setattr(engine.models.threshold, "rollover_threshold", failing)
     p = problem(client.post("/v1/srt", json={"vehicle": BTRAIN}), 422)
     assert p["type"] == f"urn:rollover:problem:{slug}"
     assert p["detail"] == str(exc)

@@ -11,10 +11,10 @@ from types import SimpleNamespace
 import orjson
 import pytest
 
-import app.routers.alignments
-import app.routers.srt
-from app import fastpath
-from app.fastpath import FastPathMiddleware, etag_matches
+import app.alignments.router
+import app.srt.router
+from app.http import fastpath
+from app.http.fastpath import FastPathMiddleware, Replay, etag_matches
 
 BODY = b'{"vehicle": "table16-btrain", "model": "rigid"}'
 JSON = {"content-type": "application/json"}
@@ -27,7 +27,7 @@ def test_a_repeated_request_is_answered_before_routing(client, monkeypatch):
     def must_not_run(*args, **kwargs):
         raise AssertionError("the route ran: the fast path did not answer")
 
-    monkeypatch.setattr(app.routers.srt, "compute_srt", must_not_run)
+    monkeypatch.setattr(app.srt.router, "compute_srt", must_not_run)
     again = client.post("/v1/srt", content=BODY, headers=JSON)
     assert again.status_code == 200 and again.headers["x-cache"] == "hit"
     assert again.content == first.content and again.headers["etag"] == first.headers["etag"]
@@ -54,7 +54,7 @@ def test_a_large_body_is_keyed_off_the_event_loop_the_same_way(client, monkeypat
     assert hashed and hashed[0] != threading.main_thread().name  # the TestClient's loop runs in the main thread
     head = (b"x", b"/p", b"", b"", b"")
     assert real(head, body) == hashlib.blake2b(b"\0".join((*head, body))).digest()
-    monkeypatch.setattr(app.routers.alignments, "compute_alignment", None)  # the route would fail
+    monkeypatch.setattr(app.alignments.router, "compute_alignment", None)  # the route would fail
     again = client.post("/v1/alignments/assess", content=body, headers=JSON)
     assert again.status_code == 200 and again.headers["x-cache"] == "hit" and again.content == first.content
     other = client.post("/v1/alignments/assess", content=body.replace(b"curve-", b"Curve-"), headers=JSON)
@@ -98,18 +98,19 @@ def test_etag_comparison_is_rfc_9110_weak_comparison():
 
 
 def test_an_answer_marked_not_reusable_is_never_served_by_its_bytes():
-    """A request naming a saved vehicle (its owner may edit it) is derived again every time."""
+    """A request with credentials (it may name a saved vehicle, which its owner may edit) is derived again every
+    time."""
     calls = []
 
     async def inner(scope, receive, send):
         calls.append(scope["path"])
         await receive()
-        scope.setdefault("state", {})["raw_reusable"] = scope["path"] != "/saved"
         await send({"type": "http.response.start", "status": 200, "headers": [(b"etag", b'"1:srt:k"')]})
         await send({"type": "http.response.body", "body": b"{}"})
 
     cache = SimpleNamespace(local={"1:srt:k": b"{}"})
-    mw = FastPathMiddleware(inner, paths=lambda: {"/saved", "/preset"}, cache=lambda: cache)
+    routes = {"/saved": Replay("srt"), "/preset": Replay("srt")}
+    mw = FastPathMiddleware(inner, routes=lambda: routes, cache=lambda: cache)
 
     async def call(path):
         sent = []
@@ -120,7 +121,9 @@ def test_an_answer_marked_not_reusable_is_never_served_by_its_bytes():
         async def send(m):
             sent.append(m)
 
-        await mw({"type": "http", "method": "POST", "path": path, "headers": [], "query_string": b""}, receive, send)
+        headers = [(b"authorization", b"Bearer some-key")] if path == "/saved" else []
+        scope = {"type": "http", "method": "POST", "path": path, "headers": headers, "query_string": b""}
+        await mw(scope, receive, send)
         return sent
 
     for _ in range(3):
@@ -133,7 +136,7 @@ def test_tcp_nodelay_is_set_on_listening_sockets_and_inherited_without_leaking_d
     import os
     import socket
 
-    from app.netopts import set_nodelay_on_listening_sockets
+    from app.http.netopts import set_nodelay_on_listening_sockets
 
     listening = socket.socket(socket.AF_INET, socket.SOCK_STREAM)  # proto 0, as uvicorn --workers binds it
     listening.bind(("127.0.0.1", 0))

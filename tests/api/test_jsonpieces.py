@@ -1,4 +1,4 @@
-"""app.jsonpieces.loads_in_pieces: orjson.loads(body), value or error, whatever the body."""
+"""app.formats.jsonpieces.loads_in_pieces: orjson.loads(body), value or error, whatever the body."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app import jsonpieces
-from app.jsonpieces import MAX_KEY_TEXTS, PIECE_BYTES, _locate, loads_in_pieces
+from app.formats import jsonpieces
+from app.formats.jsonpieces import MAX_KEY_TEXTS, PIECE_BYTES, _locate, loads_in_pieces
 
 #: texts full of what the scan looks at: quotes are escaped by orjson (so a backslash appears: the whole-body path),
 #: commas, brackets, braces, colons, the key itself, whitespace

@@ -14,7 +14,7 @@ import itertools
 import orjson
 import pytest
 
-from app.schemas.sweep import SweepGrid, SweepResult
+from app.srt.sweep_schemas import SweepGrid, SweepResult
 from engine.models.threshold import SWEEP_AXES
 
 BTRAIN = "table16-btrain"
@@ -307,7 +307,7 @@ def sweep_bytes(client, accept: str) -> tuple[bytes, dict]:
 
 @pytest.mark.parametrize("accept", ["application/json", "text/csv"])
 def test_a_sweep_above_the_threshold_is_streamed_and_is_the_same_bytes_as_below_it(monkeypatch, accept):
-    import app.service_tools as service_tools
+    import app.srt.sweep_service as service_tools
 
     from .conftest import make_client
 
@@ -342,7 +342,7 @@ def test_a_sweep_above_the_threshold_is_streamed_and_is_the_same_bytes_as_below_
 
 
 def test_a_large_sweep_row_is_the_single_srt_answer(client, monkeypatch):
-    import app.service_tools as service_tools
+    import app.srt.sweep_service as service_tools
 
     monkeypatch.setattr(service_tools, "STREAM_ROWS", 2)
     with client.stream("POST", "/v1/srt/sweep", json=TABLE17) as r:

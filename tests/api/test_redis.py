@@ -13,7 +13,7 @@ import orjson
 import pytest
 from structlog.testing import capture_logs
 
-from app.cache import REDIS_PREFIX, seal
+from app.compute.cache import REDIS_PREFIX, seal
 from app.settings import Settings
 
 from .conftest import free_port, make_client
@@ -31,7 +31,7 @@ def redis_settings(url: str, **kw) -> Settings:
 
 
 def sealed_body(raw: bytes, key: str) -> bytes:
-    """The body inside a Redis value, checked independently of app.cache: magic, HMAC-SHA256 with the deployment
+    """The body inside a Redis value, checked independently of app.compute.cache: magic, HMAC-SHA256 with the deployment
     secret over key NUL media type NUL body, media type, NUL, body."""
     assert raw.startswith(b"ROLLOVER1")
     mac, rest = raw[9:41], raw[41:]
@@ -180,7 +180,7 @@ def test_recovery_needs_one_good_call_even_with_stale_pooled_connections(redis_s
     import asyncio
     import time
 
-    from app.cache import make_cache
+    from app.compute.cache import make_cache
     from app.logs import configure_logging
 
     configure_logging()

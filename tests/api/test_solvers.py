@@ -1,4 +1,4 @@
-"""app.solvers: the threads that run a large batch's blocks (ROLLOVER_SOLVE_THREADS)."""
+"""app.compute.solvers: the threads that run a large batch's blocks (ROLLOVER_SOLVE_THREADS)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from app import solvers
+from app.compute import solvers
 from app.settings import Settings
 from engine.case import Case
 from engine.models.threshold import BATCH_ROWS

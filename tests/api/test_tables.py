@@ -1,4 +1,5 @@
-"""CSV text written column by column (app.tables): every cell by the one-cell rule, whatever the column's types."""
+"""CSV text written column by column (app.formats.tables): every cell by the one-cell rule, whatever the column's
+types."""
 
 from __future__ import annotations
 
@@ -10,16 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.tables import (
-    RawJson,
-    Text,
-    _cell,
-    _field,
-    csv_lines,
-    csv_lines_of_columns,
-    json_objects,
-    json_template,
-)
+from app.formats.json_rows import RawJson, json_objects, json_template
+from app.formats.tables import Text, _cell, _field, csv_lines, csv_lines_of_columns
 
 COLUMNS = {
     "floats": [1.5, None, -4.0, float("nan"), 1e-05, 1e16],

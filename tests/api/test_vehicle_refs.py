@@ -103,7 +103,7 @@ def test_an_error_of_a_fleet_member_names_the_fleet_and_the_member(cat, presets)
     # Table 14 is a 2D record: the 3D model refuses it for its missing front group; the request named a fleet, not
     # `vehicles`, so the error names `fleet` and says which member
     fid = fleet(cat, [BTRAIN, "table14-semitrailer"])["id"]
-    from app.schemas.routes import EXAMPLE_GEOJSON
+    from app.routes.schemas import EXAMPLE_GEOJSON
 
     route = {"geojson": EXAMPLE_GEOJSON, "superelevation_percent": 6.0}
     for path, extra in [("/v1/alignments/assess", {"curves": CURVES}), ("/v1/routes/assess", route)]:

@@ -101,7 +101,7 @@ def test_metrics_count_solves_and_cache_lookups(client):
     assert 'rollover_solve_seconds_count{model="gillespie",operation="srt"}' in text
     assert 'rollover_cache_lookups_total{operation="srt",result="local"}' in text
     assert 'rollover_cache_lookups_total{operation="srt",result="miss"}' in text
-    assert 'http_requests_total{handler="/v1/srt",method="POST",status="2xx"}' in text  # app.httpmetrics
+    assert 'http_requests_total{handler="/v1/srt",method="POST",status="2xx"}' in text  # app.http.request_metrics
 
 
 @pytest.mark.parametrize("enabled", [True, False])

@@ -15,7 +15,7 @@ import pytest
 
 import engine
 from app.main import create_app
-from app.routers.web import WEB_DIR
+from app.page import WEB_DIR
 from app.settings import Settings
 from engine.vehicle.builder.spec import VehicleSpec
 

@@ -383,7 +383,7 @@ def test_metrics_count_jobs_and_part_durations():
 def test_route_result_is_the_synchronous_answer_byte_for_byte(accept):
     """A route as a job: the geometry read at submission, the curves found by the worker, the same bytes and ETag
     as POST /v1/routes/assess (JSON and CSV), for two vehicles."""
-    from app.schemas.routes import EXAMPLE_GEOJSON
+    from app.routes.schemas import EXAMPLE_GEOJSON
 
     req = {
         "vehicles": ["table16-btrain", "table23-semitrailer"],

@@ -147,7 +147,8 @@ def test_values_in_redis_are_sealed_verified_and_expire(redis_server, workers):
         keys = r.keys(PREFIX + status["id"] + "*")
         assert len(keys) >= 4 and all(0 < r.ttl(k) <= 600 for k in keys)
         record = r.get(PREFIX + status["id"])
-        body = record[len(b"ROLLOVER1") + 32 :].partition(b"\0")[2]  # the JSON inside the envelope (see app.cache)
+        # the JSON inside the envelope (see app.compute.cache)
+        body = record[len(b"ROLLOVER1") + 32 :].partition(b"\0")[2]
         forged = {**orjson.loads(body), "owner": None, "ttl_s": 1}
         r.set(PREFIX + status["id"], record[: len(record) - len(body)] + orjson.dumps(forged))
         body = c.get(location).json()

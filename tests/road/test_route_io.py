@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-import app.route_io as rio
-from app.route_io import RouteFormatError, read_geojson, read_gpx
+import app.formats.route_io as rio
+from app.formats.route_io import RouteFormatError, read_geojson, read_gpx
 from engine.route.detect import find_curves
 from engine.route.geodesy import local_frame
 from tests.synthetic_routes import Arc, Tangent, layout, to_lonlat

@@ -8,8 +8,8 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from app.alignment_io import AlignmentFormatError, CurveOverride, read_csv, read_landxml
-from app.svg import Marker, Panel, Series, line_chart, nice_ticks
+from app.formats.alignment_io import AlignmentFormatError, CurveOverride, read_csv, read_landxml
+from app.formats.svg import Marker, Panel, Series, line_chart, nice_ticks
 
 NS = {"s": "http://www.w3.org/2000/svg"}
 

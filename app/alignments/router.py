@@ -1,0 +1,105 @@
+"""POST /v1/alignments/assess (JSON) and its raw-file forms /assess/csv and /assess/landxml."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import APIRouter, Query, Request, Response
+from starlette.concurrency import run_in_threadpool
+
+from app.alignments.schemas import (
+    ALIGNMENT_CSV_EXAMPLE,
+    ALIGNMENT_JSON_LIMIT,
+    ALIGNMENT_LANDXML_EXAMPLE,
+    CSV_UPLOAD_LIMIT,
+    LANDXML_UPLOAD_LIMIT,
+    AlignmentRequest,
+    AlignmentResult,
+)
+from app.alignments.service import compute_alignment, parse_json_request
+from app.alignments.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload
+from app.deps import CacheDep, SettingsDep
+from app.http.bodies import json_body, upload_body
+from app.http.bodylimit import body_limit
+from app.http.fastpath import replayable
+from app.http.negotiation import TABLE_FORMS, wants_csv
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import table_answer, table_responses
+
+router = APIRouter(prefix="/v1/alignments", tags=["alignments"])
+
+
+ASSESSMENT = """For each horizontal curve and each vehicle: the SRT on the curve's bank and grade, the rollover
+speed sqrt(127 SRT R) (Eq. 9.1), the side-friction speed sqrt(127 R (0.01 e + f_max)) with the design standard's
+f_max (`design_standard`, AASHTO 2018 by default), the safe speed (the smaller) and which mechanism governs, the
+margin against the posted speed (flagged when negative), and whether the radius meets the standard's minimum for the
+posted speed. A curve without a superelevation takes the standard's design value for its posted speed and the
+request's `max_superelevation_percent`. Curves sharing superelevation and grade share one SRT solve, and every
+distinct pair is solved in one batch. JSON, or CSV with `Accept: text/csv` (one row per vehicle and curve). Answers
+over 5,000 rows are streamed (chunked; the same bytes as a whole answer) and cached by reference."""
+
+
+@router.post(
+    "/assess",
+    name="assess",
+    response_model=AlignmentResult,
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
+    openapi_extra={**body_limit(ALIGNMENT_JSON_LIMIT), **json_body(AlignmentRequest)},
+    description=ASSESSMENT
+    + """
+
+The curves are a JSON list (`curves`), CSV text (`csv`) or a LandXML 1.2 document (`landxml`); the same files can
+also be sent as they are to `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`.""",
+)
+@replayable("alignments", offers=TABLE_FORMS)
+async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
+    # 100,000 curves are 15 MB of JSON: read and validated in a worker thread, the curves as columns
+    body, curves = await run_in_threadpool(parse_json_request, await request.body())
+    csv = wants_csv(request.headers.get("accept"))
+    return table_answer(await compute_alignment(cache, request, body, curves, settings, csv=csv))
+
+
+@router.post(
+    "/assess/csv",
+    name="assess_csv",
+    response_model=AlignmentResult,
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
+    openapi_extra=upload_body("text/csv", CSV_UPLOAD_LIMIT, ALIGNMENT_CSV_EXAMPLE),
+    description=ASSESSMENT
+    + """
+
+The body is the CSV file itself (UTF-8, a header row naming `id`, `radius_m`, `superelevation_percent` and
+optionally `grade_percent`, `posted_speed_kmh`), the options are query parameters (`vehicle` repeated for several
+presets). The same request as `POST /v1/alignments/assess` with `csv`: same answer, same cache entry. A rule the
+query's schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
+)
+@replayable("alignments", offers=TABLE_FORMS)
+async def assess_csv(
+    request: Request, query: Annotated[CsvUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
+) -> Response:
+    body = await csv_upload(request, query)
+    csv = wants_csv(request.headers.get("accept"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
+
+
+@router.post(
+    "/assess/landxml",
+    name="assess_landxml",
+    response_model=AlignmentResult,
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
+    openapi_extra=upload_body("application/xml", LANDXML_UPLOAD_LIMIT, ALIGNMENT_LANDXML_EXAMPLE),
+    description=ASSESSMENT
+    + """
+
+The body is the LandXML 1.2 document itself (every `CoordGeom/Curve` of every `Alignment`), the options and the
+superelevation / grade / posted-speed defaults for every curve are query parameters (per-curve values need the
+JSON form's `curve_overrides`). The same request as `POST /v1/alignments/assess` with `landxml`. A rule the query's
+schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
+)
+@replayable("alignments", offers=TABLE_FORMS)
+async def assess_landxml(
+    request: Request, query: Annotated[LandXmlUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
+) -> Response:
+    body = await landxml_upload(request, query)
+    csv = wants_csv(request.headers.get("accept"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))

@@ -1,0 +1,250 @@
+"""An assessed alignment rendered: its rows as dicts, as JSON (byte for byte what pydantic would write for the
+AlignmentResult, written column by column) and as CSV, in chunks of :data:`ROWS_PER_CHUNK` rows; and the vehicles'
+summaries.
+
+One renderer for every answer made of assessed curves: the synchronous alignment answer (whole or streamed), an
+``alignments.assess`` job's parts (:mod:`app.jobs.op_alignments`), and the route answer's rows
+(:mod:`app.routes.service`: :func:`rows`, :func:`summary`, :func:`csv_columns`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import orjson
+
+from app.formats.json_rows import RawJson, json_objects
+from app.formats.tables import Text, csv_line, csv_lines_of_columns, target_columns, target_columns_of
+from engine import ENGINE_VERSION
+from engine.road import GOVERNED_BY, AlignmentColumns
+
+if TYPE_CHECKING:
+    from app.alignments.service import AlignmentAnswer, VehicleAnswer
+
+ROWS_PER_CHUNK = 1_000
+
+
+ROW_COLUMNS = (
+    "id",
+    "station_m",
+    "radius_m",
+    "superelevation_percent",
+    "superelevation_source",
+    "grade_percent",
+    "srt_g",
+    "tilt_table_angle_deg",
+)
+
+
+SPEED_COLUMNS = (
+    "rollover_speed_kmh",
+    "side_friction_speed_kmh",
+    "side_friction",
+    "side_friction_clamped",
+    "safe_speed_kmh",
+    "governed_by",
+    "posted_speed_kmh",
+    "margin_kmh",
+    "flagged",
+    "standard_min_radius_m",
+    "meets_standard_min_radius",
+    "error",
+)
+
+
+def _opt(values: np.ndarray) -> list[float | None]:
+    return [None if math.isnan(x) else x for x in values.tolist()]
+
+
+def rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> list[dict[str, Any]]:
+    """Rows [start, stop) of one vehicle, as CurveRow dicts in the schema's field order (the route answer's
+    assessments are these rows too)."""
+    columns = _row_columns(answer, v, start, stop)
+    names = list(columns)
+    return [dict(zip(names, values, strict=True)) for values in zip(*columns.values(), strict=True)]
+
+
+def _row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, list[Any]]:
+    """Rows [start, stop) of one vehicle, column by column (CurveRow's fields in the schema's order)."""
+    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    return {
+        "id": t.ids[sl],
+        "station_m": _opt(t.station_m[sl]),
+        "radius_m": c.radius_m[sl].tolist(),
+        "superelevation_percent": c.superelevation_percent[sl].tolist(),
+        "superelevation_source": ["derived" if d else "given" for d in c.superelevation_derived[sl].tolist()],
+        "grade_percent": c.grade_percent[sl].tolist(),
+        "srt_g": _opt(c.srt_g[sl]),
+        "tilt_table_angle_deg": [v.tilt[p] for p in v.pair_of_row[sl].tolist()],
+        "targets": [v.checks[p] for p in v.pair_of_row[sl].tolist()],
+        "rollover_speed_kmh": _opt(c.rollover_speed_kmh[sl]),
+        "side_friction_speed_kmh": c.side_friction_speed_kmh[sl].tolist(),
+        "side_friction": c.side_friction[sl].tolist(),
+        "side_friction_clamped": c.side_friction_clamped[sl].tolist(),
+        "safe_speed_kmh": _opt(c.safe_speed_kmh[sl]),
+        "governed_by": [GOVERNED_BY[g] for g in c.governed_by[sl].tolist()],
+        "posted_speed_kmh": _opt(c.posted_speed_kmh[sl]),
+        "margin_kmh": _opt(c.margin_kmh[sl]),
+        "flagged": c.flagged[sl].tolist(),
+        "standard_min_radius_m": _opt(c.standard_min_radius_m[sl]),
+        "meets_standard_min_radius": [None if m < 0 else bool(m) for m in c.meets_standard_min_radius[sl].tolist()],
+        "error": [None if k < 0 else c.errors[k] for k in c.error[sl].tolist()],
+    }
+
+
+def summary(c: AlignmentColumns) -> dict[str, Any]:
+    """A vehicle's summary over the curves of ``c`` (the ``summary`` of the answer)."""
+    margins, safe = c.margin_kmh[~np.isnan(c.margin_kmh)], c.safe_speed_kmh[~np.isnan(c.safe_speed_kmh)]
+    return {
+        "curves": len(c),
+        "flagged": int(c.flagged.sum()),
+        "below_standard_min_radius": int((c.meets_standard_min_radius == 0).sum()),
+        "refused": int((c.error >= 0).sum()),
+        "distinct_srt_solves": c.distinct_cases,
+        "governed_by_rollover": int((c.governed_by == 1).sum()),
+        "governed_by_side_friction": int((c.governed_by == 2).sum()),
+        "min_margin_kmh": float(margins.min()) if margins.size else None,
+        "min_safe_speed_kmh": float(safe.min()) if safe.size else None,
+    }
+
+
+def merge_summaries(parts: list[dict[str, Any]], distinct_srt_solves: int) -> dict[str, Any]:
+    """The summary of a vehicle over all the curves from the summaries of consecutive slices of them (a job's parts):
+    counts add up, minimums are the smallest (None where a slice has none); the distinct SRT solves are those of the
+    whole alignment (``distinct_srt_solves``, from :func:`check_alignment`), not the sum of the slices'."""
+    out = dict(parts[0])
+    for p in parts[1:]:
+        for name, value in p.items():
+            if name.startswith("min_"):
+                known = [x for x in (out[name], value) if x is not None]
+                out[name] = min(known) if known else None
+            else:
+                out[name] += value
+    out["distinct_srt_solves"] = distinct_srt_solves
+    return out
+
+
+def json_head(resolved: dict[str, Any], curves: int) -> bytes:
+    """The AlignmentResult document up to its ``vehicles`` list (opened)."""
+    r = resolved
+    head = {
+        "model": r["model"],
+        "stage": r["stage"] if r["model"] == "3d" else None,
+        "design_standard": r["design_standard"],
+        "side_friction_bound": r["side_friction_bound"],
+        "max_superelevation_percent": r["max_superelevation_percent"],
+        "curves": curves,
+    }
+    return orjson.dumps(head)[:-1] + b',"vehicles":['
+
+
+def json_vehicle_head(
+    index: int, preset: str | None, saved_id: str | None, summary: dict[str, Any], *, first: bool
+) -> bytes:
+    """One vehicle's entry up to its ``rows`` list (opened); closed by :data:`JSON_VEHICLE_END`."""
+    vehicle = {"index": index, "preset": preset, "saved_vehicle_id": saved_id, "summary": summary}
+    return (b"" if first else b",") + orjson.dumps(vehicle)[:-1] + b',"rows":['
+
+
+JSON_VEHICLE_END = b"]}"
+
+
+_SOURCE_JSON = np.array([b'"given"', b'"derived"'], dtype=object)
+
+
+_GOVERNED_JSON = np.array([orjson.dumps(g) for g in GOVERNED_BY], dtype=object)
+
+
+_MEETS_JSON = np.array([b"null", b"false", b"true"], dtype=object)  # by meets_standard_min_radius + 1
+
+
+def _json_row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, Any]:
+    """:func:`_row_columns` as :func:`app.formats.json_rows.json_objects` writes them to the same JSON: a nan float is
+    written null as ``None`` is; the texts and the target checks already as JSON
+    (:class:`~app.formats.json_rows.RawJson`)."""
+    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    pairs = v.pair_of_row[sl]
+    errors = np.array([b"null", *map(orjson.dumps, c.errors)], dtype=object)
+    return {
+        "id": t.ids[sl],
+        "station_m": t.station_m[sl].tolist(),
+        "radius_m": c.radius_m[sl].tolist(),
+        "superelevation_percent": c.superelevation_percent[sl].tolist(),
+        "superelevation_source": RawJson(_SOURCE_JSON[c.superelevation_derived[sl].astype(np.intp)].tolist()),
+        "grade_percent": c.grade_percent[sl].tolist(),
+        "srt_g": c.srt_g[sl].tolist(),
+        "tilt_table_angle_deg": v.tilt_deg[pairs].tolist(),
+        "targets": RawJson(v.checks_json[pairs].tolist()),
+        "rollover_speed_kmh": c.rollover_speed_kmh[sl].tolist(),
+        "side_friction_speed_kmh": c.side_friction_speed_kmh[sl].tolist(),
+        "side_friction": c.side_friction[sl].tolist(),
+        "side_friction_clamped": c.side_friction_clamped[sl].tolist(),
+        "safe_speed_kmh": c.safe_speed_kmh[sl].tolist(),
+        "governed_by": RawJson(_GOVERNED_JSON[c.governed_by[sl]].tolist()),
+        "posted_speed_kmh": c.posted_speed_kmh[sl].tolist(),
+        "margin_kmh": c.margin_kmh[sl].tolist(),
+        "flagged": c.flagged[sl].tolist(),
+        "standard_min_radius_m": c.standard_min_radius_m[sl].tolist(),
+        "meets_standard_min_radius": RawJson(_MEETS_JSON[c.meets_standard_min_radius[sl] + 1].tolist()),
+        "error": RawJson(errors[c.error[sl] + 1].tolist()),
+    }
+
+
+def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> bytes:
+    """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets): ``orjson.dumps`` of
+    :func:`rows`, byte for byte, written column by column (:func:`app.formats.json_rows.json_objects`)."""
+    return json_objects(_json_row_columns(answer, v, start, stop))
+
+
+def json_tail() -> bytes:
+    return b'],"engine_version":' + orjson.dumps(ENGINE_VERSION) + b"}"
+
+
+def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
+    """The AlignmentResult JSON document, in chunks of rows (byte for byte the document pydantic would write)."""
+    yield json_head(answer.resolved, len(answer.curves))
+    n = len(answer.curves)
+    for k, v in enumerate(answer.vehicles):
+        yield json_vehicle_head(v.index, v.preset, v.saved_id, summary(v.columns), first=k == 0)
+        for start in range(0, n, ROWS_PER_CHUNK):
+            yield (b"," if start else b"") + json_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n))
+        yield JSON_VEHICLE_END
+    yield json_tail()
+
+
+def csv_columns(resolved: dict[str, Any]) -> list[str]:
+    names = [n for n, _ in sorted(resolved["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
+    return ["vehicle_index", "vehicle_preset", "vehicle_saved_id", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
+
+
+def csv_header(resolved: dict[str, Any]) -> bytes:
+    """The CSV answer's header row."""
+    return csv_line(csv_columns(resolved))
+
+
+def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str]) -> bytes:
+    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`)."""
+    rows = _row_columns(answer, v, start, stop)
+    n = stop - start
+    rows["vehicle_index"] = [v.index] * n
+    rows["vehicle_preset"] = [None if v.preset is None else Text(v.preset)] * n
+    rows["vehicle_saved_id"] = [None if v.saved_id is None else Text(v.saved_id)] * n
+    rows.update(target_columns_of(rows.pop("targets")))
+    return csv_lines_of_columns([rows.get(name, [None] * n) for name in columns])
+
+
+def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
+    """One CSV table in chunks: a row per vehicle and curve, the vehicle's index and preset first."""
+    columns = csv_columns(answer.resolved)
+    yield csv_line(columns)
+    n = len(answer.curves)
+    for v in answer.vehicles:
+        for start in range(0, n, ROWS_PER_CHUNK):
+            yield csv_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), columns)
+
+
+def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:
+    return csv_chunks(answer) if csv else json_chunks(answer)

@@ -1,0 +1,411 @@
+"""POST /v1/alignments/assess: the safe speed on every horizontal curve of a road alignment, for one or more
+vehicles (rollover, Eq. 9.1, against side friction with a design standard's f_max)."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import ConfigDict, Field, model_validator
+
+from app.catalog.schemas import FLEET_ID_PATTERN
+from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
+from app.http.schemas import (
+    ABSENT,
+    EXAMPLE_PRESET,
+    InputModel,
+    OutputModel,
+    bounded,
+    describe,
+    exactly_one_schema,
+    shape_error,
+)
+from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.srt.schemas import (
+    TARGETS_OUT,
+    TILT_OUT,
+    VEHICLE_DESCRIPTION,
+    SrtOptions,
+    SrtTargets,
+    TargetCheckOut,
+    VehicleRef,
+)
+
+MAX_VEHICLES = 10
+#: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)
+MAX_ROWS = 100_000
+MAX_CSV_CHARS = 16_000_000
+MAX_LANDXML_CHARS = 64_000_000
+#: body limits [bytes]: the raw CSV and LandXML uploads as their documents' bounds (UTF-8 text of that many
+#: characters); the JSON request may carry a LandXML document, JSON-escaped (every quote doubled in the worst case)
+CSV_UPLOAD_LIMIT = 16 * 2**20
+LANDXML_UPLOAD_LIMIT = 64 * 2**20
+ALIGNMENT_JSON_LIMIT = 128 * 2**20
+
+CurveId = Annotated[str, Field(min_length=1, max_length=CURVE_ID_MAX_CHARS, pattern=CURVE_ID_PATTERN)]
+_E = "Superelevation of the curve: the bank of its SRT and the e of the side-friction speed."
+_E_SYMBOL = "e (Eqs. 9.2, 6.18)"
+_GRADE = "Longitudinal grade in the direction of travel, + uphill, - downhill: the slope of the curve's SRT."
+_GRADE_SYMBOL = "slope (Eq. 4.24)"
+_POSTED = "Posted (or operating) speed on the curve; the margin is the safe speed minus it. Null: no margin."
+
+
+class CurveIn(InputModel):
+    """One horizontal curve."""
+
+    id: CurveId = Field(
+        description=describe(
+            f"Curve id, unique in the request: 1-{CURVE_ID_MAX_CHARS} characters, no control characters.", unit="-"
+        )
+    )
+    radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")
+    superelevation_percent: float | None = bounded(
+        "bank_percent",
+        None,
+        text=_E + " Left out (or null): derived from the design standard's distribution at the curve's posted speed "
+        "and the request's `max_superelevation_percent` (the row says so).",
+        symbol=_E_SYMBOL,
+    )
+    grade_percent: float = bounded("slope_percent", 0.0, text=_GRADE, symbol=_GRADE_SYMBOL)
+    posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED, symbol="V")
+
+
+class CurveOverrideIn(InputModel):
+    """Values for one LandXML curve (by its id) that replace the document-wide defaults."""
+
+    superelevation_percent: float | None = bounded("bank_percent", None, text=_E, symbol=_E_SYMBOL)
+    grade_percent: float | None = bounded("slope_percent", None, text=_GRADE, symbol=_GRADE_SYMBOL)
+    posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED, symbol="V")
+
+
+def keys_match_the_id_pattern(schema: dict[str, Any]) -> None:
+    """JSON Schema's ``patternProperties`` lets a key that does not match through: state the curve-id rule for every
+    key in ``propertyNames`` too, and no other key (a generated client and a validator then know it)."""
+    for branch in schema.get("anyOf", []):
+        if branch.get("type") == "object":
+            branch.setdefault("propertyNames", {})["pattern"] = CURVE_ID_PATTERN
+            branch["additionalProperties"] = False
+
+
+class LandXmlIn(InputModel):
+    """A LandXML 1.2 document: every `CoordGeom/Curve` of every `Alignment` is a curve (its `radius`; its
+    `staStart` is reported as the station; its `name` is the id, else `<alignment name>#<n>`). LandXML keeps
+    superelevation and grade in elements whose use varies between design packages, so they are given here: as
+    defaults for every curve, and per curve id in `curve_overrides`."""
+
+    document: str = Field(
+        min_length=1,
+        max_length=MAX_LANDXML_CHARS,
+        description=describe(
+            "The LandXML 1.2 document (XML text; entities and DTDs are refused).", unit="-", symbol="-"
+        ),
+    )
+    superelevation_percent: float | None = bounded(
+        "bank_percent",
+        None,
+        text=_E + " Default for every curve; a curve left without one (here or in `curve_overrides`) is an error "
+        "naming it.",
+        symbol=_E_SYMBOL,
+    )
+    grade_percent: float = bounded(
+        "slope_percent", 0.0, text=_GRADE + " Default for every curve.", symbol=_GRADE_SYMBOL
+    )
+    posted_speed_kmh: float | None = bounded("speed_kmh", None, text=_POSTED + " Default for every curve.", symbol="V")
+    curve_overrides: dict[CurveId, CurveOverrideIn] | None = Field(
+        None,
+        max_length=MAX_CURVES,
+        json_schema_extra=keys_match_the_id_pattern,
+        description=describe(
+            "Per-curve values by curve id; an id that is not in the document is an error.", unit="%, km/h"
+        ),
+    )
+
+
+ALIGNMENT_CSV_EXAMPLE = (
+    "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\nC1,120,8,-4,70\nC2,350,6,0,90\nC3,90,8,2,60\n"
+)
+ALIGNMENT_LANDXML_EXAMPLE = (
+    '<?xml version="1.0"?>\n'
+    '<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2"><Alignments>'
+    '<Alignment name="BR-101" length="1500" staStart="0"><CoordGeom>'
+    '<Line staStart="0" length="200"><Start>0 0</Start><End>0 200</End></Line>'
+    '<Curve rot="cw" radius="250" length="120" staStart="200" name="K1"/>'
+    '<Curve rot="ccw" radius="400" length="90" staStart="380" name="K2"/>'
+    "</CoordGeom></Alignment></Alignments></LandXML>"
+)
+
+
+class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
+    """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve
+    has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 100,000 curves and
+    100,000 rows (curves x vehicles) per request.
+
+    The CSV or LandXML file can also be sent as it is, with the options as query parameters (presets only), to
+    `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "allOf": [
+                exactly_one_schema("vehicle", "vehicles", "fleet"),
+                exactly_one_schema("curves", "csv", "landxml"),
+                BOUND_ONLY_WITH_TABLE21,
+            ],
+            "examples": [
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "rear_llt_limit": 0.6,
+                    "curves": [
+                        {
+                            "id": "C1",
+                            "radius_m": 120.0,
+                            "superelevation_percent": 8.0,
+                            "grade_percent": -4.0,
+                            "posted_speed_kmh": 70.0,
+                        },
+                        {"id": "C2", "radius_m": 350.0, "superelevation_percent": 6.0, "posted_speed_kmh": 90.0},
+                    ],
+                },
+                {"vehicles": [EXAMPLE_PRESET, "table23-semitrailer"], "csv": ALIGNMENT_CSV_EXAMPLE},
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "landxml": {
+                        "document": ALIGNMENT_LANDXML_EXAMPLE,
+                        "superelevation_percent": 6.0,
+                        "posted_speed_kmh": 80.0,
+                        "curve_overrides": {"K2": {"superelevation_percent": 4.0, "grade_percent": -3.0}},
+                    },
+                },
+            ],
+        }
+    )
+
+    vehicle: VehicleRef = Field(
+        None, description=VEHICLE_DESCRIPTION + " Give one of `vehicle`, `vehicles`, `fleet`.", json_schema_extra=ABSENT
+    )
+    vehicles: list[VehicleRef] = Field(
+        None,
+        json_schema_extra=ABSENT,
+        min_length=1,
+        max_length=MAX_VEHICLES,
+        description=describe(
+            f"Several vehicles (1-{MAX_VEHICLES}, each as `vehicle` may be), each assessed on every curve. Give one "
+            "of `vehicle`, `vehicles`, `fleet`.",
+            unit="-",
+            symbol="Tables 14-16, 22, 23",
+        ),
+    )
+    fleet: str = Field(
+        None,
+        json_schema_extra=ABSENT,
+        pattern=FLEET_ID_PATTERN,
+        description=describe(
+            f"A saved fleet's id (`flt_...`, with the bearer key that saved it): its vehicles (at most {MAX_VEHICLES}) "
+            "in its order, each assessed on every curve. Give one of `vehicle`, `vehicles`, `fleet`.",
+            unit="-",
+        ),
+    )  # type: ignore[assignment]
+    max_superelevation_percent: float = bounded(
+        "max_superelevation_percent",
+        None,
+        text="The road's maximum superelevation e_max: a curve without its own superelevation takes the standard's "
+        "design value for its posted speed (AASHTO Method 5, DNIT's distribution), and each curve's minimum radius is "
+        "the standard's for this e_max (without it, for the curve's own superelevation).",
+        symbol="e_max",
+    )
+    curves: list[CurveIn] = Field(
+        None,
+        json_schema_extra=ABSENT,
+        min_length=1,
+        max_length=MAX_CURVES,
+        description=describe(f"The curves (1-{MAX_CURVES}).", unit="per field", symbol="R, e, slope"),
+    )
+    csv: str = Field(
+        None,
+        json_schema_extra=ABSENT,
+        min_length=1,
+        max_length=MAX_CSV_CHARS,
+        description=describe(
+            "The curves as CSV text with a header row naming the columns (any order, case-insensitive): `id`, "
+            "`radius_m`, `superelevation_percent`, optional `grade_percent` (empty = 0) and `posted_speed_kmh` "
+            "(empty = none). A row that cannot be read is an error naming the row and the column.",
+            unit="m, %, km/h (per column)",
+            symbol="R, e, slope, V",
+        ),
+    )
+    landxml: LandXmlIn = Field(
+        None,
+        json_schema_extra=ABSENT,
+        description=describe(
+            "The curves of a LandXML 1.2 alignment, with the superelevation and grade to use.",
+            unit="see its fields",
+            symbol="R, e, slope",
+        ),
+    )
+
+    @model_validator(mode="after")
+    def _one_source_each(self) -> AlignmentRequest:
+        for names in (("vehicle", "vehicles", "fleet"), ("curves", "csv", "landxml")):
+            present = [n for n in names if getattr(self, n) is not None]
+            if len(present) != 1:
+                what = "both " + " and ".join(present) if present else "none"
+                raise shape_error(
+                    "AlignmentRequest",
+                    present[1] if len(present) > 1 else names[0],
+                    f"give exactly one of {', '.join(names)} ({what} given)",
+                )
+        seen: dict[str, int] = {}
+        for i, c in enumerate(self.curves or ()):
+            if c.id in seen:
+                raise shape_error(
+                    "AlignmentRequest",
+                    f"curves.{i}.id",
+                    f"duplicate curve id {c.id!r} (also curves.{seen[c.id]}.id)",
+                    c.id,
+                )
+            seen[c.id] = i
+        return self
+
+
+# ------------------------------------------------------------------------------------------- output
+
+
+class CurveRow(OutputModel):
+    """One curve, for one vehicle."""
+
+    id: str = Field(description=describe("Curve id.", unit="-"))
+    station_m: float | None = Field(
+        description=describe("Start station of the curve (LandXML `staStart`; null otherwise).", unit="m")
+    )
+    radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
+    superelevation_percent: float = Field(
+        description=describe(
+            "Superelevation used (given, or derived: see `superelevation_source`).", unit="%", symbol="e"
+        )
+    )
+    superelevation_source: Literal["given", "derived"] = Field(
+        description=describe(
+            "`derived`: the curve gave none; it is the design standard's value for its posted speed and the "
+            "request's `max_superelevation_percent`.",
+            unit="-",
+        )
+    )
+    grade_percent: float = Field(description=describe("Grade, + uphill.", unit="%", symbol="slope"))
+    srt_g: float | None = Field(
+        description=describe(
+            "SRT on this curve's bank and grade (it contains the bank); null when the engine refused the case "
+            "(see `error`).",
+            unit="g",
+            symbol="SRT",
+        )
+    )
+    tilt_table_angle_deg: float | None = Field(description=TILT_OUT + " Null without an SRT.")
+    targets: list[TargetCheckOut] = Field(description=TARGETS_OUT + " Empty without an SRT.")
+    rollover_speed_kmh: float | None = Field(
+        description=describe(
+            "Speed at which the vehicle reaches its SRT, sqrt(127 SRT R).", unit="km/h", symbol="V (Eq. 9.1)"
+        )
+    )
+    side_friction_speed_kmh: float = Field(
+        description=describe(
+            "Speed at which the curve uses up the design side friction, V = sqrt(127 R (0.01 e + f_max(V))) with "
+            "the design standard's f_max (held at its value at the end of the standard's speed range beyond it: see "
+            "`side_friction_clamped`).",
+            unit="km/h",
+            symbol="V (Eq. 9.2 solved for V)",
+        )
+    )
+    side_friction: float = Field(
+        description=describe("The standard's f_max at that speed.", unit="-", symbol="f_max (Eq. 9.2)")
+    )
+    side_friction_clamped: bool = Field(
+        description=describe(
+            "The curve's side-friction speed falls outside the standard's speed range: f_max is the range end's.",
+            unit="-",
+        )
+    )
+    safe_speed_kmh: float | None = Field(
+        description=describe("The smaller of the two speeds; null without an SRT.", unit="km/h", symbol="V")
+    )
+    governed_by: Literal["rollover", "side-friction"] | None = Field(
+        description=describe("Which mechanism sets the safe speed; null without an SRT.", unit="-")
+    )
+    posted_speed_kmh: float | None = Field(description=describe("Posted speed, when given.", unit="km/h", symbol="V"))
+    margin_kmh: float | None = Field(
+        description=describe(
+            "Safe speed minus posted speed; null without a posted speed or an SRT.", unit="km/h", symbol="-"
+        )
+    )
+    flagged: bool = Field(
+        description=describe("The margin is negative (the posted speed is unsafe), or the curve has no SRT.", unit="-")
+    )
+    standard_min_radius_m: float | None = Field(
+        description=describe(
+            "The design standard's minimum radius at the posted speed, for `max_superelevation_percent` (else the "
+            "curve's own superelevation): the published value where tabulated, else Eq. 9.2. Null without a posted "
+            "speed inside the standard's range.",
+            unit="m",
+            symbol="R_min (Eq. 9.2)",
+        )
+    )
+    meets_standard_min_radius: bool | None = Field(
+        description=describe("Whether radius_m >= standard_min_radius_m; null when that is null.", unit="-")
+    )
+    error: str | None = Field(
+        description=describe("Why the engine refused this curve's case (null otherwise).", unit="-")
+    )
+
+
+class AlignmentSummary(OutputModel):
+    curves: int = Field(description=describe("Curves assessed.", unit="count"))
+    flagged: int = Field(
+        description=describe("Curves flagged: posted speed above the safe speed, or no SRT.", unit="count")
+    )
+    below_standard_min_radius: int = Field(
+        description=describe(
+            "Curves whose radius is below the standard's minimum for their posted speed.", unit="count"
+        )
+    )
+    refused: int = Field(description=describe("Curves without an SRT (rows with `error`).", unit="count"))
+    distinct_srt_solves: int = Field(
+        description=describe(
+            "SRT solves needed: one per distinct (superelevation, grade) pair, since the SRT does not depend on "
+            "the radius.",
+            unit="count",
+        )
+    )
+    governed_by_rollover: int = Field(description=describe("Curves where rollover sets the safe speed.", unit="count"))
+    governed_by_side_friction: int = Field(
+        description=describe("Curves where side friction sets the safe speed.", unit="count")
+    )
+    min_margin_kmh: float | None = Field(
+        description=describe("Smallest margin over the curves (null without posted speeds).", unit="km/h")
+    )
+    min_safe_speed_kmh: float | None = Field(
+        description=describe("Lowest safe speed over the curves (null without any).", unit="km/h", symbol="V")
+    )
+
+
+class VehicleAssessment(OutputModel):
+    index: int = Field(description=describe("Position of the vehicle in the request (0 for `vehicle`).", unit="-"))
+    preset: str | None = Field(description=describe("The preset id, or null for another vehicle.", unit="-"))
+    saved_vehicle_id: str | None = Field(
+        description=describe("The saved vehicle's id (`veh_...`), or null for another vehicle.", unit="-")
+    )
+    summary: AlignmentSummary = Field(description=describe("Counts over the curves.", unit="see its fields"))
+    rows: list[CurveRow] = Field(description=describe("One row per curve, in the request's order.", unit="per field"))
+
+
+class AlignmentResult(OutputModel):
+    """Every curve assessed for every vehicle."""
+
+    model: str = Field(description=describe("Model used.", unit="-"))
+    stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
+    design_standard: str = Field(description=describe("The design standard used.", unit="-"))
+    side_friction_bound: str | None = Field(
+        description=describe("Table 21 bound used (thesis-table21 only; null otherwise).", unit="-", symbol="f range")
+    )
+    max_superelevation_percent: float | None = Field(
+        description=describe("The request's e_max, when given.", unit="%", symbol="e_max")
+    )
+    curves: int = Field(description=describe("Curves in the request.", unit="count"))
+    vehicles: list[VehicleAssessment] = Field(description=describe("One entry per vehicle.", unit="see its fields"))
+    engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

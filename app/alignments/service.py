@@ -1,0 +1,394 @@
+"""Alignment assessment (POST /v1/alignments/assess and its uploads): curves -> engine -> rows, as columns.
+
+The curves come from a JSON list (read into columns by :mod:`app.alignments.curves`), a CSV text or a LandXML document
+(:mod:`app.formats.alignment_io`); all three become one :class:`~app.formats.alignment_io.CurveTable`, so the same
+curves share one cache entry whatever form they came in. The engine assesses each vehicle on arrays
+(:func:`engine.assessment.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the answer
+is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV in chunks (:mod:`app.alignments.rows`). A
+small answer is rendered whole and cached as bytes (and served by the fast path on a repeat); a large one is streamed,
+never built as one document, and cached by reference, as its arrays. Streamed or whole, the bytes are the same.
+
+The assessment of a curve table is public for the routes (:mod:`app.routes.service`: a route's curves are assessed as
+an alignment's) and the jobs (:mod:`app.jobs.op_alignments`): :class:`AlignmentJob`, :func:`resolved_assessment`,
+:func:`solve_alignment`, :func:`check_alignment`, :func:`resolve_alignment_refs`, :func:`as_fleet_error`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import time
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+import orjson
+from fastapi import Request
+from fastapi.exceptions import RequestValidationError
+from pydantic import ValidationError
+from starlette.concurrency import run_in_threadpool
+
+from app.alignments.curves import curves_from_json
+from app.alignments.rows import render
+from app.alignments.schemas import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
+from app.compute import solvers
+from app.compute.cache import ResultCache, cache_key
+from app.compute.results import Computed, Streamed
+from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from app.formats.jsonpieces import loads_in_pieces
+from app.http.negotiation import CSV_TYPE, JSON_TYPE
+from app.http.problems import InvalidAlignment, request_error
+from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.settings import Settings
+from app.srt.service import resolve_targets, target_checks_json_many, target_checks_many
+from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
+from engine.case import Case, LoadCase
+from engine.errors import InvalidInput
+from engine.road import (
+    AlignmentColumns,
+    assess_alignment,
+    bank_grade_pairs,
+    superelevation_used,
+    tilt_table_angle_deg,
+)
+from engine.vehicle import Vehicle
+
+#: answers with more rows than this are streamed (and cached by reference), never built whole
+STREAM_ROWS = 5_000
+_PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curves while the rest is validated
+
+
+# ------------------------------------------------------------------------------------------ reading
+
+
+def parse_json_request(body: bytes) -> tuple[AlignmentRequest, CurveTable | None]:
+    """The JSON request, validated: its ``curves`` (if any) read into columns by
+    :func:`app.alignments.curves.curves_from_json` (fast), everything else by the request model itself. Runs in a worker
+    thread: 100,000 curves are 12 MB, parsed a slice of curves at a time
+    (:func:`app.formats.jsonpieces.loads_in_pieces`: the event loop is not held up meanwhile)."""
+    try:
+        data = loads_in_pieces(body, ("curves",))
+    except orjson.JSONDecodeError as exc:
+        raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    return validate_request_data(data)
+
+
+def validate_request_data(
+    data: Any, *, model: type[AlignmentRequest] = AlignmentRequest, max_curves: int = MAX_CURVES
+) -> tuple[AlignmentRequest, CurveTable | None]:
+    """:func:`parse_json_request` of the parsed JSON (``model`` and ``max_curves``: a job's larger limits)."""
+    curves = None
+    has_curves = isinstance(data, dict) and "curves" in data
+    try:
+        req = model.model_validate({**data, "curves": _PLACEHOLDER} if has_curves else data)
+    except ValidationError as exc:
+        raise RequestValidationError(
+            [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
+        ) from None
+    if has_curves:
+        curves = curves_from_json(data["curves"], max_curves)
+    return req, curves
+
+
+def read_curves(
+    req: AlignmentRequest, curves: CurveTable | None, source_field: str | None, max_curves: int = MAX_CURVES
+) -> CurveTable:
+    """The curves from whichever of ``curves`` (already read), ``csv``, ``landxml`` the request has.
+
+    ``source_field`` names where a document came from for the error (``body`` for a raw upload)."""
+    if curves is not None:
+        return curves
+    source = "csv" if req.csv is not None else "landxml"
+    try:
+        if source == "csv":
+            return read_csv(req.csv, max_curves=max_curves)
+        x = req.landxml
+        overrides = {
+            k: CurveOverride(v.superelevation_percent, v.grade_percent, v.posted_speed_kmh)
+            for k, v in (x.curve_overrides or {}).items()
+        }
+        return read_landxml(
+            x.document,
+            superelevation_percent=x.superelevation_percent,
+            grade_percent=x.grade_percent,
+            posted_speed_kmh=x.posted_speed_kmh,
+            overrides=overrides,
+            max_curves=max_curves,
+        )
+    except AlignmentFormatError as exc:
+        where = source_field or ("csv" if source == "csv" else "landxml.document")
+        location = exc.location
+        if exc.location == "curve_overrides":
+            where, location = "landxml.curve_overrides", None
+        reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
+        raise InvalidAlignment(reason, source=where, location=location, column=exc.field) from None
+
+
+def _digest(t: CurveTable) -> str:
+    """SHA-256 of the curves (ids, then the float64 columns with -0.0 and every nan made one value)."""
+    h = hashlib.sha256(orjson.dumps(t.ids))
+    for a in (t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh, t.station_m):
+        h.update(np.where(np.isnan(a), np.nan, a + 0.0).astype("<f8").tobytes())
+    return h.hexdigest()
+
+
+@dataclass(frozen=True)
+class AlignmentJob:
+    """A resolved alignment request: what the answer depends on (``resolved``, hashed into the key) and the
+    objects to compute it from."""
+
+    resolved: dict[str, Any]
+    vehicles: list[Any]
+    curves: CurveTable
+    source: str  # the request field the curves came from, for an error in a document (``csv``, ``body``, ...)
+
+    @property
+    def rows(self) -> int:
+        return len(self.curves) * len(self.vehicles)
+
+
+def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], settings: Settings) -> dict[str, Any]:
+    """What an assessment's answer depends on besides its curves (part of its cache key): the vehicles' records
+    (and preset ids, saved ids), the SRT options, the design standard, e_max and the targets. ``req`` is an
+    alignment or a route request (they share these fields)."""
+    return {
+        "vehicles": [v.to_dict() for v in vehicles],
+        "presets": [r if isinstance(r, str) else None for r in refs],
+        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
+        "model": req.model,
+        "stage": req.stage,
+        "trailer_angle_deg": req.trailer_angle_deg,
+        "load": req.load.model_dump(),
+        "rear_llt_limit": req.rear_llt_limit,
+        "design_standard": req.design_standard,
+        "side_friction_bound": req.bound,
+        "max_superelevation_percent": req.max_superelevation_percent,
+        "targets": resolve_targets(req.targets, settings),
+    }
+
+
+def resolve_alignment(
+    req: AlignmentRequest,
+    curves: CurveTable | None,
+    settings: Settings,
+    source_field: str | None = None,
+    *,
+    max_curves: int = MAX_CURVES,
+    max_rows: int = MAX_ROWS,
+) -> AlignmentJob:
+    """The fully resolved request: the vehicles' records (and preset ids), the options, and the curves (at most
+    ``max_curves`` and ``max_rows`` rows: a job's limits are larger than a request's)."""
+    which = "vehicle" if req.vehicle is not None else "vehicles"
+    refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
+    table = read_curves(req, curves, source_field, max_curves)
+    if len(table) * len(refs) > max_rows:
+        raise request_error(
+            which,
+            f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {max_rows} per "
+            "request (split the alignment or the vehicles)",
+        )
+    vehicles = [resolve_vehicle(r) for r in refs]
+    resolved = {
+        **resolved_assessment(req, refs, vehicles, settings),
+        "curves": {"count": len(table), "sha256": _digest(table)},
+    }
+    source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
+    return AlignmentJob(resolved, vehicles, table, source)
+
+
+# ---------------------------------------------------------------------------------------- computing
+
+
+@dataclass(frozen=True)
+class VehicleAnswer:
+    """One vehicle's rows as arrays; what is shared by the curves of one SRT is kept once per distinct SRT."""
+
+    index: int
+    preset: str | None
+    saved_id: str | None
+    columns: AlignmentColumns
+    pair_of_row: np.ndarray  # distinct-SRT index of each row, for the shared tilt angle and target checks
+    srts: np.ndarray  # the distinct SRTs [g]; -1 for the rows without one
+    tilt_deg: np.ndarray  # per distinct SRT [deg]; nan without an SRT
+    targets: dict[str, float]
+
+    @cached_property
+    def tilt(self) -> list[float | None]:  # per distinct SRT
+        return [None if math.isnan(a) else a for a in self.tilt_deg.tolist()]
+
+    @cached_property
+    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: its target checks as dicts
+        solved = (self.srts >= 0).tolist()
+        return [c if ok else [] for c, ok in zip(target_checks_many(self.srts, self.targets), solved, strict=True)]
+
+    @cached_property
+    def checks_json(self) -> np.ndarray:  # per distinct SRT: the JSON of its ``checks`` (an object array, to index)
+        out = np.array(target_checks_json_many(self.srts, self.targets), dtype=object)
+        out[self.srts < 0] = b"[]"
+        return out
+
+
+@dataclass(frozen=True)
+class AlignmentAnswer:
+    """Every curve for every vehicle, as arrays: rendered to JSON or CSV in chunks."""
+
+    resolved: dict[str, Any]
+    curves: CurveTable
+    vehicles: list[VehicleAnswer]
+
+    @property
+    def nbytes(self) -> int:  # what keeping it costs (the cache bounds answers kept by reference by it)
+        per_row = 20 * 8
+        return 2_000 + len(self.curves) * (per_row * len(self.vehicles) + 48)
+
+
+def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
+    """The engine's error with its field as a request path (``curves[3].x`` -> ``curves.3.x``, with the curve's id
+    in the message), at the curve's row or element for a document, and, among several vehicles, with the vehicle's
+    index."""
+    field, message = exc.field or "", str(exc)
+    if field.startswith("curves["):
+        i = int(field[len("curves[") : field.index("]")])
+        column = field.split("].", 1)[1]
+        reason = message.removeprefix(f"curves[{i}]").lstrip(": ").removeprefix(f"{field} ")
+        t = job.curves
+        if t.where is not None:  # a CSV or LandXML document: its row or element
+            return InvalidAlignment(reason, source=job.source, location=t.where[i], column=column)
+        return type(exc)(f"{message} (curve {t.ids[i]!r})", field=f"curves.{i}.{column}", value=exc.value)
+    if len(job.vehicles) > 1 and field and "." not in field:
+        return type(exc)(f"vehicles[{index}]: {message}", field=f"vehicles.{index}.{field}", value=exc.value)
+    return exc
+
+
+def as_fleet_error(exc: Exception, fleet: str | None, resolved: dict[str, Any]) -> Exception:
+    """An error named after a vehicle the request took from a fleet (``vehicles.1.front_track_m``) names the fleet,
+    the request's own field, and says which member in the message."""
+    field = getattr(exc, "field", None) or ""
+    if fleet is None or not isinstance(exc, InvalidInput) or not field.startswith("vehicles."):
+        return exc
+    index = int(field.split(".")[1])
+    member = resolved["saved_ids"][index] or resolved["presets"][index] or f"#{index}"
+    text = str(exc).removeprefix(f"vehicles[{index}]: ")
+    return type(exc)(f"fleet {fleet}, member {index} ({member}): {text}", field="fleet", value=fleet)
+
+
+def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
+    r = job.resolved
+    case = Case(
+        job.vehicles[index],
+        r["model"],
+        r["stage"],
+        trailer_angle_deg=r["trailer_angle_deg"],
+        load=LoadCase(**r["load"]),
+        rear_llt_limit=r["rear_llt_limit"],
+    )
+    t = job.curves
+    try:
+        cols = assess_alignment(
+            case,
+            t.radius_m,
+            t.superelevation_percent,
+            t.grade_percent,
+            t.posted_speed_kmh,
+            design_standard=r["design_standard"],
+            side_friction_bound=r["side_friction_bound"],
+            max_superelevation_percent=r["max_superelevation_percent"],
+            solve_pairs=solve_pairs,
+            block_map=solvers.block_map,
+        )
+    except InvalidInput as exc:
+        raise _located(exc, job, index) from None
+    srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
+    # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
+    tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
+    preset, saved = r["presets"][index], r["saved_ids"][index]
+    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r["targets"])
+
+
+def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
+    """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
+    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved); the blocks of the
+    pairs' solve and of the side-friction speeds run on the solver threads (:mod:`app.compute.solvers`)."""
+    started = time.perf_counter()
+    vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
+    answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
+    SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
+    return answer
+
+
+def check_alignment(job: AlignmentJob) -> int:
+    """What :func:`solve_alignment` refuses for the request as a whole, found without solving every curve (a job
+    refuses it at submission): a vehicle the model cannot use, a superelevation that cannot be derived. Raises the
+    same errors, located the same way. Returns the number of distinct superelevation/grade pairs (the summary's
+    ``distinct_srt_solves``)."""
+    r, t = job.resolved, job.curves
+    try:
+        e = superelevation_used(
+            t.radius_m,
+            t.superelevation_percent,
+            t.posted_speed_kmh,
+            design_standard=r["design_standard"],
+            side_friction_bound=r["side_friction_bound"],
+            max_superelevation_percent=r["max_superelevation_percent"],
+        )
+    except InvalidInput as exc:
+        raise _located(exc, job, 0) from None
+    first = AlignmentJob(r, job.vehicles, t.sliced(0, 1), job.source)
+    for k in range(len(job.vehicles)):
+        _vehicle_answer(first, k)  # the refusals of the vehicle and the options, on one curve
+    return len(bank_grade_pairs(e, t.grade_percent)[0])
+
+
+# ---------------------------------------------------------------------------------------- the flow
+
+
+async def resolve_alignment_refs(request: Request, req: Any, settings: Settings, what: str = "an assessment") -> Any:
+    """``req`` (an alignment or a route request) with its saved vehicles, specs and fleet resolved
+    (:func:`~app.vehicles.refs.resolve_vehicle_refs`); a fleet larger than ``what`` takes (:data:`MAX_VEHICLES`) is
+    a 422 naming ``fleet``."""
+    fleet = req.fleet
+    req = await resolve_vehicle_refs(request, req, settings)
+    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
+        raise request_error(
+            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; {what} takes at most {MAX_VEHICLES}"
+        )
+    return req
+
+
+async def compute_alignment(
+    cache: ResultCache,
+    request: Request,
+    req: AlignmentRequest,
+    curves: CurveTable | None,
+    settings: Settings,
+    *,
+    csv: bool,
+    source_field: str | None = None,
+) -> Computed | Streamed:
+    """The assessment as a cached body (small answers) or a stream (large ones); the same bytes either way."""
+    fleet = req.fleet
+    req = await resolve_alignment_refs(request, req, settings)
+    job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
+    operation = "alignments-csv" if csv else "alignments"
+    media_type = CSV_TYPE if csv else JSON_TYPE
+    key = cache_key(operation, job.resolved)
+    body = (await cache.get(key, media_type)).value if job.rows <= STREAM_ROWS else None
+    if body is not None:
+        CACHE_LOOKUPS.labels(operation, "hit").inc()
+        return Computed(body, key, True, media_type)
+    answer_key = cache_key("alignment-answer", job.resolved)
+    answer = cache.answers.get(answer_key)
+    hit = answer is not None
+    CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
+    if answer is None:
+        try:
+            answer = await run_in_threadpool(solve_alignment, job)
+        except InvalidInput as exc:
+            raise as_fleet_error(exc, fleet, job.resolved) from None
+        cache.answers[answer_key] = answer
+    if job.rows <= STREAM_ROWS:
+        body = await run_in_threadpool(lambda: b"".join(render(answer, csv)))
+        await cache.set(key, body, media_type)
+        return Computed(body, key, hit, media_type)
+    return Streamed(render(answer, csv), key, hit, media_type)

@@ -1,0 +1,111 @@
+"""Raw CSV and LandXML uploads: POST /v1/alignments/assess/csv and /v1/alignments/assess/landxml.
+
+A road-design package exports a file; the natural request is the file itself as the body, the options in the
+query::
+
+    curl --data-binary @curves.csv -H 'Content-Type: text/csv' \\
+      'http://127.0.0.1:8000/v1/alignments/assess/csv?vehicle=table16-btrain&rear_llt_limit=0.6'
+
+The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` (fields and bounds
+taken from the JSON request's own, so the two forms cannot drift); the body (bounded by the route's body limit,
+:mod:`app.http.bodylimit`) is decoded,
+and the equivalent JSON request (``{"vehicle": ..., "csv": "<the file>"}``) goes through the same service and
+cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``body`` and the row or element.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import Request
+from fastapi.exceptions import RequestValidationError
+from pydantic import ConfigDict, Field, ValidationError, create_model
+
+from app.alignments.schemas import (
+    MAX_VEHICLES,
+    AlignmentRequest,
+    LandXmlIn,
+)
+from app.formats.uploads import decode_csv, decode_xml
+from app.http.problems import InvalidAlignment
+from app.http.schemas import describe
+from app.srt.schemas import LoadIn
+
+OPTIONS = (
+    "model",
+    "stage",
+    "trailer_angle_deg",
+    "rear_llt_limit",
+    "design_standard",
+    "side_friction_bound",
+    "max_superelevation_percent",
+)
+LOAD = ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
+LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
+
+_PRESETS = Field(
+    min_length=1,
+    max_length=MAX_VEHICLES,
+    description=describe(
+        f"Preset id(s) to assess, repeated for several (1-{MAX_VEHICLES}: `?vehicle=table16-btrain&"
+        "vehicle=table23-semitrailer`); a full record needs the JSON form (POST /v1/alignments/assess).",
+        unit="-",
+        symbol="Tables 14-16, 22, 23",
+    ),
+)
+
+
+def _field(model: type, name: str) -> tuple[Any, Any]:
+    info = model.model_fields[name]
+    return info.annotation, info
+
+
+_QUERY_CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False)
+CsvUploadQuery = create_model(
+    "CsvUploadQuery",
+    __config__=_QUERY_CONFIG,
+    vehicle=(list[Annotated[str, Field(min_length=1, max_length=100)]], _PRESETS),
+    **{n: _field(AlignmentRequest, n) for n in OPTIONS},
+    **{n: _field(LoadIn, n) for n in LOAD},
+)
+LandXmlUploadQuery = create_model(
+    "LandXmlUploadQuery",
+    __config__=_QUERY_CONFIG,
+    vehicle=(list[Annotated[str, Field(min_length=1, max_length=100)]], _PRESETS),
+    **{n: _field(AlignmentRequest, n) for n in OPTIONS},
+    **{n: _field(LoadIn, n) for n in LOAD},
+    **{n: _field(LandXmlIn, n) for n in LANDXML_DEFAULTS},
+)
+
+
+def upload_request(query, **document: Any) -> AlignmentRequest:
+    """The JSON request equivalent to an upload: the query's options and presets, and the document."""
+    presets = list(query.vehicle)
+    data: dict[str, Any] = {n: getattr(query, n) for n in OPTIONS if getattr(query, n) is not None}
+    data["load"] = {n: getattr(query, n) for n in LOAD}
+    data.update({"vehicle": presets[0]} if len(presets) == 1 else {"vehicles": presets})
+    data.update(document)
+    try:
+        return AlignmentRequest.model_validate(data)
+    except ValidationError as exc:  # the query was checked with the same bounds: only the document is left
+        raise RequestValidationError(
+            [
+                {**e, "loc": ("body",) if e["loc"][0] in ("csv", "landxml") else ("query", *e["loc"])}
+                for e in exc.errors()
+            ]
+        ) from None
+
+
+async def csv_upload(request: Request, query) -> AlignmentRequest:
+    text = decode_csv(await request.body())  # bounded by the route's body limit
+    if not text.strip():
+        raise InvalidAlignment("the body is empty: send the CSV file", source="body", location=None, column=None)
+    return upload_request(query, csv=text)
+
+
+async def landxml_upload(request: Request, query) -> AlignmentRequest:
+    text = decode_xml(await request.body())  # bounded by the route's body limit
+    if not text.strip():
+        raise InvalidAlignment("the body is empty: send the LandXML file", source="body", location=None, column=None)
+    defaults = {n: getattr(query, n) for n in LANDXML_DEFAULTS}
+    return upload_request(query, landxml={"document": text, **defaults})

@@ -1,0 +1,72 @@
+"""GET /: the calculator page, and its static assets (HTML, CSS, ES modules from ``app/web/``) under ``/web/``.
+
+The page is the API's first client: it calls nothing but the public ``/v1`` operations (and ``/openapi.json`` to
+see which ones this deployment has). It loads nothing from another host, and its Content-Security-Policy says so:
+scripts, styles, images, fonts and requests from this origin only, no inline script or style, no plug-ins, no
+framing. It is not part of the OpenAPI document, which describes the JSON API.
+
+This module sits beside ``app/web/``, not in it: everything in that folder is served as it is (and installed as
+package data), so no Python file belongs there.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from fastapi import APIRouter, FastAPI
+from fastapi.responses import FileResponse
+from starlette.responses import Response
+from starlette.staticfiles import StaticFiles
+
+#: the page's files, installed with the package (pyproject's package-data)
+WEB_DIR = Path(__file__).resolve().parent / "web"
+#: where the assets are served
+ASSETS_PATH = "/web"
+
+#: self only: nothing from another host, no inline script or style, no eval, no plug-ins, not framed
+CONTENT_SECURITY_POLICY = "; ".join(
+    (
+        "default-src 'none'",
+        "script-src 'self'",
+        "style-src 'self'",
+        "img-src 'self'",
+        "font-src 'self'",
+        "connect-src 'self'",
+        "manifest-src 'self'",
+        "base-uri 'none'",
+        "form-action 'self'",
+        "frame-ancestors 'none'",
+    )
+)
+#: every response of the page and its assets: no MIME sniffing, revalidate (ETag) so an upgrade is seen at once
+ASSET_HEADERS = {"X-Content-Type-Options": "nosniff", "Cache-Control": "no-cache"}
+PAGE_HEADERS = {
+    **ASSET_HEADERS,
+    "Content-Security-Policy": CONTENT_SECURITY_POLICY,
+    "Referrer-Policy": "no-referrer",
+    "X-Frame-Options": "DENY",
+}
+
+router = APIRouter(include_in_schema=False)
+
+
+@router.api_route("/", methods=["GET", "HEAD"], name="calculator_page")
+def calculator_page() -> FileResponse:
+    """The calculator page (HTML); its state is in the query string (see the README, "The calculator page")."""
+    return FileResponse(WEB_DIR / "index.html", media_type="text/html; charset=utf-8", headers=PAGE_HEADERS)
+
+
+class WebAssets(StaticFiles):
+    """The page's static files, with :data:`ASSET_HEADERS`."""
+
+    def file_response(self, *args: Any, **kwargs: Any) -> Response:
+        response = super().file_response(*args, **kwargs)
+        response.headers.update(ASSET_HEADERS)
+        return response
+
+
+def install_page(app: FastAPI) -> None:
+    """Serve the page at ``/`` and its assets under :data:`ASSETS_PATH`."""
+    app.include_router(router)
+    app.mount(ASSETS_PATH, WebAssets(directory=WEB_DIR), name="web")

@@ -1,1 +1,0 @@
-"""One router per resource (prefix + tag); operation ids are ``<tag>-<route name>``."""

@@ -1,0 +1,73 @@
+"""POST /v1/routes/assess: a route as geometry (GeoJSON or GPX) -> its curves, assessed."""
+
+from __future__ import annotations
+
+import orjson
+from fastapi import APIRouter, Request, Response
+from fastapi.exceptions import RequestValidationError
+from pydantic import ValidationError
+from starlette.concurrency import run_in_threadpool
+
+from app.deps import CacheDep, SettingsDep
+from app.http.bodies import json_body
+from app.http.bodylimit import body_limit
+from app.http.fastpath import replayable
+from app.http.negotiation import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
+from app.http.problems import VEHICLE_REF_CODES
+from app.http.responses import ANSWER_MODELS, computed_response, table_responses
+from app.routes.schemas import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
+from app.routes.service import assess_route
+
+router = APIRouter(prefix="/v1/routes", tags=["routes"])
+
+
+def parse_route_request(body: bytes) -> RouteRequest:
+    """The JSON request validated (in a worker thread: a route document may be megabytes)."""
+    try:
+        data = orjson.loads(body)
+    except orjson.JSONDecodeError as exc:
+        raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    try:
+        return RouteRequest.model_validate(data)
+    except ValidationError as exc:
+        raise RequestValidationError(
+            [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
+        ) from None
+
+
+_RESPONSES = table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES)
+_RESPONSES[200] = {
+    **_RESPONSES[200],
+    "content": {
+        **_RESPONSES[200]["content"],
+        GEOJSON_MEDIA_TYPE: {"schema": {"$ref": "#/components/schemas/RouteCurves"}},
+    },
+    "description": "JSON by default; the curves as GeoJSON when `Accept` prefers `application/geo+json`; CSV (one "
+    "row per vehicle and curve) when it prefers `text/csv`.",
+}
+ANSWER_MODELS.append(RouteCurves)  # published in components/schemas (the GeoJSON answer refers to it)
+
+
+@router.post(
+    "/assess",
+    name="assess",
+    response_model=RouteResult,
+    responses=_RESPONSES,
+    openapi_extra={**body_limit(ROUTE_BODY_LIMIT), **json_body(RouteRequest)},
+)
+@replayable("route", offers=WITH_GEOJSON)
+async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
+    """The horizontal curves of a route given as geometry, each assessed like a curve of an alignment.
+
+    The route (GeoJSON or GPX, WGS84) is developed into a plane frame that keeps its lengths and turning angles, split
+    into tangents and curves (circular arcs with their spirals where resolved: radius, start and end chainage,
+    deflection, direction, grade from the elevations; docs/routes.md says how and where it fails), and every curve
+    is assessed for every vehicle: SRT on its superelevation and grade, rollover and side-friction speeds, the safe
+    speed, the margin against the posted speed and the standard's minimum radius. JSON: `curves`, each with its
+    geometry, vertices and assessment; GeoJSON with `Accept: application/geo+json`: the curves as a
+    FeatureCollection (RFC 7946) with the same properties, ready for a GIS; CSV with `Accept: text/csv`: one row
+    per vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex."""
+    req = await run_in_threadpool(parse_route_request, await request.body())
+    accept = request.headers.get("accept")
+    form = negotiate(accept, WITH_GEOJSON)
+    return computed_response(await assess_route(cache, request, req, settings, form=form), vary_accept=True)

@@ -1,0 +1,320 @@
+"""POST /v1/routes/assess: a route as geometry (GeoJSON or GPX) -> its horizontal curves, each assessed for the
+vehicles like a curve of an alignment."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import ConfigDict, Field, model_validator
+
+from app.alignments.schemas import MAX_VEHICLES, CurveRow, VehicleAssessment
+from app.catalog.schemas import FLEET_ID_PATTERN
+from app.formats.route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
+from app.http.schemas import (
+    ABSENT,
+    EXAMPLE_PRESET,
+    InputModel,
+    OutputModel,
+    bounded,
+    describe,
+    exactly_one_schema,
+    shape_error,
+)
+from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
+from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
+
+#: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX
+ROUTE_BODY_LIMIT = 32 * 2**20
+MAX_GPX_CHARS = 30_000_000
+
+#: a short S-bend on a hillside (two curves of about 150 m and 250 m radius), lon/lat/ele as a GPS logs it
+_EXAMPLE_COORDS = [
+    [-47.06000, -22.90000, 600.0],
+    [-47.05800, -22.90000, 604.0],
+    [-47.05700, -22.89990, 606.0],
+    [-47.05620, -22.89965, 608.0],
+    [-47.05560, -22.89925, 609.0],
+    [-47.05520, -22.89870, 610.0],
+    [-47.05500, -22.89800, 611.0],
+    [-47.05500, -22.89600, 614.0],
+    [-47.05490, -22.89500, 616.0],
+    [-47.05460, -22.89420, 617.0],
+    [-47.05410, -22.89360, 618.0],
+    [-47.05340, -22.89320, 619.0],
+    [-47.05250, -22.89300, 620.0],
+    [-47.05000, -22.89300, 623.0],
+]
+EXAMPLE_GEOJSON: dict[str, Any] = {
+    "type": "FeatureCollection",
+    "features": [
+        {
+            "type": "Feature",
+            "properties": {"name": "SP-083 km 12", "posted_speed_kmh": 60},
+            "geometry": {"type": "LineString", "coordinates": _EXAMPLE_COORDS},
+        }
+    ],
+}
+
+
+class Detection(InputModel):
+    """How the curves are found (docs/routes.md): the defaults suit GPS tracks and GIS centrelines."""
+
+    noise_m: float = Field(
+        None,
+        ge=0,
+        le=50,
+        json_schema_extra=ABSENT,
+        description=describe(
+            "Position noise of the vertices (GPS: 2-5 m; a surveyed centreline: 0); default: estimated from the "
+            "vertices.",
+            unit="m",
+            symbol="sigma",
+        ),
+    )  # type: ignore[assignment]
+    max_radius_m: float = Field(
+        5000.0,
+        ge=200,
+        le=20_000,
+        description=describe(
+            "Curves flatter than this are tangents (at 120 km/h a 5000 m radius needs 0.023 g).", unit="m", symbol="R"
+        ),
+    )
+    min_deflection_deg: float = Field(
+        1.0, ge=0.1, le=45, description=describe("Smaller changes of direction are not curves.", unit="deg")
+    )
+
+
+class RouteRequest(SrtOptions, SrtTargets, DesignOptions):
+    """The vehicle(s), the SRT options, the design standard, and the route as `geojson` (a GeoJSON object:
+    `FeatureCollection`/`Feature` of `LineString`/`MultiLineString`, WGS84 lon/lat, optional elevation [m] as the
+    third coordinate) or `gpx` (GPX 1.1 text: tracks and routes, with `<ele>`). Limits: {vertices} vertices,
+    {parts} line parts and {km} km of route per request (a larger network: `POST /v1/jobs`)."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            "allOf": [
+                exactly_one_schema("vehicle", "vehicles", "fleet"),
+                exactly_one_schema("geojson", "gpx"),
+                BOUND_ONLY_WITH_TABLE21,
+            ],
+            "examples": [
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "geojson": EXAMPLE_GEOJSON,
+                    "superelevation_percent": 6.0,
+                    "rear_llt_limit": 0.6,
+                },
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "gpx": '<gpx version="1.1" creator="example" xmlns="http://www.topografix.com/GPX/1/1"><trk>'
+                    "<name>S-bend</name><trkseg>"
+                    + "".join(f'<trkpt lat="{la}" lon="{lo}"><ele>{el}</ele></trkpt>' for lo, la, el in _EXAMPLE_COORDS)
+                    + "</trkseg></trk></gpx>",
+                    "max_superelevation_percent": 8.0,
+                    "posted_speed_kmh": 60.0,
+                },
+            ],
+        }
+    )
+
+    vehicle: VehicleRef = Field(
+        None, description=VEHICLE_DESCRIPTION + " Give one of `vehicle`, `vehicles`, `fleet`.", json_schema_extra=ABSENT
+    )  # type: ignore[assignment]
+    vehicles: list[VehicleRef] = Field(
+        None,
+        json_schema_extra=ABSENT,
+        min_length=1,
+        max_length=MAX_VEHICLES,
+        description=describe(
+            f"Several vehicles (1-{MAX_VEHICLES}), each assessed on every curve.", unit="-", symbol="Tables 14-16"
+        ),
+    )  # type: ignore[assignment]
+    fleet: str = Field(
+        None,
+        json_schema_extra=ABSENT,
+        pattern=FLEET_ID_PATTERN,
+        description=describe("A saved fleet's id (`flt_...`, with the key that saved it).", unit="-"),
+    )  # type: ignore[assignment]
+    geojson: dict[str, Any] = Field(
+        None,
+        json_schema_extra=ABSENT,
+        description=describe(
+            "The route as a GeoJSON object (RFC 7946): a `FeatureCollection`, a `Feature` or a bare `LineString` / "
+            "`MultiLineString`; positions `[lon, lat]` or `[lon, lat, elevation_m]` (WGS84). A feature's "
+            "`properties` may give `superelevation_percent`, `posted_speed_kmh`, `name`, `id` for its curves.",
+            unit="deg, m",
+            symbol="-",
+        ),
+    )  # type: ignore[assignment]
+    gpx: str = Field(
+        None,
+        json_schema_extra=ABSENT,
+        min_length=1,
+        max_length=MAX_GPX_CHARS,
+        description=describe(
+            "The route as GPX 1.1 text: every track segment (`trk/trkseg/trkpt`) and route (`rte/rtept`), with "
+            "`<ele>` when logged.",
+            unit="deg, m",
+        ),
+    )  # type: ignore[assignment]
+    superelevation_percent: float = bounded(
+        "design_superelevation_percent",
+        None,
+        text="Superelevation of every curve that gives none (a feature's `superelevation_percent` wins). Without "
+        "it and without a feature value, `max_superelevation_percent` derives it from the standard.",
+        symbol="e",
+    )
+    max_superelevation_percent: float = bounded(
+        "max_superelevation_percent",
+        None,
+        text="The road's e_max: curves without a superelevation take the standard's design value for their posted "
+        "speed, and each curve's minimum radius is the standard's for this e_max.",
+        symbol="e_max",
+    )
+    posted_speed_kmh: float = bounded(
+        "speed_kmh",
+        None,
+        text="Posted speed of every curve that gives none (a feature's `posted_speed_kmh` wins); the margin and the "
+        "flag are against it.",
+        symbol="V",
+    )
+    detection: Detection = Field(
+        default_factory=Detection,
+        description=describe("How the curves are found (defaults suit GPS tracks).", unit="see its fields"),
+    )
+
+    @model_validator(mode="after")
+    def _one_source_each(self) -> RouteRequest:
+        for names in (("vehicle", "vehicles", "fleet"), ("geojson", "gpx")):
+            present = [n for n in names if getattr(self, n) is not None]
+            if len(present) != 1:
+                what = "both " + " and ".join(present) if present else "none"
+                raise shape_error(
+                    "RouteRequest",
+                    present[1] if len(present) > 1 else names[0],
+                    f"give exactly one of {', '.join(names)} ({what} given)",
+                )
+        return self
+
+
+RouteRequest.__doc__ = (RouteRequest.__doc__ or "").format(
+    vertices=f"{MAX_VERTICES:,}", parts=f"{MAX_PARTS:,}", km=f"{MAX_LENGTH_M / 1000:,.0f}"
+)
+
+
+# ------------------------------------------------------------------------------------------- output
+
+
+class RouteCurveProperties(OutputModel):
+    """A curve found on the route, and its assessment for the vehicle that governs it (the lowest safe speed)."""
+
+    id: str = Field(description=describe("Curve id: `<part>-C<k>`, numbered along the part from 1.", unit="-"))
+    part: str = Field(
+        description=describe("The line part it lies on (`features[0]`, `trk[1] 'A1' trkseg[1]`).", unit="-")
+    )
+    name: str | None = Field(description=describe("The part's `name` property, if any.", unit="-"))
+    direction: Literal["left", "right"] = Field(description=describe("Turning direction in travel order.", unit="-"))
+    radius_m: float = Field(
+        description=describe(
+            "Radius of the circular part (the sharpest arc of a compound curve).", unit="m", symbol="R"
+        )
+    )
+    radius_std_m: float | None = Field(
+        description=describe(
+            "Formal standard error of the circle fit from the vertex noise alone; null without a fit or without "
+            "noise. It leaves out the error of placing the arc's ends, which dominates on short arcs: the radius can "
+            "be off by several times it (docs/routes.md gives the measured accuracy).",
+            unit="m",
+        )
+    )
+    start_m: float = Field(
+        description=describe("Chainage of the curve's start (tangent to spiral or curve).", unit="m")
+    )
+    end_m: float = Field(description=describe("Chainage of the curve's end.", unit="m"))
+    arc_start_m: float = Field(description=describe("Chainage where the circular arc starts.", unit="m"))
+    arc_end_m: float = Field(description=describe("Chainage where the circular arc ends.", unit="m"))
+    length_m: float = Field(description=describe("Length of the whole curve.", unit="m"))
+    deflection_deg: float = Field(description=describe("Total change of direction over the curve.", unit="deg"))
+    spiral_in_m: float | None = Field(description=describe("Entry transition length, if resolved.", unit="m"))
+    spiral_out_m: float | None = Field(description=describe("Exit transition length, if resolved.", unit="m"))
+    grade_percent: float | None = Field(
+        description=describe(
+            "Grade over the curve from the elevations, + uphill in the direction of travel; null without elevations "
+            "(the assessment then uses 0 %).",
+            unit="%",
+            symbol="slope",
+        )
+    )
+    compound: bool = Field(description=describe("Several arcs of one direction with no tangent between.", unit="-"))
+    sparse: bool = Field(
+        description=describe("Fewer than 3 vertices on the arc: the radius is less certain.", unit="-")
+    )
+    truncated: bool = Field(description=describe("The curve runs into the start or end of its part.", unit="-"))
+    vertices: list[int] = Field(
+        description=describe(
+            "First and last vertex of the curve in the part's vertex list, as in the document.", unit="-"
+        )
+    )
+    governing_vehicle: int = Field(
+        description=describe("Index of the vehicle with the lowest safe speed (its row is `assessment`).", unit="-")
+    )
+    assessment: CurveRow = Field(description=describe("The governing vehicle's assessment.", unit="see its fields"))
+    vehicles: list[CurveRow] | None = Field(
+        description=describe("Every vehicle's assessment, in the request's order (only with several).", unit="-")
+    )
+
+
+class RouteCurve(RouteCurveProperties):
+    """A curve found on the route with its assessment, and its vertices."""
+
+    coordinates: list[list[float]] = Field(
+        description=describe(
+            "The curve's vertices as in the route: [lon, lat] or [lon, lat, ele] (WGS84 degrees, metres).",
+            unit="deg, deg, m",
+        )
+    )
+
+
+class RouteFeature(OutputModel):
+    type: Literal["Feature"] = Field(description=describe("GeoJSON object type.", unit="-"))
+    geometry: dict[str, Any] = Field(
+        description=describe(
+            "The curve as a GeoJSON `LineString` of the route's vertices [lon, lat(, ele)].", unit="deg"
+        )
+    )
+    properties: RouteCurveProperties = Field(description=describe("The curve and its assessment.", unit="-"))
+
+
+class RouteCurves(OutputModel):
+    type: Literal["FeatureCollection"] = Field(description=describe("GeoJSON object type.", unit="-"))
+    features: list[RouteFeature] = Field(description=describe("One feature per curve, in route order.", unit="-"))
+
+
+class RoutePartOut(OutputModel):
+    part: str = Field(description=describe("Where the part is in the document.", unit="-"))
+    name: str | None = Field(description=describe("Its `name` property, if any.", unit="-"))
+    vertices: int = Field(description=describe("Distinct vertices read.", unit="count"))
+    length_m: float = Field(
+        description=describe("Length along the road (GPS noise taken out of the polyline's length).", unit="m")
+    )
+    curves: int = Field(description=describe("Curves found.", unit="count"))
+    noise_m: float = Field(description=describe("Position noise used (given or estimated).", unit="m", symbol="sigma"))
+    has_elevation: bool = Field(description=describe("Whether grades could be read.", unit="-"))
+
+
+class RouteResult(OutputModel):
+    """The route's curves, each with its geometry, vertices and assessment; per-vehicle summaries; what was read.
+    `Accept: application/geo+json` answers the curves as a GeoJSON FeatureCollection instead (ready for a GIS)."""
+
+    model: str = Field(description=describe("Model used.", unit="-"))
+    stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
+    design_standard: str = Field(description=describe("The design standard used.", unit="-"))
+    length_m: float = Field(description=describe("Total route length.", unit="m"))
+    parts: list[RoutePartOut] = Field(description=describe("The line parts read, in document order.", unit="-"))
+    vehicles: list[VehicleAssessment] = Field(
+        description=describe(
+            "One entry per vehicle: its summary over the curves (`rows` empty: see `curves`).", unit="-"
+        )
+    )
+    curves: list[RouteCurve] = Field(description=describe("The curves, in route order.", unit="-"))
+    engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -1,0 +1,376 @@
+"""Route assessment (POST /v1/routes/assess): geometry -> horizontal curves -> the alignment assessment.
+
+The document is read by :mod:`app.formats.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
+feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
+(:func:`engine.route.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
+curves then go through the same assessment as an alignment's (:func:`app.alignments.service.solve_alignment`:
+superelevation given, from a feature property, or derived from the standard; grade from the elevations), so a curve
+gets the same answer whether it came from a table or from geometry. The answer is a GeoJSON FeatureCollection of the
+curves (a GIS reads it as it is), or CSV: one row per curve and vehicle.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import orjson
+from fastapi import Request
+from starlette.concurrency import run_in_threadpool
+
+from app.alignments import rows as alignment_rows
+from app.alignments.schemas import MAX_ROWS
+from app.alignments.service import (
+    AlignmentAnswer,
+    AlignmentJob,
+    as_fleet_error,
+    resolve_alignment_refs,
+    resolved_assessment,
+    solve_alignment,
+)
+from app.compute.cache import ResultCache
+from app.compute.results import Computed, cached
+from app.formats.alignment_io import CurveTable
+from app.formats.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
+from app.formats.tables import Text, flatten_targets, to_csv
+from app.http.negotiation import GEOJSON_MEDIA_TYPE
+from app.http.problems import InvalidRoute, request_error
+from app.routes.schemas import RouteCurves, RouteRequest, RouteResult
+from app.settings import Settings
+from app.vehicles.refs import resolve_vehicle
+from engine import ENGINE_VERSION
+from engine.errors import InvalidInput
+from engine.route import HorizontalCurve, find_curves, local_frame
+from engine.vehicle import Vehicle
+
+#: the route's own columns in front of the alignment's in the CSV answer
+GEOMETRY_COLUMNS = (
+    "part",
+    "direction",
+    "start_m",
+    "end_m",
+    "length_m",
+    "deflection_deg",
+    "spiral_in_m",
+    "spiral_out_m",
+    "radius_std_m",
+    "compound",
+    "sparse",
+    "truncated",
+)
+
+
+@dataclass(frozen=True)
+class FoundCurve:
+    """A curve found on one part, with where it lies in the document."""
+
+    part: RoutePart
+    curve: HorizontalCurve
+    id: str
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """What was read and found: the parts, their curves and each part's noise estimate."""
+
+    parts: list[RoutePart]
+    curves: list[FoundCurve]
+    noise_m: list[float]
+    found_per_part: list[int]
+    length_m: list[float]  # along the road (the detection's chainage: vertex noise taken out)
+
+
+# ------------------------------------------------------------------------------------------ reading
+
+
+def read_route(req: RouteRequest) -> list[RoutePart]:
+    """The parts of the request's document; :class:`InvalidRoute` naming the part and vertex otherwise."""
+    source = "geojson" if req.geojson is not None else "gpx"
+    try:
+        return read_geojson(req.geojson) if source == "geojson" else read_gpx(req.gpx)
+    except RouteFormatError as exc:
+        reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
+        raise InvalidRoute(reason, source=source, location=exc.location, column=exc.field) from None
+
+
+def find_route_curves(req: RouteRequest, parts: list[RoutePart]) -> Geometry:
+    """Every part in its plane frame, through the curve detection."""
+    d = req.detection
+    curves: list[FoundCurve] = []
+    noise, found, length = [], [], []
+    for p in parts:
+        frame = local_frame(p.lon_deg, p.lat_deg, p.ele_m)
+        try:
+            rc = find_curves(
+                frame.x_m,
+                frame.y_m,
+                frame.z_m,
+                noise_m=d.noise_m,
+                max_radius_m=d.max_radius_m,
+                min_deflection_deg=d.min_deflection_deg,
+            )
+        except InvalidInput as exc:
+            raise InvalidRoute(str(exc), source="geojson" if req.geojson is not None else "gpx", location=p.location,
+                               column=None) from None  # fmt: skip
+        noise.append(rc.noise_m)
+        found.append(len(rc.curves))
+        length.append(rc.length_m)
+        curves += [FoundCurve(p, c, f"{p.source}-C{k + 1}") for k, c in enumerate(rc.curves)]
+    return Geometry(parts, curves, noise, found, length)
+
+
+def _property(part: RoutePart, name: str, default: float | None) -> float:
+    value = part.properties.get(name)
+    value = default if value is None else value
+    return math.nan if value is None else float(value)
+
+
+def curve_table(req: RouteRequest, geo: Geometry) -> CurveTable:
+    """The found curves as the alignment assessment's columns (superelevation and posted speed from the feature's
+    properties, else the request's defaults; nan: derive / none)."""
+    cs = geo.curves
+    e = np.array([_property(c.part, "superelevation_percent", req.superelevation_percent) for c in cs], dtype=float)
+    if np.any(np.isnan(e)) and req.max_superelevation_percent is None:
+        first = next(c for c, x in zip(cs, e, strict=True) if math.isnan(x))
+        raise request_error(
+            "superelevation_percent",
+            f"curve {first.id} has no superelevation: give superelevation_percent (for every curve), the feature "
+            "property superelevation_percent, or max_superelevation_percent (to derive it from the standard)",
+        )
+    return CurveTable(
+        ids=[c.id for c in cs],
+        radius_m=np.array([c.curve.radius_m for c in cs], dtype=float),
+        superelevation_percent=e,
+        grade_percent=np.array([c.curve.grade_percent or 0.0 for c in cs], dtype=float),
+        posted_speed_kmh=np.array([_property(c.part, "posted_speed_kmh", req.posted_speed_kmh) for c in cs]),
+        station_m=np.array([c.curve.start_m for c in cs], dtype=float),
+    )
+
+
+def _document_digest(req: RouteRequest) -> str:
+    doc = orjson.dumps(req.geojson, option=orjson.OPT_SORT_KEYS) if req.geojson is not None else req.gpx.encode()
+    return hashlib.sha256(doc).hexdigest()
+
+
+def resolved_route(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
+    return {
+        **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings),
+        "route": {
+            "format": "geojson" if req.geojson is not None else "gpx",
+            "sha256": _document_digest(req),
+            "superelevation_percent": req.superelevation_percent,
+            "posted_speed_kmh": req.posted_speed_kmh,
+            "detection": req.detection.model_dump(),
+        },
+    }
+
+
+# ---------------------------------------------------------------------------------------- rendering
+
+
+def _coordinates(c: FoundCurve) -> list[list[float]]:
+    p = c.part
+    sl = slice(c.curve.start_index, c.curve.end_index + 1)
+    lon, lat = p.lon_deg[sl].tolist(), p.lat_deg[sl].tolist()
+    if p.ele_m is None:
+        return [[a, b] for a, b in zip(lon, lat, strict=True)]
+    ele = p.ele_m[sl].tolist()
+    return [[a, b] if math.isnan(z) else [a, b, z] for a, b, z in zip(lon, lat, ele, strict=True)]
+
+
+def _geometry_fields(c: FoundCurve) -> dict[str, Any]:
+    h = c.curve
+    vi = c.part.vertex_index
+    return {
+        "part": c.part.source,
+        "name": c.part.properties.get("name"),
+        "direction": h.direction,
+        "radius_m": h.radius_m,
+        "radius_std_m": h.radius_std_m,
+        "start_m": h.start_m,
+        "end_m": h.end_m,
+        "arc_start_m": h.arc_start_m,
+        "arc_end_m": h.arc_end_m,
+        "length_m": h.length_m,
+        "deflection_deg": h.deflection_deg,
+        "spiral_in_m": h.spiral_in_m,
+        "spiral_out_m": h.spiral_out_m,
+        "grade_percent": h.grade_percent,
+        "compound": h.compound,
+        "sparse": h.sparse,
+        "truncated": h.truncated,
+        "vertices": [int(vi[h.start_index]), int(vi[h.end_index])],
+    }
+
+
+def _governing(rows: list[dict[str, Any]]) -> int:
+    """The vehicle with the lowest safe speed on a curve (a refused case first: it has no safe speed)."""
+    speeds = [math.inf if r["safe_speed_kmh"] is None else r["safe_speed_kmh"] for r in rows]
+    refused = [k for k, r in enumerate(rows) if r["error"] is not None]
+    return refused[0] if refused else int(np.argmin(speeds))
+
+
+def _curves(geo: Geometry, answer: AlignmentAnswer) -> list[dict[str, Any]]:
+    """Each curve's geometry and its assessment (the governing vehicle's row, and every row with several)."""
+    n = len(geo.curves)
+    per_vehicle = [alignment_rows.rows(answer, v, 0, n) for v in answer.vehicles]
+    out = []
+    for i, c in enumerate(geo.curves):
+        rows = [pv[i] for pv in per_vehicle]
+        g = _governing(rows)
+        out.append(
+            {
+                "id": c.id,
+                **_geometry_fields(c),
+                "governing_vehicle": g,
+                "assessment": rows[g],
+                "vehicles": rows if len(rows) > 1 else None,
+            }
+        )
+    return out
+
+
+def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> bytes:
+    r = answer.resolved
+    found = zip(_curves(geo, answer), geo.curves, strict=True)
+    curves = [{**props, "coordinates": _coordinates(c)} for props, c in found]
+    out = {
+        "model": r["model"],
+        "stage": r["stage"] if r["model"] == "3d" else None,
+        "design_standard": r["design_standard"],
+        "length_m": float(sum(geo.length_m)),
+        "parts": [
+            {
+                "part": p.source,
+                "name": p.properties.get("name"),
+                "vertices": int(p.lon_deg.size),
+                "length_m": length,
+                "curves": k,
+                "noise_m": s,
+                "has_elevation": p.ele_m is not None,
+            }
+            for p, k, s, length in zip(geo.parts, geo.found_per_part, geo.noise_m, geo.length_m, strict=True)
+        ],
+        "vehicles": [
+            {
+                "index": v.index,
+                "preset": v.preset,
+                "saved_vehicle_id": v.saved_id,
+                "summary": alignment_rows.summary(v.columns),
+                "rows": [],
+            }
+            for v in answer.vehicles
+        ],
+        "curves": curves,
+        "engine_version": ENGINE_VERSION,
+    }
+    return RouteResult.model_validate(out).model_dump_json().encode()  # the contract checked on the way out
+
+
+def route_geojson(geo: Geometry, answer: AlignmentAnswer) -> bytes:
+    """The curves as a GeoJSON FeatureCollection (RFC 7946): a LineString of its vertices per curve, the curve and
+    its assessment as the feature's properties."""
+    features = [
+        {"type": "Feature", "geometry": {"type": "LineString", "coordinates": _coordinates(c)}, "properties": props}
+        for props, c in zip(_curves(geo, answer), geo.curves, strict=True)
+    ]
+    doc = {"type": "FeatureCollection", "features": features}
+    return RouteCurves.model_validate(doc).model_dump_json().encode()
+
+
+def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
+    """One row per vehicle and curve: the vehicle, the curve's geometry, then the alignment's columns."""
+    n = len(geo.curves)
+    base = alignment_rows.csv_columns(answer.resolved)
+    columns = [*base[:3], *GEOMETRY_COLUMNS, *base[3:]]
+    rows = []
+    for v in answer.vehicles:
+        preset = None if v.preset is None else Text(v.preset)
+        saved = None if v.saved_id is None else Text(v.saved_id)
+        for c, row in zip(geo.curves, alignment_rows.rows(answer, v, 0, n), strict=True):
+            fields = {k: x for k, x in _geometry_fields(c).items() if k in GEOMETRY_COLUMNS}
+            fields["part"] = Text(fields["part"])
+            rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **fields,
+                         **flatten_targets(row)})  # fmt: skip
+    return to_csv(columns, rows)
+
+
+# ---------------------------------------------------------------------------------------- computing
+
+
+#: the answer's forms: (cache operation, media type)
+FORMS = {
+    "json": ("route", "application/json"),
+    "csv": ("route-csv", "text/csv; charset=utf-8"),
+    "geojson": ("route-geojson", GEOJSON_MEDIA_TYPE),
+}
+
+
+_CURVE_FIELD = re.compile(r"^curves[\[.](\d+)\]?\.(\w+)$")
+
+
+def _named_after_the_route(exc: InvalidInput, table: CurveTable) -> InvalidInput:
+    """An error the assessment names after a row of its curve table (``curves[3].posted_speed_kmh``) is about a
+    curve the route request does not list: name the request's own field and say which curve in the message."""
+    m = _CURVE_FIELD.match(exc.field or "")
+    if m is None:
+        return exc
+    curve = table.ids[int(m.group(1))]
+    text = str(exc)
+    lead = re.match(r"^curves\[\d+\]", text)
+    message = f"the route's curve {curve}{text[lead.end() :]}" if lead else f"the route's curve {curve}: {text}"
+    return type(exc)(message, field=m.group(2), value=exc.value)
+
+
+def render_route(req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, ...]) -> dict[str, bytes]:
+    """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
+    ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets)."""
+    parts = read_route(req)
+    geo = find_route_curves(req, parts)
+    vehicles = [Vehicle.from_dict(v) for v in resolved["vehicles"]]
+    if len(geo.curves) * len(vehicles) > MAX_ROWS:
+        raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
+    table = curve_table(req, geo)
+    source = "geojson" if req.geojson is not None else "gpx"
+    try:
+        answer = solve_alignment(AlignmentJob(resolved, vehicles, table, source))
+    except InvalidInput as exc:
+        raise _named_after_the_route(exc, table) from None
+    renderers = {
+        "json": lambda: route_json(req, geo, answer),
+        "csv": lambda: route_csv(geo, answer),
+        "geojson": lambda: route_geojson(geo, answer),
+    }
+    return {form: renderers[form]() for form in forms}
+
+
+async def resolve_route_refs(request: Request, req: RouteRequest, settings: Settings) -> RouteRequest:
+    """``req`` with its saved vehicles, specs and fleet resolved (a fleet becomes ``vehicles``, at most
+    :data:`MAX_VEHICLES`): the alignment's resolution, worded for a route."""
+    return await resolve_alignment_refs(request, req, settings, what="a route")
+
+
+def route_refs(req: RouteRequest) -> list[Any]:
+    return [req.vehicle] if req.vehicle is not None else list(req.vehicles)
+
+
+async def assess_route(
+    cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, form: str = "json"
+) -> Computed:
+    fleet = req.fleet
+    req = await resolve_route_refs(request, req, settings)
+    resolved = await run_in_threadpool(resolved_route, req, route_refs(req), settings)  # the key: resolved
+    operation, media = FORMS[form]
+
+    async def produce() -> bytes:
+        try:
+            bodies = await run_in_threadpool(render_route, req, resolved, (form,))
+        except InvalidInput as exc:
+            raise as_fleet_error(exc, fleet, resolved) from None
+        return bodies[form]
+
+    return await cached(cache, operation, resolved, produce, media)

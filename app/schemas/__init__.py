@@ -1,1 +1,0 @@
-"""Request and response models (pydantic v2). Input models forbid unknown fields and non-finite numbers."""

@@ -1,0 +1,167 @@
+"""The static rollover threshold (POST /v1/srt), and the SRT pieces every other computation uses.
+
+Data flows one way: validated request -> engine :class:`~engine.case.Case` (preset expanded, defaults filled) ->
+cache key (derived from the case) -> engine (in a worker thread) -> result object -> response body (JSON bytes,
+stored as is in the cache). A computation that needs another one's result (the SRT inside a curve speed, a
+minimum radius or a plot) asks :func:`solve` for the engine's result object, memoised per process: it never
+parses another endpoint's cached bytes.
+
+Public for the other features (road, plots, limits, sweep, alignments, routes): :func:`resolve_case` (an SRT
+request's engine case), :func:`resolve_targets` and the target checks, :func:`srt_key` / :func:`base_case_key` (what
+a key holds of an SRT request), :func:`solve` and :func:`srt_result`.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+import orjson
+from starlette.concurrency import run_in_threadpool
+
+from app.compute.cache import ResultCache, cache_key
+from app.compute.coalescer import COALESCER
+from app.compute.results import Computed, cached
+from app.formats.json_rows import json_template
+from app.metrics import SOLVE_SECONDS
+from app.settings import Settings
+from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
+from app.vehicles.refs import resolve_vehicle
+from engine import ENGINE_VERSION
+from engine.case import Case, LoadCase, Road
+from engine.models import rollover_threshold
+from engine.results import RolloverResult
+from engine.road import check_targets, tilt_table_angle_deg
+from engine.vehicle import Vehicle
+
+# ------------------------------------------------------------------------------------- resolution
+
+
+def resolve_case(req: SrtInputs, *, road: Road | None = None, vehicle: Vehicle | None = None) -> Case:
+    """The engine case of an SRT request (``road`` replaces the request's, e.g. a curve's own; ``vehicle`` the
+    resolved one)."""
+    road = road if road is not None else Road(**req.road.model_dump())
+    return Case(
+        vehicle=vehicle or resolve_vehicle(req.vehicle),
+        model=req.model,
+        stage=req.stage,
+        road=road,
+        trailer_angle_deg=req.trailer_angle_deg,
+        load=LoadCase(**req.load.model_dump()),
+        rear_llt_limit=req.rear_llt_limit,
+    )
+
+
+def resolve_targets(targets: dict[str, float] | None, settings: Settings) -> dict[str, float]:
+    """The SRT targets of a request: its own, else the configured defaults (name -> minimum SRT [g])."""
+    return dict(targets) if targets is not None else settings.default_targets()
+
+
+def target_checks(srt_g: float, targets: dict[str, float]) -> list[dict[str, Any]]:
+    """``TargetCheckOut`` dicts for an SRT, in order of increasing target (then name): the order is fixed by
+    the targets themselves, so equal targets given in any order give the same body and the same cache key."""
+    checks = _in_target_order(check_targets(srt_g, targets))
+    return [{"name": c.name, "target_g": c.target_g, "meets": c.meets, "margin_g": c.margin_g} for c in checks]
+
+
+def _in_target_order(checks: list[Any]) -> list[Any]:
+    return sorted(checks, key=lambda c: (c.target_g, c.name))
+
+
+def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list[dict[str, Any]]]:
+    """:func:`target_checks` of every SRT of ``srts`` at once (an alignment's distinct SRTs): the same dicts, the
+    same order; the targets are checked once, the comparisons and margins done on arrays."""
+    ordered = _in_target_order(check_targets(0.0, targets))  # the targets checked, in order (the SRT is unused)
+    per_target = [
+        [
+            {"name": c.name, "target_g": c.target_g, "meets": meets, "margin_g": margin}
+            for meets, margin in zip((srts >= c.target_g).tolist(), (srts - c.target_g).tolist(), strict=True)
+        ]
+        for c in ordered
+    ]
+    return [list(checks) for checks in zip(*per_target, strict=True)] if per_target else [[] for _ in srts]
+
+
+def target_checks_json_many(srts: np.ndarray, targets: dict[str, float]) -> list[bytes]:
+    """The JSON of each list of :func:`target_checks_many` (``orjson.dumps`` of it, byte for byte), written on columns
+    (:func:`app.formats.json_rows.json_template`): no dict per SRT."""
+    ordered = _in_target_order(check_targets(0.0, targets))
+    if not ordered:
+        return [b"[]"] * len(srts)
+    fragments, columns = [b"["], []
+    for k, c in enumerate(ordered):
+        head = orjson.dumps({"name": c.name, "target_g": c.target_g, "meets": None})[: -len(b"null}")]
+        fragments[-1] += (b"," if k else b"") + head
+        fragments.append(b',"margin_g":')
+        fragments.append(b"}")
+        columns += [(srts >= c.target_g).tolist(), (srts - c.target_g).tolist()]
+    fragments[-1] += b"]"
+    return json_template(fragments, columns, b"\x00").split(b"\x00")[1:]
+
+
+def srt_key(
+    case: Case, targets: dict[str, float], *, include_curves: bool = False, curve_points: int | None = None
+) -> dict[str, Any]:
+    """The resolved SRT request hashed into the cache key: the case, whether (and how finely) the curves are
+    asked for, and the targets the result is checked against (they are in the body, so they are in the key)."""
+    return {
+        **case.to_dict(),
+        "include_curves": include_curves,
+        "curve_points": curve_points if include_curves else None,  # without curves it changes nothing
+        "targets": dict(targets),
+    }
+
+
+def base_case_key(req: SrtInputs, settings: Settings) -> dict[str, Any]:
+    """The resolved base case of a limits or sweep request (no curves: those fields would only blur the key), as
+    :func:`srt_key` without the curve fields: what their cache keys hold of the SRT request."""
+    base = srt_key(resolve_case(req), resolve_targets(req.targets, settings))
+    del base["include_curves"], base["curve_points"]
+    return base
+
+
+def case_of_key(resolved_case: dict[str, Any]) -> Case:
+    """The engine case of :func:`base_case_key`'s dict (the inverse, targets left out)."""
+    return Case.from_dict({k: v for k, v in resolved_case.items() if k != "targets"})
+
+
+# -------------------------------------------------------------------------------------- computing
+
+
+async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = None) -> RolloverResult:
+    """The engine's result for ``case`` (with its curves at ``curve_points`` points when given), memoised per
+    process by the case's key. A single threshold is solved on the event loop (about a millisecond: cheaper than the
+    hop to a worker thread); the curves, tens of solves, in a worker thread."""
+    key = cache_key("engine-result", {**case.to_dict(), "curve_points": curve_points})
+    result = cache.objects.get(key)
+    if result is None:
+        if curve_points is None:  # one threshold, on the event loop with the others waiting now (app.compute.coalescer)
+            result = await COALESCER.threshold(case)
+        else:  # the curves are tens of solves: not on the event loop
+            started = time.perf_counter()
+            result = await run_in_threadpool(rollover_threshold, case, include_curves=True, curve_points=curve_points)
+            SOLVE_SECONDS.labels("srt", case.model).observe(time.perf_counter() - started)
+        cache.objects[key] = result
+    return result
+
+
+def srt_result(result: RolloverResult, targets: dict[str, float]) -> SrtResult:
+    """The published SRT result of an engine result (validated against the schema: a contract break is loud)."""
+    data = result.to_dict()
+    data["tilt_table_angle_deg"] = float(tilt_table_angle_deg(result.srt))
+    data["targets"] = target_checks(result.srt, targets)
+    data["engine_version"] = ENGINE_VERSION
+    return SrtResult.model_validate(data)
+
+
+async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -> Computed:
+    case = resolve_case(req)
+    targets = resolve_targets(req.targets, settings)
+    points = req.curve_points if req.include_curves else None
+    resolved = srt_key(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
+
+    async def produce() -> bytes:
+        return srt_result(await solve(cache, case, curve_points=points), targets).model_dump_json().encode()
+
+    return await cached(cache, "srt", resolved, produce)

@@ -1,0 +1,164 @@
+"""Grid sweeps (POST /v1/srt/sweep): the SRT over the Cartesian product of up to eight axes.
+
+Same flow as :mod:`app.srt.service`: the fully resolved request (preset expanded, defaults and targets filled) is the
+cache key; the engine runs in a worker thread. The sweep's answer is kept as the engine's arrays (:class:`SweepAnswer`)
+and rendered to JSON or CSV in chunks, like the alignment assessment (:mod:`app.alignments.service`): a small grid is
+rendered whole and cached as bytes (served by the fast path on a repeat), a large one is streamed and cached by
+reference, as its arrays. Streamed or whole, the bytes are the same.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import orjson
+from starlette.concurrency import run_in_threadpool
+
+from app.compute import solvers
+from app.compute.cache import ResultCache, cache_key
+from app.compute.results import Computed, Streamed, cached
+from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
+from app.http.negotiation import CSV_TYPE, JSON_TYPE
+from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.settings import Settings
+from app.srt.service import base_case_key, case_of_key, target_checks
+from app.srt.sweep_schemas import SweepRequest
+from engine import ENGINE_VERSION
+from engine.models import SweepResult as EngineSweep
+from engine.models import sweep
+from engine.road import tilt_table_angle_deg
+
+#: sweeps with more cases than this are streamed (and their answer cached by reference), never built whole
+STREAM_ROWS = 5_000
+ROWS_PER_CHUNK = 1_000
+
+
+def resolve_sweep(req: SweepRequest, settings: Settings) -> dict[str, Any]:
+    return {"case": base_case_key(req, settings), "grid": req.grid.axes()}
+
+
+def sweep_cases(resolved: dict[str, Any]) -> int:
+    """The number of cases (rows) of a resolved sweep: the product of its axes' lengths."""
+    return math.prod(len(values) for values in resolved["grid"].values())
+
+
+@dataclass(frozen=True)
+class SweepAnswer:
+    """Every case of a grid as the engine's arrays (:class:`engine.models.SweepResult`) and the SRT targets they
+    are checked against: rendered to JSON or CSV in chunks (:func:`sweep_json_chunks`, :func:`sweep_csv_chunks`)."""
+
+    resolved: dict[str, Any]
+    result: EngineSweep
+    targets: tuple[tuple[str, float], ...]  # (name, target [g]) in the rows' order: increasing target, then name
+
+    @property
+    def nbytes(self) -> int:  # what keeping it costs (the cache bounds answers kept by reference by it)
+        r = self.result
+        arrays = r.values.nbytes + r.srt.nbytes + r.roll_angle_deg.nbytes
+        return 2_000 + arrays + sum(100 + len(e) for e in r.errors.values())
+
+
+def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
+    """Every case of the grid (blocking: called in a worker thread), as arrays."""
+    started = time.perf_counter()
+    case = resolved["case"]
+    result = sweep(case_of_key(case), resolved["grid"], block_map=solvers.block_map)
+    SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
+    order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, case["targets"]))
+    return SweepAnswer(resolved, result, order)
+
+
+def _sweep_rows(answer: SweepAnswer, start: int, stop: int) -> list[dict[str, Any]]:
+    """Rows [start, stop) as SweepRow dicts in the schema's field order (the swept axes only, then the results); the
+    target checks as :func:`app.srt.service.target_checks` makes them (SRT >= target, SRT - target), on arrays."""
+    r = answer.result
+    goals = np.array([goal for _, goal in answer.targets], dtype=float)
+    srt, values = r.srt[start:stop], r.values[start:stop]
+    meets, margins = (srt[:, None] >= goals).tolist(), (srt[:, None] - goals).tolist()
+    targets = [
+        [
+            {"name": n, "target_g": g, "meets": m, "margin_g": d}
+            for (n, g), m, d in zip(answer.targets, ms, ds, strict=True)
+        ]
+        for ms, ds in zip(meets, margins, strict=True)
+    ]
+    columns: dict[str, list[Any]] = {axis: values[:, k].tolist() for k, axis in enumerate(r.axes)}
+    columns["srt"] = srt.tolist()
+    columns["roll_angle_deg"] = [None if math.isnan(x) else x for x in r.roll_angle_deg[start:stop].tolist()]
+    columns["tilt_table_angle_deg"] = tilt_table_angle_deg(srt).tolist()
+    columns["targets"] = targets
+    columns["error"] = [None] * (stop - start)
+    for i, error in r.errors.items():  # a refused case: no SRT, no roll, no tilt angle, no checks; its reason
+        if start <= i < stop:
+            k = i - start
+            columns["srt"][k] = columns["roll_angle_deg"][k] = columns["tilt_table_angle_deg"][k] = None
+            columns["targets"][k], columns["error"][k] = [], error
+    keys = list(columns)
+    return [dict(zip(keys, row, strict=True)) for row in zip(*columns.values(), strict=True)]
+
+
+def _row_chunks(answer: SweepAnswer) -> Iterator[list[dict[str, Any]]]:
+    n = len(answer.result.srt)
+    for start in range(0, n, ROWS_PER_CHUNK):
+        yield _sweep_rows(answer, start, min(start + ROWS_PER_CHUNK, n))
+
+
+def sweep_json_chunks(answer: SweepAnswer) -> Iterator[bytes]:
+    """The SweepResult JSON document in chunks of rows: byte for byte what pydantic writes for the same result
+    (``SweepResult.model_dump_json(exclude_unset=True)``: a row holds the swept axes only)."""
+    r = answer.result
+    head = {"model": r.model, "stage": r.stage, "axes": list(r.axes), "cases": len(r.srt), "refused": len(r.errors)}
+    yield orjson.dumps(head)[:-1] + b',"rows":['
+    for k, rows in enumerate(_row_chunks(answer)):
+        yield (b"," if k else b"") + orjson.dumps(rows)[1:-1]
+    yield b'],"engine_version":' + orjson.dumps(ENGINE_VERSION) + b"}"
+
+
+def sweep_csv_chunks(answer: SweepAnswer) -> Iterator[bytes]:
+    """The rows as one CSV table in chunks: the swept axes, the results, two columns per target, the error."""
+    names = [name for name, _ in answer.targets]
+    columns = [*answer.result.axes, "srt", "roll_angle_deg", "tilt_table_angle_deg", *target_columns(names), "error"]
+    return to_csv_chunks(columns, ([flatten_targets(row) for row in rows] for rows in _row_chunks(answer)))
+
+
+def render_sweep(answer: SweepAnswer, csv: bool) -> Iterator[bytes]:
+    return sweep_csv_chunks(answer) if csv else sweep_json_chunks(answer)
+
+
+def solve_sweep(resolved: dict[str, Any]) -> bytes:
+    """Every case of the grid (blocking) -> the whole SweepResult JSON document."""
+    return b"".join(sweep_json_chunks(sweep_answer(resolved)))
+
+
+async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed | Streamed:
+    """The sweep as a cached body (up to :data:`STREAM_ROWS` cases) or a stream (more); the same bytes either way.
+
+    The engine's answer is kept by reference (``cache.answers``), so the JSON and CSV forms of one grid share one
+    solve and a large sweep asked again is rendered from it, never solved again."""
+    resolved = resolve_sweep(req, settings)
+    operation, media_type = ("srt-sweep-csv", CSV_TYPE) if csv else ("srt-sweep", JSON_TYPE)
+    answer_key = cache_key("srt-sweep-answer", resolved)
+
+    async def answer() -> tuple[SweepAnswer, bool]:
+        found = cache.answers.get(answer_key)
+        if found is not None:
+            return found, True
+        found = await run_in_threadpool(sweep_answer, resolved)
+        cache.answers[answer_key] = found
+        return found, False
+
+    if sweep_cases(resolved) <= STREAM_ROWS:
+
+        async def produce() -> bytes:
+            found, _ = await answer()
+            return await run_in_threadpool(lambda: b"".join(render_sweep(found, csv)))
+
+        return await cached(cache, operation, resolved, produce, media_type)
+    found, hit = await answer()
+    CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
+    return Streamed(render_sweep(found, csv), cache_key(operation, resolved), hit, media_type)

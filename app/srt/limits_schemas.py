@@ -19,6 +19,7 @@ PARAMETER_INFO = {
     "overweight_percent": ("%", "overweight", "load.overweight_percent"),
     "lateral_offset_m": ("m", "d1", "load.lateral_offset_m"),
     "spring_separation_m": ("m", "b", "vehicle.spring_separation_m"),
+    "vertical_offset_m": ("m", "d3", "load.vertical_offset_m"),
 }
 DEFAULT_OVERWEIGHTS = [0.0, 5.0, 10.0, 15.0, 20.0]
 MAX_TABLE_ROWS = 25

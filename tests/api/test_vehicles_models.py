@@ -62,11 +62,12 @@ def test_a_fetched_preset_can_be_posted_back_as_a_record(shared_client):
     assert by_record.headers["etag"] == by_id.headers["etag"]
 
 
-def test_models_lists_the_nine_models_with_equations_and_references(shared_client):
+def test_models_lists_the_ten_models_with_equations_and_references(shared_client):
     r = shared_client.get("/v1/models")
     assert r.status_code == 200
     models = {m["id"]: m for m in r.json()}
-    assert set(models) == {"3d", "2d", "rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin"}
+    thesis = {"3d", "2d", "rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin"}
+    assert set(models) == {*thesis, "combination"}  # the nine of the thesis and the whole-combination model
     assert models["rigid"]["equation"] == "Eq. 2.6"
     assert models["rill"]["equation"] == "Eq. 2.20"
     assert models["navin"]["reference"].startswith("Navin")

@@ -35,7 +35,7 @@ from app.road import standards_router
 from app.routes import router as routes_router
 from app.settings import Settings, get_settings
 from app.srt import router as srt_router
-from app.vehicles import builder_router
+from app.vehicles import builder_router, combination_router
 from app.vehicles import router as vehicles_router
 from engine import ENGINE_VERSION
 
@@ -51,6 +51,11 @@ carry `ETag` (the cache key) and `X-Cache: hit|miss`.
 
 TAGS = [
     {"name": "vehicles", "description": "The thesis presets (Tables 14, 15, 16, 22, 23) as full vehicle records."},
+    {
+        "name": "combinations",
+        "description": "Combination presets (tractor-semitrailer, B-double, A-double, truck and trailer): every unit, "
+        "axle group and coupling of a roll-coupled chain, each value with its source; usable as `vehicle` anywhere.",
+    },
     {
         "name": "catalog",
         "description": "Saved vehicles and named fleets of the caller's bearer key (`ROLLOVER_API_KEYS`), in a "
@@ -100,6 +105,7 @@ ROUTERS = (
     catalog_router.router,
     builder_router.router,
     vehicles_router.router,
+    combination_router.router,
     srt_router.router,
     road_router.router,
     standards_router.router,

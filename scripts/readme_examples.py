@@ -147,6 +147,33 @@ EXAMPLES = [
         "for m in json.load(sys.stdin)]'",
         show=lambda r: "\n".join(f"{m['id']} | {m['equation']} | {m['reference']}" for m in r.json()),
     ),
+    Example(
+        "The combination presets (id and roll-coupled units)",
+        "GET",
+        "/v1/combinations",
+        pipe=" | python -c 'import json,sys; "
+        '[print(c["id"], c["roll_coupled_units"]) for c in json.load(sys.stdin)]\'',
+        show=lambda r: "\n".join(f"{c['id']} {c['roll_coupled_units']}" for c in r.json()),
+    ),
+    Example(
+        "One combination preset with the source of every value (the first three shown)",
+        "GET",
+        "/v1/combinations/btrain-table16",
+        pipe=' | python -c \'import json,sys; s = json.load(sys.stdin)["sources"]; '
+        '[print(k, "<-", s[k]) for k in list(s)[:3]]\'',
+        show=lambda r: "\n".join(f"{k} <- {v}" for k, v in list(r.json()["sources"].items())[:3]),
+    ),
+    Example(
+        "SRT of the whole B-double (the whole-combination model): each roll-coupled unit and the lift-offs",
+        "POST",
+        "/v1/srt",
+        {"vehicle": "btrain-table16"},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        'print(r["srt"], r["last_unit_front_llt_ratio"]); [print(e) for e in r["lift_sequence"]]\'',
+        show=lambda r: "\n".join(
+            [f"{r.json()['srt']} {r.json()['last_unit_front_llt_ratio']}", *(str(e) for e in r.json()["lift_sequence"])]
+        ),
+    ),
     Example("SRT of the B-train, 3D model, flat road", "POST", "/v1/srt", {"vehicle": "table16-btrain"}),
     Example(
         "The same request again: ETag and X-Cache (now a hit)",

@@ -127,12 +127,20 @@ def merge_summaries(parts: list[dict[str, Any]], distinct_srt_solves: int) -> di
     return out
 
 
+def default_model(vehicles: list[dict[str, Any]]) -> str:
+    """The model a request that names none is solved with: ``3d`` for records, ``combination`` for combinations,
+    ``default`` for a mix of both (each vehicle with its own)."""
+    kinds = {"combination" if "combination" in v else "3d" for v in vehicles}
+    return kinds.pop() if len(kinds) == 1 else "default"
+
+
 def json_head(resolved: dict[str, Any], curves: int) -> bytes:
     """The AlignmentResult document up to its ``vehicles`` list (opened)."""
     r = resolved
+    model = r["model"] or default_model(r["vehicles"])
     head = {
-        "model": r["model"],
-        "stage": r["stage"] if r["model"] == "3d" else None,
+        "model": model,
+        "stage": r["stage"] if model == "3d" else None,
         "design_standard": r["design_standard"],
         "side_friction_bound": r["side_friction_bound"],
         "max_superelevation_percent": r["max_superelevation_percent"],

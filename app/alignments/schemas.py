@@ -397,7 +397,13 @@ class VehicleAssessment(OutputModel):
 class AlignmentResult(OutputModel):
     """Every curve assessed for every vehicle."""
 
-    model: str = Field(description=describe("Model used.", unit="-"))
+    model: str = Field(
+        description=describe(
+            "Model used: the request's, else `3d` for records, `combination` for combinations, `default` for a mix "
+            "(each vehicle with its own).",
+            unit="-",
+        )
+    )
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
     design_standard: str = Field(description=describe("The design standard used.", unit="-"))
     side_friction_bound: str | None = Field(

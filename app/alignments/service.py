@@ -313,7 +313,7 @@ def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     started = time.perf_counter()
     vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
     answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
-    SOLVE_SECONDS.labels("alignments", job.resolved["model"]).observe(time.perf_counter() - started)
+    SOLVE_SECONDS.labels("alignments", job.resolved["model"] or "default").observe(time.perf_counter() - started)
     return answer
 
 

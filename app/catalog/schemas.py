@@ -10,6 +10,7 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_mo
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, describe
 from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.combination_schemas import CombinationRef
 from app.vehicles.schemas import VehiclePreset, VehicleRecord
 from engine.vehicle import Vehicle
 
@@ -54,16 +55,18 @@ class PageQuery(BaseModel):
 
 def _saved_kind(value: Any) -> str | None:
     if isinstance(value, dict):
-        return "spec" if "spec" in value else "record"
+        return "spec" if "spec" in value else "combination" if "combination" in value else "record"
     return None
 
 
 SavedVehicleIn = Annotated[
-    Annotated[VehicleRecord, Tag("record")] | Annotated[SpecRef, Tag("spec")],
+    Annotated[VehicleRecord, Tag("record")]
+    | Annotated[SpecRef, Tag("spec")]
+    | Annotated[CombinationRef, Tag("combination")],
     Discriminator(
         _saved_kind,
         custom_error_type="invalid_vehicle",
-        custom_error_message='vehicle must be a full vehicle record or {"spec": {...}}',
+        custom_error_message='vehicle must be a full vehicle record, {"spec": {...}} or {"combination": {...}}',
     ),
 ]
 
@@ -115,6 +118,12 @@ class SavedSpec(OutputModel):
     spec: dict[str, Any] = Field(description=describe("The builder spec as saved.", unit="-"))
 
 
+class SavedCombination(OutputModel):
+    """A saved combination, as it was sent."""
+
+    combination: dict[str, Any] = Field(description=describe("The combination as saved.", unit="-"))
+
+
 class SavedVehicle(OutputModel):
     """A saved vehicle of the caller's key."""
 
@@ -126,11 +135,16 @@ class SavedVehicle(OutputModel):
         examples=[EXAMPLE_VEHICLE_ID],
     )
     title: str = Field(description=_TITLE)
-    kind: Literal["record", "spec"] = Field(
-        description=describe("`record`: a full vehicle record; `spec`: a builder spec.", unit="-")
+    kind: Literal["record", "spec", "combination"] = Field(
+        description=describe(
+            "`record`: a full vehicle record; `spec`: a builder spec; `combination`: a whole combination.", unit="-"
+        )
     )
-    vehicle: SavedRecord | SavedSpec = Field(  # type: ignore[valid-type]
-        description=describe('The vehicle as stored (a record with every field, or `{"spec": {...}}`).', unit="-")
+    vehicle: SavedRecord | SavedSpec | SavedCombination = Field(  # type: ignore[valid-type]
+        description=describe(
+            'The vehicle as stored (a record with every field, `{"spec": {...}}` or `{"combination": {...}}`).',
+            unit="-",
+        )
     )
     version: int = Field(ge=1, description=_VERSION)
     created_at: datetime = Field(description=_CREATED)

@@ -50,6 +50,7 @@ from app.catalog.schemas import (
     Fleet,
     FleetPage,
     FleetWrite,
+    SavedCombination,
     SavedRecord,
     SavedSpec,
     SavedVehicle,
@@ -64,10 +65,11 @@ from app.logs import get_logger
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
 from app.vehicles.builder_service import build_spec
+from app.vehicles.combination_schemas import CombinationRef
 from app.vehicles.schemas import VehicleRecord
 from engine.errors import InvalidVehicle, MissingParameter
 from engine.models import get_model
-from engine.vehicle import PRESETS, Vehicle
+from engine.vehicle import COMBINATIONS, PRESETS, Vehicle
 
 SAVED_VEHICLE_ID = re.compile(SAVED_VEHICLE_ID_PATTERN)
 FLEET_ID = re.compile(FLEET_ID_PATTERN)
@@ -391,7 +393,19 @@ def check_record(record: dict[str, Any]) -> None:
         get_model("2d").validate(vehicle)  # a 2D record may be saved; its own physics still checked
 
 
-def _kind_and_body(vehicle: VehicleRecord | SpecRef) -> tuple[str, dict[str, Any]]:
+def check_combination(data: dict[str, Any]) -> None:
+    """The engine's checks of a combination (:func:`engine.vehicle.validate_combination`), errors under
+    ``vehicle.combination``."""
+    from app.vehicles.refs import combination_of
+
+    combination_of(data, "vehicle")
+
+
+def _kind_and_body(vehicle: VehicleRecord | SpecRef | CombinationRef) -> tuple[str, dict[str, Any]]:
+    if isinstance(vehicle, CombinationRef):
+        data = vehicle.combination.engine_dict()
+        check_combination(data)
+        return "combination", {"combination": data}
     if isinstance(vehicle, SpecRef):
         spec = vehicle.spec.model_dump(mode="json", exclude_unset=True)  # as sent: what was left out stays out
         _check_json(spec, "vehicle.spec")
@@ -402,7 +416,7 @@ def _kind_and_body(vehicle: VehicleRecord | SpecRef) -> tuple[str, dict[str, Any
     return "record", record
 
 
-def prepare_vehicle(vehicle: VehicleRecord | SpecRef, settings: Settings) -> tuple[str, str]:
+def prepare_vehicle(vehicle: VehicleRecord | SpecRef | CombinationRef, settings: Settings) -> tuple[str, str]:
     """``(kind, JSON text)`` to store for a vehicle the caller sent, after every check (422, 413)."""
     kind, body = _kind_and_body(vehicle)
     text = orjson.dumps(body, option=orjson.OPT_SORT_KEYS)
@@ -434,6 +448,11 @@ def _stored_body(kind: str, text: str) -> dict[str, Any]:
         _check_json(body["spec"], "vehicle.spec")
         validate_spec(body["spec"])
         return body
+    if kind == "combination":
+        if not isinstance(body, dict) or set(body) != {"combination"}:
+            raise ValueError('a stored combination must be {"combination": {...}}')
+        check_combination(CombinationRef.model_validate(body).combination.engine_dict())
+        return body
     raise ValueError(f"unknown kind {kind!r}")
 
 
@@ -449,7 +468,12 @@ def decode_vehicle(stored: repo.StoredVehicle) -> SavedVehicle:
     try:
         _check_row_fields(stored.title, stored.version)
         body = _stored_body(stored.kind, stored.body)
-        vehicle = SavedSpec(spec=body["spec"]) if stored.kind == "spec" else SavedRecord(**body)
+        if stored.kind == "spec":
+            vehicle = SavedSpec(spec=body["spec"])
+        elif stored.kind == "combination":
+            vehicle = SavedCombination(combination=body["combination"])
+        else:
+            vehicle = SavedRecord(**body)
         return SavedVehicle(
             id=stored.id,
             title=stored.title,
@@ -618,8 +642,9 @@ def prepare_members(ids: list[str], settings: Settings) -> list[repo.Member]:
             invalid.append((i, f"repeats vehicles.{first[member]} ({member!r}); each vehicle at most once"))
         elif member.startswith(SAVED_VEHICLE_PREFIX) and not SAVED_VEHICLE_ID.match(member):
             invalid.append((i, f"{member!r} is not a saved vehicle id (pattern {SAVED_VEHICLE_ID_PATTERN})"))
-        elif not member.startswith(SAVED_VEHICLE_PREFIX) and member not in PRESETS:
-            unknown.append((i, f"unknown vehicle preset {member!r}; known presets: {', '.join(sorted(PRESETS))}"))
+        elif not member.startswith(SAVED_VEHICLE_PREFIX) and member not in PRESETS and member not in COMBINATIONS:
+            known = ", ".join(sorted([*PRESETS, *COMBINATIONS]))
+            unknown.append((i, f"unknown vehicle preset {member!r}; known presets: {known}"))
         first.setdefault(member, i)
     if invalid:
         raise RequestValidationError(
@@ -629,7 +654,12 @@ def prepare_members(ids: list[str], settings: Settings) -> list[repo.Member]:
         errors = [_field_error(f"vehicles.{i}", msg, "unknown-preset") for i, msg in unknown]
         detail = "; ".join(f"{e['field']}: {e['message']}" for e in errors)
         raise CatalogProblem(
-            404, "not-found", "A fleet member does not exist", detail, errors=errors, known=sorted(PRESETS)
+            404,
+            "not-found",
+            "A fleet member does not exist",
+            detail,
+            errors=errors,
+            known=sorted([*PRESETS, *COMBINATIONS]),
         )
     return [repo.Member(m, None) if m.startswith(SAVED_VEHICLE_PREFIX) else repo.Member(None, m) for m in ids]
 

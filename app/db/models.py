@@ -42,21 +42,22 @@ class Base(DeclarativeBase):
 
 
 class VehicleRow(Base):
-    """A saved vehicle: a full record (``kind='record'``) or a builder spec (``kind='spec'``)."""
+    """A saved vehicle: a full record (``kind='record'``), a builder spec (``kind='spec'``) or a combination
+    (``kind='combination'``, since migration 0002)."""
 
     __tablename__ = "vehicles"
 
     id: Mapped[str] = mapped_column(String(ID_LENGTH), primary_key=True)
     owner: Mapped[str] = mapped_column(String(OWNER_LENGTH))
     title: Mapped[str] = mapped_column(String(TITLE_MAX_LENGTH))
-    kind: Mapped[str] = mapped_column(String(8))
+    kind: Mapped[str] = mapped_column(String(16))
     body: Mapped[str] = mapped_column(Text)
     version: Mapped[int] = mapped_column(Integer)
     created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
     updated_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
 
     __table_args__ = (
-        CheckConstraint("kind IN ('record', 'spec')", name="kind"),
+        CheckConstraint("kind IN ('record', 'spec', 'combination')", name="kind"),
         CheckConstraint("version >= 1", name="version"),
         # keyset pagination of one owner's vehicles on (created_at, id)
         Index(None, "owner", "created_at", "id"),

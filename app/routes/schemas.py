@@ -306,7 +306,13 @@ class RouteResult(OutputModel):
     """The route's curves, each with its geometry, vertices and assessment; per-vehicle summaries; what was read.
     `Accept: application/geo+json` answers the curves as a GeoJSON FeatureCollection instead (ready for a GIS)."""
 
-    model: str = Field(description=describe("Model used.", unit="-"))
+    model: str = Field(
+        description=describe(
+            "Model used: the request's, else `3d` for records, `combination` for combinations, `default` for a mix "
+            "(each vehicle with its own).",
+            unit="-",
+        )
+    )
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
     design_standard: str = Field(description=describe("The design standard used.", unit="-"))
     length_m: float = Field(description=describe("Total route length.", unit="m"))

@@ -239,8 +239,8 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
     found = zip(_curves(geo, answer), geo.curves, strict=True)
     curves = [{**props, "coordinates": _coordinates(c)} for props, c in found]
     out = {
-        "model": r["model"],
-        "stage": r["stage"] if r["model"] == "3d" else None,
+        "model": r["model"] or alignment_rows.default_model(r["vehicles"]),
+        "stage": r["stage"] if (r["model"] or alignment_rows.default_model(r["vehicles"])) == "3d" else None,
         "design_standard": r["design_standard"],
         "length_m": float(sum(geo.length_m)),
         "parts": [

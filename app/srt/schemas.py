@@ -8,6 +8,7 @@ from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, W
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
 from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.combination_schemas import CombinationRef, LiftEventOut, RollCoupledUnitOut
 from app.vehicles.schemas import VehicleRecord
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
@@ -22,6 +23,8 @@ def _vehicle_kind(value: Any) -> str:
         return "id"
     if isinstance(value, SpecRef) or (isinstance(value, dict) and "spec" in value):
         return "spec"
+    if isinstance(value, CombinationRef) or (isinstance(value, dict) and "combination" in value):
+        return "combination"
     return "record"
 
 
@@ -30,19 +33,24 @@ VehicleId = Annotated[
     Field(
         min_length=1,
         max_length=100,
-        description="A preset id from GET /v1/vehicles (e.g. `table16-btrain`), or the id of one of the caller's "
-        "saved vehicles (`veh_...`, with `Authorization: Bearer <key>`); an unknown id is a 404 naming it.",
+        description="A preset id from GET /v1/vehicles (e.g. `table16-btrain`) or GET /v1/combinations (e.g. "
+        "`btrain-table16`), or the id of one of the caller's saved vehicles (`veh_...`, with `Authorization: Bearer "
+        "<key>`); an unknown id is a 404 naming it.",
     ),
 ]
 VehicleRef = Annotated[
-    Annotated[VehicleId, Tag("id")] | Annotated[VehicleRecord, Tag("record")] | Annotated[SpecRef, Tag("spec")],
+    Annotated[VehicleId, Tag("id")]
+    | Annotated[VehicleRecord, Tag("record")]
+    | Annotated[SpecRef, Tag("spec")]
+    | Annotated[CombinationRef, Tag("combination")],
     Discriminator(_vehicle_kind),
 ]
 VEHICLE_DESCRIPTION = describe(
     "The vehicle: a preset id (`table14-semitrailer`, `table15-semitrailer`, `table16-btrain`, `table22-truck`, "
-    "`table23-semitrailer`), a saved vehicle's id (`veh_...`, with the bearer key that saved it), a full vehicle "
-    'record, or a measurable spec `{"spec": {...}}` that the vehicle builder turns into a record (see '
-    "`POST /v1/vehicles/build`).",
+    "`table23-semitrailer`), a combination preset id (`tractor-semitrailer-table15`, `btrain-table16`, `adouble`, "
+    "`truck-trailer`: GET /v1/combinations), a saved vehicle's id (`veh_...`, with the bearer key that saved it), a "
+    'full vehicle record, a measurable spec `{"spec": {...}}` that the vehicle builder turns into a record (see '
+    '`POST /v1/vehicles/build`), or a whole combination `{"combination": {...}}` (units, axle groups, couplings).',
     unit="-",
     symbol="Tables 14-16, 22, 23",
 )
@@ -112,8 +120,15 @@ class SrtOptions(InputModel):
     """The SRT request fields other than the vehicle and the road (shared with the alignment assessment, where
     each curve has its own bank and grade)."""
 
-    model: ModelId = Field(
-        "3d", description=describe("Model id (see GET /v1/models).", unit="-", symbol="Chs. 2, 5, 6 models")
+    model: ModelId | None = Field(
+        None,
+        description=describe(
+            "Model id (see GET /v1/models); default `3d` for a vehicle record, `combination` (the whole-combination "
+            "model) for a combination. With a combination, `3d` is the thesis's model of its last unit with the "
+            "LLTf/LLTr the combination gives, `rigid` the rigid roll-coupled units.",
+            unit="-",
+            symbol="Chs. 2, 5, 6 models",
+        ),
     )
     stage: Stage = Field(
         "full",
@@ -301,7 +316,8 @@ class SrtResult(OutputModel):
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
     limit: str = Field(
         description=describe(
-            "What ended the load ramp: `rear-inner-lift-off`, `rear-llt-limit` or `closed-form`.",
+            "What ended the load ramp: `rear-inner-lift-off`, `rear-llt-limit`, `closed-form`, or for the "
+            "combination model `rollover` (the largest ay the governing roll-coupled unit holds).",
             unit="-",
             symbol="Fz19 = 0 or LLTr = limit",
         )
@@ -341,5 +357,30 @@ class SrtResult(OutputModel):
     curves: CurvesOut | None = Field(
         None,
         description=describe("Curves against ay/g (only with include_curves).", unit="see its fields", symbol="ay/g"),
+    )
+    roll_coupled_units: list[RollCoupledUnitOut] | None = Field(
+        None,
+        description=describe(
+            "Combination model: each roll-coupled unit (units joined by fifth wheels or B-couplings; a pintle cuts "
+            "the chain) with its SRT, what ended it, its roll angles, group and coupling states and lift-offs; "
+            "`srt` is the lowest of them.",
+            unit="see its fields",
+        ),
+    )
+    governing_unit: int | None = Field(
+        None, description=describe("Combination model: index of the governing (lowest) roll-coupled unit.", unit="-")
+    )
+    lift_sequence: list[LiftEventOut] | None = Field(
+        None,
+        description=describe("Combination model: every lift-off, in order of lateral acceleration.", unit="g"),
+    )
+    last_unit_front_llt_ratio: float | None = Field(
+        None,
+        description=describe(
+            "Combination model: LLTf/LLTr of the last unit (its front support is the towing unit's group under its "
+            "coupling) when its own group reaches the LLT limit: what the 3D model of the last unit takes.",
+            unit="-",
+            symbol="LLTf/LLTr",
+        ),
     )
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -149,6 +149,13 @@ async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = No
 def srt_result(result: RolloverResult, targets: dict[str, float]) -> SrtResult:
     """The published SRT result of an engine result (validated against the schema: a contract break is loud)."""
     data = result.to_dict()
+    detail = data.pop("combination", None)
+    if detail is not None:  # the whole-combination model: every roll-coupled unit, flattened into the answer
+        data["roll_coupled_units"] = detail["roll_coupled_units"]
+        data["governing_unit"] = detail["governing"]
+        data["last_unit_front_llt_ratio"] = detail["last_unit_front_llt_ratio"]
+        lifts = [e for r in detail["roll_coupled_units"] for e in r["lift_sequence"]]
+        data["lift_sequence"] = sorted(lifts, key=lambda e: e["ay_g"])
     data["tilt_table_angle_deg"] = float(tilt_table_angle_deg(result.srt))
     data["targets"] = target_checks(result.srt, targets)
     data["engine_version"] = ENGINE_VERSION

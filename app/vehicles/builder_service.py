@@ -33,7 +33,7 @@ from engine.vehicle.builder import BuiltVehicle, PayloadTable, VehicleSpec, buil
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")
 
 
-def _at(exc: InvalidInput, prefix: str | None) -> InvalidInput:
+def at_field(exc: InvalidInput, prefix: str | None) -> InvalidInput:
     """The engine's error with its field under ``prefix`` (``spec.rear.tyre.id`` -> ``vehicle.spec.rear.tyre.id``)."""
     if not prefix:
         return exc
@@ -47,7 +47,7 @@ def build_spec(spec: VehicleSpec | dict[str, Any], where: str | None = None) -> 
         engine_spec = spec if isinstance(spec, VehicleSpec) else VehicleSpec.from_dict(spec)
         return build_vehicle(engine_spec)
     except InvalidInput as e:
-        raise _at(e, where) from e
+        raise at_field(e, where) from e
 
 
 def build_result(built: BuiltVehicle) -> BuildResult:

@@ -29,8 +29,18 @@ from app.catalog import service as catalog
 from app.catalog.auth import authenticate
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef
-from app.vehicles.builder_service import build_spec
-from engine.vehicle import Vehicle, get_preset
+from app.vehicles.builder_service import at_field, build_spec
+from app.vehicles.combination_schemas import CombinationRef
+from engine.errors import InvalidInput, UnknownPreset
+from engine.vehicle import (
+    COMBINATIONS,
+    PRESETS,
+    Combination,
+    Vehicle,
+    get_combination,
+    get_preset,
+    validate_combination,
+)
 
 
 @dataclass(frozen=True)
@@ -38,19 +48,42 @@ class SavedRef:
     """A saved vehicle resolved: its id (reported back in batch answers) and its engine record."""
 
     id: str
-    vehicle: Vehicle
+    vehicle: Vehicle | Combination
 
 
-def resolve_vehicle(ref: Any) -> Vehicle:
-    """A preset id -> the preset's record (UnknownPreset -> 404); a record -> the engine record; an engine record
-    (a saved vehicle or a spec resolved by :func:`app.vehicles.refs.resolve_vehicle_refs`) as it is."""
-    if isinstance(ref, Vehicle):
+def vehicle_preset(preset_id: str) -> Vehicle | Combination:
+    """The vehicle or combination preset with this id; :class:`UnknownPreset` listing both kinds of id otherwise."""
+    if preset_id in COMBINATIONS:
+        return get_combination(preset_id)
+    if preset_id in PRESETS:
+        return get_preset(preset_id)
+    raise UnknownPreset(preset_id, sorted([*PRESETS, *COMBINATIONS]))
+
+
+def resolve_vehicle(ref: Any) -> Vehicle | Combination:
+    """A preset id -> the preset's record or combination (UnknownPreset -> 404); a record -> the engine record;
+    ``{"combination": ...}`` -> the engine combination; an engine vehicle (a saved vehicle or a spec resolved by
+    :func:`app.vehicles.refs.resolve_vehicle_refs`) as it is."""
+    if isinstance(ref, Vehicle | Combination):
         return ref
     if isinstance(ref, SavedRef):
         return ref.vehicle
     if isinstance(ref, str):
-        return get_preset(ref)
+        return vehicle_preset(ref)
+    if isinstance(ref, CombinationRef):
+        return combination_of(ref.combination.engine_dict(), None)
     return Vehicle.from_dict(ref.record())
+
+
+def combination_of(data: dict[str, Any], where: str | None) -> Combination:
+    """The engine's combination of a ``combination`` object, validated; its errors name ``<where>.combination.<...>``
+    (``combination.<...>`` when ``where`` is None: the request's own vehicle)."""
+    try:
+        c = Combination.from_dict(data)
+        validate_combination(c)
+    except InvalidInput as e:
+        raise at_field(e, where) from e
+    return c
 
 
 def _credentials(request: Request) -> HTTPAuthorizationCredentials | None:
@@ -75,15 +108,19 @@ class _Resolver:
 
     @staticmethod
     def stored(id: str, body: dict[str, Any], where: str) -> SavedRef:
-        """A stored vehicle body (a full record, or ``{"spec": ...}``) as the engine's record."""
+        """A stored vehicle body (a full record, ``{"spec": ...}`` or ``{"combination": ...}``) as the engine's."""
         if "spec" in body:
             return SavedRef(id, build_spec(body["spec"], where).vehicle)
+        if "combination" in body:
+            return SavedRef(id, combination_of(body["combination"], where))
         return SavedRef(id, Vehicle.from_dict({k: v for k, v in body.items() if k in Vehicle.__dataclass_fields__}))
 
     async def one(self, ref: Any, where: str) -> Any:
         """A reference resolved: presets and records stay as they are, the rest become engine records."""
         if isinstance(ref, SpecRef):
             return build_spec(ref.engine_spec(), where).vehicle
+        if isinstance(ref, CombinationRef):
+            return combination_of(ref.combination.engine_dict(), where)
         if isinstance(ref, str) and ref.startswith(catalog.SAVED_VEHICLE_PREFIX):
             db = await catalog.catalog_db(self.request)
             return self.stored(ref, await catalog.resolve_saved_vehicle(db, await self.owner(), ref), where)

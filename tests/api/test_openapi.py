@@ -21,6 +21,8 @@ COMMITTED = json.loads(SPEC_PATH.read_text(encoding="utf-8"))
 OPERATIONS = {
     ("get", "/v1/vehicles"): "vehicles-list_vehicles",
     ("get", "/v1/vehicles/{id}"): "vehicles-get_vehicle",
+    ("get", "/v1/combinations"): "combinations-list_combinations",
+    ("get", "/v1/combinations/{id}"): "combinations-get_combination_preset",
     ("post", "/v1/srt"): "srt-compute_srt",
     ("post", "/v1/srt/limits"): "srt-limits",
     ("post", "/v1/srt/sweep"): "srt-sweep",

@@ -27,7 +27,7 @@ def test_empty_database_migrates_to_head(database_url):
     try:
         assert current_revision(db) is None
         assert not TABLES & set(inspect(db.engine).get_table_names())
-        assert upgrade(db) == head_revision() == "0001"
+        assert upgrade(db) == head_revision() == "0002"  # 0002: saved combinations
         names = set(inspect(db.engine).get_table_names())
         assert names >= TABLES | {"alembic_version"}
         columns = {c["name"] for c in inspect(db.engine).get_columns("vehicles")}

@@ -630,7 +630,14 @@ def main() -> None:
     parser.add_argument(
         "--only", nargs="*", choices=["cached", "uncached", "workers", "alignment", "sweep", "instrumentator"]
     )
+    parser.add_argument(
+        "--write",
+        action="store_true",
+        help="put this run's table in docs/performance.md (whole runs only)",
+    )
     args = parser.parse_args()
+    if args.write and (args.only or args.quick):
+        parser.error("--write records a whole run: leave out --only and --quick")
     if args.quick:
         args.duration, args.curves, args.rounds = 2.0, 10_000, 1
     if shutil.which("wrk") is None:
@@ -652,10 +659,30 @@ def main() -> None:
     print(f"{os.cpu_count()} CPUs shared by wrk, the server and anything else running: load average {load:.1f} at the")
     print(f"start, {os.getloadavg()[0]:.1f} at the end. Cached figures: best of {args.rounds} alternated runs.")
     print()
-    print("| figure | rollover | ceiling (same run) | target | issue 8 (before, reported) |")
-    print("| --- | --- | --- | --- | --- |")
-    for figure, measured, ceiling, target, before in ROWS:
-        print(f"| {figure} | {measured} | {ceiling} | {target} | {before} |")
+    table = [
+        "| figure | rollover | ceiling (same run) | target | issue 8 (before, reported) |",
+        "| --- | --- | --- | --- | --- |",
+    ]
+    table += [
+        f"| {figure} | {measured} | {ceiling} | {target} | {before} |"
+        for figure, measured, ceiling, target, before in ROWS
+    ]
+    print("\n".join(table))
+    if args.write:
+        write_table(table, load)
+
+
+def write_table(table: list[str], load: float) -> None:
+    """The run's table into docs/performance.md, between its markers, with the date and the machine's load."""
+    doc = ROOT / "docs" / "performance.md"
+    start, end = "<!-- bench_service:start -->", "<!-- bench_service:end -->"
+    text = doc.read_text(encoding="utf-8")
+    head, rest = text.split(start, 1)
+    _, tail = rest.split(end, 1)
+    stamp = time.strftime("%Y-%m-%d", time.gmtime())
+    block = f"Run of {stamp}, {os.cpu_count()} CPUs, load average {load:.1f} at the start.\n\n" + "\n".join(table)
+    doc.write_text(f"{head}{start}\n{block}\n{end}{tail}", encoding="utf-8")
+    print(f"wrote {doc.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

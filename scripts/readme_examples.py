@@ -1,7 +1,8 @@
-"""Run the curl examples of docs/examples.md against the app (in process) and print them with their real output.
+"""Run the curl examples of docs/examples.md and of the README against the app (in process), with their real output.
 
-    python scripts/readme_examples.py           # print the Markdown block
-    python scripts/readme_examples.py --write   # replace the block between docs/examples.md's example markers
+    python scripts/readme_examples.py            # print docs/examples.md's Markdown block
+    python scripts/readme_examples.py --readme   # print the README's quick-start block
+    python scripts/readme_examples.py --write    # replace both blocks between their markers
 
 Each example is the curl command a user types against `uvicorn app.main:app --host 127.0.0.1 --port 8000` and
 what it prints; the same request goes through the app here (a fresh in-memory cache, so the first call is a miss).
@@ -22,7 +23,9 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES_DOC = ROOT / "docs" / "examples.md"
+README = ROOT / "README.md"
 START, END = "<!-- examples:start -->", "<!-- examples:end -->"
+README_START, README_END = "<!-- readme-examples:start -->", "<!-- readme-examples:end -->"
 BASE = "http://127.0.0.1:8000"
 JSON_TOOL = " | python -m json.tool"
 
@@ -400,7 +403,44 @@ EXAMPLES = [
 ]
 
 
-def render() -> str:
+def _print_srt_units() -> str:
+    """The shell pipe of the README's first example: the governing SRT, each roll-coupled unit, the lift-offs."""
+    return (
+        ' | python -c \'import json,sys; r = json.load(sys.stdin); print("srt", round(r["srt"], 4), "g"); '
+        '[print(u["units"], round(u["srt"], 4), u["limit"]) for u in r["roll_coupled_units"]]; '
+        '[print(e["unit"], e["group"], "lifts off at", round(e["ay_g"], 4), "g") '
+        'for e in r["lift_sequence"]]; print("LLTf/LLTr", round(r["last_unit_front_llt_ratio"], 3))\''
+    )
+
+
+README_EXAMPLES = [
+    Example(
+        "A tractor and the Table 15 semitrailer rolling together through the fifth wheel",
+        "POST",
+        "/v1/srt",
+        {"vehicle": "tractor-semitrailer-table15"},
+        pipe=_print_srt_units(),
+    ),
+    Example(
+        "The thesis's 3D model of the B-train's rear trailer (Sec. 9.1), SRT and roll angle",
+        "POST",
+        "/v1/srt",
+        {"vehicle": BTRAIN},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["srt"], r["roll_angle_deg"])\'',
+    ),
+    Example(
+        "The smallest radius at 80 km/h on 6 % superelevation for the combination (Eq. 9.2 against Eq. 9.3)",
+        "POST",
+        "/v1/min-radius",
+        {"vehicle": "tractor-semitrailer-table15", "design_speed_kmh": 80, "superelevation_percent": 6},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(round(r["governing_min_radius_m"], 1), '
+        'r["governed_by"])\'',
+    ),
+]
+
+
+def render(examples: list[Example] | None = None, markers: tuple[str, str] = (START, END)) -> str:
+    examples = EXAMPLES if examples is None else examples
     sys.path.insert(0, str(ROOT))
     import warnings
 
@@ -414,9 +454,9 @@ def render() -> str:
     structlog.configure(
         processors=[structlog.processors.KeyValueRenderer()], logger_factory=structlog.ReturnLoggerFactory()
     )
-    out = [START, ""]
+    out = [markers[0], ""]
     with TestClient(create_app(Settings(cache_backend="memory"))) as client:
-        for ex in EXAMPLES:
+        for ex in examples:
             response = ex.send(client)
             if response.status_code >= 500:
                 raise SystemExit(f"{ex.title}: {response.status_code} {response.text[:300]}")
@@ -433,26 +473,30 @@ def render() -> str:
                 "```",
                 "",
             ]
-    out.append(END)
+    out.append(markers[1])
     return "\n".join(out)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--write", action="store_true", help="replace the example block in docs/examples.md")
+    parser.add_argument("--readme", action="store_true", help="print the README's block instead")
+    parser.add_argument("--write", action="store_true", help="replace the blocks in docs/examples.md and README.md")
     args = parser.parse_args(argv)
-    block = render()
     if not args.write:
-        print(block)
+        print(render(README_EXAMPLES, (README_START, README_END)) if args.readme else render())
         return 0
-    text = EXAMPLES_DOC.read_text(encoding="utf-8")
-    if START not in text or END not in text:
-        print(f"docs/examples.md has no {START} ... {END} block", file=sys.stderr)
-        return 1
-    head, rest = text.split(START, 1)
-    _, tail = rest.split(END, 1)
-    EXAMPLES_DOC.write_text(head + block + tail, encoding="utf-8")
-    print("docs/examples.md examples updated")
+    for doc, examples, (start, end) in (
+        (EXAMPLES_DOC, EXAMPLES, (START, END)),
+        (README, README_EXAMPLES, (README_START, README_END)),
+    ):
+        text = doc.read_text(encoding="utf-8")
+        if start not in text or end not in text:
+            print(f"{doc.name} has no {start} ... {end} block", file=sys.stderr)
+            return 1
+        head, rest = text.split(start, 1)
+        _, tail = rest.split(end, 1)
+        doc.write_text(head + render(examples, (start, end)) + tail, encoding="utf-8")
+        print(f"{doc.relative_to(ROOT)} examples updated")
     return 0
 
 

@@ -21,6 +21,7 @@ from .conftest import ROOT
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 EXAMPLES = (ROOT / "docs" / "examples.md").read_text(encoding="utf-8")
+SERVICE_DOC = (ROOT / "docs" / "service.md").read_text(encoding="utf-8")
 DOCKERFILE = (ROOT / "Dockerfile").read_text(encoding="utf-8")
 CI_RUN = ROOT / ".ci" / "run"
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
@@ -79,21 +80,21 @@ def test_readme_test_command_runs_the_whole_suite():
 
 #: operations without a curl example in docs/examples.md, and where they are shown instead
 NOT_IN_EXAMPLES = {
-    # the catalog needs a key and a database: walked through in the README and docs/catalog.md
-    ("POST", "/v1/vehicles"): "README: Saved vehicles and fleets",
+    # the catalog needs a key and a database: walked through in docs/catalog.md
+    ("POST", "/v1/vehicles"): "docs/catalog.md",
     ("GET", "/v1/vehicles/saved"): "docs/catalog.md",
-    ("PUT", "/v1/vehicles/{id}"): "README: Saved vehicles and fleets",
-    ("DELETE", "/v1/vehicles/{id}"): "README: Saved vehicles and fleets",
-    ("POST", "/v1/fleets"): "README: Saved vehicles and fleets",
+    ("PUT", "/v1/vehicles/{id}"): "docs/catalog.md",
+    ("DELETE", "/v1/vehicles/{id}"): "docs/catalog.md",
+    ("POST", "/v1/fleets"): "docs/catalog.md",
     ("GET", "/v1/fleets"): "docs/catalog.md",
     ("GET", "/v1/fleets/{id}"): "docs/catalog.md",
     ("PUT", "/v1/fleets/{id}"): "docs/catalog.md",
-    ("DELETE", "/v1/fleets/{id}"): "README: Saved vehicles and fleets",
-    # jobs answer with a random id and run asynchronously: README: Long batches as jobs, docs/jobs.md
-    ("POST", "/v1/jobs"): "README: Long batches as jobs",
-    ("GET", "/v1/jobs/{job_id}"): "README: Long batches as jobs",
-    ("GET", "/v1/jobs/{job_id}/result"): "README: Long batches as jobs",
-    ("DELETE", "/v1/jobs/{job_id}"): "README: Long batches as jobs",
+    ("DELETE", "/v1/fleets/{id}"): "docs/catalog.md",
+    # jobs answer with a random id and run asynchronously: docs/api.md, docs/jobs.md
+    ("POST", "/v1/jobs"): "docs/api.md: Long batches as jobs",
+    ("GET", "/v1/jobs/{job_id}"): "docs/api.md: Long batches as jobs",
+    ("GET", "/v1/jobs/{job_id}/result"): "docs/api.md: Long batches as jobs",
+    ("DELETE", "/v1/jobs/{job_id}"): "docs/api.md: Long batches as jobs",
     # the same body as an operation that is shown, or a part of one that is
     ("POST", "/v1/plots/llt"): "the note under the tire-loads example",
     ("POST", "/v1/plots/roll"): "the note under the tire-loads example",
@@ -101,7 +102,7 @@ NOT_IN_EXAMPLES = {
     ("GET", "/v1/components/tyres"): "the /v1/components example (its tyres)",
     ("GET", "/v1/components/suspensions"): "the /v1/components example (its suspensions)",
     ("GET", "/v1/design-standards/{id}"): "the /v1/design-standards example (one of its standards)",
-    ("POST", "/v1/superelevation/table"): "README: Design standards",
+    ("POST", "/v1/superelevation/table"): "docs/api.md: Design standards",
 }
 
 
@@ -143,12 +144,41 @@ def test_the_examples_are_what_the_app_answers_today():
     assert done.stdout.rstrip("\n") in EXAMPLES, "docs/examples.md is stale: python scripts/readme_examples.py --write"
 
 
-def test_readme_documents_every_setting():
+def test_the_readme_examples_are_what_the_app_answers_today():
+    """The README's quick-start answers are written by the same script from real answers, to the last digit."""
+    import subprocess
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "scripts" / "readme_examples.py"), "--readme"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    block = done.stdout.rstrip("\n")
+    assert block.count("$ curl") >= 2
+    assert block in README, "the README's examples are stale: python scripts/readme_examples.py --write"
+
+
+def test_readme_stays_a_newcomer_s_page_and_links_the_reference():
+    """About 250 lines (issue 21): what it does, the two commands, the library, the layout, tests, links; the
+    reference lives in docs/ and every docs/ page the README links exists."""
+    assert len(README.splitlines()) <= 300
+    for link in re.findall(r"\]\((docs/[^)#]+)", README):
+        assert (ROOT / link).is_file(), link
+    for section in ("## Quick start", "## Use from Python", "## Layout", "## Tests"):
+        assert section in README
+    assert 'python -m pytest -m "not slow"' in README
+
+
+def test_the_service_page_documents_every_setting():
     from app.settings import Settings
 
+    assert "docs/service.md" in README
     for name in Settings.model_fields:
-        assert f"ROLLOVER_{name.upper()}" in README
-    assert "ROLLOVER_CACHE_BACKEND=redis ROLLOVER_REDIS_URL=" in README and "--workers" in README
+        assert f"ROLLOVER_{name.upper()}" in SERVICE_DOC, name
+    assert "ROLLOVER_CACHE_BACKEND=redis ROLLOVER_REDIS_URL=" in SERVICE_DOC and "--workers" in SERVICE_DOC
 
 
 #: an exact version tag of the official image, Debian slim (optionally with its digest)

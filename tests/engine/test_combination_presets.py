@@ -83,3 +83,19 @@ def test_each_roll_coupled_unit_holds_less_than_its_rigid_limit(cid):
     assert detail.governing == min(
         range(len(detail.roll_coupled_units)), key=lambda k: detail.roll_coupled_units[k].srt
     )
+
+
+def test_the_presets_table_of_docs_combinations_is_what_the_engine_computes():
+    """docs/combinations.md's table is printed by scripts/combination_table.py: a model or preset change that moves
+    a figure fails here until the doc is regenerated (python scripts/combination_table.py --write)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run(
+        [sys.executable, str(root / "scripts" / "combination_table.py")], capture_output=True, text=True, cwd=root
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    doc = (root / "docs" / "combinations.md").read_text(encoding="utf-8")
+    assert done.stdout.strip() in doc

@@ -714,6 +714,10 @@ def unit_result(c: Combination, sol: UnitSolution) -> RollCoupledUnitResult:
         if e and e[0] == "tyre" and e[2] == LIFTED:
             t = s.tyres[e[1]]
             lifts.append(LiftEvent(c.units[t.unit].id, c.units[t.unit].groups[t.group].id, float(vs[k].z[n])))
+    # groups that reach lift-off at the limit together with the event that ends the path (a tie within rounding:
+    # the path records one event per step, so the other arrives a step later, past the peak) lifted there too
+    listed = {(e.unit, e.group) for e in lifts}
+    lifts += [LiftEvent(g.unit, g.group, float(ay)) for g in groups if g.lifted and (g.unit, g.group) not in listed]
     event = vs[sol.peak].event
     if event is not None and event[0] == "all-lifted":
         event = ("tyre", event[1], event[2])

@@ -132,9 +132,11 @@ def test_a_refused_case_raises_its_own_error_and_a_flush_takes_at_most_max_flush
     results = _run(main())
     assert sizes == [coalesce.MAX_FLUSH, coalesce.MAX_FLUSH, 5]
     assert isinstance(results[7], InvalidInput) and results[7].field == "road.bank_percent"
-    assert [r.srt for k, r in enumerate(results) if k != 7] == [
-        rollover_threshold(c).srt for k, c in enumerate(cases) if k != 7
-    ]
+    # the batch is solved on numpy arrays, the reference one case at a time (a last bit may differ on some CPUs)
+    assert_same_to_rounding(
+        [r.srt for k, r in enumerate(results) if k != 7],
+        [rollover_threshold(c).srt for k, c in enumerate(cases) if k != 7],
+    )
 
 
 def test_the_batch_sizes_are_a_metric():

@@ -25,6 +25,9 @@ import pytest
 
 from .conftest import ROOT, a_spec, free_port
 
+# starts and kills a real uvicorn on SQLite and PostgreSQL: a server test
+pytestmark = [pytest.mark.slow, pytest.mark.server]
+
 KEY = "crash-key-" + "z" * 24
 KEY2 = "race-key-" + "y" * 24
 AUTH = {"Authorization": f"Bearer {KEY}"}

@@ -131,6 +131,7 @@ def test_the_examples_have_a_curl_example_per_operation_of_the_spec():
     assert len(examples) >= 20 and all(len(e.strip().splitlines()) >= 2 for e in examples)
 
 
+@pytest.mark.slow
 def test_the_examples_are_what_the_app_answers_today():
     """The block scripts/readme_examples.py writes is the one committed: an answer that changed fails here (run in a
     fresh process: the metrics example counts this process's cache lookups)."""
@@ -144,6 +145,7 @@ def test_the_examples_are_what_the_app_answers_today():
     assert done.stdout.rstrip("\n") in EXAMPLES, "docs/examples.md is stale: python scripts/readme_examples.py --write"
 
 
+@pytest.mark.slow
 def test_the_readme_examples_are_what_the_app_answers_today():
     """The README's quick-start answers are written by the same script from real answers, to the last digit."""
     import subprocess
@@ -407,6 +409,7 @@ def test_files_exist(name):
     assert (ROOT / name).is_file()
 
 
+@pytest.mark.slow
 def test_the_readme_python_example_prints_what_the_readme_says():
     """The "Use from Python" block runs as written (in a fresh interpreter) and prints the text block under it."""
     import subprocess

@@ -48,12 +48,14 @@ def _documents(draw) -> bytes:
     return ("{" + ",".join(text) + "}" + ws).encode()
 
 
+@pytest.mark.slow
 @settings(max_examples=400, deadline=None)
 @given(_documents())
 def test_a_valid_document_gives_orjsons_value(body):
     _same(body)
 
 
+@pytest.mark.slow
 @settings(max_examples=400, deadline=None)
 @given(_documents(), st.data())
 def test_a_broken_document_gives_orjsons_error_or_value(body, data):

@@ -8,10 +8,14 @@ from __future__ import annotations
 
 import math
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from engine.vehicle.presets import PRESETS
+
+# hypothesis over random requests through the whole app (the full suite runs it)
+pytestmark = pytest.mark.slow
 
 NUMERIC = [
     "weight_kn",

@@ -64,6 +64,7 @@ def test_the_documented_paths_of_the_routes_are_the_documents():
     }
 
 
+@pytest.mark.slow
 def test_the_document_is_built_on_first_use_and_once_per_process():
     from fastapi.testclient import TestClient
 

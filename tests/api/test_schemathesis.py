@@ -10,6 +10,7 @@ The inverse limits (about ten SRT solves per limit, up to 25 table rows) and the
 
 from __future__ import annotations
 
+import pytest
 import schemathesis
 from fastapi.testclient import TestClient
 from hypothesis import settings
@@ -18,6 +19,9 @@ from app.main import create_app
 from app.settings import Settings
 
 from .fuzzing import CHECKS, FUZZ, config
+
+# schemathesis over the whole spec: minutes, not seconds (the full suite runs it)
+pytestmark = pytest.mark.slow
 
 app = create_app(Settings(cache_backend="memory"))
 _lifespan = TestClient(app).__enter__()  # the app's lifespan (its cache) runs for the whole module

@@ -4,8 +4,10 @@
 
 :func:`read_upload` returns the file's bytes and the request field that names it in errors: ``body`` for a raw
 body, ``file`` for the multipart part. A multipart body without a ``file`` part, with several, or with other parts
-(the options go in the query, as for a raw body) is a 422 naming the part. Text that cannot be decoded is an
-:class:`~app.http.problems.InvalidAlignment` naming the field.
+(the options go in the query, as for a raw body) is a 422 naming the part. Text that cannot be decoded
+(:func:`decode_csv`, :func:`decode_xml`, :func:`decode_json_object`) is an
+:class:`~app.http.problems.InvalidAlignment` (or the route's :class:`~app.http.problems.InvalidRoute`) naming the
+field.
 """
 
 from __future__ import annotations
@@ -13,7 +15,9 @@ from __future__ import annotations
 import codecs
 import re
 from dataclasses import dataclass
+from typing import Any
 
+import orjson
 from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from starlette.datastructures import UploadFile
@@ -111,3 +115,18 @@ def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: t
         location=root,
         column=None,
     )
+
+
+_JSON_TYPES = {list: "array", str: "string", int: "number", float: "number", bool: "boolean", type(None): "null"}
+
+
+def decode_json_object(data: bytes, field: str = "body", what: str = "GeoJSON", error: type = InvalidAlignment) -> Any:
+    """A JSON object from bytes (UTF-8, a byte-order mark tolerated); else ``error`` naming ``field``."""
+    try:
+        doc = orjson.loads(data.removeprefix(codecs.BOM_UTF8))  # a BOM is not JSON (RFC 8259 section 8.1)
+    except orjson.JSONDecodeError as exc:
+        raise error(f"not JSON: {exc}", source=field, location=None, column=None) from None
+    if not isinstance(doc, dict):
+        kind = _JSON_TYPES.get(type(doc), "value")
+        raise error(f"a {what} object is expected, got a JSON {kind}", source=field, location=None, column=None)
+    return doc

@@ -20,13 +20,12 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-import orjson
 from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
 from app.alignments.schemas import MAX_VEHICLES
-from app.formats.uploads import decode_xml, read_upload
+from app.formats.uploads import decode_json_object, decode_xml, read_upload
 from app.http.problems import InvalidRoute
 from app.http.schemas import describe
 from app.routes.schemas import Detection, RouteRequest
@@ -106,27 +105,10 @@ async def gpx_upload(request: Request, query, limit: int) -> tuple[RouteRequest,
     return upload_request(query, upload.field, gpx=text), upload.field
 
 
-def _parse_geojson(data: bytes, field: str) -> Any:
-    try:
-        return orjson.loads(data.removeprefix(b"\xef\xbb\xbf"))  # a BOM is not JSON (RFC 8259 section 8.1)
-    except orjson.JSONDecodeError as exc:
-        raise InvalidRoute(f"not JSON: {exc}", source=field, location=None, column=None) from None
-
-
-_JSON_TYPES = {list: "array", str: "string", int: "number", float: "number", bool: "boolean", type(None): "null"}
-
-
 async def geojson_upload(request: Request, query, limit: int) -> tuple[RouteRequest, str]:
     """The JSON request equivalent to a GeoJSON upload, and the field that holds the file (``body`` or ``file``)."""
     upload = await read_upload(request, limit)
     if not upload.data.strip():
         raise _empty(upload.field, "GeoJSON")
-    doc = _parse_geojson(upload.data, upload.field)
-    if not isinstance(doc, dict):
-        raise InvalidRoute(
-            f"a GeoJSON object is expected, got a JSON {_JSON_TYPES.get(type(doc), 'value')}",
-            source=upload.field,
-            location=None,
-            column=None,
-        )
+    doc = decode_json_object(upload.data, upload.field, "GeoJSON", InvalidRoute)
     return upload_request(query, upload.field, geojson=doc), upload.field

@@ -63,6 +63,8 @@ class Example:
     curl_flags: str = "-s"
     headers: dict[str, str] = field(default_factory=dict)  # besides Content-Type (e.g. Accept)
     raw: str | None = None  # a file sent as it is (--data-binary), with headers["Content-Type"]
+    upload: str | None = None  # a file of examples/ sent as it is (--data-binary @examples/...), or with ``form``
+    form: bool = False  # ... as the part `file` of a multipart/form-data body (-F file=@examples/...)
     output: str | None = None  # curl -o <file>, then ``after`` runs on it
     after: str = ""
     note: str = ""  # a line of prose under the title
@@ -72,13 +74,28 @@ class Example:
         if self.method != "POST":
             return f"curl {self.curl_flags} {BASE}{self.path}{self.pipe}"
         url = f"'{BASE}{self.path}'" if "?" in self.path else f"{BASE}{self.path}"
+        tail = f" -o {self.output} && {self.after}" if self.output else self.pipe
+        if self.upload is not None:  # run from the repository root: examples/ is there
+            headers = dict(self.headers)
+            if self.form:
+                headers.pop("Content-Type", None)  # curl -F writes multipart/form-data with its boundary
+                data = f"-F file=@examples/{self.upload}"
+            else:
+                data = f"--data-binary @examples/{self.upload}"
+            flags = "".join(f" -H '{k}: {v}'" for k, v in headers.items())
+            return f"curl {self.curl_flags} -X POST {url}{flags} \\\n  {data}{tail}"
         headers = {"Content-Type": "application/json", **self.headers}
         flags = " ".join(f"-H '{k}: {v}'" for k, v in headers.items())
         data = f"--data-binary $'{ansi_c(self.raw)}'" if self.raw is not None else f"-d '{json.dumps(self.body)}'"
-        tail = f" -o {self.output} && {self.after}" if self.output else self.pipe
         return f"curl {self.curl_flags} -X POST {url} {flags} \\\n  {data}{tail}"
 
     def send(self, client):
+        if self.upload is not None:
+            data = (ROOT / "examples" / self.upload).read_bytes()
+            if self.form:
+                extra = {k: v for k, v in self.headers.items() if k != "Content-Type"} or None
+                return client.request(self.method, self.path, files={"file": (self.upload, data)}, headers=extra)
+            return client.request(self.method, self.path, content=data, headers=self.headers)
         headers = {"Content-Type": "application/json", **self.headers}
         if self.raw is not None:
             return client.request(self.method, self.path, content=self.raw.encode(), headers=headers)
@@ -283,6 +300,29 @@ EXAMPLES = [
         'r["margin_kmh"], r["flagged"]) for r in v["rows"]]\'',
     ),
     Example(
+        "A spreadsheet's CSV as it saves it (`;`, decimal commas, a byte-order mark, CRLF), uploaded as a form file: "
+        "the answer names the dialect it read",
+        "POST",
+        "/v1/alignments/assess/csv?vehicle=table16-btrain",
+        upload="curves-semicolon.csv",
+        form=True,
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["csv_dialect"]); [print(x["id"], '
+        'x["radius_m"], x["superelevation_percent"], x["grade_percent"], x["safe_speed_kmh"], x["governed_by"]) '
+        'for x in r["vehicles"][0]["rows"]]\'',
+        note="Run from the repository root: `examples/` holds the sample files (a CSV in each dialect, LandXML, GPX, "
+        "GeoJSON of one road with two curves, see examples/README.md); `--data-binary @examples/curves-comma.csv -H "
+        "'Content-Type: text/csv'` sends a file as the body instead.",
+    ),
+    Example(
+        "The same road's LandXML alignment as the body (superelevation and grade as defaults for its curves)",
+        "POST",
+        "/v1/alignments/assess/landxml?vehicle=table16-btrain&superelevation_percent=7.5&grade_percent=3.5",
+        upload="alignment.xml",
+        headers={"Content-Type": "application/xml"},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(x["id"], x["station_m"], '
+        'x["radius_m"], x["safe_speed_kmh"], x["governed_by"]) for x in r["vehicles"][0]["rows"]]\'',
+    ),
+    Example(
         "An error in an uploaded CSV names the row and the column",
         "POST",
         "/v1/alignments/assess/csv?vehicle=table16-btrain",
@@ -356,10 +396,33 @@ EXAMPLES = [
         'round(p["length_m"]), "m long;", '
         'a["srt_g"], a["safe_speed_kmh"], a["governed_by"], a["margin_kmh"], a["flagged"]) for p in '
         'r["curves"] for a in [p["assessment"]]]\'',
-        heading="Routes: `POST /v1/routes/assess`",
-        note="A GPX track goes in `gpx` (the file's text) instead; `Accept: application/geo+json` answers the curves "
-        "as a GeoJSON FeatureCollection for a GIS; [docs/routes.md](routes.md) explains the curve detection and its "
-        "accuracy.",
+        heading="Routes: `POST /v1/routes/assess` (and `/gpx`, `/geojson`)",
+        note="A GPX track goes in `gpx` (the file's text) instead, or as it is to `/v1/routes/assess/gpx` (below); "
+        "`Accept: application/geo+json` answers the curves as a GeoJSON FeatureCollection for a GIS; "
+        "[docs/routes.md](routes.md) explains the curve detection and its accuracy.",
+    ),
+    Example(
+        "A GPX track as it is: the body of `POST /v1/routes/assess/gpx`, the options in the query",
+        "POST",
+        "/v1/routes/assess/gpx?vehicle=table16-btrain&superelevation_percent=7.5&posted_speed_kmh=60",
+        upload="road.gpx",
+        headers={"Content-Type": "application/gpx+xml"},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(p["id"], p["direction"], '
+        'round(p["radius_m"], 1), "m from", round(p["start_m"]), "m;", a["safe_speed_kmh"], a["governed_by"], '
+        'a["margin_kmh"]) for p in r["curves"] for a in [p["assessment"]]]\'',
+        note="The same answer, byte for byte, as `POST /v1/routes/assess` with the file's text in `gpx`; the sample "
+        "road's curves are K1 (right, R 250.5 m from 300 m) and K2 (left, R 180 m from 830 m).",
+    ),
+    Example(
+        "A GeoJSON file uploaded as a form file: `POST /v1/routes/assess/geojson`",
+        "POST",
+        "/v1/routes/assess/geojson?vehicle=table16-btrain&superelevation_percent=7.5&posted_speed_kmh=60",
+        upload="road.geojson",
+        form=True,
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(p["id"], p["direction"], '
+        'round(p["radius_m"], 1), "m from", round(p["start_m"]), "m;", a["safe_speed_kmh"], a["governed_by"], '
+        'a["margin_kmh"]) for p in r["curves"] for a in [p["assessment"]]]\'',
+        note="`--data-binary @examples/road.geojson -H 'Content-Type: application/geo+json'` sends it as the body.",
     ),
     Example(
         "Plot: tire normal loads against ay/g (thesis Fig. 92), saved and checked",

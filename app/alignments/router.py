@@ -64,22 +64,26 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     name="assess_csv",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
-    openapi_extra=upload_body("text/csv", CSV_UPLOAD_LIMIT, ALIGNMENT_CSV_EXAMPLE),
+    openapi_extra=upload_body("text/csv", CSV_UPLOAD_LIMIT, ALIGNMENT_CSV_EXAMPLE, "CSV file"),
     description=ASSESSMENT
     + """
 
-The body is the CSV file itself (UTF-8, a header row naming `id`, `radius_m`, `superelevation_percent` and
-optionally `grade_percent`, `posted_speed_kmh`), the options are query parameters (`vehicle` repeated for several
-presets). The same request as `POST /v1/alignments/assess` with `csv`: same answer, same cache entry. A rule the
+The body is the CSV file itself (`--data-binary @curves.csv`), or the part `file` of a `multipart/form-data` body
+(`-F file=@curves.csv`): UTF-8, a header row naming `id`, `radius_m`, `superelevation_percent` and optionally
+`grade_percent`, `posted_speed_kmh`. The dialect is detected from the header and the first rows: `,`, `;` or a tab
+between the fields, a decimal comma with `;` or a tab (as a spreadsheet in a decimal-comma locale saves it), a
+UTF-8 byte-order mark, CRLF line ends; the answer names it (`csv_dialect`), and a number written in another dialect
+than the file's is refused with its row and column. The options are query parameters (`vehicle` repeated for
+several presets). The same request as `POST /v1/alignments/assess` with `csv`: same answer, same cache entry. A rule the
 query's schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
 )
 @replayable("alignments", offers=TABLE_FORMS)
 async def assess_csv(
     request: Request, query: Annotated[CsvUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
-    body = await csv_upload(request, query)
+    body, field = await csv_upload(request, query, CSV_UPLOAD_LIMIT)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))
 
 
 @router.post(
@@ -87,11 +91,12 @@ async def assess_csv(
     name="assess_landxml",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
-    openapi_extra=upload_body("application/xml", LANDXML_UPLOAD_LIMIT, ALIGNMENT_LANDXML_EXAMPLE),
+    openapi_extra=upload_body("application/xml", LANDXML_UPLOAD_LIMIT, ALIGNMENT_LANDXML_EXAMPLE, "LandXML document"),
     description=ASSESSMENT
     + """
 
-The body is the LandXML 1.2 document itself (every `CoordGeom/Curve` of every `Alignment`), the options and the
+The body is the LandXML 1.2 document itself (every `CoordGeom/Curve` of every `Alignment`), or the part `file` of
+a `multipart/form-data` body (`-F file=@alignment.xml`); the options and the
 superelevation / grade / posted-speed defaults for every curve are query parameters (per-curve values need the
 JSON form's `curve_overrides`). The same request as `POST /v1/alignments/assess` with `landxml`. A rule the query's
 schema cannot state: `side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
@@ -100,6 +105,6 @@ schema cannot state: `side_friction_bound` only with `design_standard` `thesis-t
 async def assess_landxml(
     request: Request, query: Annotated[LandXmlUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
-    body = await landxml_upload(request, query)
+    body, field = await landxml_upload(request, query, LANDXML_UPLOAD_LIMIT)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field="body"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))

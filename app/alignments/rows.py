@@ -145,6 +145,7 @@ def json_head(resolved: dict[str, Any], curves: int) -> bytes:
         "side_friction_bound": r["side_friction_bound"],
         "max_superelevation_percent": r["max_superelevation_percent"],
         "curves": curves,
+        "csv_dialect": r.get("csv_dialect"),  # in the key (resolve_alignment) only when the curves came as CSV
     }
     return orjson.dumps(head)[:-1] + b',"vehicles":['
 

@@ -394,6 +394,23 @@ class VehicleAssessment(OutputModel):
     rows: list[CurveRow] = Field(description=describe("One row per curve, in the request's order.", unit="per field"))
 
 
+class CsvDialectOut(OutputModel):
+    """How the uploaded CSV was written, as detected from its header and first rows (app/formats/csv_dialect.py)."""
+
+    separator: Literal[",", ";", "\t"] = Field(
+        description=describe("Field separator: `,`, `;` or a tab (`\\t`).", unit="-")
+    )
+    decimal: Literal[".", ","] = Field(
+        description=describe(
+            "Decimal mark of the numbers: `.`, or `,` (only with `;` or tab separators, as a spreadsheet in a "
+            "decimal-comma locale saves CSV).",
+            unit="-",
+        )
+    )
+    bom: bool = Field(description=describe("Whether the text began with a UTF-8 byte-order mark.", unit="-"))
+    line_ending: Literal["LF", "CRLF", "CR"] = Field(description=describe("Line ending of the header row.", unit="-"))
+
+
 class AlignmentResult(OutputModel):
     """Every curve assessed for every vehicle."""
 
@@ -413,5 +430,12 @@ class AlignmentResult(OutputModel):
         description=describe("The request's e_max, when given.", unit="%", symbol="e_max")
     )
     curves: int = Field(description=describe("Curves in the request.", unit="count"))
+    csv_dialect: CsvDialectOut | None = Field(
+        description=describe(
+            "The CSV dialect detected when the curves came as CSV (`csv`, or an upload to /assess/csv); null "
+            "otherwise.",
+            unit="see its fields",
+        )
+    )
     vehicles: list[VehicleAssessment] = Field(description=describe("One entry per vehicle.", unit="see its fields"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

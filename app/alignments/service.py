@@ -193,6 +193,8 @@ def resolve_alignment(
         **resolved_assessment(req, refs, vehicles, settings),
         "curves": {"count": len(table), "sha256": _digest(table)},
     }
+    if table.dialect is not None:  # the answer names it; the keys of curves and LandXML stay as they were
+        resolved["csv_dialect"] = table.dialect.as_dict()
     source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
     return AlignmentJob(resolved, vehicles, table, source)
 

@@ -1,16 +1,19 @@
 """Raw CSV and LandXML uploads: POST /v1/alignments/assess/csv and /v1/alignments/assess/landxml.
 
-A road-design package exports a file; the natural request is the file itself as the body, the options in the
-query::
+A road-design package exports a file; the natural request is the file itself as the body, or as the part ``file``
+of a ``multipart/form-data`` body (a browser form, ``curl -F``), the options in the query::
 
-    curl --data-binary @curves.csv -H 'Content-Type: text/csv' \\
+    curl --data-binary @examples/curves-comma.csv -H 'Content-Type: text/csv' \\
+      'http://127.0.0.1:8000/v1/alignments/assess/csv?vehicle=table16-btrain&rear_llt_limit=0.6'
+    curl -F file=@examples/curves-semicolon.csv \\
       'http://127.0.0.1:8000/v1/alignments/assess/csv?vehicle=table16-btrain&rear_llt_limit=0.6'
 
 The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` (fields and bounds
 taken from the JSON request's own, so the two forms cannot drift); the body (bounded by the route's body limit,
 :mod:`app.http.bodylimit`) is decoded,
 and the equivalent JSON request (``{"vehicle": ..., "csv": "<the file>"}``) goes through the same service and
-cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``body`` and the row or element.
+cache entry as ``POST /v1/alignments/assess``. Errors in the document name ``body`` (``file`` for the multipart
+part) and the row or element.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from app.alignments.schemas import (
     AlignmentRequest,
     LandXmlIn,
 )
-from app.formats.uploads import decode_csv, decode_xml
+from app.formats.uploads import decode_csv, decode_xml, read_upload
 from app.http.problems import InvalidAlignment
 from app.http.schemas import describe
 from app.srt.schemas import LoadIn
@@ -78,7 +81,7 @@ LandXmlUploadQuery = create_model(
 )
 
 
-def upload_request(query, **document: Any) -> AlignmentRequest:
+def upload_request(query, field: str = "body", **document: Any) -> AlignmentRequest:
     """The JSON request equivalent to an upload: the query's options and presets, and the document."""
     presets = list(query.vehicle)
     data: dict[str, Any] = {n: getattr(query, n) for n in OPTIONS if getattr(query, n) is not None}
@@ -90,22 +93,32 @@ def upload_request(query, **document: Any) -> AlignmentRequest:
     except ValidationError as exc:  # the query was checked with the same bounds: only the document is left
         raise RequestValidationError(
             [
-                {**e, "loc": ("body",) if e["loc"][0] in ("csv", "landxml") else ("query", *e["loc"])}
+                {**e, "loc": ("body",) if field == "body" else ("body", field)}
+                if e["loc"][0] in ("csv", "landxml")
+                else {**e, "loc": ("query", *e["loc"])}
                 for e in exc.errors()
             ]
         ) from None
 
 
-async def csv_upload(request: Request, query) -> AlignmentRequest:
-    text = decode_csv(await request.body())  # bounded by the route's body limit
-    if not text.strip():
-        raise InvalidAlignment("the body is empty: send the CSV file", source="body", location=None, column=None)
-    return upload_request(query, csv=text)
+async def csv_upload(request: Request, query, limit: int) -> tuple[AlignmentRequest, str]:
+    """The JSON request equivalent to a CSV upload, and the field that holds the file (``body`` or ``file``)."""
+    upload = await read_upload(request, limit)
+    text = decode_csv(upload.data, upload.field)
+    if not text.strip().lstrip("\ufeff"):
+        raise InvalidAlignment(
+            f"the {upload.field} is empty: send the CSV file", source=upload.field, location=None, column=None
+        )
+    return upload_request(query, upload.field, csv=text), upload.field
 
 
-async def landxml_upload(request: Request, query) -> AlignmentRequest:
-    text = decode_xml(await request.body())  # bounded by the route's body limit
+async def landxml_upload(request: Request, query, limit: int) -> tuple[AlignmentRequest, str]:
+    """The JSON request equivalent to a LandXML upload, and the field that holds the file (``body`` or ``file``)."""
+    upload = await read_upload(request, limit)
+    text = decode_xml(upload.data, upload.field)
     if not text.strip():
-        raise InvalidAlignment("the body is empty: send the LandXML file", source="body", location=None, column=None)
+        raise InvalidAlignment(
+            f"the {upload.field} is empty: send the LandXML file", source=upload.field, location=None, column=None
+        )
     defaults = {n: getattr(query, n) for n in LANDXML_DEFAULTS}
-    return upload_request(query, landxml={"document": text, **defaults})
+    return upload_request(query, upload.field, landxml={"document": text, **defaults}), upload.field

@@ -8,7 +8,10 @@ too), stops the whole file with its location.
 
 CSV columns (header names, any order, case-insensitive): ``id``, ``radius_m``, ``superelevation_percent``
 (optional, empty = derive it from the design standard's distribution), ``grade_percent`` (optional, default 0,
-+ uphill in the direction of travel), ``posted_speed_kmh`` (optional, empty = none).
++ uphill in the direction of travel), ``posted_speed_kmh`` (optional, empty = none). The dialect (``,`` ``;`` or
+tab between the fields, a decimal comma with ``;`` or tab, a UTF-8 byte-order mark, CRLF line ends) is detected
+from the header and the first rows (:mod:`app.formats.csv_dialect`) and returned with the curves; errors name the
+column as the header spells it.
 
 LandXML 1.2: every ``CoordGeom/Curve`` of every ``Alignment`` is a horizontal curve; its ``radius`` is required,
 ``staStart`` (station) and ``name`` are reported. LandXML keeps superelevation and grade in other elements whose
@@ -32,6 +35,7 @@ import numpy as np
 from defusedxml import ElementTree as SafeET
 from defusedxml.common import DefusedXmlException
 
+from app.formats.csv_dialect import CsvDialect, CsvDialectError, detect
 from engine.errors import InvalidRoad
 from engine.road import check_columns
 
@@ -57,6 +61,7 @@ class CurveTable:
     posted_speed_kmh: np.ndarray
     station_m: np.ndarray
     where: list[str] | None = None  # each curve's row or element in the document it came from (None: JSON)
+    dialect: CsvDialect | None = None  # how a CSV document was written (None: not CSV)
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -72,6 +77,7 @@ class CurveTable:
             self.posted_speed_kmh[sl],
             self.station_m[sl],
             None if self.where is None else self.where[sl],
+            self.dialect,
         )
 
     def key_rows(self) -> list[list[Any]]:
@@ -161,9 +167,9 @@ class _Collector:
         if len(self.ids) > self.max_curves:
             raise AlignmentFormatError(f"more than {self.max_curves} curves", where)
 
-    def table(self) -> CurveTable:
+    def table(self, dialect: CsvDialect | None = None) -> CurveTable:
         a = np.array(self.values, dtype=float).reshape(-1, 5)
-        t = CurveTable(self.ids, *(a[:, k].copy() for k in range(5)), where=self.where)
+        t = CurveTable(self.ids, *(a[:, k].copy() for k in range(5)), where=self.where, dialect=dialect)
         try:  # the bounds of the JSON form, on the columns
             check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
         except InvalidRoad as exc:
@@ -174,60 +180,91 @@ class _Collector:
         return t
 
 
-def _header(reader) -> dict[str, int]:
+def _header(reader) -> tuple[dict[str, int], dict[str, str]]:
+    """The header's columns: engine name -> position, and engine name -> the name as the header spells it."""
     try:
         header = next(reader)
     except csv.Error as exc:
         raise AlignmentFormatError(f"unreadable CSV: {exc}", "row 1") from None
-    names = [h.strip().lower() for h in header]
+    except StopIteration:
+        header = []
+    typed = [h.strip() for h in header]
+    names = [h.lower() for h in typed]
     missing = [c for c in CSV_REQUIRED if c not in names]
     if missing:
         raise AlignmentFormatError(
             f"missing column(s) {', '.join(missing)}; the header must name {', '.join(CSV_REQUIRED)} "
-            f"(optional: {', '.join(CSV_OPTIONAL)})",
+            f"(optional: {', '.join(CSV_OPTIONAL)}) separated by ',', ';' or tabs; it reads {typed!r}"[:400],
             "row 1 (header)",
             missing[0],
         )
-    unknown = [n for n in names if n not in CSV_REQUIRED + CSV_OPTIONAL]
+    unknown = [t for t, n in zip(typed, names, strict=True) if n not in CSV_REQUIRED + CSV_OPTIONAL]
     if unknown:
-        raise AlignmentFormatError(f"unknown column(s) {', '.join(unknown)}", "row 1 (header)", unknown[0])
-    dupes = {n for n in names if names.count(n) > 1}
+        raise AlignmentFormatError(
+            f"unknown column(s) {', '.join(unknown)} (known: {', '.join(CSV_REQUIRED + CSV_OPTIONAL)})",
+            "row 1 (header)",
+            unknown[0],
+        )
+    dupes = sorted({t for t, n in zip(typed, names, strict=True) if names.count(n) > 1})
     if dupes:
-        raise AlignmentFormatError(f"duplicate column(s) {', '.join(sorted(dupes))}", "row 1 (header)")
-    return {n: i for i, n in enumerate(names)}
+        raise AlignmentFormatError(f"duplicate column(s) {', '.join(dupes)}", "row 1 (header)", dupes[0])
+    return {n: i for i, n in enumerate(names)}, {n: t for n, t in zip(names, typed, strict=True)}
+
+
+def _split_number_hint(row: list[str], n: int, dialect: CsvDialect) -> str:
+    if dialect.separator == "," and len(row) > n:
+        return (
+            ": a decimal comma in a comma-separated file? Save it with ';' as the separator (as a decimal-comma "
+            "spreadsheet does) or write the decimals with a point"
+        )
+    return ""
 
 
 def read_csv(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable:
-    """Curves from CSV text with a header row (see the module docstring); at most ``max_curves`` (a job's limit is
-    larger than a request's)."""
-    if not text.strip():
+    """Curves from CSV text with a header row (see the module docstring), in the dialect detected from its header
+    and first rows (the table's ``dialect``); at most ``max_curves`` (a job's limit is larger than a request's)."""
+    if not text.strip().lstrip("\ufeff"):
         raise AlignmentFormatError("the CSV is empty (a header row and at least one curve are needed)")
-    reader = csv.reader(io.StringIO(text))
-    idx = _header(reader)
-    curves = _Collector(max_curves=max_curves)
+    try:
+        dialect, text = detect(text, CSV_REQUIRED + CSV_OPTIONAL, ("radius_m", *CSV_OPTIONAL))
+    except CsvDialectError as exc:
+        raise AlignmentFormatError(str(exc).removeprefix(f"{exc.location}: "), exc.location, exc.field) from None
+    reader = csv.reader(io.StringIO(text, newline=""), delimiter=dialect.separator)
+    idx, typed = _header(reader)
+    curves = _Collector(typed, id_column=typed["id"], max_curves=max_curves)
+    number = dialect.number
+
+    def cell_number(cell: dict[str, str], name: str, where: str, optional: bool = False) -> float | None:
+        if name not in cell:
+            return None
+        return number(cell[name], typed[name], where, optional=optional)
+
     try:
         for rownum, row in enumerate(reader, start=2):
             if not any(c.strip() for c in row):
                 continue  # blank line (e.g. a trailing newline): not a curve
             where = f"row {rownum}"
             if len(row) != len(idx):
-                raise AlignmentFormatError(f"has {len(row)} fields, the header has {len(idx)}", where)
+                hint = _split_number_hint(row, len(idx), dialect)
+                raise AlignmentFormatError(f"has {len(row)} fields, the header has {len(idx)}{hint}", where)
             cell = {n: row[i] for n, i in idx.items()}
-            grade = _number(cell.get("grade_percent"), "grade_percent", where, optional=True)
+            grade = cell_number(cell, "grade_percent", where, optional=True)
             curves.add(
-                check_curve_id(cell["id"].strip(), where, "id"),
+                check_curve_id(cell["id"].strip(), where, typed["id"]),
                 where,
-                _number(cell["radius_m"], "radius_m", where),
-                _number(cell.get("superelevation_percent"), "superelevation_percent", where, optional=True),
+                cell_number(cell, "radius_m", where),
+                cell_number(cell, "superelevation_percent", where, optional=True),
                 0.0 if grade is None else grade,
-                _number(cell.get("posted_speed_kmh"), "posted_speed_kmh", where, optional=True),
+                cell_number(cell, "posted_speed_kmh", where, optional=True),
                 None,
             )
     except csv.Error as exc:
         raise AlignmentFormatError(f"unreadable CSV: {exc}", f"row {reader.line_num}") from None
+    except CsvDialectError as exc:
+        raise AlignmentFormatError(str(exc).removeprefix(f"{exc.location}: "), exc.location, exc.field) from None
     if not curves.ids:
         raise AlignmentFormatError("no curves after the header", "row 2")
-    return curves.table()
+    return curves.table(dialect)
 
 
 @dataclass(frozen=True)

@@ -1,25 +1,104 @@
-"""Raw uploads: a file sent as the request body itself (bounded by the route's body limit, :mod:`app.http.bodylimit`),
-decoded to text. A body that cannot be decoded is an :class:`~app.http.problems.InvalidAlignment` naming ``body``."""
+"""Uploaded files: the request body itself (``curl --data-binary @curves.csv``) or the part named ``file`` of a
+``multipart/form-data`` body (``curl -F file=@curves.csv``), bounded by the route's body limit
+(:mod:`app.http.bodylimit`: the whole request, either way), and decoded to text.
+
+:func:`read_upload` returns the file's bytes and the request field that names it in errors: ``body`` for a raw
+body, ``file`` for the multipart part. A multipart body without a ``file`` part, with several, or with other parts
+(the options go in the query, as for a raw body) is a 422 naming the part. Text that cannot be decoded
+(:func:`decode_csv`, :func:`decode_xml`, :func:`decode_json_object`) is an
+:class:`~app.http.problems.InvalidAlignment` (or the route's :class:`~app.http.problems.InvalidRoute`) naming the
+field.
+"""
 
 from __future__ import annotations
 
 import codecs
 import re
+from dataclasses import dataclass
+from typing import Any
+
+import orjson
+from fastapi import Request
+from fastapi.exceptions import RequestValidationError
+from starlette.datastructures import UploadFile
 
 from app.http.problems import InvalidAlignment
 
+MULTIPART = "multipart/form-data"
+#: the multipart part that holds the file (``curl -F file=@curves.csv``)
+FILE_PART = "file"
 
-def decode_csv(data: bytes) -> str:
+
+@dataclass(frozen=True)
+class Upload:
+    """An uploaded file's bytes and the request field that holds it (``body`` or ``file``)."""
+
+    data: bytes
+    field: str
+    filename: str | None = None
+
+
+def is_multipart(content_type: str | None) -> bool:
+    return (content_type or "").split(";", 1)[0].strip().lower() == MULTIPART
+
+
+def _part_error(part: str, message: str, kind: str = "value_error") -> RequestValidationError:
+    return RequestValidationError([{"type": kind, "loc": ("body", part), "msg": message, "input": None}])
+
+
+async def read_upload(request: Request, limit: int) -> Upload:
+    """The uploaded file: the ``file`` part of a multipart body, else the body itself (at most ``limit`` bytes: the
+    route's body limit, which the middleware has already enforced on the whole request)."""
+    if not is_multipart(request.headers.get("content-type")):
+        return Upload(await request.body(), "body")
+    # a part without a filename (curl -F 'file=<curves.csv') is a plain field: allowed up to the body limit too
+    form = await request.form(max_files=2, max_fields=16, max_part_size=limit)
     try:
-        return data.decode("utf-8-sig")  # a BOM (spreadsheet exports) is not part of the first column's name
+        others = sorted({k for k in form if k != FILE_PART})
+        if others:
+            raise _part_error(
+                others[0],
+                f"unexpected form part(s) {', '.join(repr(k) for k in others)}: send only the file, in the part "
+                f"'{FILE_PART}'; the options are query parameters (?vehicle=...), as with a raw body",
+            )
+        parts = form.getlist(FILE_PART)
+        if not parts:
+            message = f"the multipart body has no part named '{FILE_PART}' (curl -F file=@curves.csv)"
+            raise _part_error(FILE_PART, message, "missing")
+        if len(parts) > 1:
+            raise _part_error(FILE_PART, f"{len(parts)} parts named '{FILE_PART}': send one file per request")
+        (part,) = parts
+        if isinstance(part, UploadFile):
+            return Upload(await part.read(), FILE_PART, part.filename)
+        return Upload(part.encode("utf-8"), FILE_PART)
+    finally:
+        await form.close()
+
+
+def decode_csv(data: bytes, field: str = "body") -> str:
+    """CSV bytes as text (UTF-8; a byte-order mark is kept: the CSV reader notes and drops it)."""
+    if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        raise InvalidAlignment(
+            "the CSV is UTF-16 text (a spreadsheet's 'Unicode text'): save it as 'CSV UTF-8'",
+            source=field,
+            location=None,
+            column=None,
+        )
+    try:
+        return data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InvalidAlignment(
-            f"the CSV is not UTF-8 text (byte {exc.start})", source="body", location=None, column=None
+            f"the CSV is not UTF-8 text (byte {exc.start}, 0x{data[exc.start]:02X}): a legacy 8-bit export? Save "
+            "it as 'CSV UTF-8'",
+            source=field,
+            location=None,
+            column=None,
         ) from None
 
 
-def decode_xml(data: bytes) -> str:
-    """XML bytes as text: UTF-8 (with or without BOM), or the encoding its XML declaration names."""
+def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: type = InvalidAlignment) -> str:
+    """XML bytes as text: UTF-8 (with or without BOM), or the encoding its XML declaration names; else ``error``
+    (an :class:`~app.http.problems.InvalidAlignment` or its route form) naming ``field`` and the ``root`` element."""
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -30,9 +109,24 @@ def decode_xml(data: bytes) -> str:
             return data.decode(codecs.lookup(declared.group(1).decode()).name)
         except (LookupError, UnicodeDecodeError):
             pass
-    raise InvalidAlignment(
+    raise error(
         "the document is neither UTF-8 nor in the encoding its XML declaration names",
-        source="body",
-        location="LandXML",
+        source=field,
+        location=root,
         column=None,
     )
+
+
+_JSON_TYPES = {list: "array", str: "string", int: "number", float: "number", bool: "boolean", type(None): "null"}
+
+
+def decode_json_object(data: bytes, field: str = "body", what: str = "GeoJSON", error: type = InvalidAlignment) -> Any:
+    """A JSON object from bytes (UTF-8, a byte-order mark tolerated); else ``error`` naming ``field``."""
+    try:
+        doc = orjson.loads(data.removeprefix(codecs.BOM_UTF8))  # a BOM is not JSON (RFC 8259 section 8.1)
+    except orjson.JSONDecodeError as exc:
+        raise error(f"not JSON: {exc}", source=field, location=None, column=None) from None
+    if not isinstance(doc, dict):
+        kind = _JSON_TYPES.get(type(doc), "value")
+        raise error(f"a {what} object is expected, got a JSON {kind}", source=field, location=None, column=None)
+    return doc

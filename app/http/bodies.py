@@ -1,5 +1,6 @@
 """Request bodies a route reads itself, declared in its ``openapi_extra``: a JSON body validated off the event loop
-(:func:`json_body`) and a raw file (:func:`upload_body`). Each route's body limit (:mod:`app.http.bodylimit`) is
+(:func:`json_body`) and an uploaded file (:func:`upload_body`: the body itself, or the part ``file`` of a
+``multipart/form-data`` body). Each route's body limit (:mod:`app.http.bodylimit`) is
 declared with it."""
 
 from __future__ import annotations
@@ -20,9 +21,29 @@ def json_body(model: type) -> dict[str, Any]:
     return {"requestBody": {"required": True, "content": {"application/json": {"schema": ref}}}}
 
 
-def upload_body(media_type: str, limit: int, example: str | None = None) -> dict[str, Any]:
-    """OpenAPI ``requestBody`` of an upload operation (the route reads the body itself), with its body limit."""
+def upload_body(media_type: str, limit: int, example: str | None = None, what: str = "file") -> dict[str, Any]:
+    """OpenAPI ``requestBody`` of an upload operation (the route reads the body itself), with its body limit: the
+    file as the body (``media_type``), or as the part ``file`` of a ``multipart/form-data`` body (``curl -F
+    file=@...``). The limit applies to the whole request either way."""
     content: dict[str, Any] = {"schema": {"type": "string", "minLength": 1}}
     if example is not None:
         content["example"] = example
-    return {"requestBody": {"required": True, "content": {media_type: content}}, **body_limit(limit)}
+    form = {
+        "schema": {
+            "type": "object",
+            "required": ["file"],
+            "properties": {
+                "file": {
+                    "type": "string",
+                    "contentMediaType": media_type,
+                    "description": f"The {what} (its bytes, as a file part: `curl -F file=@...`).",
+                }
+            },
+            "additionalProperties": False,
+        },
+        "encoding": {"file": {"contentType": f"{media_type}, application/octet-stream, text/plain"}},
+    }
+    return {
+        "requestBody": {"required": True, "content": {media_type: content, "multipart/form-data": form}},
+        **body_limit(limit),
+    }

@@ -221,7 +221,10 @@ async def _input_handler(request: Request, exc: InvalidInput) -> JSONResponse:
 
 async def _route_handler(request: Request, exc: InvalidRoute) -> JSONResponse:
     field, loc = exc.source, ["body", *exc.source.split(".")]  # `gpx`, `geojson`, or a job's `request.geojson`
-    if exc.source.split(".")[-1] == "geojson" and exc.location:  # a JSON path into the document: a request field
+    if exc.source in ("body", "file"):  # an uploaded file (the body, or the multipart part): `location` says where
+        field = exc.source if exc.column is None else f"{exc.source}.{exc.column}"
+        loc = ["body"] if exc.source == "body" else ["body", "file"]
+    elif exc.source.split(".")[-1] == "geojson" and exc.location:  # a JSON path into the document: a request field
         path = re.sub(r"\[(\d+)\]", r".\1", exc.location)
         field = f"{exc.source}.{path}"
         loc = [*loc, *(int(p) if p.isdigit() else p for p in path.split("."))]

@@ -1,22 +1,26 @@
-"""POST /v1/routes/assess: a route as geometry (GeoJSON or GPX) -> its curves, assessed."""
+"""POST /v1/routes/assess: a route as geometry (GeoJSON or GPX) -> its curves, assessed; and its raw-file forms
+/assess/gpx and /assess/geojson (the file as the body or the multipart part ``file``, the options in the query)."""
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import orjson
-from fastapi import APIRouter, Request, Response
+from fastapi import APIRouter, Query, Request, Response
 from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
 from app.deps import CacheDep, SettingsDep
-from app.http.bodies import json_body
+from app.http.bodies import json_body, upload_body
 from app.http.bodylimit import body_limit
 from app.http.fastpath import replayable
 from app.http.negotiation import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import ANSWER_MODELS, computed_response, table_responses
-from app.routes.schemas import ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
+from app.routes.schemas import EXAMPLE_GEOJSON, EXAMPLE_GPX, ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
 from app.routes.service import assess_route
+from app.routes.uploads import RouteUploadQuery, geojson_upload, gpx_upload
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
 
@@ -71,3 +75,52 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     accept = request.headers.get("accept")
     form = negotiate(accept, WITH_GEOJSON)
     return computed_response(await assess_route(cache, request, req, settings, form=form), vary_accept=True)
+
+
+UPLOAD = """
+
+The body is the {what} itself (`--data-binary @{file}`), or the part `file` of a `multipart/form-data` body
+(`-F file=@{file}`); the options are query parameters (`vehicle` repeated for several presets; the detection's
+`noise_m`, `max_radius_m`, `min_deflection_deg` as plain parameters). The same request as `POST /v1/routes/assess`
+with `{field}`: the same answer, byte for byte, and the same cache entry. A rule the query's schema cannot state:
+`side_friction_bound` only with `design_standard` `thesis-table21` (or alone)."""
+
+
+@router.post(
+    "/assess/gpx",
+    name="assess_gpx",
+    response_model=RouteResult,
+    responses=_RESPONSES,
+    openapi_extra=upload_body("application/gpx+xml", ROUTE_BODY_LIMIT, EXAMPLE_GPX, "GPX 1.1 document"),
+    description=(assess.__doc__ or "").replace("\n    ", "\n")
+    + UPLOAD.format(what="GPX 1.1 document", file="road.gpx", field="gpx"),
+)
+@replayable("route", offers=WITH_GEOJSON)
+async def assess_gpx(
+    request: Request, query: Annotated[RouteUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
+) -> Response:
+    req, field = await gpx_upload(request, query, ROUTE_BODY_LIMIT)
+    form = negotiate(request.headers.get("accept"), WITH_GEOJSON)
+    result = await assess_route(cache, request, req, settings, form=form, source_field=field)
+    return computed_response(result, vary_accept=True)
+
+
+@router.post(
+    "/assess/geojson",
+    name="assess_geojson",
+    response_model=RouteResult,
+    responses=_RESPONSES,
+    openapi_extra=upload_body(
+        GEOJSON_MEDIA_TYPE, ROUTE_BODY_LIMIT, orjson.dumps(EXAMPLE_GEOJSON).decode(), "GeoJSON document"
+    ),
+    description=(assess.__doc__ or "").replace("\n    ", "\n")
+    + UPLOAD.format(what="GeoJSON document (RFC 7946)", file="road.geojson", field="geojson"),
+)
+@replayable("route", offers=WITH_GEOJSON)
+async def assess_geojson(
+    request: Request, query: Annotated[RouteUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
+) -> Response:
+    req, field = await geojson_upload(request, query, ROUTE_BODY_LIMIT)
+    form = negotiate(request.headers.get("accept"), WITH_GEOJSON)
+    result = await assess_route(cache, request, req, settings, form=form, source_field=field)
+    return computed_response(result, vary_accept=True)

@@ -54,6 +54,11 @@ EXAMPLE_GEOJSON: dict[str, Any] = {
         }
     ],
 }
+EXAMPLE_GPX = (
+    '<gpx version="1.1" creator="example" xmlns="http://www.topografix.com/GPX/1/1"><trk><name>S-bend</name><trkseg>'
+    + "".join(f'<trkpt lat="{la}" lon="{lo}"><ele>{el}</ele></trkpt>' for lo, la, el in _EXAMPLE_COORDS)
+    + "</trkseg></trk></gpx>"
+)
 
 
 class Detection(InputModel):
@@ -106,10 +111,7 @@ class RouteRequest(SrtOptions, SrtTargets, DesignOptions):
                 },
                 {
                     "vehicle": EXAMPLE_PRESET,
-                    "gpx": '<gpx version="1.1" creator="example" xmlns="http://www.topografix.com/GPX/1/1"><trk>'
-                    "<name>S-bend</name><trkseg>"
-                    + "".join(f'<trkpt lat="{la}" lon="{lo}"><ele>{el}</ele></trkpt>' for lo, la, el in _EXAMPLE_COORDS)
-                    + "</trkseg></trk></gpx>",
+                    "gpx": EXAMPLE_GPX,
                     "max_superelevation_percent": 8.0,
                     "posted_speed_kmh": 60.0,
                 },

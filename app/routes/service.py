@@ -87,17 +87,24 @@ class Geometry:
 # ------------------------------------------------------------------------------------------ reading
 
 
-def read_route(req: RouteRequest) -> list[RoutePart]:
-    """The parts of the request's document; :class:`InvalidRoute` naming the part and vertex otherwise."""
-    source = "geojson" if req.geojson is not None else "gpx"
+def _source(req: RouteRequest, source_field: str | None) -> str:
+    """The request field an error in the document names: ``geojson`` / ``gpx``, or the upload's (``body``,
+    ``file``)."""
+    return source_field or ("geojson" if req.geojson is not None else "gpx")
+
+
+def read_route(req: RouteRequest, source_field: str | None = None) -> list[RoutePart]:
+    """The parts of the request's document; :class:`InvalidRoute` naming the part and vertex otherwise (and the
+    request field, ``source_field`` for an upload)."""
+    source = _source(req, source_field)
     try:
-        return read_geojson(req.geojson) if source == "geojson" else read_gpx(req.gpx)
+        return read_geojson(req.geojson) if req.geojson is not None else read_gpx(req.gpx)
     except RouteFormatError as exc:
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
         raise InvalidRoute(reason, source=source, location=exc.location, column=exc.field) from None
 
 
-def find_route_curves(req: RouteRequest, parts: list[RoutePart]) -> Geometry:
+def find_route_curves(req: RouteRequest, parts: list[RoutePart], source_field: str | None = None) -> Geometry:
     """Every part in its plane frame, through the curve detection."""
     d = req.detection
     curves: list[FoundCurve] = []
@@ -114,8 +121,7 @@ def find_route_curves(req: RouteRequest, parts: list[RoutePart]) -> Geometry:
                 min_deflection_deg=d.min_deflection_deg,
             )
         except InvalidInput as exc:
-            raise InvalidRoute(str(exc), source="geojson" if req.geojson is not None else "gpx", location=p.location,
-                               column=None) from None  # fmt: skip
+            raise InvalidRoute(str(exc), source=_source(req, source_field), location=p.location, column=None) from None
         noise.append(rc.noise_m)
         found.append(len(rc.curves))
         length.append(rc.length_m)
@@ -326,18 +332,20 @@ def _named_after_the_route(exc: InvalidInput, table: CurveTable) -> InvalidInput
     return type(exc)(message, field=m.group(2), value=exc.value)
 
 
-def render_route(req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, ...]) -> dict[str, bytes]:
+def render_route(
+    req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, ...], source_field: str | None = None
+) -> dict[str, bytes]:
     """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
-    ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets)."""
-    parts = read_route(req)
-    geo = find_route_curves(req, parts)
+    ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets);
+    ``source_field`` names an upload's document in errors (``body``, ``file``)."""
+    parts = read_route(req, source_field)
+    geo = find_route_curves(req, parts, source_field)
     vehicles = [Vehicle.from_dict(v) for v in resolved["vehicles"]]
     if len(geo.curves) * len(vehicles) > MAX_ROWS:
         raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
     table = curve_table(req, geo)
-    source = "geojson" if req.geojson is not None else "gpx"
     try:
-        answer = solve_alignment(AlignmentJob(resolved, vehicles, table, source))
+        answer = solve_alignment(AlignmentJob(resolved, vehicles, table, _source(req, source_field)))
     except InvalidInput as exc:
         raise _named_after_the_route(exc, table) from None
     renderers = {
@@ -359,8 +367,15 @@ def route_refs(req: RouteRequest) -> list[Any]:
 
 
 async def assess_route(
-    cache: ResultCache, request: Request, req: RouteRequest, settings: Settings, *, form: str = "json"
+    cache: ResultCache,
+    request: Request,
+    req: RouteRequest,
+    settings: Settings,
+    *,
+    form: str = "json",
+    source_field: str | None = None,
 ) -> Computed:
+    """The route's answer in ``form`` (cached); ``source_field`` names an upload's document in errors."""
     fleet = req.fleet
     req = await resolve_route_refs(request, req, settings)
     resolved = await run_in_threadpool(resolved_route, req, route_refs(req), settings)  # the key: resolved
@@ -368,7 +383,7 @@ async def assess_route(
 
     async def produce() -> bytes:
         try:
-            bodies = await run_in_threadpool(render_route, req, resolved, (form,))
+            bodies = await run_in_threadpool(render_route, req, resolved, (form,), source_field)
         except InvalidInput as exc:
             raise as_fleet_error(exc, fleet, resolved) from None
         return bodies[form]

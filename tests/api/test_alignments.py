@@ -170,10 +170,12 @@ def to_landxml(curves) -> str:
 def test_csv_and_landxml_give_the_same_rows_as_json(shared_client, assessed):
     table21 = {"design_standard": "thesis-table21"}
     by_csv = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "csv": to_csv_text(CURVES), **table21})
-    assert by_csv.json() == assessed
-    # the same curves resolve to the same request: one cache entry, one ETag, whatever the format
-    again = post(shared_client, BASE)
-    assert by_csv.headers["etag"] == again.headers["etag"]
+    # the same rows; the CSV answer also names the dialect it was read in (and so has a key of its own)
+    assert by_csv.json()["csv_dialect"] == {"separator": ",", "decimal": ".", "bom": False, "line_ending": "LF"}
+    assert {**by_csv.json(), "csv_dialect": None} == assessed
+    # the same curves in the same dialect resolve to the same request: one cache entry, one ETag
+    again = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "csv": to_csv_text(CURVES), **table21})
+    assert by_csv.headers["etag"] == again.headers["etag"] and again.headers["x-cache"] == "hit"
     overrides = {
         c["id"]: {
             "superelevation_percent": c["superelevation_percent"],
@@ -351,8 +353,11 @@ def test_a_csv_upload_is_the_json_csv_request(shared_client, assessed):
     # a spreadsheet's UTF-8 BOM is not part of the first column's name
     query = "vehicle=table16-btrain&rear_llt_limit=0.6&design_standard=thesis-table21"
     r = upload(shared_client, "csv", "\ufeff" + to_csv_text(CURVES), query)
-    assert r.json() == assessed
-    assert r.headers["etag"] == post(shared_client, BASE).headers["etag"]  # one cache entry for every form
+    assert r.json()["csv_dialect"]["bom"] is True
+    assert {**r.json(), "csv_dialect": None} == assessed
+    json_csv = {**BASE, "curves": None, "csv": "\ufeff" + to_csv_text(CURVES)}
+    json_csv.pop("curves")
+    assert r.headers["etag"] == post(shared_client, json_csv).headers["etag"]  # one cache entry for both forms
     as_csv = upload(shared_client, "csv", to_csv_text(CURVES), query, Accept="text/csv")
     assert as_csv.headers["content-type"].startswith("text/csv") and len(as_csv.text.splitlines()) == 1 + len(CURVES)
 

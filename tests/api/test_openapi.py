@@ -41,6 +41,8 @@ OPERATIONS = {
     ("post", "/v1/alignments/assess/csv"): "alignments-assess_csv",
     ("post", "/v1/alignments/assess/landxml"): "alignments-assess_landxml",
     ("post", "/v1/routes/assess"): "routes-assess",
+    ("post", "/v1/routes/assess/gpx"): "routes-assess_gpx",
+    ("post", "/v1/routes/assess/geojson"): "routes-assess_geojson",
     ("post", "/v1/jobs"): "jobs-submit",
     ("get", "/v1/jobs/{job_id}"): "jobs-status",
     ("get", "/v1/jobs/{job_id}/result"): "jobs-result",
@@ -134,6 +136,8 @@ TABLES = {
     "/v1/superelevation/table",
     "/v1/vehicles/payload-table",
     "/v1/routes/assess",
+    "/v1/routes/assess/gpx",
+    "/v1/routes/assess/geojson",
 }
 
 
@@ -146,7 +150,7 @@ def test_computed_operations_declare_etag_and_x_cache(path):
 @pytest.mark.parametrize("path", sorted(TABLES))
 def test_table_operations_declare_json_and_csv(path):
     content = COMMITTED["paths"][path]["post"]["responses"]["200"]["content"]
-    geojson = {"application/geo+json"} if path == "/v1/routes/assess" else set()  # the route's curves for a GIS
+    geojson = {"application/geo+json"} if path.startswith("/v1/routes/") else set()  # the route's curves for a GIS
     assert set(content) == {"application/json", "text/csv"} | geojson
     if geojson:
         assert content["application/geo+json"]["schema"] == {"$ref": "#/components/schemas/RouteCurves"}

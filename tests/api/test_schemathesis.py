@@ -34,6 +34,8 @@ BATCHES = [
     "/v1/alignments/assess/csv",
     "/v1/alignments/assess/landxml",
     "/v1/routes/assess",
+    "/v1/routes/assess/gpx",
+    "/v1/routes/assess/geojson",
 ]
 JOBS = ["/v1/jobs", "/v1/jobs/{job_id}", "/v1/jobs/{job_id}/result"]
 

@@ -56,8 +56,8 @@ from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.settings import Settings
+from app.vehicles.refs import vehicle_of_resolved
 from engine.road import solve_bank_grade_pairs
-from engine.vehicle import Vehicle
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
 MAX_JOB_CURVES = 1_000_000
@@ -205,7 +205,7 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
 def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
     curves = unpack_curves(data)
     resolved = shared["resolved"]
-    vehicles = [Vehicle.from_dict(v) for v in resolved["vehicles"]]
+    vehicles = [vehicle_of_resolved(v) for v in resolved["vehicles"]]
     nv, n, step = len(vehicles), len(curves), shared["chunk_curves"]
     columns = csv_columns(resolved)
     summaries: list[list[dict[str, Any]]] = [[] for _ in range(nv)]

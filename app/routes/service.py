@@ -41,11 +41,10 @@ from app.http.negotiation import GEOJSON_MEDIA_TYPE
 from app.http.problems import InvalidRoute, request_error
 from app.routes.schemas import RouteCurves, RouteRequest, RouteResult
 from app.settings import Settings
-from app.vehicles.refs import resolve_vehicle
+from app.vehicles.refs import resolve_vehicle, vehicle_of_resolved
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.route import HorizontalCurve, find_curves, local_frame
-from engine.vehicle import Vehicle
 
 #: the route's own columns in front of the alignment's in the CSV answer
 GEOMETRY_COLUMNS = (
@@ -340,7 +339,7 @@ def render_route(
     ``source_field`` names an upload's document in errors (``body``, ``file``)."""
     parts = read_route(req, source_field)
     geo = find_route_curves(req, parts, source_field)
-    vehicles = [Vehicle.from_dict(v) for v in resolved["vehicles"]]
+    vehicles = [vehicle_of_resolved(v) for v in resolved["vehicles"]]
     if len(geo.curves) * len(vehicles) > MAX_ROWS:
         raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
     table = curve_table(req, geo)

@@ -75,6 +75,14 @@ def resolve_vehicle(ref: Any) -> Vehicle | Combination:
     return Vehicle.from_dict(ref.record())
 
 
+def vehicle_of_resolved(data: dict[str, Any]) -> Vehicle | Combination:
+    """The engine vehicle of a resolved request's ``vehicles[i]`` (``to_dict()`` of a record, or of a combination:
+    ``{"combination": {...}}``), as a batch (alignment, route, job part) rebuilds it."""
+    if "combination" in data:
+        return Combination.from_dict(data["combination"])
+    return Vehicle.from_dict(data)
+
+
 def combination_of(data: dict[str, Any], where: str | None) -> Combination:
     """The engine's combination of a ``combination`` object, validated; its errors name ``<where>.combination.<...>``
     (``combination.<...>`` when ``where`` is None: the request's own vehicle)."""

@@ -84,6 +84,46 @@ def test_road_design_and_batches_take_a_combination(shared_client):
     assert limit["limit"]["status"] == "found" and limit["limit"]["srt_at_limit"] == pytest.approx(0.32, abs=1e-6)
 
 
+def test_routes_and_jobs_take_a_combination_and_answer_what_the_alignment_answers(shared_client):
+    """A route (JSON-wrapped and raw GPX) and an alignment job with a combination preset: the route's curves are
+    assessed with the combination's SRT on each curve's bank and grade (the same as /v1/srt there), and the job's
+    result is the synchronous alignment answer byte for byte."""
+    import time
+    from pathlib import Path
+
+    gpx = (Path(__file__).resolve().parents[2] / "examples" / "road.gpx").read_text(encoding="utf-8")
+    options = {"superelevation_percent": 7.5, "posted_speed_kmh": 60.0}
+    wrapped = shared_client.post("/v1/routes/assess", json={"vehicle": "btrain-table16", "gpx": gpx, **options})
+    assert wrapped.status_code == 200, wrapped.text
+    raw = shared_client.post(
+        "/v1/routes/assess/gpx?vehicle=btrain-table16&superelevation_percent=7.5&posted_speed_kmh=60",
+        content=gpx.encode(),
+        headers={"Content-Type": "application/gpx+xml"},
+    )
+    assert raw.status_code == 200 and raw.content == wrapped.content
+    curves = wrapped.json()["curves"]
+    assert len(curves) == 2
+    for c in curves:
+        a = c["assessment"]
+        grade = c["grade_percent"] or 0.0
+        road = {"bank_percent": 7.5, "slope_percent": grade}
+        assert (
+            a["srt_g"] == shared_client.post("/v1/srt", json={"vehicle": "btrain-table16", "road": road}).json()["srt"]
+        )
+    rows = [{"id": "C1", "radius_m": 150.0, "superelevation_percent": 6.0, "posted_speed_kmh": 70.0}]
+    request = {"vehicle": "adouble", "curves": rows}
+    sync = shared_client.post("/v1/alignments/assess", json=request)
+    job = shared_client.post("/v1/jobs", json={"operation": "alignments.assess", "request": request})
+    assert job.status_code == 202, job.text
+    location = job.headers["Location"]
+    deadline = time.monotonic() + 60
+    while shared_client.get(location).json()["status"] not in ("done", "failed", "cancelled"):
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    result = shared_client.get(f"{location}/result")
+    assert result.status_code == 200 and result.content == sync.content
+
+
 def test_impossible_combinations_are_422_naming_the_field_as_typed(shared_client):
     comb = shared_client.get("/v1/combinations/btrain-table16").json()["combination"]
     comb["units"][1]["sprung_mass_kg"] = 31.5  # someone's tonnes

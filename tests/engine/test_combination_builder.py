@@ -205,7 +205,14 @@ def _edit(path: list, value):
     return change
 
 
+def _payload_in_grams():
+    spec = table15_spec()
+    spec["units"][1]["payloads"] = [{"mass_kg": 22_000_000.0, "cg_height_m": 2.0, "cg_from_kingpin_m": 5.0}]
+    return spec
+
+
 BAD = [
+    (_payload_in_grams, "combination_spec.units[1].payloads[0].mass_kg", "not plausible for a payload"),
     (_dolly_last, "combination_spec.units[2].kind", "tows nothing"),
     (_edit(["couplings", 0, "position_m"], 4.0), "combination_spec.couplings[0].position_m", "behind the group"),
     (
@@ -229,6 +236,8 @@ BAD = [
      "millimetres"),
     (_edit(["couplings", 0, "fifth_wheel"], "jost"), "combination_spec.couplings[0].fifth_wheel", "unknown fifth"),
     (_edit(["units", 1, "tare", "colour"], "red"), "combination_spec.units[1].tare.colour", "unknown field"),
+    (_edit(["units", 1, "axle_groups", 0, "suspension", "lash_deg"], 5.0),
+     "combination_spec.units[1].axle_groups[0].suspension.lash_deg", "only sourced lash"),
 ]  # fmt: skip
 
 
@@ -240,10 +249,30 @@ def test_bad_input_is_refused_naming_the_field(make, field, words):
     assert words in str(e.value)
 
 
-def test_a_full_trailer_and_rigid_truck_rebuild_the_truck_trailer_preset_masses():
-    preset = COMBINATIONS["truck-trailer"]
-    spec = {"units": [], "couplings": [{"kind": "pintle", "position_m": 7.4, "height_m": 0.82}]}
-    for p in preset.units:
+#: the library suspension of each group of the TruckSim-sourced presets, and their couplings, as their sources say
+WEIGHED = {
+    "truck-trailer": (
+        {"truck": ("trucksim-steer-leaf-5.5t", "trucksim-air-high-roll-10t"),
+         "trailer": ("trucksim-dolly-leaf-22.5kip", "trucksim-tandem-leaf-15.5t")},
+        [{"kind": "pintle", "position_m": 7.4, "height_m": 0.82}],
+    ),
+    "adouble": (
+        {"tractor": ("trucksim-steer-leaf-5.5t", "trucksim-drive-leaf-8.5t"),
+         "trailer1": ("trucksim-tandem-leaf-15.5t",), "dolly": ("trucksim-dolly-leaf-22.5kip",),
+         "trailer2": ("trucksim-tandem-leaf-15.5t",)},
+        [{"kind": "fifth-wheel", "position_m": 2.9, "height_m": 1.07, "fifth_wheel": "trucksim-fifth-wheel"},
+         {"kind": "ball", "position_m": 8.5, "height_m": 0.82},
+         {"kind": "fifth-wheel", "position_m": 1.98, "height_m": 1.065, "fifth_wheel": "trucksim-fifth-wheel"}],
+    ),
+}  # fmt: skip
+
+
+def weighed_spec(cid: str) -> dict:
+    """A TruckSim-sourced preset in measurable terms: each unit weighed with its axles (the sources' sprung mass
+    plus the axles' unsprung masses, at their composite CG), tyre size 11R22.5, the sources' suspension types."""
+    types, couplings = WEIGHED[cid]
+    spec = {"units": [], "couplings": copy.deepcopy(couplings)}
+    for p in COMBINATIONS[cid].units:
         m_u = sum(g.axles * g.unsprung_mass_kg for g in p.groups)
         mass = p.sprung_mass_kg + m_u
         z = (p.sprung_mass_kg * p.cg_height_m + sum(g.axles * g.unsprung_mass_kg * g.unsprung_cg_height_m
@@ -252,26 +281,40 @@ def test_a_full_trailer_and_rigid_truck_rebuild_the_truck_trailer_preset_masses(
         groups = [
             {"axles": g.axles, "tyres_per_axle": g.tyres_per_axle, "track_m": g.track_m, "position_m": g.position_m,
              "tyre": {"size": "11R22.5"}, "suspension": {"type": t}}
-            for g, t in zip(p.groups, {"truck": ("trucksim-steer-leaf-5.5t", "trucksim-air-high-roll-10t"),
-                                       "trailer": ("trucksim-dolly-leaf-22.5kip",
-                                                   "trucksim-tandem-leaf-15.5t")}[p.id], strict=True)
+            for g, t in zip(p.groups, types[p.id], strict=True)
         ]  # fmt: skip
         spec["units"].append(
             {"id": p.id, "kind": p.kind, "axle_groups": groups,
              "tare": {"mass_kg": mass, "cg_height_m": z, "cg_from_kingpin_m": x / mass}}
         )  # fmt: skip
-    built = build(copy.deepcopy(spec)).combination
+    return spec
+
+
+@pytest.mark.parametrize("cid", sorted(WEIGHED))
+def test_the_trucksim_presets_are_rebuilt_unit_by_unit(cid):
+    preset = COMBINATIONS[cid]
+    built = build(weighed_spec(cid)).combination
     for u, p in zip(built.units, preset.units, strict=True):
+        assert (u.id, u.kind) == (p.id, p.kind)
         assert (u.sprung_mass_kg, u.cg_height_m, u.cg_position_m) == pytest.approx(
             (p.sprung_mass_kg, p.cg_height_m, p.cg_position_m), rel=1e-12
         )
         for g, pg in zip(u.groups, p.groups, strict=True):
             for f in dataclasses.fields(g):
                 assert same(getattr(g, f.name), getattr(pg, f.name)), (u.id, g.id, f.name)
-    assert [g.id for u in built.units for g in u.groups] == ["steer", "drive", "front", "rear"]
+    assert built.couplings == preset.couplings  # a ball coupling is the record's pintle
+    assert roll_coupled_units(built) == roll_coupled_units(preset)
+    assert [r.srt for r in solve_combination(built).roll_coupled_units] == pytest.approx(
+        [r.srt for r in solve_combination(preset).roll_coupled_units], rel=1e-12
+    )
+
+
+def test_a_full_trailers_rear_group_load_is_levered_from_its_front_group():
+    spec = weighed_spec("truck-trailer")
     # the rear-group-load lever rule of a full trailer is measured from its front group (its drawbar is hinged)
     spec["units"][1]["tare"] = {"mass_kg": 8548.0, "cg_height_m": 2.0, "rear_group_load_kg": 4274.0}
     b = build(spec)
     loads = {(a.unit, a.group): a.load_kg for a in b.axle_loads}
     assert loads[("trailer", "rear")] == pytest.approx(4274.0, rel=1e-12)
     assert loads[("trailer", "front")] == pytest.approx(4274.0, rel=1e-12)
+    assert [g.id for u in b.combination.units for g in u.groups] == ["steer", "drive", "front", "rear"]

@@ -74,7 +74,7 @@ from engine.vehicle.combination import (
     static_loads,
     validate_combination,
 )
-from engine.vehicle.plausibility import check_plausible
+from engine.vehicle.plausibility import RANGES, check_plausible
 from engine.vehicle.roll_components import (
     FIFTH_WHEELS,
     SUSPENSIONS_IN_ROLL,
@@ -416,8 +416,9 @@ def _payloads(u: UnitSpec, path: str, what: str) -> tuple[list[MassItem], list[f
     for k, p in enumerate(u.payloads or ()):
         pp = f"{path}.payloads[{k}]"
         if isinstance(p, PayloadSpec):
-            if isinstance(p.mass_kg, int | float) and not isinstance(p.mass_kg, bool) and p.mass_kg > 0:
-                check_plausible("unit_mass_kg", max(p.mass_kg, 300.0), f"{pp}.mass_kg", f"a payload of {what}")
+            m = p.mass_kg  # a small payload is plausible (a few boxes): only a mass above any unit's is refused
+            if isinstance(m, int | float) and not isinstance(m, bool) and m > RANGES["unit_mass_kg"].maximum:
+                check_plausible("unit_mass_kg", m, f"{pp}.mass_kg", f"a payload of {what}")
             for name in ("deck_height_m", "load_height_m", "deck_height_rear_m", "load_height_rear_m", "cg_height_m"):
                 if getattr(p, name) is not None:
                     check_plausible("height_m", getattr(p, name), f"{pp}.{name}", f"a payload of {what}")

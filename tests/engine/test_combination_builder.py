@@ -318,3 +318,49 @@ def test_a_full_trailers_rear_group_load_is_levered_from_its_front_group():
     assert loads[("trailer", "rear")] == pytest.approx(4274.0, rel=1e-12)
     assert loads[("trailer", "front")] == pytest.approx(4274.0, rel=1e-12)
     assert [g.id for u in b.combination.units for g in u.groups] == ["steer", "drive", "front", "rear"]
+
+
+def test_the_b_double_is_rebuilt_with_every_group_value_given():
+    """btrain-table16 (lead trailer and B-coupling kinds): each unit weighed with its axles, every group and coupling
+    value given explicitly (Table 16's derived values and the lead trailer's assumed ones): the same record and SRT."""
+    preset = COMBINATIONS["btrain-table16"]
+    spec = {"units": [], "couplings": []}
+    for p in preset.units:
+        m_u = sum(g.axles * g.unsprung_mass_kg for g in p.groups)
+        mass = p.sprung_mass_kg + m_u
+        z = (p.sprung_mass_kg * p.cg_height_m + sum(g.axles * g.unsprung_mass_kg * g.unsprung_cg_height_m
+                                                     for g in p.groups)) / mass  # fmt: skip
+        x = (p.sprung_mass_kg * p.cg_position_m + sum(g.axles * g.unsprung_mass_kg * g.position_m
+                                                       for g in p.groups)) / mass  # fmt: skip
+        groups = [
+            {"id": g.id, "axles": g.axles, "tyres_per_axle": g.tyres_per_axle, "track_m": g.track_m,
+             "position_m": g.position_m, "tyre": {"stiffness_kn_per_m": g.tyre_stiffness_kn_per_m},
+             "suspension": {"roll_stiffness_knm_per_rad": g.roll_stiffness_knm_per_rad,
+                            "roll_centre_height_m": g.roll_centre_height_m, "spring_spacing_m": g.spring_spacing_m,
+                            "lash_deg": g.lash_deg, "unsprung_mass_kg": g.unsprung_mass_kg,
+                            "unsprung_cg_height_m": g.unsprung_cg_height_m}}
+            for g in p.groups
+        ]  # fmt: skip
+        spec["units"].append({"id": p.id, "kind": p.kind, "axle_groups": groups,
+                              "tare": {"mass_kg": mass, "cg_height_m": z, "cg_from_kingpin_m": x}})  # fmt: skip
+    for cp in preset.couplings:
+        spec["couplings"].append({"kind": cp.kind, "position_m": cp.position_m, "height_m": cp.height_m,
+                                  "roll_stiffness_knm_per_rad": cp.roll_stiffness_knm_per_rad,
+                                  "lash_deg": cp.lash_deg})  # fmt: skip
+    b = build(spec)
+    built = b.combination
+    assert [u.kind for u in built.units] == ["tractor", "btrain-lead", "semitrailer"]
+    for u, p in zip(built.units, preset.units, strict=True):
+        assert (u.sprung_mass_kg, u.cg_height_m, u.cg_position_m) == pytest.approx(
+            (p.sprung_mass_kg, p.cg_height_m, p.cg_position_m), rel=1e-12
+        )
+        for g, pg in zip(u.groups, p.groups, strict=True):
+            for f in dataclasses.fields(g):
+                assert same(getattr(g, f.name), getattr(pg, f.name)), (u.id, g.id, f.name)
+    assert built.couplings == preset.couplings
+    assert solve_combination(built).roll_coupled_units[0].srt == pytest.approx(
+        solve_combination(preset).roll_coupled_units[0].srt, rel=1e-12
+    )
+    # Table 16's rear trailer: W = 355.22 kN; the lead trailer's assumed 20,000 kg laden (the preset's sources)
+    assert [u.mass_kg for u in b.units[1:]] == pytest.approx([20000.0, 355.22e3 / 9.81], rel=1e-12)
+    assert all(d.method == "given" for k, d in b.derivation.items() if ".groups[" in k)

@@ -63,6 +63,9 @@ def test_a_combination_spec_is_a_vehicle_with_the_presets_srt(shared_client):
     by_id = post(shared_client, "/v1/srt", {"vehicle": PRESET}).json()
     assert by_spec["model"] == "combination"
     assert by_spec["srt"] == pytest.approx(by_id["srt"], rel=1e-12)
+    record = post(shared_client, "/v1/combinations/build", {"combination_spec": table15_spec()}).json()["combination"]
+    by_record = post(shared_client, "/v1/srt", {"vehicle": {"combination": record}}).json()
+    assert by_record["srt"] == by_spec["srt"]  # the built record is itself a vehicle
     speed = post(shared_client, "/v1/curve-speed", {"vehicle": {"combination_spec": table15_spec()}, "radius_m": 100})
     assert speed.json()["srt"] == pytest.approx(by_id["srt"], rel=1e-12)
 

@@ -122,6 +122,7 @@ BTRAIN = "table16-btrain"
 sys.path.insert(0, str(ROOT))
 from app.routes.schemas import EXAMPLE_GEOJSON  # noqa: E402
 from app.vehicles.builder_schemas import EXAMPLE_SPEC  # noqa: E402
+from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC  # noqa: E402
 
 CURVES_CSV = (
     "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\n"
@@ -377,6 +378,30 @@ EXAMPLES = [
         "/v1/components",
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print([t["id"] for t in r["tyres"]]); '
         'print([s["id"] for s in r["suspensions"]])\'',
+    ),
+    Example(
+        "Build a tractor-semitrailer from what can be measured of each unit (tyre sizes, suspension types, tare and "
+        "payload with deck and load heights, a library fifth wheel): each unit's sprung mass and CG, the axle loads "
+        "and where one value comes from",
+        "POST",
+        "/v1/combinations/build",
+        {"combination_spec": EXAMPLE_COMBINATION_SPEC},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(u["id"], round(u["sprung_mass_kg"]), '
+        'round(u["sprung_cg_height_m"], 3), round(u["sprung_cg_position_m"], 3)) for u in r["units"]]; '
+        '[print(a["unit"], a["group"], round(a["load_kg"])) for a in r["axle_loads"]]; '
+        'd = r["derivation"]["units[1].groups[0].roll_stiffness_knm_per_rad"]; '
+        'print(round(d["value"], 1), d["method"], d["source"][:90])\'',
+        heading="The combination builder: `POST /v1/combinations/build`",
+        note="Every unit kind is built the same way (rigid truck, tractor, semitrailer, B-train lead trailer, "
+        "converter dolly, full trailer); [docs/vehicles.md](vehicles.md#building-a-combination) explains the inputs.",
+    ),
+    Example(
+        "The same combination spec straight into an SRT request (`vehicle: {combination_spec: ...}`)",
+        "POST",
+        "/v1/srt",
+        {"vehicle": {"combination_spec": EXAMPLE_COMBINATION_SPEC}},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["model"], r["srt"]); '
+        '[print(e) for e in r["lift_sequence"]]\'',
     ),
     Example(
         "Acceptable payload by load height, and load height by payload, for a 0.45 g target (TERNZ's table)",

@@ -150,7 +150,7 @@ def problem_response(
     return JSONResponse(body, status_code=status, media_type=PROBLEM_MEDIA_TYPE, headers=headers)
 
 
-VEHICLE_TAGS = ("id", "record", "spec")
+VEHICLE_TAGS = ("id", "record", "spec", "combination", "combination_spec")
 
 
 def _is_vehicle(before: list[str]) -> bool:

@@ -8,6 +8,7 @@ from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, W
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
 from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_schemas import CombinationRef, LiftEventOut, RollCoupledUnitOut
 from app.vehicles.schemas import VehicleRecord
 from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
@@ -25,6 +26,8 @@ def _vehicle_kind(value: Any) -> str:
         return "spec"
     if isinstance(value, CombinationRef) or (isinstance(value, dict) and "combination" in value):
         return "combination"
+    if isinstance(value, CombinationSpecRef) or (isinstance(value, dict) and "combination_spec" in value):
+        return "combination_spec"
     return "record"
 
 
@@ -42,7 +45,8 @@ VehicleRef = Annotated[
     Annotated[VehicleId, Tag("id")]
     | Annotated[VehicleRecord, Tag("record")]
     | Annotated[SpecRef, Tag("spec")]
-    | Annotated[CombinationRef, Tag("combination")],
+    | Annotated[CombinationRef, Tag("combination")]
+    | Annotated[CombinationSpecRef, Tag("combination_spec")],
     Discriminator(_vehicle_kind),
 ]
 VEHICLE_DESCRIPTION = describe(
@@ -50,7 +54,8 @@ VEHICLE_DESCRIPTION = describe(
     "`table23-semitrailer`), a combination preset id (`tractor-semitrailer-table15`, `btrain-table16`, `adouble`, "
     "`truck-trailer`: GET /v1/combinations), a saved vehicle's id (`veh_...`, with the bearer key that saved it), a "
     'full vehicle record, a measurable spec `{"spec": {...}}` that the vehicle builder turns into a record (see '
-    '`POST /v1/vehicles/build`), or a whole combination `{"combination": {...}}` (units, axle groups, couplings).',
+    '`POST /v1/vehicles/build`), a whole combination `{"combination": {...}}` (units, axle groups, couplings), or a '
+    'combination in measurable terms `{"combination_spec": {...}}` (see `POST /v1/combinations/build`).',
     unit="-",
     symbol="Tables 14-16, 22, 23",
 )

@@ -5,12 +5,15 @@ A computation's ``vehicle`` (and the alignment's ``vehicles`` or ``fleet``) may 
 * a preset id (``table16-btrain``): public; the service expands it itself;
 * a full record: used as it is;
 * ``{"spec": {...}}``: built into a record by :func:`engine.builder.build_vehicle`;
+* ``{"combination": {...}}``: a combination record, validated;
+* ``{"combination_spec": {...}}``: built into a combination by :func:`engine.vehicle.builder.build_combination`;
 * a saved vehicle's id (``veh_...``) or, in a batch, a fleet's id (``flt_...``): read from the catalog with the
   caller's bearer key (another key's or a deleted id is a 404 naming it), then as above.
 
-:func:`resolve_vehicle_refs` replaces every saved id, fleet and spec of a validated request by the engine's
-:class:`~engine.vehicles.Vehicle` before the service sees it, so the cache key is derived from the resolved record:
-editing a saved vehicle changes its key and never serves a stale answer. Reading one needs the caller's bearer key,
+:func:`resolve_vehicle_refs` replaces every saved id, fleet, spec and combination spec of a validated request by
+the engine's :class:`~engine.vehicles.Vehicle` (or :class:`~engine.vehicle.Combination`) before the service sees it,
+so the cache key is derived from the resolved record: editing a saved vehicle changes its key and never serves a
+stale answer. Reading one needs the caller's bearer key,
 so the raw-body fast path (:mod:`app.http.fastpath`), which never replays a request with credentials, never answers
 such a request from its bytes.
 """
@@ -30,6 +33,8 @@ from app.catalog.auth import authenticate
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef
 from app.vehicles.builder_service import at_field, build_spec
+from app.vehicles.combination_builder_schemas import CombinationSpecRef
+from app.vehicles.combination_builder_service import build_combination_spec
 from app.vehicles.combination_schemas import CombinationRef
 from engine.errors import InvalidInput, UnknownPreset
 from engine.vehicle import (
@@ -72,6 +77,8 @@ def resolve_vehicle(ref: Any) -> Vehicle | Combination:
         return vehicle_preset(ref)
     if isinstance(ref, CombinationRef):
         return combination_of(ref.combination.engine_dict(), None)
+    if isinstance(ref, CombinationSpecRef):
+        return build_combination_spec(ref.engine_spec(), None).combination
     return Vehicle.from_dict(ref.record())
 
 
@@ -116,9 +123,12 @@ class _Resolver:
 
     @staticmethod
     def stored(id: str, body: dict[str, Any], where: str) -> SavedRef:
-        """A stored vehicle body (a full record, ``{"spec": ...}`` or ``{"combination": ...}``) as the engine's."""
+        """A stored vehicle body (a full record, ``{"spec": ...}``, ``{"combination": ...}`` or
+        ``{"combination_spec": ...}``) as the engine's."""
         if "spec" in body:
             return SavedRef(id, build_spec(body["spec"], where).vehicle)
+        if "combination_spec" in body:
+            return SavedRef(id, build_combination_spec(body["combination_spec"], where).combination)
         if "combination" in body:
             return SavedRef(id, combination_of(body["combination"], where))
         return SavedRef(id, Vehicle.from_dict({k: v for k, v in body.items() if k in Vehicle.__dataclass_fields__}))
@@ -129,6 +139,8 @@ class _Resolver:
             return build_spec(ref.engine_spec(), where).vehicle
         if isinstance(ref, CombinationRef):
             return combination_of(ref.combination.engine_dict(), where)
+        if isinstance(ref, CombinationSpecRef):
+            return build_combination_spec(ref.engine_spec(), where).combination
         if isinstance(ref, str) and ref.startswith(catalog.SAVED_VEHICLE_PREFIX):
             db = await catalog.catalog_db(self.request)
             return self.stored(ref, await catalog.resolve_saved_vehicle(db, await self.owner(), ref), where)

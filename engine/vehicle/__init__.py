@@ -9,7 +9,9 @@
 - :mod:`~engine.vehicle.roll_components`: suspensions in roll, tyres by size and fifth wheels, with sources;
 - :mod:`~engine.vehicle.combination_presets`: the combination presets and the source of every value;
 - :mod:`~engine.vehicle.builder` (imported on its own: it builds on the models): a vehicle from what can be
-  measured -> the record and its derivation.
+  measured -> the record and its derivation (:func:`~engine.vehicle.builder.build_vehicle`); a combination, each
+  unit from what can be measured -> the whole-combination record, every component value with its source
+  (:class:`~engine.vehicle.builder.CombinationSpec`, :func:`~engine.vehicle.builder.build_combination`).
 """
 
 from .combination import (

@@ -23,6 +23,7 @@ OPERATIONS = {
     ("get", "/v1/vehicles/{id}"): "vehicles-get_vehicle",
     ("get", "/v1/combinations"): "combinations-list_combinations",
     ("get", "/v1/combinations/{id}"): "combinations-get_combination_preset",
+    ("post", "/v1/combinations/build"): "combinations-build_combination",
     ("post", "/v1/srt"): "srt-compute_srt",
     ("post", "/v1/srt/limits"): "srt-limits",
     ("post", "/v1/srt/sweep"): "srt-sweep",
@@ -108,6 +109,7 @@ ROAD_ONLY = {
     "/v1/superelevation": "SuperelevationRequest",
     "/v1/superelevation/table": "SuperelevationTableRequest",
     "/v1/vehicles/build": "BuildRequest",
+    "/v1/combinations/build": "BuildCombinationRequest",
     "/v1/vehicles/payload-table": "PayloadTableRequest",
 }
 #: every computed operation with a vehicle (ETag, X-Cache) -> the request model of its JSON body

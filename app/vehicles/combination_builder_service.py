@@ -1,0 +1,46 @@
+"""The combination builder for the service: ``POST /v1/combinations/build`` and ``{"combination_spec": ...}``.
+
+:func:`build_combination_spec` is the one place that builds a combination spec for the service (the build endpoint
+and a ``{"combination_spec": ...}`` vehicle in any computation), re-pointing the engine's ``combination_spec.<field>``
+errors at where the spec sits in the request (``vehicle.combination_spec.units[1].tare.mass_kg``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from starlette.concurrency import run_in_threadpool
+
+from app.compute.cache import ResultCache
+from app.compute.results import Computed, cached
+from app.vehicles.builder_service import at_field
+from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
+from engine.errors import InvalidInput
+from engine.vehicle.builder import BuiltCombination, CombinationSpec, build_combination
+
+
+def build_combination_spec(spec: CombinationSpec | dict[str, Any], where: str | None = None) -> BuiltCombination:
+    """The built combination a spec describes; its errors name ``<where>.combination_spec.<field>``
+    (``combination_spec.<field>`` when ``where`` is None: the spec is the request's own)."""
+    try:
+        engine_spec = spec if isinstance(spec, CombinationSpec) else CombinationSpec.from_dict(spec)
+        return build_combination(engine_spec)
+    except InvalidInput as e:
+        raise at_field(e, where) from e
+
+
+def build_combination_result(built: BuiltCombination) -> BuildCombinationResult:
+    out = built.to_dict()
+    out["derivation"] = {k: {n: v for n, v in d.items() if n != "field"} for k, d in out["derivation"].items()}
+    return BuildCombinationResult.model_validate(out)
+
+
+async def compute_combination_build(cache: ResultCache, req: BuildCombinationRequest) -> Computed:
+    spec = req.engine_spec()
+    resolved = {"combination_spec": spec.to_dict()}  # every input, defaults filled; the library is the engine's
+
+    async def produce() -> bytes:
+        built = await run_in_threadpool(build_combination_spec, spec)
+        return build_combination_result(built).model_dump_json().encode()
+
+    return await cached(cache, "combination-build", resolved, produce)

@@ -524,6 +524,26 @@ README_EXAMPLES = [
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(round(r["governing_min_radius_m"], 1), '
         'r["governed_by"])\'',
     ),
+    Example(
+        "Every curve of a road from a spreadsheet's CSV (semicolons, decimal commas: the dialect is detected)",
+        "POST",
+        "/v1/alignments/assess/csv?vehicle=btrain-table16",
+        upload="curves-semicolon.csv",
+        form=True,
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["csv_dialect"]); '
+        '[print(x["id"], round(x["srt_g"], 3), "g, safe", round(x["safe_speed_kmh"], 1), "km/h, posted", '
+        'x["posted_speed_kmh"], "flagged" if x["flagged"] else "ok") for x in r["vehicles"][0]["rows"]]\'',
+    ),
+    Example(
+        "The curves of a GPS track found, fitted and assessed (raw GPX)",
+        "POST",
+        "/v1/routes/assess/gpx?vehicle=btrain-table16&superelevation_percent=7.5&posted_speed_kmh=60",
+        upload="road.gpx",
+        headers={"Content-Type": "application/gpx+xml"},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        '[print(c["direction"], "R", round(c["radius_m"], 1), "m, safe", '
+        'round(c["assessment"]["safe_speed_kmh"], 1), "km/h") for c in r["curves"]]\'',
+    ),
 ]
 
 

@@ -10,6 +10,7 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_mo
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, describe
 from app.vehicles.builder_schemas import SpecRef
+from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_schemas import CombinationRef
 from app.vehicles.schemas import VehiclePreset, VehicleRecord
 from engine.vehicle import Vehicle
@@ -55,18 +56,23 @@ class PageQuery(BaseModel):
 
 def _saved_kind(value: Any) -> str | None:
     if isinstance(value, dict):
-        return "spec" if "spec" in value else "combination" if "combination" in value else "record"
+        for kind in ("spec", "combination_spec", "combination"):
+            if kind in value:
+                return kind
+        return "record"
     return None
 
 
 SavedVehicleIn = Annotated[
     Annotated[VehicleRecord, Tag("record")]
     | Annotated[SpecRef, Tag("spec")]
-    | Annotated[CombinationRef, Tag("combination")],
+    | Annotated[CombinationRef, Tag("combination")]
+    | Annotated[CombinationSpecRef, Tag("combination_spec")],
     Discriminator(
         _saved_kind,
         custom_error_type="invalid_vehicle",
-        custom_error_message='vehicle must be a full vehicle record, {"spec": {...}} or {"combination": {...}}',
+        custom_error_message='vehicle must be a full vehicle record, {"spec": {...}}, {"combination": {...}} or '
+        '{"combination_spec": {...}}',
     ),
 ]
 
@@ -124,6 +130,12 @@ class SavedCombination(OutputModel):
     combination: dict[str, Any] = Field(description=describe("The combination as saved.", unit="-"))
 
 
+class SavedCombinationSpec(OutputModel):
+    """A saved combination builder spec, as it was sent."""
+
+    combination_spec: dict[str, Any] = Field(description=describe("The combination builder spec as saved.", unit="-"))
+
+
 class SavedVehicle(OutputModel):
     """A saved vehicle of the caller's key."""
 
@@ -135,14 +147,17 @@ class SavedVehicle(OutputModel):
         examples=[EXAMPLE_VEHICLE_ID],
     )
     title: str = Field(description=_TITLE)
-    kind: Literal["record", "spec", "combination"] = Field(
+    kind: Literal["record", "spec", "combination", "combination_spec"] = Field(
         description=describe(
-            "`record`: a full vehicle record; `spec`: a builder spec; `combination`: a whole combination.", unit="-"
+            "`record`: a full vehicle record; `spec`: a builder spec; `combination`: a whole combination; "
+            "`combination_spec`: a combination builder spec.",
+            unit="-",
         )
     )
-    vehicle: SavedRecord | SavedSpec | SavedCombination = Field(  # type: ignore[valid-type]
+    vehicle: SavedRecord | SavedSpec | SavedCombination | SavedCombinationSpec = Field(  # type: ignore[valid-type]
         description=describe(
-            'The vehicle as stored (a record with every field, `{"spec": {...}}` or `{"combination": {...}}`).',
+            'The vehicle as stored (a record with every field, `{"spec": {...}}`, `{"combination": {...}}` or '
+            '`{"combination_spec": {...}}`).',
             unit="-",
         )
     )

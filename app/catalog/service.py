@@ -51,6 +51,7 @@ from app.catalog.schemas import (
     FleetPage,
     FleetWrite,
     SavedCombination,
+    SavedCombinationSpec,
     SavedRecord,
     SavedSpec,
     SavedVehicle,
@@ -65,6 +66,7 @@ from app.logs import get_logger
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
 from app.vehicles.builder_service import build_spec
+from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_schemas import CombinationRef
 from app.vehicles.schemas import VehicleRecord
 from engine.errors import InvalidVehicle, MissingParameter
@@ -401,7 +403,21 @@ def check_combination(data: dict[str, Any]) -> None:
     combination_of(data, "vehicle")
 
 
-def _kind_and_body(vehicle: VehicleRecord | SpecRef | CombinationRef) -> tuple[str, dict[str, Any]]:
+def check_combination_spec(spec: dict[str, Any]) -> None:
+    """The combination builder's checks (it builds the combination), errors under ``vehicle.combination_spec``."""
+    from app.vehicles.combination_builder_service import build_combination_spec
+
+    build_combination_spec(spec, "vehicle")
+
+
+def _kind_and_body(
+    vehicle: VehicleRecord | SpecRef | CombinationRef | CombinationSpecRef,
+) -> tuple[str, dict[str, Any]]:
+    if isinstance(vehicle, CombinationSpecRef):
+        spec = vehicle.combination_spec.model_dump(mode="json", exclude_unset=True)  # as sent
+        _check_json(spec, "vehicle.combination_spec")
+        check_combination_spec(spec)
+        return "combination_spec", {"combination_spec": spec}
     if isinstance(vehicle, CombinationRef):
         data = vehicle.combination.engine_dict()
         check_combination(data)
@@ -453,6 +469,13 @@ def _stored_body(kind: str, text: str) -> dict[str, Any]:
             raise ValueError('a stored combination must be {"combination": {...}}')
         check_combination(CombinationRef.model_validate(body).combination.engine_dict())
         return body
+    if kind == "combination_spec":
+        if not isinstance(body, dict) or set(body) != {"combination_spec"}:
+            raise ValueError('a stored combination spec must be {"combination_spec": {...}}')
+        _check_json(body["combination_spec"], "vehicle.combination_spec")
+        spec = CombinationSpecRef.model_validate(body)  # the schema's bounds, then the builder's checks
+        check_combination_spec(spec.combination_spec.model_dump(mode="json", exclude_unset=True))
+        return body
     raise ValueError(f"unknown kind {kind!r}")
 
 
@@ -472,6 +495,8 @@ def decode_vehicle(stored: repo.StoredVehicle) -> SavedVehicle:
             vehicle = SavedSpec(spec=body["spec"])
         elif stored.kind == "combination":
             vehicle = SavedCombination(combination=body["combination"])
+        elif stored.kind == "combination_spec":
+            vehicle = SavedCombinationSpec(combination_spec=body["combination_spec"])
         else:
             vehicle = SavedRecord(**body)
         return SavedVehicle(

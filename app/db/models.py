@@ -42,8 +42,8 @@ class Base(DeclarativeBase):
 
 
 class VehicleRow(Base):
-    """A saved vehicle: a full record (``kind='record'``), a builder spec (``kind='spec'``) or a combination
-    (``kind='combination'``, since migration 0002)."""
+    """A saved vehicle: a full record (``kind='record'``), a builder spec (``kind='spec'``), a combination
+    (``kind='combination'``) or a combination builder spec (``kind='combination_spec'``; both since migration 0002)."""
 
     __tablename__ = "vehicles"
 
@@ -57,7 +57,7 @@ class VehicleRow(Base):
     updated_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
 
     __table_args__ = (
-        CheckConstraint("kind IN ('record', 'spec', 'combination')", name="kind"),
+        CheckConstraint("kind IN ('record', 'spec', 'combination', 'combination_spec')", name="kind"),
         CheckConstraint("version >= 1", name="version"),
         # keyset pagination of one owner's vehicles on (created_at, id)
         Index(None, "owner", "created_at", "id"),

@@ -156,3 +156,32 @@ def test_a_saved_combination_is_used_by_id_and_in_a_fleet():
             assert by_id["srt"] == c.post("/v1/srt", json={"vehicle": "btrain-table16"}).json()["srt"]
             fleet = c.post("/v1/fleets", json={"title": "f", "vehicles": [vid, "adouble"]}, headers=auth)
             assert fleet.status_code == 201
+
+
+def test_a_saved_combination_spec_is_built_on_use_and_refused_on_save_when_it_cannot_be_built():
+    """A combination in measurable terms is saved as sent (kind combination_spec), answers what the same spec sent
+    inline answers, and a spec the builder refuses is a 422 naming the field under vehicle.combination_spec."""
+    from app.settings import Settings
+    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+
+    key = "combination-key-0123456789"
+    with tempfile.TemporaryDirectory() as tmp:
+        settings = Settings(cache_backend="memory", api_keys=key, database_url=f"sqlite:///{tmp}/c.db")
+        with make_client(settings) as c:
+            auth = {"Authorization": f"Bearer {key}"}
+            body = {"title": "Built", "vehicle": {"combination_spec": EXAMPLE_COMBINATION_SPEC}}
+            saved = c.post("/v1/vehicles", json=body, headers=auth)
+            assert saved.status_code == 201, saved.text
+            assert saved.json()["kind"] == "combination_spec"
+            vid = saved.json()["id"]
+            stored = c.get(f"/v1/vehicles/{vid}", headers=auth).json()["vehicle"]
+            assert stored == {"combination_spec": EXAMPLE_COMBINATION_SPEC}
+            inline = c.post("/v1/srt", json={"vehicle": {"combination_spec": EXAMPLE_COMBINATION_SPEC}}).json()
+            assert c.post("/v1/srt", json={"vehicle": vid}, headers=auth).json()["srt"] == inline["srt"]
+            tractor = EXAMPLE_COMBINATION_SPEC["units"][0]
+            tonnes = {**tractor, "tare": {**tractor["tare"], "mass_kg": 7.5}}  # 7.5 t typed as kg
+            bad = {**EXAMPLE_COMBINATION_SPEC, "units": [tonnes, *EXAMPLE_COMBINATION_SPEC["units"][1:]]}
+            refused = c.post("/v1/vehicles", json={"title": "t", "vehicle": {"combination_spec": bad}}, headers=auth)
+            assert refused.status_code == 422, refused.text
+            fields = [e["field"] for e in refused.json()["errors"]]
+            assert any(f.startswith("vehicle.combination_spec.units") and "tare" in f for f in fields), fields

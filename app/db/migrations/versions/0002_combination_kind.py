@@ -1,4 +1,4 @@
-"""saved vehicles may be combinations: kind 'combination'
+"""saved vehicles may be combinations: kind 'combination', and combination builder specs: 'combination_spec'
 
 Revision ID: 0002
 Revises: 0001
@@ -25,12 +25,17 @@ def upgrade() -> None:
         batch.alter_column(
             "kind", type_=sa.String(length=16), existing_type=sa.String(length=8), existing_nullable=False
         )
-        batch.create_check_constraint(op.f("ck_vehicles_kind"), "kind IN ('record', 'spec', 'combination')")
+        batch.create_check_constraint(
+            op.f("ck_vehicles_kind"), "kind IN ('record', 'spec', 'combination', 'combination_spec')"
+        )
 
 
 def downgrade() -> None:
-    op.execute("DELETE FROM fleet_members WHERE vehicle_id IN (SELECT id FROM vehicles WHERE kind = 'combination')")
-    op.execute("DELETE FROM vehicles WHERE kind = 'combination'")
+    op.execute(
+        "DELETE FROM fleet_members WHERE vehicle_id IN "
+        "(SELECT id FROM vehicles WHERE kind IN ('combination', 'combination_spec'))"
+    )
+    op.execute("DELETE FROM vehicles WHERE kind IN ('combination', 'combination_spec')")
     with op.batch_alter_table("vehicles") as batch:
         batch.drop_constraint(op.f("ck_vehicles_kind"), type_="check")
         batch.alter_column(

@@ -544,7 +544,7 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     tangent_fit = both and not sh.compound
     fit = None
     if not (tangent_fit and _circle_error(sh, chain, sigma) > PRECISE_FRACTION):
-        fit = _arc_fit(sh, deflection, chain, xv, yv)
+        fit = _arc_fit(sh, deflection, chain, xv, yv, sigma)
     if not both and fit is not None and not sh.compound:
         deflection, d_sd = _deflection(cand, lo_b, hi_b, fit, (chain, xv, yv), route_ends)
     ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
@@ -627,7 +627,7 @@ def _deflection(
     return abs(heading[1] - heading[0]), math.sqrt(var)
 
 
-def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
+def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv, sigma: float = 0.0) -> CircleFit | None:
     """Circle through the vertices of the arc's middle (see :func:`find_curves`, step 8), or None."""
     middle = 0.5 * (sh.mid_in + sh.mid_out)
     radius, fit, used = 1.0 / sh.plateau, None, None
@@ -644,7 +644,7 @@ def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
         if used is not None and on_arc[0] == used[0] and on_arc.size == used.size:
             break  # the same vertices: the same circle
         used = on_arc
-        new = fit_circle(xv[on_arc], yv[on_arc])
+        new = fit_circle(xv[on_arc], yv[on_arc], noise_m=sigma if sigma > 0 else None)
         if new.radius_m * sh.plateau > 10.0:  # a straight line through nearly collinear points: no radius
             break
         fit, done = new, abs(new.radius_m - radius) <= 1e-9 * radius
@@ -775,10 +775,12 @@ def _fit_tangent_curve(
     else:
         best_r, best_ls = r_simple, 0.0
     stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var)
-    std = lower = None
     if stds is not None:
         std = stds[0]
         lower = _path_radius_lower(sse, best_r, best_ls, var, stds[0] / stds[1])
+    else:  # the sum is not convex in R about the fit (few or no vertices on a short arc): the profile alone
+        lower = _path_radius_lower(sse, best_r, best_ls, var, 1.0)
+        std = (best_r - lower) / float(ndtri(RADIUS_CONFIDENCE)) if lower < best_r else None
     return _Composite(float(best_r), path.centre(best_r, best_ls), spiral, std, lower)
 
 
@@ -846,45 +848,48 @@ def _path_radius_std(
     formal standard error the fit reported before: it leaves out where the tangents and with them the curve's ends
     lie, which dominates on short and on flat arcs (docs/routes.md gives the measured calibration). The vertices
     are taken as independent (each GPS fix's error its own: the tracks' vertices, not the resampled ones).
-    Returns (sigma_R, sigma_R given the tangents), or None when the sum has no curvature in R.
+    Returns (sigma_R, sigma_R given the tangents), or None when the sum is not convex in R about the fit (then the
+    caller takes the standard error from the profile bound: (R* - R_lower) / z, the same in the linear case).
     """
-    free = 1 if ls is None else 2
     base = np.array([r, ls or 0.0])
-    steps = np.array([1e-3 * r, 1e-2 * max(ls or 0.0, 1.0)])
-    # central-difference stencil in the free parameters: 3 points in R, or the 3 x 3 grid in (R, Ls)
-    offs = np.array([-1.0, 0.0, 1.0])
-    if free == 1:
-        grid_r, grid_l = base[0] + offs * steps[0], np.full(3, base[1])
-    else:
-        gr, gl = np.meshgrid(offs, offs, indexing="ij")
-        grid_r, grid_l = (base[0] + gr * steps[0]).ravel(), (base[1] + gl * steps[1]).ravel()
+    offs = np.array([-1.0, 0.0, 1.0])  # central differences: 3 points in R, or the 3 x 3 grid in (R, Ls)
 
-    def stencil(lns) -> np.ndarray:
+    def stencil(lns, steps: np.ndarray, free: int) -> np.ndarray:
         path = _TangentPath(lns, px, py)
         if not hasattr(path, "pi"):  # the moved tangents are (anti)parallel: no path
             raise ArithmeticError
-        vals = path.sse(grid_r, grid_l)
-        return vals.reshape(3) if free == 1 else vals.reshape(3, 3)
+        if free == 1:
+            return path.sse(base[0] + offs * steps[0], np.full(3, base[1]))
+        gr, gl = np.meshgrid(offs, offs, indexing="ij")
+        return path.sse((base[0] + gr * steps[0]).ravel(), (base[1] + gl * steps[1]).ravel()).reshape(3, 3)
 
-    def gradient(v: np.ndarray) -> np.ndarray:
+    def gradient(v: np.ndarray, steps: np.ndarray, free: int) -> np.ndarray:
         if free == 1:
             return np.array([(v[2] - v[0]) / (2.0 * steps[0])])
         return np.array([(v[2, 1] - v[0, 1]) / (2.0 * steps[0]), (v[1, 2] - v[1, 0]) / (2.0 * steps[1])])
 
-    v0 = stencil(lines)
-    if free == 1:
-        hess = np.array([[(v0[0] - 2.0 * v0[1] + v0[2]) / steps[0] ** 2]])
-    else:
-        h_rr = (v0[0, 1] - 2.0 * v0[1, 1] + v0[2, 1]) / steps[0] ** 2
-        h_ll = (v0[1, 0] - 2.0 * v0[1, 1] + v0[1, 2]) / steps[1] ** 2
-        h_rl = (v0[2, 2] - v0[2, 0] - v0[0, 2] + v0[0, 0]) / (4.0 * steps[0] * steps[1])
-        hess = np.array([[h_rr, h_rl], [h_rl, h_ll]])
-    if not np.all(np.linalg.eigvalsh(hess) > 0):
-        if hess[0, 0] <= 0:
-            return None
-        hess, free = hess[:1, :1], 1  # the spiral not identified: R given Ls
-        grid_r, grid_l = base[0] + offs * steps[0], np.full(3, base[1])
-        v0 = stencil(lines)
+    def hessian(v: np.ndarray, steps: np.ndarray, free: int) -> np.ndarray:
+        if free == 1:
+            return np.array([[(v[0] - 2.0 * v[1] + v[2]) / steps[0] ** 2]])
+        h_rr = (v[0, 1] - 2.0 * v[1, 1] + v[2, 1]) / steps[0] ** 2
+        h_ll = (v[1, 0] - 2.0 * v[1, 1] + v[1, 2]) / steps[1] ** 2
+        h_rl = (v[2, 2] - v[2, 0] - v[0, 2] + v[0, 0]) / (4.0 * steps[0] * steps[1])
+        return np.array([[h_rr, h_rl], [h_rl, h_ll]])
+
+    # the sum is piecewise smooth (each vertex is nearest to one element of the path): where few vertices lie on
+    # a short arc its kinks can hide the curvature at a fine step, so the step grows until the sum is convex there
+    hess = None
+    for factor in (1e-3, 1e-2, 5e-2, 0.2):
+        steps = np.array([factor * r, 10.0 * factor * max(ls or 0.0, 1.0)])
+        for free in (1,) if ls is None else (2, 1):  # R and Ls; else R given Ls (the spiral not identified)
+            h = hessian(stencil(lines, steps, free), steps, free)
+            if np.all(np.linalg.eigvalsh(h) > 0):
+                hess = h
+                break
+        if hess is not None:
+            break
+    if hess is None:
+        return None
     h_inv = np.linalg.inv(hess)
     cov = 2.0 * var * h_inv
     for k, line in enumerate(lines):
@@ -892,7 +897,8 @@ def _path_radius_std(
             moved = [list(lines), list(lines)]
             moved[0][k], moved[1][k] = _shifted(line, angle, offset), _shifted(line, -angle, -offset)
             try:
-                dg = 0.5 * (gradient(stencil(moved[0])) - gradient(stencil(moved[1])))
+                g = [gradient(stencil(m, steps, free), steps, free) for m in moved]
+                dg = 0.5 * (g[0] - g[1])
             except ArithmeticError:
                 return None
             dp = h_inv @ dg

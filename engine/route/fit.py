@@ -22,16 +22,21 @@ class CircleFit:
     yc_m: float
     radius_m: float
     rms_m: float  # root-mean-square distance of the points from the circle
-    radius_std_m: float | None  # standard error of the radius (None with 3 points: no redundancy)
+    radius_std_m: float | None  # standard error of the radius (None with 3 points and no known noise)
     n_points: int = 0
     radius_lower_m: float | None = None  # a lower confidence bound of the radius when the fit gives its own
 
 
-def fit_circle(x_m, y_m, *, iterations: int = 10) -> CircleFit:
+def fit_circle(x_m, y_m, *, iterations: int = 10, noise_m: float | None = None) -> CircleFit:
     """Geometric least-squares circle through points (Gauss-Newton from Kasa's algebraic fit) [1].
 
     Minimises sum (|p_i - c| - R)^2. The points are centred first, so routes far from the origin keep their
-    precision.
+    precision. The radius's standard error is sqrt(s^2 [(J^T J)^-1]_RR), J the Jacobian of the distances in
+    (xc, yc, R) [1]: s^2 is the residual variance sum r^2 / (n - 3), or, when the points' noise sigma is known
+    from elsewhere (``noise_m``: the whole track's estimate, from hundreds of vertices), the larger of sigma^2 and
+    that variance. A handful of vertices leaves the residual variance with a few degrees of freedom: with 4 points
+    (1 degree) it is below a tenth of sigma^2 one time in four, and such a fit would claim a precision it does not
+    have; the larger of the two keeps a misfit of the model (residuals above the noise) counted.
 
     Parameters
     ----------
@@ -39,6 +44,8 @@ def fit_circle(x_m, y_m, *, iterations: int = 10) -> CircleFit:
         At least 3 points [m].
     iterations : int
         Gauss-Newton iterations at most.
+    noise_m : float or None
+        Known position noise of the points, if any [m].
     """
     x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
     if x.size < 3:
@@ -70,9 +77,11 @@ def fit_circle(x_m, y_m, *, iterations: int = 10) -> CircleFit:
     res = d - p[2]
     rms = float(np.sqrt(np.mean(res * res))) * scale
     std = None
-    if x.size > 3:
+    if x.size > 3 or noise_m is not None:
         jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
-        s2 = float(res @ res) / (x.size - 3)
+        s2 = float(res @ res) / (x.size - 3) if x.size > 3 else 0.0
+        if noise_m is not None:
+            s2 = max(s2, (float(noise_m) / scale) ** 2)  # res is in units of scale
         try:
             cov = np.linalg.inv(jac.T @ jac) * s2
             std = float(math.sqrt(max(cov[2, 2], 0.0))) * scale

@@ -55,6 +55,10 @@ Method
    path is fitted to the vertices (R, then R and Ls on grids; the spiral kept by a likelihood-ratio test), which
    also uses the tangents' information. Without tangents (reverse, compound) the circle is used as it is.
    With fewer than 3 vertices on the arc the radius is 1/P and ``sparse`` is set.
+   The radius's standard error ``radius_std_m`` counts the tangents' own errors (the path fit's delta method over
+   both stages, :func:`_path_radius_std`), and ``radius_lower_m`` is its one-sided 95 % lower confidence bound (a
+   profile-likelihood bound for the path fit, :func:`_path_radius_lower`; on the curvature otherwise,
+   :func:`engine.route.fit.radius_lower_bound_m`): the radius the safe speed uses (:meth:`HorizontalCurve.as_curve`).
 9. **Deflection**: the angle between the fitted tangents, else the change of the heading smoothed at tau_r
    2.5 tau_r beyond the curve (at a reverse junction, the fitted circle's tangent there); a curve turning less
    than ``min_deflection_deg``, or within ``significance`` standard deviations of that measurement's noise,
@@ -787,7 +791,7 @@ def _fit_tangent_curve(
 def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> float:
     """One-sided lower confidence bound (:data:`~engine.route.fit.RADIUS_CONFIDENCE`) of the path fit's radius [m].
 
-    A profile-likelihood bound [1]: with Gaussian vertex noise of variance s^2 the deviance of a radius R is
+    A profile-likelihood bound: with Gaussian vertex noise of variance s^2 the deviance of a radius R is
     D(R) = (S(R) - S(R*)) / s^2, S the path's sum of squares (the spiral, if kept, at its fitted length), and the
     one-sided bound is the R < R* where sqrt(D(R)) = z, z the normal quantile of the confidence (1.645). For a sum
     quadratic in R this is R* - z sigma_R|t, the standard error given the tangents; the threshold is widened by
@@ -795,7 +799,7 @@ def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> fl
     with the tangents' error included. Where the vertices hardly constrain the radius (a short sharp arc whose
     offsets from its tangents are within the noise: the sum is flat toward a corner) the bound falls far below R*
     instead of the delta method's symmetric interval. Searched on a geometric grid down to R* / 50, refined in the
-    bracket, interpolated linearly in sqrt(D).
+    bracket twice, interpolated linearly in sqrt(D).
     """
     if not var > 0:
         return float(r)
@@ -806,8 +810,8 @@ def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> fl
     def root(rs: np.ndarray) -> np.ndarray:
         return np.sqrt(np.maximum(sse(rs, np.full(rs.size, ls)) - s_min, 0.0) / var)
 
-    rs = r * np.geomspace(1.0, 0.02, 121)
-    for _ in range(2):  # the grid, then 17 points inside the bracket found on it
+    rs = r * np.geomspace(1.0, 0.02, 25)
+    for _ in range(3):  # the grid (steps of 15 %), then twice 9 points inside the bracket found
         dev = root(rs)
         above = np.flatnonzero(dev > limit)
         if above.size == 0:
@@ -816,7 +820,7 @@ def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> fl
         if j == 0:
             return float(r)
         lo_r, hi_r = rs[j], rs[j - 1]
-        rs = np.geomspace(hi_r, lo_r, 17)
+        rs = np.geomspace(hi_r, lo_r, 9)
     t = (limit - dev[j - 1]) / (dev[j] - dev[j - 1])
     return float(min(r, hi_r + t * (lo_r - hi_r)))
 
@@ -842,7 +846,7 @@ def _path_radius_std(
 
         Cov p = 2 s^2 H^-1 + sum_j (H^-1 dg_j) (H^-1 dg_j)^T,
 
-    dg_j the central difference of the gradient when tangent parameter j moves by its own standard error (a total
+    dg_j the (forward) difference of the gradient when tangent parameter j moves by its own standard error (a total
     least-squares line through n vertices on a length L: sigma sqrt(12 / n) / L in direction, sigma / sqrt(n) in
     offset at its centroid, independent [1]). The first term alone is the error of R *given* the tangents, the
     formal standard error the fit reported before: it leaves out where the tangents and with them the curve's ends
@@ -882,7 +886,8 @@ def _path_radius_std(
     for factor in (1e-3, 1e-2, 5e-2, 0.2):
         steps = np.array([factor * r, 10.0 * factor * max(ls or 0.0, 1.0)])
         for free in (1,) if ls is None else (2, 1):  # R and Ls; else R given Ls (the spiral not identified)
-            h = hessian(stencil(lines, steps, free), steps, free)
+            v0 = stencil(lines, steps, free)
+            h = hessian(v0, steps, free)
             if np.all(np.linalg.eigvalsh(h) > 0):
                 hess = h
                 break
@@ -892,13 +897,13 @@ def _path_radius_std(
         return None
     h_inv = np.linalg.inv(hess)
     cov = 2.0 * var * h_inv
+    g0 = gradient(v0, steps, free)
     for k, line in enumerate(lines):
         for angle, offset in ((line.direction_sd, 0.0), (0.0, line.offset_sd)):
-            moved = [list(lines), list(lines)]
-            moved[0][k], moved[1][k] = _shifted(line, angle, offset), _shifted(line, -angle, -offset)
-            try:
-                g = [gradient(stencil(m, steps, free), steps, free) for m in moved]
-                dg = 0.5 * (g[0] - g[1])
+            moved = list(lines)
+            moved[k] = _shifted(line, angle, offset)
+            try:  # a forward difference: the tangents' errors are small against the curve
+                dg = gradient(stencil(moved, steps, free), steps, free) - g0
             except ArithmeticError:
                 return None
             dp = h_inv @ dg

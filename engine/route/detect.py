@@ -794,12 +794,16 @@ def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> fl
     A profile-likelihood bound: with Gaussian vertex noise of variance s^2 the deviance of a radius R is
     D(R) = (S(R) - S(R*)) / s^2, S the path's sum of squares (the spiral, if kept, at its fitted length), and the
     one-sided bound is the R < R* where sqrt(D(R)) = z, z the normal quantile of the confidence (1.645). For a sum
-    quadratic in R this is R* - z sigma_R|t, the standard error given the tangents; the threshold is widened by
-    ``widen``^2 = (sigma_R / sigma_R|t)^2 (:func:`_path_radius_std`), so that the linear case gives R* - z sigma_R
-    with the tangents' error included. Where the vertices hardly constrain the radius (a short sharp arc whose
-    offsets from its tangents are within the noise: the sum is flat toward a corner) the bound falls far below R*
-    instead of the delta method's symmetric interval. Searched on a geometric grid down to R* / 50, refined in the
-    bracket twice, interpolated linearly in sqrt(D).
+    quadratic in R this is R* - z sigma_R|t, the standard error given the tangents (and the spiral's length); the
+    threshold is widened by ``widen`` = sigma_R / sigma_R|t (:func:`_path_radius_std`), so that the linear case
+    gives R* - z sigma_R with the tangents' error (and the spiral's) included. Where the vertices hardly constrain
+    the radius (a short sharp arc whose offsets from its tangents are within the noise: the sum is flat toward a
+    corner) the bound falls far below R* instead of the delta method's symmetric interval. Searched on a geometric
+    grid down to R* / 50, refined in the bracket twice, interpolated linearly in sqrt(D).
+
+    Not covered: a spiral the noise hides. A curve with clothoids fitted as a simple curve has a larger radius than
+    its arc's (docs/routes.md, "Where it fails"), and the bound, taken on the simple curve, does not reach down to
+    the arc's radius.
     """
     if not var > 0:
         return float(r)
@@ -852,8 +856,9 @@ def _path_radius_std(
     formal standard error the fit reported before: it leaves out where the tangents and with them the curve's ends
     lie, which dominates on short and on flat arcs (docs/routes.md gives the measured calibration). The vertices
     are taken as independent (each GPS fix's error its own: the tracks' vertices, not the resampled ones).
-    Returns (sigma_R, sigma_R given the tangents), or None when the sum is not convex in R about the fit (then the
-    caller takes the standard error from the profile bound: (R* - R_lower) / z, the same in the linear case).
+    Returns (sigma_R, sigma_R given the tangents and Ls), or None when the sum is not convex in R about the fit
+    (then the caller takes the standard error from the profile bound: (R* - R_lower) / z, the same in the linear
+    case).
     """
     base = np.array([r, ls or 0.0])
     offs = np.array([-1.0, 0.0, 1.0])  # central differences: 3 points in R, or the 3 x 3 grid in (R, Ls)
@@ -908,7 +913,7 @@ def _path_radius_std(
                 return None
             dp = h_inv @ dg
             cov = cov + np.outer(dp, dp)
-    return float(math.sqrt(max(cov[0, 0], 0.0))), float(math.sqrt(2.0 * var * h_inv[0, 0]))
+    return float(math.sqrt(max(cov[0, 0], 0.0))), float(math.sqrt(2.0 * var / hess[0, 0]))
 
 
 def _parabola_min(fun, rs: np.ndarray, costs: np.ndarray, i: int, r: float, s: float) -> tuple[float, float]:

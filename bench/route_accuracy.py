@@ -4,12 +4,22 @@ Case classes: the noiseless mixed route of the tests (sharp, spiralled, flat and
 and 5/10/20 m spacing; noisy simple and spiralled curves inside the tests' class (circle-fit Cramér-Rao bound at
 most 5 %/3) and some outside it; long noisy tangents (phantoms); grades. Noisy cases run over ``--seeds`` seeds.
 
-    python bench/route_accuracy.py [--seeds 10]
+Then the calibration of the stated uncertainty (``radius_std_m``) and of the conservative radius (``radius_lower_m``):
+simple curves between 400 m tangents (the arc's ends are found by the method, as on a real track), short (25 deg) and
+long (90 deg) arcs of radius 60, 200 and 800 m, vertices every 10 m with 1, 2, 3 and 5 m of white GPS noise,
+``--tracks`` tracks per cell. Per cell: the observed scatter (standard deviation of the relative radius error), the
+mean stated standard error, their ratio (target: within a factor 1.5), the standard deviation of the normalised
+error (error / stated standard error, 1 when calibrated), the share of tracks whose ``radius_lower_m`` is at most
+the true radius (target: at least 95 %) and the median of ``radius_lower_m`` / true radius (what the conservatism
+costs), then the pooled figures. ``--quick`` runs only this part on a few tracks.
+
+    python bench/route_accuracy.py [--seeds 10] [--tracks 40] [--quick]
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from pathlib import Path
 
@@ -107,10 +117,108 @@ def grades(seeds: int) -> None:
     row("grades: 5 % straight (0/2 m noise, z 0.5 m); sag curve", "", "", f"{worst:.3f} / {vc:.3f} pp")
 
 
+#: calibration cells: radii [m], deflections [deg], noise [m]; vertices every 10 m, 400 m tangents on each side
+CAL_RADII = (60.0, 200.0, 800.0)
+CAL_DEFLECTIONS = (25.0, 90.0)
+CAL_NOISE = (1.0, 2.0, 3.0, 5.0)
+CAL_SPACING = 10.0
+CAL_TANGENT = 400.0
+
+
+def calibration_cell(radius: float, deflection_deg: float, sigma: float, tracks: int, seed0: int = 1000) -> dict:
+    """Errors, stated standard errors and lower bounds of one cell's tracks (the curve of largest deflection)."""
+    length = radius * math.radians(deflection_deg)
+    route = [Tangent(CAL_TANGENT), Arc(radius, length, "left"), Tangent(CAL_TANGENT)]
+    err, std, covered, lower, missed = [], [], [], [], 0
+    for k in range(tracks):
+        found, _ = detect(route, CAL_SPACING, 45.0, noise=sigma, seed=seed0 + k)
+        if not found.curves:
+            missed += 1
+            continue
+        c = max(found.curves, key=lambda c: c.deflection_deg)
+        err.append(c.radius_m / radius - 1.0)
+        std.append((c.radius_std_m or 0.0) / radius)
+        covered.append(c.radius_lower_m <= radius)
+        lower.append(c.radius_lower_m / radius)
+    return {"err": np.array(err), "std": np.array(std), "covered": np.array(covered), "lower": np.array(lower),
+            "missed": missed}  # fmt: skip
+
+
+def calibration(tracks: int) -> None:
+    print()
+    print(f"Calibration: simple curves, h {CAL_SPACING:g} m, {tracks} tracks per cell, tangents {CAL_TANGENT:g} m")
+    head = f"| {'R m':>5} | {'D deg':>5} | {'sigma m':>7} | {'found':>5} | {'bias %':>7} | {'observed %':>10} | "
+    head += f"{'stated %':>8} | {'ratio':>5} | {'sd(z)':>5} | {'lower <= R':>10} | {'lower / R':>9} |"
+    print(head)
+    print("|" + "|".join("-" * (len(c)) for c in head.split("|")[1:-1]) + "|")
+    ratios, zs, cover, n_found, n_all, within = [], [], [], 0, 0, 0
+    for radius in CAL_RADII:
+        for deflection in CAL_DEFLECTIONS:
+            for sigma in CAL_NOISE:
+                cell = calibration_cell(radius, deflection, sigma, tracks)
+                e, s, cv = cell["err"], cell["std"], cell["covered"]
+                n_all += tracks
+                n_found += e.size
+                if e.size < 3:
+                    print(f"| {radius:>5.0f} | {deflection:>5.0f} | {sigma:>7.0f} | {e.size:>5} | (too few found)")
+                    continue
+                observed = float(np.std(e, ddof=1))
+                stated = float(np.mean(s))
+                ratio = stated / observed if observed > 0 else math.inf
+                z = e / np.where(s > 0, s, np.nan)
+                sd_z = float(np.nanstd(z, ddof=1))
+                ratios.append(ratio)
+                zs.append(z)
+                cover.append(cv)
+                within += 1 / 1.5 <= ratio <= 1.5
+                print(
+                    f"| {radius:>5.0f} | {deflection:>5.0f} | {sigma:>7.0f} | {e.size:>5} | {100 * e.mean():>+7.2f} | "
+                    f"{100 * observed:>10.2f} | {100 * stated:>8.2f} | {ratio:>5.2f} | {sd_z:>5.2f} | "
+                    f"{100 * cv.mean():>9.1f}% | {np.median(cell['lower']):>9.3f} |"
+                )
+    z_all = np.concatenate(zs)
+    cv_all = np.concatenate(cover)
+    print(
+        f"Overall: {n_found}/{n_all} tracks with the curve found; ratio stated/observed median "
+        f"{np.median(ratios):.2f}, "
+        f"range {min(ratios):.2f}-{max(ratios):.2f}, {within}/{len(ratios)} cells within a factor 1.5; "
+        f"sd of the normalised error {np.nanstd(z_all, ddof=1):.2f}; radius_lower_m <= true radius in "
+        f"{100 * cv_all.mean():.1f} % of the tracks (worst cell {100 * min(c.mean() for c in cover):.1f} %)"
+    )
+
+
+#: spiralled curves (R, arc, spiral length, noise) [m]: the bound is taken on the simple curve the noise makes of them
+SPIRALLED = ((250.0, 300.0, 60.0, 2.5), (150.0, 100.0, 80.0, 2.0), (600.0, 400.0, 100.0, 3.0))
+
+
+def spiralled_coverage(tracks: int) -> None:
+    """Share of spiralled curves (600 m tangents, 10 m spacing) whose radius_lower_m is at most the arc's radius."""
+    for radius, arc, spiral, sigma in SPIRALLED:
+        err, cov = [], []
+        for k in range(tracks):
+            route = [Tangent(600.0), *spiral_curve(radius, arc, spiral, "left"), Tangent(600.0)]
+            found, _ = detect(route, CAL_SPACING, 45.0, noise=sigma, seed=2000 + k)
+            if found.curves:
+                c = max(found.curves, key=lambda c: c.deflection_deg)
+                err.append(c.radius_m / radius - 1.0)
+                cov.append(c.radius_lower_m <= radius)
+        print(
+            f"Spiralled R {radius:g} arc {arc:g} Ls {spiral:g} sigma {sigma:g}: {len(err)}/{tracks} found, "
+            f"bias {100 * np.mean(err):+.1f} %, radius_lower_m <= R in {100 * np.mean(cov):.0f} %"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=10)
-    seeds = ap.parse_args().seeds
+    ap.add_argument("--tracks", type=int, default=40, help="tracks per calibration cell")
+    ap.add_argument("--quick", action="store_true", help="only the calibration, 8 tracks per cell")
+    args = ap.parse_args()
+    if args.quick:
+        calibration(8)
+        spiralled_coverage(4)
+        return
+    seeds = args.seeds
     row("case class", "max |dR/R|", "max end error", "other")
     print(f"|{'-' * 60}|{'-' * 18}|{'-' * 16}|{'-' * 30}|")
     noiseless()
@@ -120,6 +228,8 @@ def main() -> None:
     noisy(outside, seeds, "noisy, outside:")
     phantoms(seeds)
     grades(seeds)
+    calibration(args.tracks)
+    spiralled_coverage(20)
 
 
 if __name__ == "__main__":

@@ -218,15 +218,29 @@ class RouteCurveProperties(OutputModel):
     direction: Literal["left", "right"] = Field(description=describe("Turning direction in travel order.", unit="-"))
     radius_m: float = Field(
         description=describe(
-            "Radius of the circular part (the sharpest arc of a compound curve).", unit="m", symbol="R"
+            "Radius of the circular part as fitted (the sharpest arc of a compound curve); the safe speed uses "
+            "`radius_lower_m`.",
+            unit="m",
+            symbol="R",
+        )
+    )
+    radius_lower_m: float = Field(
+        description=describe(
+            "Conservative radius: one-sided 95 % lower confidence bound of the radius (the true radius is at least "
+            "this with 95 % confidence given the track's noise); the assessment and its safe speed (Eq. 9.1) use it, "
+            "so GPS noise lowers a safe speed rather than raising it. Equal to `radius_m` without noise "
+            "(docs/routes.md: the method and its calibration).",
+            unit="m",
+            symbol="R_lower (95 %)",
         )
     )
     radius_std_m: float | None = Field(
         description=describe(
-            "Formal standard error of the circle fit from the vertex noise alone; null without a fit or without "
-            "noise. It leaves out the error of placing the arc's ends, which dominates on short arcs: the radius can "
-            "be off by several times it (docs/routes.md gives the measured accuracy).",
+            "Standard error (1 sigma) of the fitted radius from the vertex noise, the error of the tangents and with "
+            "them of the curve's ends included; null without noise (the radius is then exact). Calibrated on "
+            "synthetic tracks of known geometry (docs/routes.md).",
             unit="m",
+            symbol="sigma_R",
         )
     )
     start_m: float = Field(
@@ -260,7 +274,12 @@ class RouteCurveProperties(OutputModel):
     governing_vehicle: int = Field(
         description=describe("Index of the vehicle with the lowest safe speed (its row is `assessment`).", unit="-")
     )
-    assessment: CurveRow = Field(description=describe("The governing vehicle's assessment.", unit="see its fields"))
+    assessment: CurveRow = Field(
+        description=describe(
+            "The governing vehicle's assessment, of the conservative radius (its `radius_m` is `radius_lower_m`).",
+            unit="see its fields",
+        )
+    )
     vehicles: list[CurveRow] | None = Field(
         description=describe("Every vehicle's assessment, in the request's order (only with several).", unit="-")
     )

@@ -4,8 +4,9 @@ The document is read by :mod:`app.formats.route_io` (GeoJSON or GPX: parts of WG
 feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
 (:func:`engine.route.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
 curves then go through the same assessment as an alignment's (:func:`app.alignments.service.solve_alignment`:
-superelevation given, from a feature property, or derived from the standard; grade from the elevations), so a curve
-gets the same answer whether it came from a table or from geometry. The answer is a GeoJSON FeatureCollection of the
+superelevation given, from a feature property, or derived from the standard; grade from the elevations) with the
+curve's conservative radius ``radius_lower_m`` (the one-sided 95 % lower bound of the fitted ``radius_m``), so a curve
+gets the same answer as a table row of that radius. The answer is a GeoJSON FeatureCollection of the
 curves (a GIS reads it as it is), or CSV: one row per curve and vehicle.
 """
 
@@ -56,6 +57,7 @@ GEOMETRY_COLUMNS = (
     "deflection_deg",
     "spiral_in_m",
     "spiral_out_m",
+    "radius_lower_m",
     "radius_std_m",
     "compound",
     "sparse",
@@ -148,7 +150,7 @@ def curve_table(req: RouteRequest, geo: Geometry) -> CurveTable:
         )
     return CurveTable(
         ids=[c.id for c in cs],
-        radius_m=np.array([c.curve.radius_m for c in cs], dtype=float),
+        radius_m=np.array([c.curve.radius_lower_m for c in cs], dtype=float),  # conservative: the safe speed's
         superelevation_percent=e,
         grade_percent=np.array([c.curve.grade_percent or 0.0 for c in cs], dtype=float),
         posted_speed_kmh=np.array([_property(c.part, "posted_speed_kmh", req.posted_speed_kmh) for c in cs]),
@@ -195,6 +197,7 @@ def _geometry_fields(c: FoundCurve) -> dict[str, Any]:
         "name": c.part.properties.get("name"),
         "direction": h.direction,
         "radius_m": h.radius_m,
+        "radius_lower_m": h.radius_lower_m,
         "radius_std_m": h.radius_std_m,
         "start_m": h.start_m,
         "end_m": h.end_m,
@@ -288,7 +291,8 @@ def route_geojson(geo: Geometry, answer: AlignmentAnswer) -> bytes:
 
 
 def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
-    """One row per vehicle and curve: the vehicle, the curve's geometry, then the alignment's columns."""
+    """One row per vehicle and curve: the vehicle, the curve's geometry, then the alignment's columns; as in the JSON
+    answer's curves, ``radius_m`` is the fitted radius and ``radius_lower_m`` the one the row was assessed with."""
     n = len(geo.curves)
     base = alignment_rows.csv_columns(answer.resolved)
     columns = [*base[:3], *GEOMETRY_COLUMNS, *base[3:]]
@@ -297,10 +301,11 @@ def route_csv(geo: Geometry, answer: AlignmentAnswer) -> bytes:
         preset = None if v.preset is None else Text(v.preset)
         saved = None if v.saved_id is None else Text(v.saved_id)
         for c, row in zip(geo.curves, alignment_rows.rows(answer, v, 0, n), strict=True):
-            fields = {k: x for k, x in _geometry_fields(c).items() if k in GEOMETRY_COLUMNS}
+            geometry = _geometry_fields(c)
+            fields = {k: x for k, x in geometry.items() if k in GEOMETRY_COLUMNS}
             fields["part"] = Text(fields["part"])
             rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **fields,
-                         **flatten_targets(row)})  # fmt: skip
+                         **flatten_targets(row), "radius_m": geometry["radius_m"]})  # fmt: skip
     return to_csv(columns, rows)
 
 

@@ -20,9 +20,11 @@ from .detect import (
     spiral_length_m,
 )
 from .fit import (
+    RADIUS_CONFIDENCE,
     CircleFit,
     fit_circle,
     fit_line,
+    radius_lower_bound_m,
 )
 from .geodesy import (
     WGS84_A_M,
@@ -51,6 +53,7 @@ __all__ = [
     "PATH_FIT_VERTICES",
     "PEAK_NOISE_FRACTION",
     "PRECISE_FRACTION",
+    "RADIUS_CONFIDENCE",
     "SCALE_FACTOR",
     "SHAPE_NOISE_FRACTION",
     "TRUNCATE",
@@ -68,6 +71,7 @@ __all__ = [
     "fit_line",
     "heading_noise_rad",
     "local_frame",
+    "radius_lower_bound_m",
     "segment_lengths_m",
     "spiral_length_m",
     "turning_angles_rad",

@@ -55,6 +55,10 @@ Method
    path is fitted to the vertices (R, then R and Ls on grids; the spiral kept by a likelihood-ratio test), which
    also uses the tangents' information. Without tangents (reverse, compound) the circle is used as it is.
    With fewer than 3 vertices on the arc the radius is 1/P and ``sparse`` is set.
+   The radius's standard error ``radius_std_m`` counts the tangents' own errors (the path fit's delta method over
+   both stages, :func:`_path_radius_std`), and ``radius_lower_m`` is its one-sided 95 % lower confidence bound (a
+   profile-likelihood bound for the path fit, :func:`_path_radius_lower`; on the curvature otherwise,
+   :func:`engine.route.fit.radius_lower_bound_m`): the radius the safe speed uses (:meth:`HorizontalCurve.as_curve`).
 9. **Deflection**: the angle between the fitted tangents, else the change of the heading smoothed at tau_r
    2.5 tau_r beyond the curve (at a reverse junction, the fitted circle's tangent there); a curve turning less
    than ``min_deflection_deg``, or within ``significance`` standard deviations of that measurement's noise,
@@ -92,15 +96,15 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
-from scipy.special import ndtr
+from scipy.special import ndtr, ndtri
 
 from engine.errors import InvalidInput
 from engine.road.curves import Curve
-from engine.route.fit import CircleFit, fit_circle, fit_line
+from engine.route.fit import RADIUS_CONFIDENCE, CircleFit, fit_circle, fit_line, radius_lower_bound_m
 from engine.route.noise import G1, G2, HEADING_NOISE_RAD, curvature_noise_per_m, heading_noise_rad, vertex_noise_m
 
 #: the refinement scale keeps the curvature noise below this fraction of the curve's peak curvature
@@ -141,18 +145,25 @@ class HorizontalCurve:
     compound: bool  # several arcs of one direction without tangent between (radius: the sharpest)
     sparse: bool  # fewer than 3 vertices on the arc: radius from the smoothed curvature, not a fit
     truncated: bool  # the curve runs into the start or end of the route
-    radius_std_m: float | None  # standard error of the fitted radius (None without a fit or without noise)
+    radius_std_m: float | None  # standard error of the radius (None without noise: the radius is exact) [m]
     smoothing_m: float  # the scale tau_r at which this curve was measured [m]
+    radius_lower_m: float = math.nan  # one-sided 95 % lower confidence bound of the radius [m]; the safe speed's
+
+    def __post_init__(self) -> None:
+        if math.isnan(self.radius_lower_m):  # derived unless given
+            object.__setattr__(self, "radius_lower_m", radius_lower_bound_m(self.radius_m, self.radius_std_m))
 
     @property
     def length_m(self) -> float:
         return self.end_m - self.start_m
 
     def as_curve(self, curve_id: str, superelevation_percent: float, posted_speed_kmh: float | None = None) -> Curve:
-        """The :class:`engine.assessment.Curve` record of this curve (grade 0 when unknown)."""
+        """The :class:`engine.assessment.Curve` record of this curve (grade 0 when unknown), with the conservative
+        radius ``radius_lower_m``: the safe speed (Eq. 9.1) is then that of the sharpest curve the track allows at
+        95 % confidence, so GPS noise lowers it rather than raising it."""
         return Curve(
             id=curve_id,
-            radius_m=self.radius_m,
+            radius_m=self.radius_lower_m,
             superelevation_percent=superelevation_percent,
             grade_percent=0.0 if self.grade_percent is None else self.grade_percent,
             posted_speed_kmh=posted_speed_kmh,
@@ -537,7 +548,7 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     tangent_fit = both and not sh.compound
     fit = None
     if not (tangent_fit and _circle_error(sh, chain, sigma) > PRECISE_FRACTION):
-        fit = _arc_fit(sh, deflection, chain, xv, yv)
+        fit = _arc_fit(sh, deflection, chain, xv, yv, sigma)
     if not both and fit is not None and not sh.compound:
         deflection, d_sd = _deflection(cand, lo_b, hi_b, fit, (chain, xv, yv), route_ends)
     ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
@@ -550,7 +561,15 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
         if comp is not None:
             rms = fit.rms_m if fit is not None else float("nan")
             n_fit = fit.n_points if fit is not None else 0
-            fit = CircleFit(float(comp.centre[0]), float(comp.centre[1]), comp.radius_m, rms, comp.radius_std_m, n_fit)
+            fit = CircleFit(
+                float(comp.centre[0]),
+                float(comp.centre[1]),
+                comp.radius_m,
+                rms,
+                comp.radius_std_m,
+                n_fit,
+                comp.radius_lower_m,
+            )
             for i, (line, sgn) in enumerate(zip(lines, (-1.0, 1.0), strict=True)):
                 end = _foot(line, comp.centre) + sgn * _spiral_middle(comp.spiral_m, comp.radius_m)
                 ends[i] = (end, end - sgn * (comp.spiral_m or 0.0), comp.spiral_m)
@@ -612,7 +631,7 @@ def _deflection(
     return abs(heading[1] - heading[0]), math.sqrt(var)
 
 
-def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
+def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv, sigma: float = 0.0) -> CircleFit | None:
     """Circle through the vertices of the arc's middle (see :func:`find_curves`, step 8), or None."""
     middle = 0.5 * (sh.mid_in + sh.mid_out)
     radius, fit, used = 1.0 / sh.plateau, None, None
@@ -629,7 +648,7 @@ def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv) -> CircleFit | None:
         if used is not None and on_arc[0] == used[0] and on_arc.size == used.size:
             break  # the same vertices: the same circle
         used = on_arc
-        new = fit_circle(xv[on_arc], yv[on_arc])
+        new = fit_circle(xv[on_arc], yv[on_arc], noise_m=sigma if sigma > 0 else None)
         if new.radius_m * sh.plateau > 10.0:  # a straight line through nearly collinear points: no radius
             break
         fit, done = new, abs(new.radius_m - radius) <= 1e-9 * radius
@@ -650,6 +669,7 @@ class _Composite:
     centre: np.ndarray
     spiral_m: float | None  # symmetric clothoids, when the shift is significant
     radius_std_m: float | None
+    radius_lower_m: float | None  # the profile-likelihood lower confidence bound (:func:`_path_radius_lower`)
 
 
 def _clothoid_shift(r, ls):
@@ -758,11 +778,142 @@ def _fit_tangent_curve(
         spiral = best_ls
     else:
         best_r, best_ls = r_simple, 0.0
-    dr = 1e-3 * best_r  # standard error from the curvature of the sum in R (the spiral fixed)
-    three = sse(np.array([best_r - dr, best_r, best_r + dr]), np.full(3, best_ls))
-    curv = float(three[0] - 2 * three[1] + three[2]) / dr**2
-    std = math.sqrt(2.0 * var / curv) if curv > 0 else None
-    return _Composite(float(best_r), path.centre(best_r, best_ls), spiral, std)
+    stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var)
+    if stds is not None:
+        std = stds[0]
+        lower = _path_radius_lower(sse, best_r, best_ls, var, stds[0] / stds[1])
+    else:  # the sum is not convex in R about the fit (few or no vertices on a short arc): the profile alone
+        lower = _path_radius_lower(sse, best_r, best_ls, var, 1.0)
+        std = (best_r - lower) / float(ndtri(RADIUS_CONFIDENCE)) if lower < best_r else None
+    return _Composite(float(best_r), path.centre(best_r, best_ls), spiral, std, lower)
+
+
+def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> float:
+    """One-sided lower confidence bound (:data:`~engine.route.fit.RADIUS_CONFIDENCE`) of the path fit's radius [m].
+
+    A profile-likelihood bound: with Gaussian vertex noise of variance s^2 the deviance of a radius R is
+    D(R) = (S(R) - S(R*)) / s^2, S the path's sum of squares (the spiral, if kept, at its fitted length), and the
+    one-sided bound is the R < R* where sqrt(D(R)) = z, z the normal quantile of the confidence (1.645). For a sum
+    quadratic in R this is R* - z sigma_R|t, the standard error given the tangents (and the spiral's length); the
+    threshold is widened by ``widen`` = sigma_R / sigma_R|t (:func:`_path_radius_std`), so that the linear case
+    gives R* - z sigma_R with the tangents' error (and the spiral's) included. Where the vertices hardly constrain
+    the radius (a short sharp arc whose offsets from its tangents are within the noise: the sum is flat toward a
+    corner) the bound falls far below R* instead of the delta method's symmetric interval. Searched on a geometric
+    grid down to R* / 50, refined in the bracket twice, interpolated linearly in sqrt(D).
+
+    Not covered: a spiral the noise hides. A curve with clothoids fitted as a simple curve has a larger radius than
+    its arc's (docs/routes.md, "Where it fails"), and the bound, taken on the simple curve, does not reach down to
+    the arc's radius.
+    """
+    if not var > 0:
+        return float(r)
+    z = float(ndtri(RADIUS_CONFIDENCE))
+    s_min = float(sse(np.array([r]), np.array([ls]))[0])
+    limit = z * widen  # on the signed root of the deviance, linear in R where the sum is quadratic
+
+    def root(rs: np.ndarray) -> np.ndarray:
+        return np.sqrt(np.maximum(sse(rs, np.full(rs.size, ls)) - s_min, 0.0) / var)
+
+    rs = r * np.geomspace(1.0, 0.02, 25)
+    for _ in range(3):  # the grid (steps of 15 %), then twice 9 points inside the bracket found
+        dev = root(rs)
+        above = np.flatnonzero(dev > limit)
+        if above.size == 0:
+            return float(rs[-1])
+        j = int(above[0])
+        if j == 0:
+            return float(r)
+        lo_r, hi_r = rs[j], rs[j - 1]
+        rs = np.geomspace(hi_r, lo_r, 9)
+    t = (limit - dev[j - 1]) / (dev[j] - dev[j - 1])
+    return float(min(r, hi_r + t * (lo_r - hi_r)))
+
+
+def _shifted(line: _Line, angle: float, offset: float) -> _Line:
+    """``line`` turned by ``angle`` [rad] about its centroid and moved ``offset`` [m] along its left normal."""
+    c, s = math.cos(angle), math.sin(angle)
+    u = np.array([c * line.direction[0] - s * line.direction[1], s * line.direction[0] + c * line.direction[1]])
+    normal = np.array([-line.direction[1], line.direction[0]])
+    return replace(line, point=line.point + offset * normal, direction=u)
+
+
+def _path_radius_std(
+    lines, px: np.ndarray, py: np.ndarray, r: float, ls: float | None, var: float
+) -> tuple[float, float] | None:
+    """Standard error of the path fit's radius, the tangents' own errors included (delta method) [m].
+
+    The radius minimises S(p; t) = sum of squared distances of the vertices to the :class:`_TangentPath`, p the free
+    parameters (R, and Ls when the spiral is kept), t the two tangents (each a direction and a normal offset at its
+    centroid), which were fitted beforehand on their own vertices and are held fixed in the fit. Linearised about
+    the minimum, p = p* - H^-1 (g_t dt + g_e), H the Hessian of S in p, g_e its gradient from the vertex noise
+    (covariance 2 s^2 H, s^2 the residual variance), g_t dt the change of the gradient when the tangents move. So
+
+        Cov p = 2 s^2 H^-1 + sum_j (H^-1 dg_j) (H^-1 dg_j)^T,
+
+    dg_j the (forward) difference of the gradient when tangent parameter j moves by its own standard error (a total
+    least-squares line through n vertices on a length L: sigma sqrt(12 / n) / L in direction, sigma / sqrt(n) in
+    offset at its centroid, independent [1]). The first term alone is the error of R *given* the tangents, the
+    formal standard error the fit reported before: it leaves out where the tangents and with them the curve's ends
+    lie, which dominates on short and on flat arcs (docs/routes.md gives the measured calibration). The vertices
+    are taken as independent (each GPS fix's error its own: the tracks' vertices, not the resampled ones).
+    Returns (sigma_R, sigma_R given the tangents and Ls), or None when the sum is not convex in R about the fit
+    (then the caller takes the standard error from the profile bound: (R* - R_lower) / z, the same in the linear
+    case).
+    """
+    base = np.array([r, ls or 0.0])
+    offs = np.array([-1.0, 0.0, 1.0])  # central differences: 3 points in R, or the 3 x 3 grid in (R, Ls)
+
+    def stencil(lns, steps: np.ndarray, free: int) -> np.ndarray:
+        path = _TangentPath(lns, px, py)
+        if not hasattr(path, "pi"):  # the moved tangents are (anti)parallel: no path
+            raise ArithmeticError
+        if free == 1:
+            return path.sse(base[0] + offs * steps[0], np.full(3, base[1]))
+        gr, gl = np.meshgrid(offs, offs, indexing="ij")
+        return path.sse((base[0] + gr * steps[0]).ravel(), (base[1] + gl * steps[1]).ravel()).reshape(3, 3)
+
+    def gradient(v: np.ndarray, steps: np.ndarray, free: int) -> np.ndarray:
+        if free == 1:
+            return np.array([(v[2] - v[0]) / (2.0 * steps[0])])
+        return np.array([(v[2, 1] - v[0, 1]) / (2.0 * steps[0]), (v[1, 2] - v[1, 0]) / (2.0 * steps[1])])
+
+    def hessian(v: np.ndarray, steps: np.ndarray, free: int) -> np.ndarray:
+        if free == 1:
+            return np.array([[(v[0] - 2.0 * v[1] + v[2]) / steps[0] ** 2]])
+        h_rr = (v[0, 1] - 2.0 * v[1, 1] + v[2, 1]) / steps[0] ** 2
+        h_ll = (v[1, 0] - 2.0 * v[1, 1] + v[1, 2]) / steps[1] ** 2
+        h_rl = (v[2, 2] - v[2, 0] - v[0, 2] + v[0, 0]) / (4.0 * steps[0] * steps[1])
+        return np.array([[h_rr, h_rl], [h_rl, h_ll]])
+
+    # the sum is piecewise smooth (each vertex is nearest to one element of the path): where few vertices lie on
+    # a short arc its kinks can hide the curvature at a fine step, so the step grows until the sum is convex there
+    hess = None
+    for factor in (1e-3, 1e-2, 5e-2, 0.2):
+        steps = np.array([factor * r, 10.0 * factor * max(ls or 0.0, 1.0)])
+        for free in (1,) if ls is None else (2, 1):  # R and Ls; else R given Ls (the spiral not identified)
+            v0 = stencil(lines, steps, free)
+            h = hessian(v0, steps, free)
+            if np.all(np.linalg.eigvalsh(h) > 0):
+                hess = h
+                break
+        if hess is not None:
+            break
+    if hess is None:
+        return None
+    h_inv = np.linalg.inv(hess)
+    cov = 2.0 * var * h_inv
+    g0 = gradient(v0, steps, free)
+    for k, line in enumerate(lines):
+        for angle, offset in ((line.direction_sd, 0.0), (0.0, line.offset_sd)):
+            moved = list(lines)
+            moved[k] = _shifted(line, angle, offset)
+            try:  # a forward difference: the tangents' errors are small against the curve
+                dg = gradient(stencil(moved, steps, free), steps, free) - g0
+            except ArithmeticError:
+                return None
+            dp = h_inv @ dg
+            cov = cov + np.outer(dp, dp)
+    return float(math.sqrt(max(cov[0, 0], 0.0))), float(math.sqrt(2.0 * var / hess[0, 0]))
 
 
 def _parabola_min(fun, rs: np.ndarray, costs: np.ndarray, i: int, r: float, s: float) -> tuple[float, float]:
@@ -799,6 +950,7 @@ class _Line:
     ref_along: float  # its position along the line from ``point``
     n: int
     direction_sd: float  # [rad]
+    offset_sd: float  # of the line's centroid, normal to it [m]
 
 
 def _line(chain, xv, yv, sel: np.ndarray, entry: bool, sigma: float) -> _Line | None:
@@ -809,7 +961,8 @@ def _line(chain, xv, yv, sel: np.ndarray, entry: bool, sigma: float) -> _Line | 
     ref = sel[-1] if entry else sel[0]
     length = float(chain[sel[-1]] - chain[sel[0]])
     sd = sigma * math.sqrt(12.0 / sel.size) / length  # slope of a least-squares line over n points on length L
-    return _Line(c, u, float(chain[ref]), float((np.array([xv[ref], yv[ref]]) - c) @ u), int(sel.size), sd)
+    along = float((np.array([xv[ref], yv[ref]]) - c) @ u)
+    return _Line(c, u, float(chain[ref]), along, int(sel.size), sd, sigma / math.sqrt(sel.size))
 
 
 def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, sgn: float):
@@ -874,11 +1027,36 @@ def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance,
                 compound=c.shape.compound,
                 sparse=sparse,
                 truncated=truncated,
-                radius_std_m=fit.radius_std_m if (fit is not None and sigma > 0) else None,
+                radius_std_m=(std := _radius_std(fit, radius, sigma, h_v, c.tau)),
+                radius_lower_m=_radius_lower(fit, radius, std, sigma),
                 smoothing_m=float(c.tau),
             )
         )
     return out
+
+
+def _radius_std(fit: CircleFit | None, radius: float, sigma: float, h_v: float, tau: float) -> float | None:
+    """Standard error of a curve's radius [m].
+
+    The fit's: :func:`_path_radius_std` for the tangent-curve path, the circle fit's otherwise. Without a fit
+    (``sparse``: R = 1 / P) or without redundancy (3 vertices), that of the plateau curvature, taken as one sample
+    of the curvature smoothed at tau_r (Eq. 1) and carried to R by the delta method: sigma_R = R^2 sd(tau_r).
+    None without noise (the radius is then exact).
+    """
+    if sigma <= 0:
+        return None
+    if fit is not None and fit.radius_std_m is not None:
+        return fit.radius_std_m
+    return radius * radius * float(curvature_noise_per_m(sigma, h_v, tau))
+
+
+def _radius_lower(fit: CircleFit | None, radius: float, std: float | None, sigma: float) -> float:
+    """The conservative radius [m]: the path fit's profile-likelihood bound (:func:`_path_radius_lower`), else the
+    curvature-normal bound of :func:`~engine.route.fit.radius_lower_bound_m` from the standard error; the radius
+    itself without noise."""
+    if sigma > 0 and fit is not None and fit.radius_lower_m is not None and fit.radius_std_m == std:
+        return min(fit.radius_lower_m, radius)
+    return radius_lower_bound_m(radius, std)
 
 
 def _grade(chain: np.ndarray, zv: np.ndarray | None, start: float, end: float) -> float | None:

@@ -13,6 +13,7 @@ import io
 import numpy as np
 import pytest
 
+from engine.road import max_curve_speed_kmh
 from tests.synthetic_routes import Arc, Tangent, curve_spans, layout, spiral_curve, to_lonlat
 
 PATH = "/v1/routes/assess"
@@ -92,8 +93,8 @@ def test_the_assessment_is_the_alignments(shared_client):
             "posted_speed_kmh": 80.0, "rear_llt_limit": 0.6}  # fmt: skip
     curves = post(shared_client, body).json()["curves"]
     table = [
-        {"id": c["id"], "radius_m": c["radius_m"], "superelevation_percent": 6.0, "grade_percent": c["grade_percent"],
-         "posted_speed_kmh": 80.0}
+        {"id": c["id"], "radius_m": c["radius_lower_m"], "superelevation_percent": 6.0,
+         "grade_percent": c["grade_percent"], "posted_speed_kmh": 80.0}
         for c in curves
     ]  # fmt: skip
     rows = shared_client.post(
@@ -104,6 +105,47 @@ def test_the_assessment_is_the_alignments(shared_client):
         for k in ("srt_g", "safe_speed_kmh", "rollover_speed_kmh", "side_friction_speed_kmh", "margin_kmh", "flagged"):
             assert got[k] == row[k], k
     assert curves[0]["assessment"]["flagged"]  # 250 m at 6 %: the B-train's safe speed is below 80 km/h
+
+
+@pytest.mark.parametrize("noise", [2.5, 3.0])
+def test_both_radii_and_the_safe_speed_from_the_lower_one(shared_client, noise):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(45.0, noise)), "superelevation_percent": 6.0}
+    for c in post(shared_client, body).json()["curves"]:
+        assert c["radius_std_m"] > 0 and c["radius_lower_m"] < c["radius_m"]
+        row = c["assessment"]
+        assert row["radius_m"] == c["radius_lower_m"]  # the row is assessed at the conservative radius
+        # Eq. 9.1 by hand: V = sqrt(127 SRT R), with the curve's own SRT and the lower radius
+        by_hand = float(max_curve_speed_kmh(row["srt_g"], c["radius_lower_m"]))
+        assert row["rollover_speed_kmh"] == pytest.approx(by_hand, rel=1e-12)
+        assert by_hand < float(max_curve_speed_kmh(row["srt_g"], c["radius_m"]))  # noise lowers the speed
+        assert row["safe_speed_kmh"] == min(row["rollover_speed_kmh"], row["side_friction_speed_kmh"])
+
+
+def test_noiseless_route_the_lower_radius_is_the_fit_and_the_design(shared_client):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(45.0)), "superelevation_percent": 6.0}
+    for c, radius in zip(post(shared_client, body).json()["curves"], (250.0, 600.0), strict=True):
+        assert c["radius_lower_m"] <= c["radius_m"]
+        assert c["radius_lower_m"] == pytest.approx(c["radius_m"], rel=1e-3)
+        assert c["radius_lower_m"] == pytest.approx(radius, rel=0.01)  # the designed radius (noiseless tolerance)
+
+
+def test_csv_and_geojson_carry_both_radii_as_the_json(shared_client):
+    body = {"vehicle": BTRAIN, "geojson": feature_collection(route(-35.0, 2.5)), "superelevation_percent": 6.0}
+    curves = post(shared_client, body).json()["curves"]
+    rows = list(csv.DictReader(io.StringIO(post(shared_client, body, accept="text/csv").text)))
+    features = post(shared_client, body, accept="application/geo+json").json()["features"]
+    assert len(rows) == len(features) == len(curves) == 2
+    for c, r, f in zip(curves, rows, features, strict=True):
+        for k in ("radius_m", "radius_lower_m", "radius_std_m"):
+            assert float(r[k]) == pytest.approx(c[k], rel=1e-9) and f["properties"][k] == c[k], k
+        assert float(r["safe_speed_kmh"]) == pytest.approx(c["assessment"]["safe_speed_kmh"], rel=1e-9)
+
+
+def test_the_spec_describes_both_radii(shared_client):
+    props = shared_client.get("/openapi.json").json()["components"]["schemas"]["RouteCurve"]["properties"]
+    lower, std = props["radius_lower_m"]["description"], props["radius_std_m"]["description"]
+    assert "95 %" in lower and "Unit: m." in lower and "R_lower" in lower  # confidence level, unit, symbol
+    assert "Unit: m." in std and "sigma_R" in std and "radius_lower_m" in props["radius_m"]["description"]
 
 
 def test_gpx_and_geojson_give_the_same_curves(shared_client):

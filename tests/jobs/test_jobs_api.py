@@ -402,6 +402,9 @@ def test_route_result_is_the_synchronous_answer_byte_for_byte(accept):
     assert job.headers["etag"] == sync.headers["etag"] and job.content == sync.content
     if accept is None:
         assert len(job.json()["curves"]) == 2
+        assert all(c["radius_lower_m"] <= c["radius_m"] for c in job.json()["curves"])  # both radii in the job's
+    else:
+        assert {"radius_m", "radius_lower_m", "radius_std_m"} <= set(job.text.splitlines()[0].split(","))
 
 
 def test_a_route_that_cannot_be_read_is_refused_at_submission():

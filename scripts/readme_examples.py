@@ -541,7 +541,7 @@ README_EXAMPLES = [
         upload="road.gpx",
         headers={"Content-Type": "application/gpx+xml"},
         pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
-        '[print(c["direction"], "R", round(c["radius_m"], 1), "m, safe", '
+        '[print(c["direction"], "R", round(c["radius_m"], 1), "m, at least", round(c["radius_lower_m"], 1), "m, safe", '
         'round(c["assessment"]["safe_speed_kmh"], 1), "km/h") for c in r["curves"]]\'',
     ),
 ]

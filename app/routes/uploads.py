@@ -24,6 +24,7 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
 
+from app.alignments import uploads as alignment_uploads
 from app.alignments.schemas import MAX_VEHICLES
 from app.formats.uploads import decode_json_object, decode_xml, read_upload
 from app.http.problems import InvalidRoute
@@ -31,18 +32,9 @@ from app.http.schemas import describe
 from app.routes.schemas import Detection, RouteRequest
 from app.srt.schemas import LoadIn
 
-OPTIONS = (
-    "model",
-    "stage",
-    "trailer_angle_deg",
-    "rear_llt_limit",
-    "design_standard",
-    "side_friction_bound",
-    "max_superelevation_percent",
-    "superelevation_percent",
-    "posted_speed_kmh",
-)
-LOAD = ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
+#: the alignment uploads' options, and a route's own superelevation and posted speed for every curve
+OPTIONS = (*alignment_uploads.OPTIONS, "superelevation_percent", "posted_speed_kmh")
+LOAD = alignment_uploads.LOAD
 DETECTION = ("noise_m", "max_radius_m", "min_deflection_deg")
 
 

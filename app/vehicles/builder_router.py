@@ -13,12 +13,12 @@ from app.vehicles.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
-    PayloadTableRequest,
     PayloadTableResult,
     SuspensionOut,
     TyreOut,
 )
 from app.vehicles.builder_service import component_library, compute_build, compute_payload_table
+from app.vehicles.payload_schemas import PayloadTableRequest
 
 router = APIRouter(prefix="/v1", tags=["builder"])
 

@@ -285,37 +285,6 @@ class ComponentLibrary(OutputModel):
 # --------------------------------------------------------------------------------------- payload table
 
 
-class PayloadTableRequest(SpecRef):
-    """The acceptable payload table of a built vehicle (as TERNZ's results page shows it): for an SRT target, the
-    largest payload mass at each load height and the largest load height at each payload mass, each solved with
-    the engine (the SRT of the 3D model on the road and load case given)."""
-
-    model_config = ConfigDict(json_schema_extra={"examples": [{"spec": EXAMPLE_SPEC, "target_srt_g": 0.45, "rows": 4}]})
-
-    target_srt_g: float = Field(gt=0, lt=2, description=describe("The SRT to meet.", unit="g", symbol="SRT target"))
-    payload_index: json_int(ge=0, lt=MAX_PAYLOADS) = Field(  # type: ignore[valid-type]
-        0, description=describe("Which payload of the spec varies (a deck load).", unit="-")
-    )
-    load_heights_m: list[Annotated[float, Field(gt=0, le=10)]] | None = Field(
-        None,
-        min_length=1,
-        max_length=20,
-        description=describe(
-            "Load heights of the first table (each above the deck); default `rows` heights up to the spec's.",
-            unit="m",
-        ),
-    )
-    payload_masses_kg: list[Annotated[float, Field(gt=0, le=200_000)]] | None = Field(
-        None,
-        min_length=1,
-        max_length=20,
-        description=describe("Payload masses of the second table; default `rows` masses up to the spec's.", unit="kg"),
-    )
-    rows: json_int(ge=1, le=20) = Field(  # type: ignore[valid-type]
-        5, description=describe("Rows of each default table.", unit="count")
-    )
-
-
 class PayloadLimitOut(OutputModel):
     value: float | None = Field(
         description=describe("The limit (kg or m, as the row says); null when no value meets the target.", unit="kg|m")
@@ -345,7 +314,14 @@ class PayloadRowOut(OutputModel):
 class PayloadTableResult(OutputModel):
     target_srt_g: float = Field(description=describe("The SRT target.", unit="g", symbol="SRT target"))
     payload_index: int = Field(description=describe("The payload varied.", unit="-"))
-    srt_of_spec_g: float = Field(description=describe("SRT of the spec as given.", unit="g", symbol="SRT"))
+    unit_index: int | None = Field(
+        None, description=describe("The combination's unit whose payload varied (null for a single unit).", unit="-")
+    )
+    srt_of_spec_g: float = Field(
+        description=describe(
+            "SRT of the spec as given (a combination's: the governing roll-coupled unit's).", unit="g", symbol="SRT"
+        )
+    )
     by_load_height: list[PayloadRowOut] = Field(
         description=describe("Largest payload mass for each load height.", unit="-")
     )

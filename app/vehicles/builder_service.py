@@ -20,15 +20,22 @@ from app.vehicles.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
-    PayloadTableRequest,
     PayloadTableResult,
     SuspensionOut,
     TyreOut,
 )
+from app.vehicles.payload_schemas import PayloadTableRequest
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
-from engine.vehicle.builder import BuiltVehicle, PayloadTable, VehicleSpec, build_vehicle, payload_table
+from engine.vehicle.builder import (
+    BuiltVehicle,
+    CombinationSpec,
+    PayloadTable,
+    VehicleSpec,
+    build_vehicle,
+    payload_table,
+)
 
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")
 
@@ -129,10 +136,11 @@ def payload_csv(table: PayloadTable) -> bytes:
     return to_csv(PAYLOAD_CSV_COLUMNS, rows)
 
 
-def _solve_payload_table(req: PayloadTableRequest, spec: VehicleSpec) -> PayloadTable:
+def _solve_payload_table(req: PayloadTableRequest, spec: VehicleSpec | CombinationSpec) -> PayloadTable:
     return payload_table(
         spec,
         req.target_srt_g,
+        unit_index=req.unit_index,
         load_heights_m=req.load_heights_m,
         payload_masses_kg=req.payload_masses_kg,
         payload_index=req.payload_index,
@@ -142,7 +150,8 @@ def _solve_payload_table(req: PayloadTableRequest, spec: VehicleSpec) -> Payload
 
 async def compute_payload_table(cache: ResultCache, req: PayloadTableRequest, csv: bool) -> Computed:
     spec = req.engine_spec()
-    resolved = req.model_dump(mode="json", exclude={"spec"}) | {"spec": spec.to_dict()}
+    kind = "combination_spec" if isinstance(spec, CombinationSpec) else "spec"
+    resolved = req.model_dump(mode="json", exclude={"spec", "combination_spec"}) | {kind: spec.to_dict()}
 
     async def produce() -> bytes:
         table = await run_in_threadpool(_solve_payload_table, req, spec)  # tens of 3D solves: off the event loop
@@ -152,6 +161,7 @@ async def compute_payload_table(cache: ResultCache, req: PayloadTableRequest, cs
         out = PayloadTableResult(
             target_srt_g=table.target_srt_g,
             payload_index=table.payload_index,
+            unit_index=table.unit_index,
             srt_of_spec_g=table.srt_at_spec_g,
             by_load_height=by_height,
             by_payload_mass=by_mass,

@@ -105,3 +105,22 @@ def test_a_tare_in_tonnes_says_so(shared_client):
     spec["units"][1]["tare"]["mass_kg"] = 31.5
     p = post(shared_client, "/v1/combinations/build", {"combination_spec": spec}, 422).json()
     assert "typed in tonnes? (31.5 tonnes would be 31500 kg)" in p["detail"]
+
+
+def test_the_payload_table_takes_a_combination_spec_and_refuses_both_or_neither(shared_client):
+    """POST /v1/vehicles/payload-table with a combination: the table of its loaded unit, the SRT of the spec as
+    /v1/srt answers it for the same combination_spec; exactly one of spec and combination_spec."""
+    from app.vehicles.builder_schemas import EXAMPLE_SPEC
+    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+
+    body = {"combination_spec": EXAMPLE_COMBINATION_SPEC, "target_srt_g": 0.55, "rows": 2}
+    table = shared_client.post("/v1/vehicles/payload-table", json=body)
+    assert table.status_code == 200, table.text
+    out = table.json()
+    srt = shared_client.post("/v1/srt", json={"vehicle": {"combination_spec": EXAMPLE_COMBINATION_SPEC}}).json()
+    assert out["unit_index"] == 1 and out["srt_of_spec_g"] == srt["srt"]
+    assert shared_client.post("/v1/vehicles/payload-table", json={**body, "spec": EXAMPLE_SPEC}).status_code == 422
+    single = shared_client.post("/v1/vehicles/payload-table", json={"spec": EXAMPLE_SPEC, "target_srt_g": 0.45})
+    assert single.status_code == 200 and single.json()["unit_index"] is None
+    wrong = shared_client.post("/v1/vehicles/payload-table", json={**body, "unit_index": 5})
+    assert wrong.status_code == 422 and wrong.json()["errors"][0]["field"] == "unit_index"

@@ -19,7 +19,7 @@ import itertools
 
 import pytest
 
-from engine.errors import InvalidVehicle
+from engine.errors import InvalidInput, InvalidVehicle
 from engine.models.combination import rigid_srt, solve_combination
 from engine.vehicle import COMBINATIONS, PRESETS
 from engine.vehicle.builder import CombinationSpec, build_combination
@@ -364,3 +364,33 @@ def test_the_b_double_is_rebuilt_with_every_group_value_given():
     # Table 16's rear trailer: W = 355.22 kN; the lead trailer's assumed 20,000 kg laden (the preset's sources)
     assert [u.mass_kg for u in b.units[1:]] == pytest.approx([20000.0, 355.22e3 / 9.81], rel=1e-12)
     assert all(d.method == "given" for k, d in b.derivation.items() if ".groups[" in k)
+
+
+def test_payload_table_of_a_combination_finds_the_governing_srt_at_the_target_and_falls_with_height():
+    """The payload table of a combination (the semitrailer's payload varied): each found limit, rebuilt and solved
+    independently with the whole-combination model, is the target; the largest mass falls as the load rises."""
+    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from engine import Case, rollover_threshold
+    from engine.vehicle.builder import CombinationSpec, build_combination
+    from engine.vehicle.builder.payload_table import payload_table
+
+    spec = CombinationSpec.from_dict(EXAMPLE_COMBINATION_SPEC)
+    table = payload_table(spec, 0.55, load_heights_m=[2.0, 2.3, 2.6], payload_masses_kg=[20000.0], rows=3)
+    assert table.unit_index == 1  # the last unit that carries a payload: the semitrailer
+    masses = [r.limit.value for r in table.by_load_height]
+    assert masses == sorted(masses, reverse=True) and masses[0] > masses[-1]
+    for row in (*table.by_load_height, *table.by_payload_mass):
+        if row.limit.status != "found":
+            continue
+        payload = spec.units[1].payloads[0]
+        mass = row.limit.value if row.payload_mass_kg is None else row.payload_mass_kg
+        height = row.load_height_m if row.load_height_m is not None else row.limit.value
+        units = list(spec.units)
+        units[1] = dataclasses.replace(
+            units[1], payloads=(dataclasses.replace(payload, mass_kg=mass, load_height_m=height),)
+        )
+        rebuilt = build_combination(dataclasses.replace(spec, units=tuple(units))).combination
+        assert rollover_threshold(Case(rebuilt)).srt == pytest.approx(0.55, abs=2e-4)  # the limits' tolerances
+    with pytest.raises(InvalidInput) as err:
+        payload_table(spec, 0.55, unit_index=0)  # the tractor carries nothing
+    assert err.value.field == "payload_index"

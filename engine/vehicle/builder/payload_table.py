@@ -1,4 +1,8 @@
-"""The payload table: the largest payload by load height (and load height by payload) that meets a target."""
+"""The payload table: the largest payload by load height (and load height by payload) that meets a target.
+
+For a single unit (a :class:`VehicleSpec`) each SRT is the thesis's 3D model's; for a combination (a
+:class:`CombinationSpec`, the payload of one of its units varied) the whole-combination model's governing SRT, the
+lowest of its roll-coupled units (:mod:`engine.models.combination`)."""
 
 from __future__ import annotations
 
@@ -11,15 +15,18 @@ from engine.case import Case, LoadCase, Road
 from engine.errors import InvalidInput, RolloverError
 from engine.models.threshold import rollover_threshold
 from engine.vehicle.builder.build import build_vehicle
-from engine.vehicle.builder.spec import VehicleSpec
-from engine.vehicle.record import Vehicle
+from engine.vehicle.builder.combination import CombinationSpec, build_combination
+from engine.vehicle.builder.spec import PayloadSpec, VehicleSpec
 
 # ------------------------------------------------------------------------------------ payload table
 
 
-def _srt_g(vehicle: Vehicle, road: Road, load: LoadCase) -> float:
-    """The module's one engine call: the 3D model's SRT [g]."""
-    return rollover_threshold(Case(vehicle, "3d", road=road, load=load)).srt
+def _srt_g(spec: VehicleSpec | CombinationSpec, road: Road, load: LoadCase) -> float:
+    """The module's one engine call: the spec built and solved, the 3D model's SRT of a single unit, the
+    whole-combination model's governing SRT of a combination [g]."""
+    if isinstance(spec, CombinationSpec):
+        return rollover_threshold(Case(build_combination(spec).combination, "combination", road=road, load=load)).srt
+    return rollover_threshold(Case(build_vehicle(spec).vehicle, "3d", road=road, load=load)).srt
 
 
 @dataclass(frozen=True)
@@ -52,23 +59,50 @@ class PayloadTable:
 
     target_srt_g: float
     payload_index: int
+    unit_index: int | None  # the combination's unit whose payload varies; None for a single unit
     srt_at_spec_g: float  # at the spec's own mass and load height
     by_load_height: tuple[PayloadRow, ...]  # largest mass for each load height
     by_payload_mass: tuple[PayloadRow, ...]  # largest load height for each mass
 
 
-def _with_payload(spec: VehicleSpec, index: int, mass_kg: float, load_height_m: float) -> VehicleSpec:
-    p = spec.payloads[index]
+def _payloads_of(spec: VehicleSpec | CombinationSpec, unit_index: int | None) -> tuple[PayloadSpec, ...]:
+    return spec.units[unit_index].payloads if isinstance(spec, CombinationSpec) else spec.payloads
+
+
+def _with_payload(
+    spec: VehicleSpec | CombinationSpec, unit_index: int | None, index: int, mass_kg: float, load_height_m: float
+) -> VehicleSpec | CombinationSpec:
+    p = _payloads_of(spec, unit_index)[index]
     rear = None if p.load_height_rear_m is None else p.load_height_rear_m + (load_height_m - p.load_height_m)
-    payloads = list(spec.payloads)
+    payloads = list(_payloads_of(spec, unit_index))
     payloads[index] = replace(p, mass_kg=mass_kg, load_height_m=load_height_m, load_height_rear_m=rear)
+    if isinstance(spec, CombinationSpec):
+        units = list(spec.units)
+        units[unit_index] = replace(units[unit_index], payloads=tuple(payloads))
+        return replace(spec, units=tuple(units))
     return replace(spec, payloads=tuple(payloads))
 
 
+def _unit_index(spec: CombinationSpec, unit_index: int | None) -> int:
+    """The unit whose payload varies: the one asked for, else the last unit that carries a payload."""
+    if unit_index is None:
+        loaded = [k for k, u in enumerate(spec.units) if u.payloads]
+        if not loaded:
+            raise InvalidInput("no unit of the combination carries a payload", field="combination_spec.units")
+        return loaded[-1]
+    if isinstance(unit_index, bool) or not isinstance(unit_index, int) or not 0 <= unit_index < len(spec.units):
+        raise InvalidInput(
+            f"unit_index must select one of the combination's {len(spec.units)} units", field="unit_index",
+            value=unit_index,
+        )  # fmt: skip
+    return unit_index
+
+
 def payload_table(
-    spec: VehicleSpec,
+    spec: VehicleSpec | CombinationSpec,
     target_srt_g: float,
     *,
+    unit_index: int | None = None,
     load_heights_m: Sequence[float] | None = None,
     payload_masses_kg: Sequence[float] | None = None,
     payload_index: int = 0,
@@ -89,7 +123,8 @@ def payload_table(
 
     Parameters
     ----------
-    spec : the vehicle; payload ``payload_index`` must be a deck load (deck and load heights)
+    spec : the vehicle, or a combination; payload ``payload_index`` must be a deck load (deck and load heights)
+    unit_index : for a combination, the unit whose payload varies (default the last unit with a payload) [-]
     target_srt_g : the SRT to meet [g]
     load_heights_m : load heights of the first table [m] (default ``rows`` heights up to the spec's)
     payload_masses_kg : payload masses of the second table [kg] (default ``rows`` masses up to the spec's)
@@ -104,34 +139,35 @@ def payload_table(
     """
     if not (isinstance(target_srt_g, int | float) and math.isfinite(target_srt_g) and 0 < target_srt_g < 2):
         raise InvalidInput("target_srt_g must be in (0, 2) g", field="target_srt_g", value=target_srt_g)
-    if not (isinstance(payload_index, int) and 0 <= payload_index < len(spec.payloads)):
+    if isinstance(spec, CombinationSpec):
+        unit_index = _unit_index(spec, unit_index)
+        where = f"combination_spec.units[{unit_index}].payloads"
+    else:
+        unit_index, where = None, "spec.payloads"
+    payloads = _payloads_of(spec, unit_index)
+    if not (isinstance(payload_index, int) and 0 <= payload_index < len(payloads)):
         raise InvalidInput(
-            f"payload_index must select one of the spec's {len(spec.payloads)} payloads",
+            f"payload_index must select one of the {len(payloads)} payloads of {where.rsplit('.', 1)[0]}",
             field="payload_index",
             value=payload_index,
         )
-    p = spec.payloads[payload_index]
+    p = payloads[payload_index]
     if p.deck_height_m is None or p.load_height_m is None:
         raise InvalidInput(
             "the payload table varies a deck load's mass and load height: the payload needs deck_height_m and "
             "load_height_m (not cg_height_m or a tank)",
-            field=f"spec.payloads[{payload_index}].load_height_m",
+            field=f"{where}[{payload_index}].load_height_m",
         )
-    srt_spec = _srt_g(build_vehicle(spec).vehicle, road, load)  # errors of the spec itself pass through
+    srt_spec = _srt_g(spec, road, load)  # errors of the spec itself pass through
     deck, full_height, full_mass = float(p.deck_height_m), float(p.load_height_m), float(p.mass_kg)
     if not full_mass > 0:
-        raise InvalidInput(
-            "the payload's mass must be positive for a table", field=f"spec.payloads[{payload_index}].mass_kg"
-        )
+        raise InvalidInput("the payload's mass must be positive for a table", field=f"{where}[{payload_index}].mass_kg")
     heights = _rows(load_heights_m, "load_heights_m", deck, full_height, rows)
     masses = _rows(payload_masses_kg, "payload_masses_kg", 0.0, full_mass, rows)
 
     def margin(mass_kg: float, height_m: float) -> float | None:
         try:
-            return (
-                _srt_g(build_vehicle(_with_payload(spec, payload_index, mass_kg, height_m)).vehicle, road, load)
-                - target_srt_g
-            )
+            return _srt_g(_with_payload(spec, unit_index, payload_index, mass_kg, height_m), road, load) - target_srt_g
         except RolloverError:  # this value collapses the body or leaves the model's range: unsolvable
             return None
 
@@ -154,7 +190,7 @@ def payload_table(
         )
         for m in masses
     )
-    return PayloadTable(float(target_srt_g), payload_index, srt_spec, by_height, by_mass)
+    return PayloadTable(float(target_srt_g), payload_index, unit_index, srt_spec, by_height, by_mass)
 
 
 def _rows(values: Sequence[float] | None, name: str, low: float, high: float, n: int) -> tuple[float, ...]:

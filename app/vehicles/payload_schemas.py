@@ -1,0 +1,73 @@
+"""The request of POST /v1/vehicles/payload-table: a single unit's builder spec or a combination's, a target."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from pydantic import ConfigDict, Field, model_validator
+
+from app.http.schemas import InputModel, describe, json_int
+from app.vehicles.builder_schemas import EXAMPLE_SPEC, MAX_PAYLOADS, VehicleSpecIn
+from app.vehicles.combination_builder_schemas import CombinationSpecIn
+from engine.vehicle import builder as eb
+from engine.vehicle.builder import combination as ec
+
+
+class PayloadTableRequest(InputModel):
+    """The acceptable payload table of a built vehicle (as TERNZ's results page shows it): for an SRT target, the
+    largest payload mass at each load height and the largest load height at each payload mass, each solved with
+    the engine on the road and load case given: the 3D model's SRT for a single unit (`spec`), the governing SRT of
+    the whole-combination model for a combination (`combination_spec`, the payload of its unit `unit_index`)."""
+
+    model_config = ConfigDict(json_schema_extra={"examples": [{"spec": EXAMPLE_SPEC, "target_srt_g": 0.45, "rows": 4}]})
+
+    spec: VehicleSpecIn | None = Field(  # type: ignore[valid-type]
+        None, description=describe("A single unit's measurable spec (docs/vehicles.md).", unit="see its fields")
+    )
+    combination_spec: CombinationSpecIn | None = Field(  # type: ignore[valid-type]
+        None,
+        description=describe(
+            "A combination's measurable spec (`POST /v1/combinations/build`), instead of `spec`.", unit="see its fields"
+        ),
+    )
+    unit_index: json_int(ge=0, le=10) | None = Field(  # type: ignore[valid-type]
+        None,
+        description=describe(
+            "With `combination_spec`: which unit's payload varies (default the last unit that carries one).", unit="-"
+        ),
+    )
+    target_srt_g: float = Field(gt=0, lt=2, description=describe("The SRT to meet.", unit="g", symbol="SRT target"))
+    payload_index: json_int(ge=0, lt=MAX_PAYLOADS) = Field(  # type: ignore[valid-type]
+        0, description=describe("Which payload of the unit varies (a deck load).", unit="-")
+    )
+    load_heights_m: list[Annotated[float, Field(gt=0, le=10)]] | None = Field(
+        None,
+        min_length=1,
+        max_length=20,
+        description=describe(
+            "Load heights of the first table (each above the deck); default `rows` heights up to the spec's.",
+            unit="m",
+        ),
+    )
+    payload_masses_kg: list[Annotated[float, Field(gt=0, le=200_000)]] | None = Field(
+        None,
+        min_length=1,
+        max_length=20,
+        description=describe("Payload masses of the second table; default `rows` masses up to the spec's.", unit="kg"),
+    )
+    rows: json_int(ge=1, le=20) = Field(  # type: ignore[valid-type]
+        5, description=describe("Rows of each default table.", unit="count")
+    )
+
+    @model_validator(mode="after")
+    def _one_vehicle(self) -> PayloadTableRequest:
+        if (self.spec is None) == (self.combination_spec is None):
+            raise ValueError("give exactly one of spec (a single unit) and combination_spec (a combination)")
+        if self.unit_index is not None and self.combination_spec is None:
+            raise ValueError("unit_index selects a unit of a combination_spec; a single unit's spec has none")
+        return self
+
+    def engine_spec(self) -> eb.VehicleSpec | ec.CombinationSpec:
+        if self.combination_spec is not None:
+            return ec.CombinationSpec.from_dict(self.combination_spec.model_dump(exclude_unset=True))
+        return eb.VehicleSpec.from_dict(self.spec.model_dump(exclude_unset=True))

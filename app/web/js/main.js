@@ -8,6 +8,7 @@ import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
 import * as results from "./results.js";
 import * as road from "./road.js";
+import * as stale from "./stale.js";
 import * as summary from "./summary.js";
 import * as vehicle from "./vehicle.js";
 
@@ -75,11 +76,13 @@ async function compute() {
     const v = await vehicle.current();
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
+    stale.fresh(["srt", "builder", "summary"]);
     const link = writeUrl(stateParams(v.params));
     page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
     return page.last;
   });
   $("#results").setAttribute("aria-busy", "false");
+  if (!done) stale.mark(["srt", "design", "speed", "limits", "builder", "summary"], stale.FAILED);
   if (done) {
     status("");
     // the figures, the road design and the curve speed of the same case, side by side
@@ -100,7 +103,9 @@ function counted(name) {
 async function roadDesign() {
   const { vehicle: v, request } = page.last;
   const design = await guarded($("#road-compute"), $("#road-section"), $("#road-error"), () => road.minRadius(v.ref, request));
+  if (!design) stale.mark(["design"], stale.FAILED);
   if (design) {
+    stale.fresh(["design"]);
     page.last.design = design;
     page.last.link = writeUrl(stateParams(v.params));
   }
@@ -109,7 +114,9 @@ async function roadDesign() {
 async function curveSpeed() {
   const { vehicle: v, request } = page.last;
   const speed = await guarded($("#speed-compute"), $("#speed-form"), $("#speed-error"), () => road.curveSpeed(v.ref, request));
+  if (speed === undefined) stale.mark(["speed"], stale.FAILED);
   if (speed !== undefined) {
+    stale.fresh(["speed"]);
     page.last.speed = speed;
     page.last.link = writeUrl(stateParams(v.params));
   }
@@ -148,7 +155,7 @@ async function assessFile() {
     aborter.abort();
     await alignment.cancelJob().catch(() => undefined);
   };
-  await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
+  const assessed = await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
     const file = $("#alignment-file").files[0];
     if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
     const text = await file.text();
@@ -175,13 +182,28 @@ async function assessFile() {
     Object.assign(alignment.state, { path, request, key });
     const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
     alignment.render(result, kind, lines);
+    return true;
   });
+  if (assessed) stale.fresh(["alignment"]);
+  else stale.mark(["alignment"], stale.FAILED);
   counted("assessments");
 }
 
 // ------------------------------------------------------------------------------------------ wiring
 
+function watchInputs() {
+  stale.watch($("#vehicle-section"), "vehicle");
+  stale.watch($("#case-form"), "case");
+  stale.watch($("#road-form"), "road");
+  $("#standard").addEventListener("change", () => stale.mark(stale.DEPENDS.standard));
+  stale.watch($("#speed-form"), "speed");
+  stale.watch($("#super-form"), "superelevation");
+  stale.watch($("#limits-form"), "limits");
+  stale.watch($("#alignment-form"), "alignment");
+}
+
 function wire() {
+  watchInputs();
   $("#case-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     compute();
@@ -195,16 +217,22 @@ function wire() {
   }
   $("#super-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation).then(() => counted("superelevations"));
+    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation).then((out) => {
+      if (out) stale.fresh(["superelevation"]);
+      else stale.mark(["superelevation"], stale.FAILED);
+      counted("superelevations");
+    });
   });
   $("#limits-form").addEventListener("submit", async (ev) => {
     ev.preventDefault();
-    await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
+    const out = await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
       const out = await road.limits(v.ref, caseFields());
       if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
       return out;
     });
+    if (out) stale.fresh(["limits"]);
+    else stale.mark(["limits"], stale.FAILED);
     counted("limits");
   });
   $("#alignment-form").addEventListener("submit", (ev) => {

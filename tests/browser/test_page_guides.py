@@ -41,6 +41,13 @@ def in_viewport(page, selector: str) -> bool:
     )
 
 
+def cells(page, selector: str) -> list[list[str]]:
+    """The cells' texts of the rows matched by ``selector`` (read in one script)."""
+    script = """return Array.from(document.querySelectorAll(arguments[0]))
+      .map((tr) => Array.from(tr.cells).map((td) => td.textContent.trim()));"""
+    return page.driver.execute_script(script, selector)
+
+
 def ok(response):
     assert response.status_code == 200, response.text
     return response.json()
@@ -82,3 +89,50 @@ def test_results_are_marked_stale_when_an_input_changes_or_a_request_fails(page,
         assert page.find("#b-rear-track").get_attribute("aria-invalid") == "true"
         assert "request failed" in page.text("#stale-srt")
         assert page.find("#stale-design").is_displayed()
+
+
+# ------------------------------------------------------------------------------------------- combinations
+
+
+def test_the_default_vehicle_is_a_combination_computed_as_a_whole(page, api):
+    page.open()
+    assert page.find("#preset").get_attribute("value") == "tractor-semitrailer-table15"
+    assert page.find("#model").get_attribute("value") == "combination"
+    assert page.find_all("#preset-view svg")  # drawn before anything is computed
+    page.run("computations", lambda: page.find("#compute").click())
+    expected = ok(api.post("/v1/srt", json={"vehicle": "tractor-semitrailer-table15"}))
+    assert page.text("#srt-value") == f"{expected['srt']:.3f} g"
+    assert len(page.find_all("#units-table tbody tr")) == len(expected["roll_coupled_units"])
+
+
+@WIDTHS
+def test_a_combination_shows_each_roll_coupled_unit_the_lift_off_sequence_and_the_governing_unit(page, api, size):
+    expected = ok(api.post("/v1/srt", json={"vehicle": "adouble"}))
+    detail = ok(api.get("/v1/combinations/adouble"))["combination"]
+    with viewport(page, size):
+        page.open("?vehicle=adouble")
+        assert page.text("#srt-value") == f"{expected['srt']:.3f} g"
+        units = expected["roll_coupled_units"]
+        governing = expected["governing_unit"]
+        assert len(units) == 2  # the A-dolly's pintle cuts the A-double in two
+        rows = page.find_all("#units-table tbody tr")
+        assert [r.find_elements("css selector", "td")[2].text for r in rows] == [f"{u['srt']:.3f}" for u in units]
+        assert "governing" in rows[governing].get_attribute("class")
+        names = " + ".join(units[governing]["units"])
+        assert page.text("#governing-unit") == (
+            f"Governed by roll-coupled unit {governing + 1} of 2 ({names}), SRT {units[governing]['srt']:.3f} g."
+        )
+        assert cells(page, "#lift-table tbody tr") == [
+            [str(i + 1), s["unit"], s["group"], f"{s['ay_g']:.3f}"] for i, s in enumerate(expected["lift_sequence"])
+        ]
+        # the side view: one box per unit, a wheel per axle, a mark per coupling; the governing units highlighted
+        svg = "#combination-result svg"
+        assert [g.get_attribute("data-unit") for g in page.find_all(f"{svg} g.unit")] == [
+            u["id"] for u in detail["units"]
+        ]
+        axles = sum(g["axles"] for u in detail["units"] for g in u["groups"])
+        assert len(page.find_all(f"{svg} circle.wheel")) == axles
+        assert len(page.find_all(f"{svg} .coupling")) == len(detail["couplings"])
+        highlighted = {g.get_attribute("data-unit") for g in page.find_all(f"{svg} g.unit.governing")}
+        assert highlighted == set(units[governing]["units"])
+        assert page.find(svg).is_displayed()

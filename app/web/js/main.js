@@ -3,6 +3,7 @@
 
 import * as alignment from "./alignment.js";
 import * as api from "./api.js";
+import * as combination from "./combination.js";
 import { $, $$, el } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
@@ -44,6 +45,10 @@ function fillModels(models) {
   select.dataset.initial = initial;
 }
 
+/** What the whole-combination model accounts for (engine/models/registry.py, `combination_takes`), for a service
+ * whose GET /v1/models does not say it yet. */
+const WHOLE_COMBINATION_TAKES = ["bank", "slope", "d1", "d2", "d3", "overweight", "rear_llt_limit"];
+
 const modelInfo = () => page.models.find((m) => m.id === $("#model").value);
 
 /** Enable the inputs the model takes, and only the models the vehicle supports. */
@@ -51,15 +56,21 @@ function syncModel() {
   const supported = vehicle.supportedModels();
   const select = $("#model");
   for (const option of select.options) option.disabled = Boolean(supported) && !supported.includes(option.value);
-  // a model the page chose for the last vehicle goes back to the default when the vehicle supports it
-  if (!page.modelChosen && !select.querySelector(`option[value="${select.dataset.initial}"]`)?.disabled) {
-    select.value = select.dataset.initial;
+  // a model the page chose for the last vehicle goes back to the vehicle's default when the vehicle supports it
+  // (a combination: the whole-combination model; else the service's default)
+  const wanted = vehicle.defaultModel() || select.dataset.initial;
+  if (!page.modelChosen && select.querySelector(`option[value="${wanted}"]`) && !select.querySelector(`option[value="${wanted}"]`).disabled) {
+    select.value = wanted;
   }
   if (select.selectedOptions[0]?.disabled) select.value = supported[0];
   const m = modelInfo();
   if (!m) return;
+  // a combination solved as a whole takes the road and load inputs its model lists for combinations
+  // (`combination_takes`); a service that does not list them gets the whole-combination model's own list
+  let takesList = m.takes;
+  if (vehicle.choosesCombination()) takesList = m.combination_takes || (m.id === "combination" ? WHOLE_COMBINATION_TAKES : m.takes);
   for (const box of $$("[data-takes]")) {
-    const takes = m.takes.includes(box.dataset.takes);
+    const takes = takesList.includes(box.dataset.takes);
     box.classList.toggle("disabled", !takes);
     for (const c of $$("input, select", box)) c.disabled = !takes;
   }
@@ -76,6 +87,7 @@ async function compute() {
     const v = await vehicle.current();
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
+    combination.show(v.combination || null, result);
     stale.fresh(["srt", "builder", "summary"]);
     const link = writeUrl(stateParams(v.params));
     page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
@@ -260,7 +272,7 @@ function wire() {
   $("#standard").addEventListener("change", road.describeStandard);
   $("#record-from-preset").addEventListener("click", () => {
     const p = vehicle.preset();
-    if (p) $("#record-json").value = JSON.stringify(vehicle.presetRecord(p), null, 2);
+    if (p) vehicle.presetBody(p).then((body) => ($("#record-json").value = JSON.stringify(body, null, 2)));
   });
   const savedBox = $('[data-panel="saved"]');
   $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));
@@ -280,7 +292,7 @@ function wire() {
         });
       }
       const v = await vehicle.current();
-      const body = { title: $("#save-title").value.trim(), vehicle: v.built ? { spec: v.built.spec } : v.record };
+      const body = { title: $("#save-title").value.trim(), vehicle: v.built ? { spec: v.built.spec } : v.body || v.record };
       const saved = await api.post("/v1/vehicles", body, { key: vehicle.apiKey() });
       $("#save-info").textContent = `Saved as ${saved.id} (version ${saved.version}).`;
     });
@@ -316,16 +328,17 @@ async function init() {
   const wanted = vehicle.fromParams(params);
   // what this deployment has (its OpenAPI document) decides which optional lists are read
   const optional = (path) => api.has("get", path).then((yes) => (yes ? api.get(path) : null));
-  const [models, presets, standards, components] = await Promise.all([
+  const [models, presets, standards, components, combinations] = await Promise.all([
     api.get("/v1/models"),
     api.get("/v1/vehicles"),
     optional("/v1/design-standards"),
     optional("/v1/components"),
+    optional("/v1/combinations"),
   ]);
   fillModels(models);
   page.modelChosen = Boolean(params.get("model"));
   vehicle.initBuilder();
-  vehicle.fillPresets(presets);
+  vehicle.fillPresets(presets, combinations || []);
   if (standards) road.fillStandards(standards);
   if (components) vehicle.fillComponents(components);
   await showOptionalParts();

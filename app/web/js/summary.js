@@ -1,6 +1,7 @@
 // The printable summary: inputs, results, the targets and the verdict, the figures, the engine version, the date
 // and the thesis citation, laid out for A4 or Letter by print.css. Rebuilt after every computation.
 
+import { governingText, liftTable, unitsTable } from "./combination.js";
 import { $, clear, el, fmt } from "./dom.js";
 import { factList, facts, srtText, targetsTable } from "./results.js";
 import { radiusCaption, radiusTable } from "./road.js";
@@ -88,6 +89,15 @@ export function update({ vehicle, request, result, figures, design, speed, link 
     ),
     el("p", { class: "verdict-line" }, verdictLine(result)),
   );
+  if (result.roll_coupled_units?.length) {
+    box.append(
+      el("h3", {}, "Roll-coupled units"),
+      el("p", { class: "verdict-line", id: "summary-governing" }, governingText(result)),
+      el("div", { class: "keep" }, unitsTable(result)),
+      el("h3", {}, "Lift-off sequence"),
+      el("div", { class: "keep" }, liftTable(result)),
+    );
+  }
   if (figures.length) {
     box.append(el("h3", {}, "Curves against ay/g"), el("div", { class: "plots" }, figures.map((f) => f.cloneNode(true))));
   }

@@ -42,9 +42,10 @@ def api_srt(api, **body) -> dict:
 
 
 def facts(page) -> dict[str, str]:
+    """The facts at the limit (folded under "Details": read as text, shown or not)."""
     dts = page.find_all("#result-facts dt")
     dds = page.find_all("#result-facts dd")
-    return {dt.text: dd.text for dt, dd in zip(dts, dds, strict=True)}
+    return {dt.get_attribute("textContent"): dd.get_attribute("textContent") for dt, dd in zip(dts, dds, strict=True)}
 
 
 # ------------------------------------------------------------------------------------------- the link

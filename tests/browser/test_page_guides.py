@@ -136,3 +136,63 @@ def test_a_combination_shows_each_roll_coupled_unit_the_lift_off_sequence_and_th
         highlighted = {g.get_attribute("data-unit") for g in page.find_all(f"{svg} g.unit.governing")}
         assert highlighted == set(units[governing]["units"])
         assert page.find(svg).is_displayed()
+
+
+# ------------------------------------------------------------------------------------------- the verdict
+
+
+@WIDTHS
+def test_the_verdict_comes_first_in_plain_words_and_the_thesis_notation_folded(page, api, size):
+    expected = ok(api.post("/v1/srt", json={"vehicle": "table16-btrain"}))
+    with viewport(page, size):
+        page.open("?vehicle=table16-btrain")
+        general, dangerous = expected["targets"]
+        assert [li.text for li in page.find_all("#verdict-plain li")] == [
+            f"\u2717 Below the 0.35 g general target by {-general['margin_g']:.3f} g.",
+            f"\u2717 Below the 0.40 g dangerous goods target by {-dangerous['margin_g']:.3f} g.",
+        ]
+        assert page.find("#verdict-plain").is_displayed()
+        # the thesis's notation second, folded: shown on request
+        assert not page.find("#result-facts").is_displayed()
+        page.find("#result-details summary").click()
+        assert page.find("#result-facts").is_displayed() and "Fz17" in page.text("#result-facts")
+
+
+def test_a_level_road_srt_is_shown_beside_the_curves_threshold_and_numbers_are_rounded(page, api):
+    # the service judges targets on the level-road SRT (issue 23 item 1); the page shows both when they differ
+    body = {"vehicle": "btrain-table16", "road": {"bank_percent": 6}}
+    answer = ok(api.post("/v1/srt", json=body))
+    page.open("?vehicle=btrain-table16&bank_percent=6")
+    assert page.text("#srt-value") == f"{answer['srt']:.3f} g"
+    if "level_road_srt" in answer:
+        assert page.text("#level-srt-value") == f"{answer['level_road_srt']:.3f} g"
+        assert page.text("#level-srt-line").startswith("Level-road SRT (judged against targets)")
+        assert page.text("#srt-label") == "This curve's threshold with its bank and grade"
+    else:  # a service without it: as before, one threshold
+        assert not page.find("#level-srt-line").is_displayed()
+    # an answer with both (and float tails) as the page renders it: both labelled, every number rounded
+    fake = {
+        **answer,
+        "srt": 0.41303990805744695,
+        "level_road_srt": 0.3475292046860783,
+        "rear_llt_limit": 0.9999999999999994,
+        "targets": [
+            {"name": "general", "target_g": 0.35, "meets": False, "margin_g": -0.002470795313921699,
+             "judged_on": "level_road_srt"},
+            {"name": "dangerous_goods", "target_g": 0.4000000000000001, "meets": False,
+             "margin_g": -0.05247079531392171, "judged_on": "level_road_srt"},
+        ],
+    }  # fmt: skip
+    page.driver.execute_async_script(
+        "const done = arguments[1]; import('/web/js/results.js').then((m) => { m.showResult(arguments[0], null);"
+        " done(); });",
+        fake,
+    )
+    assert page.text("#level-srt-value") == "0.348 g" and page.text("#srt-value") == "0.413 g"
+    assert page.text("#srt-label") == "This curve's threshold with its bank and grade"
+    assert [li.text for li in page.find_all("#verdict-plain li")] == [
+        "\u2717 Below the 0.35 g general target by 0.002 g (on the level-road SRT).",
+        "\u2717 Below the 0.40 g dangerous goods target by 0.052 g (on the level-road SRT).",
+    ]
+    assert "rear LLT limit 1)" in page.find("#result-facts").get_attribute("textContent")
+    assert "0.9999" not in page.find("#results-body").get_attribute("textContent")

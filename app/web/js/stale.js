@@ -33,6 +33,15 @@ export const FAILED = "Stale \u2014 the last request failed (see the message at 
 
 const hasContent = (node) => node && !node.hidden && node.childNodes.length > 0 && node.textContent.trim() !== "";
 
+/** The sticky bar's headline follows the SRT panel. */
+function syncBar() {
+  const staleSrt = $(PANELS.srt)?.dataset.stale === "true";
+  const bar = $("#bar-stale");
+  if (bar) bar.hidden = !staleSrt;
+  $("#bar-result")?.classList.toggle("stale", staleSrt);
+  document.body.dataset.stale = String(Object.keys(PANELS).filter((n) => $(PANELS[n])?.dataset.stale === "true").length);
+}
+
 /** Mark the panels `names` stale with `text` (panels without a result are left alone). */
 export function mark(names, text = CHANGED) {
   for (const name of names) {
@@ -51,7 +60,7 @@ export function mark(names, text = CHANGED) {
     ids.add(id);
     panel.setAttribute("aria-describedby", [...ids].join(" "));
   }
-  document.body.dataset.stale = String(Object.keys(PANELS).filter((n) => $(PANELS[n])?.dataset.stale === "true").length);
+  syncBar();
 }
 
 /** The panels `names` show a fresh result again. */
@@ -66,7 +75,7 @@ export function fresh(names) {
     if (rest.length) panel.setAttribute("aria-describedby", rest.join(" "));
     else panel.removeAttribute("aria-describedby");
   }
-  document.body.dataset.stale = String(Object.keys(PANELS).filter((n) => $(PANELS[n])?.dataset.stale === "true").length);
+  syncBar();
 }
 
 /** Mark stale on every edit inside `root` (typing, choosing, a file): the parts `part` depends on. */

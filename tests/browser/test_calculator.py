@@ -271,19 +271,21 @@ def test_road_design_tables_follow_eqs_9_1_to_9_3_and_table21(page, api):
     for tr in page.find_all("#road-results table tbody tr"):
         cells = [td.text for td in tr.find_elements("css selector", "td")]
         rows[float(cells[0])] = cells
+    # the columns: V, the governing radius and what governs it first, then Eq. 9.2, Eq. 9.3 and f
     # Table 21 (low bound) at 60 and 80 km/h: f = 0.15 and 0.14
-    assert rows[60.0][1] == "0.150" and rows[80.0][1] == "0.140"
+    assert rows[60.0][5] == "0.150" and rows[80.0][5] == "0.140"
     caption = page.text("#road-results p")
     srt_bank = float(caption.split("SRT on this bank: ")[1].split(" g")[0])
     assert srt_bank == pytest.approx(api_srt(api, road={"bank_percent": 8})["srt"], abs=DISPLAY_G)
     for v, cells in rows.items():
-        f, r92, r93, governing = (float(c) for c in cells[1:5])
-        assert r92 == pytest.approx(v**2 / (127 * (0.08 + f)), abs=0.051)  # Eq. 9.2, e = 8 %; shown to 0.1 m
-        # Eq. 9.3, shown to 0.1 m, from the SRT shown to 0.001 g (relative error at most 0.0005 / srt_bank)
+        governing, r92, r93, f = float(cells[1]), float(cells[3]), float(cells[4]), float(cells[5])
+        assert r92 == pytest.approx(v**2 / (127 * (0.08 + f)), abs=0.501)  # Eq. 9.2, e = 8 %; shown to 1 m
+        # Eq. 9.3, shown to 1 m, from the SRT shown to 0.001 g (relative error at most 0.0005 / srt_bank)
         exact = v**2 / (127 * srt_bank)
-        assert abs(r93 - exact) <= 0.05 + exact * DISPLAY_G / srt_bank
+        assert abs(r93 - exact) <= 0.5 + exact * DISPLAY_G / srt_bank
         assert governing == max(r92, r93)
-        assert cells[5] == ("rollover" if r93 > r92 else "side-friction")
+        if r93 != r92:
+            assert cells[2] == ("rollover" if r93 > r92 else "side-friction")
     assert page.find_all("#road-results svg g.series")
     # Eq. 9.1: V = sqrt(127 SRT R); Table 18: the B-train's 0.3364 g at R = 80 m is 58.5 km/h (1 %: half the
     # SRT's 2 %, V going with its square root)
@@ -418,11 +420,13 @@ def test_the_main_controls_are_labelled_and_reached_with_the_keyboard(page, api)
         ".filter(c => c.type !== 'hidden' && !c.labels.length && !c.getAttribute('aria-label')).map(c => c.id)"
     )
     assert unlabelled == []
-    page.driver.execute_script("document.activeElement.blur(); window.scrollTo(0, 0)")
-    reached = []
-    for _ in range(120):
-        ActionChains(page.driver).send_keys(Keys.TAB).perform()
-        reached.append(page.driver.switch_to.active_element.get_attribute("id"))
+    # every element the keyboard focuses is recorded by the page itself; the 120 Tab presses go in one action
+    page.driver.execute_script(
+        "document.activeElement.blur(); window.scrollTo(0, 0); window.__reached = [];"
+        "document.addEventListener('focusin', (e) => window.__reached.push(e.target.id));"
+    )
+    ActionChains(page.driver).send_keys(Keys.TAB * 120).perform()
+    reached = page.driver.execute_script("return window.__reached")
     missing = [c for c in MAIN_CONTROLS if c not in reached]
     assert missing == []
     # computing without a mouse: Enter in a field submits its form

@@ -196,3 +196,54 @@ def test_a_level_road_srt_is_shown_beside_the_curves_threshold_and_numbers_are_r
     ]
     assert "rear LLT limit 1)" in page.find("#result-facts").get_attribute("textContent")
     assert "0.9999" not in page.find("#results-body").get_attribute("textContent")
+
+
+# ------------------------------------------------------------------------------------------- layout
+
+CURVES_CSV = """id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh
+WIDE,2000,6,0,60
+TIGHT,40,0,0,90
+"""
+
+
+def readable(page, selector: str) -> bool:
+    """Whether the element, scrolled to vertically, shows whole inside its table's region and the viewport without
+    scrolling the table sideways."""
+    return page.driver.execute_script(
+        """const e = document.querySelector(arguments[0]);
+        window.scrollTo(0, e.getBoundingClientRect().top + window.scrollY - 200);
+        const r = e.getBoundingClientRect();
+        const wrap = e.closest('.table-wrap').getBoundingClientRect();
+        return e.closest('.table-wrap').scrollLeft === 0 && r.width > 0 && r.left >= wrap.left - 0.5
+          && r.right <= wrap.right + 0.5 && r.right <= document.documentElement.clientWidth;""",
+        selector,
+    )
+
+
+@WIDTHS
+def test_compute_stays_in_view_the_result_is_one_tap_away_and_key_columns_are_readable(page, tmp_path, size):
+    path = tmp_path / "curves.csv"
+    path.write_text(CURVES_CSV)
+    with viewport(page, size):
+        page.open("?vehicle=table16-btrain")
+        # the result's headline is at the top, with Compute, whatever the width
+        assert in_viewport(page, "#compute") and in_viewport(page, "#bar-srt")
+        assert page.text("#bar-srt") == page.text("#srt-value")
+        page.driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
+        assert in_viewport(page, "#compute")  # sticky: still in view at the bottom of the page
+        page.find("#jump-result").click()  # one tap to the result, past the whole form on a phone
+        assert in_viewport(page, "#srt-value")
+        # the minimum-radius table: the governing radius and what governs it without scrolling sideways
+        heads = page.find_all("#road-results thead th")
+        assert [h.get_attribute("textContent") for h in heads[:3]] == ["V [km/h]", "Governing R [m]", "Governed by"]
+        for i in (1, 2, 3):
+            assert readable(page, f"#road-results thead th:nth-child({i})"), i
+        # the alignment table: the flag and the margin next to the curve's name
+        page.find("#alignment-file").send_keys(str(path))
+        page.run("assessments", lambda: page.find("#alignment-assess").click())
+        keys = [b.get_attribute("data-key") for b in page.find_all("#curves-table thead button.sort")]
+        assert keys[:3] == ["id", "flagged", "margin_kmh"]
+        for i in (1, 2, 3):
+            assert readable(page, f"#curves-table thead th:nth-child({i})"), i
+        assert readable(page, "#curves-table tbody tr:nth-child(2) td:nth-child(2)")  # TIGHT: flagged
+        assert page.find("#curves-table tbody tr:nth-child(2) td:nth-child(2)").text == "\u26a0 flagged"

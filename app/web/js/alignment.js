@@ -118,11 +118,18 @@ export async function cancelJob() {
 
 // ------------------------------------------------------------------------------------------ the table
 
+/** The curves' columns: the curve, then what a reader acts on (flag, margin, safe and posted speed, what governs),
+ * then the geometry and the speeds behind them. The first column stays in view when the table scrolls sideways. */
 const COLUMNS = [
   { key: "id", label: "Curve", text: true },
+  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), text: true },
+  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => (v === null || v === undefined ? "-" : signed(v, 1)) },
+  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
+  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
+  { key: "governed_by", label: "Governed by", text: true },
   { key: "vehicle", label: "Vehicle", text: true },
   { key: "station_m", label: "Station [m]", format: (v) => fmt(v, 0) },
-  { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
+  { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 0) },
   { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1) },
   { key: "direction", label: "Turns", text: true },
   { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
@@ -130,11 +137,6 @@ const COLUMNS = [
   { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3) },
   { key: "rollover_speed_kmh", label: "Rollover speed [km/h]", format: (v) => fmt(v, 1) },
   { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "governed_by", label: "Governed by", text: true },
-  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
-  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => (v === null || v === undefined ? "-" : signed(v, 1)) },
-  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), text: true },
   { key: "meets_standard_min_radius", label: "Meets Rmin", format: (v) => (v === null || v === undefined ? "-" : v ? "yes" : "no"), text: true },
   { key: "error", label: "Error", text: true },
 ];

@@ -72,7 +72,7 @@ def test_link_opens_the_btrain_with_its_srt_computed(page, api):
     rows = [
         [td.text for td in tr.find_elements("css selector", "td")] for tr in page.find_all("#targets-table tbody tr")
     ]
-    assert [r[0] for r in rows] == ["general", "dangerous_goods"]
+    assert [r[0] for r in rows] == ["general", "dangerous goods"]  # in words
     for row, target in zip(rows, (0.35, 0.40), strict=True):
         assert shown(row[1], "") == target
         assert "below" in row[2]
@@ -383,18 +383,26 @@ def test_an_unreadable_csv_row_is_shown_at_the_file_with_its_row(page, tmp_path)
 # ------------------------------------------------------------------------------------------- printing
 
 
-def test_the_printed_summary_holds_the_srt_verdict_version_and_citation(page):
+def test_the_printed_summary_holds_the_srt_verdict_version_and_citation(page, api):
     from pypdf import PdfReader
 
     page.open("?vehicle=table16-btrain&radius_m=80")
     srt_text = page.text("#srt-value")
+    general, dangerous = api_srt(api)["targets"]
     options = PrintOptions()
     options.page_width, options.page_height = 21.0, 29.7  # A4 [cm]
     pdf = PdfReader(io.BytesIO(base64.b64decode(page.driver.print_page(options))))
     text = " ".join(" ".join(p.extract_text().split()) for p in pdf.pages)
     assert f"Static rollover threshold {srt_text}" in text
     # Sec. 9.1's 0.3364 g is below both default targets (0.35 g and 0.40 g)
-    assert f"Verdict: the SRT of {srt_text} is below general (0.350 g) and dangerous_goods (0.400 g)." in text
+    assert (
+        f"Verdict: Below the 0.35 g general target by {-general['margin_g']:.3f} g. "
+        f"Below the 0.40 g dangerous goods target by {-dangerous['margin_g']:.3f} g."
+    ) in text
+    # the vehicle in words with units: its weight as a mass in kg (Table 16: W = 355.22 kN, 36210 kg)
+    compact = text.replace(": ", ":")
+    assert "Mass (weight W / g):36210 kg" in compact and "CG height above the chassis (l12):1.356 m" in compact
+    assert "weight_kn" not in text and "_m:" not in text and "null" not in text
     assert f"engine version {ENGINE_VERSION}" in text
     assert "Static rollover threshold of long combination vehicles" in text  # the thesis citation
     assert "Lateral load transfer against ay/g" in text  # the figures are in it

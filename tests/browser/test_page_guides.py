@@ -9,6 +9,9 @@ Expected numbers come from the public API called directly for the same case -- n
 from __future__ import annotations
 
 import contextlib
+import json
+import unicodedata
+from urllib.parse import quote
 
 import pytest
 
@@ -247,3 +250,73 @@ def test_compute_stays_in_view_the_result_is_one_tap_away_and_key_columns_are_re
             assert readable(page, f"#curves-table thead th:nth-child({i})"), i
         assert readable(page, "#curves-table tbody tr:nth-child(2) td:nth-child(2)")  # TIGHT: flagged
         assert page.find("#curves-table tbody tr:nth-child(2) td:nth-child(2)").text == "\u26a0 flagged"
+
+
+# ------------------------------------------------------------------------------------------- the printout
+
+
+def printed(page) -> str:
+    import base64
+    import io
+
+    from pypdf import PdfReader
+    from selenium.webdriver.common.print_page_options import PrintOptions
+
+    options = PrintOptions()
+    options.page_width, options.page_height = 21.0, 29.7  # A4 [cm]
+    pdf = PdfReader(io.BytesIO(base64.b64decode(page.driver.print_page(options))))
+    text = " ".join(" ".join(p.extract_text().split()) for p in pdf.pages)
+    return unicodedata.normalize("NFKC", text)  # the PDF's ligatures (ff, fi) as letters
+
+
+def test_the_printout_of_a_combination_says_which_unit_governs_in_words_with_units(page, api):
+    expected = ok(api.post("/v1/srt", json={"vehicle": "adouble"}))
+    units = expected["roll_coupled_units"]
+    governing = units[expected["governing_unit"]]
+    page.open("?vehicle=adouble")
+    text = printed(page)
+    names = " + ".join(governing["units"])
+    assert f"Governed by roll-coupled unit {expected['governing_unit'] + 1} of 2 ({names}), SRT" in text
+    assert "Sprung mass [kg]" in text and "CG height [m]" in text and "pintle" in text
+    assert "Lift-off sequence" in text and "null" not in text and "sprung_mass_kg" not in text
+
+
+@WIDTHS
+def test_a_vehicle_below_a_target_is_offered_its_payload_table_and_the_printout_holds_the_tables_shown(
+    page, api, tmp_path, size
+):
+    components = ok(api.get("/v1/components"))
+    tyre, suspension = components["tyres"][0]["id"], components["suspensions"][0]["id"]
+    spec = {
+        "unit_type": "semitrailer",
+        "rear": {"axles": 3, "tyres_per_axle": 4, "track_m": 1.86, "centre_from_kingpin_m": 8.7,
+                 "tyre": {"id": tyre}, "suspension": {"type": suspension}},
+        "front": {"axles": 2, "tyres_per_axle": 4, "track_m": 1.86, "centre_from_kingpin_m": 0.2},
+        "tare": {"mass_kg": 8000, "cg_height_m": 1.1, "cg_from_kingpin_m": 6},
+        "payloads": [{"mass_kg": 24000, "deck_height_m": 1.4, "load_height_m": 3.6, "distribution": "uniform"}],
+        "deck": {"front_from_kingpin_m": -1, "length_m": 13},
+    }  # fmt: skip
+    answer = ok(api.post("/v1/srt", json={"vehicle": {"spec": spec}}))
+    assert not answer["targets"][0]["meets"]  # 24 t up to 3.6 m: below 0.35 g (tests/browser/test_builder_road_routes)
+    with viewport(page, size):
+        page.open("?spec=" + quote(json.dumps(spec)))
+        # offered in the result itself, not behind the CG-height form further down
+        assert page.find("#payload-offer").is_displayed()
+        assert page.text("#payload-offer-button") == "Acceptable payload table for 0.35 g"
+        page.run("limits", lambda: page.find("#payload-offer-button").click())
+        assert page.find("#payload-tables").is_displayed()
+        expected = ok(api.post("/v1/vehicles/payload-table", json={"spec": spec, "target_srt_g": 0.35}))
+        first = cells(page, "#payload-tables .table-wrap:first-child tbody tr")
+        assert [c[0] for c in first] == [f"{r['load_height_m']:.2f}" for r in expected["by_load_height"]]
+        if size == PHONE:
+            return
+        page.run("superelevations", lambda: page.find("#super-compute").click())
+        path = tmp_path / "curves.csv"
+        path.write_text(CURVES_CSV)
+        page.find("#alignment-file").send_keys(str(path))
+        page.run("assessments", lambda: page.find("#alignment-assess").click())
+        text = printed(page)
+    assert "Acceptable payload of the built vehicle" in text and "Largest payload [kg]" in text
+    assert "Design superelevation of a curve" in text and "Superelevation by radius" not in text.split("Alignment")[-1]
+    assert "Alignment" in text and "TIGHT" in text and "flagged" in text
+    assert "Mass (weight W / g):" in text.replace(": ", ":")

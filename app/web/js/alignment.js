@@ -371,3 +371,19 @@ async function save() {
     download("assessment.json", new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   }
 }
+
+/** The curves for the printout: the summary line, the outline and the table, at most `max` rows (flagged first). */
+export function printable(max = 60) {
+  const t = $("#curves-table")?.cloneNode(true);
+  if (!t) return null;
+  const rows = Array.from(t.tBodies[0].rows);
+  let note = null;
+  if (rows.length > max) {
+    const keep = [...rows.filter((r) => r.classList.contains("flagged")), ...rows.filter((r) => !r.classList.contains("flagged"))].slice(0, max);
+    for (const r of rows) if (!keep.includes(r)) r.remove();
+    note = el("p", { class: "hint" }, `${max} of ${rows.length} curves printed (the flagged ones first); the CSV download has them all.`);
+  }
+  t.querySelector("caption")?.remove();
+  for (const b of t.querySelectorAll("button.sort")) b.replaceWith(document.createTextNode(b.textContent));
+  return [$("#alignment-summary"), $("#alignment-results figure.outline"), note, t];
+}

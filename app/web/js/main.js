@@ -4,7 +4,7 @@
 import * as alignment from "./alignment.js";
 import * as api from "./api.js";
 import * as combination from "./combination.js";
-import { $, $$, el } from "./dom.js";
+import { $, $$, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
 import * as results from "./results.js";
@@ -88,6 +88,7 @@ async function compute() {
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
     combination.show(v.combination || null, result);
+    offerPayload(result, v);
     stale.fresh(["srt", "builder", "summary"]);
     const link = writeUrl(stateParams(v.params));
     page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
@@ -104,6 +105,23 @@ async function compute() {
     summary.update(done);
   }
   counted("computations");
+}
+
+/**
+ * A vehicle below a target is offered what load would meet it: the payload table of a built vehicle (the
+ * TERNZ-style table: largest payload by load height), else the largest CG height (or load offset) by overweight.
+ */
+function offerPayload(result, v) {
+  const missed = result.targets.filter((t) => !t.meets).sort((a, b) => a.target_g - b.target_g);
+  const box = $("#payload-offer");
+  box.hidden = !missed.length || !$("#limits-form").closest("[data-needs]") || $("#limits-form").closest("[data-needs]").hidden;
+  if (box.hidden) return;
+  const target = missed[0].target_g;
+  const what = v.built ? "Acceptable payload table" : v.combination ? "Acceptable load height by overweight" : "Acceptable CG height by overweight";
+  $("#payload-offer-text").textContent = `Below the ${num(target, 3, 2)} g ${results.targetName(missed[0].name)} target: what load would meet it?`;
+  const button = $("#payload-offer-button");
+  button.textContent = `${what} for ${num(target, 3, 2)} g`;
+  button.dataset.target = String(target);
 }
 
 /** Count finished runs on <body data-*> (how scripts and tests know that the page has answered). */
@@ -194,6 +212,7 @@ async function assessFile() {
     Object.assign(alignment.state, { path, request, key });
     const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
     alignment.render(result, kind, lines);
+    summary.extra("alignment", lines ? "Route" : "Alignment", alignment.printable());
     return true;
   });
   if (assessed) stale.fresh(["alignment"]);
@@ -230,6 +249,7 @@ function wire() {
   $("#super-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation).then((out) => {
+      if (out) summary.extra("superelevation", "Design superelevation of a curve", [$("#super-result"), $("#super-table")]);
       if (out) stale.fresh(["superelevation"]);
       else stale.mark(["superelevation"], stale.FAILED);
       counted("superelevations");
@@ -239,13 +259,19 @@ function wire() {
     ev.preventDefault();
     const out = await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
-      const out = await road.limits(v.ref, caseFields());
+      const out = await road.limits(v.ref, caseFields(), { combination: Boolean(v.combination) });
       if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
+      summary.extra("limits", `Acceptable load for SRT ${$("#limit-target").value.trim()} g`, [$("#limits-result")]);
       return out;
     });
     if (out) stale.fresh(["limits"]);
     else stale.mark(["limits"], stale.FAILED);
     counted("limits");
+  });
+  $("#payload-offer-button").addEventListener("click", () => {
+    $("#limit-target").value = $("#payload-offer-button").dataset.target;
+    $("#limits-form").requestSubmit();
+    $("#limits-result").scrollIntoView({ block: "start" });
   });
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();

@@ -39,14 +39,9 @@ export function plainVerdicts(result) {
   });
 }
 
-/** A snake_case name that may wrap after its underscores on a narrow screen. */
-function breakable(name) {
-  return name.split("_").flatMap((part, i) => (i ? ["_", el("wbr"), part] : [part]));
-}
-
 export function targetsTable(checks) {
   const body = checks.map((c) =>
-    el("tr", {}, el("td", {}, breakable(c.name)), el("td", {}, fmt(c.target_g, 3)), el("td", {}, verdict(c)), el("td", {}, signed(c.margin_g, 3))),
+    el("tr", {}, el("td", {}, targetName(c.name)), el("td", {}, fmt(c.target_g, 3)), el("td", {}, verdict(c)), el("td", {}, signed(c.margin_g, 3))),
   );
   return body;
 }

@@ -210,22 +210,27 @@ export async function payloadTable(spec) {
   return out;
 }
 
-export async function limits(vehicleRef, caseRequest) {
+/**
+ * The acceptable load for a target SRT by overweight (POST /v1/srt/limits): a record's largest CG height above
+ * the chassis (l12); a combination's largest vertical CG offset of its loads (d3), the field a combination has.
+ */
+export async function limits(vehicleRef, caseRequest, { combination = false } = {}) {
   const out = await api.post("/v1/srt/limits", {
     vehicle: vehicleRef,
     ...caseRequest,
-    parameter: "cg_height_above_chassis_m",
+    parameter: combination ? "vertical_offset_m" : "cg_height_above_chassis_m",
     target_srt_g: value($("#limit-target")),
   });
+  const symbol = out.symbol || "l12";
   const box = clear($("#limits-result"));
   box.append(
-    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}; this vehicle: l12 = ${fmt(out.current_value, 3)} ${out.unit}.`),
+    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}; this vehicle: ${symbol} = ${fmt(out.current_value, 3)} ${out.unit}.`),
     scroller(
-      "Acceptable CG height by overweight",
+      "Acceptable load by overweight",
       table(
         [
           { key: "overweight_percent", label: "Overweight [%]", format: (v) => fmt(v, 0) },
-          { key: "value", label: `Largest l12 [${out.unit}]`, format: (v) => fmt(v, 3) },
+          { key: "value", label: `Largest ${symbol} [${out.unit}]`, format: (v) => fmt(v, 3) },
           { key: "status", label: "Status", text: true },
           { key: "srt_at_limit", label: "SRT at the limit [g]", format: (v) => fmt(v, 3) },
         ],

@@ -13,11 +13,8 @@ import json
 import unicodedata
 from urllib.parse import quote
 
-import pytest
-
 DESKTOP = (1366, 900)
 PHONE = (390, 844)
-WIDTHS = pytest.mark.parametrize("size", [DESKTOP, PHONE], ids=["1366x900", "390x844"])
 
 
 @contextlib.contextmanager
@@ -59,9 +56,8 @@ def ok(response):
 # ------------------------------------------------------------------------------------------- stale results
 
 
-@WIDTHS
-def test_results_are_marked_stale_when_an_input_changes_or_a_request_fails(page, size):
-    with viewport(page, size):
+def test_results_are_marked_stale_when_an_input_changes_or_a_request_fails(page):
+    with viewport(page, DESKTOP):
         page.open("?vehicle=table16-btrain&radius_m=80")
         assert page.find("#results-body").get_attribute("data-stale") is None
         assert page.find_all(".stale-banner") == []
@@ -80,10 +76,8 @@ def test_results_are_marked_stale_when_an_input_changes_or_a_request_fails(page,
         # corrected and computed: fresh again, no banner
         page.type("#bank", "0")
         page.run("computations", lambda: page.find("#compute").click())
-        assert page.find_all(".stale-banner") == []
+        assert page.find_all(".stale-banner") == [] and not page.find("#bar-stale").is_displayed()
         assert page.find("#results-body").get_attribute("data-stale") is None
-        if size == PHONE:
-            return
         # a builder error: the previous SRT is marked as the last request's failure
         page.find('input[name="source"][value="build"]').click()
         assert page.find("#results-body").get_attribute("data-stale") == "true"
@@ -92,6 +86,10 @@ def test_results_are_marked_stale_when_an_input_changes_or_a_request_fails(page,
         assert page.find("#b-rear-track").get_attribute("aria-invalid") == "true"
         assert "request failed" in page.text("#stale-srt")
         assert page.find("#stale-design").is_displayed()
+    with viewport(page, PHONE):  # the same page on a phone: the banner at the result, "(stale)" in the top bar
+        page.driver.execute_script("document.querySelector('#stale-srt').scrollIntoView()")
+        assert in_viewport(page, "#stale-srt") and in_viewport(page, "#bar-stale")
+        assert page.text("#bar-stale") == "(stale)"
 
 
 # ------------------------------------------------------------------------------------------- combinations
@@ -108,11 +106,10 @@ def test_the_default_vehicle_is_a_combination_computed_as_a_whole(page, api):
     assert len(page.find_all("#units-table tbody tr")) == len(expected["roll_coupled_units"])
 
 
-@WIDTHS
-def test_a_combination_shows_each_roll_coupled_unit_the_lift_off_sequence_and_the_governing_unit(page, api, size):
+def test_a_combination_shows_each_roll_coupled_unit_the_lift_off_sequence_and_the_governing_unit(page, api):
     expected = ok(api.post("/v1/srt", json={"vehicle": "adouble"}))
     detail = ok(api.get("/v1/combinations/adouble"))["combination"]
-    with viewport(page, size):
+    with viewport(page, DESKTOP):
         page.open("?vehicle=adouble")
         assert page.text("#srt-value") == f"{expected['srt']:.3f} g"
         units = expected["roll_coupled_units"]
@@ -139,26 +136,35 @@ def test_a_combination_shows_each_roll_coupled_unit_the_lift_off_sequence_and_th
         highlighted = {g.get_attribute("data-unit") for g in page.find_all(f"{svg} g.unit.governing")}
         assert highlighted == set(units[governing]["units"])
         assert page.find(svg).is_displayed()
+    with viewport(page, PHONE):  # on a phone: the drawing and the tables fit the screen's width
+        assert page.find(svg).is_displayed() and page.find(svg).size["width"] <= PHONE[0]
+        assert page.driver.execute_script(
+            "return document.documentElement.scrollWidth <= document.documentElement.clientWidth"
+        )
 
 
 # ------------------------------------------------------------------------------------------- the verdict
 
 
-@WIDTHS
-def test_the_verdict_comes_first_in_plain_words_and_the_thesis_notation_folded(page, api, size):
+def test_the_verdict_comes_first_in_plain_words_and_the_thesis_notation_folded(page, api):
     expected = ok(api.post("/v1/srt", json={"vehicle": "table16-btrain"}))
-    with viewport(page, size):
+    general, dangerous = expected["targets"]
+    plain = [
+        f"\u2717 Below the 0.35 g general target by {-general['margin_g']:.3f} g.",
+        f"\u2717 Below the 0.40 g dangerous goods target by {-dangerous['margin_g']:.3f} g.",
+    ]
+    with viewport(page, DESKTOP):
         page.open("?vehicle=table16-btrain")
-        general, dangerous = expected["targets"]
-        assert [li.text for li in page.find_all("#verdict-plain li")] == [
-            f"\u2717 Below the 0.35 g general target by {-general['margin_g']:.3f} g.",
-            f"\u2717 Below the 0.40 g dangerous goods target by {-dangerous['margin_g']:.3f} g.",
-        ]
-        assert page.find("#verdict-plain").is_displayed()
+        assert [li.text for li in page.find_all("#verdict-plain li")] == plain
         # the thesis's notation second, folded: shown on request
         assert not page.find("#result-facts").is_displayed()
         page.find("#result-details summary").click()
         assert page.find("#result-facts").is_displayed() and "Fz17" in page.text("#result-facts")
+        page.find("#result-details summary").click()
+    with viewport(page, PHONE):
+        page.driver.execute_script("document.querySelector('#verdict-plain').scrollIntoView()")
+        assert in_viewport(page, "#verdict-plain") and [li.text for li in page.find_all("#verdict-plain li")] == plain
+        assert not page.find("#result-facts").is_displayed()
 
 
 def test_a_level_road_srt_is_shown_beside_the_curves_threshold_and_numbers_are_rounded(page, api):
@@ -223,33 +229,44 @@ def readable(page, selector: str) -> bool:
     )
 
 
-@WIDTHS
-def test_compute_stays_in_view_the_result_is_one_tap_away_and_key_columns_are_readable(page, tmp_path, size):
+def check_layout(page, width: int) -> None:
+    # the result's headline is at the top, with Compute, whatever the width
+    page.driver.execute_script("window.scrollTo(0, 0)")
+    assert in_viewport(page, "#compute") and in_viewport(page, "#bar-srt")
+    assert page.text("#bar-srt") == page.text("#srt-value")
+    page.driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
+    assert in_viewport(page, "#compute")  # sticky: still in view at the bottom of the page
+    page.find("#jump-result").click()  # one tap to the result, past the whole form on a phone
+    assert in_viewport(page, "#srt-value")
+    # nothing wider than the screen: wide tables scroll inside their region
+    assert page.driver.execute_script(
+        "return document.documentElement.scrollWidth <= document.documentElement.clientWidth"
+    )
+    assert page.find("#srt-value").size["width"] <= width and page.find("#compute").size["width"] <= width
+    # the minimum-radius table: the governing radius and what governs it without scrolling sideways
+    heads = page.find_all("#road-results thead th")
+    assert [h.get_attribute("textContent") for h in heads[:3]] == ["V [km/h]", "Governing R [m]", "Governed by"]
+    for i in (1, 2, 3):
+        assert readable(page, f"#road-results thead th:nth-child({i})"), (width, i)
+    # the alignment table: the flag and the margin next to the curve's name
+    keys = [b.get_attribute("data-key") for b in page.find_all("#curves-table thead button.sort")]
+    assert keys[:3] == ["id", "flagged", "margin_kmh"]
+    for i in (1, 2, 3):
+        assert readable(page, f"#curves-table thead th:nth-child({i})"), (width, i)
+    assert readable(page, "#curves-table tbody tr:nth-child(2) td:nth-child(2)")  # TIGHT: flagged
+    assert page.find("#curves-table tbody tr:nth-child(2) td:nth-child(2)").text == "\u26a0 flagged"
+
+
+def test_compute_stays_in_view_the_result_is_one_tap_away_and_key_columns_are_readable(page, tmp_path):
     path = tmp_path / "curves.csv"
     path.write_text(CURVES_CSV)
-    with viewport(page, size):
+    with viewport(page, DESKTOP):
         page.open("?vehicle=table16-btrain")
-        # the result's headline is at the top, with Compute, whatever the width
-        assert in_viewport(page, "#compute") and in_viewport(page, "#bar-srt")
-        assert page.text("#bar-srt") == page.text("#srt-value")
-        page.driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
-        assert in_viewport(page, "#compute")  # sticky: still in view at the bottom of the page
-        page.find("#jump-result").click()  # one tap to the result, past the whole form on a phone
-        assert in_viewport(page, "#srt-value")
-        # the minimum-radius table: the governing radius and what governs it without scrolling sideways
-        heads = page.find_all("#road-results thead th")
-        assert [h.get_attribute("textContent") for h in heads[:3]] == ["V [km/h]", "Governing R [m]", "Governed by"]
-        for i in (1, 2, 3):
-            assert readable(page, f"#road-results thead th:nth-child({i})"), i
-        # the alignment table: the flag and the margin next to the curve's name
         page.find("#alignment-file").send_keys(str(path))
         page.run("assessments", lambda: page.find("#alignment-assess").click())
-        keys = [b.get_attribute("data-key") for b in page.find_all("#curves-table thead button.sort")]
-        assert keys[:3] == ["id", "flagged", "margin_kmh"]
-        for i in (1, 2, 3):
-            assert readable(page, f"#curves-table thead th:nth-child({i})"), i
-        assert readable(page, "#curves-table tbody tr:nth-child(2) td:nth-child(2)")  # TIGHT: flagged
-        assert page.find("#curves-table tbody tr:nth-child(2) td:nth-child(2)").text == "\u26a0 flagged"
+        check_layout(page, DESKTOP[0])
+    with viewport(page, PHONE):
+        check_layout(page, PHONE[0])
 
 
 # ------------------------------------------------------------------------------------------- the printout
@@ -281,9 +298,8 @@ def test_the_printout_of_a_combination_says_which_unit_governs_in_words_with_uni
     assert "Lift-off sequence" in text and "null" not in text and "sprung_mass_kg" not in text
 
 
-@WIDTHS
 def test_a_vehicle_below_a_target_is_offered_its_payload_table_and_the_printout_holds_the_tables_shown(
-    page, api, tmp_path, size
+    page, api, tmp_path
 ):
     components = ok(api.get("/v1/components"))
     tyre, suspension = components["tyres"][0]["id"], components["suspensions"][0]["id"]
@@ -298,18 +314,20 @@ def test_a_vehicle_below_a_target_is_offered_its_payload_table_and_the_printout_
     }  # fmt: skip
     answer = ok(api.post("/v1/srt", json={"vehicle": {"spec": spec}}))
     assert not answer["targets"][0]["meets"]  # 24 t up to 3.6 m: below 0.35 g (tests/browser/test_builder_road_routes)
-    with viewport(page, size):
+    with viewport(page, PHONE):  # offered in the result itself on a phone too
         page.open("?spec=" + quote(json.dumps(spec)))
+        page.driver.execute_script("document.querySelector('#payload-offer').scrollIntoView({block: 'center'})")
+        assert in_viewport(page, "#payload-offer-button")
+    with viewport(page, DESKTOP):
         # offered in the result itself, not behind the CG-height form further down
         assert page.find("#payload-offer").is_displayed()
         assert page.text("#payload-offer-button") == "Acceptable payload table for 0.35 g"
+        page.driver.execute_script("document.querySelector('#payload-offer').scrollIntoView({block: 'center'})")
         page.run("limits", lambda: page.find("#payload-offer-button").click())
         assert page.find("#payload-tables").is_displayed()
         expected = ok(api.post("/v1/vehicles/payload-table", json={"spec": spec, "target_srt_g": 0.35}))
         first = cells(page, "#payload-tables .table-wrap:first-child tbody tr")
         assert [c[0] for c in first] == [f"{r['load_height_m']:.2f}" for r in expected["by_load_height"]]
-        if size == PHONE:
-            return
         page.run("superelevations", lambda: page.find("#super-compute").click())
         path = tmp_path / "curves.csv"
         path.write_text(CURVES_CSV)

@@ -297,11 +297,24 @@ def large_csv(rows: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: the page's job threshold (5,000 curves; app/web/js/alignment.js `settings`) lowered for these tests, so a job
+#: is a few seconds shorter and the behaviour the same
+JOB_ROWS = 50
+
+
+def lower_the_job_size(page, rows: int = JOB_ROWS) -> None:
+    page.driver.execute_script(
+        "const n = arguments[0]; return import('/web/js/alignment.js').then((m) => { m.settings.jobRows = n; });",
+        rows,
+    )
+
+
 def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page, api, live_server, tmp_path):
-    text = large_csv(6000)  # above the page's 5,000 rows
+    text = large_csv(JOB_ROWS + 10)  # above the page's job size
     path = tmp_path / "large.csv"
     path.write_text(text)
     page.open("?vehicle=table16-btrain")
+    lower_the_job_size(page)
     page.find("#catalog-box summary").click()  # the jobs of a deployment with keys are the key's own
     page.type("#api-key", live_server.key)
     page.find("#alignment-file").send_keys(str(path))
@@ -309,7 +322,7 @@ def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page
     page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=180)
     assert page.find("#alignment-progress-box").is_displayed()
     assert float(page.find("#alignment-progress").get_attribute("value")) == 1.0
-    assert page.text("#alignment-progress-text") == "100 % (6000 of 6000 rows; job done)"
+    assert page.text("#alignment-progress-text") == f"100 % ({JOB_ROWS + 10} of {JOB_ROWS + 10} rows; job done)"
     sent, _ = page.network()
     paths = {urlsplit(u).path for u in sent.values()}
     assert "/v1/jobs" in paths and "/v1/alignments/assess" not in paths
@@ -318,7 +331,9 @@ def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page
     answer = ok(api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "csv": text,
                                                         "max_superelevation_percent": 8}))  # fmt: skip
     expected = answer["vehicles"][0]
-    assert page.text("#alignment-summary").startswith(f"6000 curves, {expected['summary']['flagged']} flagged")
+    assert page.text("#alignment-summary").startswith(
+        f"{JOB_ROWS + 10} curves, {expected['summary']['flagged']} flagged"
+    )
     rows = curve_rows(page)
     assert [r["id"] for r in rows] == [r["id"] for r in expected["rows"]]
     assert [("flagged" in r["row_class"]) for r in rows] == [r["flagged"] for r in expected["rows"]]
@@ -384,10 +399,11 @@ def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet
 
 def test_without_the_key_a_large_alignment_is_assessed_in_one_request(page, live_server, tmp_path):
     # this server has bearer keys: its jobs are a key's own (401 without one), the synchronous endpoint is open
-    text = large_csv(5001)
+    text = large_csv(JOB_ROWS + 1)
     path = tmp_path / "large.csv"
     path.write_text(text)
     page.open("?vehicle=table16-btrain")
+    lower_the_job_size(page)
     assert page.find("#api-key").get_attribute("value") == ""
     page.find("#alignment-file").send_keys(str(path))
     page.network()
@@ -396,5 +412,57 @@ def test_without_the_key_a_large_alignment_is_assessed_in_one_request(page, live
     paths = [urlsplit(u).path for u in sent.values()]
     assert "/v1/jobs" in paths and "/v1/alignments/assess" in paths  # tried, refused, then one request
     assert "a job needs the bearer key" in page.text("#alignment-progress-text")
-    assert page.text("#alignment-summary").startswith("5001 curves")
+    assert page.text("#alignment-summary").startswith(f"{JOB_ROWS + 1} curves")
     assert page.find_all("#alignment-error") and not page.find("#alignment-error").is_displayed()
+
+
+def test_the_cancel_button_cancels_a_running_job(page, api, live_server, tmp_path):
+    # a job far longer than a click (20,000 curves), cancelled as soon as the page reports it: the page stops
+    # polling, says so, draws no table, and the service has the job cancelled
+    path = tmp_path / "huge.csv"
+    path.write_text(large_csv(20_000))
+    page.open("?vehicle=table16-btrain")
+    page.find("#catalog-box summary").click()
+    page.type("#api-key", live_server.key)
+    page.find("#alignment-file").send_keys(str(path))
+    page.network()
+
+    def submit_and_cancel():
+        page.find("#alignment-assess").click()
+        WebDriverWait(page.driver, 60).until(lambda _: page.find("#alignment-cancel").is_displayed())
+        page.find("#alignment-cancel").click()
+
+    page.run("assessments", submit_and_cancel, timeout_s=120)
+    assert "cancelled" in page.text("#alignment-error")
+    assert page.find_all("#curves-table") == [] and not page.find("#alignment-cancel").is_displayed()
+    sent, _ = page.network()
+    (job,) = {urlsplit(u).path for u in sent.values() if urlsplit(u).path.startswith("/v1/jobs/job_")}
+    status = ok(api.get(job, headers={"Authorization": f"Bearer {live_server.key}"}))["status"]
+    assert status == "cancelled"
+
+
+def test_a_route_above_the_synchronous_size_runs_as_a_job(page, api, live_server, tmp_path):
+    text = gpx_track()
+    path = tmp_path / "route.gpx"
+    path.write_text(text)
+    page.open("?vehicle=table16-btrain")
+    page.driver.execute_script(  # the page's route job size (20,000 vertices) below this track's ~100
+        "return import('/web/js/alignment.js').then((m) => { m.settings.jobVertices = 10; });"
+    )
+    page.find("#catalog-box summary").click()
+    page.type("#api-key", live_server.key)
+    page.find("#alignment-file").send_keys(str(path))
+    page.type("#al-posted", "80")
+    page.type("#al-e", "6")
+    page.network()
+    page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=120)
+    sent, _ = page.network()
+    paths = {urlsplit(u).path for u in sent.values()}
+    assert "/v1/jobs" in paths and "/v1/routes/assess" not in paths
+    assert page.text("#alignment-progress-text").startswith("100 %")
+    assert page.text("#alignment-progress-text").endswith("vertices; job done)")
+    # the same curve as the synchronous answer (test_an_uploaded_gpx_route_shows_its_curve_radius_...)
+    body = {"vehicle": "table16-btrain", "gpx": text, "posted_speed_kmh": 80, "superelevation_percent": 6}
+    answer = ok(api.post("/v1/routes/assess", json={**body, "max_superelevation_percent": 8}))
+    (row,) = curve_rows(page)
+    assert row["safe_speed_kmh"] == f"{answer['curves'][0]['assessment']['safe_speed_kmh']:.1f}"

@@ -164,9 +164,9 @@ function showJob(job) {
 const typedKey = () => $("#api-key").value.trim() || undefined;
 
 /** A job; when the service wants a bearer key for jobs and none is typed, the same request synchronously. */
-async function jobOrRequest(path, request, key, signal) {
+async function jobOrRequest(path, request, key, signal, operation) {
   try {
-    return await alignment.runJob(request, { key, onStatus: showJob, signal });
+    return await alignment.runJob(request, { operation, key, onStatus: showJob, signal });
   } catch (err) {
     if (!(err instanceof api.ApiError) || err.problem.status !== 401 || key) throw err;
     $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";
@@ -203,7 +203,7 @@ async function assessFile() {
     cancel.addEventListener("click", onCancel, { once: true });
     let result;
     try {
-      result = job ? await jobOrRequest(path, request, key, aborter.signal) : await api.post(path, request, { key });
+      result = job ? await jobOrRequest(path, request, key, aborter.signal, job) : await api.post(path, request, { key });
     } finally {
       cancel.hidden = true;
       cancel.removeEventListener("click", onCancel);
@@ -343,7 +343,7 @@ async function showOptionalParts() {
   }
   if (await api.has("post", "/v1/routes/assess")) {
     $("#alignment-file").accept += ",.geojson,.json,.gpx,application/geo+json,application/gpx+xml";
-    $("#alignment-formats").append(" Routes: GeoJSON (LineString) or GPX (track or route).");
+    $("#alignment-formats").append(" Routes: GeoJSON (LineString) or GPX (track or route); above 20,000 points a route runs as a job too.");
   }
 }
 

@@ -365,6 +365,13 @@ def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet
     page.run("assessments", lambda: page.find("#alignment-assess").click())
     assert "bearer key" in page.field_error("#api-key")
     page.type("#api-key", live_server.key)
+    # the fleet picker: the key's fleets listed, the one chosen fills the fleet box
+    page.find("#al-fleet").clear()
+    page.run("fleets", lambda: page.find("#fleet-list").click())
+    picker = Select(page.find("#fleet-choice"))
+    assert "Page fleet (2 vehicles: table16-btrain, table15-semitrailer)" in [o.text for o in picker.options]
+    picker.select_by_value(fleet_id)
+    assert page.find("#al-fleet").get_attribute("value") == fleet_id
     page.run("assessments", lambda: page.find("#alignment-assess").click())
     body = {"fleet": fleet_id, "csv": FLEET_CSV, "max_superelevation_percent": 8}
     answer = ok(api.post("/v1/alignments/assess", json=body, headers=key))

@@ -4,7 +4,7 @@
 import * as alignment from "./alignment.js";
 import * as api from "./api.js";
 import * as combination from "./combination.js";
-import { $, $$, el, num } from "./dom.js";
+import { $, $$, clear, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
 import * as results from "./results.js";
@@ -267,6 +267,22 @@ function wire() {
     if (out) stale.fresh(["limits"]);
     else stale.mark(["limits"], stale.FAILED);
     counted("limits");
+  });
+  // the fleet picker: the key's saved fleets (GET /v1/fleets); choosing one fills the fleet box
+  $("#fleet-list").addEventListener("click", async () => {
+    await guarded($("#fleet-list"), $("#alignment-section"), $("#alignment-error"), async () => {
+      const fleets = await api.get("/v1/fleets?limit=100", { key: vehicle.apiKey() });
+      const select = clear($("#fleet-choice"));
+      select.append(el("option", { value: "" }, fleets.items.length ? "(this page's vehicle)" : "(no fleet saved under this key)"));
+      for (const f of fleets.items) select.append(el("option", { value: f.id }, `${f.title} (${f.vehicles.length} vehicles: ${f.vehicles.join(", ")})`));
+      select.value = $("#al-fleet").value.trim();
+      select.hidden = false;
+      $("#fleet-choice-label").hidden = false;
+    });
+    counted("fleets");
+  });
+  $("#fleet-choice").addEventListener("change", () => {
+    $("#al-fleet").value = $("#fleet-choice").value;
   });
   $("#payload-offer-button").addEventListener("click", () => {
     $("#limit-target").value = $("#payload-offer-button").dataset.target;

@@ -99,12 +99,13 @@ export function download(filename, blob) {
 
 /** A table: `columns` [{key, label, format?, text?}], `rows` objects; returns the <table>. */
 export function table(columns, rows, { caption, rowClass } = {}) {
-  const head = el("tr", {}, columns.map((c) => el("th", { scope: "col", class: c.text ? "text" : null }, c.label)));
+  const cls = (c) => (c.nowrap ? "nowrap" : c.text ? "text" : null); // nowrap: a short word, left-aligned
+  const head = el("tr", {}, columns.map((c) => el("th", { scope: "col", class: cls(c) }, c.label)));
   const body = rows.map((row) =>
     el(
       "tr",
       { class: rowClass ? rowClass(row) : null },
-      columns.map((c) => el("td", { class: c.text ? "text" : null }, c.format ? c.format(row[c.key], row) : row[c.key] ?? "-")),
+      columns.map((c) => el("td", { class: cls(c) }, c.format ? c.format(row[c.key], row) : row[c.key] ?? "-")),
     ),
   );
   return el("table", {}, caption ? el("caption", { class: "hint" }, caption) : null, el("thead", {}, head), el("tbody", {}, body));

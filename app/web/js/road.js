@@ -96,7 +96,7 @@ export function radiusTable(rows) {
     [
       { key: "design_speed_kmh", label: "V [km/h]", format: (v) => fmt(v, 0) },
       { key: "governing_min_radius_m", label: "Governing R [m]", format: (v) => fmt(v, 0) },
-      { key: "governed_by", label: "Governed by", text: true },
+      { key: "governed_by", label: "Governed by", nowrap: true },
       { key: "side_friction_min_radius_m", label: "Eq. 9.2 R [m]", format: (v) => fmt(v, 0) },
       { key: "rollover_min_radius_m", label: "Eq. 9.3 R [m]", format: (v) => fmt(v, 0) },
       { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },

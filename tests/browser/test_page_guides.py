@@ -13,6 +13,8 @@ import json
 import unicodedata
 from urllib.parse import quote
 
+from selenium.webdriver.support.ui import WebDriverWait
+
 DESKTOP = (1366, 900)
 PHONE = (390, 844)
 
@@ -104,6 +106,14 @@ def test_the_default_vehicle_is_a_combination_computed_as_a_whole(page, api):
     expected = ok(api.post("/v1/srt", json={"vehicle": "tractor-semitrailer-table15"}))
     assert page.text("#srt-value") == f"{expected['srt']:.3f} g"
     assert len(page.find_all("#units-table tbody tr")) == len(expected["roll_coupled_units"])
+    # the same combination pasted as {"combination": {...}} (the record box, started from the preset)
+    page.find('input[name="source"][value="record"]').click()
+    page.find("#record-from-preset").click()
+    WebDriverWait(page.driver, 10).until(lambda _: '"combination"' in page.find("#record-json").get_attribute("value"))
+    assert page.find("#model").get_attribute("value") == "combination"
+    page.run("computations", lambda: page.find("#compute").click())
+    assert page.text("#srt-value") == f"{expected['srt']:.3f} g"
+    assert page.find_all("#combination-result svg g.unit.governing")
 
 
 def test_a_combination_shows_each_roll_coupled_unit_the_lift_off_sequence_and_the_governing_unit(page, api):

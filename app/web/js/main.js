@@ -307,6 +307,7 @@ function wire() {
     vehicle.describePreset();
     syncModel();
   });
+  $("#record-json").addEventListener("change", syncModel); // a pasted combination takes the combination's inputs
   $("#model").addEventListener("change", () => {
     page.modelChosen = true;
     syncModel();
@@ -314,7 +315,11 @@ function wire() {
   $("#standard").addEventListener("change", road.describeStandard);
   $("#record-from-preset").addEventListener("click", () => {
     const p = vehicle.preset();
-    if (p) vehicle.presetBody(p).then((body) => ($("#record-json").value = JSON.stringify(body, null, 2)));
+    if (!p) return;
+    vehicle.presetBody(p).then((body) => {
+      $("#record-json").value = JSON.stringify(body, null, 2);
+      syncModel();
+    });
   });
   const savedBox = $('[data-panel="saved"]');
   $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));

@@ -105,8 +105,8 @@ export function describePreset() {
 
 /** The model the page picks for the vehicle unless the user chose one: a combination's whole-combination model. */
 export function defaultModel() {
-  const p = source() === "preset" ? preset() : null;
-  return isCombination(p) && p.models.includes("combination") ? "combination" : null;
+  if (source() === "preset") return isCombination(preset()) && preset().models.includes("combination") ? "combination" : null;
+  return choosesCombination() ? "combination" : null;
 }
 
 /** Whether the vehicle now chosen is a combination (a combination preset, or a pasted {"combination": ...}). */

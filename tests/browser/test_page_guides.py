@@ -348,3 +348,23 @@ def test_a_vehicle_below_a_target_is_offered_its_payload_table_and_the_printout_
     assert "Design superelevation of a curve" in text and "Superelevation by radius" not in text.split("Alignment")[-1]
     assert "Alignment" in text and "TIGHT" in text and "flagged" in text
     assert "Mass (weight W / g):" in text.replace(": ", ":")
+
+
+def test_each_unit_of_a_combination_can_be_edited(page, api):
+    detail = ok(api.get("/v1/combinations/tractor-semitrailer-table15"))["combination"]
+    page.open("?vehicle=tractor-semitrailer-table15")
+    before = page.text("#srt-value")
+    page.find("#units-editor summary").click()
+    page.type("#unit-1-cg_height_m", "2.4")  # the semitrailer's CG raised (Table 15's is lower)
+    assert page.find("#results-body").get_attribute("data-stale") == "true"
+    page.run("computations", lambda: page.find("#compute").click())
+    edited = json.loads(json.dumps(detail))
+    edited["units"][1]["cg_height_m"] = 2.4
+    expected = ok(api.post("/v1/srt", json={"vehicle": {"combination": edited}}))
+    assert page.text("#srt-value") == f"{expected['srt']:.3f} g" != before
+    assert expected["srt"] < ok(api.post("/v1/srt", json={"vehicle": "tractor-semitrailer-table15"}))["srt"]
+    # an impossible mass is refused at its box (the service's plausibility bounds)
+    page.type("#unit-1-sprung_mass_kg", "-5")
+    page.run("computations", lambda: page.find("#compute").click())
+    assert page.find("#unit-1-sprung_mass_kg").get_attribute("aria-invalid") == "true"
+    assert "is not plausible for the sprung mass" in page.field_error("#unit-1-sprung_mass_kg")

@@ -97,10 +97,52 @@ export function describePreset() {
   if (view) {
     combinationDetail(p.id)
       .then((d) => {
-        if (preset()?.id === p.id) clear(view).append(sideView(d.combination, null));
+        if (preset()?.id !== p.id) return;
+        clear(view).append(sideView(d.combination, null), unitsEditor(d.combination));
       })
       .catch(() => undefined);
   }
+}
+
+/** Each unit's sprung mass and CG height, editable (the rest of the combination as the preset has it). */
+const UNIT_BOXES = [
+  { key: "sprung_mass_kg", label: "Sprung mass [kg]", digits: 0 },
+  { key: "cg_height_m", label: "CG height [m]", digits: 3 },
+];
+
+function unitsEditor(combination) {
+  const rows = combination.units.map((u, i) =>
+    el(
+      "tr",
+      {},
+      el("td", { class: "text" }, u.id),
+      ...UNIT_BOXES.map((b) => {
+        const text = String(Number(u[b.key].toFixed(b.digits)));
+        const id = `unit-${i}-${b.key}`;
+        return el(
+          "td",
+          {},
+          el("label", { for: id, class: "visually-hidden" }, `${u.id}: ${b.label}`),
+          el("input", { id, inputmode: "decimal", value: text, "data-initial": text, "data-unit": String(i), "data-key": b.key, "data-field": `vehicle.combination.units.${i}.${b.key}` }),
+        );
+      }),
+    ),
+  );
+  return el(
+    "details",
+    { class: "units-editor", id: "units-editor" },
+    el("summary", {}, "Each unit: sprung mass and CG height (edit to build your own combination)"),
+    el("div", { class: "table-wrap" }, el("table", {}, el("thead", {}, el("tr", {}, el("th", { scope: "col" }, "Unit"), UNIT_BOXES.map((b) => el("th", { scope: "col" }, b.label)))), el("tbody", {}, rows))),
+  );
+}
+
+/** The preset's combination with the editor's changes, or null when nothing was changed. */
+function editedCombination(combination) {
+  const boxes = $$("#units-editor input[data-unit]").filter((c) => c.value.trim() !== c.dataset.initial);
+  if (!boxes.length) return null;
+  const edited = structuredClone(combination);
+  for (const c of boxes) edited.units[Number(c.dataset.unit)][c.dataset.key] = value(c) ?? null;
+  return edited;
 }
 
 /** The model the page picks for the vehicle unless the user chose one: a combination's whole-combination model. */
@@ -323,6 +365,11 @@ export async function current() {
     }
     if (isCombination(p)) {
       const detail = await combinationDetail(p.id);
+      const edited = editedCombination(detail.combination);
+      if (edited) {
+        const body = { combination: { ...edited, title: `${p.title}, edited` } };
+        return { ref: body, label: `${p.title} (${p.id}), units edited`, record: null, body, combination: edited, params: { record: JSON.stringify(body) } };
+      }
       const body = { combination: detail.combination };
       return { ref: p.id, label: `${p.title} (${p.id})`, record: null, body, combination: detail.combination, params: { vehicle: p.id } };
     }

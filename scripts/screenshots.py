@@ -1,5 +1,5 @@
-"""Screenshots of the calculator page for the README: docs/screenshots/calculator-desktop.png (1366 x 768) and
-calculator-phone.png (375 px wide), taken with Debian's headless chromium against a fresh local server.
+"""Screenshots of the calculator page for the README: docs/screenshots/calculator-desktop.png (1366 x 900) and
+calculator-phone.png (390 x 844), taken with Debian's headless chromium against a fresh local server.
 
     python scripts/screenshots.py            # writes both files
     python scripts/screenshots.py --out DIR  # somewhere else
@@ -19,8 +19,9 @@ sys.path.insert(0, str(ROOT))
 
 from tests.browser.harness import find_chromium, start_browser, start_server, wait_until_computed  # noqa: E402
 
-#: the case shown: the B-train of Table 16 on a 4 % bank, with a curve speed and the road design for 8 %
-QUERY = "?vehicle=table16-btrain&bank_percent=4&radius_m=120"
+#: the case shown: the B-double combination (tractor, lead trailer, Table 16's rear trailer) on a 4 % bank, with a
+#: curve speed and the road design for 8 %
+QUERY = "?vehicle=btrain-table16&bank_percent=4&radius_m=120"
 
 
 def capture(driver, path: Path) -> None:
@@ -41,15 +42,15 @@ def main() -> int:
     server = start_server()
     driver = start_browser(binaries)
     try:
-        for name, width, height, mobile in (("desktop", 1366, 768, False), ("phone", 375, 812, True)):
+        for name, width, height, mobile in (("desktop", 1366, 900, False), ("phone", 390, 844, True)):
             driver.execute_cdp_cmd(
                 "Emulation.setDeviceMetricsOverride",
                 {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": mobile},
             )
             driver.get(f"{server.url}/{QUERY}")
             wait_until_computed(driver)
-            if mobile:  # on a phone the result follows the inputs: show it
-                driver.execute_script("document.getElementById('results-section').scrollIntoView()")
+            if mobile:  # on a phone the result follows the inputs: one tap on the bar's link shows it
+                driver.execute_script("document.getElementById('jump-result').click()")
             capture(driver, args.out / f"calculator-{name}.png")
     finally:
         driver.quit()

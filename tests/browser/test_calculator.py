@@ -42,9 +42,10 @@ def api_srt(api, **body) -> dict:
 
 
 def facts(page) -> dict[str, str]:
+    """The facts at the limit (folded under "Details": read as text, shown or not)."""
     dts = page.find_all("#result-facts dt")
     dds = page.find_all("#result-facts dd")
-    return {dt.text: dd.text for dt, dd in zip(dts, dds, strict=True)}
+    return {dt.get_attribute("textContent"): dd.get_attribute("textContent") for dt, dd in zip(dts, dds, strict=True)}
 
 
 # ------------------------------------------------------------------------------------------- the link
@@ -71,7 +72,7 @@ def test_link_opens_the_btrain_with_its_srt_computed(page, api):
     rows = [
         [td.text for td in tr.find_elements("css selector", "td")] for tr in page.find_all("#targets-table tbody tr")
     ]
-    assert [r[0] for r in rows] == ["general", "dangerous_goods"]
+    assert [r[0] for r in rows] == ["general", "dangerous goods"]  # in words
     for row, target in zip(rows, (0.35, 0.40), strict=True):
         assert shown(row[1], "") == target
         assert "below" in row[2]
@@ -270,19 +271,21 @@ def test_road_design_tables_follow_eqs_9_1_to_9_3_and_table21(page, api):
     for tr in page.find_all("#road-results table tbody tr"):
         cells = [td.text for td in tr.find_elements("css selector", "td")]
         rows[float(cells[0])] = cells
+    # the columns: V, the governing radius and what governs it first, then Eq. 9.2, Eq. 9.3 and f
     # Table 21 (low bound) at 60 and 80 km/h: f = 0.15 and 0.14
-    assert rows[60.0][1] == "0.150" and rows[80.0][1] == "0.140"
+    assert rows[60.0][5] == "0.150" and rows[80.0][5] == "0.140"
     caption = page.text("#road-results p")
     srt_bank = float(caption.split("SRT on this bank: ")[1].split(" g")[0])
     assert srt_bank == pytest.approx(api_srt(api, road={"bank_percent": 8})["srt"], abs=DISPLAY_G)
     for v, cells in rows.items():
-        f, r92, r93, governing = (float(c) for c in cells[1:5])
-        assert r92 == pytest.approx(v**2 / (127 * (0.08 + f)), abs=0.051)  # Eq. 9.2, e = 8 %; shown to 0.1 m
-        # Eq. 9.3, shown to 0.1 m, from the SRT shown to 0.001 g (relative error at most 0.0005 / srt_bank)
+        governing, r92, r93, f = float(cells[1]), float(cells[3]), float(cells[4]), float(cells[5])
+        assert r92 == pytest.approx(v**2 / (127 * (0.08 + f)), abs=0.501)  # Eq. 9.2, e = 8 %; shown to 1 m
+        # Eq. 9.3, shown to 1 m, from the SRT shown to 0.001 g (relative error at most 0.0005 / srt_bank)
         exact = v**2 / (127 * srt_bank)
-        assert abs(r93 - exact) <= 0.05 + exact * DISPLAY_G / srt_bank
+        assert abs(r93 - exact) <= 0.5 + exact * DISPLAY_G / srt_bank
         assert governing == max(r92, r93)
-        assert cells[5] == ("rollover" if r93 > r92 else "side-friction")
+        if r93 != r92:
+            assert cells[2] == ("rollover" if r93 > r92 else "side-friction")
     assert page.find_all("#road-results svg g.series")
     # Eq. 9.1: V = sqrt(127 SRT R); Table 18: the B-train's 0.3364 g at R = 80 m is 58.5 km/h (1 %: half the
     # SRT's 2 %, V going with its square root)
@@ -380,18 +383,26 @@ def test_an_unreadable_csv_row_is_shown_at_the_file_with_its_row(page, tmp_path)
 # ------------------------------------------------------------------------------------------- printing
 
 
-def test_the_printed_summary_holds_the_srt_verdict_version_and_citation(page):
+def test_the_printed_summary_holds_the_srt_verdict_version_and_citation(page, api):
     from pypdf import PdfReader
 
     page.open("?vehicle=table16-btrain&radius_m=80")
     srt_text = page.text("#srt-value")
+    general, dangerous = api_srt(api)["targets"]
     options = PrintOptions()
     options.page_width, options.page_height = 21.0, 29.7  # A4 [cm]
     pdf = PdfReader(io.BytesIO(base64.b64decode(page.driver.print_page(options))))
     text = " ".join(" ".join(p.extract_text().split()) for p in pdf.pages)
     assert f"Static rollover threshold {srt_text}" in text
     # Sec. 9.1's 0.3364 g is below both default targets (0.35 g and 0.40 g)
-    assert f"Verdict: the SRT of {srt_text} is below general (0.350 g) and dangerous_goods (0.400 g)." in text
+    assert (
+        f"Verdict: Below the 0.35 g general target by {-general['margin_g']:.3f} g. "
+        f"Below the 0.40 g dangerous goods target by {-dangerous['margin_g']:.3f} g."
+    ) in text
+    # the vehicle in words with units: its weight as a mass in kg (Table 16: W = 355.22 kN, 36210 kg)
+    compact = text.replace(": ", ":")
+    assert "Mass (weight W / g):36210 kg" in compact and "CG height above the chassis (l12):1.356 m" in compact
+    assert "weight_kn" not in text and "_m:" not in text and "null" not in text
     assert f"engine version {ENGINE_VERSION}" in text
     assert "Static rollover threshold of long combination vehicles" in text  # the thesis citation
     assert "Lateral load transfer against ay/g" in text  # the figures are in it
@@ -417,11 +428,13 @@ def test_the_main_controls_are_labelled_and_reached_with_the_keyboard(page, api)
         ".filter(c => c.type !== 'hidden' && !c.labels.length && !c.getAttribute('aria-label')).map(c => c.id)"
     )
     assert unlabelled == []
-    page.driver.execute_script("document.activeElement.blur(); window.scrollTo(0, 0)")
-    reached = []
-    for _ in range(120):
-        ActionChains(page.driver).send_keys(Keys.TAB).perform()
-        reached.append(page.driver.switch_to.active_element.get_attribute("id"))
+    # every element the keyboard focuses is recorded by the page itself; the 120 Tab presses go in one action
+    page.driver.execute_script(
+        "document.activeElement.blur(); window.scrollTo(0, 0); window.__reached = [];"
+        "document.addEventListener('focusin', (e) => window.__reached.push(e.target.id));"
+    )
+    ActionChains(page.driver).send_keys(Keys.TAB * 120).perform()
+    reached = page.driver.execute_script("return window.__reached")
     missing = [c for c in MAIN_CONTROLS if c not in reached]
     assert missing == []
     # computing without a mouse: Enter in a field submits its form
@@ -430,21 +443,8 @@ def test_the_main_controls_are_labelled_and_reached_with_the_keyboard(page, api)
     assert page.srt_g() == pytest.approx(api_srt(api, road={"bank_percent": 4})["srt"], abs=DISPLAY_G)
 
 
-def test_usable_at_phone_width(page):
-    page.driver.execute_cdp_cmd(
-        "Emulation.setDeviceMetricsOverride", {"width": 375, "height": 740, "deviceScaleFactor": 1, "mobile": True}
-    )
-    try:
-        page.open("?vehicle=table16-btrain")
-        widths = page.driver.execute_script(
-            "return [document.documentElement.scrollWidth, document.documentElement.clientWidth]"
-        )
-        assert widths[0] <= widths[1]  # nothing wider than the screen: wide tables scroll inside their region
-        srt = page.find("#srt-value")
-        assert srt.size["width"] <= 375 and srt.location["x"] >= 0
-        assert page.find("#compute").size["width"] <= 375
-    finally:
-        page.driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+# the page at a phone's width (390 x 844: nothing wider than the screen, the result one tap away, the tables' key
+# columns readable) is tested with the desktop width in test_page_guides.py
 
 
 # ------------------------------------------------------------------------------------------- offline

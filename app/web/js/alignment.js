@@ -68,41 +68,71 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
   return ["/v1/routes/assess", route];
 }
 
-/** Alignments with more rows than this go through a job (POST /v1/jobs) with a progress bar; smaller ones and
- * routes (the job API has no route operation: POST /v1/routes/assess answers up to 32 MiB at once) in one request. */
-export const JOB_ROWS = 5000;
+/**
+ * When a file goes through a job (POST /v1/jobs) with a progress bar and a Cancel button instead of one request:
+ * an alignment above `jobRows` curves (`alignments.assess`), a route above `jobVertices` vertices (`routes.assess`,
+ * when the deployment has that operation). Smaller files are one request. A setting of the module, so a test (or an
+ * embedding page) can lower it.
+ */
+export const settings = { jobRows: 5000, jobVertices: 20000 };
 
-/** The curves of an alignment file (CSV data rows, LandXML <Curve> elements); routes: null. */
+/** The curves of an alignment file (CSV data rows, LandXML <Curve> elements); a route's vertices (GPX points,
+ * GeoJSON positions). */
 export function rowCount(kind, text) {
   if (kind === "csv") return text.split(/\r?\n/).filter((line) => line.trim()).length - 1;
   if (kind === "landxml") return (text.match(/<(\w+:)?Curve[\s>/]/g) || []).length;
+  if (kind === "gpx") return (text.match(/<(trkpt|rtept)[\s>/]/g) || []).length;
+  if (kind === "geojson") {
+    try {
+      return routeLines(kind, text).reduce((n, line) => n + line.length, 0);
+    } catch {
+      return 0;
+    }
+  }
   return null;
 }
 
-/** Whether the request goes through a job: an alignment above JOB_ROWS rows, when the deployment has jobs. */
+/** The job operation of a request path. */
+const OPERATION_OF = { "/v1/alignments/assess": "alignments.assess", "/v1/routes/assess": "routes.assess" };
+
+/** The job operation the request goes through (null: one request): above the size of one, when the deployment
+ * has jobs and that operation (its POST /v1/jobs description lists them). */
 export async function wantsJob(path, rows) {
-  return path === "/v1/alignments/assess" && rows > JOB_ROWS && (await api.has("post", "/v1/jobs"));
+  const limit = path === "/v1/routes/assess" ? settings.jobVertices : settings.jobRows;
+  if (!(rows > limit) || !(await api.has("post", "/v1/jobs"))) return null;
+  const operation = OPERATION_OF[path];
+  if (operation === "routes.assess") {
+    const doc = await api.spec();
+    if (!(doc.paths["/v1/jobs"].post.description || "").includes("`routes.assess`")) return null;
+  }
+  return operation;
 }
 
 /**
- * An alignment assessment as a job (operation `alignments.assess`): submit, poll GET /v1/jobs/{id} (status,
+ * An assessment as a job (`operation`: `alignments.assess` or `routes.assess`): submit, poll GET /v1/jobs/{id} (status,
  * progress, done/total) reporting each status to `onStatus`, then read its result. `key`: the bearer key (needed
  * when the deployment has keys). `signal` aborts the polling after the job was cancelled.
  */
-export async function runJob(body, { key, onStatus, signal }) {
-  const submitted = await api.call("POST", "/v1/jobs", { json: { operation: "alignments.assess", request: body }, key });
+export async function runJob(body, { operation = "alignments.assess", key, onStatus, signal }) {
+  const submitted = await api.call("POST", "/v1/jobs", { json: { operation, request: body }, key });
   const location = submitted.response.headers.get("Location") || `/v1/jobs/${submitted.data.id}`;
   let job = submitted.data;
   state.job = { location, key };
+  // cancelled while the submission was on its way (or between two polls): the job is cancelled at the service too
+  const cancelled = async () => {
+    await api.call("DELETE", location, { key }).catch(() => undefined);
+    return new api.ApiError({ title: "The job was cancelled", status: 0 });
+  };
   try {
     for (;;) {
+      if (signal?.aborted) throw await cancelled();
       onStatus(job);
       if (job.status === "done") break;
       if (job.status === "failed" || job.status === "cancelled") {
         throw new api.ApiError(job.error || { title: `The job was ${job.status}`, status: 0 });
       }
       await new Promise((resolve) => setTimeout(resolve, 250));
-      if (signal?.aborted) throw new api.ApiError({ title: "The job was cancelled", status: 0 });
+      if (signal?.aborted) throw await cancelled();
       job = await api.get(location, { key });
     }
     return await api.get(job.result || `${location}/result`, { key });
@@ -118,11 +148,18 @@ export async function cancelJob() {
 
 // ------------------------------------------------------------------------------------------ the table
 
+/** The curves' columns: the curve, then what a reader acts on (flag, margin, safe and posted speed, what governs),
+ * then the geometry and the speeds behind them. The first column stays in view when the table scrolls sideways. */
 const COLUMNS = [
   { key: "id", label: "Curve", text: true },
+  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), text: true },
+  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => (v === null || v === undefined ? "-" : signed(v, 1)) },
+  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
+  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
+  { key: "governed_by", label: "Governed by", text: true },
   { key: "vehicle", label: "Vehicle", text: true },
   { key: "station_m", label: "Station [m]", format: (v) => fmt(v, 0) },
-  { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
+  { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 0) },
   { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1) },
   { key: "direction", label: "Turns", text: true },
   { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
@@ -130,11 +167,6 @@ const COLUMNS = [
   { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3) },
   { key: "rollover_speed_kmh", label: "Rollover speed [km/h]", format: (v) => fmt(v, 1) },
   { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "governed_by", label: "Governed by", text: true },
-  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
-  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => (v === null || v === undefined ? "-" : signed(v, 1)) },
-  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), text: true },
   { key: "meets_standard_min_radius", label: "Meets Rmin", format: (v) => (v === null || v === undefined ? "-" : v ? "yes" : "no"), text: true },
   { key: "error", label: "Error", text: true },
 ];
@@ -368,4 +400,20 @@ async function save() {
   } else {
     download("assessment.json", new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   }
+}
+
+/** The curves for the printout: the summary line, the outline and the table, at most `max` rows (flagged first). */
+export function printable(max = 60) {
+  const t = $("#curves-table")?.cloneNode(true);
+  if (!t) return null;
+  const rows = Array.from(t.tBodies[0].rows);
+  let note = null;
+  if (rows.length > max) {
+    const keep = [...rows.filter((r) => r.classList.contains("flagged")), ...rows.filter((r) => !r.classList.contains("flagged"))].slice(0, max);
+    for (const r of rows) if (!keep.includes(r)) r.remove();
+    note = el("p", { class: "hint" }, `${max} of ${rows.length} curves printed (the flagged ones first); the CSV download has them all.`);
+  }
+  t.querySelector("caption")?.remove();
+  for (const b of t.querySelectorAll("button.sort")) b.replaceWith(document.createTextNode(b.textContent));
+  return [$("#alignment-summary"), $("#alignment-results figure.outline"), note, t];
 }

@@ -33,6 +33,22 @@ export function fmt(value, digits = 3) {
   return Number(value).toFixed(digits);
 }
 
+/** A number for prose, at most `digits` decimals and at least `least` ("0.35", "0.40", "0.355", "3.15"): never a
+ * float's tail such as 0.9999999999999994. Text that is not a number is returned as it is. */
+export function num(value, digits = 3, least = 0) {
+  if (value === null || value === undefined || value === "") return "-";
+  const n = Number(value);
+  if (!Number.isFinite(n)) return String(value);
+  let text = n.toFixed(digits);
+  if (text.includes(".")) {
+    text = text.replace(/0+$/, "");
+    const decimals = text.split(".")[1].length;
+    if (decimals < least) text += "0".repeat(least - decimals);
+    text = text.replace(/\.$/, "");
+  }
+  return text === "-0" ? "0" : text;
+}
+
 /** A signed number: "+0.012" / "-0.011". */
 export function signed(value, digits = 3) {
   if (value === null || value === undefined) return "-";
@@ -83,12 +99,13 @@ export function download(filename, blob) {
 
 /** A table: `columns` [{key, label, format?, text?}], `rows` objects; returns the <table>. */
 export function table(columns, rows, { caption, rowClass } = {}) {
-  const head = el("tr", {}, columns.map((c) => el("th", { scope: "col", class: c.text ? "text" : null }, c.label)));
+  const cls = (c) => (c.nowrap ? "nowrap" : c.text ? "text" : null); // nowrap: a short word, left-aligned
+  const head = el("tr", {}, columns.map((c) => el("th", { scope: "col", class: cls(c) }, c.label)));
   const body = rows.map((row) =>
     el(
       "tr",
       { class: rowClass ? rowClass(row) : null },
-      columns.map((c) => el("td", { class: c.text ? "text" : null }, c.format ? c.format(row[c.key], row) : row[c.key] ?? "-")),
+      columns.map((c) => el("td", { class: cls(c) }, c.format ? c.format(row[c.key], row) : row[c.key] ?? "-")),
     ),
   );
   return el("table", {}, caption ? el("caption", { class: "hint" }, caption) : null, el("thead", {}, head), el("tbody", {}, body));

@@ -3,11 +3,13 @@
 
 import * as alignment from "./alignment.js";
 import * as api from "./api.js";
-import { $, $$, el } from "./dom.js";
+import * as combination from "./combination.js";
+import { $, $$, clear, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
 import * as results from "./results.js";
 import * as road from "./road.js";
+import * as stale from "./stale.js";
 import * as summary from "./summary.js";
 import * as vehicle from "./vehicle.js";
 
@@ -43,6 +45,10 @@ function fillModels(models) {
   select.dataset.initial = initial;
 }
 
+/** What the whole-combination model accounts for (engine/models/registry.py, `combination_takes`), for a service
+ * whose GET /v1/models does not say it yet. */
+const WHOLE_COMBINATION_TAKES = ["bank", "slope", "d1", "d2", "d3", "overweight", "rear_llt_limit"];
+
 const modelInfo = () => page.models.find((m) => m.id === $("#model").value);
 
 /** Enable the inputs the model takes, and only the models the vehicle supports. */
@@ -50,15 +56,21 @@ function syncModel() {
   const supported = vehicle.supportedModels();
   const select = $("#model");
   for (const option of select.options) option.disabled = Boolean(supported) && !supported.includes(option.value);
-  // a model the page chose for the last vehicle goes back to the default when the vehicle supports it
-  if (!page.modelChosen && !select.querySelector(`option[value="${select.dataset.initial}"]`)?.disabled) {
-    select.value = select.dataset.initial;
+  // a model the page chose for the last vehicle goes back to the vehicle's default when the vehicle supports it
+  // (a combination: the whole-combination model; else the service's default)
+  const wanted = vehicle.defaultModel() || select.dataset.initial;
+  if (!page.modelChosen && select.querySelector(`option[value="${wanted}"]`) && !select.querySelector(`option[value="${wanted}"]`).disabled) {
+    select.value = wanted;
   }
   if (select.selectedOptions[0]?.disabled) select.value = supported[0];
   const m = modelInfo();
   if (!m) return;
+  // a combination solved as a whole takes the road and load inputs its model lists for combinations
+  // (`combination_takes`); a service that does not list them gets the whole-combination model's own list
+  let takesList = m.takes;
+  if (vehicle.choosesCombination()) takesList = m.combination_takes || (m.id === "combination" ? WHOLE_COMBINATION_TAKES : m.takes);
   for (const box of $$("[data-takes]")) {
-    const takes = m.takes.includes(box.dataset.takes);
+    const takes = takesList.includes(box.dataset.takes);
     box.classList.toggle("disabled", !takes);
     for (const c of $$("input, select", box)) c.disabled = !takes;
   }
@@ -75,11 +87,15 @@ async function compute() {
     const v = await vehicle.current();
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
+    combination.show(v.combination || null, result);
+    offerPayload(result, v);
+    stale.fresh(["srt", "builder", "summary"]);
     const link = writeUrl(stateParams(v.params));
     page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
     return page.last;
   });
   $("#results").setAttribute("aria-busy", "false");
+  if (!done) stale.mark(["srt", "design", "speed", "limits", "builder", "summary"], stale.FAILED);
   if (done) {
     status("");
     // the figures, the road design and the curve speed of the same case, side by side
@@ -91,6 +107,23 @@ async function compute() {
   counted("computations");
 }
 
+/**
+ * A vehicle below a target is offered what load would meet it: the payload table of a built vehicle (the
+ * TERNZ-style table: largest payload by load height), else the largest CG height (or load offset) by overweight.
+ */
+function offerPayload(result, v) {
+  const missed = result.targets.filter((t) => !t.meets).sort((a, b) => a.target_g - b.target_g);
+  const box = $("#payload-offer");
+  box.hidden = !missed.length || !$("#limits-form").closest("[data-needs]") || $("#limits-form").closest("[data-needs]").hidden;
+  if (box.hidden) return;
+  const target = missed[0].target_g;
+  const what = v.built ? "Acceptable payload table" : v.combination ? "Acceptable load height by overweight" : "Acceptable CG height by overweight";
+  $("#payload-offer-text").textContent = `Below the ${num(target, 3, 2)} g ${results.targetName(missed[0].name)} target: what load would meet it?`;
+  const button = $("#payload-offer-button");
+  button.textContent = `${what} for ${num(target, 3, 2)} g`;
+  button.dataset.target = String(target);
+}
+
 /** Count finished runs on <body data-*> (how scripts and tests know that the page has answered). */
 function counted(name) {
   document.body.dataset[name] = String(Number(document.body.dataset[name] || 0) + 1);
@@ -100,7 +133,9 @@ function counted(name) {
 async function roadDesign() {
   const { vehicle: v, request } = page.last;
   const design = await guarded($("#road-compute"), $("#road-section"), $("#road-error"), () => road.minRadius(v.ref, request));
+  if (!design) stale.mark(["design"], stale.FAILED);
   if (design) {
+    stale.fresh(["design"]);
     page.last.design = design;
     page.last.link = writeUrl(stateParams(v.params));
   }
@@ -109,7 +144,9 @@ async function roadDesign() {
 async function curveSpeed() {
   const { vehicle: v, request } = page.last;
   const speed = await guarded($("#speed-compute"), $("#speed-form"), $("#speed-error"), () => road.curveSpeed(v.ref, request));
+  if (speed === undefined) stale.mark(["speed"], stale.FAILED);
   if (speed !== undefined) {
+    stale.fresh(["speed"]);
     page.last.speed = speed;
     page.last.link = writeUrl(stateParams(v.params));
   }
@@ -127,9 +164,9 @@ function showJob(job) {
 const typedKey = () => $("#api-key").value.trim() || undefined;
 
 /** A job; when the service wants a bearer key for jobs and none is typed, the same request synchronously. */
-async function jobOrRequest(path, request, key, signal) {
+async function jobOrRequest(path, request, key, signal, operation) {
   try {
-    return await alignment.runJob(request, { key, onStatus: showJob, signal });
+    return await alignment.runJob(request, { operation, key, onStatus: showJob, signal });
   } catch (err) {
     if (!(err instanceof api.ApiError) || err.problem.status !== 401 || key) throw err;
     $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";
@@ -148,7 +185,7 @@ async function assessFile() {
     aborter.abort();
     await alignment.cancelJob().catch(() => undefined);
   };
-  await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
+  const assessed = await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
     const file = $("#alignment-file").files[0];
     if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
     const text = await file.text();
@@ -166,7 +203,7 @@ async function assessFile() {
     cancel.addEventListener("click", onCancel, { once: true });
     let result;
     try {
-      result = job ? await jobOrRequest(path, request, key, aborter.signal) : await api.post(path, request, { key });
+      result = job ? await jobOrRequest(path, request, key, aborter.signal, job) : await api.post(path, request, { key });
     } finally {
       cancel.hidden = true;
       cancel.removeEventListener("click", onCancel);
@@ -175,13 +212,29 @@ async function assessFile() {
     Object.assign(alignment.state, { path, request, key });
     const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
     alignment.render(result, kind, lines);
+    summary.extra("alignment", lines ? "Route" : "Alignment", alignment.printable());
+    return true;
   });
+  if (assessed) stale.fresh(["alignment"]);
+  else stale.mark(["alignment"], stale.FAILED);
   counted("assessments");
 }
 
 // ------------------------------------------------------------------------------------------ wiring
 
+function watchInputs() {
+  stale.watch($("#vehicle-section"), "vehicle");
+  stale.watch($("#case-form"), "case");
+  stale.watch($("#road-form"), "road");
+  $("#standard").addEventListener("change", () => stale.mark(stale.DEPENDS.standard));
+  stale.watch($("#speed-form"), "speed");
+  stale.watch($("#super-form"), "superelevation");
+  stale.watch($("#limits-form"), "limits");
+  stale.watch($("#alignment-form"), "alignment");
+}
+
 function wire() {
+  watchInputs();
   $("#case-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     compute();
@@ -195,17 +248,46 @@ function wire() {
   }
   $("#super-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation).then(() => counted("superelevations"));
+    guarded($("#super-compute"), $("#super-form"), $("#super-error"), road.superelevation).then((out) => {
+      if (out) summary.extra("superelevation", "Design superelevation of a curve", [$("#super-result"), $("#super-table")]);
+      if (out) stale.fresh(["superelevation"]);
+      else stale.mark(["superelevation"], stale.FAILED);
+      counted("superelevations");
+    });
   });
   $("#limits-form").addEventListener("submit", async (ev) => {
     ev.preventDefault();
-    await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
+    const out = await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
-      const out = await road.limits(v.ref, caseFields());
+      const out = await road.limits(v.ref, caseFields(), { combination: Boolean(v.combination) });
       if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
+      summary.extra("limits", `Acceptable load for SRT ${$("#limit-target").value.trim()} g`, [$("#limits-result")]);
       return out;
     });
+    if (out) stale.fresh(["limits"]);
+    else stale.mark(["limits"], stale.FAILED);
     counted("limits");
+  });
+  // the fleet picker: the key's saved fleets (GET /v1/fleets); choosing one fills the fleet box
+  $("#fleet-list").addEventListener("click", async () => {
+    await guarded($("#fleet-list"), $("#alignment-section"), $("#alignment-error"), async () => {
+      const fleets = await api.get("/v1/fleets?limit=100", { key: vehicle.apiKey() });
+      const select = clear($("#fleet-choice"));
+      select.append(el("option", { value: "" }, fleets.items.length ? "(this page's vehicle)" : "(no fleet saved under this key)"));
+      for (const f of fleets.items) select.append(el("option", { value: f.id }, `${f.title} (${f.vehicles.length} vehicles: ${f.vehicles.join(", ")})`));
+      select.value = $("#al-fleet").value.trim();
+      select.hidden = false;
+      $("#fleet-choice-label").hidden = false;
+    });
+    counted("fleets");
+  });
+  $("#fleet-choice").addEventListener("change", () => {
+    $("#al-fleet").value = $("#fleet-choice").value;
+  });
+  $("#payload-offer-button").addEventListener("click", () => {
+    $("#limit-target").value = $("#payload-offer-button").dataset.target;
+    $("#limits-form").requestSubmit();
+    $("#limits-result").scrollIntoView({ block: "start" });
   });
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
@@ -225,6 +307,7 @@ function wire() {
     vehicle.describePreset();
     syncModel();
   });
+  $("#record-json").addEventListener("change", syncModel); // a pasted combination takes the combination's inputs
   $("#model").addEventListener("change", () => {
     page.modelChosen = true;
     syncModel();
@@ -232,7 +315,11 @@ function wire() {
   $("#standard").addEventListener("change", road.describeStandard);
   $("#record-from-preset").addEventListener("click", () => {
     const p = vehicle.preset();
-    if (p) $("#record-json").value = JSON.stringify(vehicle.presetRecord(p), null, 2);
+    if (!p) return;
+    vehicle.presetBody(p).then((body) => {
+      $("#record-json").value = JSON.stringify(body, null, 2);
+      syncModel();
+    });
   });
   const savedBox = $('[data-panel="saved"]');
   $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));
@@ -252,7 +339,7 @@ function wire() {
         });
       }
       const v = await vehicle.current();
-      const body = { title: $("#save-title").value.trim(), vehicle: v.built ? { spec: v.built.spec } : v.record };
+      const body = { title: $("#save-title").value.trim(), vehicle: v.built ? { spec: v.built.spec } : v.body || v.record };
       const saved = await api.post("/v1/vehicles", body, { key: vehicle.apiKey() });
       $("#save-info").textContent = `Saved as ${saved.id} (version ${saved.version}).`;
     });
@@ -277,7 +364,7 @@ async function showOptionalParts() {
   }
   if (await api.has("post", "/v1/routes/assess")) {
     $("#alignment-file").accept += ",.geojson,.json,.gpx,application/geo+json,application/gpx+xml";
-    $("#alignment-formats").append(" Routes: GeoJSON (LineString) or GPX (track or route).");
+    $("#alignment-formats").append(" Routes: GeoJSON (LineString) or GPX (track or route); above 20,000 points a route runs as a job too.");
   }
 }
 
@@ -288,16 +375,17 @@ async function init() {
   const wanted = vehicle.fromParams(params);
   // what this deployment has (its OpenAPI document) decides which optional lists are read
   const optional = (path) => api.has("get", path).then((yes) => (yes ? api.get(path) : null));
-  const [models, presets, standards, components] = await Promise.all([
+  const [models, presets, standards, components, combinations] = await Promise.all([
     api.get("/v1/models"),
     api.get("/v1/vehicles"),
     optional("/v1/design-standards"),
     optional("/v1/components"),
+    optional("/v1/combinations"),
   ]);
   fillModels(models);
   page.modelChosen = Boolean(params.get("model"));
   vehicle.initBuilder();
-  vehicle.fillPresets(presets);
+  vehicle.fillPresets(presets, combinations || []);
   if (standards) road.fillStandards(standards);
   if (components) vehicle.fillComponents(components);
   await showOptionalParts();

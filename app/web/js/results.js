@@ -1,7 +1,7 @@
 // Section 3: the SRT result (POST /v1/srt) and the curves against ay/g (POST /v1/plots/*, the service's SVGs).
 
 import * as api from "./api.js";
-import { $, clear, el, fmt, signed, svgNode } from "./dom.js";
+import { $, clear, el, fmt, num, signed, svgNode } from "./dom.js";
 
 export const PLOTS = [
   { path: "/v1/plots/tire-loads", caption: "Tire loads Fz1, Fz3, Fz17, Fz19 against ay/g (thesis Figs. 85-87, 92)" },
@@ -17,14 +17,31 @@ export function verdict(check) {
   return el("span", { class: check.meets ? "verdict pass" : "verdict fail" }, check.meets ? "\u2713 meets" : "\u2717 below");
 }
 
-/** A snake_case name that may wrap after its underscores on a narrow screen. */
-function breakable(name) {
-  return name.split("_").flatMap((part, i) => (i ? ["_", el("wbr"), part] : [part]));
+/** A target's name in words: "dangerous_goods" -> "dangerous goods". */
+export const targetName = (name) => name.replaceAll("_", " ");
+
+/** Whether the answer has a level-road SRT that differs (as shown) from the case's own threshold. */
+export const showsLevelRoad = (result) =>
+  typeof result.level_road_srt === "number" && fmt(result.level_road_srt, 3) !== fmt(result.srt, 3);
+
+/**
+ * The verdict in plain words, one sentence per target: "Below the 0.35 g general target by 0.011 g." /
+ * "Meets the 0.40 g dangerous goods target by 0.012 g." (what it is judged on when that is the level-road SRT).
+ */
+export function plainVerdicts(result) {
+  const level = showsLevelRoad(result);
+  return result.targets.map((t) => {
+    const by = Math.abs(t.margin_g);
+    const amount = fmt(by, 3) === "0.000" ? "by less than 0.001 g" : `by ${fmt(by, 3)} g`;
+    const what = `the ${num(t.target_g, 3, 2)} g ${targetName(t.name)} target`;
+    const on = level && (t.judged_on === "level_road_srt" || t.judged_on === undefined) ? " (on the level-road SRT)" : "";
+    return { meets: t.meets, text: t.meets ? `Meets ${what} ${amount}${on}.` : `Below ${what} ${amount}${on}.` };
+  });
 }
 
 export function targetsTable(checks) {
   const body = checks.map((c) =>
-    el("tr", {}, el("td", {}, breakable(c.name)), el("td", {}, fmt(c.target_g, 3)), el("td", {}, verdict(c)), el("td", {}, signed(c.margin_g, 3))),
+    el("tr", {}, el("td", {}, targetName(c.name)), el("td", {}, fmt(c.target_g, 3)), el("td", {}, verdict(c)), el("td", {}, signed(c.margin_g, 3))),
   );
   return body;
 }
@@ -51,7 +68,7 @@ export function facts(result) {
     ].filter(([, v]) => v !== null);
     rows.push(["Tire loads [kN]", parts.map(([k, v]) => `${k} ${fmt(v, 1)}`).join(", ")]);
   }
-  rows.push(["Limit", `${result.limit} (rear LLT limit ${result.rear_llt_limit})`]);
+  rows.push(["Limit", `${result.limit} (rear LLT limit ${num(result.rear_llt_limit, 3)})`]);
   return rows;
 }
 
@@ -66,6 +83,17 @@ export function showResult(result, modelInfo) {
   out.textContent = srtText(result.srt);
   out.dataset.srt = String(result.srt);
   out.title = `SRT = ${result.srt} g`;
+  // judged on the level road: both thresholds, each labelled, when the case's bank or grade changes it
+  const level = showsLevelRoad(result);
+  $("#level-srt-line").hidden = !level;
+  $("#level-srt-value").textContent = level ? srtText(result.level_road_srt) : "";
+  $("#srt-label").textContent = level ? "This curve's threshold with its bank and grade" : "Static rollover threshold";
+  $("#bar-srt").textContent = srtText(level ? result.level_road_srt : result.srt);
+  const verdicts = plainVerdicts(result);
+  clear($("#verdict-plain")).append(...verdicts.map((v) => el("li", { class: v.meets ? "pass" : "fail" }, el("span", { class: v.meets ? "verdict pass" : "verdict fail" }, v.meets ? "\u2713" : "\u2717"), " ", v.text)));
+  const missed = verdicts.filter((v) => !v.meets).length;
+  $("#bar-verdict").textContent = missed ? `below ${missed} of ${verdicts.length} targets` : verdicts.length ? "meets every target" : "";
+  $("#bar-verdict").className = missed ? "verdict fail" : "verdict pass";
   const stage = result.stage ? `, stage ${result.stage}` : "";
   $("#srt-context").textContent = `${modelInfo ? modelInfo.name : result.model} (${result.model}${stage}); engine ${result.engine_version}.`;
   clear($("#targets-table tbody")).append(...targetsTable(result.targets));

@@ -89,18 +89,20 @@ export async function minRadius(vehicleRef, caseRequest) {
   return state.design;
 }
 
+/** The minimum radius by design speed: the speed, then the governing radius and what governs it (the columns a
+ * designer reads), then Eq. 9.2 and Eq. 9.3 and the side friction. Radii in whole metres. */
 export function radiusTable(rows) {
   return table(
     [
       { key: "design_speed_kmh", label: "V [km/h]", format: (v) => fmt(v, 0) },
+      { key: "governing_min_radius_m", label: "Governing R [m]", format: (v) => fmt(v, 0) },
+      { key: "governed_by", label: "Governed by", nowrap: true },
+      { key: "side_friction_min_radius_m", label: "Eq. 9.2 R [m]", format: (v) => fmt(v, 0) },
+      { key: "rollover_min_radius_m", label: "Eq. 9.3 R [m]", format: (v) => fmt(v, 0) },
       { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },
-      { key: "side_friction_min_radius_m", label: "Eq. 9.2 R [m]", format: (v) => fmt(v, 1) },
-      { key: "rollover_min_radius_m", label: "Eq. 9.3 R [m]", format: (v) => fmt(v, 1) },
-      { key: "governing_min_radius_m", label: "Governing R [m]", format: (v) => fmt(v, 1) },
-      { key: "governed_by", label: "Governed by", text: true },
     ],
     rows,
-    { caption: "Minimum radius by design speed: Eq. 9.2 (side friction, f of the standard) and Eq. 9.3 (rollover)." },
+    { caption: "Minimum radius by design speed: the governing one, Eq. 9.2 (side friction, f of the standard) and Eq. 9.3 (rollover)." },
   );
 }
 
@@ -128,7 +130,7 @@ export async function curveSpeed(vehicleRef, caseRequest) {
   }
   const out = await api.post("/v1/curve-speed", { vehicle: vehicleRef, ...caseRequest, radius_m: radius });
   state.speed = out;
-  $("#speed-result").textContent = `On a curve of radius ${fmt(out.radius_m, 1)} m (the case's bank and grade): at most ${fmt(out.max_speed_kmh, 1)} km/h before rollover (SRT ${srtText(out.srt)}, V = sqrt(127 SRT R)).`;
+  $("#speed-result").textContent = `On a curve of radius ${fmt(out.radius_m, 0)} m (the case's bank and grade): at most ${fmt(out.max_speed_kmh, 1)} km/h before rollover (SRT ${srtText(out.srt)}, V = sqrt(127 SRT R)).`;
   return out;
 }
 
@@ -139,7 +141,7 @@ export async function curveSpeed(vehicleRef, caseRequest) {
 export async function superelevation() {
   const common = drop({ ...designFields(), design_speed_kmh: value($("#se-speed")), max_superelevation_percent: value($("#se-emax")) });
   const out = await api.post("/v1/superelevation", { ...common, radius_m: value($("#se-radius")) });
-  $("#super-result").textContent = `Superelevation ${fmt(out.superelevation_percent, 2)} %, leaving side friction ${fmt(out.side_friction, 3)} (f_max ${fmt(out.f_max, 3)}); Rmin for e_max: ${fmt(out.min_radius_m, 1)} m. ${out.method}`;
+  $("#super-result").textContent = `Superelevation ${fmt(out.superelevation_percent, 2)} %, leaving side friction ${fmt(out.side_friction, 3)} (f_max ${fmt(out.f_max, 3)}); Rmin for e_max: ${fmt(out.min_radius_m, 0)} m. ${out.method}`;
   const box = clear($("#super-table"));
   if (await api.has("post", "/v1/superelevation/table")) {
     const t = await api.post("/v1/superelevation/table", common);
@@ -148,7 +150,7 @@ export async function superelevation() {
         "Superelevation by radius",
         table(
           [
-            { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 1) },
+            { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 0) },
             { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
             { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },
           ],
@@ -208,22 +210,27 @@ export async function payloadTable(spec) {
   return out;
 }
 
-export async function limits(vehicleRef, caseRequest) {
+/**
+ * The acceptable load for a target SRT by overweight (POST /v1/srt/limits): a record's largest CG height above
+ * the chassis (l12); a combination's largest vertical CG offset of its loads (d3), the field a combination has.
+ */
+export async function limits(vehicleRef, caseRequest, { combination = false } = {}) {
   const out = await api.post("/v1/srt/limits", {
     vehicle: vehicleRef,
     ...caseRequest,
-    parameter: "cg_height_above_chassis_m",
+    parameter: combination ? "vertical_offset_m" : "cg_height_above_chassis_m",
     target_srt_g: value($("#limit-target")),
   });
+  const symbol = out.symbol || "l12";
   const box = clear($("#limits-result"));
   box.append(
-    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}; this vehicle: l12 = ${fmt(out.current_value, 3)} ${out.unit}.`),
+    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}; this vehicle: ${symbol} = ${fmt(out.current_value, 3)} ${out.unit}.`),
     scroller(
-      "Acceptable CG height by overweight",
+      "Acceptable load by overweight",
       table(
         [
           { key: "overweight_percent", label: "Overweight [%]", format: (v) => fmt(v, 0) },
-          { key: "value", label: `Largest l12 [${out.unit}]`, format: (v) => fmt(v, 3) },
+          { key: "value", label: `Largest ${symbol} [${out.unit}]`, format: (v) => fmt(v, 3) },
           { key: "status", label: "Status", text: true },
           { key: "srt_at_limit", label: "SRT at the limit [g]", format: (v) => fmt(v, 3) },
         ],

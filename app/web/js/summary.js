@@ -1,69 +1,93 @@
 // The printable summary: inputs, results, the targets and the verdict, the figures, the engine version, the date
 // and the thesis citation, laid out for A4 or Letter by print.css. Rebuilt after every computation.
 
-import { $, clear, el, fmt } from "./dom.js";
-import { factList, facts, srtText, targetsTable } from "./results.js";
+import { COUPLINGS, governingText, KINDS, liftTable, unitsTable } from "./combination.js";
+import { $, clear, el, fmt, num, table } from "./dom.js";
+import { factList, facts, plainVerdicts, showsLevelRoad, srtText, targetsTable } from "./results.js";
 import { radiusCaption, radiusTable } from "./road.js";
 
-const RECORD_ORDER = [
-  "weight_kn",
-  "rear_track_m",
-  "front_track_m",
-  "rear_axle_width_m",
-  "front_axle_width_m",
-  "rear_axles",
-  "front_axles",
-  "rear_tires_per_axle",
-  "front_tires_per_axle",
-  "suspension_stiffness_kn_per_m",
-  "tire_stiffness_kn_per_m",
-  "fifth_wheel_stiffness_kn_per_m",
-  "suspension_height_m",
-  "rolling_radius_m",
-  "fifth_wheel_height_m",
-  "spring_separation_m",
-  "fifth_wheel_width_m",
-  "cg_height_above_chassis_m",
-  "fifth_wheel_to_front_axle_m",
-  "wheelbase_m",
-  "front_axle_to_cg_m",
-  "front_llt_ratio",
+/** The record's fields in words, with the thesis symbol and the unit (the weight W as a mass in kg). */
+const RECORD_FIELDS = [
+  ["weight_kn", "Mass (weight W / g)", "kg", (v) => (v * 1000) / 9.81, 0],
+  ["rear_track_m", "Rear track (t3)", "m"],
+  ["front_track_m", "Front track (t1)", "m"],
+  ["rear_axle_width_m", "Rear axle width (t4)", "m"],
+  ["front_axle_width_m", "Front axle width (t2)", "m"],
+  ["rear_axles", "Rear axles", ""],
+  ["front_axles", "Front axles", ""],
+  ["rear_tires_per_axle", "Rear tyres per axle", ""],
+  ["front_tires_per_axle", "Front tyres per axle", ""],
+  ["suspension_stiffness_kn_per_m", "Suspension stiffness per axle (kLs)", "kN/m"],
+  ["tire_stiffness_kn_per_m", "Tyre stiffness per tyre (kT)", "kN/m"],
+  ["fifth_wheel_stiffness_kn_per_m", "Fifth-wheel stiffness (kf)", "kN/m"],
+  ["suspension_height_m", "Suspension height (ls)", "m"],
+  ["rolling_radius_m", "Rolling radius (lr)", "m"],
+  ["fifth_wheel_height_m", "Fifth-wheel height (lf)", "m"],
+  ["spring_separation_m", "Spring separation (b)", "m"],
+  ["fifth_wheel_width_m", "Fifth-wheel width (b1)", "m"],
+  ["cg_height_above_chassis_m", "CG height above the chassis (l12)", "m"],
+  ["fifth_wheel_to_front_axle_m", "Fifth wheel to front axle (l13)", "m"],
+  ["wheelbase_m", "Wheelbase (L)", "m"],
+  ["front_axle_to_cg_m", "Front axle to CG (a)", "m"],
+  ["front_llt_ratio", "Front LLT ratio at the limit (LLTf/LLTr)", ""],
 ];
+
+const withUnit = (value, unit, digits = 3) => `${num(value, digits)}${unit ? ` ${unit}` : ""}`;
 
 function caseRows(request) {
   const road = request.road || {};
   const load = request.load || {};
   const rows = [
-    ["Model", `${request.model}${request.stage ? ` (stage ${request.stage})` : ""}`],
-    ["Bank [%]", road.bank_percent],
-    ["Grade [%] (+ uphill)", road.slope_percent],
-    ["Trailer angle [deg]", request.trailer_angle_deg],
-    ["Lateral CG offset d1 [m]", load.lateral_offset_m],
-    ["Longitudinal CG offset d2 [m]", load.longitudinal_offset_m],
-    ["Vertical CG offset d3 [m]", load.vertical_offset_m],
-    ["Overweight [%]", load.overweight_percent],
-    ["Rear LLT limit", request.rear_llt_limit],
+    ["Bank (superelevation)", road.bank_percent, "%"],
+    ["Grade (+ uphill)", road.slope_percent, "%"],
+    ["Trailer angle", request.trailer_angle_deg, "deg"],
+    ["Lateral CG offset (d1, + outward)", load.lateral_offset_m, "m"],
+    ["Longitudinal CG offset (d2, + forward)", load.longitudinal_offset_m, "m"],
+    ["Vertical CG offset (d3, + up)", load.vertical_offset_m, "m"],
+    ["Overweight", load.overweight_percent, "%"],
+    ["Rear LLT limit (1 = wheel lift-off)", request.rear_llt_limit, ""],
   ];
-  return rows.filter(([, v]) => v !== undefined).map(([k, v]) => [k, String(v)]);
+  return [
+    ["Model", `${request.model}${request.stage ? ` (stage ${request.stage})` : ""}`],
+    ...rows.filter(([, v]) => v !== undefined).map(([k, v, unit]) => [k, typeof v === "number" ? withUnit(v, unit, 4) : String(v)]),
+  ];
 }
 
-/** The record's fields as a two-column list (on paper: two columns side by side). */
+/** The record's fields in words with units (on paper: two columns side by side). */
 function recordList(record) {
-  const rows = RECORD_ORDER.filter((k) => record[k] !== undefined && record[k] !== null).map((k) => [k, String(record[k])]);
+  const rows = RECORD_FIELDS.filter(([k]) => record[k] !== undefined && record[k] !== null).map(([k, label, unit, convert, digits]) => [
+    label,
+    withUnit(convert ? convert(record[k]) : record[k], unit, digits ?? 3),
+  ]);
   return el("dl", { class: "facts record" }, factList(rows));
 }
 
-function verdictLine(result) {
-  const missed = result.targets.filter((t) => !t.meets);
-  if (!missed.length) return `Verdict: the SRT of ${srtText(result.srt)} meets every target.`;
-  return `Verdict: the SRT of ${srtText(result.srt)} is below ${missed.map((t) => `${t.name} (${srtText(t.target_g)})`).join(" and ")}.`;
+/** A combination's units and couplings in words: masses in kg, heights in m. */
+function combinationList(combination) {
+  const units = table(
+    [
+      { key: "id", label: "Unit", text: true },
+      { key: "kind", label: "Kind", text: true, format: (v) => KINDS[v] || v },
+      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => fmt(v, 0) },
+      { key: "cg_height_m", label: "CG height [m]", format: (v) => fmt(v, 2) },
+      { key: "groups", label: "Axle groups", text: true, format: (g) => g.map((x) => `${x.id}: ${x.axles} axle${x.axles > 1 ? "s" : ""}, ${x.tyres_per_axle} tyres each`).join("; ") },
+    ],
+    combination.units,
+  );
+  const couplings = combination.couplings.map((c, i) => `${COUPLINGS[c.kind] || c.kind} between ${combination.units[i]?.id} and ${combination.units[i + 1]?.id}, ${fmt(c.height_m, 2)} m high`);
+  return [el("div", { class: "keep" }, units), el("ul", {}, couplings.map((c) => el("li", {}, c)))];
+}
+
+function verdictLines(result) {
+  return plainVerdicts(result).map((v) => v.text).join(" ");
 }
 
 /** Rebuild the summary from the last computation. */
 export function update({ vehicle, request, result, figures, design, speed, link }) {
   const box = clear($("#summary-body"));
   const now = new Date();
-  box.append(
+  const add = (...nodes) => box.append(...nodes.flat().filter(Boolean));
+  add(
     el(
       "p",
       {},
@@ -74,10 +98,22 @@ export function update({ vehicle, request, result, figures, design, speed, link 
     el("h3", {}, "Vehicle"),
     el("p", {}, vehicle.label),
     vehicle.record ? recordList(vehicle.record) : null,
+    vehicle.combination ? combinationList(vehicle.combination) : null,
     el("h3", {}, "Case"),
     el("dl", { class: "facts keep" }, factList(caseRows(request))),
     el("h3", {}, "Result"),
-    el("p", { class: "srt-line" }, el("span", { class: "srt-label" }, "Static rollover threshold"), el("span", { class: "srt-value", id: "summary-srt" }, srtText(result.srt))),
+    showsLevelRoad(result)
+      ? el("p", { class: "srt-line" }, el("span", { class: "srt-label" }, "Level-road SRT (judged against targets)"), el("span", { class: "srt-value" }, srtText(result.level_road_srt)))
+      : null,
+    el(
+      "p",
+      { class: "srt-line" },
+      el("span", { class: "srt-label" }, showsLevelRoad(result) ? "This curve's threshold with its bank and grade" : "Static rollover threshold"),
+      el("span", { class: "srt-value", id: "summary-srt" }, srtText(result.srt)),
+    ),
+    el("p", { class: "verdict-line" }, `Verdict: ${verdictLines(result)}`),
+    result.roll_coupled_units?.length ? el("p", { class: "verdict-line", id: "summary-governing" }, governingText(result)) : null,
+    el("h3", {}, "At the limit (the thesis's notation)"),
     el("dl", { class: "facts keep" }, factList(facts(result))),
     el("h3", {}, "Targets"),
     el(
@@ -86,13 +122,20 @@ export function update({ vehicle, request, result, figures, design, speed, link 
       el("thead", {}, el("tr", {}, ["Target", "Minimum SRT [g]", "Verdict", "Margin [g]"].map((h) => el("th", { scope: "col" }, h)))),
       el("tbody", {}, targetsTable(result.targets)),
     ),
-    el("p", { class: "verdict-line" }, verdictLine(result)),
   );
+  if (result.roll_coupled_units?.length) {
+    box.append(
+      el("h3", {}, "Roll-coupled units"),
+      el("div", { class: "keep" }, unitsTable(result)),
+      el("h3", {}, "Lift-off sequence"),
+      el("div", { class: "keep" }, liftTable(result)),
+    );
+  }
   if (figures.length) {
     box.append(el("h3", {}, "Curves against ay/g"), el("div", { class: "plots" }, figures.map((f) => f.cloneNode(true))));
   }
   if (speed) {
-    box.append(el("h3", {}, "Curve speed"), el("p", {}, `Radius ${fmt(speed.radius_m, 1)} m: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`));
+    box.append(el("h3", {}, "Curve speed"), el("p", {}, `Radius ${fmt(speed.radius_m, 0)} m: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`));
   }
   if (design) {
     const fig = $("#road-results figure");
@@ -103,4 +146,18 @@ export function update({ vehicle, request, result, figures, design, speed, link 
       el("div", { class: "keep" }, radiusTable(design.rows)),
     );
   }
+}
+
+/**
+ * A part of the page printed after the summary when it is shown (the superelevation table, the payload table, the
+ * route or alignment): `nodes` are copied; null removes the part.
+ */
+export function extra(name, title, nodes) {
+  const box = $("#summary-extras");
+  box.querySelector(`[data-extra="${name}"]`)?.remove();
+  if (!nodes) return;
+  const part = el("section", { "data-extra": name, class: "summary-extra" }, el("h3", {}, title));
+  for (const node of nodes.filter(Boolean)) part.append(node.cloneNode(true));
+  for (const id of part.querySelectorAll("[id]")) id.removeAttribute("id");
+  box.append(part);
 }

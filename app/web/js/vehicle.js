@@ -2,11 +2,14 @@
 // pasted record -- and what the computations send as `vehicle` (a preset id or a full record).
 
 import * as api from "./api.js";
+import { sideView } from "./combination.js";
 import { $, $$, clear, el, fmt, scroller, table } from "./dom.js";
 import { value } from "./form.js";
 
 export const state = {
   presets: [], // GET /v1/vehicles
+  combinations: [], // GET /v1/combinations (each marked kind: "combination"), when the deployment has it
+  details: {}, // GET /v1/combinations/{id}, by id (read once)
   components: null, // GET /v1/components, when the deployment has it
   saved: null, // the loaded saved vehicle (GET /v1/vehicles/{id})
   built: null, // the last POST /v1/vehicles/build answer
@@ -17,8 +20,29 @@ const RECORD_META = ["id", "title", "source", "models"];
 
 export const source = () => $('input[name="source"]:checked').value;
 
+/** The combination preset the page opens with (a real vehicle, not a validation case of one unit). */
+export const DEFAULT_VEHICLE = "tractor-semitrailer-table15";
+
 export function preset(id = $("#preset").value) {
-  return state.presets.find((p) => p.id === id) || null;
+  return state.presets.find((p) => p.id === id) || state.combinations.find((p) => p.id === id) || null;
+}
+
+export const isCombination = (entry) => entry?.kind === "combination";
+
+/** A combination preset's full description (GET /v1/combinations/{id}: units, groups, couplings), read once. */
+export async function combinationDetail(id) {
+  state.details[id] ??= api.get(`/v1/combinations/${encodeURIComponent(id)}`).catch((err) => {
+    delete state.details[id];
+    throw err;
+  });
+  return state.details[id];
+}
+
+/** What the "record" box and saving send for a preset: its record fields, or {"combination": {...}}. */
+export async function presetBody(entry) {
+  if (!isCombination(entry)) return presetRecord(entry);
+  const { combination } = await combinationDetail(entry.id);
+  return { combination };
 }
 
 /** The record of a preset list entry (its record fields only). */
@@ -33,21 +57,105 @@ export function showPanel(which) {
   if (radio && !radio.checked) radio.checked = true;
 }
 
-export function fillPresets(presets) {
+/** The picker: the combinations (whole vehicles) first, then the thesis's presets of one unit. */
+export function fillPresets(presets, combinations = []) {
   state.presets = presets;
+  state.combinations = combinations.map((c) => ({ ...c, kind: "combination" }));
   const select = clear($("#preset"));
-  for (const p of presets) select.append(el("option", { value: p.id }, `${p.title} (${p.id})`));
+  const option = (p) => el("option", { value: p.id }, `${p.title} (${p.id})`);
+  if (state.combinations.length) {
+    select.append(
+      el("optgroup", { label: "Combinations: the whole vehicle in roll" }, state.combinations.map(option)),
+      el("optgroup", { label: "Thesis presets: the last unit (2D and 3D models)" }, presets.map(option)),
+    );
+  } else {
+    select.append(...presets.map(option));
+  }
   const pending = select.dataset.pending;
-  if (pending && !presets.some((p) => p.id === pending)) {
+  if (pending && !preset(pending)) {
     select.append(el("option", { value: pending }, `${pending} (not a known preset)`));
   }
   if (pending) select.value = pending;
+  else if (preset(DEFAULT_VEHICLE)) select.value = DEFAULT_VEHICLE;
   describePreset();
 }
 
 export function describePreset() {
   const p = preset();
-  $("#preset-source").textContent = p ? `Source: ${p.source}. Models: ${p.models.join(", ")}.` : "";
+  const view = $("#preset-view");
+  if (view) clear(view);
+  if (!p) {
+    $("#preset-source").textContent = "";
+    return;
+  }
+  if (!isCombination(p)) {
+    $("#preset-source").textContent = `Source: ${p.source}. Models: ${p.models.join(", ")}.`;
+    return;
+  }
+  const coupled = p.roll_coupled_units.map((u) => u.join(" + ")).join("; ");
+  $("#preset-source").textContent = `${p.summary} Units: ${p.units.join(", ")}. Roll-coupled units: ${coupled}. Models: ${p.models.join(", ")}.`;
+  if (view) {
+    combinationDetail(p.id)
+      .then((d) => {
+        if (preset()?.id !== p.id) return;
+        clear(view).append(sideView(d.combination, null), unitsEditor(d.combination));
+      })
+      .catch(() => undefined);
+  }
+}
+
+/** Each unit's sprung mass and CG height, editable (the rest of the combination as the preset has it). */
+const UNIT_BOXES = [
+  { key: "sprung_mass_kg", label: "Sprung mass [kg]", digits: 0 },
+  { key: "cg_height_m", label: "CG height [m]", digits: 3 },
+];
+
+function unitsEditor(combination) {
+  const rows = combination.units.map((u, i) =>
+    el(
+      "tr",
+      {},
+      el("td", { class: "text" }, u.id),
+      ...UNIT_BOXES.map((b) => {
+        const text = String(Number(u[b.key].toFixed(b.digits)));
+        const id = `unit-${i}-${b.key}`;
+        return el(
+          "td",
+          {},
+          el("label", { for: id, class: "visually-hidden" }, `${u.id}: ${b.label}`),
+          el("input", { id, inputmode: "decimal", value: text, "data-initial": text, "data-unit": String(i), "data-key": b.key, "data-field": `vehicle.combination.units.${i}.${b.key}` }),
+        );
+      }),
+    ),
+  );
+  return el(
+    "details",
+    { class: "units-editor", id: "units-editor" },
+    el("summary", {}, "Each unit: sprung mass and CG height (edit to build your own combination)"),
+    el("div", { class: "table-wrap" }, el("table", {}, el("thead", {}, el("tr", {}, el("th", { scope: "col" }, "Unit"), UNIT_BOXES.map((b) => el("th", { scope: "col" }, b.label)))), el("tbody", {}, rows))),
+  );
+}
+
+/** The preset's combination with the editor's changes, or null when nothing was changed. */
+function editedCombination(combination) {
+  const boxes = $$("#units-editor input[data-unit]").filter((c) => c.value.trim() !== c.dataset.initial);
+  if (!boxes.length) return null;
+  const edited = structuredClone(combination);
+  for (const c of boxes) edited.units[Number(c.dataset.unit)][c.dataset.key] = value(c) ?? null;
+  return edited;
+}
+
+/** The model the page picks for the vehicle unless the user chose one: a combination's whole-combination model. */
+export function defaultModel() {
+  if (source() === "preset") return isCombination(preset()) && preset().models.includes("combination") ? "combination" : null;
+  return choosesCombination() ? "combination" : null;
+}
+
+/** Whether the vehicle now chosen is a combination (a combination preset, or a pasted {"combination": ...}). */
+export function choosesCombination() {
+  if (source() === "preset") return isCombination(preset());
+  if (source() === "record") return /^\s*\{\s*"combination"/.test($("#record-json").value);
+  return false;
 }
 
 /** Models the current vehicle supports (a preset says; a record or a built vehicle: all, the service checks). */
@@ -255,6 +363,16 @@ export async function current() {
       const id = $("#preset").value; // an id from the link that is no preset: the service says which exist
       return { ref: id, label: id, record: null, params: { vehicle: id } };
     }
+    if (isCombination(p)) {
+      const detail = await combinationDetail(p.id);
+      const edited = editedCombination(detail.combination);
+      if (edited) {
+        const body = { combination: { ...edited, title: `${p.title}, edited` } };
+        return { ref: body, label: `${p.title} (${p.id}), units edited`, record: null, body, combination: edited, params: { record: JSON.stringify(body) } };
+      }
+      const body = { combination: detail.combination };
+      return { ref: p.id, label: `${p.title} (${p.id})`, record: null, body, combination: detail.combination, params: { vehicle: p.id } };
+    }
     return { ref: p.id, label: `${p.title} (${p.id})`, record: presetRecord(p), params: { vehicle: p.id } };
   }
   if (which === "saved") {
@@ -281,6 +399,9 @@ export async function current() {
   }
   const resolved = await resolveBody(body, body.title || "Pasted record");
   const ref = resolved.ref && typeof resolved.ref === "object" ? presetRecord(resolved.ref) : resolved.ref;
+  if (ref && typeof ref === "object" && ref.combination) {
+    return { ...resolved, ref, record: null, body: ref, combination: ref.combination, params: { record: JSON.stringify(body) } };
+  }
   return { ...resolved, ref, record: ref, params: { record: JSON.stringify(body) } };
 }
 

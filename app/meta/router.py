@@ -63,6 +63,7 @@ def list_models() -> list[ModelInfoOut]:
             equation=m.equation,
             reference=m.reference,
             takes=list(m.takes),
+            combination_takes=list(m.combination_takes if m.solve_combination is not None else m.takes),
             summary=m.summary,
             curves=m.curves,
             default=m.id == "3d",

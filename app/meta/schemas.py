@@ -19,9 +19,21 @@ class ModelInfoOut(OutputModel):
             "Road and load inputs the model accounts for (it refuses the others when non-zero).", unit="-"
         )
     )
+    combination_takes: list[str] = Field(
+        description=describe(
+            "Road and load inputs the model accounts for when the vehicle is a combination (the whole-combination "
+            "model solves the combination itself; a record model sees its last unit).",
+            unit="-",
+        )
+    )
     summary: str = Field(description=describe("One line on the mechanics.", unit="-"))
     curves: bool = Field(description=describe("Whether the model can return curves against ay/g.", unit="-"))
-    default: bool = Field(description=describe("Whether this is the default model.", unit="-"))
+    default: bool = Field(
+        description=describe(
+            "Whether this is the default model of a vehicle record (a combination's default is `combination`).",
+            unit="-",
+        )
+    )
 
 
 class Health(OutputModel):

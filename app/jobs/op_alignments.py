@@ -1,11 +1,14 @@
 """The ``alignments.assess`` job: :mod:`app.alignments.service` (``POST /v1/alignments/assess``) at up to 1,000,000
 rows, split into parts of curves.
 
-A part is a range of curves for every vehicle (at most :data:`PART_ROWS` rows); a worker solves and renders it in
-chunks of :data:`CHUNK_ROWS` rows (its progress reports) with the synchronous endpoint's own renderers, and keeps
-per vehicle the rows as JSON and as CSV (compressed) and the summary of its curves. The answer opens each vehicle
-with the summary over ALL curves: :func:`~app.alignments.service.merge_summaries` adds the parts' counts and takes
-the smallest of their minimums, and the distinct SRT solves are counted over the whole alignment at submission
+A part is a range of curves for every vehicle (at most :data:`PART_ROWS` rows); a worker solves it in chunks of
+:data:`CHUNK_ROWS` rows (its progress reports, counting solved rows, and its cancellation points) and keeps per
+vehicle the engine's result as typed columns (:data:`RESULT_SCHEMA`, :mod:`app.jobs.columns`) and the summary of its
+curves; nothing is rendered then. ``GET /v1/jobs/{id}/result`` reads the columns back (checked: they come from the
+store) and renders JSON or CSV from them with the synchronous endpoint's own renderers (:mod:`app.alignments.rows`),
+streamed part by part: the same bytes. The answer opens each vehicle with the summary over ALL curves:
+:func:`~app.alignments.service.merge_summaries` adds the parts' counts and takes the smallest of their minimums, and
+the distinct SRT solves are counted over the whole alignment at submission
 (:func:`~app.alignments.service.check_alignment`), not summed over the parts (two parts may share a pair).
 """
 
@@ -24,6 +27,7 @@ from starlette.requests import Request
 
 from app.alignments.rows import (
     JSON_VEHICLE_END,
+    ROWS_PER_CHUNK,
     csv_columns,
     csv_header,
     csv_rows,
@@ -43,11 +47,12 @@ from app.alignments.schemas import (
     keys_match_the_id_pattern,
 )
 from app.alignments.service import (
+    AlignmentAnswer,
     AlignmentJob,
+    VehicleAnswer,
     check_alignment,
     resolve_alignment,
     resolve_alignment_refs,
-    solve_alignment,
     validate_request_data,
 )
 from app.compute import solvers
@@ -55,8 +60,10 @@ from app.compute.cache import cache_key
 from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.jobs.columns import codes_within, pack_columns, require, strings, unpack_columns
 from app.settings import Settings
-from engine.road import solve_bank_grade_pairs
+from engine.case import Case, LoadCase
+from engine.road import GOVERNED_BY, AlignmentColumns, assess_alignment, solve_bank_grade_pairs, tilt_table_angle_deg
 from engine.vehicle import Vehicle
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
@@ -65,8 +72,8 @@ MAX_JOB_ROWS = 1_000_000
 MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000
 #: rows (curves x vehicles) per part, and per chunk of a part (a progress report, a cancellation point)
-PART_ROWS = 50_000
-CHUNK_ROWS = 5_000
+PART_ROWS = 100_000
+CHUNK_ROWS = 10_000
 _COLUMNS = ("radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh", "station_m")
 
 
@@ -202,32 +209,161 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
 
 
+#: a part's result for one vehicle (:mod:`app.jobs.columns`): the curves' ids (meta) and stations, and the
+#: engine's :class:`~engine.road.AlignmentColumns` (the reasons ``error`` indexes in the meta)
+RESULT_SCHEMA = {
+    "station_m": "<f8",
+    "radius_m": "<f8",
+    "superelevation_percent": "<f8",
+    "superelevation_derived": "|b1",
+    "grade_percent": "<f8",
+    "posted_speed_kmh": "<f8",
+    "srt_g": "<f8",
+    "rollover_speed_kmh": "<f8",
+    "side_friction_speed_kmh": "<f8",
+    "side_friction": "<f8",
+    "side_friction_clamped": "|b1",
+    "safe_speed_kmh": "<f8",
+    "governed_by": "|i1",
+    "margin_kmh": "<f8",
+    "flagged": "|b1",
+    "standard_min_radius_m": "<f8",
+    "meets_standard_min_radius": "|i1",
+    "error": "<i4",
+}
+_ENGINE_COLUMNS = [name for name in RESULT_SCHEMA if name != "station_m"]
+
+
+def _case(resolved: dict[str, Any], vehicle) -> Case:
+    """The SRT case of one vehicle, as :func:`app.alignments.service.solve_alignment` builds it."""
+    r = resolved
+    load = LoadCase(**r["load"])
+    return Case(
+        vehicle,
+        r["model"],
+        r["stage"],
+        trailer_angle_deg=r["trailer_angle_deg"],
+        load=load,
+        rear_llt_limit=r["rear_llt_limit"],
+    )
+
+
+def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
+    """The columns of consecutive slices of curves as one (the reasons of ``error`` merged and renumbered)."""
+    if len(chunks) == 1:
+        return chunks[0]
+    errors = sorted({e for c in chunks for e in c.errors})
+    code = {e: k for k, e in enumerate(errors)}
+    error = np.concatenate([np.array([-1, *(code[e] for e in c.errors)], dtype=np.int64)[c.error + 1] for c in chunks])
+    arrays = {name: np.concatenate([getattr(c, name) for c in chunks]) for name in _ENGINE_COLUMNS if name != "error"}
+    return AlignmentColumns(**arrays, error=error, errors=errors, distinct_cases=chunks[0].distinct_cases)
+
+
+def pack_result(curves: CurveTable, cols: AlignmentColumns) -> bytes:
+    """One vehicle's result over a part's curves as columns (:data:`RESULT_SCHEMA`)."""
+    arrays = {"station_m": curves.station_m, **{name: getattr(cols, name) for name in _ENGINE_COLUMNS}}
+    return pack_columns(arrays, RESULT_SCHEMA, {"ids": curves.ids, "errors": cols.errors})
+
+
+def unpack_result(data: bytes) -> tuple[CurveTable, AlignmentColumns]:
+    """:func:`pack_result` read back and checked: every column of one length, codes within their tables (raises
+    :class:`~app.jobs.columns.ColumnsError`, a ValueError)."""
+    cols, meta = unpack_columns(data, RESULT_SCHEMA)
+    n = cols["radius_m"].size
+    require(cols, list(RESULT_SCHEMA), n)
+    ids = strings(meta.get("ids"), n, "the part's curve ids")
+    errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
+    codes_within(cols["governed_by"], 0, len(GOVERNED_BY) - 1, "governed_by")
+    codes_within(cols["meets_standard_min_radius"], -1, 1, "meets_standard_min_radius")
+    codes_within(cols["error"], -1, len(errors) - 1, "error")
+    nan = np.full(n, np.nan)
+    curves = CurveTable(ids, cols["radius_m"], nan, cols["grade_percent"], cols["posted_speed_kmh"], cols["station_m"])
+    engine_cols = {name: cols[name] for name in _ENGINE_COLUMNS}
+    engine_cols["governed_by"] = engine_cols["governed_by"].astype(np.intp)
+    engine_cols["meets_standard_min_radius"] = engine_cols["meets_standard_min_radius"].astype(np.intp)
+    engine_cols["error"] = engine_cols["error"].astype(np.intp)
+    return curves, AlignmentColumns(**engine_cols, errors=errors, distinct_cases=0)
+
+
+def _part_answer(resolved: dict[str, Any], v: int, data: bytes) -> tuple[AlignmentAnswer, VehicleAnswer]:
+    """A part's stored result of vehicle ``v`` as the answer the renderers take (what
+    :func:`app.alignments.service.solve_alignment` builds for those curves)."""
+    curves, cols = unpack_result(data)
+    srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
+    tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
+    preset, saved = resolved["presets"][v], resolved["saved_ids"][v]
+    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved["targets"])
+    return AlignmentAnswer(resolved, curves, [answer]), answer
+
+
 def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
+    """Solve the part's curves in chunks (a progress report, a cancellation point each) and keep, per vehicle, the
+    result as columns (section = vehicle) and the summary of its curves; nothing is rendered here."""
     curves = unpack_curves(data)
     resolved = shared["resolved"]
-    vehicles = [Vehicle.from_dict(v) for v in resolved["vehicles"]]
-    nv, n, step = len(vehicles), len(curves), shared["chunk_curves"]
-    columns = csv_columns(resolved)
-    summaries: list[list[dict[str, Any]]] = [[] for _ in range(nv)]
+    cases = [_case(resolved, Vehicle.from_dict(v)) for v in resolved["vehicles"]]
+    nv, n, step = len(cases), len(curves), shared["chunk_curves"]
+    chunks: list[list[AlignmentColumns]] = [[] for _ in range(nv)]
     for a in range(0, n, step):
-        b = min(a + step, n)
-        answer = solve_alignment(AlignmentJob(resolved, vehicles, curves.sliced(a, b), shared["source"]), PAIRS)
-        for v in answer.vehicles:
-            ctx.write("json", v.index, (b"," if a else b"") + json_rows(answer, v, 0, b - a))
-            ctx.write("csv", v.index, csv_rows(answer, v, 0, b - a, columns))
-            summaries[v.index].append(summary(v.columns))
-        ctx.progress(b * nv)
-    return {"summaries": [merge_summaries(s, 0) for s in summaries]}
+        t = curves.sliced(a, min(a + step, n))
+        for v, case in enumerate(cases):
+            chunks[v].append(
+                assess_alignment(
+                    case,
+                    t.radius_m,
+                    t.superelevation_percent,
+                    t.grade_percent,
+                    t.posted_speed_kmh,
+                    design_standard=resolved["design_standard"],
+                    side_friction_bound=resolved["side_friction_bound"],
+                    max_superelevation_percent=resolved["max_superelevation_percent"],
+                    solve_pairs=PAIRS,
+                    block_map=solvers.block_map,
+                )
+            )
+        ctx.progress(min(a + step, n) * nv)
+    summaries = []
+    for v in range(nv):
+        cols = _joined(chunks[v])
+        chunks[v] = []
+        summaries.append(summary(cols))
+        ctx.write("columns", v, pack_result(curves, cols))
+    return {"summaries": summaries}
+
+
+def _rendered(resolved: dict[str, Any], v: int, data: bytes, fmt: str, columns: list[str]) -> Iterator[bytes]:
+    """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks."""
+    answer, va = _part_answer(resolved, v, data)
+    n = len(answer.curves)
+    for start in range(0, n, ROWS_PER_CHUNK):
+        stop = min(start + ROWS_PER_CHUNK, n)
+        if fmt == "csv":
+            yield csv_rows(answer, va, start, stop, columns)
+        else:
+            yield (b"," if start else b"") + json_rows(answer, va, start, stop)
+
+
+def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragments) -> None:
+    """Every part's stored columns read back and checked (raises ValueError), before the result is streamed."""
+    nv = len(shared["resolved"]["vehicles"])
+    for k in range(len(metas)):
+        for v in range(nv):
+            curves, _ = unpack_result(b"".join(fragments(k, v)))
+            if len(curves) != metas[k]["summaries"][v]["curves"]:
+                raise ValueError(f"part {k} holds {len(curves)} rows of vehicle {v}, its summary says otherwise")
 
 
 def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, fragments: Fragments) -> Iterator[bytes]:
+    """The answer rendered from the parts' columns with the synchronous endpoint's renderers
+    (:mod:`app.alignments.rows`): the same bytes."""
     resolved = shared["resolved"]
     nv = len(resolved["vehicles"])
+    columns = csv_columns(resolved)
     if fmt == "csv":
         yield csv_header(resolved)
         for v in range(nv):
             for k in range(len(metas)):
-                yield from fragments(k, v)
+                yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns)
         return
     yield json_head(resolved, shared["curves"])
     for v in range(nv):
@@ -236,7 +372,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
         for k in range(len(metas)):
             if k:
                 yield b","
-            yield from fragments(k, v)
+            yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns)
         yield JSON_VEHICLE_END
     yield json_tail()
 
@@ -256,4 +392,6 @@ OPERATION = Operation(
     run_part=run_part,
     assemble=assemble,
     refs=refs,
+    stored="columns",
+    check=check,
 )

@@ -6,10 +6,14 @@ from __future__ import annotations
 import math
 import time
 
+import numpy as np
 import orjson
 import pytest
 
-from app.jobs.store import PREFIX
+from app.jobs import op_alignments
+from app.jobs.columns import ColumnsError, pack_columns, unpack_columns
+from app.jobs.op_alignments import RESULT_SCHEMA, unpack_result
+from app.jobs.store import PREFIX, RAW_FRAGMENT_TYPE
 from app.settings import Settings
 
 from .conftest import make_client, random_curves, wait_for
@@ -410,3 +414,109 @@ def test_a_route_that_cannot_be_read_is_refused_at_submission():
         r = submit(c, "routes.assess", {"vehicle": "table16-btrain", "geojson": bad, "superelevation_percent": 6})
     assert r.status_code == 422, r.text
     assert r.json()["errors"][0]["field"] == "request.geojson.coordinates.2" and "latitude" in r.json()["detail"]
+
+
+# ------------------------------------------------------------------------- results rendered from columns
+
+KINDS = [
+    {"radius_m": 120.0, "superelevation_percent": 8.0, "grade_percent": -4.0, "posted_speed_kmh": 70.0},
+    {"radius_m": 350.0, "posted_speed_kmh": 90.0},  # superelevation derived from the distribution (e_max given)
+    {"radius_m": 600.0, "superelevation_percent": 8.0, "grade_percent": -4.0},  # no posted speed
+    # adverse crossfall past the rear LLT limit at rest: refused (no SRT, an error)
+    {"radius_m": 200.0, "superelevation_percent": -20.0, "posted_speed_kmh": 50.0},
+    {"radius_m": 25.0, "superelevation_percent": 2.0, "grade_percent": 3.0, "posted_speed_kmh": 80.0},  # < R_min
+]
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_rows_of_every_kind_rendered_from_columns_are_the_synchronous_answer(accept, monkeypatch):
+    """Rows of every kind (given and derived superelevation, with and without a posted speed, refused with an error,
+    below the standard's minimum radius; ids with a quote, a comma and a formula prefix), three targets, two
+    vehicles, in parts of 120 rows solved in chunks of 30 rows (so a part joins chunks with and without refused
+    rows): the job's JSON and CSV, rendered on GET from the parts' columns, are the synchronous answer's bytes."""
+    monkeypatch.setattr(op_alignments, "CHUNK_ROWS", 30)
+    rng = np.random.default_rng(8)
+    ids = ['C,"q"', "=HYPERLINK(1)", "-4", "plain"]
+    curves = [{"id": f"{ids[i % 4]}{i}", **KINDS[k]} for i, k in enumerate(rng.integers(0, 5, 900))]
+    curves[100:160] = [{"id": f"r{i}", **KINDS[3]} for i in range(60)]  # a run of refused rows: whole chunks
+    req = {
+        "vehicles": ["table16-btrain", "table23-semitrailer"],
+        "rear_llt_limit": 0.2,
+        "max_superelevation_percent": 8.0,
+        "targets": {"a": 0.3, "b": 0.45, "c": 0.3},
+        "curves": curves,
+    }
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=120)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 15
+        assert status["done"] == status["total"] == 1800
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    assert job.headers["etag"] == sync.headers["etag"]
+    assert job.content == sync.content
+    if accept is None:
+        rows = orjson.loads(job.content)["vehicles"][0]["rows"]
+        assert any(r["error"] for r in rows) and any(r["superelevation_source"] == "derived" for r in rows)
+        assert any(r["meets_standard_min_radius"] is False for r in rows)
+
+
+def _corrupt(c, location: str, body: bytes) -> None:
+    """Replace part 0's stored columns of vehicle 0 by ``body``, sealed as this deployment seals (so only the
+    columns' own checks can refuse it)."""
+    store = c.app.state.jobs.store
+    view = store.view(location.rsplit("/", 1)[1])
+    key = store.fragment_keys(view, "columns")[0][0]
+    store.kv.set(key, store._seal(key, RAW_FRAGMENT_TYPE, body), 60)
+
+
+@pytest.mark.parametrize(
+    "damage",
+    [
+        lambda b: b[: len(b) // 2],  # truncated
+        lambda b: b"XCOLS" + b[5:],  # another magic
+        lambda b: b[:5] + b"\x09\x00" + b[7:],  # another version
+        lambda b: b + b"\x00" * 8,  # trailing bytes
+        lambda b: b"",
+    ],
+    ids=["truncated", "magic", "version", "trailing", "empty"],
+)
+def test_a_part_whose_columns_do_not_read_is_a_failed_job_never_a_500(damage):
+    """A part's stored columns that are sealed but do not read back (truncated, another layout or version): the
+    result is 409 (the job failed with job-state-invalid naming the reason), before any byte of the answer."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done"
+        store = c.app.state.jobs.store
+        view = store.view(location.rsplit("/", 1)[1])
+        key = store.fragment_keys(view, "columns")[0][0]
+        good = b"".join(store.read_fragment(view.id, key, compressed=False))
+        _corrupt(c, location, damage(good))
+        for accept in ("application/json", "text/csv"):
+            r = c.get(location + "/result", headers={"accept": accept})
+            assert r.status_code == 409 and r.json()["job_status"] == "failed"
+        body = c.get(location).json()
+        assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
+        assert "ColumnsError" in body["error"]["detail"]
+
+
+def test_a_part_with_codes_outside_their_tables_is_refused():
+    """Columns that read but hold a code that would index outside its table (governed_by 7): refused the same way."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(50, seed=13)}
+    with make_client() as c:
+        location, _ = run(c, "alignments.assess", req)
+        store = c.app.state.jobs.store
+        view = store.view(location.rsplit("/", 1)[1])
+        key = store.fragment_keys(view, "columns")[0][0]
+        good = b"".join(store.read_fragment(view.id, key, compressed=False))
+        cols, meta = unpack_columns(good, RESULT_SCHEMA)
+        cols = {k: v.copy() for k, v in cols.items()}
+        cols["governed_by"][3] = 7
+        bad = pack_columns(cols, RESULT_SCHEMA, meta)
+        with pytest.raises(ColumnsError):
+            unpack_result(bad)
+        _corrupt(c, location, bad)
+        r = c.get(location + "/result")
+        assert r.status_code == 409 and r.json()["job_status"] == "failed"

@@ -14,14 +14,11 @@ the distinct SRT solves are counted over the whole alignment at submission
 
 from __future__ import annotations
 
-import io
-import threading
 from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import orjson
-from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
@@ -60,10 +57,18 @@ from app.compute.cache import cache_key
 from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
-from app.jobs.columns import codes_within, pack_columns, require, strings, unpack_columns
+from app.jobs.columns import ColumnsError, codes_within, pack_columns, require, strings, unpack_columns
 from app.settings import Settings
 from engine.case import Case, LoadCase
-from engine.road import GOVERNED_BY, AlignmentColumns, assess_alignment, solve_bank_grade_pairs, tilt_table_angle_deg
+from engine.road import (
+    GOVERNED_BY,
+    AlignmentColumns,
+    assess_alignment,
+    bank_grade_pairs,
+    solve_bank_grade_pairs,
+    superelevation_used,
+    tilt_table_angle_deg,
+)
 from engine.vehicle import Vehicle
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
@@ -119,34 +124,6 @@ class AlignmentJobRequest(AlignmentRequest):
     )
 
 
-class PairMemo:
-    """The SRTs of the (superelevation, grade) pairs this process has solved, per vehicle case: a part's chunks (and
-    the next parts of the same job on this worker) solve only the pairs not seen yet. A pair's SRT does not depend on
-    the batch it is solved in, so the answer is the synchronous one, byte for byte (the tests check it)."""
-
-    def __init__(self, cases: int = 16) -> None:
-        self.known: LRUCache = LRUCache(maxsize=cases)
-        self._lock = threading.Lock()
-
-    def __call__(self, case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
-        key = cache_key("pair-srt", case.to_dict())
-        with self._lock:
-            memo = self.known.get(key)
-            if memo is None:
-                memo = self.known[key] = {}
-        rows = [tuple(p) for p in pairs.tolist()]
-        todo = [i for i, p in enumerate(rows) if p not in memo]
-        if todo:
-            srt, errors = solve_bank_grade_pairs(case, pairs[todo], block_map=solvers.block_map)
-            for j, i in enumerate(todo):
-                memo[rows[i]] = (float(srt[j]), errors.get(j))
-        found = [memo[p] for p in rows]
-        return np.array([s for s, _ in found]), {i: e for i, (_, e) in enumerate(found) if e is not None}
-
-
-PAIRS = PairMemo()
-
-
 # ----------------------------------------------------------------------------------------- the hooks
 
 
@@ -166,37 +143,118 @@ def resolve(parsed, ctx: ResolveContext) -> AlignmentJob:
     return resolve_alignment(req, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
 
 
-def pack_curves(t: CurveTable) -> bytes:
-    """Curves as a compressed npz: the float64 columns, and the ids (and rows / elements) as JSON bytes; never a
-    pickle (read back with ``allow_pickle=False``)."""
-    buf = io.BytesIO()
-    meta = np.frombuffer(orjson.dumps({"ids": t.ids, "where": t.where}), dtype=np.uint8)
-    np.savez_compressed(buf, meta=meta, **{c: getattr(t, c).astype("<f8") for c in _COLUMNS})
-    return buf.getvalue()
+#: a part's inputs (:mod:`app.jobs.columns`): its curves (ids in the meta), and the distinct (superelevation, grade)
+#: pairs they use, sorted, with each vehicle's SRT on each (``pair_srt``: vehicle-major, nv x m) and the code of the
+#: reason a pair has none (``pair_error``, into the meta's ``errors``; -1: solved), solved once for the whole job
+INPUT_SCHEMA = {
+    "radius_m": "<f8",
+    "superelevation_percent": "<f8",
+    "grade_percent": "<f8",
+    "posted_speed_kmh": "<f8",
+    "station_m": "<f8",
+    "pair_superelevation_percent": "<f8",
+    "pair_grade_percent": "<f8",
+    "pair_srt": "<f8",
+    "pair_error": "<i4",
+}
 
 
-def unpack_curves(data: bytes) -> CurveTable:
-    """:func:`pack_curves` read back and checked (raises ValueError for anything else)."""
-    try:
-        with np.load(io.BytesIO(data), allow_pickle=False) as z:
-            meta = orjson.loads(z["meta"].tobytes())
-            cols = [np.asarray(z[c], dtype="<f8") for c in _COLUMNS]
-    except (OSError, KeyError, ValueError, orjson.JSONDecodeError) as exc:
-        raise ValueError(f"the part's curves cannot be read: {exc}") from None
-    ids, where = meta.get("ids"), meta.get("where")
-    n = len(ids) if isinstance(ids, list) else -1
-    if n < 1 or any(c.shape != (n,) for c in cols) or not all(isinstance(i, str) for i in ids):
-        raise ValueError("the part's curves are inconsistent")
-    if where is not None and (not isinstance(where, list) or len(where) != n):
-        raise ValueError("the part's curve locations are inconsistent")
-    return CurveTable(ids, *cols, where=where)
+@dataclass(frozen=True)
+class PartInput:
+    curves: CurveTable
+    pairs: np.ndarray  # (m,) superelevation + 1j grade, sorted (the order of engine.road.bank_grade_pairs)
+    srt: np.ndarray  # (nv, m) [g]
+    error: np.ndarray  # (nv, m) codes into errors, -1: none
+    errors: list[str]
+
+
+def pack_input(t: CurveTable, pairs: np.ndarray, srt: np.ndarray, error: np.ndarray, errors: list[str]) -> bytes:
+    """A part's inputs as columns (:data:`INPUT_SCHEMA`; ``pairs``: (m, 2); ``srt``, ``error``: (nv, m))."""
+    columns = {c: getattr(t, c) for c in _COLUMNS}
+    columns |= {
+        "pair_superelevation_percent": pairs[:, 0],
+        "pair_grade_percent": pairs[:, 1],
+        "pair_srt": srt,
+        "pair_error": error,
+    }
+    return pack_columns(columns, INPUT_SCHEMA, {"ids": t.ids, "errors": errors, "vehicles": int(srt.shape[0])})
+
+
+def unpack_input(data: bytes) -> PartInput:
+    """:func:`pack_input` read back and checked (raises :class:`~app.jobs.columns.ColumnsError`, a ValueError)."""
+    cols, meta = unpack_columns(data, INPUT_SCHEMA)
+    n, m, nv = cols["radius_m"].size, cols["pair_superelevation_percent"].size, meta.get("vehicles")
+    if n < 1 or type(nv) is not int or nv < 1:
+        raise ColumnsError("the part has no curves or no vehicles")
+    require(cols, _COLUMNS, n)
+    require(cols, ("pair_grade_percent",), m)
+    require(cols, ("pair_srt", "pair_error"), nv * m)
+    ids = strings(meta.get("ids"), n, "the part's curve ids")
+    errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
+    codes_within(cols["pair_error"], -1, len(errors) - 1, "pair_error")
+    pairs = cols["pair_superelevation_percent"] + 1j * cols["pair_grade_percent"]
+    if m > 1 and not np.all(pairs[1:] > pairs[:-1]):  # complex numbers compare by real, then imaginary part
+        raise ColumnsError("the part's pairs are not sorted and distinct")
+    t = CurveTable(ids, *(cols[c] for c in _COLUMNS))
+    return PartInput(t, pairs, cols["pair_srt"].reshape(nv, m), cols["pair_error"].reshape(nv, m), errors)
+
+
+def _gather(inputs: PartInput, v: int):
+    """A ``solve_pairs`` for :func:`engine.road.assess_alignment` that takes vehicle ``v``'s SRTs from the job's
+    table (solved once, at submission; the same bits: a pair's SRT does not depend on its batch); a pair not in the
+    table (none should be) is solved."""
+    keys, srt_table, error_table = inputs.pairs, inputs.srt[v], inputs.error[v]
+
+    def solve_pairs(case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+        q = pairs[:, 0] + 1j * pairs[:, 1]
+        at = np.minimum(np.searchsorted(keys, q), max(keys.size - 1, 0))
+        hit = keys[at] == q if keys.size else np.zeros(q.size, dtype=bool)
+        srt = np.where(hit, srt_table[at] if keys.size else np.nan, np.nan)
+        codes = np.where(hit, error_table[at] if keys.size else -1, -1)
+        errors = {int(i): inputs.errors[codes[i]] for i in np.flatnonzero(codes >= 0)}
+        if not hit.all():
+            miss = np.flatnonzero(~hit)
+            solved, why = solve_bank_grade_pairs(case, pairs[miss], block_map=solvers.block_map)
+            srt[miss] = solved
+            errors |= {int(miss[j]): e for j, e in why.items()}
+        return srt, errors
+
+    return solve_pairs
 
 
 def split(job: AlignmentJob, part_rows: int) -> Prepared:
+    """The parts' inputs: their curves and the SRTs of their pairs, every distinct pair of the job solved here, once
+    per vehicle, in one batch (the workers only gather)."""
     distinct = check_alignment(job)  # refuses now what the synchronous endpoint would refuse for the whole request
-    nv, n = len(job.vehicles), len(job.curves)
+    r, t = job.resolved, job.curves
+    e = superelevation_used(
+        t.radius_m,
+        t.superelevation_percent,
+        t.posted_speed_kmh,
+        design_standard=r["design_standard"],
+        side_friction_bound=r["side_friction_bound"],
+        max_superelevation_percent=r["max_superelevation_percent"],
+    )
+    pairs, inverse = bank_grade_pairs(e, t.grade_percent)
+    srt = np.empty((len(job.vehicles), len(pairs)))
+    solved_errors: list[dict[int, str]] = []
+    for v, vehicle in enumerate(job.vehicles):
+        srt[v], why = solve_bank_grade_pairs(_case(r, vehicle), pairs, block_map=solvers.block_map)
+        solved_errors.append(why)
+    errors = sorted({msg for why in solved_errors for msg in why.values()})
+    code = {msg: k for k, msg in enumerate(errors)}
+    error = np.full(srt.shape, -1, dtype=np.int32)
+    for v, why in enumerate(solved_errors):
+        for i, msg in why.items():
+            error[v, i] = code[msg]
+    nv, n = len(job.vehicles), len(t)
     per_part = max(1, part_rows // nv)
-    parts = [(min(a + per_part, n) - a) * nv for a in range(0, n, per_part)]
+    parts, inputs = [], []
+    for a in range(0, n, per_part):
+        b = min(a + per_part, n)
+        used = np.unique(inverse[a:b])
+        parts.append((b - a) * nv)
+        inputs.append(pack_input(t.sliced(a, b), pairs[used], srt[:, used], error[:, used], errors))
     shared = {
         "resolved": job.resolved,
         "source": job.source,
@@ -204,7 +262,6 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
         "distinct_srt_solves": distinct,
         "chunk_curves": max(1, CHUNK_ROWS // nv),
     }
-    inputs = [pack_curves(job.curves.sliced(a, min(a + per_part, n))) for a in range(0, n, per_part)]
     etag = {"json": cache_key("alignments", job.resolved), "csv": cache_key("alignments-csv", job.resolved)}
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
 
@@ -299,14 +356,18 @@ def _part_answer(resolved: dict[str, Any], v: int, data: bytes) -> tuple[Alignme
 def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
     """Solve the part's curves in chunks (a progress report, a cancellation point each) and keep, per vehicle, the
     result as columns (section = vehicle) and the summary of its curves; nothing is rendered here."""
-    curves = unpack_curves(data)
+    inputs = unpack_input(data)
+    curves = inputs.curves
     resolved = shared["resolved"]
     cases = [_case(resolved, Vehicle.from_dict(v)) for v in resolved["vehicles"]]
     nv, n, step = len(cases), len(curves), shared["chunk_curves"]
+    if inputs.srt.shape[0] != nv:
+        raise ColumnsError(f"the part's SRTs are of {inputs.srt.shape[0]} vehicles, the job has {nv}")
+    gather = [_gather(inputs, v) for v in range(nv)]
     chunks: list[list[AlignmentColumns]] = [[] for _ in range(nv)]
     for a in range(0, n, step):
         t = curves.sliced(a, min(a + step, n))
-        for v, case in enumerate(cases):
+        for v, case in enumerate(cases):  # the pairs' SRTs gathered from the job's table
             chunks[v].append(
                 assess_alignment(
                     case,
@@ -317,7 +378,7 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
                     design_standard=resolved["design_standard"],
                     side_friction_bound=resolved["side_friction_bound"],
                     max_superelevation_percent=resolved["max_superelevation_percent"],
-                    solve_pairs=PAIRS,
+                    solve_pairs=gather[v],
                     block_map=solvers.block_map,
                 )
             )

@@ -136,9 +136,22 @@ def test_summary_over_parts_counts_each_distinct_pair_once():
 # ------------------------------------------------------------------------------------------- progress
 
 
-def test_progress_increases_while_a_part_is_solved():
-    """One part of 20,000 rows solved in chunks of 5,000: the status shows the progress between 0 and 1 while that
-    part runs (no part done yet), never going down, then 1."""
+def _slow_chunks(monkeypatch, seconds: float) -> None:
+    """Each chunk's solve in a part takes ``seconds`` longer (the parts only gather their SRTs: they are quick)."""
+    assess = op_alignments.assess_alignment
+
+    def slow(*args, **kw):
+        time.sleep(seconds)
+        return assess(*args, **kw)
+
+    monkeypatch.setattr(op_alignments, "assess_alignment", slow)
+
+
+def test_progress_increases_while_a_part_is_solved(monkeypatch):
+    """One part of 20,000 rows solved in chunks of 10,000 (5,000 curves of two vehicles), each slowed down: the
+    status shows the progress between 0 and 1 while that part runs (no part done yet), never going down, counting
+    the rows solved (a chunk's), then 1."""
+    _slow_chunks(monkeypatch, 0.2)
     req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(10_000, seed=3)}
     with make_client() as c:
         location = submit(c, "alignments.assess", req).headers["location"]
@@ -153,7 +166,7 @@ def test_progress_increases_while_a_part_is_solved():
     assert progress == sorted(progress) and progress[-1] == 1.0
     during = [p for p, parts_done, _ in seen if 0 < p < 1 and parts_done == 0]
     assert during, seen
-    assert all(d % 5000 == 0 for p, _, d in seen if 0 < p < 1)  # reported at chunk boundaries
+    assert all(d % 10_000 == 0 for p, _, d in seen if 0 < p < 1)  # reported at chunk boundaries
 
 
 def test_healthz_answers_while_a_job_runs():
@@ -168,9 +181,11 @@ def test_healthz_answers_while_a_job_runs():
 # ----------------------------------------------------------------------------------------- cancelling
 
 
-def test_cancel_a_queued_job_never_starts_and_a_running_one_stops():
+def test_cancel_a_queued_job_never_starts_and_a_running_one_stops(monkeypatch):
     """One worker thread: job A runs, job B waits. Cancelling B: 202 `cancelled`, none of its parts ever starts.
-    Cancelling A: it stops at its next chunk, its unfinished parts never finish. Their results are 409."""
+    Cancelling A: it stops at its next chunk, its unfinished parts never finish. Their results are 409. (Each chunk's
+    solve is slowed down to 0.3 s: the parts only gather their SRTs and would finish before the test could look.)"""
+    _slow_chunks(monkeypatch, 0.3)
     big = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(20_000, seed=6)}
     with make_client(Settings(jobs_part_size=10_000, jobs_workers=1)) as c:
         a = submit(c, "alignments.assess", big).headers["location"]
@@ -520,3 +535,22 @@ def test_a_part_with_codes_outside_their_tables_is_refused():
         _corrupt(c, location, bad)
         r = c.get(location + "/result")
         assert r.status_code == 409 and r.json()["job_status"] == "failed"
+
+
+def test_the_distinct_pairs_are_solved_once_per_job_and_the_parts_only_gather(monkeypatch):
+    """1,000 curves on 7 superelevation/grade pairs, two vehicles, 10 parts: the batch solver runs once per vehicle
+    (at submission, on the 7 pairs), never in a part; the answer is still the synchronous one."""
+    calls = []
+    solve = op_alignments.solve_bank_grade_pairs
+
+    def counting(case, pairs, **kw):
+        calls.append(len(pairs))
+        return solve(case, pairs, **kw)
+
+    monkeypatch.setattr(op_alignments, "solve_bank_grade_pairs", counting)
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(1000, seed=14, pairs=7)}
+    with make_client(Settings(jobs_part_size=200)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 10
+        assert calls == [7, 7]
+        assert c.get(location + "/result").content == c.post("/v1/alignments/assess", json=req).content

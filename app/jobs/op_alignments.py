@@ -14,6 +14,7 @@ the distinct SRT solves are counted over the whole alignment at submission
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
@@ -58,6 +59,7 @@ from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.jobs.columns import ColumnsError, codes_within, pack_columns, require, strings, unpack_columns
+from app.jobs.csv_columns import read_csv_columns
 from app.settings import Settings
 from engine.case import Case, LoadCase
 from engine.road import (
@@ -140,7 +142,11 @@ async def refs(request: Request, parsed, settings: Settings):
 def resolve(parsed, ctx: ResolveContext) -> AlignmentJob:
     """Presets and records (references were resolved by :func:`refs`) to the engine's inputs."""
     req, curves = parsed
-    return resolve_alignment(req, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
+    fast = None
+    if curves is None and req.csv is not None:  # the plain CSV form straight into columns; any other: read_csv's
+        fast = curves = read_csv_columns(req.csv, max_curves=MAX_JOB_CURVES)
+    job = resolve_alignment(req, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
+    return job if fast is None else dataclasses.replace(job, source="csv")
 
 
 #: a part's inputs (:mod:`app.jobs.columns`): its curves (ids in the meta), and the distinct (superelevation, grade)

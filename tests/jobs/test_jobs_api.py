@@ -303,6 +303,11 @@ def _errors(r) -> list[tuple[str, str, str]]:
         {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0}, {"id": "A", "radius_m": 300.0}]},
         {"vehicle": "table16-btrain"},  # no curves
         {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,abc\n"},  # a CSV row that cannot be read
+        {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,100\nB,3\n"},  # row 3 below the bounds
+        {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,100\nA,200\n"},  # a duplicate id in the CSV
+        # a plain CSV read into columns, refused later (no e and no e_max): the error names its row
+        {"vehicle": "table16-btrain", "csv": "id,radius_m,grade_percent\nA,100,2\nB,200,1\n"},
+        {"vehicle": "table16-btrain", "max_superelevation_percent": 8, "csv": "id,radius_m\nA,100\nB,200\n"},
         {"vehicle": "table14-semitrailer", "curves": [{"id": "A", "radius_m": 200.0, "superelevation_percent": 2.0}]},
         {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0}]},  # no e and no e_max to derive it
     ],

@@ -65,13 +65,15 @@ def target_columns_of(checks_per_row: Sequence[Sequence[dict[str, Any]]]) -> dic
     # rows share their lists (one per distinct SRT): each distinct list is looked at once, the rows only gather
     keys = list(map(id, checks_per_row))
     distinct = dict(zip(keys, checks_per_row, strict=True))
-    names = {check["name"] for checks in distinct.values() for check in checks}
-    for name in names:
-        found = {k: next((c for c in checks if c["name"] == name), None) for k, checks in distinct.items()}
-        meets = {k: None if c is None else c["meets"] for k, c in found.items()}
-        margin = {k: None if c is None else c["margin_g"] for k, c in found.items()}
-        out[f"meets_{name}"] = list(map(meets.__getitem__, keys))
-        out[f"margin_{name}_g"] = list(map(margin.__getitem__, keys))
+    by_name: dict[str, tuple[dict[int, Any], dict[int, Any]]] = {}
+    for k, checks in distinct.items():
+        for c in checks:
+            meets, margin = by_name.setdefault(c["name"], ({}, {}))
+            if k not in meets:  # a row's first check of that name
+                meets[k], margin[k] = c["meets"], c["margin_g"]
+    for name, (meets, margin) in by_name.items():
+        out[f"meets_{name}"] = list(map(meets.get, keys))
+        out[f"margin_{name}_g"] = list(map(margin.get, keys))
     return out
 
 

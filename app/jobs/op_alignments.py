@@ -79,7 +79,7 @@ MAX_JOB_ROWS = 1_000_000
 MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000
 #: rows (curves x vehicles) per part, and per chunk of a part (a progress report, a cancellation point)
-PART_ROWS = 100_000
+PART_ROWS = 50_000
 CHUNK_ROWS = 10_000
 _COLUMNS = ("radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh", "station_m")
 

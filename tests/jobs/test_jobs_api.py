@@ -559,3 +559,28 @@ def test_the_distinct_pairs_are_solved_once_per_job_and_the_parts_only_gather(mo
         assert status["status"] == "done" and status["parts"]["total"] == 10
         assert calls == [7, 7]
         assert c.get(location + "/result").content == c.post("/v1/alignments/assess", json=req).content
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_a_landxml_job_keeps_the_stations_in_its_columns(accept):
+    """Curves from a LandXML document carry their stations (staStart): 400 curves in parts of 100, the job's JSON and
+    CSV (the stations read back from the parts' columns) are the synchronous answer's bytes."""
+    curves = random_curves(400, seed=15)
+    items = "".join(
+        f'<Curve rot="cw" radius="{c["radius_m"]}" length="50" staStart="{100.5 * k}" name="{c["id"]}"/>'
+        for k, c in enumerate(curves)
+    )
+    document = (
+        '<?xml version="1.0"?><LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2">'
+        f'<Alignments><Alignment name="A1"><CoordGeom>{items}</CoordGeom></Alignment></Alignments></LandXML>'
+    )
+    req = {"vehicle": "table16-btrain", "landxml": {"document": document, "superelevation_percent": 4.0}}
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 4
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200 and job.content == sync.content
+    if accept is None:
+        assert orjson.loads(job.content)["vehicles"][0]["rows"][399]["station_m"] == 100.5 * 399

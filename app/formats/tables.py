@@ -13,8 +13,11 @@ every text cell is quoted, quotes inside doubled (RFC 4180). Numbers are never p
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
+
+import orjson
 
 #: the first characters that make a spreadsheet evaluate a cell (OWASP, CSV Injection)
 FORMULA_PREFIXES = ("=", "+", "-", "@", "\t", "\r")
@@ -59,11 +62,18 @@ def target_columns_of(checks_per_row: Sequence[Sequence[dict[str, Any]]]) -> dic
     """:func:`flatten_targets` for a table given column by column: the rows' ``targets`` lists (one per row, empty
     without an SRT) -> a ``meets_<name>`` and a ``margin_<name>_g`` column per target, None where a row has none."""
     out: dict[str, list[Any]] = {}
-    names = {check["name"] for checks in checks_per_row for check in checks}
-    for name in names:
-        by_name = [next((c for c in checks if c["name"] == name), None) for checks in checks_per_row]
-        out[f"meets_{name}"] = [None if c is None else c["meets"] for c in by_name]
-        out[f"margin_{name}_g"] = [None if c is None else c["margin_g"] for c in by_name]
+    # rows share their lists (one per distinct SRT): each distinct list is looked at once, the rows only gather
+    keys = list(map(id, checks_per_row))
+    distinct = dict(zip(keys, checks_per_row, strict=True))
+    by_name: dict[str, tuple[dict[int, Any], dict[int, Any]]] = {}
+    for k, checks in distinct.items():
+        for c in checks:
+            meets, margin = by_name.setdefault(c["name"], ({}, {}))
+            if k not in meets:  # a row's first check of that name
+                meets[k], margin[k] = c["meets"], c["margin_g"]
+    for name, (meets, margin) in by_name.items():
+        out[f"meets_{name}"] = list(map(meets.get, keys))
+        out[f"margin_{name}_g"] = list(map(margin.get, keys))
     return out
 
 
@@ -92,7 +102,72 @@ def csv_lines(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
 
 def csv_lines_of_columns(columns: Sequence[Sequence[Any]]) -> bytes:
     """CSV lines of a table given column by column (equal lengths; no header): the same text as :func:`csv_lines`
-    of its rows, each column written at once (a column of numbers or of booleans without one call per cell)."""
+    of its rows, each column written at once (:func:`_csv_column`), the lines put together by slice assignment
+    (as :func:`app.formats.json_rows.json_template` puts JSON rows together): no Python work per row."""
+    n = len(columns[0]) if columns else 0
+    if not n:
+        return b""
+    width = len(columns)
+    parts: list[bytes] = [b""] * (width * n)
+    for j, values in enumerate(columns):
+        if len(values) != n:
+            return csv_lines_cellwise(columns)  # its zip(strict=True) says which
+        text = _csv_column(values)
+        if text is None:
+            return csv_lines_cellwise(columns)
+        start = b"" if j == 0 else b","
+        end = b"\r\n" if j == width - 1 else b""
+        parts[j::width] = (start + text.replace(_SEP, end + _SEP + start) + end).split(_SEP)
+    return b"".join(parts)
+
+
+#: the separator the columns' cells are joined with while the lines are made (a cell that holds it: cell by cell)
+_SEP = b"\x01"
+_NUMBER_KINDS = frozenset((float, int, bool))
+
+
+def _csv_column(values: Sequence[Any]) -> bytes | None:
+    """The CSV fields of one column joined by :data:`_SEP`, the same as :func:`_column_cells` writes them; None when
+    a cell holds the separator. A column of numbers, booleans and nulls is written by one ``orjson.dumps``: orjson
+    writes an int as ``str`` does, a bool as ``true``/``false``, and a float as ``repr`` does (the shortest text that
+    reads back to it) except in exponent form and below 1e-4 (``0.00005`` for ``5e-05``): a column holding those, or a
+    nan or an infinity (``null`` to orjson), is written cell by cell."""
+    kinds = set(map(type, values))
+    if kinds - {type(None)} <= _NUMBER_KINDS:
+        text = orjson.dumps(values)[1:-1]
+        nulls = text.count(b"null")
+        plain = float not in kinds or (b"e" not in text and b"0.0000" not in text)
+        if plain and nulls == values.count(None):
+            return (text.replace(b"null", b"") if nulls else text).replace(b",", _SEP)
+    elif kinds <= _TEXT_KINDS:
+        text = _text_column(values)
+        if text is not None:
+            return text
+    text = "\x01".join(_column_cells(values)).encode()
+    return None if text.count(_SEP) != len(values) - 1 else text
+
+
+_TEXT_KINDS = frozenset((str, Text))
+#: a cell that begins with a formula prefix (after the separator, or first)
+_FORMULA_START = re.compile("(?:^|\x01)[" + re.escape("".join(FORMULA_PREFIXES)) + "]")
+
+
+def _text_column(values: Sequence[str]) -> bytes | None:
+    """A column of texts (no None) joined by :data:`_SEP` as :func:`_text_field` writes each, in one ``join``; None
+    when one holds a quote, the separator or begins with a formula prefix (then cell by cell). A column of few
+    distinct texts (a vehicle's preset on every row) writes each of them once."""
+    distinct = set(values)
+    if len(distinct) * 4 <= len(values):
+        fields = {v: _text_field(v) for v in distinct}
+        return "\x01".join(map(fields.__getitem__, values)).encode()
+    joined = "\x01".join(values)
+    if '"' in joined or joined.count("\x01") != len(values) - 1 or _FORMULA_START.search(joined):
+        return None
+    return ('"' + joined.replace("\x01", '"\x01"') + '"').encode()
+
+
+def csv_lines_cellwise(columns: Sequence[Sequence[Any]]) -> bytes:
+    """:func:`csv_lines_of_columns` made line by line from each cell's text (the reference it is tested against)."""
     cells = [_column_cells(values) for values in columns]
     if not cells or not cells[0]:
         return b""

@@ -16,6 +16,11 @@ An operation says how to
   section), report ``progress`` at each chunk (it raises :class:`~app.jobs.store.Stopped` when the job was cancelled);
   it returns the part's metadata (e.g. the partial summaries), kept in the part's state;
 * **assemble** the result in order from the parts' metadata and fragments, byte for byte the synchronous answer.
+
+An operation whose parts keep their result as typed columns (``stored="columns"``: :mod:`app.jobs.columns`, one
+blob per section, kept raw) renders JSON or CSV from them only when the result is asked for, in ``assemble``; its
+``check`` reads every fragment first, so a stored result that cannot be rendered fails the job (``job-state-invalid``)
+before the first byte of the answer is sent.
 """
 
 from __future__ import annotations
@@ -73,6 +78,11 @@ class Operation:
     #: resolves the parsed request's vehicle references (saved ``veh_`` ids, ``flt_`` fleets, builder specs) with
     #: the submitting request's bearer key, in the API process, before :attr:`resolve` (None: nothing to resolve)
     refs: Callable[[Request, Any, Settings], Awaitable[Any]] | None = None
+    #: the one format the parts write their fragments in (kept raw, rendered by ``assemble``); None: the parts write
+    #: each of :attr:`formats`, rendered (zlib-compressed)
+    stored: str | None = None
+    #: reads every fragment of a done job and raises ValueError when one cannot be rendered (None: no check)
+    check: Callable[[dict[str, Any], list[dict[str, Any]], Fragments], None] | None = None
 
     @property
     def formats(self) -> list[str]:

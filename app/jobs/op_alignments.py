@@ -1,29 +1,31 @@
 """The ``alignments.assess`` job: :mod:`app.alignments.service` (``POST /v1/alignments/assess``) at up to 1,000,000
 rows, split into parts of curves.
 
-A part is a range of curves for every vehicle (at most :data:`PART_ROWS` rows); a worker solves and renders it in
-chunks of :data:`CHUNK_ROWS` rows (its progress reports) with the synchronous endpoint's own renderers, and keeps
-per vehicle the rows as JSON and as CSV (compressed) and the summary of its curves. The answer opens each vehicle
-with the summary over ALL curves: :func:`~app.alignments.service.merge_summaries` adds the parts' counts and takes
-the smallest of their minimums, and the distinct SRT solves are counted over the whole alignment at submission
+A part is a range of curves for every vehicle (at most :data:`PART_ROWS` rows); a worker solves it in chunks of
+:data:`CHUNK_ROWS` rows (its progress reports, counting solved rows, and its cancellation points) and keeps per
+vehicle the engine's result as typed columns (:data:`RESULT_SCHEMA`, :mod:`app.jobs.columns`) and the summary of its
+curves; nothing is rendered then. ``GET /v1/jobs/{id}/result`` reads the columns back (checked: they come from the
+store) and renders JSON or CSV from them with the synchronous endpoint's own renderers (:mod:`app.alignments.rows`),
+streamed part by part: the same bytes. The answer opens each vehicle with the summary over ALL curves:
+:func:`~app.alignments.service.merge_summaries` adds the parts' counts and takes the smallest of their minimums, and
+the distinct SRT solves are counted over the whole alignment at submission
 (:func:`~app.alignments.service.check_alignment`), not summed over the parts (two parts may share a pair).
 """
 
 from __future__ import annotations
 
-import io
-import threading
+import dataclasses
 from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import orjson
-from cachetools import LRUCache
 from pydantic import Field
 from starlette.requests import Request
 
 from app.alignments.rows import (
     JSON_VEHICLE_END,
+    ROWS_PER_CHUNK,
     csv_columns,
     csv_header,
     csv_rows,
@@ -43,11 +45,12 @@ from app.alignments.schemas import (
     keys_match_the_id_pattern,
 )
 from app.alignments.service import (
+    AlignmentAnswer,
     AlignmentJob,
+    VehicleAnswer,
     check_alignment,
     resolve_alignment,
     resolve_alignment_refs,
-    solve_alignment,
     validate_request_data,
 )
 from app.compute import solvers
@@ -55,9 +58,20 @@ from app.compute.cache import cache_key
 from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
+from app.jobs.columns import ColumnsError, codes_within, pack_columns, require, strings, unpack_columns
+from app.jobs.csv_columns import read_csv_columns
 from app.settings import Settings
 from app.vehicles.refs import vehicle_of_resolved
-from engine.road import solve_bank_grade_pairs
+from engine.case import Case, LoadCase
+from engine.road import (
+    GOVERNED_BY,
+    AlignmentColumns,
+    assess_alignment,
+    bank_grade_pairs,
+    solve_bank_grade_pairs,
+    superelevation_used,
+    tilt_table_angle_deg,
+)
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
 MAX_JOB_CURVES = 1_000_000
@@ -66,7 +80,7 @@ MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000
 #: rows (curves x vehicles) per part, and per chunk of a part (a progress report, a cancellation point)
 PART_ROWS = 50_000
-CHUNK_ROWS = 5_000
+CHUNK_ROWS = 10_000
 _COLUMNS = ("radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh", "station_m")
 
 
@@ -112,34 +126,6 @@ class AlignmentJobRequest(AlignmentRequest):
     )
 
 
-class PairMemo:
-    """The SRTs of the (superelevation, grade) pairs this process has solved, per vehicle case: a part's chunks (and
-    the next parts of the same job on this worker) solve only the pairs not seen yet. A pair's SRT does not depend on
-    the batch it is solved in, so the answer is the synchronous one, byte for byte (the tests check it)."""
-
-    def __init__(self, cases: int = 16) -> None:
-        self.known: LRUCache = LRUCache(maxsize=cases)
-        self._lock = threading.Lock()
-
-    def __call__(self, case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
-        key = cache_key("pair-srt", case.to_dict())
-        with self._lock:
-            memo = self.known.get(key)
-            if memo is None:
-                memo = self.known[key] = {}
-        rows = [tuple(p) for p in pairs.tolist()]
-        todo = [i for i, p in enumerate(rows) if p not in memo]
-        if todo:
-            srt, errors = solve_bank_grade_pairs(case, pairs[todo], block_map=solvers.block_map)
-            for j, i in enumerate(todo):
-                memo[rows[i]] = (float(srt[j]), errors.get(j))
-        found = [memo[p] for p in rows]
-        return np.array([s for s, _ in found]), {i: e for i, (_, e) in enumerate(found) if e is not None}
-
-
-PAIRS = PairMemo()
-
-
 # ----------------------------------------------------------------------------------------- the hooks
 
 
@@ -156,40 +142,125 @@ async def refs(request: Request, parsed, settings: Settings):
 def resolve(parsed, ctx: ResolveContext) -> AlignmentJob:
     """Presets and records (references were resolved by :func:`refs`) to the engine's inputs."""
     req, curves = parsed
-    return resolve_alignment(req, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
+    fast = None
+    if curves is None and req.csv is not None:  # the plain CSV form straight into columns; any other: read_csv's
+        fast = curves = read_csv_columns(req.csv, max_curves=MAX_JOB_CURVES)
+    job = resolve_alignment(req, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
+    return job if fast is None else dataclasses.replace(job, source="csv")
 
 
-def pack_curves(t: CurveTable) -> bytes:
-    """Curves as a compressed npz: the float64 columns, and the ids (and rows / elements) as JSON bytes; never a
-    pickle (read back with ``allow_pickle=False``)."""
-    buf = io.BytesIO()
-    meta = np.frombuffer(orjson.dumps({"ids": t.ids, "where": t.where}), dtype=np.uint8)
-    np.savez_compressed(buf, meta=meta, **{c: getattr(t, c).astype("<f8") for c in _COLUMNS})
-    return buf.getvalue()
+#: a part's inputs (:mod:`app.jobs.columns`): its curves (ids in the meta), and the distinct (superelevation, grade)
+#: pairs they use, sorted, with each vehicle's SRT on each (``pair_srt``: vehicle-major, nv x m) and the code of the
+#: reason a pair has none (``pair_error``, into the meta's ``errors``; -1: solved), solved once for the whole job
+INPUT_SCHEMA = {
+    "radius_m": "<f8",
+    "superelevation_percent": "<f8",
+    "grade_percent": "<f8",
+    "posted_speed_kmh": "<f8",
+    "station_m": "<f8",
+    "pair_superelevation_percent": "<f8",
+    "pair_grade_percent": "<f8",
+    "pair_srt": "<f8",
+    "pair_error": "<i4",
+}
 
 
-def unpack_curves(data: bytes) -> CurveTable:
-    """:func:`pack_curves` read back and checked (raises ValueError for anything else)."""
-    try:
-        with np.load(io.BytesIO(data), allow_pickle=False) as z:
-            meta = orjson.loads(z["meta"].tobytes())
-            cols = [np.asarray(z[c], dtype="<f8") for c in _COLUMNS]
-    except (OSError, KeyError, ValueError, orjson.JSONDecodeError) as exc:
-        raise ValueError(f"the part's curves cannot be read: {exc}") from None
-    ids, where = meta.get("ids"), meta.get("where")
-    n = len(ids) if isinstance(ids, list) else -1
-    if n < 1 or any(c.shape != (n,) for c in cols) or not all(isinstance(i, str) for i in ids):
-        raise ValueError("the part's curves are inconsistent")
-    if where is not None and (not isinstance(where, list) or len(where) != n):
-        raise ValueError("the part's curve locations are inconsistent")
-    return CurveTable(ids, *cols, where=where)
+@dataclass(frozen=True)
+class PartInput:
+    curves: CurveTable
+    pairs: np.ndarray  # (m,) superelevation + 1j grade, sorted (the order of engine.road.bank_grade_pairs)
+    srt: np.ndarray  # (nv, m) [g]
+    error: np.ndarray  # (nv, m) codes into errors, -1: none
+    errors: list[str]
+
+
+def pack_input(t: CurveTable, pairs: np.ndarray, srt: np.ndarray, error: np.ndarray, errors: list[str]) -> bytes:
+    """A part's inputs as columns (:data:`INPUT_SCHEMA`; ``pairs``: (m, 2); ``srt``, ``error``: (nv, m))."""
+    columns = {c: getattr(t, c) for c in _COLUMNS}
+    columns |= {
+        "pair_superelevation_percent": pairs[:, 0],
+        "pair_grade_percent": pairs[:, 1],
+        "pair_srt": srt,
+        "pair_error": error,
+    }
+    return pack_columns(columns, INPUT_SCHEMA, {"ids": t.ids, "errors": errors, "vehicles": int(srt.shape[0])})
+
+
+def unpack_input(data: bytes) -> PartInput:
+    """:func:`pack_input` read back and checked (raises :class:`~app.jobs.columns.ColumnsError`, a ValueError)."""
+    cols, meta = unpack_columns(data, INPUT_SCHEMA)
+    n, m, nv = cols["radius_m"].size, cols["pair_superelevation_percent"].size, meta.get("vehicles")
+    if n < 1 or type(nv) is not int or nv < 1:
+        raise ColumnsError("the part has no curves or no vehicles")
+    require(cols, _COLUMNS, n)
+    require(cols, ("pair_grade_percent",), m)
+    require(cols, ("pair_srt", "pair_error"), nv * m)
+    ids = strings(meta.get("ids"), n, "the part's curve ids")
+    errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
+    codes_within(cols["pair_error"], -1, len(errors) - 1, "pair_error")
+    pairs = cols["pair_superelevation_percent"] + 1j * cols["pair_grade_percent"]
+    if m > 1 and not np.all(pairs[1:] > pairs[:-1]):  # complex numbers compare by real, then imaginary part
+        raise ColumnsError("the part's pairs are not sorted and distinct")
+    t = CurveTable(ids, *(cols[c] for c in _COLUMNS))
+    return PartInput(t, pairs, cols["pair_srt"].reshape(nv, m), cols["pair_error"].reshape(nv, m), errors)
+
+
+def _gather(inputs: PartInput, v: int):
+    """A ``solve_pairs`` for :func:`engine.road.assess_alignment` that takes vehicle ``v``'s SRTs from the job's
+    table (solved once, at submission; the same bits: a pair's SRT does not depend on its batch); a pair not in the
+    table (none should be) is solved."""
+    keys, srt_table, error_table = inputs.pairs, inputs.srt[v], inputs.error[v]
+
+    def solve_pairs(case, pairs: np.ndarray) -> tuple[np.ndarray, dict[int, str]]:
+        q = pairs[:, 0] + 1j * pairs[:, 1]
+        at = np.minimum(np.searchsorted(keys, q), max(keys.size - 1, 0))
+        hit = keys[at] == q if keys.size else np.zeros(q.size, dtype=bool)
+        srt = np.where(hit, srt_table[at] if keys.size else np.nan, np.nan)
+        codes = np.where(hit, error_table[at] if keys.size else -1, -1)
+        errors = {int(i): inputs.errors[codes[i]] for i in np.flatnonzero(codes >= 0)}
+        if not hit.all():
+            miss = np.flatnonzero(~hit)
+            solved, why = solve_bank_grade_pairs(case, pairs[miss], block_map=solvers.block_map)
+            srt[miss] = solved
+            errors |= {int(miss[j]): e for j, e in why.items()}
+        return srt, errors
+
+    return solve_pairs
 
 
 def split(job: AlignmentJob, part_rows: int) -> Prepared:
+    """The parts' inputs: their curves and the SRTs of their pairs, every distinct pair of the job solved here, once
+    per vehicle, in one batch (the workers only gather)."""
     distinct = check_alignment(job)  # refuses now what the synchronous endpoint would refuse for the whole request
-    nv, n = len(job.vehicles), len(job.curves)
+    r, t = job.resolved, job.curves
+    e = superelevation_used(
+        t.radius_m,
+        t.superelevation_percent,
+        t.posted_speed_kmh,
+        design_standard=r["design_standard"],
+        side_friction_bound=r["side_friction_bound"],
+        max_superelevation_percent=r["max_superelevation_percent"],
+    )
+    pairs, inverse = bank_grade_pairs(e, t.grade_percent)
+    srt = np.empty((len(job.vehicles), len(pairs)))
+    solved_errors: list[dict[int, str]] = []
+    for v, vehicle in enumerate(job.vehicles):
+        srt[v], why = solve_bank_grade_pairs(_case(r, vehicle), pairs, block_map=solvers.block_map)
+        solved_errors.append(why)
+    errors = sorted({msg for why in solved_errors for msg in why.values()})
+    code = {msg: k for k, msg in enumerate(errors)}
+    error = np.full(srt.shape, -1, dtype=np.int32)
+    for v, why in enumerate(solved_errors):
+        for i, msg in why.items():
+            error[v, i] = code[msg]
+    nv, n = len(job.vehicles), len(t)
     per_part = max(1, part_rows // nv)
-    parts = [(min(a + per_part, n) - a) * nv for a in range(0, n, per_part)]
+    parts, inputs = [], []
+    for a in range(0, n, per_part):
+        b = min(a + per_part, n)
+        used = np.unique(inverse[a:b])
+        parts.append((b - a) * nv)
+        inputs.append(pack_input(t.sliced(a, b), pairs[used], srt[:, used], error[:, used], errors))
     shared = {
         "resolved": job.resolved,
         "source": job.source,
@@ -197,37 +268,169 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
         "distinct_srt_solves": distinct,
         "chunk_curves": max(1, CHUNK_ROWS // nv),
     }
-    inputs = [pack_curves(job.curves.sliced(a, min(a + per_part, n))) for a in range(0, n, per_part)]
     etag = {"json": cache_key("alignments", job.resolved), "csv": cache_key("alignments-csv", job.resolved)}
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
 
 
+#: a part's result for one vehicle (:mod:`app.jobs.columns`): the curves' ids (meta) and stations, and the
+#: engine's :class:`~engine.road.AlignmentColumns` (the reasons ``error`` indexes in the meta)
+RESULT_SCHEMA = {
+    "station_m": "<f8",
+    "radius_m": "<f8",
+    "superelevation_percent": "<f8",
+    "superelevation_derived": "|b1",
+    "grade_percent": "<f8",
+    "posted_speed_kmh": "<f8",
+    "srt_g": "<f8",
+    "rollover_speed_kmh": "<f8",
+    "side_friction_speed_kmh": "<f8",
+    "side_friction": "<f8",
+    "side_friction_clamped": "|b1",
+    "safe_speed_kmh": "<f8",
+    "governed_by": "|i1",
+    "margin_kmh": "<f8",
+    "flagged": "|b1",
+    "standard_min_radius_m": "<f8",
+    "meets_standard_min_radius": "|i1",
+    "error": "<i4",
+}
+_ENGINE_COLUMNS = [name for name in RESULT_SCHEMA if name != "station_m"]
+
+
+def _case(resolved: dict[str, Any], vehicle) -> Case:
+    """The SRT case of one vehicle, as :func:`app.alignments.service.solve_alignment` builds it."""
+    r = resolved
+    load = LoadCase(**r["load"])
+    return Case(
+        vehicle,
+        r["model"],
+        r["stage"],
+        trailer_angle_deg=r["trailer_angle_deg"],
+        load=load,
+        rear_llt_limit=r["rear_llt_limit"],
+    )
+
+
+def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
+    """The columns of consecutive slices of curves as one (the reasons of ``error`` merged and renumbered)."""
+    if len(chunks) == 1:
+        return chunks[0]
+    errors = sorted({e for c in chunks for e in c.errors})
+    code = {e: k for k, e in enumerate(errors)}
+    error = np.concatenate([np.array([-1, *(code[e] for e in c.errors)], dtype=np.int64)[c.error + 1] for c in chunks])
+    arrays = {name: np.concatenate([getattr(c, name) for c in chunks]) for name in _ENGINE_COLUMNS if name != "error"}
+    return AlignmentColumns(**arrays, error=error, errors=errors, distinct_cases=chunks[0].distinct_cases)
+
+
+def pack_result(curves: CurveTable, cols: AlignmentColumns) -> bytes:
+    """One vehicle's result over a part's curves as columns (:data:`RESULT_SCHEMA`)."""
+    arrays = {"station_m": curves.station_m, **{name: getattr(cols, name) for name in _ENGINE_COLUMNS}}
+    return pack_columns(arrays, RESULT_SCHEMA, {"ids": curves.ids, "errors": cols.errors})
+
+
+def unpack_result(data: bytes) -> tuple[CurveTable, AlignmentColumns]:
+    """:func:`pack_result` read back and checked: every column of one length, codes within their tables (raises
+    :class:`~app.jobs.columns.ColumnsError`, a ValueError)."""
+    cols, meta = unpack_columns(data, RESULT_SCHEMA)
+    n = cols["radius_m"].size
+    require(cols, list(RESULT_SCHEMA), n)
+    ids = strings(meta.get("ids"), n, "the part's curve ids")
+    errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
+    codes_within(cols["governed_by"], 0, len(GOVERNED_BY) - 1, "governed_by")
+    codes_within(cols["meets_standard_min_radius"], -1, 1, "meets_standard_min_radius")
+    codes_within(cols["error"], -1, len(errors) - 1, "error")
+    nan = np.full(n, np.nan)
+    curves = CurveTable(ids, cols["radius_m"], nan, cols["grade_percent"], cols["posted_speed_kmh"], cols["station_m"])
+    engine_cols = {name: cols[name] for name in _ENGINE_COLUMNS}
+    engine_cols["governed_by"] = engine_cols["governed_by"].astype(np.intp)
+    engine_cols["meets_standard_min_radius"] = engine_cols["meets_standard_min_radius"].astype(np.intp)
+    engine_cols["error"] = engine_cols["error"].astype(np.intp)
+    return curves, AlignmentColumns(**engine_cols, errors=errors, distinct_cases=0)
+
+
+def _part_answer(resolved: dict[str, Any], v: int, data: bytes) -> tuple[AlignmentAnswer, VehicleAnswer]:
+    """A part's stored result of vehicle ``v`` as the answer the renderers take (what
+    :func:`app.alignments.service.solve_alignment` builds for those curves)."""
+    curves, cols = unpack_result(data)
+    srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
+    tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
+    preset, saved = resolved["presets"][v], resolved["saved_ids"][v]
+    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved["targets"])
+    return AlignmentAnswer(resolved, curves, [answer]), answer
+
+
 def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
-    curves = unpack_curves(data)
+    """Solve the part's curves in chunks (a progress report, a cancellation point each) and keep, per vehicle, the
+    result as columns (section = vehicle) and the summary of its curves; nothing is rendered here."""
+    inputs = unpack_input(data)
+    curves = inputs.curves
     resolved = shared["resolved"]
-    vehicles = [vehicle_of_resolved(v) for v in resolved["vehicles"]]
-    nv, n, step = len(vehicles), len(curves), shared["chunk_curves"]
-    columns = csv_columns(resolved)
-    summaries: list[list[dict[str, Any]]] = [[] for _ in range(nv)]
+    cases = [_case(resolved, vehicle_of_resolved(v)) for v in resolved["vehicles"]]
+    nv, n, step = len(cases), len(curves), shared["chunk_curves"]
+    if inputs.srt.shape[0] != nv:
+        raise ColumnsError(f"the part's SRTs are of {inputs.srt.shape[0]} vehicles, the job has {nv}")
+    gather = [_gather(inputs, v) for v in range(nv)]
+    chunks: list[list[AlignmentColumns]] = [[] for _ in range(nv)]
     for a in range(0, n, step):
-        b = min(a + step, n)
-        answer = solve_alignment(AlignmentJob(resolved, vehicles, curves.sliced(a, b), shared["source"]), PAIRS)
-        for v in answer.vehicles:
-            ctx.write("json", v.index, (b"," if a else b"") + json_rows(answer, v, 0, b - a))
-            ctx.write("csv", v.index, csv_rows(answer, v, 0, b - a, columns))
-            summaries[v.index].append(summary(v.columns))
-        ctx.progress(b * nv)
-    return {"summaries": [merge_summaries(s, 0) for s in summaries]}
+        t = curves.sliced(a, min(a + step, n))
+        for v, case in enumerate(cases):  # the pairs' SRTs gathered from the job's table
+            chunks[v].append(
+                assess_alignment(
+                    case,
+                    t.radius_m,
+                    t.superelevation_percent,
+                    t.grade_percent,
+                    t.posted_speed_kmh,
+                    design_standard=resolved["design_standard"],
+                    side_friction_bound=resolved["side_friction_bound"],
+                    max_superelevation_percent=resolved["max_superelevation_percent"],
+                    solve_pairs=gather[v],
+                    block_map=solvers.block_map,
+                )
+            )
+        ctx.progress(min(a + step, n) * nv)
+    summaries = []
+    for v in range(nv):
+        cols = _joined(chunks[v])
+        chunks[v] = []
+        summaries.append(summary(cols))
+        ctx.write("columns", v, pack_result(curves, cols))
+    return {"summaries": summaries}
+
+
+def _rendered(resolved: dict[str, Any], v: int, data: bytes, fmt: str, columns: list[str]) -> Iterator[bytes]:
+    """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks."""
+    answer, va = _part_answer(resolved, v, data)
+    n = len(answer.curves)
+    for start in range(0, n, ROWS_PER_CHUNK):
+        stop = min(start + ROWS_PER_CHUNK, n)
+        if fmt == "csv":
+            yield csv_rows(answer, va, start, stop, columns)
+        else:
+            yield (b"," if start else b"") + json_rows(answer, va, start, stop)
+
+
+def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragments) -> None:
+    """Every part's stored columns read back and checked (raises ValueError), before the result is streamed."""
+    nv = len(shared["resolved"]["vehicles"])
+    for k in range(len(metas)):
+        for v in range(nv):
+            curves, _ = unpack_result(b"".join(fragments(k, v)))
+            if len(curves) != metas[k]["summaries"][v]["curves"]:
+                raise ValueError(f"part {k} holds {len(curves)} rows of vehicle {v}, its summary says otherwise")
 
 
 def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, fragments: Fragments) -> Iterator[bytes]:
+    """The answer rendered from the parts' columns with the synchronous endpoint's renderers
+    (:mod:`app.alignments.rows`): the same bytes."""
     resolved = shared["resolved"]
     nv = len(resolved["vehicles"])
+    columns = csv_columns(resolved)
     if fmt == "csv":
         yield csv_header(resolved)
         for v in range(nv):
             for k in range(len(metas)):
-                yield from fragments(k, v)
+                yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns)
         return
     yield json_head(resolved, shared["curves"])
     for v in range(nv):
@@ -236,7 +439,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
         for k in range(len(metas)):
             if k:
                 yield b","
-            yield from fragments(k, v)
+            yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns)
         yield JSON_VEHICLE_END
     yield json_tail()
 
@@ -256,4 +459,6 @@ OPERATION = Operation(
     run_part=run_part,
     assemble=assemble,
     refs=refs,
+    stored="columns",
+    check=check,
 )

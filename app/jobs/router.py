@@ -149,6 +149,7 @@ async def submit(request: Request, owner: OwnerDep, settings: SettingsDep, jobs:
             formats=op.formats,
             etag=prepared.etag,
             ttl_s=settings.jobs_result_ttl_s,
+            stored=None if op.stored is None else [op.stored],
         )
     except StorageFull as exc:
         return _storage_full(request, exc)
@@ -186,15 +187,39 @@ def _coalesce(chunks: Iterator[bytes], size: int = SEND_PIECE) -> Iterator[bytes
         yield b"".join(buf)
 
 
+def _fragments(jobs: Backend, view: JobView, op: Operation, fmt: str):
+    """(part, section) -> the stored fragment's pieces, for ``assemble`` (the op's stored format, if it has one)."""
+    store, compressed = jobs.store, op.stored is None
+    keys = store.fragment_keys(view, op.stored or fmt)
+    return lambda k, s: store.read_fragment(view.id, keys[k][s], compressed=compressed)
+
+
+def _invalid(jobs: Backend, view: JobView, exc: Exception) -> None:
+    _log.error("job_result_invalid", job=view.id, error=f"{type(exc).__name__}: {exc}")
+    detail = f"{type(exc).__name__}: {exc}"
+    jobs.store.fail(
+        view.id, view.record, problem("job-state-invalid", "The job's stored result cannot be used", detail)
+    )
+
+
+def _check_result(jobs: Backend, view: JobView, op: Operation, fmt: str) -> bool:
+    """The op's check of every stored fragment before the answer starts (True: usable; False: the job is failed)."""
+    if op.check is None:
+        return True
+    try:
+        op.check(view.record.shared, [p.meta or {} for p in view.parts], _fragments(jobs, view, op, fmt))
+    except (ValueError, KeyError, TypeError, IndexError) as exc:
+        _invalid(jobs, view, exc)
+        return False
+    return True
+
+
 def _result_chunks(jobs: Backend, view: JobView, op: Operation, fmt: str) -> Iterator[bytes]:
-    store, record = jobs.store, view.record
-    keys = store.fragment_keys(view, fmt)
     try:
         metas = [p.meta or {} for p in view.parts]
-        yield from op.assemble(record.shared, metas, fmt, lambda k, s: store.read_fragment(view.id, keys[k][s]))
+        yield from op.assemble(view.record.shared, metas, fmt, _fragments(jobs, view, op, fmt))
     except (ValueError, KeyError, TypeError, IndexError) as exc:  # a stored fragment or metadata that cannot be used
-        _log.error("job_result_invalid", job=view.id, error=f"{type(exc).__name__}: {exc}")
-        store.fail(view.id, record, problem("job-state-invalid", "The job's stored result cannot be used", str(exc)))
+        _invalid(jobs, view, exc)
         raise
 
 
@@ -225,12 +250,14 @@ async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
     op = OPERATIONS.get(view.record.operation) if view.record is not None else None
     fmt = "csv" if wants_csv(request.headers.get("accept")) and op is not None and op.csv else "json"
     if view.status == "done" and op is not None:
-        missing = await run_in_threadpool(jobs.store.missing_fragments, view, fmt)
+        missing = await run_in_threadpool(jobs.store.missing_fragments, view, op.stored or fmt)
         if missing:
             detail = f"{missing} stored result fragment(s) are missing (expired?)"
             await run_in_threadpool(
                 jobs.store.fail, job_id, view.record, problem("job-state-invalid", "Invalid job state", detail)
             )
+            view = await run_in_threadpool(jobs.store.view, job_id)
+        elif not await run_in_threadpool(_check_result, jobs, view, op, fmt):
             view = await run_in_threadpool(jobs.store.view, job_id)
     if view.status != "done" or op is None:
         return problem_response(

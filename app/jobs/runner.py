@@ -41,8 +41,11 @@ class PartRun:
         attempt: int,
         timeout_s: float,
         should_stop: Callable[[], bool] = lambda: False,
+        *,
+        compress: bool = True,
     ) -> None:
         self.store, self.record, self.k, self.attempt = store, record, k, attempt
+        self.compress = compress
         self.deadline = time.monotonic() + timeout_s
         self.timeout_s = timeout_s
         self.should_stop = should_stop
@@ -51,6 +54,9 @@ class PartRun:
 
     def write(self, fmt: str, section: int, data: bytes) -> None:
         key = (fmt, section)
+        if not self.compress:
+            self._out.setdefault(key, []).append(data)
+            return
         if key not in self._encoders:
             self._encoders[key] = zlib.compressobj(COMPRESSION_LEVEL)
             self._out[key] = []
@@ -64,6 +70,8 @@ class PartRun:
         self.store.heartbeat(self.record.id, self.k, self.attempt, done_units, self.record.ttl_s)
 
     def fragments(self) -> dict[tuple[str, int], bytes]:
+        if not self.compress:
+            return {key: b"".join(pieces) for key, pieces in self._out.items()}
         return {key: b"".join([*self._out[key], enc.flush()]) for key, enc in self._encoders.items()}
 
 
@@ -85,13 +93,14 @@ def run_part(
     if op is None:
         store.fail(job_id, record, problem("unknown-operation", "Unknown operation", f"{record.operation!r}"))
         return
-    run = PartRun(store, record, k, attempt, timeout_s, should_stop or (lambda: False))
+    compress = op.stored is None
+    run = PartRun(store, record, k, attempt, timeout_s, should_stop or (lambda: False), compress=compress)
     started = time.perf_counter()
     log = _log.bind(job=job_id, part=k, attempt=attempt, operation=op.name)
     try:
         meta = op.run_part(record.shared, data, run)
         seconds = time.perf_counter() - started
-        complete = store.finish_part(job_id, record, k, attempt, run.fragments(), meta, seconds)
+        complete = store.finish_part(job_id, record, k, attempt, run.fragments(), meta, seconds, compressed=compress)
     except Stopped as exc:
         log.info("job_part_stopped", reason=str(exc))
         return

@@ -15,7 +15,8 @@ suffix                 value
 ``:part:<k>``          :class:`PartState`: status, attempt, units done, lease (``heartbeat_at``), its metadata
                        when done (written only through :meth:`KV.update`, fenced by the attempt)
 ``:stop``              :class:`Stop`: the job was cancelled, or failed (with the problem)
-``:out:<k>:<a>:<fmt>:<s>``  zlib-compressed result fragment of part k, attempt a, format, section (e.g. vehicle)
+``:out:<k>:<a>:<fmt>:<s>``  result fragment of part k, attempt a, format, section (e.g. vehicle): zlib-compressed
+                       rendered bytes, or the part's result columns (format ``columns``, kept raw)
 =====================  ======================================================================================
 
 **Leases.** A running part reports at every chunk (``heartbeat_at``, ``done_units``). :meth:`JobStore.reap` finds
@@ -49,6 +50,8 @@ STATE_TYPE = "application/vnd.rollover.job-part+json"
 STOP_TYPE = "application/vnd.rollover.job-stop+json"
 INPUT_TYPE = "application/vnd.rollover.job-input"
 FRAGMENT_TYPE = "application/vnd.rollover.job-fragment+zlib"
+#: a fragment kept as it was written (e.g. a part's result columns, :mod:`app.jobs.columns`)
+RAW_FRAGMENT_TYPE = "application/vnd.rollover.job-fragment"
 #: fragments are decompressed and sent in pieces of at most this size [bytes]
 STREAM_PIECE = 1 << 20
 
@@ -77,6 +80,12 @@ class JobRecord(_Stored):
     formats: list[str]
     etag: dict[str, str]  # format -> the cache key the synchronous answer has (its ETag)
     ttl_s: int = Field(ge=1)
+    #: the formats the parts store fragments in when not ``formats`` (``["columns"]``: rendered on GET)
+    stored: list[str] | None = None
+
+    @property
+    def stored_formats(self) -> list[str]:
+        return self.formats if self.stored is None else self.stored
 
     @property
     def total_units(self) -> int:
@@ -195,7 +204,9 @@ class JobStore:
             keys += [self.key(jid, f":in:{k}"), self._part_key(jid, k)]
             if p is not None:
                 keys += [
-                    self._fragment_key(jid, k, p.attempt, fmt, s) for fmt in record.formats for s in range(p.sections)
+                    self._fragment_key(jid, k, p.attempt, fmt, s)
+                    for fmt in record.stored_formats
+                    for s in range(p.sections)
                 ]
         return keys
 
@@ -237,6 +248,7 @@ class JobStore:
         formats: list[str],
         etag: dict[str, str],
         ttl_s: int,
+        stored: list[str] | None = None,
     ) -> JobRecord:
         """Store a new job (its record, each part's inputs and queued state); the caller dispatches the parts."""
         jid = new_job_id()
@@ -251,6 +263,7 @@ class JobStore:
             formats=formats,
             etag=etag,
             ttl_s=ttl_s,
+            stored=stored,
         )
         items = {}
         for k, (units, data) in enumerate(parts):
@@ -418,13 +431,17 @@ class JobStore:
         fragments: dict[tuple[str, int], bytes],
         meta: dict[str, Any],
         seconds: float,
+        *,
+        compressed: bool = True,
     ) -> bool:
-        """Store the part's fragments (already compressed) and mark it done; True when the job is now complete."""
+        """Store the part's fragments (zlib-compressed, or raw with ``compressed=False``) and mark it done; True when
+        the job is now complete."""
+        media = FRAGMENT_TYPE if compressed else RAW_FRAGMENT_TYPE
         sections = 1 + max((s for _, s in fragments), default=-1)
         items = {}
         for (fmt, s), data in fragments.items():
             key = self._fragment_key(job_id, k, attempt, fmt, s)
-            items[key] = self._seal(key, FRAGMENT_TYPE, data)
+            items[key] = self._seal(key, media, data)
         self.kv.set_many(items, record.ttl_s)
         now = time.time()
 
@@ -511,12 +528,15 @@ class JobStore:
         keys = [k for part in self.fragment_keys(view, fmt) for k in part]
         return len(keys) - self.kv.exists(keys)
 
-    def read_fragment(self, job_id: str, key: str) -> Iterator[bytes]:
-        """The fragment under ``key``, decompressed, in pieces; raises :class:`ValueError` when it does not verify
-        (or is gone)."""
-        data = self._open(key, FRAGMENT_TYPE, self.kv.get(key))
+    def read_fragment(self, job_id: str, key: str, *, compressed: bool = True) -> Iterator[bytes]:
+        """The fragment under ``key``, decompressed, in pieces (a raw one whole, ``compressed=False``); raises
+        :class:`ValueError` when it does not verify (or is gone)."""
+        data = self._open(key, FRAGMENT_TYPE if compressed else RAW_FRAGMENT_TYPE, self.kv.get(key))
         if data is None:
             raise ValueError(f"{key} is missing (expired?)")
+        if not compressed:
+            yield data
+            return
         d = zlib.decompressobj()
         rest = data
         while rest:

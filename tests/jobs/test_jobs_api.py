@@ -6,10 +6,14 @@ from __future__ import annotations
 import math
 import time
 
+import numpy as np
 import orjson
 import pytest
 
-from app.jobs.store import PREFIX
+from app.jobs import op_alignments
+from app.jobs.columns import ColumnsError, pack_columns, unpack_columns
+from app.jobs.op_alignments import RESULT_SCHEMA, unpack_result
+from app.jobs.store import PREFIX, RAW_FRAGMENT_TYPE
 from app.settings import Settings
 
 from .conftest import make_client, random_curves, wait_for
@@ -132,9 +136,22 @@ def test_summary_over_parts_counts_each_distinct_pair_once():
 # ------------------------------------------------------------------------------------------- progress
 
 
-def test_progress_increases_while_a_part_is_solved():
-    """One part of 20,000 rows solved in chunks of 5,000: the status shows the progress between 0 and 1 while that
-    part runs (no part done yet), never going down, then 1."""
+def _slow_chunks(monkeypatch, seconds: float) -> None:
+    """Each chunk's solve in a part takes ``seconds`` longer (the parts only gather their SRTs: they are quick)."""
+    assess = op_alignments.assess_alignment
+
+    def slow(*args, **kw):
+        time.sleep(seconds)
+        return assess(*args, **kw)
+
+    monkeypatch.setattr(op_alignments, "assess_alignment", slow)
+
+
+def test_progress_increases_while_a_part_is_solved(monkeypatch):
+    """One part of 20,000 rows solved in chunks of 10,000 (5,000 curves of two vehicles), each slowed down: the
+    status shows the progress between 0 and 1 while that part runs (no part done yet), never going down, counting
+    the rows solved (a chunk's), then 1."""
+    _slow_chunks(monkeypatch, 0.2)
     req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(10_000, seed=3)}
     with make_client() as c:
         location = submit(c, "alignments.assess", req).headers["location"]
@@ -149,7 +166,7 @@ def test_progress_increases_while_a_part_is_solved():
     assert progress == sorted(progress) and progress[-1] == 1.0
     during = [p for p, parts_done, _ in seen if 0 < p < 1 and parts_done == 0]
     assert during, seen
-    assert all(d % 5000 == 0 for p, _, d in seen if 0 < p < 1)  # reported at chunk boundaries
+    assert all(d % 10_000 == 0 for p, _, d in seen if 0 < p < 1)  # reported at chunk boundaries
 
 
 def test_healthz_answers_while_a_job_runs():
@@ -164,9 +181,11 @@ def test_healthz_answers_while_a_job_runs():
 # ----------------------------------------------------------------------------------------- cancelling
 
 
-def test_cancel_a_queued_job_never_starts_and_a_running_one_stops():
+def test_cancel_a_queued_job_never_starts_and_a_running_one_stops(monkeypatch):
     """One worker thread: job A runs, job B waits. Cancelling B: 202 `cancelled`, none of its parts ever starts.
-    Cancelling A: it stops at its next chunk, its unfinished parts never finish. Their results are 409."""
+    Cancelling A: it stops at its next chunk, its unfinished parts never finish. Their results are 409. (Each chunk's
+    solve is slowed down to 0.3 s: the parts only gather their SRTs and would finish before the test could look.)"""
+    _slow_chunks(monkeypatch, 0.3)
     big = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(20_000, seed=6)}
     with make_client(Settings(jobs_part_size=10_000, jobs_workers=1)) as c:
         a = submit(c, "alignments.assess", big).headers["location"]
@@ -284,6 +303,11 @@ def _errors(r) -> list[tuple[str, str, str]]:
         {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0}, {"id": "A", "radius_m": 300.0}]},
         {"vehicle": "table16-btrain"},  # no curves
         {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,abc\n"},  # a CSV row that cannot be read
+        {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,100\nB,3\n"},  # row 3 below the bounds
+        {"vehicle": "table16-btrain", "csv": "id,radius_m\nA,100\nA,200\n"},  # a duplicate id in the CSV
+        # a plain CSV read into columns, refused later (no e and no e_max): the error names its row
+        {"vehicle": "table16-btrain", "csv": "id,radius_m,grade_percent\nA,100,2\nB,200,1\n"},
+        {"vehicle": "table16-btrain", "max_superelevation_percent": 8, "csv": "id,radius_m\nA,100\nB,200\n"},
         {"vehicle": "table14-semitrailer", "curves": [{"id": "A", "radius_m": 200.0, "superelevation_percent": 2.0}]},
         {"vehicle": "table16-btrain", "curves": [{"id": "A", "radius_m": 200.0}]},  # no e and no e_max to derive it
     ],
@@ -413,3 +437,153 @@ def test_a_route_that_cannot_be_read_is_refused_at_submission():
         r = submit(c, "routes.assess", {"vehicle": "table16-btrain", "geojson": bad, "superelevation_percent": 6})
     assert r.status_code == 422, r.text
     assert r.json()["errors"][0]["field"] == "request.geojson.coordinates.2" and "latitude" in r.json()["detail"]
+
+
+# ------------------------------------------------------------------------- results rendered from columns
+
+KINDS = [
+    {"radius_m": 120.0, "superelevation_percent": 8.0, "grade_percent": -4.0, "posted_speed_kmh": 70.0},
+    {"radius_m": 350.0, "posted_speed_kmh": 90.0},  # superelevation derived from the distribution (e_max given)
+    {"radius_m": 600.0, "superelevation_percent": 8.0, "grade_percent": -4.0},  # no posted speed
+    # adverse crossfall past the rear LLT limit at rest: refused (no SRT, an error)
+    {"radius_m": 200.0, "superelevation_percent": -20.0, "posted_speed_kmh": 50.0},
+    {"radius_m": 25.0, "superelevation_percent": 2.0, "grade_percent": 3.0, "posted_speed_kmh": 80.0},  # < R_min
+]
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_rows_of_every_kind_rendered_from_columns_are_the_synchronous_answer(accept, monkeypatch):
+    """Rows of every kind (given and derived superelevation, with and without a posted speed, refused with an error,
+    below the standard's minimum radius; ids with a quote, a comma and a formula prefix), three targets, two
+    vehicles, in parts of 120 rows solved in chunks of 30 rows (so a part joins chunks with and without refused
+    rows): the job's JSON and CSV, rendered on GET from the parts' columns, are the synchronous answer's bytes."""
+    monkeypatch.setattr(op_alignments, "CHUNK_ROWS", 30)
+    rng = np.random.default_rng(8)
+    ids = ['C,"q"', "=HYPERLINK(1)", "-4", "plain"]
+    curves = [{"id": f"{ids[i % 4]}{i}", **KINDS[k]} for i, k in enumerate(rng.integers(0, 5, 900))]
+    curves[100:160] = [{"id": f"r{i}", **KINDS[3]} for i in range(60)]  # a run of refused rows: whole chunks
+    req = {
+        "vehicles": ["table16-btrain", "table23-semitrailer"],
+        "rear_llt_limit": 0.2,
+        "max_superelevation_percent": 8.0,
+        "targets": {"a": 0.3, "b": 0.45, "c": 0.3},
+        "curves": curves,
+    }
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=120)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 15
+        assert status["done"] == status["total"] == 1800
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    assert job.headers["etag"] == sync.headers["etag"]
+    assert job.content == sync.content
+    if accept is None:
+        rows = orjson.loads(job.content)["vehicles"][0]["rows"]
+        assert any(r["error"] for r in rows) and any(r["superelevation_source"] == "derived" for r in rows)
+        assert any(r["meets_standard_min_radius"] is False for r in rows)
+
+
+def _corrupt(c, location: str, body: bytes) -> None:
+    """Replace part 0's stored columns of vehicle 0 by ``body``, sealed as this deployment seals (so only the
+    columns' own checks can refuse it)."""
+    store = c.app.state.jobs.store
+    view = store.view(location.rsplit("/", 1)[1])
+    key = store.fragment_keys(view, "columns")[0][0]
+    store.kv.set(key, store._seal(key, RAW_FRAGMENT_TYPE, body), 60)
+
+
+@pytest.mark.parametrize(
+    "damage",
+    [
+        lambda b: b[: len(b) // 2],  # truncated
+        lambda b: b"XCOLS" + b[5:],  # another magic
+        lambda b: b[:5] + b"\x09\x00" + b[7:],  # another version
+        lambda b: b + b"\x00" * 8,  # trailing bytes
+        lambda b: b"",
+    ],
+    ids=["truncated", "magic", "version", "trailing", "empty"],
+)
+def test_a_part_whose_columns_do_not_read_is_a_failed_job_never_a_500(damage):
+    """A part's stored columns that are sealed but do not read back (truncated, another layout or version): the
+    result is 409 (the job failed with job-state-invalid naming the reason), before any byte of the answer."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done"
+        store = c.app.state.jobs.store
+        view = store.view(location.rsplit("/", 1)[1])
+        key = store.fragment_keys(view, "columns")[0][0]
+        good = b"".join(store.read_fragment(view.id, key, compressed=False))
+        _corrupt(c, location, damage(good))
+        for accept in ("application/json", "text/csv"):
+            r = c.get(location + "/result", headers={"accept": accept})
+            assert r.status_code == 409 and r.json()["job_status"] == "failed"
+        body = c.get(location).json()
+        assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
+        assert "ColumnsError" in body["error"]["detail"]
+
+
+def test_a_part_with_codes_outside_their_tables_is_refused():
+    """Columns that read but hold a code that would index outside its table (governed_by 7): refused the same way."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(50, seed=13)}
+    with make_client() as c:
+        location, _ = run(c, "alignments.assess", req)
+        store = c.app.state.jobs.store
+        view = store.view(location.rsplit("/", 1)[1])
+        key = store.fragment_keys(view, "columns")[0][0]
+        good = b"".join(store.read_fragment(view.id, key, compressed=False))
+        cols, meta = unpack_columns(good, RESULT_SCHEMA)
+        cols = {k: v.copy() for k, v in cols.items()}
+        cols["governed_by"][3] = 7
+        bad = pack_columns(cols, RESULT_SCHEMA, meta)
+        with pytest.raises(ColumnsError):
+            unpack_result(bad)
+        _corrupt(c, location, bad)
+        r = c.get(location + "/result")
+        assert r.status_code == 409 and r.json()["job_status"] == "failed"
+
+
+def test_the_distinct_pairs_are_solved_once_per_job_and_the_parts_only_gather(monkeypatch):
+    """1,000 curves on 7 superelevation/grade pairs, two vehicles, 10 parts: the batch solver runs once per vehicle
+    (at submission, on the 7 pairs), never in a part; the answer is still the synchronous one."""
+    calls = []
+    solve = op_alignments.solve_bank_grade_pairs
+
+    def counting(case, pairs, **kw):
+        calls.append(len(pairs))
+        return solve(case, pairs, **kw)
+
+    monkeypatch.setattr(op_alignments, "solve_bank_grade_pairs", counting)
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(1000, seed=14, pairs=7)}
+    with make_client(Settings(jobs_part_size=200)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 10
+        assert calls == [7, 7]
+        assert c.get(location + "/result").content == c.post("/v1/alignments/assess", json=req).content
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_a_landxml_job_keeps_the_stations_in_its_columns(accept):
+    """Curves from a LandXML document carry their stations (staStart): 400 curves in parts of 100, the job's JSON and
+    CSV (the stations read back from the parts' columns) are the synchronous answer's bytes."""
+    curves = random_curves(400, seed=15)
+    items = "".join(
+        f'<Curve rot="cw" radius="{c["radius_m"]}" length="50" staStart="{100.5 * k}" name="{c["id"]}"/>'
+        for k, c in enumerate(curves)
+    )
+    document = (
+        '<?xml version="1.0"?><LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2">'
+        f'<Alignments><Alignment name="A1"><CoordGeom>{items}</CoordGeom></Alignment></Alignments></LandXML>'
+    )
+    req = {"vehicle": "table16-btrain", "landxml": {"document": document, "superelevation_percent": 4.0}}
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 4
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200 and job.content == sync.content
+    if accept is None:
+        assert orjson.loads(job.content)["vehicles"][0]["rows"][399]["station_m"] == 100.5 * 399

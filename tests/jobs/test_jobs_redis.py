@@ -17,6 +17,7 @@ from pathlib import Path
 import orjson
 import pytest
 
+from app.jobs import op_alignments
 from app.jobs.kv import PREFIX, RedisKV
 from app.jobs.store import JobStore
 from app.settings import Settings
@@ -86,6 +87,19 @@ def workers(redis_server):
         w.stop()
 
 
+def listening(url: str, n: int, timeout_s: float = 60.0) -> None:
+    """Wait until ``n`` workers have registered with RQ (imported and about to take parts: a part is quick, and the
+    first worker up would otherwise take them all)."""
+    from redis import Redis
+    from rq import Worker as RQWorker
+
+    deadline = time.monotonic() + timeout_s
+    with Redis.from_url(url) as conn:
+        while RQWorker.count(connection=conn) < n:
+            assert time.monotonic() < deadline, f"fewer than {n} workers registered after {timeout_s} s"
+            time.sleep(0.05)
+
+
 def parts_of(url: str, job_id: str):
     store = JobStore(RedisKV(url), SECRET.encode(), lease_s=LEASE_S, max_attempts=3)
     return store.view(job_id).parts
@@ -94,6 +108,7 @@ def parts_of(url: str, job_id: str):
 def test_one_job_runs_across_two_worker_processes(redis_server, workers):
     """20 parts taken by two workers; the result is the synchronous answer byte for byte (JSON and CSV)."""
     workers("w1"), workers("w2")
+    listening(redis_server.url, 2)
     with make_client(api_settings(redis_server.url)) as c:
         r = c.post("/v1/jobs", json={"operation": "alignments.assess", "request": REQUEST})
         assert r.status_code == 202
@@ -108,11 +123,13 @@ def test_one_job_runs_across_two_worker_processes(redis_server, workers):
     assert len(ran_on) == 2  # both processes took parts
 
 
-def test_a_worker_killed_mid_job_has_its_part_run_again_elsewhere(redis_server, workers):
+def test_a_worker_killed_mid_job_has_its_part_run_again_elsewhere(redis_server, workers, monkeypatch):
     """SIGKILL to the only worker while a part runs: its lease expires (2 s here), the second worker's reaper queues
     that part again with the next attempt, and the job ends done with the right answer."""
+    monkeypatch.setattr(op_alignments, "CHUNK_ROWS", 1000)  # read at submission (the API is this process)
     first = workers("doomed")
-    # parts of 15,000 rows, each solved in 3 chunks of 5,000: a part reports while it runs
+    listening(redis_server.url, 1)
+    # parts of 15,000 rows, each solved in 15 chunks of 1,000: a part reports while it runs
     with make_client(api_settings(redis_server.url).model_copy(update={"jobs_part_size": 15_000})) as c:
         location = c.post("/v1/jobs", json={"operation": "alignments.assess", "request": REQUEST}).headers["location"]
         deadline = time.monotonic() + 120

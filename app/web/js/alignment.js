@@ -117,10 +117,12 @@ export async function runJob(body, { operation = "alignments.assess", key, onSta
   const submitted = await api.call("POST", "/v1/jobs", { json: { operation, request: body }, key });
   const location = submitted.response.headers.get("Location") || `/v1/jobs/${submitted.data.id}`;
   let job = submitted.data;
-  state.job = { location, key };
-  // cancelled while the submission was on its way (or between two polls): the job is cancelled at the service too
+  const handle = { location, key, deleted: false };
+  state.job = handle;
+  // cancelled while the submission was on its way (or between two polls): the job is cancelled at the service too,
+  // once (a second DELETE of a cancelled job would delete it and its status)
   const cancelled = async () => {
-    await api.call("DELETE", location, { key }).catch(() => undefined);
+    if (!handle.deleted) await api.call("DELETE", location, { key }).catch(() => undefined);
     return new api.ApiError({ title: "The job was cancelled", status: 0 });
   };
   try {
@@ -143,7 +145,10 @@ export async function runJob(body, { operation = "alignments.assess", key, onSta
 
 /** Cancel the running job (DELETE /v1/jobs/{id}). */
 export async function cancelJob() {
-  if (state.job) await api.call("DELETE", state.job.location, { key: state.job.key });
+  const job = state.job;
+  if (!job || job.deleted) return;
+  job.deleted = true;
+  await api.call("DELETE", job.location, { key: job.key });
 }
 
 // ------------------------------------------------------------------------------------------ the table

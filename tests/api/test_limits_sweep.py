@@ -171,7 +171,14 @@ def test_sweep_rows_are_the_single_srt_results_in_product_order(shared_client):
         (8, 4),
     ]
     for row in out["rows"]:
-        assert set(row) == {"bank_percent", "slope_percent", "srt", "roll_angle_deg", "tilt_table_angle_deg"} | {
+        assert set(row) == {
+            "bank_percent",
+            "slope_percent",
+            "srt",
+            "level_road_srt",
+            "roll_angle_deg",
+            "tilt_table_angle_deg",
+        } | {
             "targets",
             "error",
         }
@@ -204,6 +211,7 @@ def test_sweep_csv_has_a_header_and_the_json_values(client):
         "bank_percent",
         "slope_percent",
         "srt",
+        "level_road_srt",
         "roll_angle_deg",
         "tilt_table_angle_deg",
         "meets_general",

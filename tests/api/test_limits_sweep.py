@@ -279,7 +279,7 @@ def test_the_grid_overrides_the_base_case(shared_client):
 @pytest.mark.parametrize(
     ("grid", "field", "words"),
     [
-        ({"wind_speed": [1]}, "grid.wind_speed", "Extra inputs"),
+        ({"wind_speed": [1]}, "grid.wind_speed", "unknown field 'wind_speed'"),
         ({}, "grid", "at least one axis"),
         ({"bank_percent": list(range(-20, 20)), "slope_percent": list(range(-20, 20)), "vertical_offset_m": [0] * 13},
          "grid", "20800 cases"),

@@ -269,6 +269,35 @@ def unknown_field_message(request: Request, loc: tuple[Any, ...] | list[Any]) ->
     return f"unknown field {name!r}" + ("" if guess is None else f": did you mean {guess!r}?")
 
 
+_BOUND_ERRORS = ("less_than_equal", "less_than", "greater_than", "greater_than_equal")
+
+
+def _with_unit_slip(e: dict[str, Any]) -> str:
+    """A vehicle record field's bound error with the likely unit slip added (``rear_track_m`` = 1860: ``1860 m: in
+    millimetres? (1860 millimetres would be 1.86 m)``), when multiplying by the slip's factor brings the value inside
+    the field's bounds; the message as it is otherwise."""
+    from engine.vehicle import FIELD_DOCS
+    from engine.vehicle.plausibility import RECORD_SLIPS, unit_slip
+
+    msg, loc, value = str(e.get("msg")), tuple(e.get("loc", ())), e.get("input")
+    if e.get("type") not in _BOUND_ERRORS or "record" not in loc or not loc or str(loc[-1]) not in FIELD_DOCS:
+        return msg
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return msg
+    doc = FIELD_DOCS[str(loc[-1])]
+    slip = unit_slip(float(value), doc.minimum, doc.maximum, RECORD_SLIPS.get(doc.unit, ()))
+    if slip is None or slip[1] <= doc.minimum:  # the bounds are open below: a value at the minimum is refused too
+        return msg
+    return f"{msg}; {value:g} {doc.unit}: in {slip[0]}? ({value:g} {slip[0]} would be {slip[1]:g} {doc.unit})"
+
+
+def _message(request: Request, e: dict[str, Any]) -> str:
+    loc = tuple(e.get("loc", ()))
+    if e.get("type") == "extra_forbidden" and loc[:1] == ("body",):
+        return unknown_field_message(request, loc)
+    return _with_unit_slip(e)
+
+
 async def _validation_handler(request: Request, exc: RequestValidationError) -> JSONResponse:
     errors = list(exc.errors())
     if any(e.get("type") in ("json_invalid", "json_type") for e in errors):
@@ -277,9 +306,7 @@ async def _validation_handler(request: Request, exc: RequestValidationError) -> 
     items = [
         {
             "field": _dotted(e.get("loc", ())),
-            "message": unknown_field_message(request, e.get("loc", ()))
-            if e.get("type") == "extra_forbidden" and tuple(e.get("loc", ()))[:1] == ("body",)
-            else str(e.get("msg")),
+            "message": _message(request, e),
             "type": str(e.get("type")),
             "loc": [p if isinstance(p, int) else str(p) for p in _untagged(e.get("loc", ()))],
         }

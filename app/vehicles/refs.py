@@ -41,6 +41,7 @@ from engine.vehicle import (
     get_preset,
     validate_combination,
 )
+from engine.vehicle.plausibility import check_record_plausible
 
 
 @dataclass(frozen=True)
@@ -72,7 +73,9 @@ def resolve_vehicle(ref: Any) -> Vehicle | Combination:
         return vehicle_preset(ref)
     if isinstance(ref, CombinationRef):
         return combination_of(ref.combination.engine_dict(), None)
-    return Vehicle.from_dict(ref.record())
+    vehicle = Vehicle.from_dict(ref.record())
+    check_record_plausible(vehicle)  # a record typed over HTTP: its weight and stiffnesses in plausible units
+    return vehicle
 
 
 def combination_of(data: dict[str, Any], where: str | None) -> Combination:

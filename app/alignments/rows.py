@@ -35,6 +35,7 @@ ROW_COLUMNS = (
     "superelevation_source",
     "grade_percent",
     "srt_g",
+    "level_road_srt",
     "tilt_table_angle_deg",
 )
 
@@ -78,6 +79,7 @@ def _row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: in
         "superelevation_source": ["derived" if d else "given" for d in c.superelevation_derived[sl].tolist()],
         "grade_percent": c.grade_percent[sl].tolist(),
         "srt_g": _opt(c.srt_g[sl]),
+        "level_road_srt": [v.level] * (stop - start),
         "tilt_table_angle_deg": [v.tilt[p] for p in v.pair_of_row[sl].tolist()],
         "targets": [v.checks[p] for p in v.pair_of_row[sl].tolist()],
         "rollover_speed_kmh": _opt(c.rollover_speed_kmh[sl]),
@@ -185,6 +187,7 @@ def _json_row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, sto
         "superelevation_source": RawJson(_SOURCE_JSON[c.superelevation_derived[sl].astype(np.intp)].tolist()),
         "grade_percent": c.grade_percent[sl].tolist(),
         "srt_g": c.srt_g[sl].tolist(),
+        "level_road_srt": [v.level] * (stop - start),
         "tilt_table_angle_deg": v.tilt_deg[pairs].tolist(),
         "targets": RawJson(v.checks_json[pairs].tolist()),
         "rollover_speed_kmh": c.rollover_speed_kmh[sl].tolist(),

@@ -21,6 +21,7 @@ from app.http.schemas import (
 )
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import (
+    LEVEL_ROAD_SRT_TEXT,
     TARGETS_OUT,
     TILT_OUT,
     VEHICLE_DESCRIPTION,
@@ -291,14 +292,22 @@ class CurveRow(OutputModel):
     grade_percent: float = Field(description=describe("Grade, + uphill.", unit="%", symbol="slope"))
     srt_g: float | None = Field(
         description=describe(
-            "SRT on this curve's bank and grade (it contains the bank); null when the engine refused the case "
-            "(see `error`).",
+            "SRT on this curve's bank and grade (it contains the bank): the curve's threshold, what its rollover "
+            "speed uses; null when the engine refused the case (see `error`). The targets are judged on "
+            "`level_road_srt`.",
             unit="g",
             symbol="SRT",
         )
     )
+    level_road_srt: float | None = Field(
+        description=LEVEL_ROAD_SRT_TEXT + " The vehicle's (the same on every curve: bank and grade zero); null when "
+        "the engine refused the level case."
+    )
     tilt_table_angle_deg: float | None = Field(description=TILT_OUT + " Null without an SRT.")
-    targets: list[TargetCheckOut] = Field(description=TARGETS_OUT + " Empty without an SRT.")
+    targets: list[TargetCheckOut] = Field(
+        description=TARGETS_OUT + " Empty without an SRT or a level-road SRT. The same verdict on every curve: the "
+        "curve's own threshold is `srt_g` and its speeds."
+    )
     rollover_speed_kmh: float | None = Field(
         description=describe(
             "Speed at which the vehicle reaches its SRT, sqrt(127 SRT R).", unit="km/h", symbol="V (Eq. 9.1)"

@@ -43,8 +43,9 @@ from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import resolve_targets, target_checks_json_many, target_checks_many
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
-from engine.case import Case, LoadCase
-from engine.errors import InvalidInput
+from engine.case import Case, LoadCase, Road
+from engine.errors import InvalidInput, RolloverError
+from engine.models import rollover_threshold
 from engine.road import (
     AlignmentColumns,
     assess_alignment,
@@ -214,20 +215,31 @@ class VehicleAnswer:
     srts: np.ndarray  # the distinct SRTs [g]; -1 for the rows without one
     tilt_deg: np.ndarray  # per distinct SRT [deg]; nan without an SRT
     targets: dict[str, float]
+    level_srt: float = math.nan  # the vehicle's level-road SRT (bank and grade zero) [g]; nan when refused
 
     @cached_property
     def tilt(self) -> list[float | None]:  # per distinct SRT
         return [None if math.isnan(a) else a for a in self.tilt_deg.tolist()]
 
     @cached_property
-    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: its target checks as dicts
-        solved = (self.srts >= 0).tolist()
-        return [c if ok else [] for c, ok in zip(target_checks_many(self.srts, self.targets), solved, strict=True)]
+    def level(self) -> float | None:
+        return None if math.isnan(self.level_srt) else self.level_srt
+
+    def _judged(self) -> np.ndarray:  # per distinct SRT: whether its rows carry the verdict (an SRT and a level SRT)
+        return (self.srts >= 0) & (not math.isnan(self.level_srt))
+
+    @cached_property
+    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: the target checks (on the level SRT) as dicts
+        if math.isnan(self.level_srt):
+            return [[] for _ in self.srts]
+        (checks,) = target_checks_many(np.array([self.level_srt]), self.targets)
+        return [checks if ok else [] for ok in self._judged().tolist()]
 
     @cached_property
     def checks_json(self) -> np.ndarray:  # per distinct SRT: the JSON of its ``checks`` (an object array, to index)
-        out = np.array(target_checks_json_many(self.srts, self.targets), dtype=object)
-        out[self.srts < 0] = b"[]"
+        out = np.full(len(self.srts), b"[]", dtype=object)
+        if not math.isnan(self.level_srt):
+            out[self._judged()] = target_checks_json_many(np.array([self.level_srt]), self.targets)[0]
         return out
 
 
@@ -301,11 +313,21 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
         )
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
+    level = level_road_srt(case)
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
     preset, saved = r["presets"][index], r["saved_ids"][index]
-    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r["targets"])
+    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r["targets"], level)
+
+
+def level_road_srt(case: Case) -> float:
+    """The vehicle's level-road SRT, the one its rows' targets are judged on (app.srt.service.level_case): one more
+    solve per vehicle [g]; nan when the level case is refused."""
+    try:
+        return rollover_threshold(case.replace(road=Road())).srt
+    except RolloverError:
+        return math.nan
 
 
 def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:

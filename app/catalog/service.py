@@ -72,6 +72,7 @@ from app.vehicles.schemas import VehicleRecord
 from engine.errors import InvalidVehicle, MissingParameter
 from engine.models import get_model
 from engine.vehicle import COMBINATIONS, PRESETS, Vehicle
+from engine.vehicle.plausibility import check_record_plausible
 
 SAVED_VEHICLE_ID = re.compile(SAVED_VEHICLE_ID_PATTERN)
 FLEET_ID = re.compile(FLEET_ID_PATTERN)
@@ -389,6 +390,7 @@ def check_record(record: dict[str, Any]) -> None:
     Raises :class:`~engine.errors.InvalidVehicle` naming the field (never ``MissingParameter``).
     """
     vehicle = Vehicle.from_dict(record)
+    check_record_plausible(vehicle)  # a weight or stiffness in another unit (31.5 t typed as kN), named as typed
     try:
         get_model("3d").validate(vehicle)
     except MissingParameter:

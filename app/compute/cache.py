@@ -23,6 +23,7 @@ cached in either tier (it is computed again on the next request and answered wit
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import hashlib
 import hmac
@@ -143,6 +144,9 @@ class ResultCache:
     ) -> None:
         self.local: SizedLRU = SizedLRU(max_entries, max_bytes)
         self.objects: LRUCache = LRUCache(maxsize=MEMO_ENTRIES)
+        #: memo keys being solved now -> the task solving them, so concurrent requests that need the same engine
+        #: result (every banked request of one vehicle needs its level-road case) wait for one solve
+        self.solving: dict[str, asyncio.Future] = {}
         self.answers: LRUCache = LRUCache(maxsize=ANSWER_BYTES, getsizeof=lambda a: a.nbytes)
         self.max_entry_bytes = min(max_entry_bytes, max_bytes)
         self.redis = redis

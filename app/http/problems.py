@@ -19,20 +19,24 @@ anything else (a bug)                       500     ``urn:rollover:problem:inter
 ==========================================  ======  ===================================================
 
 Validation errors and engine input errors carry ``errors``: one entry per offending field with its
-dotted name (``road.bank_percent``, ``vehicle.weight_kn``), the reason and the error type; an uploaded
+dotted name as the user typed it (``road.bank_percent``, ``vehicle.weight_kn``), the reason and the error type (an
+unknown field's reason names the nearest known field at that location: :func:`unknown_field_message`); an uploaded
 file's error also says where in the file (``location``: ``row 7``, ``Alignment 'A' CoordGeom Curve #3 ('K1')``).
 """
 
 from __future__ import annotations
 
+import difflib
 import json
 import re
-from typing import Any
+from collections.abc import Mapping, Sequence
+from types import UnionType
+from typing import Annotated, Any, Union, get_args, get_origin
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, RootModel, Tag
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from app.logs import get_logger
@@ -185,6 +189,115 @@ def engine_field(field: str | None) -> str | None:
     return f"vehicle.{field}" if field in FIELD_DOCS else field
 
 
+# ------------------------------------------------------------------------------- unknown fields
+
+
+def _stripped(tp: Any) -> tuple[Any, str | None]:
+    """``tp`` without ``Annotated`` layers, and the discriminated-union tag they carry (``Tag("spec")``), if any."""
+    tag = None
+    while get_origin(tp) is Annotated:
+        tag = next((m.tag for m in tp.__metadata__ if isinstance(m, Tag)), tag)
+        tp = tp.__origin__
+    return tp, tag
+
+
+def _is_model(tp: Any) -> bool:
+    return isinstance(tp, type) and issubclass(tp, BaseModel)
+
+
+def models_at(tp: Any, path: list[Any] | tuple[Any, ...]) -> list[type[BaseModel]]:
+    """The pydantic models that can hold the object at ``path`` (a validation error's ``loc`` below the body) of a
+    value of type ``tp``: through model fields (by name or alias), list items, dict values, and unions (a path step
+    naming a member's tag or class, as pydantic's locations do, picks that member; otherwise every member is
+    followed). Empty where the path leaves the models (a ``dict[str, Any]`` field, a value parsed later)."""
+    tp, _ = _stripped(tp)
+    origin = get_origin(tp)
+    if origin in (Union, UnionType):
+        members = [_stripped(m) for m in get_args(tp) if m is not type(None)]
+        if path and isinstance(path[0], str):
+            for member, tag in members:
+                if path[0] in (tag, getattr(member, "__name__", None)):
+                    return models_at(member, path[1:])
+        return [m for member, _ in members for m in models_at(member, path)]
+    if _is_model(tp) and issubclass(tp, RootModel):  # e.g. a union of job submissions: its members' fields
+        return models_at(tp.model_fields["root"].annotation, path)
+    if not path:
+        return [tp] if _is_model(tp) else []
+    key, rest = path[0], path[1:]
+    if _is_model(tp):
+        field = next((f for n, f in tp.model_fields.items() if key in (n, f.alias)), None)
+        return [] if field is None else models_at(field.annotation, rest)
+    args = get_args(tp)
+    if origin in (list, tuple, set, frozenset, Sequence) and args and isinstance(key, int):
+        return models_at(args[0], rest)
+    if origin in (dict, Mapping) and len(args) == 2:
+        return models_at(args[1], rest)
+    return []
+
+
+def nearest_field(models: list[type[BaseModel]], name: str) -> str | None:
+    """The known field name (or alias) of ``models`` closest to the unknown ``name`` (difflib's ratio >= 0.6), if
+    any."""
+    known = sorted({k for m in models for n, f in m.model_fields.items() for k in (n, f.alias) if k})
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+    return close[0] if close else None
+
+
+def _body_type(request: Request) -> Any:
+    """The body model of the operation that refused the request: its declared body, or the model a route that reads
+    its body itself declares (:func:`app.http.bodies.json_body`); None when neither is known."""
+    route = request.scope.get("route")
+    params = getattr(getattr(route, "dependant", None), "body_params", None) or []
+    if len(params) == 1:
+        return params[0].field_info.annotation
+    from app.http.bodies import READ_BY_ROUTE
+
+    extra = getattr(route, "openapi_extra", None) or {}
+    schema = extra.get("requestBody", {}).get("content", {}).get("application/json", {}).get("schema", {})
+    name = str(schema.get("$ref", "")).rsplit("/", 1)[-1]
+    return next((m for m in READ_BY_ROUTE if m.__name__ == name), None) if name else None
+
+
+def unknown_field_message(request: Request, loc: tuple[Any, ...] | list[Any]) -> str:
+    """The message of an ``extra_forbidden`` error in the body (``loc`` starts with ``body``): the unknown name and
+    the nearest known one at that location (``unknown field 'superelevation_percnt': did you mean
+    'superelevation_percent'?``); no suggestion when nothing is close or the location's model is not known here. (A
+    query parameter's keeps pydantic's message.)"""
+    name = str(loc[-1])
+    root = _body_type(request)
+    guess = None if root is None else nearest_field(models_at(root, list(loc[1:-1])), name)
+    return f"unknown field {name!r}" + ("" if guess is None else f": did you mean {guess!r}?")
+
+
+_BOUND_ERRORS = ("less_than_equal", "less_than", "greater_than", "greater_than_equal")
+
+
+def _with_unit_slip(e: dict[str, Any]) -> str:
+    """A vehicle record field's bound error with the likely unit slip added (``rear_track_m`` = 1860: ``1860 m: in
+    millimetres? (1860 millimetres would be 1.86 m)``), when multiplying by the slip's factor brings the value inside
+    the field's bounds; the message as it is otherwise."""
+    from engine.vehicle import FIELD_DOCS
+    from engine.vehicle.plausibility import RECORD_SLIPS, unit_slip
+
+    msg, loc, value = str(e.get("msg")), tuple(e.get("loc", ())), e.get("input")
+    if e.get("type") not in _BOUND_ERRORS or "record" not in loc or not loc or str(loc[-1]) not in FIELD_DOCS:
+        return msg
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return msg
+    doc = FIELD_DOCS[str(loc[-1])]
+    slip = unit_slip(float(value), doc.minimum, doc.maximum, RECORD_SLIPS.get(doc.unit, ()))
+    if slip is None or slip[1] <= doc.minimum:  # the bounds are open below: a value at the minimum is refused too
+        return msg
+    return f"{msg}; {value:g} {doc.unit}: in {slip[0]}? ({value:g} {slip[0]} would be {slip[1]:g} {doc.unit})"
+
+
+def _message(request: Request, e: dict[str, Any]) -> str:
+    loc = tuple(e.get("loc", ()))
+    if e.get("type") == "extra_forbidden" and loc[:1] == ("body",):
+        return unknown_field_message(request, loc)
+    return _with_unit_slip(e)
+
+
 async def _validation_handler(request: Request, exc: RequestValidationError) -> JSONResponse:
     errors = list(exc.errors())
     if any(e.get("type") in ("json_invalid", "json_type") for e in errors):
@@ -193,7 +306,7 @@ async def _validation_handler(request: Request, exc: RequestValidationError) -> 
     items = [
         {
             "field": _dotted(e.get("loc", ())),
-            "message": str(e.get("msg")),
+            "message": _message(request, e),
             "type": str(e.get("type")),
             "loc": [p if isinstance(p, int) else str(p) for p in _untagged(e.get("loc", ()))],
         }

@@ -15,6 +15,7 @@ the distinct SRT solves are counted over the whole alignment at submission
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
@@ -49,6 +50,7 @@ from app.alignments.service import (
     AlignmentJob,
     VehicleAnswer,
     check_alignment,
+    level_road_srt,
     resolve_alignment,
     resolve_alignment_refs,
     validate_request_data,
@@ -267,6 +269,8 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
         "curves": n,
         "distinct_srt_solves": distinct,
         "chunk_curves": max(1, CHUNK_ROWS // nv),
+        # each vehicle's level-road SRT, which its rows' targets are judged on (None: refused)
+        "level_srt": [_finite_or_none(level_road_srt(_case(r, vehicle))) for vehicle in job.vehicles],
     }
     etag = {"json": cache_key("alignments", job.resolved), "csv": cache_key("alignments-csv", job.resolved)}
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
@@ -348,14 +352,31 @@ def unpack_result(data: bytes) -> tuple[CurveTable, AlignmentColumns]:
     return curves, AlignmentColumns(**engine_cols, errors=errors, distinct_cases=0)
 
 
-def _part_answer(resolved: dict[str, Any], v: int, data: bytes) -> tuple[AlignmentAnswer, VehicleAnswer]:
+def _finite_or_none(x: float) -> float | None:
+    return None if math.isnan(x) else float(x)
+
+
+def _level(shared: dict[str, Any], v: int) -> float:
+    """Vehicle ``v``'s level-road SRT from the job's shared state, checked (it comes from the job store)."""
+    levels = shared.get("level_srt")
+    if not isinstance(levels, list) or not 0 <= v < len(levels):
+        raise ColumnsError("the job's state has no level-road SRT per vehicle (a job of an earlier version)")
+    value = levels[v]
+    if value is None:
+        return math.nan
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value <= 0:
+        raise ColumnsError(f"the job's level-road SRT of vehicle {v} is not a positive number: {value!r}")
+    return float(value)
+
+
+def _part_answer(resolved: dict[str, Any], v: int, data: bytes, level: float) -> tuple[AlignmentAnswer, VehicleAnswer]:
     """A part's stored result of vehicle ``v`` as the answer the renderers take (what
     :func:`app.alignments.service.solve_alignment` builds for those curves)."""
     curves, cols = unpack_result(data)
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
     preset, saved = resolved["presets"][v], resolved["saved_ids"][v]
-    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved["targets"])
+    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved["targets"], level)
     return AlignmentAnswer(resolved, curves, [answer]), answer
 
 
@@ -398,9 +419,11 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
     return {"summaries": summaries}
 
 
-def _rendered(resolved: dict[str, Any], v: int, data: bytes, fmt: str, columns: list[str]) -> Iterator[bytes]:
+def _rendered(
+    resolved: dict[str, Any], v: int, data: bytes, fmt: str, columns: list[str], level: float
+) -> Iterator[bytes]:
     """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks."""
-    answer, va = _part_answer(resolved, v, data)
+    answer, va = _part_answer(resolved, v, data, level)
     n = len(answer.curves)
     for start in range(0, n, ROWS_PER_CHUNK):
         stop = min(start + ROWS_PER_CHUNK, n)
@@ -413,6 +436,8 @@ def _rendered(resolved: dict[str, Any], v: int, data: bytes, fmt: str, columns: 
 def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragments) -> None:
     """Every part's stored columns read back and checked (raises ValueError), before the result is streamed."""
     nv = len(shared["resolved"]["vehicles"])
+    for v in range(nv):
+        _level(shared, v)
     for k in range(len(metas)):
         for v in range(nv):
             curves, _ = unpack_result(b"".join(fragments(k, v)))
@@ -430,7 +455,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
         yield csv_header(resolved)
         for v in range(nv):
             for k in range(len(metas)):
-                yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns)
+                yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns, _level(shared, v))
         return
     yield json_head(resolved, shared["curves"])
     for v in range(nv):
@@ -439,7 +464,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
         for k in range(len(metas)):
             if k:
                 yield b","
-            yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns)
+            yield from _rendered(resolved, v, b"".join(fragments(k, v)), fmt, columns, _level(shared, v))
         yield JSON_VEHICLE_END
     yield json_tail()
 

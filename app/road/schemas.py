@@ -8,7 +8,15 @@ from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, given, shape_error
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
-from app.srt.schemas import VEHICLE_DESCRIPTION, SlopeIn, SrtInputs, SrtResult, SrtTargets, VehicleRef
+from app.srt.schemas import (
+    LEVEL_ROAD_SRT_TEXT,
+    VEHICLE_DESCRIPTION,
+    SlopeIn,
+    SrtInputs,
+    SrtResult,
+    SrtTargets,
+    VehicleRef,
+)
 from engine.road import FRICTION_BOUNDS, STANDARDS
 
 SRT_FIELDS = ("vehicle", "model", "stage", "road", "trailer_angle_deg", "load", "rear_llt_limit", "targets")
@@ -138,7 +146,17 @@ class CurveSpeedResult(OutputModel):
         description=describe("Maximum speed before rollover, sqrt(127 SRT R).", unit="km/h", symbol="V (Eq. 9.1)")
     )
     radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
-    srt: float = Field(description=describe("SRT used (on this curve's bank and slope).", unit="g", symbol="SRT"))
+    srt: float = Field(
+        description=describe(
+            "SRT used (on this curve's bank and slope): the curve's threshold. The targets (in `srt_result`) are "
+            "judged on `level_road_srt`.",
+            unit="g",
+            symbol="SRT",
+        )
+    )
+    level_road_srt: float | None = Field(
+        description=LEVEL_ROAD_SRT_TEXT + " Null with a given `srt` (there are no targets then)."
+    )
     srt_source: SrtSource = Field(description=describe("`given` in the request or `computed`.", unit="-"))
     srt_result: SrtResult | None = Field(
         description=describe("The SRT computation, when the SRT was computed.", unit="see its fields", symbol="SRT")
@@ -186,7 +204,17 @@ class MinRadiusResult(OutputModel):
     design_standard: str = Field(description=describe("The design standard of the request.", unit="-"))
     design_speed_kmh: float = Field(description=describe("Design speed.", unit="km/h", symbol="V"))
     superelevation_percent: float = Field(description=describe("Superelevation.", unit="%", symbol="e"))
-    srt: float = Field(description=describe("SRT used (on this bank and slope).", unit="g", symbol="SRT"))
+    srt: float = Field(
+        description=describe(
+            "SRT used (on this bank and slope): the curve's threshold, what Eq. 9.3 uses. The targets (in "
+            "`srt_result`) are judged on `level_road_srt`.",
+            unit="g",
+            symbol="SRT",
+        )
+    )
+    level_road_srt: float | None = Field(
+        description=LEVEL_ROAD_SRT_TEXT + " Null with a given `srt` (there are no targets then)."
+    )
     srt_source: SrtSource = Field(description=describe("`given` in the request or `computed`.", unit="-"))
     srt_result: SrtResult | None = Field(
         description=describe("The SRT computation, when the SRT was computed.", unit="see its fields", symbol="SRT")

@@ -12,7 +12,7 @@ from app.compute.results import Computed, cached
 from app.road.schemas import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.settings import Settings
 from app.srt.schemas import SrtResult
-from app.srt.service import resolve_case, resolve_targets, solve, srt_key, srt_result
+from app.srt.service import resolve_case, resolve_targets, solve_with_level, srt_key, srt_result
 from engine import ENGINE_VERSION
 from engine.case import Case, Road
 from engine.road import max_curve_speed_kmh, min_radius, side_friction_factor
@@ -24,7 +24,8 @@ async def _srt_for(
     """(srt, source, the SRT result or None) for a curve-speed/min-radius request."""
     if case is None:
         return req.srt, "given", None
-    result = srt_result(await solve(cache, case), targets)
+    engine_result, level = await solve_with_level(cache, case)
+    result = srt_result(engine_result, targets, level)
     return result.srt, "computed", result
 
 
@@ -44,6 +45,7 @@ async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest, settin
             max_speed_kmh=speed,
             radius_m=req.radius_m,
             srt=srt,
+            level_road_srt=None if inner is None else inner.level_road_srt,
             srt_source=source,
             srt_result=inner,
             engine_version=ENGINE_VERSION,
@@ -92,6 +94,7 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
             design_speed_kmh=req.design_speed_kmh,
             superelevation_percent=req.superelevation_percent,
             srt=srt,
+            level_road_srt=None if inner is None else inner.level_road_srt,
             srt_source=source,
             srt_result=inner,
             engine_version=ENGINE_VERSION,

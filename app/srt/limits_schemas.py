@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
-from app.srt.schemas import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
+from app.srt.schemas import LEVEL_ROAD_SRT_TEXT, TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.road import LIMIT_PARAMETERS
 
 # "cg_height_above_chassis_m", "overweight_percent", "lateral_offset_m", "spring_separation_m"
@@ -125,9 +125,15 @@ class LimitOut(OutputModel):
             symbol="SRT",
         )
     )
+    level_road_srt: float | None = Field(
+        description=LEVEL_ROAD_SRT_TEXT + " With the parameter at `value` (the limit is searched on the request's "
+        "road: on a banked or sloped road this differs from `srt_at_limit`); null without `value`."
+    )
     evaluations: int = Field(description=describe("SRT solves the search took.", unit="count"))
     tilt_table_angle_deg: float | None = Field(description=TILT_OUT + " Of `srt_at_limit`; null without it.")
-    targets: list[TargetCheckOut] = Field(description=TARGETS_OUT + " Of `srt_at_limit`; empty without it.")
+    targets: list[TargetCheckOut] = Field(
+        description=TARGETS_OUT + " Of `level_road_srt` (the parameter at `value`); empty without it."
+    )
 
 
 class LimitTableRowOut(OutputModel):

@@ -17,11 +17,12 @@ from app.compute.results import Computed, cached
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.limits_schemas import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
-from app.srt.service import base_case_key, case_of_key, target_checks
+from app.srt.service import base_case_key, case_of_key, level_case, target_checks
 from engine import ENGINE_VERSION
 from engine.case import Case
 from engine.errors import InvalidInput, RolloverError
-from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg
+from engine.models import rollover_threshold
+from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg, with_parameter
 
 
 def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
@@ -37,7 +38,22 @@ def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
     }
 
 
-def _limit_out(limit: Limit, targets: dict[str, float]) -> dict[str, Any]:
+def level_srt_at(base: Case, limit: Limit) -> float | None:
+    """The level-road SRT (:func:`app.srt.service.level_case`) of the base case with the parameter at the limit: what
+    the limit's targets are judged on; the SRT at the limit itself when the base case is level; None without a
+    limit value or when the engine refuses the level case."""
+    if limit.value is None or limit.srt_at_limit is None:
+        return None
+    level = level_case(base)
+    if level is base:
+        return limit.srt_at_limit
+    try:
+        return rollover_threshold(with_parameter(level, limit.parameter, limit.value)).srt
+    except RolloverError:
+        return None
+
+
+def _limit_out(limit: Limit, targets: dict[str, float], level: float | None) -> dict[str, Any]:
     srt = limit.srt_at_limit
     return {
         "value": limit.value,
@@ -45,9 +61,10 @@ def _limit_out(limit: Limit, targets: dict[str, float]) -> dict[str, Any]:
         "range_min": limit.range[0],
         "range_max": limit.range[1],
         "srt_at_limit": srt,
+        "level_road_srt": level,
         "evaluations": limit.evaluations,
         "tilt_table_angle_deg": None if srt is None else float(tilt_table_angle_deg(srt)),
-        "targets": [] if srt is None else target_checks(srt, targets),
+        "targets": [] if level is None else target_checks(level, targets),
     }
 
 
@@ -112,7 +129,7 @@ def solve_limits(resolved: dict[str, Any]) -> bytes:
                 "description": LIMIT_PARAMETERS[parameter][1],
                 "target_srt_g": target,
                 "current_value": _current_value(base, parameter),
-                "limit": _limit_out(limit, case["targets"]),
+                "limit": _limit_out(limit, case["targets"], level_srt_at(base, limit)),
                 "table": table,
                 "model": case["model"],
                 "stage": case["stage"] if case["model"] == "3d" else None,

@@ -280,17 +280,39 @@ class TargetCheckOut(OutputModel):
 
     name: str = Field(description=describe("Target name (`general`, `dangerous_goods` or the request's).", unit="-"))
     target_g: float = Field(description=describe("Minimum SRT the target asks for.", unit="g", symbol="SRT target"))
-    meets: bool = Field(description=describe("Whether SRT >= target.", unit="-", symbol="SRT >= target"))
+    meets: bool = Field(
+        description=describe(
+            "Whether the level-road SRT meets the target (level_road_srt >= target). Targets such as PBS's and New "
+            "Zealand's are level-road SRTs: a bank raises the case's own `srt` but not the vehicle's verdict.",
+            unit="-",
+            symbol="SRT(e = 0, slope = 0) >= target",
+        )
+    )
     margin_g: float = Field(
-        description=describe("SRT - target; negative when the target is missed.", unit="g", symbol="SRT - target")
+        description=describe(
+            "level_road_srt - target; negative when the target is missed.", unit="g", symbol="SRT(level) - target"
+        )
+    )
+    judged_on: Literal["level_road_srt"] = Field(
+        description=describe(
+            "Which SRT the verdict is judged on: always `level_road_srt`, the SRT of the same vehicle, load, model "
+            "and parameters with bank and slope set to zero.",
+            unit="-",
+        )
     )
 
 
 TARGETS_OUT = describe(
-    "The SRT checked against each target (the request's `targets`, else the service's defaults), in order of "
-    "increasing target.",
+    "The level-road SRT (`level_road_srt`: bank and slope set to zero, the rest of the case unchanged) checked "
+    "against each target (the request's `targets`, else the service's defaults), in order of increasing target.",
     unit="g",
     symbol="SRT target",
+)
+LEVEL_ROAD_SRT_TEXT = describe(
+    "SRT of the same vehicle, load, model and parameters on a level road (bank and slope set to zero): what the "
+    "targets are judged on (`targets[].judged_on`). Equal to `srt` when the case is level.",
+    unit="g",
+    symbol="SRT(e = 0, slope = 0)",
 )
 TILT_OUT = describe(
     "Tilt-table angle equivalent to the SRT, atan(SRT): the angle at which a tilt test would tip a vehicle with "
@@ -305,10 +327,15 @@ class SrtResult(OutputModel):
 
     srt: float = Field(
         description=describe(
-            "Static rollover threshold: lateral acceleration at the limit on this road (the bank is included).",
+            "Static rollover threshold of this case: lateral acceleration at the limit on this road (the bank and "
+            "slope are included): the curve's threshold, what the curve speed and the rollover radius use. The "
+            "targets are judged on `level_road_srt`, not on this.",
             unit="g",
             symbol="SRT = ay/g",
         )
+    )
+    level_road_srt: float = Field(
+        description=LEVEL_ROAD_SRT_TEXT,
     )
     roll_angle_deg: float | None = Field(
         description=describe(

@@ -8,11 +8,13 @@ parses another endpoint's cached bytes.
 
 Public for the other features (road, plots, limits, sweep, alignments, routes): :func:`resolve_case` (an SRT
 request's engine case), :func:`resolve_targets` and the target checks, :func:`srt_key` / :func:`base_case_key` (what
-a key holds of an SRT request), :func:`solve` and :func:`srt_result`.
+a key holds of an SRT request), :func:`solve`, :func:`level_case` / :func:`solve_with_level` (the level-road case
+the targets are judged on) and :func:`srt_result`.
 """
 
 from __future__ import annotations
 
+import asyncio
 import time
 from typing import Any
 
@@ -58,11 +60,28 @@ def resolve_targets(targets: dict[str, float] | None, settings: Settings) -> dic
     return dict(targets) if targets is not None else settings.default_targets()
 
 
-def target_checks(srt_g: float, targets: dict[str, float]) -> list[dict[str, Any]]:
-    """``TargetCheckOut`` dicts for an SRT, in order of increasing target (then name): the order is fixed by
-    the targets themselves, so equal targets given in any order give the same body and the same cache key."""
-    checks = _in_target_order(check_targets(srt_g, targets))
-    return [{"name": c.name, "target_g": c.target_g, "meets": c.meets, "margin_g": c.margin_g} for c in checks]
+#: what every target verdict is judged on (``TargetCheckOut.judged_on``); also in every SRT key (:func:`srt_key`), so
+#: an answer cached before the verdicts moved to the level road is never served again
+JUDGED_ON = "level_road_srt"
+
+
+def level_case(case: Case) -> Case:
+    """The case the targets are judged on: the same vehicle, load, model and parameters on a level road (bank and
+    slope zero). ``case`` itself when it is level, so a level case's ``level_road_srt`` is its ``srt`` exactly."""
+    if case.road.bank_percent == 0.0 and case.road.slope_percent == 0.0:
+        return case
+    return case.replace(road=Road())
+
+
+def target_checks(level_srt_g: float, targets: dict[str, float]) -> list[dict[str, Any]]:
+    """``TargetCheckOut`` dicts for a level-road SRT (:func:`level_case`), in order of increasing target (then
+    name): the order is fixed by the targets themselves, so equal targets given in any order give the same body and
+    the same cache key."""
+    checks = _in_target_order(check_targets(level_srt_g, targets))
+    return [
+        {"name": c.name, "target_g": c.target_g, "meets": c.meets, "margin_g": c.margin_g, "judged_on": JUDGED_ON}
+        for c in checks
+    ]
 
 
 def _in_target_order(checks: list[Any]) -> list[Any]:
@@ -70,12 +89,12 @@ def _in_target_order(checks: list[Any]) -> list[Any]:
 
 
 def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list[dict[str, Any]]]:
-    """:func:`target_checks` of every SRT of ``srts`` at once (an alignment's distinct SRTs): the same dicts, the
-    same order; the targets are checked once, the comparisons and margins done on arrays."""
+    """:func:`target_checks` of every level-road SRT of ``srts`` at once: the same dicts, the same order; the targets
+    are checked once, the comparisons and margins done on arrays."""
     ordered = _in_target_order(check_targets(0.0, targets))  # the targets checked, in order (the SRT is unused)
     per_target = [
         [
-            {"name": c.name, "target_g": c.target_g, "meets": meets, "margin_g": margin}
+            {"name": c.name, "target_g": c.target_g, "meets": meets, "margin_g": margin, "judged_on": JUDGED_ON}
             for meets, margin in zip((srts >= c.target_g).tolist(), (srts - c.target_g).tolist(), strict=True)
         ]
         for c in ordered
@@ -94,7 +113,7 @@ def target_checks_json_many(srts: np.ndarray, targets: dict[str, float]) -> list
         head = orjson.dumps({"name": c.name, "target_g": c.target_g, "meets": None})[: -len(b"null}")]
         fragments[-1] += (b"," if k else b"") + head
         fragments.append(b',"margin_g":')
-        fragments.append(b"}")
+        fragments.append(b',"judged_on":' + orjson.dumps(JUDGED_ON) + b"}")
         columns += [(srts >= c.target_g).tolist(), (srts - c.target_g).tolist()]
     fragments[-1] += b"]"
     return json_template(fragments, columns, b"\x00").split(b"\x00")[1:]
@@ -110,6 +129,7 @@ def srt_key(
         "include_curves": include_curves,
         "curve_points": curve_points if include_curves else None,  # without curves it changes nothing
         "targets": dict(targets),
+        "targets_judged_on": JUDGED_ON,
     }
 
 
@@ -123,7 +143,7 @@ def base_case_key(req: SrtInputs, settings: Settings) -> dict[str, Any]:
 
 def case_of_key(resolved_case: dict[str, Any]) -> Case:
     """The engine case of :func:`base_case_key`'s dict (the inverse, targets left out)."""
-    return Case.from_dict({k: v for k, v in resolved_case.items() if k != "targets"})
+    return Case.from_dict({k: v for k, v in resolved_case.items() if k not in ("targets", "targets_judged_on")})
 
 
 # -------------------------------------------------------------------------------------- computing
@@ -135,7 +155,18 @@ async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = No
     hop to a worker thread); the curves, tens of solves, in a worker thread."""
     key = cache_key("engine-result", {**case.to_dict(), "curve_points": curve_points})
     result = cache.objects.get(key)
-    if result is None:
+    if result is not None:
+        return result
+    running = cache.solving.get(key)
+    if running is not None:  # the same case is being solved for another request: its answer is this one's
+        return await asyncio.shield(running)
+    task = asyncio.ensure_future(_solve_once(cache, key, case, curve_points))
+    cache.solving[key] = task
+    return await asyncio.shield(task)  # a request that leaves does not cancel the solve the others wait for
+
+
+async def _solve_once(cache: ResultCache, key: str, case: Case, curve_points: int | None) -> RolloverResult:
+    try:
         if curve_points is None:  # one threshold, on the event loop with the others waiting now (app.compute.coalescer)
             result = await COALESCER.threshold(case)
         else:  # the curves are tens of solves: not on the event loop
@@ -143,11 +174,25 @@ async def solve(cache: ResultCache, case: Case, *, curve_points: int | None = No
             result = await run_in_threadpool(rollover_threshold, case, include_curves=True, curve_points=curve_points)
             SOLVE_SECONDS.labels("srt", case.model).observe(time.perf_counter() - started)
         cache.objects[key] = result
-    return result
+        return result
+    finally:
+        cache.solving.pop(key, None)
 
 
-def srt_result(result: RolloverResult, targets: dict[str, float]) -> SrtResult:
-    """The published SRT result of an engine result (validated against the schema: a contract break is loud)."""
+async def solve_with_level(
+    cache: ResultCache, case: Case, *, curve_points: int | None = None
+) -> tuple[RolloverResult, RolloverResult]:
+    """The engine's results for ``case`` and for its :func:`level_case` (the same object when the case is level; the
+    level case without curves): both through :func:`solve`, so both are memoised."""
+    result = await solve(cache, case, curve_points=curve_points)
+    level = level_case(case)
+    return result, (result if level is case else await solve(cache, level))
+
+
+def srt_result(result: RolloverResult, targets: dict[str, float], level: RolloverResult | None = None) -> SrtResult:
+    """The published SRT result of an engine result and of its level-road case's (:func:`level_case`; None: the case
+    is level), validated against the schema (a contract break is loud). The targets are judged on the level SRT."""
+    level_srt = result.srt if level is None else level.srt
     data = result.to_dict()
     detail = data.pop("combination", None)
     if detail is not None:  # the whole-combination model: every roll-coupled unit, flattened into the answer
@@ -157,7 +202,8 @@ def srt_result(result: RolloverResult, targets: dict[str, float]) -> SrtResult:
         lifts = [e for r in detail["roll_coupled_units"] for e in r["lift_sequence"]]
         data["lift_sequence"] = sorted(lifts, key=lambda e: e["ay_g"])
     data["tilt_table_angle_deg"] = float(tilt_table_angle_deg(result.srt))
-    data["targets"] = target_checks(result.srt, targets)
+    data["level_road_srt"] = level_srt
+    data["targets"] = target_checks(level_srt, targets)
     data["engine_version"] = ENGINE_VERSION
     return SrtResult.model_validate(data)
 
@@ -169,6 +215,7 @@ async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -
     resolved = srt_key(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
 
     async def produce() -> bytes:
-        return srt_result(await solve(cache, case, curve_points=points), targets).model_dump_json().encode()
+        result, level = await solve_with_level(cache, case, curve_points=points)
+        return srt_result(result, targets, level).model_dump_json().encode()
 
     return await cached(cache, "srt", resolved, produce)

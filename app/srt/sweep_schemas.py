@@ -8,7 +8,7 @@ from typing import Annotated, Any
 from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
-from app.srt.schemas import TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
+from app.srt.schemas import LEVEL_ROAD_SRT_TEXT, TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.domain import BOUNDS
 
 MAX_AXIS_VALUES = 200
@@ -143,7 +143,16 @@ class SweepRow(OutputModel):
     overweight_percent: float | None = _row_axis("overweight_percent")
     rear_llt_limit: float | None = _row_axis("rear_llt_limit")
     srt: float | None = Field(
-        description=describe("SRT of the case; null when refused (see `error`).", unit="g", symbol="SRT")
+        description=describe(
+            "SRT of the case (on its bank and slope: the curve's threshold); null when refused (see `error`). The "
+            "targets are judged on `level_road_srt`.",
+            unit="g",
+            symbol="SRT",
+        )
+    )
+    level_road_srt: float | None = Field(
+        description=LEVEL_ROAD_SRT_TEXT + " Of this row's case (its other axes' values); null when that case is "
+        "refused (then `targets` is empty)."
     )
     roll_angle_deg: float | None = Field(
         description=describe(

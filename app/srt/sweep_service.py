@@ -26,9 +26,10 @@ from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.settings import Settings
-from app.srt.service import base_case_key, case_of_key, target_checks
+from app.srt.service import JUDGED_ON, base_case_key, case_of_key, level_case, target_checks
 from app.srt.sweep_schemas import SweepRequest
 from engine import ENGINE_VERSION
+from engine.case import Case
 from engine.models import SweepResult as EngineSweep
 from engine.models import sweep
 from engine.road import tilt_table_angle_deg
@@ -55,22 +56,49 @@ class SweepAnswer:
     resolved: dict[str, Any]
     result: EngineSweep
     targets: tuple[tuple[str, float], ...]  # (name, target [g]) in the rows' order: increasing target, then name
+    level_srt: np.ndarray  # (n_cases,) each row's level-road SRT (bank and slope zero) [g]; nan where it has none
 
     @property
     def nbytes(self) -> int:  # what keeping it costs (the cache bounds answers kept by reference by it)
         r = self.result
-        arrays = r.values.nbytes + r.srt.nbytes + r.roll_angle_deg.nbytes
+        arrays = r.values.nbytes + r.srt.nbytes + r.roll_angle_deg.nbytes + self.level_srt.nbytes
         return 2_000 + arrays + sum(100 + len(e) for e in r.errors.values())
+
+
+#: the axes a level-road SRT sets to zero
+ROAD_AXES = ("bank_percent", "slope_percent")
+
+
+def level_srts(base: Case, grid: dict[str, list[float]], result: EngineSweep) -> np.ndarray:
+    """Each row's level-road SRT (:func:`app.srt.service.level_case`: the row's case with bank and slope zero), nan
+    where that case has none. A grid that sweeps neither bank nor slope around a level case is its own level grid;
+    otherwise the level grid is the same grid with the road axes collapsed to [0] (one case per combination of the
+    other axes, solved once) and each row reads the row of its other axes' values."""
+    level = level_case(base)
+    if level is base and not any(a in grid for a in ROAD_AXES):
+        srt = result.srt.astype(float, copy=True)
+        srt[list(result.errors)] = np.nan
+        return srt
+    level_grid = {a: ([0.0] if a in ROAD_AXES else list(v)) for a, v in grid.items()}
+    flat = sweep(level, level_grid, block_map=solvers.block_map)
+    srt = flat.srt.astype(float, copy=True)
+    srt[list(flat.errors)] = np.nan
+    shape = tuple(len(v) for v in grid.values())
+    index = np.unravel_index(np.arange(len(result.srt)), shape)
+    index = tuple(np.zeros_like(i) if a in ROAD_AXES else i for a, i in zip(grid, index, strict=True))
+    return srt[np.ravel_multi_index(index, tuple(len(v) for v in level_grid.values()))]
 
 
 def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
     """Every case of the grid (blocking: called in a worker thread), as arrays."""
     started = time.perf_counter()
     case = resolved["case"]
-    result = sweep(case_of_key(case), resolved["grid"], block_map=solvers.block_map)
+    base = case_of_key(case)
+    result = sweep(base, resolved["grid"], block_map=solvers.block_map)
+    level = level_srts(base, resolved["grid"], result)
     SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
     order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, case["targets"]))
-    return SweepAnswer(resolved, result, order)
+    return SweepAnswer(resolved, result, order, level)
 
 
 def _sweep_rows(answer: SweepAnswer, start: int, stop: int) -> list[dict[str, Any]]:
@@ -78,17 +106,18 @@ def _sweep_rows(answer: SweepAnswer, start: int, stop: int) -> list[dict[str, An
     target checks as :func:`app.srt.service.target_checks` makes them (SRT >= target, SRT - target), on arrays."""
     r = answer.result
     goals = np.array([goal for _, goal in answer.targets], dtype=float)
-    srt, values = r.srt[start:stop], r.values[start:stop]
-    meets, margins = (srt[:, None] >= goals).tolist(), (srt[:, None] - goals).tolist()
+    srt, values, level = r.srt[start:stop], r.values[start:stop], answer.level_srt[start:stop]
+    meets, margins = (level[:, None] >= goals).tolist(), (level[:, None] - goals).tolist()
     targets = [
         [
-            {"name": n, "target_g": g, "meets": m, "margin_g": d}
+            {"name": n, "target_g": g, "meets": m, "margin_g": d, "judged_on": JUDGED_ON}
             for (n, g), m, d in zip(answer.targets, ms, ds, strict=True)
         ]
         for ms, ds in zip(meets, margins, strict=True)
     ]
     columns: dict[str, list[Any]] = {axis: values[:, k].tolist() for k, axis in enumerate(r.axes)}
     columns["srt"] = srt.tolist()
+    columns["level_road_srt"] = level.tolist()
     columns["roll_angle_deg"] = [None if math.isnan(x) else x for x in r.roll_angle_deg[start:stop].tolist()]
     columns["tilt_table_angle_deg"] = tilt_table_angle_deg(srt).tolist()
     columns["targets"] = targets
@@ -98,6 +127,8 @@ def _sweep_rows(answer: SweepAnswer, start: int, stop: int) -> list[dict[str, An
             k = i - start
             columns["srt"][k] = columns["roll_angle_deg"][k] = columns["tilt_table_angle_deg"][k] = None
             columns["targets"][k], columns["error"][k] = [], error
+    for k in np.flatnonzero(np.isnan(level)).tolist():  # its level-road case refused: no level SRT, no verdict
+        columns["level_road_srt"][k], columns["targets"][k] = None, []
     keys = list(columns)
     return [dict(zip(keys, row, strict=True)) for row in zip(*columns.values(), strict=True)]
 
@@ -122,7 +153,15 @@ def sweep_json_chunks(answer: SweepAnswer) -> Iterator[bytes]:
 def sweep_csv_chunks(answer: SweepAnswer) -> Iterator[bytes]:
     """The rows as one CSV table in chunks: the swept axes, the results, two columns per target, the error."""
     names = [name for name, _ in answer.targets]
-    columns = [*answer.result.axes, "srt", "roll_angle_deg", "tilt_table_angle_deg", *target_columns(names), "error"]
+    columns = [
+        *answer.result.axes,
+        "srt",
+        "level_road_srt",
+        "roll_angle_deg",
+        "tilt_table_angle_deg",
+        *target_columns(names),
+        "error",
+    ]
     return to_csv_chunks(columns, ([flatten_targets(row) for row in rows] for rows in _row_chunks(answer)))
 
 

@@ -46,6 +46,7 @@ from engine.vehicle import (
     get_preset,
     validate_combination,
 )
+from engine.vehicle.plausibility import check_record_plausible
 
 
 @dataclass(frozen=True)
@@ -79,7 +80,9 @@ def resolve_vehicle(ref: Any) -> Vehicle | Combination:
         return combination_of(ref.combination.engine_dict(), None)
     if isinstance(ref, CombinationSpecRef):
         return build_combination_spec(ref.engine_spec(), None).combination
-    return Vehicle.from_dict(ref.record())
+    vehicle = Vehicle.from_dict(ref.record())
+    check_record_plausible(vehicle)  # a record typed over HTTP: its weight and stiffnesses in plausible units
+    return vehicle
 
 
 def vehicle_of_resolved(data: dict[str, Any]) -> Vehicle | Combination:

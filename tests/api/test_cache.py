@@ -66,6 +66,9 @@ def test_the_etag_is_the_sha256_of_the_canonical_resolved_request_with_the_engin
         "curve_points": None,
         # the body reports the SRT against the targets, so they are in the key (the configured defaults here)
         "targets": {"general": 0.35, "dangerous_goods": 0.40},
+        # and what they are judged on (the level-road SRT): a body cached when verdicts used the case's own SRT
+        # has another key, so a shared cache never serves it again
+        "targets_judged_on": "level_road_srt",
     }
     digest = hashlib.sha256(orjson.dumps(resolved, option=orjson.OPT_SORT_KEYS)).hexdigest()
     assert etag == f"{ENGINE_VERSION}:srt:{digest}"

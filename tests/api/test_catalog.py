@@ -127,6 +127,8 @@ def test_a_2d_record_and_a_spec_can_be_saved(cat, presets):
         ({"front_axle_to_cg_m": 5.0}, "vehicle.front_axle_to_cg_m"),
         # track = axle width at rest (Sec. 4.1.1)
         ({"rear_track_m": 2.5}, "vehicle.rear_track_m"),
+        # a unit slip: 31.5 t typed as kN (a heavy vehicle is over 3.5 t = 34.3 kN; engine.vehicle.plausibility)
+        ({"weight_kn": 31.5}, "vehicle.weight_kn"),
     ],
 )
 def test_the_engine_refuses_an_impossible_record_naming_the_field(cat, presets, change, field):

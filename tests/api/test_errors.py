@@ -26,7 +26,7 @@ def problem(r, status):
         ({"vehicle": BTRAIN, "rear_llt_limit": 0}, "rear_llt_limit", "greater than 0"),
         ({"vehicle": BTRAIN, "trailer_angle_deg": "ten"}, "trailer_angle_deg", "valid number"),
         ({"vehicle": BTRAIN, "load": {"overweight_percent": 80}}, "load.overweight_percent", "less than or equal"),
-        ({"vehicle": BTRAIN, "colour": "red"}, "colour", "Extra inputs are not permitted"),
+        ({"vehicle": BTRAIN, "colour": "red"}, "colour", "unknown field 'colour'"),
         ({"model": "3d"}, "vehicle", "Field required"),
         ({"vehicle": {"weight_kn": -1}}, "vehicle.weight_kn", "greater than 0"),
         ({"vehicle": BTRAIN, "include_curves": 1}, "include_curves", "valid boolean"),

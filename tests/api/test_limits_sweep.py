@@ -171,7 +171,14 @@ def test_sweep_rows_are_the_single_srt_results_in_product_order(shared_client):
         (8, 4),
     ]
     for row in out["rows"]:
-        assert set(row) == {"bank_percent", "slope_percent", "srt", "roll_angle_deg", "tilt_table_angle_deg"} | {
+        assert set(row) == {
+            "bank_percent",
+            "slope_percent",
+            "srt",
+            "level_road_srt",
+            "roll_angle_deg",
+            "tilt_table_angle_deg",
+        } | {
             "targets",
             "error",
         }
@@ -204,6 +211,7 @@ def test_sweep_csv_has_a_header_and_the_json_values(client):
         "bank_percent",
         "slope_percent",
         "srt",
+        "level_road_srt",
         "roll_angle_deg",
         "tilt_table_angle_deg",
         "meets_general",
@@ -271,7 +279,7 @@ def test_the_grid_overrides_the_base_case(shared_client):
 @pytest.mark.parametrize(
     ("grid", "field", "words"),
     [
-        ({"wind_speed": [1]}, "grid.wind_speed", "Extra inputs"),
+        ({"wind_speed": [1]}, "grid.wind_speed", "unknown field 'wind_speed'"),
         ({}, "grid", "at least one axis"),
         ({"bank_percent": list(range(-20, 20)), "slope_percent": list(range(-20, 20)), "vertical_offset_m": [0] * 13},
          "grid", "20800 cases"),

@@ -26,12 +26,14 @@ def post(client, path, body, status=200):
 
 
 def check_consistent(out: dict) -> None:
-    """The invariants of every SRT result, against the result's own SRT."""
-    srt = out["srt"]
+    """The invariants of every SRT result: the tilt angle of its own SRT, the targets judged on its level-road SRT
+    (the same as ``srt`` on a level road)."""
+    srt, level = out["srt"], out["level_road_srt"]
     assert out["tilt_table_angle_deg"] == pytest.approx(math.degrees(math.atan(srt)), rel=1e-12)
     for t in out["targets"]:
-        assert t["margin_g"] == pytest.approx(srt - t["target_g"], abs=1e-15)
-        assert t["meets"] == (srt >= t["target_g"])
+        assert t["judged_on"] == "level_road_srt"
+        assert t["margin_g"] == pytest.approx(level - t["target_g"], abs=1e-15)
+        assert t["meets"] == (level >= t["target_g"])
 
 
 def test_default_targets_on_the_rigid_btrain(shared_client):

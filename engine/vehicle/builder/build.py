@@ -9,6 +9,7 @@ from engine.errors import InvalidVehicle
 from engine.models.registry import get_model
 from engine.vehicle.builder.groups import ResolvedGroup, check_width, component_fields, resolve_group
 from engine.vehicle.builder.payloads import payload_item, tare_item
+from engine.vehicle.builder.plausible import check_spec_plausible
 from engine.vehicle.builder.spec import (
     G_M_PER_S2,
     THESIS,
@@ -260,6 +261,7 @@ def build_vehicle(spec: VehicleSpec) -> BuiltVehicle:
     if not isinstance(spec, VehicleSpec):
         raise InvalidVehicle("spec must be a VehicleSpec", field="spec", value=spec)
     check_choice(spec.unit_type, "spec.unit_type", UNIT_TYPES)
+    check_spec_plausible(spec)  # every typed number in its plausible range first, blamed on itself (unit slips)
     rear, front = resolve_group(spec.rear, "spec.rear"), resolve_group(spec.front, "spec.front")
     comp, notes = component_fields(rear, front)
     for g in (rear, front):

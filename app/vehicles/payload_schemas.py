@@ -6,7 +6,15 @@ from typing import Annotated
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.http.schemas import InputModel, describe, json_int
+from app.http.schemas import (
+    ABSENT,
+    InputModel,
+    describe,
+    exactly_one_schema,
+    json_int,
+    not_together_schema,
+    shape_error,
+)
 from app.vehicles.builder_schemas import EXAMPLE_SPEC, MAX_PAYLOADS, VehicleSpecIn
 from app.vehicles.combination_builder_schemas import CombinationSpecIn
 from engine.vehicle import builder as eb
@@ -19,19 +27,28 @@ class PayloadTableRequest(InputModel):
     the engine on the road and load case given: the 3D model's SRT for a single unit (`spec`), the governing SRT of
     the whole-combination model for a combination (`combination_spec`, the payload of its unit `unit_index`)."""
 
-    model_config = ConfigDict(json_schema_extra={"examples": [{"spec": EXAMPLE_SPEC, "target_srt_g": 0.45, "rows": 4}]})
-
-    spec: VehicleSpecIn | None = Field(  # type: ignore[valid-type]
-        None, description=describe("A single unit's measurable spec (docs/vehicles.md).", unit="see its fields")
+    model_config = ConfigDict(
+        json_schema_extra={
+            "allOf": [exactly_one_schema("spec", "combination_spec"), not_together_schema("unit_index", ["spec"])],
+            "examples": [{"spec": EXAMPLE_SPEC, "target_srt_g": 0.45, "rows": 4}],
+        }
     )
-    combination_spec: CombinationSpecIn | None = Field(  # type: ignore[valid-type]
+
+    spec: VehicleSpecIn = Field(  # type: ignore[valid-type]
         None,
+        json_schema_extra=ABSENT,
+        description=describe("A single unit's measurable spec (docs/vehicles.md).", unit="see its fields"),
+    )
+    combination_spec: CombinationSpecIn = Field(  # type: ignore[valid-type]
+        None,
+        json_schema_extra=ABSENT,
         description=describe(
             "A combination's measurable spec (`POST /v1/combinations/build`), instead of `spec`.", unit="see its fields"
         ),
     )
-    unit_index: json_int(ge=0, le=10) | None = Field(  # type: ignore[valid-type]
+    unit_index: json_int(ge=0, le=10) = Field(  # type: ignore[valid-type]
         None,
+        json_schema_extra=ABSENT,
         description=describe(
             "With `combination_spec`: which unit's payload varies (default the last unit that carries one).", unit="-"
         ),
@@ -62,9 +79,14 @@ class PayloadTableRequest(InputModel):
     @model_validator(mode="after")
     def _one_vehicle(self) -> PayloadTableRequest:
         if (self.spec is None) == (self.combination_spec is None):
-            raise ValueError("give exactly one of spec (a single unit) and combination_spec (a combination)")
+            field = "spec" if self.spec is None else "combination_spec"
+            raise shape_error(
+                "PayloadTableRequest", field, "give exactly one of spec (a single unit) and combination_spec"
+            )
         if self.unit_index is not None and self.combination_spec is None:
-            raise ValueError("unit_index selects a unit of a combination_spec; a single unit's spec has none")
+            raise shape_error(
+                "PayloadTableRequest", "unit_index", "unit_index selects a unit of a combination_spec; a spec has none"
+            )
         return self
 
     def engine_spec(self) -> eb.VehicleSpec | ec.CombinationSpec:

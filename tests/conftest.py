@@ -20,6 +20,18 @@ from .pg import PostgresServer, require_postgres_bindir
 SERVER_FIXTURES = frozenset({"live_server", "redis_server", "postgres_server", "server"})
 
 
+#: modules whose every test is slow and whose collection itself costs seconds (schemathesis builds the coverage
+#: phase's cases of the whole spec while the module is collected: about 30 s in each test process)
+SLOW_TO_COLLECT = frozenset({"test_schemathesis.py"})
+
+
+def pytest_ignore_collect(collection_path, config: pytest.Config) -> bool | None:
+    """The fast lane (``-m "not slow"``) does not collect what it would deselect anyway."""
+    if collection_path.name in SLOW_TO_COLLECT and "not slow" in (config.getoption("markexpr") or ""):
+        return True
+    return None
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     for item in items:
         parts = item.path.parts

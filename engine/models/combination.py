@@ -384,7 +384,8 @@ def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
         dq = np.linalg.solve(J, -jp)
         if np.all(np.isfinite(dq)) and np.linalg.norm(dq) < 1e12:
             d = np.append(dq, 1.0)
-            return d / np.linalg.norm(d)
+            # sqrt(sum(d d)), not norm's dot: the batch solve normalises its rows so, and gives the same bits
+            return d / np.sqrt((d * d).sum())
     except np.linalg.LinAlgError:
         pass
     _, _, vt = np.linalg.svd(np.column_stack([J, jp]))

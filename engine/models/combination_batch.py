@@ -63,11 +63,17 @@ def _row(x: np.ndarray) -> np.ndarray:
     return x[:, None]
 
 
+def _slope(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple) -> np.ndarray:
+    """jp of a regime for every row (the path's direction needs only it)."""
+    S = e.piece(tyre, zone)[1]
+    return -(_row(r.l1) * s.lat + _row(r.n1) * s.off) + S * (_row(r.n1) * e.capn_dof)
+
+
 def _loads(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
     """jp, k of a regime for every row (the scalar :func:`~engine.models.combination._assemble`, phase 2)."""
     _K, S, kz = e.piece(tyre, zone)
     capn, capg = e.capn_dof, e.capg_dof
-    jp = -(_row(r.l1) * s.lat + _row(r.n1) * s.off) + S * (_row(r.n1) * capn)
+    jp = _slope(s, e, r, tyre, zone)
     k = -(_row(r.l0) * s.lat + _row(r.n0) * s.off) + S * (_row(r.n0) * capn + _row(r.grade) * capg) + kz
     return jp, k
 
@@ -103,8 +109,8 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _stable(K: np.ndarray, P: np.ndarray) -> np.ndarray:
-    J = K - P
-    return np.linalg.eigvalsh(0.5 * (J + np.swapaxes(J, -1, -2)))[:, 0] > 0
+    # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
+    return np.linalg.eigvalsh(K - P)[:, 0] > 0
 
 
 def _state(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
@@ -216,7 +222,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         whole_set = rows.size == P.shape[0]  # every row, in order: no copies of the rows' arrays
         ri = r if whole_set else r.take(rows)
         K, _S, _kz = e.piece(tyre, zone)
-        jp, _k = _loads(s, e, ri, tyre, zone)
+        jp = _slope(s, e, ri, tyre, zone)
         try:
             dq = _solve(K - (P if whole_set else P[rows]), -jp)
         except _Alone:

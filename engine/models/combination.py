@@ -265,6 +265,8 @@ class _Elements:
         self.capn_dof, self.capg_dof = np.zeros(s.n), np.zeros(s.n)  # the same on the DOFs
         self.capn_dof[self.tdof], self.capg_dof[self.tdof] = self.capn, self.capg
         self.pieces: dict = {}
+        self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
+        self.slopes: dict = {}
         self.tables: dict = {}
 
     def piece(self, tyre: tuple, zone: tuple):
@@ -327,12 +329,13 @@ class _Elements:
                     zrows.append((idx, -1.0, -1.0)), ends.append((1, idx, BAND))  # -d - lash >= 0
             if phase == 1:
                 ends.append((2, -1, 0))  # 1 - t >= 0
+            n, tdof, zi_, zj_ = self.n, self.tdof.tolist(), self.zi.tolist(), self.zj.tolist()
+            ti, zi = [x[0] for x in trows], [x[0] for x in zrows]
+            i1 = np.array([tdof[t] for t in ti] + [zi_[z] for z in zi] + [n] * (phase == 1), dtype=int)
+            i2 = np.array([n] * len(ti) + [zj_[z] for z in zi] + [n] * (phase == 1), dtype=int)
             tr = np.array(trows, dtype=float).reshape(-1, 3)
             zr = np.array(zrows, dtype=float).reshape(-1, 3)
-            ti, zi = tr[:, 0].astype(int), zr[:, 0].astype(int)
-            n = self.n
-            i1 = np.concatenate([self.tdof[ti], self.zi[zi], [n] * (phase == 1)]).astype(int)
-            i2 = np.concatenate([np.full(ti.size, n), self.zj[zi], [n] * (phase == 1)]).astype(int)
+            ti, zi = np.array(ti, dtype=int), np.array(zi, dtype=int)
             out = self.tables[key] = (ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
         return out
 
@@ -362,20 +365,51 @@ def _assemble(s: System, rg: Regime, phase: int):
 
 
 def _constraint_rows(s: System, rg: Regime, phase: int, llt_limit: float | None):
-    """The inequalities bounding the current piece as ``(c1, c2, b, i1, i2, ends)``: ``c1 x[i1] + c2 x[i2] + b >= 0``
-    with x = (q, p), and what crossing each one means (:meth:`_Elements.table`)."""
+    """The inequalities bounding the current piece as ``(c1, c2, b, i1, i2, ends, scale)``: ``c1 x[i1] + c2 x[i2] + b
+    >= 0`` with x = (q, p), what crossing each one means (:meth:`_Elements.table`), and each row's scale."""
     e = _elements(s)
+    key = (tuple(rg.tyre), tuple(rg.zone), phase, llt_limit)
+    out = e.rows.get(key)  # on one road: the fixed point's iterations meet the same regimes
+    if out is None:
+        out = e.rows[key] = _rows_of(s, e, key)
+    return out
+
+
+def _rows_of(s: System, e: _Elements, key):
+    tyre, zone, phase, llt_limit = key
     r = s.road
-    ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tuple(rg.tyre), tuple(rg.zone), phase, llt_limit is not None)
-    if phase == 2:
-        cp, cc = r.n1 * e.capn[ti], r.n0 * e.capn[ti] + r.grade * e.capg[ti]
-    else:
-        cp, cc = np.zeros(ti.size), np.array([s.cap(s.tyres[t], r.neutral_ay) for t in ti], dtype=float)
+    ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, phase, llt_limit is not None)
+    if phase == 2:  # in Python floats: a handful of rows, each its own regime's once (the same IEEE operations)
+        c1, c2, b = [], [], []
+        for t, k_sign, f in zip(ti.tolist(), sk.tolist(), sf.tolist(), strict=True):
+            el = s.tyres[t]
+            fac = llt_limit if f == 0.0 else f
+            c1.append(k_sign * el.k)
+            c2.append(fac * (r.n1 * el.cap_normal))
+            b.append(fac * (r.n0 * el.cap_normal + r.grade * el.cap_grade))
+        for z, g, sign in zip(zi.tolist(), sg.tolist(), sb.tolist(), strict=True):
+            c1.append(g), c2.append(-g), b.append(sign * s.zones[z].lash)
+        c1, c2, b = np.array(c1, dtype=float), np.array(c2, dtype=float), np.array(b, dtype=float)
+        return c1, c2, b, i1, i2, ends, np.maximum(1.0, np.abs(c1) + np.abs(c2))
+    cp, cc = np.zeros(ti.size), np.array([s.cap(s.tyres[t], r.neutral_ay) for t in ti], dtype=float)  # phase 1
     fac = np.where(sf == 0.0, llt_limit if llt_limit is not None else 0.0, sf)
     c1 = np.concatenate([sk * e.tk[ti], sg, [-1.0] * (phase == 1)])
     c2 = np.concatenate([fac * cp, -sg, [0.0] * (phase == 1)])
     b = np.concatenate([fac * cc, sb * e.lash[zi], [1.0] * (phase == 1)])
-    return c1, c2, b, i1, i2, ends
+    return c1, c2, b, i1, i2, ends, np.maximum(1.0, np.abs(c1) + np.abs(c2))
+
+
+def _direction_terms(s: System, rg: Regime, phase: int):
+    """J and jp of :func:`_assemble` (the piece's direction needs no more), jp cached per regime: it depends on the
+    road, not on the P-Delta terms that the fixed point changes."""
+    e = _elements(s)
+    key = (tuple(rg.tyre), tuple(rg.zone), phase)
+    found = e.slopes.get(key)
+    if found is None:
+        J, jp, _k = _assemble(s, rg, phase)
+        e.slopes[key] = jp
+        return J, jp
+    return e.piece(key[0], key[1])[0] - s.P, found
 
 
 def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
@@ -413,9 +447,9 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
     prev_d = None
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
     for _ in range(max_steps):
-        J, jp, _k = _assemble(s, rg, phase)
+        J, jp = _direction_terms(s, rg, phase)
         d = _null_direction(J, jp)
-        c1, c2, b, i1, i2, ends = _constraint_rows(s, rg, phase, llt_limit)
+        c1, c2, b, i1, i2, ends, scale = _constraint_rows(s, rg, phase, llt_limit)
         rates = c1 * d[i1] + c2 * d[i2]
         # orientation: the first piece by the outward roll of the sprung masses; a later one into its own interior
         if last is None:
@@ -438,7 +472,6 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
             vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), ("end", d)))
             return vertices, "end"
         value = c1 * z[i1] + c2 * z[i2] + b
-        scale = np.maximum(1.0, np.abs(c1) + np.abs(c2))
         with np.errstate(divide="ignore", invalid="ignore"):
             tau = np.where(value > -TOL * scale, np.maximum(value, 0.0) / -rates, 0.0)
         tau = np.where(falling, tau, np.inf)
@@ -564,7 +597,8 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
     the state without lash, leaning outward) and the minimum polished in its regime."""
     n = s.n
     ay0 = s.road.neutral_ay
-    lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
+    lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones],
+                       cache=s.cache.setdefault("lashless", {}))  # fmt: skip
     linear = Regime([LINEAR] * len(s.tyres), [BAND] * len(s.zones))
     q0 = _state_at(lashless, linear, ay0)
     if not any(z.lash > 0 for z in s.zones):

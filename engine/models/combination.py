@@ -652,9 +652,25 @@ def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolut
     r = s.road
     if r.n1 == 0.0:
         return sol
-    # the first solve is the fixed-point map at ay = 0 (the normal factor at rest): with it the secant starts at once
+    # the first solve is the fixed-point map at ay = 0 (the normal factor at rest): with it the secant starts at once,
+    # from the limit that the rest solve's last piece and event give at their own fixed point (Newton on that vertex
+    # alone: one more path, not three, when the path at the limit's factor ends in the same piece)
     a0, g0 = 0.0, sol.srt
     a1 = sol.srt
+    if sol.peak > 0:
+        v = sol.vertices[sol.peak]
+        c1, c2, b, i1, i2, ends, _scale = _constraint_rows(s, v.regime, 2, llt_limit if llt_limit < 1.0 else None)
+        kind, idx, state = v.event
+        code = (_KINDS.index(kind), idx, 0 if state is None else state)
+        row = next(k for k, e in enumerate(ends.tolist()) if tuple(e) == code)
+        K, _S, _kz = _elements(s).piece(tuple(v.regime.tyre), tuple(v.regime.zone))
+        _J, jp, k = _assemble(s, v.regime, 2)
+        a1 = float(
+            _vertex_fixed_point(
+                K[None], jp[None], k[None], np.array([[c1[row], c2[row]]]), np.array([b[row]]),
+                np.array([[i1[row], i2[row]]]), s.P_normal, s.P_grade, r.n0, r.n1, r.grade, sol.srt,
+            )[0]
+        )  # fmt: skip
     for _ in range(30):
         sol = _solve_unit_at(s.at_normal(r.n0 + r.n1 * a1), llt_limit, watch_tyre)
         g1 = sol.srt - a1
@@ -665,6 +681,40 @@ def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolut
         else:
             a0, g0, a1 = a1, g1, a1 - g1 * (a1 - a0) / (g1 - g0)
     raise ConvergenceError("the normal factor of the P-Delta terms did not settle at the limit")
+
+
+def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
+    """Rows of vertices (stacked on the first axis): each the point of its regime's line ``(K - P(N)) q + jp ay + k =
+    0`` where its event's constraint ``c . (x[i1], x[i2]) + b = 0`` holds, with the P-Delta terms ``P(N) = N Pn +
+    grade Pg`` at that point's own normal factor ``N = n0 + n1 ay``: a few Newton steps on ay from ``a``, each row on
+    its own (:mod:`engine.models.combination_batch` takes them for many rows; the same bits for one). Pn and Pg are
+    diagonal, so their products are elementwise."""
+    m, n = K.shape[0], K.shape[1]
+    a = np.array(a, dtype=float).reshape(m)
+    n0, n1, grade = (np.broadcast_to(np.asarray(x, dtype=float), (m,)) for x in (n0, n1, grade))
+    pn, pg = np.diagonal(Pn), np.diagonal(Pg)
+    rows = np.arange(m)
+    M = np.zeros((m, n + 1, n + 1))
+    M[:, :n, n] = jp
+    M[rows, n, ii[:, 0]] += c[:, 0]
+    M[rows, n, ii[:, 1]] += c[:, 1]
+    rhs = np.concatenate([-k, -b[:, None]], axis=1)
+    active = np.ones(m, dtype=bool)  # a row stops at its own last step, whatever the others do
+    for _ in range(8):
+        M[:, :n, :n] = K - ((n0 + n1 * a)[:, None] * pn + grade[:, None] * pg)[:, :, None] * np.eye(n)
+        try:
+            z = np.linalg.solve(M, rhs[..., None])[..., 0]
+            dz = np.linalg.solve(M, np.concatenate([pn * z[:, :n], np.zeros((m, 1))], axis=1)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = (z[:, n] - a) / (dz[:, n] * n1 - 1.0)
+        step = np.where(active & np.isfinite(step), step, 0.0)
+        a = a - step
+        active &= np.abs(step) > 1e-15
+        if not active.any():
+            break
+    return a
 
 
 def _solve_unit_at(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:

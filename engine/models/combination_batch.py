@@ -205,6 +205,11 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
     n = s.n
     best_ay = z0[:, n].copy()
     best_z = z0.copy()
+    # the piece and event of each row's peak vertex (the scalar's Newton start on a bank): its regime's index in
+    # ``pieces`` (-1: the peak is the start), and the event's constraint (c1, c2, b, i1, i2)
+    pieces: list = []
+    peak_piece = np.full(z0.shape[0], -1)
+    peak_row = np.zeros((z0.shape[0], 5))
     ok = ok.copy()
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
     # a group: (rows, z, prev_d, tyre, zone, last, steps)
@@ -275,6 +280,12 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         higher = go & (z[:, n] > best_ay[rows])
         best_ay[rows[higher]] = z[higher, n]
         best_z[rows[higher]] = z[higher]
+        if higher.any():
+            pieces.append((tyre, zone))
+            h = np.flatnonzero(higher)
+            w = which[h]
+            peak_piece[rows[h]] = len(pieces) - 1
+            peak_row[rows[h]] = np.column_stack([c1[h, w], c2[h, w], b[h, w], i1[w], i2[w]])
         for row in np.unique(which[go]):
             sel = go & (which == row)
             kc, idx, state = (int(x) for x in ends[row])
@@ -289,7 +300,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
                 previous = zone[idx]
                 new_t, new_z = tyre, (*zone[:idx], state, *zone[idx + 1 :])
             work.append((rows[sel], z[sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
-    return best_ay, best_z, ok
+    return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
 
 
 def _solve_at(s, e, lashless, r, P, limit):
@@ -297,7 +308,7 @@ def _solve_at(s, e, lashless, r, P, limit):
         z0, regimes, which, ok = _start(s, e, lashless, r, P)
     except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
         k = P.shape[0]
-        return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool)
+        return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
     return _trace(s, e, r, P, limit, z0, regimes, which, ok)
 
 
@@ -306,16 +317,30 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     e = whole._elements(s)
     lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
     P0 = _row(_row(r.n0)) * s.P_normal + _row(_row(r.grade)) * s.P_grade  # build_systems: the P at rest
-    srt, zs, ok = _solve_at(s, e, lashless, r, P0, limit)
+    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit)
     active = np.flatnonzero(ok & (r.n1 != 0.0))
     a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
+    pieces, peak_piece, peak_row = peaks
+    for g, (tyre, zone) in enumerate(pieces):  # the scalar's Newton start, row by row
+        sel = np.flatnonzero(peak_piece[active] == g)
+        if not sel.size:
+            continue
+        rows = active[sel]
+        ri = r.take(rows)
+        jp, k = _loads(s, e, ri, tyre, zone)
+        K = np.broadcast_to(e.piece(tyre, zone)[0], (rows.size, s.n, s.n))
+        pr = peak_row[rows]
+        a1[sel] = whole._vertex_fixed_point(
+            K, jp, k, pr[:, :2], pr[:, 2], pr[:, 3:].astype(int), s.P_normal, s.P_grade, ri.n0, ri.n1, ri.grade,
+            srt[rows],
+        )  # fmt: skip
     for _ in range(30):
         if not active.size:
             break
         ra = r.take(active)
         normal = ra.n0 + ra.n1 * a1
         P = _row(_row(normal)) * s.P_normal + _row(_row(ra.grade)) * s.P_grade
-        got, gz, gok = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active])
+        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active])
         ok[active[~gok]] = False
         g1 = got - a1
         done = gok & (np.abs(g1) <= 1e-13)

@@ -267,6 +267,7 @@ class _Elements:
         self.pieces: dict = {}
         self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
         self.slopes: dict = {}
+        self.ends: dict = {}
         self.tables: dict = {}
 
     def piece(self, tyre: tuple, zone: tuple):
@@ -337,6 +338,16 @@ class _Elements:
             zr = np.array(zrows, dtype=float).reshape(-1, 3)
             ti, zi = np.array(ti, dtype=int), np.array(zi, dtype=int)
             out = self.tables[key] = (ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
+        return out
+
+    def row_of(self, tyre: tuple, zone: tuple, phase: int, limit: bool) -> dict:
+        """(kind, index, new state) -> the first row of the regime's :meth:`table` with that end."""
+        key = (tyre, zone, phase, limit)
+        out = self.ends.get(key)
+        if out is None:
+            out = self.ends[key] = {}
+            for k, e in enumerate(self.table(tyre, zone, phase, limit)[-1].tolist()):
+                out.setdefault(tuple(e), k)
         return out
 
 
@@ -416,7 +427,7 @@ def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
     """The unit null vector of [J | jp] (the direction of the piece's solution line)."""
     try:
         dq = np.linalg.solve(J, -jp)
-        if np.all(np.isfinite(dq)) and np.linalg.norm(dq) < 1e12:
+        if float(dq @ dq) < 1e24:  # finite and |dq| < 1e12 (nan and inf fail the comparison)
             d = np.append(dq, 1.0)
             # sqrt(sum(d d)), not norm's dot: the batch solve normalises its rows so, and gives the same bits
             return d / np.sqrt((d * d).sum())
@@ -460,8 +471,12 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
                 d, rates = -d, -rates
         else:
             kind, idx, previous = last
-            back = np.flatnonzero((ends[:, 0] == kind) & (ends[:, 1] == idx) & (ends[:, 2] == previous))
-            rate = float(rates[back[0]]) if back.size else 0.0
+            back = (
+                _elements(s)
+                .row_of(tuple(rg.tyre), tuple(rg.zone), phase, llt_limit is not None)
+                .get((kind, idx, previous))
+            )
+            rate = float(rates[back]) if back is not None else 0.0
             if abs(rate) > 1e-14:
                 if rate < 0:
                     d, rates = -d, -rates

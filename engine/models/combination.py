@@ -153,6 +153,9 @@ class System:
     road: RoadFactors = field(default=None)  # type: ignore[assignment]
     P_normal: np.ndarray = field(default=None)  # type: ignore[assignment]  # P per unit normal factor
     P_grade: np.ndarray = field(default=None)  # type: ignore[assignment]  # P per unit sin(grade)
+    #: the element arrays and the per-regime pieces (:func:`_elements`): they do not depend on the normal factor, so
+    #: the copies :meth:`at_normal` makes share them across the fixed point's iterations
+    cache: dict = field(default_factory=dict, compare=False, repr=False)
 
     def at_normal(self, normal: float) -> System:
         """The same equations with the P-Delta terms at the normal factor ``normal``."""
@@ -243,103 +246,191 @@ class Regime:
     zone: list[int]
 
 
+class _Elements:
+    """The system's tyres and dead zones as arrays, and what each regime makes of them (cached per regime: the path
+    meets the same regimes in every iteration of the fixed point). Profiling showed the per-element Python loops
+    that built the equations and the constraints row by row taking most of a solve."""
+
+    def __init__(self, s: System):
+        self.n = s.n
+        self.tdof = np.array([t.dof for t in s.tyres], dtype=int)
+        self.tk = np.array([t.k for t in s.tyres], dtype=float)
+        self.capn = np.array([t.cap_normal for t in s.tyres], dtype=float)
+        self.capg = np.array([t.cap_grade for t in s.tyres], dtype=float)
+        self.steer = np.array([t.steer for t in s.tyres], dtype=bool)
+        self.zi = np.array([z.i for z in s.zones], dtype=int)
+        self.zj = np.array([z.j for z in s.zones], dtype=int)
+        self.zk = np.array([z.k for z in s.zones], dtype=float)
+        self.lash = np.array([z.lash for z in s.zones], dtype=float)
+        self.capn_dof, self.capg_dof = np.zeros(s.n), np.zeros(s.n)  # the same on the DOFs
+        self.capn_dof[self.tdof], self.capg_dof[self.tdof] = self.capn, self.capg
+        self.pieces: dict = {}
+        self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
+        self.slopes: dict = {}
+        self.ends: dict = {}
+        self.tables: dict = {}
+
+    def piece(self, tyre: tuple, zone: tuple):
+        """(K, S, kz) of a regime: its stiffness matrix, the sign of each lifted group's moment on its DOF (0 where
+        linear), and the constant moments of the taken-up lashes."""
+        key = (tyre, zone)
+        out = self.pieces.get(key)
+        if out is None:
+            n = self.n
+            K, S, kz = np.zeros((n, n)), np.zeros(n), np.zeros(n)
+            for t, state in enumerate(tyre):
+                if state == LINEAR:
+                    K[self.tdof[t], self.tdof[t]] += self.tk[t]
+                else:
+                    S[self.tdof[t]] = float(state)
+            for z, state in enumerate(zone):
+                lash = self.lash[z]
+                if state == BAND and lash > 0:
+                    continue
+                i, j, k = self.zi[z], self.zj[z], self.zk[z]
+                K[i, i] += k
+                K[j, j] += k
+                K[i, j] -= k
+                K[j, i] -= k
+                if lash > 0:
+                    off = -k * lash * state  # PLUS: K (d - lash); MINUS: K (d + lash)
+                    kz[i] += off
+                    kz[j] -= off
+            out = self.pieces[key] = (K, S, kz)
+        return out
+
+    def table(self, tyre: tuple, zone: tuple, phase: int, limit: bool):
+        """The inequalities bounding a regime, ``c1 x[i1] + c2 x[i2] + b >= 0`` (x = (q, p)), in a fixed order (a
+        tie goes to the first), as index arrays over the tyres and zones: tyre rows ``(tyre index, sign of k, factor
+        of the lift-off moment: +-1, or 0 for the LLT limit)``, zone rows ``(zone index, sign of d, sign of lash)``,
+        and what crossing each means, ``ends``: rows of (kind 0 tyre / 1 zone / 2 stop, index, new state)."""
+        key = (tyre, zone, phase, limit)
+        out = self.tables.get(key)
+        if out is None:
+            trows, zrows, ends = [], [], []
+            for idx, state in enumerate(tyre):
+                if state == LINEAR:
+                    trows.append((idx, -1.0, 1.0)), ends.append((0, idx, LIFTED))  # cap - K q >= 0
+                    trows.append((idx, 1.0, 1.0)), ends.append((0, idx, LIFTED_OUT))  # K q + cap >= 0
+                    if phase == 2 and limit and not self.steer[idx]:
+                        trows.append((idx, -1.0, 0.0)), ends.append((2, idx, 0))  # L cap - K q >= 0
+                elif state == LIFTED:
+                    trows.append((idx, 1.0, -1.0)), ends.append((0, idx, LINEAR))  # K q - cap >= 0
+                else:
+                    trows.append((idx, -1.0, -1.0)), ends.append((0, idx, LINEAR))  # -K q - cap >= 0
+            for idx, state in enumerate(zone):
+                if self.lash[idx] <= 0:
+                    continue
+                if state == BAND:
+                    zrows.append((idx, -1.0, 1.0)), ends.append((1, idx, PLUS))  # lash - d >= 0
+                    zrows.append((idx, 1.0, 1.0)), ends.append((1, idx, MINUS))  # d + lash >= 0
+                elif state == PLUS:
+                    zrows.append((idx, 1.0, -1.0)), ends.append((1, idx, BAND))  # d - lash >= 0
+                else:
+                    zrows.append((idx, -1.0, -1.0)), ends.append((1, idx, BAND))  # -d - lash >= 0
+            if phase == 1:
+                ends.append((2, -1, 0))  # 1 - t >= 0
+            n, tdof, zi_, zj_ = self.n, self.tdof.tolist(), self.zi.tolist(), self.zj.tolist()
+            ti, zi = [x[0] for x in trows], [x[0] for x in zrows]
+            i1 = np.array([tdof[t] for t in ti] + [zi_[z] for z in zi] + [n] * (phase == 1), dtype=int)
+            i2 = np.array([n] * len(ti) + [zj_[z] for z in zi] + [n] * (phase == 1), dtype=int)
+            tr = np.array(trows, dtype=float).reshape(-1, 3)
+            zr = np.array(zrows, dtype=float).reshape(-1, 3)
+            ti, zi = np.array(ti, dtype=int), np.array(zi, dtype=int)
+            out = self.tables[key] = (ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
+        return out
+
+    def row_of(self, tyre: tuple, zone: tuple, phase: int, limit: bool) -> dict:
+        """(kind, index, new state) -> the first row of the regime's :meth:`table` with that end."""
+        key = (tyre, zone, phase, limit)
+        out = self.ends.get(key)
+        if out is None:
+            out = self.ends[key] = {}
+            for k, e in enumerate(self.table(tyre, zone, phase, limit)[-1].tolist()):
+                out.setdefault(tuple(e), k)
+        return out
+
+
+def _elements(s: System) -> _Elements:
+    e = s.cache.get("elements")
+    if e is None:
+        e = s.cache["elements"] = _Elements(s)
+    return e
+
+
 def _assemble(s: System, rg: Regime, phase: int):
     """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1)."""
-    n, r = s.n, s.road
-    J = -s.P.copy()
-    jp = np.zeros(n)
-    k = np.zeros(n)
-    ay0 = r.neutral_ay
+    r = s.road
+    e = _elements(s)
+    K, S, kz = e.piece(tuple(rg.tyre), tuple(rg.zone))
+    J = K - s.P
+    capn, capg = e.capn_dof, e.capg_dof
     if phase == 2:
-        jp -= r.l1 * s.lat + r.n1 * s.off
-        k -= r.l0 * s.lat + r.n0 * s.off
+        jp = -(r.l1 * s.lat + r.n1 * s.off) + S * (r.n1 * capn)
+        k = -(r.l0 * s.lat + r.n0 * s.off) + S * (r.n0 * capn + r.grade * capg) + kz
     else:  # at ay0: no lateral force; the offsets scaled by t
-        jp -= (r.n0 + r.n1 * ay0) * s.off
-    for t, state in zip(s.tyres, rg.tyre, strict=True):
-        if state == LINEAR:
-            J[t.dof, t.dof] += t.k
-        else:
-            sign = float(state)
-            if phase == 2:
-                jp[t.dof] += sign * r.n1 * t.cap_normal
-                k[t.dof] += sign * (r.n0 * t.cap_normal + r.grade * t.cap_grade)
-            else:
-                k[t.dof] += sign * s.cap(t, ay0)
-    for z, state in zip(s.zones, rg.zone, strict=True):
-        if state == BAND and z.lash > 0:
-            continue
-        J[z.i, z.i] += z.k
-        J[z.j, z.j] += z.k
-        J[z.i, z.j] -= z.k
-        J[z.j, z.i] -= z.k
-        if z.lash > 0:
-            off = -z.k * z.lash * state  # PLUS: K (d - lash); MINUS: K (d + lash)
-            k[z.i] += off
-            k[z.j] -= off
+        ay0 = r.neutral_ay
+        jp = -(r.n0 + r.n1 * ay0) * s.off
+        k = S * ((r.n0 + r.n1 * ay0) * capn + r.grade * capg) + kz
     return J, jp, k
 
 
-def _constraints(s: System, rg: Regime, phase: int, llt_limit: float | None, watch: int | None):
-    """The inequalities ``a . (q, p) + b >= 0`` bounding the current piece, with what crossing each one means:
-    ``("tyre", index, new state)``, ``("zone", index, new state)``, ``("stop", ...)``, ``("watch", index)``."""
-    n, r = s.n, s.road
-    rows, ends = [], []
-    ay0 = r.neutral_ay
+def _constraint_rows(s: System, rg: Regime, phase: int, llt_limit: float | None):
+    """The inequalities bounding the current piece as ``(c1, c2, b, i1, i2, ends, scale)``: ``c1 x[i1] + c2 x[i2] + b
+    >= 0`` with x = (q, p), what crossing each one means (:meth:`_Elements.table`), and each row's scale."""
+    e = _elements(s)
+    key = (tuple(rg.tyre), tuple(rg.zone), phase, llt_limit)
+    out = e.rows.get(key)  # on one road: the fixed point's iterations meet the same regimes
+    if out is None:
+        out = e.rows[key] = _rows_of(s, e, key)
+    return out
 
-    def cap_row(t: Tyres):  # (coefficient of p, constant) of the lift-off moment
-        if phase == 2:
-            return r.n1 * t.cap_normal, r.n0 * t.cap_normal + r.grade * t.cap_grade
-        return 0.0, s.cap(t, ay0)
 
-    for idx, (t, state) in enumerate(zip(s.tyres, rg.tyre, strict=True)):
-        cp, cc = cap_row(t)
-        a = np.zeros(n + 1)
-        if state == LINEAR:
-            a[t.dof], a[n] = -t.k, cp  # cap - K q >= 0
-            rows.append((a, cc)), ends.append(("tyre", idx, LIFTED))
-            a2 = np.zeros(n + 1)
-            a2[t.dof], a2[n] = t.k, cp  # K q + cap >= 0
-            rows.append((a2, cc)), ends.append(("tyre", idx, LIFTED_OUT))
-            if phase == 2 and llt_limit is not None and not t.steer:
-                a3 = np.zeros(n + 1)
-                a3[t.dof], a3[n] = -t.k, llt_limit * cp  # L cap - K q >= 0
-                rows.append((a3, llt_limit * cc)), ends.append(("stop", idx, None))
-        elif state == LIFTED:
-            a[t.dof], a[n] = t.k, -cp  # K q - cap >= 0
-            rows.append((a, -cc)), ends.append(("tyre", idx, LINEAR))
-        else:
-            a[t.dof], a[n] = -t.k, -cp  # -K q - cap >= 0
-            rows.append((a, -cc)), ends.append(("tyre", idx, LINEAR))
-    for idx, (z, state) in enumerate(zip(s.zones, rg.zone, strict=True)):
-        if z.lash <= 0:
-            continue
-        a = np.zeros(n + 1)
-        if state == BAND:
-            a[z.i], a[z.j] = -1.0, 1.0  # lash - d >= 0
-            rows.append((a, z.lash)), ends.append(("zone", idx, PLUS))
-            a2 = np.zeros(n + 1)
-            a2[z.i], a2[z.j] = 1.0, -1.0  # d + lash >= 0
-            rows.append((a2, z.lash)), ends.append(("zone", idx, MINUS))
-        elif state == PLUS:
-            a[z.i], a[z.j] = 1.0, -1.0  # d - lash >= 0
-            rows.append((a, -z.lash)), ends.append(("zone", idx, BAND))
-        else:
-            a[z.i], a[z.j] = -1.0, 1.0  # -d - lash >= 0
-            rows.append((a, -z.lash)), ends.append(("zone", idx, BAND))
-    if phase == 1:
-        a = np.zeros(n + 1)
-        a[n] = -1.0  # 1 - t >= 0
-        rows.append((a, 1.0)), ends.append(("stop", -1, None))
-    return rows, ends
+def _rows_of(s: System, e: _Elements, key):
+    tyre, zone, phase, llt_limit = key
+    r = s.road
+    ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, phase, llt_limit is not None)
+    if phase == 2:  # in Python floats: a handful of rows, each its own regime's once (the same IEEE operations)
+        c1, c2, b = [], [], []
+        for t, k_sign, f in zip(ti.tolist(), sk.tolist(), sf.tolist(), strict=True):
+            el = s.tyres[t]
+            fac = llt_limit if f == 0.0 else f
+            c1.append(k_sign * el.k)
+            c2.append(fac * (r.n1 * el.cap_normal))
+            b.append(fac * (r.n0 * el.cap_normal + r.grade * el.cap_grade))
+        for z, g, sign in zip(zi.tolist(), sg.tolist(), sb.tolist(), strict=True):
+            c1.append(g), c2.append(-g), b.append(sign * s.zones[z].lash)
+        c1, c2, b = np.array(c1, dtype=float), np.array(c2, dtype=float), np.array(b, dtype=float)
+        return c1, c2, b, i1, i2, ends, np.maximum(1.0, np.abs(c1) + np.abs(c2))
+    cp, cc = np.zeros(ti.size), np.array([s.cap(s.tyres[t], r.neutral_ay) for t in ti], dtype=float)  # phase 1
+    fac = np.where(sf == 0.0, llt_limit if llt_limit is not None else 0.0, sf)
+    c1 = np.concatenate([sk * e.tk[ti], sg, [-1.0] * (phase == 1)])
+    c2 = np.concatenate([fac * cp, -sg, [0.0] * (phase == 1)])
+    b = np.concatenate([fac * cc, sb * e.lash[zi], [1.0] * (phase == 1)])
+    return c1, c2, b, i1, i2, ends, np.maximum(1.0, np.abs(c1) + np.abs(c2))
+
+
+def _direction_terms(s: System, rg: Regime, phase: int):
+    """J and jp of :func:`_assemble` (the piece's direction needs no more), jp cached per regime: it depends on the
+    road, not on the P-Delta terms that the fixed point changes."""
+    e = _elements(s)
+    key = (tuple(rg.tyre), tuple(rg.zone), phase)
+    found = e.slopes.get(key)
+    if found is None:
+        J, jp, _k = _assemble(s, rg, phase)
+        e.slopes[key] = jp
+        return J, jp
+    return e.piece(key[0], key[1])[0] - s.P, found
 
 
 def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
     """The unit null vector of [J | jp] (the direction of the piece's solution line)."""
     try:
         dq = np.linalg.solve(J, -jp)
-        if np.all(np.isfinite(dq)) and np.linalg.norm(dq) < 1e12:
+        if float(dq @ dq) < 1e24:  # finite and |dq| < 1e12 (nan and inf fail the comparison)
             d = np.append(dq, 1.0)
-            return d / np.linalg.norm(d)
+            # sqrt(sum(d d)), not norm's dot: the batch solve normalises its rows so, and gives the same bits
+            return d / np.sqrt((d * d).sum())
     except np.linalg.LinAlgError:
         pass
     _, _, vt = np.linalg.svd(np.column_stack([J, jp]))
@@ -353,6 +444,9 @@ class _Vertex:
     event: tuple | None
 
 
+_KINDS = ("tyre", "zone", "stop")
+
+
 def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float | None, watch: int | None,
            orient: float):  # fmt: skip
     """Follow the path from ``z0`` event by event. Returns the vertices (state, regime, event that ended the piece)
@@ -364,41 +458,46 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
     prev_d = None
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
     for _ in range(max_steps):
-        J, jp, _k = _assemble(s, rg, phase)
+        J, jp = _direction_terms(s, rg, phase)
         d = _null_direction(J, jp)
-        rows, ends = _constraints(s, rg, phase, llt_limit, watch)
+        c1, c2, b, i1, i2, ends, scale = _constraint_rows(s, rg, phase, llt_limit)
+        rates = c1 * d[i1] + c2 * d[i2]
         # orientation: the first piece by the outward roll of the sprung masses; a later one into its own interior
         if last is None:
             w = float(s.weights @ d[:n])
             if w == 0.0:
                 w = d[n]
             if w * orient < 0:
-                d = -d
+                d, rates = -d, -rates
         else:
             kind, idx, previous = last
-            into = _entering_row(s, rg, phase, kind, idx, previous, llt_limit)
-            rate = float(into @ d) if into is not None else 0.0
+            back = (
+                _elements(s)
+                .row_of(tuple(rg.tyre), tuple(rg.zone), phase, llt_limit is not None)
+                .get((kind, idx, previous))
+            )
+            rate = float(rates[back]) if back is not None else 0.0
             if abs(rate) > 1e-14:
-                d = d if rate > 0 else -d
+                if rate < 0:
+                    d, rates = -d, -rates
             elif prev_d is not None and float(prev_d @ d) < 0:
-                d = -d
-        best, which = math.inf, None
-        for (a, b), end in zip(rows, ends, strict=True):
-            rate = float(a @ d)
-            if rate >= -1e-15:
-                continue
-            value = float(a @ z) + b
-            scale = max(1.0, float(np.abs(a[:n]).sum() + abs(a[n])))
-            tau = max(value, 0.0) / -rate if value > -TOL * scale else 0.0
-            if tau < best:
-                best, which = tau, end
-        if which is None:
+                d, rates = -d, -rates
+        falling = rates < -1e-15
+        if not falling.any():
             vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), ("end", d)))
             return vertices, "end"
+        value = c1 * z[i1] + c2 * z[i2] + b
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tau = np.where(value > -TOL * scale, np.maximum(value, 0.0) / -rates, 0.0)
+        tau = np.where(falling, tau, np.inf)
+        row = int(np.argmin(tau))
+        best = float(tau[row])
+        kc, idx, state = (int(x) for x in ends[row])
+        which = (_KINDS[kc], idx, None if kc == 2 else state)
         z = z + best * d
         prev_d = d
         vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), which))
-        kind, idx, state = which
+        kind = which[0]
         if kind == "stop":
             return vertices, "stop"
         if phase == 2 and kind == "tyre" and state == LIFTED and sum(x == LINEAR for x in rg.tyre) == 1:
@@ -411,18 +510,8 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
             previous, rg.tyre[idx] = rg.tyre[idx], state
         else:
             previous, rg.zone[idx] = rg.zone[idx], state
-        last = (kind, idx, previous)
+        last = (kc, idx, previous)
     raise ConvergenceError(f"the roll path did not end within {max_steps} events", iterations=max_steps)
-
-
-def _entering_row(s: System, rg: Regime, phase: int, kind: str, idx: int, previous: int, llt_limit):
-    """The gradient of the new state's constraint on the boundary just crossed (the one leading back to
-    ``previous``): the path must move away from it, into the new state."""
-    rows, ends = _constraints(s, rg, phase, llt_limit, None)
-    for (a, _b), (k2, i2, st) in zip(rows, ends, strict=True):
-        if k2 == kind and i2 == idx and st == previous:
-            return a
-    return None
 
 
 # ------------------------------------------------------------------------------------------- results
@@ -492,13 +581,17 @@ def _potential(s: System, q: np.ndarray, ay: float) -> float:
     return v
 
 
-def _settled(s: System, q: np.ndarray, ay: float) -> tuple[np.ndarray, Regime] | None:
-    """``q`` polished to its regime's exact equilibrium, if that lies in the same regime and is stable."""
+def _settled(s: System, q: np.ndarray, ay: float, made_in: Regime | None = None) -> tuple[np.ndarray, Regime] | None:
+    """``q`` polished to its regime's exact equilibrium, if that lies in the same regime and is stable (``made_in``:
+    the regime whose equilibrium ``q`` already is, when known: polishing it again would give the same bits)."""
     rg = _consistent(s, q, ay)
-    try:
-        exact = _state_at(s, rg, ay)
-    except np.linalg.LinAlgError:
-        return None
+    if made_in is not None and rg.tyre == made_in.tyre and rg.zone == made_in.zone:
+        exact = q
+    else:
+        try:
+            exact = _state_at(s, rg, ay)
+        except np.linalg.LinAlgError:
+            return None
     again = _consistent(s, exact, ay)
     if again.tyre != rg.tyre or again.zone != rg.zone:
         return None
@@ -519,11 +612,12 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
     the state without lash, leaning outward) and the minimum polished in its regime."""
     n = s.n
     ay0 = s.road.neutral_ay
-    lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones])
+    lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones],
+                       cache=s.cache.setdefault("lashless", {}))  # fmt: skip
     linear = Regime([LINEAR] * len(s.tyres), [BAND] * len(s.zones))
     q0 = _state_at(lashless, linear, ay0)
     if not any(z.lash > 0 for z in s.zones):
-        found = _settled(s, q0, ay0)
+        found = _settled(s, q0, ay0, linear)
         if found is None:
             raise InvalidLoad("the vehicle does not stand at rest with this load case", field="load.lateral_offset_m")
         return np.append(found[0], ay0), found[1]
@@ -544,7 +638,7 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
             q = _state_at(s, guess, ay0)
         except np.linalg.LinAlgError:
             break
-        found = _settled(s, q, ay0)
+        found = _settled(s, q, ay0, guess)
         if found is not None:
             return np.append(found[0], ay0), found[1]
         guess = _consistent(s, q, ay0)
@@ -573,8 +667,25 @@ def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolut
     r = s.road
     if r.n1 == 0.0:
         return sol
-    a0, g0 = sol.srt, None
-    a1 = a0
+    # the first solve is the fixed-point map at ay = 0 (the normal factor at rest): with it the secant starts at once,
+    # from the limit that the rest solve's last piece and event give at their own fixed point (Newton on that vertex
+    # alone: one more path, not three, when the path at the limit's factor ends in the same piece)
+    a0, g0 = 0.0, sol.srt
+    a1 = sol.srt
+    if sol.peak > 0:
+        v = sol.vertices[sol.peak]
+        c1, c2, b, i1, i2, ends, _scale = _constraint_rows(s, v.regime, 2, llt_limit if llt_limit < 1.0 else None)
+        kind, idx, state = v.event
+        code = (_KINDS.index(kind), idx, 0 if state is None else state)
+        row = next(k for k, e in enumerate(ends.tolist()) if tuple(e) == code)
+        K, _S, _kz = _elements(s).piece(tuple(v.regime.tyre), tuple(v.regime.zone))
+        _J, jp, k = _assemble(s, v.regime, 2)
+        a1 = float(
+            _vertex_fixed_point(
+                K[None], jp[None], k[None], np.array([[c1[row], c2[row]]]), np.array([b[row]]),
+                np.array([[i1[row], i2[row]]]), s.P_normal, s.P_grade, r.n0, r.n1, r.grade, sol.srt,
+            )[0]
+        )  # fmt: skip
     for _ in range(30):
         sol = _solve_unit_at(s.at_normal(r.n0 + r.n1 * a1), llt_limit, watch_tyre)
         g1 = sol.srt - a1
@@ -585,6 +696,40 @@ def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolut
         else:
             a0, g0, a1 = a1, g1, a1 - g1 * (a1 - a0) / (g1 - g0)
     raise ConvergenceError("the normal factor of the P-Delta terms did not settle at the limit")
+
+
+def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
+    """Rows of vertices (stacked on the first axis): each the point of its regime's line ``(K - P(N)) q + jp ay + k =
+    0`` where its event's constraint ``c . (x[i1], x[i2]) + b = 0`` holds, with the P-Delta terms ``P(N) = N Pn +
+    grade Pg`` at that point's own normal factor ``N = n0 + n1 ay``: a few Newton steps on ay from ``a``, each row on
+    its own (:mod:`engine.models.combination_batch` takes them for many rows; the same bits for one). Pn and Pg are
+    diagonal, so their products are elementwise."""
+    m, n = K.shape[0], K.shape[1]
+    a = np.array(a, dtype=float).reshape(m)
+    n0, n1, grade = (np.broadcast_to(np.asarray(x, dtype=float), (m,)) for x in (n0, n1, grade))
+    pn, pg = np.diagonal(Pn), np.diagonal(Pg)
+    rows = np.arange(m)
+    M = np.zeros((m, n + 1, n + 1))
+    M[:, :n, n] = jp
+    M[rows, n, ii[:, 0]] += c[:, 0]
+    M[rows, n, ii[:, 1]] += c[:, 1]
+    rhs = np.concatenate([-k, -b[:, None]], axis=1)
+    active = np.ones(m, dtype=bool)  # a row stops at its own last step, whatever the others do
+    for _ in range(8):
+        M[:, :n, :n] = K - ((n0 + n1 * a)[:, None] * pn + grade[:, None] * pg)[:, :, None] * np.eye(n)
+        try:
+            z = np.linalg.solve(M, rhs[..., None])[..., 0]
+            dz = np.linalg.solve(M, np.concatenate([pn * z[:, :n], np.zeros((m, 1))], axis=1)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = (z[:, n] - a) / (dz[:, n] * n1 - 1.0)
+        step = np.where(active & np.isfinite(step), step, 0.0)
+        a = a - step
+        active &= np.abs(step) > 1e-15
+        if not active.any():
+            break
+    return a
 
 
 def _solve_unit_at(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:

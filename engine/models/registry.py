@@ -22,7 +22,7 @@ from typing import Any
 
 from engine.case import Case, check_case, check_road, check_stage_and_limit
 from engine.errors import InvalidInput, InvalidLoad, InvalidRoad, MissingParameter
-from engine.models import classic, stepping
+from engine.models import classic, combination_batch, stepping
 from engine.models import combination as whole
 from engine.results import RolloverResult
 from engine.vehicle.combination import (
@@ -362,6 +362,7 @@ MODELS: dict[str, Model] = {
             "wheels; the SRT of each roll-coupled unit, stepped from lift-off to lift-off.",
             takes=(),
             curves=False,
+            batch=combination_batch.batch,
             solve_combination=_solve_whole,
             combination_takes=("bank", "slope", *_PLANAR, "rear_llt_limit"),
             records=False,

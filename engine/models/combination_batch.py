@@ -1,0 +1,406 @@
+"""Many cases of one combination at once: the stepped solution of :mod:`engine.models.combination` on stacked rows.
+
+The alignments, sweeps, routes and jobs ask for the SRT of one vehicle over many bank/grade pairs (and a few load
+cases). Solved one by one each case costs a whole path of small numpy calls (about a millisecond); here the paths of
+all rows are followed in lockstep while their regimes agree (one vehicle's event sequences over different roads are
+mostly the same), a group splitting where its rows meet different events. The arithmetic is the scalar solve's, row
+by row (:func:`engine.models.combination._assemble`, :meth:`engine.models.combination._Elements.table`, the same
+start, the same secant on the normal factor of a bank), so a row's answer is the scalar one to rounding
+(``tests/engine/test_combination_batch.py``). A row whose path leaves what the lockstep handles (a start that needs
+the scalar's further guesses or its minimisation, a singular piece, a path that does not turn, a fixed point that
+does not settle) is solved alone by :func:`engine.models.combination.solve_combination`: nan if that fails.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from engine.case import Case
+from engine.errors import RolloverError
+from engine.models import combination as whole
+from engine.models.combination import (
+    BAND,
+    LIFTED,
+    LIFTED_OUT,
+    LINEAR,
+    MINUS,
+    PLUS,
+    TOL,
+    DeadZone,
+    System,
+)
+from engine.vehicle.combination import Combination, UnitLoad, check_combination_load
+
+
+class _Alone(Exception):
+    """A row the lockstep leaves to the scalar solve."""
+
+
+class _Rows:
+    """The road factors of some rows (arrays), each of shape (k,)."""
+
+    def __init__(self, bank_percent: np.ndarray, slope_percent: np.ndarray):
+        # the scalar's RoadFactors.of row by row: numpy's vectorised sin/cos/atan may differ from libm's in the last
+        # bit, and a route's curve must give the bits /v1/srt gives for its bank and grade
+        # (its arithmetic inlined: building 100,000 records took a tenth of a batch)
+        b = [math.atan(x / 100.0) for x in bank_percent.tolist()]
+        g = [math.atan(x / 100.0) for x in slope_percent.tolist()]
+        cb, sb = np.array([math.cos(x) for x in b]), np.array([math.sin(x) for x in b])
+        cs, ss = np.array([math.cos(x) for x in g]), np.array([math.sin(x) for x in g])
+        self.n0, self.n1, self.l0, self.l1, self.grade = cb * cs, sb, -sb * cs, cb, ss
+
+    def take(self, idx: np.ndarray) -> _Rows:
+        out = object.__new__(_Rows)
+        for k in ("n0", "n1", "l0", "l1", "grade"):
+            setattr(out, k, getattr(self, k)[idx])
+        return out
+
+
+def _row(x: np.ndarray) -> np.ndarray:
+    return x[:, None]
+
+
+def _slope(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple) -> np.ndarray:
+    """jp of a regime for every row (the path's direction needs only it)."""
+    S = e.piece(tyre, zone)[1]
+    return -(_row(r.l1) * s.lat + _row(r.n1) * s.off) + S * (_row(r.n1) * e.capn_dof)
+
+
+def _loads(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
+    """jp, k of a regime for every row (the scalar :func:`~engine.models.combination._assemble`, phase 2)."""
+    _K, S, kz = e.piece(tyre, zone)
+    capn, capg = e.capn_dof, e.capg_dof
+    jp = _slope(s, e, r, tyre, zone)
+    k = -(_row(r.l0) * s.lat + _row(r.n0) * s.off) + S * (_row(r.n0) * capn + _row(r.grade) * capg) + kz
+    return jp, k
+
+
+def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """J x = b row by row (a singular row raises :class:`_Alone` for the rows, found one by one)."""
+    try:
+        return np.linalg.solve(J, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        raise _Alone from None
+
+
+def _consistent(s: System, e: whole._Elements, r: _Rows, q: np.ndarray, ay: np.ndarray):
+    """The tyre and zone states of each row's q (the scalar ``_consistent``), as (k, T) and (k, Z) arrays."""
+    m = e.tk * q[:, e.tdof]
+    cap = _row(r.n0 + r.n1 * ay) * e.capn + _row(r.grade) * e.capg
+    tyre = np.where(m > cap, LIFTED, np.where(m < -cap, LIFTED_OUT, LINEAR))
+    d = q[:, e.zi] - q[:, e.zj]
+    zone = np.where((e.lash <= 0) | (np.abs(d) <= e.lash), BAND, np.where(d > 0, PLUS, MINUS))
+    return tyre, zone
+
+
+def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct rows of an array of element states (each -1, 0 or 1) and each row's index among them. A row is
+    coded as one integer in base 3 (np.unique over rows sorts them as records: most of a start's time, profiled)."""
+    if not states.shape[0]:
+        return states[:0], np.zeros(0, dtype=int)
+    code = ((states + 1).astype(np.int64) * 3 ** np.arange(states.shape[1], dtype=np.int64)).sum(axis=1)
+    if np.all(code == code[0]):  # the usual case: every row in the same regime
+        return states[:1], np.zeros(states.shape[0], dtype=int)
+    _values, first, inverse = np.unique(code, return_index=True, return_inverse=True)
+    return states[first], inverse.reshape(-1)
+
+
+def _stable(K: np.ndarray, P: np.ndarray) -> np.ndarray:
+    # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
+    return np.linalg.eigvalsh(K - P)[:, 0] > 0
+
+
+def _state(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
+    """The equilibrium of every row in one regime (tyre states then zone states in ``key``) at its ay (the scalar
+    ``_state_at``), or None when a row's equations are singular."""
+    tyre, zone = tuple(key[:T].tolist()), tuple(key[T:].tolist())
+    jp, k = _loads(s, e, r, tyre, zone)
+    try:
+        return _solve(e.piece(tyre, zone)[0] - P, -(jp * _row(ay) + k))
+    except _Alone:
+        return None
+
+
+def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndarray):
+    """The scalar ``_start`` for rows whose first guess settles: (z0 (k, n+1), the distinct starting regimes (tyre,
+    zone tuples), each row's index among them, ok)."""
+    n = s.n
+    T, Z = len(s.tyres), len(s.zones)
+    el = whole._elements(lashless)
+    ay0 = -r.l0 / r.l1
+    linear_t, band_z = (LINEAR,) * T, (BAND,) * Z
+    K0 = el.piece(linear_t, band_z)[0]
+    J0 = K0 - P
+    jp0, k0 = _loads(lashless, el, r, linear_t, band_z)
+    q0 = _solve(J0, -(jp0 * _row(ay0) + k0))
+    k_rows = q0.shape[0]
+    ok = np.ones(k_rows, dtype=bool)
+    if not np.any(e.lash > 0):
+        tyre, zone = _consistent(s, e, r, q0, ay0)
+        ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
+        ok &= _stable(e.piece(linear_t, band_z)[0], P)
+        return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
+    dq = _solve(J0, -jp0)
+    d, dd = q0[:, e.zi] - q0[:, e.zj], dq[:, e.zi] - dq[:, e.zj]
+    coupling = np.array([z.kind == "coupling" for z in s.zones])
+    guess = np.where(
+        e.lash <= 0,
+        BAND,
+        np.where(
+            np.abs(d) > 1e-12, np.where(d > 0, PLUS, MINUS), np.where(coupling, BAND, np.where(dd >= 0, PLUS, MINUS))
+        ),
+    )
+    z0 = np.zeros((k_rows, n + 1))
+    z0[:, n] = ay0
+    # the scalar's guesses in turn: a row whose guess does not settle takes the regime its state lies in as the next
+    state = np.column_stack([np.full((k_rows, T), LINEAR), guess]).astype(int)
+    final = np.zeros((k_rows, T + Z), dtype=int)
+    pending = np.ones(k_rows, dtype=bool)
+    for _ in range(Z + 2):
+        if not pending.any():
+            break
+        keys, inv = _distinct(state[pending])
+        rows_p = np.flatnonzero(pending)
+        for g, key in enumerate(keys):
+            idx = rows_p[inv == g]
+            q = _state(s, e, r.take(idx), P[idx], ay0[idx], key, T)
+            if q is None:
+                pending[idx], ok[idx] = False, False  # the scalar leaves the loop for its minimisation
+                continue
+            tyre, zone = _consistent(s, e, r.take(idx), q, ay0[idx])
+            rg = np.column_stack([tyre, zone])
+            same = np.all(rg == key, axis=1)
+            exact = q.copy()
+            for key2 in _distinct(rg[~same])[0]:
+                sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
+                q2 = _state(s, e, r.take(idx[sub]), P[idx[sub]], ay0[idx[sub]], key2, T)
+                if q2 is None:
+                    exact[sub] = np.nan  # the scalar's settle fails there: next guess
+                else:
+                    exact[sub] = q2
+            t2, z2 = _consistent(s, e, r.take(idx), exact, ay0[idx])
+            settled = np.all(np.isfinite(exact), axis=1) & np.all(np.column_stack([t2, z2]) == rg, axis=1)
+            for key2 in _distinct(rg[settled])[0]:
+                sub = np.flatnonzero(settled & np.all(rg == key2, axis=1))
+                K = e.piece(tuple(key2[:T].tolist()), tuple(key2[T:].tolist()))[0]
+                settled[sub] &= _stable(K, P[idx[sub]])
+            done = idx[settled]
+            z0[done, :n] = exact[settled]
+            final[done] = rg[settled]
+            pending[done] = False
+            state[idx[~settled]] = rg[~settled]
+    ok &= ~pending  # no guess settled: the scalar minimises the potential
+    ok &= np.all(final[:, :T] == LINEAR, axis=1)  # an offset that lifts a group at rest: the scalar refuses it
+    keys, which = _distinct(final)
+    regimes = [(tuple(k[:T].tolist()), tuple(k[T:].tolist())) for k in keys]
+    return z0, regimes, which, ok
+
+
+def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok):
+    """The scalar ``_trace`` from each row's start, rows in lockstep while their regimes agree. Returns (the largest
+    ay on each row's path, the state there (k, n+1), ok)."""
+    n = s.n
+    best_ay = z0[:, n].copy()
+    best_z = z0.copy()
+    # the piece and event of each row's peak vertex (the scalar's Newton start on a bank): its regime's index in
+    # ``pieces`` (-1: the peak is the start), and the event's constraint (c1, c2, b, i1, i2)
+    pieces: list = []
+    peak_piece = np.full(z0.shape[0], -1)
+    peak_row = np.zeros((z0.shape[0], 5))
+    ok = ok.copy()
+    max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
+    # a group: (rows, z, prev_d, tyre, zone, last, steps)
+    work = []
+    for g, key in enumerate(regimes):
+        rows = np.flatnonzero(ok & (start_of == g))
+        if rows.size:
+            work.append((rows, z0[rows], None, key[0], key[1], None, 0))
+    lim = limit is not None
+    while work:
+        rows, z, prev_d, tyre, zone, last, steps = work.pop()
+        if steps >= max_steps:
+            ok[rows] = False
+            continue
+        whole_set = rows.size == P.shape[0]  # every row, in order: no copies of the rows' arrays
+        ri = r if whole_set else r.take(rows)
+        K, _S, _kz = e.piece(tyre, zone)
+        jp = _slope(s, e, ri, tyre, zone)
+        try:
+            dq = _solve(K - (P if whole_set else P[rows]), -jp)
+        except _Alone:
+            ok[rows] = False
+            continue
+        fine = np.all(np.isfinite(dq), axis=1) & (np.linalg.norm(dq, axis=1) < 1e12)
+        if not fine.all():  # the scalar takes an SVD there: left to it
+            ok[rows[~fine]] = False
+            rows, z, dq, ri = rows[fine], z[fine], dq[fine], ri.take(np.flatnonzero(fine))
+            prev_d = None if prev_d is None else prev_d[fine]
+            if not rows.size:
+                continue
+        d = np.column_stack([dq, np.ones(rows.size)])
+        d = d / np.sqrt((d * d).sum(axis=1))[:, None]  # the scalar's normalisation, bit for bit
+        ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, 2, lim)
+        cp = _row(ri.n1) * e.capn[ti]
+        cc = _row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti]
+        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
+        m = rows.size
+        c1 = np.concatenate([np.broadcast_to(sk * e.tk[ti], (m, ti.size)), np.broadcast_to(sg, (m, zi.size))], axis=1)
+        c2 = np.concatenate([fac * cp, np.broadcast_to(-sg, (m, zi.size))], axis=1)
+        b = np.concatenate([fac * cc, np.broadcast_to(sb * e.lash[zi], (m, zi.size))], axis=1)
+        rates = c1 * d[:, i1] + c2 * d[:, i2]
+        if last is None:
+            w = d[:, :n] @ s.weights
+            w = np.where(w == 0.0, d[:, n], w)
+            flip = w < 0
+        else:
+            kc, idx, previous = last
+            back = np.flatnonzero((ends[:, 0] == kc) & (ends[:, 1] == idx) & (ends[:, 2] == previous))
+            rate = rates[:, back[0]] if back.size else np.zeros(m)
+            turned = np.einsum("ij,ij->i", prev_d, d) < 0
+            flip = np.where(np.abs(rate) > 1e-14, rate < 0, turned)
+        sign = np.where(flip, -1.0, 1.0)
+        d, rates = d * sign[:, None], rates * sign[:, None]
+        falling = rates < -1e-15
+        ended = ~falling.any(axis=1)
+        if ended.any():  # the last piece: a path that still climbs never turns (the scalar's ConvergenceError)
+            ok[rows[ended & (d[:, n] > 1e-12)]] = False
+        value = c1 * z[:, i1] + c2 * z[:, i2] + b
+        scale = np.maximum(1.0, np.abs(c1) + np.abs(c2))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tau = np.where(value > -TOL * scale, np.maximum(value, 0.0) / -rates, 0.0)
+        tau = np.where(falling, tau, np.inf)
+        which = np.argmin(tau, axis=1)
+        step = tau[np.arange(m), which]
+        go = ~ended
+        z = z.copy()
+        z[go] = z[go] + step[go, None] * d[go]
+        higher = go & (z[:, n] > best_ay[rows])
+        best_ay[rows[higher]] = z[higher, n]
+        best_z[rows[higher]] = z[higher]
+        if higher.any():
+            pieces.append((tyre, zone))
+            h = np.flatnonzero(higher)
+            w = which[h]
+            peak_piece[rows[h]] = len(pieces) - 1
+            peak_row[rows[h]] = np.column_stack([c1[h, w], c2[h, w], b[h, w], i1[w], i2[w]])
+        for row in np.unique(which[go]):
+            sel = go & (which == row)
+            kc, idx, state = (int(x) for x in ends[row])
+            if kc == 2:
+                continue  # a group at the LLT limit: the path stops
+            if kc == 0 and state == LIFTED and sum(x == LINEAR for x in tyre) == 1:
+                continue  # the last group in contact on both sides lifts
+            if kc == 0:
+                previous = tyre[idx]
+                new_t, new_z = (*tyre[:idx], state, *tyre[idx + 1 :]), zone
+            else:
+                previous = zone[idx]
+                new_t, new_z = tyre, (*zone[:idx], state, *zone[idx + 1 :])
+            work.append((rows[sel], z[sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
+    return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
+
+
+def _solve_at(s, e, lashless, r, P, limit):
+    try:
+        z0, regimes, which, ok = _start(s, e, lashless, r, P)
+    except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
+        k = P.shape[0]
+        return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
+    return _trace(s, e, r, P, limit, z0, regimes, which, ok)
+
+
+def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
+    """The scalar :func:`~engine.models.combination.solve_unit` of every row: (srt, state at the limit, ok)."""
+    e = whole._elements(s)
+    lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
+    P0 = _row(_row(r.n0)) * s.P_normal + _row(_row(r.grade)) * s.P_grade  # build_systems: the P at rest
+    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit)
+    active = np.flatnonzero(ok & (r.n1 != 0.0))
+    a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
+    pieces, peak_piece, peak_row = peaks
+    for g, (tyre, zone) in enumerate(pieces):  # the scalar's Newton start, row by row
+        sel = np.flatnonzero(peak_piece[active] == g)
+        if not sel.size:
+            continue
+        rows = active[sel]
+        ri = r.take(rows)
+        jp, k = _loads(s, e, ri, tyre, zone)
+        K = np.broadcast_to(e.piece(tyre, zone)[0], (rows.size, s.n, s.n))
+        pr = peak_row[rows]
+        a1[sel] = whole._vertex_fixed_point(
+            K, jp, k, pr[:, :2], pr[:, 2], pr[:, 3:].astype(int), s.P_normal, s.P_grade, ri.n0, ri.n1, ri.grade,
+            srt[rows],
+        )  # fmt: skip
+    for _ in range(30):
+        if not active.size:
+            break
+        ra = r.take(active)
+        normal = ra.n0 + ra.n1 * a1
+        P = _row(_row(normal)) * s.P_normal + _row(_row(ra.grade)) * s.P_grade
+        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active])
+        ok[active[~gok]] = False
+        g1 = got - a1
+        done = gok & (np.abs(g1) <= 1e-13)
+        srt[active[done]], zs[active[done]] = got[done], gz[done]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            secant = a1 - g1 * (a1 - a0) / (g1 - g0)
+        nxt = np.where(g1 == g0, got, secant)
+        keep = gok & ~done
+        a0, g0, a1, active = a1[keep], g1[keep], nxt[keep], active[keep]
+    ok[active] = False  # the fixed point did not settle
+    return srt, zs, ok
+
+
+def _alone(c: Combination, bank: float, slope: float, load: UnitLoad, llt: float) -> tuple[float, float]:
+    """One row by the scalar solve: (the governing SRT, its largest unit roll) or nan where it fails."""
+    try:
+        detail = whole.solve_combination(c, bank_percent=bank, slope_percent=slope, load=load, llt_limit=llt)
+    except (RolloverError, np.linalg.LinAlgError):
+        return math.nan, math.nan
+    gov = detail.roll_coupled_units[detail.governing]
+    return gov.srt, max(gov.roll_angle_deg.values())
+
+
+def batch(case: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassis-constant"):
+    """(SRT [g], roll [deg]) arrays of many cases of one combination (the combination model's ``batch``, as
+    :func:`engine.models.stepping.batch_3d`): each row's SRT is that of :func:`engine.models.rollover_threshold` of
+    the row's case, its roll that result's ``roll_angle_deg`` (the largest roll of the governing roll-coupled unit's
+    sprung masses); nan for a row the scalar solve refuses (``chassis_closure`` does not apply)."""
+    c: Combination = case.vehicle  # type: ignore[assignment]
+    rows = len(col["bank_percent"])
+    srt, roll = np.full(rows, np.nan), np.full(rows, np.nan)
+    loads = np.column_stack(
+        [col[k] for k in ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")]
+    )
+    bank, slope, llt = (np.asarray(col[k], dtype=float) for k in ("bank_percent", "slope_percent", "rear_llt_limit"))
+    alone = np.asarray(col["trailer_angle_deg"]) != 0  # an input the model does not take: the scalar path refuses it
+    for i in np.flatnonzero(alone):
+        srt[i], roll[i] = math.nan, math.nan
+    for key in {tuple(x) for x in loads[~alone].tolist()}:
+        load = UnitLoad(*key)
+        for below in (False, True):
+            idx = np.flatnonzero(~alone & np.all(loads == key, axis=1) & ((llt < 1.0) == below))
+            if not idx.size:
+                continue
+            try:
+                check_combination_load(c, load)
+                systems = whole.build_systems(c, 0.0, 0.0, load)
+            except RolloverError:
+                continue
+            r = _Rows(bank[idx], slope[idx])
+            limit = llt[idx] if below else None
+            per_unit = [_solve_unit(s, r, limit) for s in systems]
+            ays = np.column_stack([p[0] for p in per_unit])
+            good = np.all(np.column_stack([p[2] for p in per_unit]), axis=1)
+            gov = np.argmin(ays, axis=1)
+            for u, (s, (_a, zs, _ok)) in enumerate(zip(systems, per_unit, strict=True)):
+                sel = good & (gov == u)
+                bodies = [s.body[k] for k in s.units]
+                srt[idx[sel]] = ays[sel, u]
+                roll[idx[sel]] = [max(math.degrees(x) for x in z) for z in zs[sel][:, bodies].tolist()]
+            for i in idx[~good]:
+                srt[i], roll[i] = _alone(c, bank[i], slope[i], load, llt[i])
+    return srt, roll

@@ -378,9 +378,18 @@ def evaluate_arrays(
     rl = np.concatenate([r for _, r in solved])
     good = np.isfinite(ay) & (ay > 0)
     srt[ok[good]], roll[ok[good]] = ay[good], rl[good]
+    native = isinstance(case.vehicle, Combination) and model.solve_combination is not None
     for k in np.flatnonzero(~good):
         i = int(ok[k])
         failed = not np.isfinite(ay[k])
+        if failed and native:  # the combination's batch refuses a row without saying why: its own solve says it
+            try:
+                alone = rollover_threshold(case_at(case, col, i), chassis_closure=chassis_closure)
+            except RolloverError as exc:
+                errors[i] = str(exc)
+            else:
+                srt[i], roll[i] = alone.srt, np.nan if alone.roll_angle_deg is None else alone.roll_angle_deg
+            continue
         errors[i] = _MECHANISM_FAILED if failed else str(_tips_at_rest(case_at(case, col, i), float(ay[k])))
     return srt, roll, errors
 

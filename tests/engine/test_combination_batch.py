@@ -116,12 +116,8 @@ def test_a_row_that_fails_fails_alone():
         assert roll[i] == pytest.approx(one.roll_angle_deg, rel=1e-12)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="evaluate_arrays takes no message from a batch: a row the combination's load check refuses gets the "
-    "generic 'mechanism left its valid geometry' message (threshold.py is outside this change)",
-)
 def test_a_refused_row_gets_the_scalar_message():
+    # a row the batch refuses is solved alone by evaluate_arrays, for the scalar's own message
     case = Case(COMBINATIONS["tractor-semitrailer-table15"], model="combination")
     _srt, _roll, errors = evaluate_arrays(case, {"lateral_offset_m": np.array([0.0, 1.2])})
     with pytest.raises(RolloverError) as exc:

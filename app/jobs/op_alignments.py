@@ -69,9 +69,7 @@ from engine.road import (
     GOVERNED_BY,
     AlignmentColumns,
     assess_alignment,
-    bank_grade_pairs,
     solve_bank_grade_pairs,
-    superelevation_used,
     tilt_table_angle_deg,
 )
 
@@ -233,17 +231,9 @@ def _gather(inputs: PartInput, v: int):
 def split(job: AlignmentJob, part_rows: int) -> Prepared:
     """The parts' inputs: their curves and the SRTs of their pairs, every distinct pair of the job solved here, once
     per vehicle, in one batch (the workers only gather)."""
-    distinct = check_alignment(job)  # refuses now what the synchronous endpoint would refuse for the whole request
+    found = check_alignment(job)  # refuses now what the synchronous endpoint would refuse for the whole request
     r, t = job.resolved, job.curves
-    e = superelevation_used(
-        t.radius_m,
-        t.superelevation_percent,
-        t.posted_speed_kmh,
-        design_standard=r["design_standard"],
-        side_friction_bound=r["side_friction_bound"],
-        max_superelevation_percent=r["max_superelevation_percent"],
-    )
-    pairs, inverse = bank_grade_pairs(e, t.grade_percent)
+    pairs, inverse, distinct = found.pairs, found.inverse, found.distinct
     srt = np.empty((len(job.vehicles), len(pairs)))
     solved_errors: list[dict[int, str]] = []
     for v, vehicle in enumerate(job.vehicles):

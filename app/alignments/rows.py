@@ -9,7 +9,6 @@ One renderer for every answer made of assessed curves: the synchronous alignment
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
@@ -57,7 +56,11 @@ SPEED_COLUMNS = (
 
 
 def _opt(values: np.ndarray) -> list[float | None]:
-    return [None if math.isnan(x) else x for x in values.tolist()]
+    """The column as a list, None where it is nan (only those cells are looked at again: most columns have none)."""
+    out = values.tolist()
+    for i in np.flatnonzero(np.isnan(values)).tolist():
+        out[i] = None
+    return out
 
 
 def rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> list[dict[str, Any]]:

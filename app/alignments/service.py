@@ -41,9 +41,9 @@ from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.settings import Settings
-from app.srt.service import resolve_targets, target_checks_json_many, target_checks_many
+from app.srt.service import level_case, resolve_targets, target_checks_json_many, target_checks_many
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
-from engine.case import Case, LoadCase, Road
+from engine.case import Case, LoadCase
 from engine.errors import InvalidInput, RolloverError
 from engine.models import rollover_threshold
 from engine.road import (
@@ -287,30 +287,41 @@ def as_fleet_error(exc: Exception, fleet: str | None, resolved: dict[str, Any]) 
     return type(exc)(f"fleet {fleet}, member {index} ({member}): {text}", field="fleet", value=fleet)
 
 
-def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
-    r = job.resolved
-    case = Case(
-        job.vehicles[index],
+def assessment_case(resolved: dict[str, Any], vehicle: Any) -> Case:
+    """The SRT case of one vehicle of a resolved assessment (its options; every curve has its own road)."""
+    r = resolved
+    return Case(
+        vehicle,
         r["model"],
         r["stage"],
         trailer_angle_deg=r["trailer_angle_deg"],
         load=LoadCase(**r["load"]),
         rear_llt_limit=r["rear_llt_limit"],
     )
-    t = job.curves
+
+
+def assess_table(case: Case, resolved: dict[str, Any], t: CurveTable, solve_pairs=None) -> AlignmentColumns:
+    """:func:`engine.road.assess_alignment` of the curves ``t`` with the resolved assessment's design options, its
+    blocks on the solver threads (:mod:`app.compute.solvers`)."""
+    return assess_alignment(
+        case,
+        t.radius_m,
+        t.superelevation_percent,
+        t.grade_percent,
+        t.posted_speed_kmh,
+        design_standard=resolved["design_standard"],
+        side_friction_bound=resolved["side_friction_bound"],
+        max_superelevation_percent=resolved["max_superelevation_percent"],
+        solve_pairs=solve_pairs,
+        block_map=solvers.block_map,
+    )
+
+
+def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
+    r = job.resolved
+    case = assessment_case(r, job.vehicles[index])
     try:
-        cols = assess_alignment(
-            case,
-            t.radius_m,
-            t.superelevation_percent,
-            t.grade_percent,
-            t.posted_speed_kmh,
-            design_standard=r["design_standard"],
-            side_friction_bound=r["side_friction_bound"],
-            max_superelevation_percent=r["max_superelevation_percent"],
-            solve_pairs=solve_pairs,
-            block_map=solvers.block_map,
-        )
+        cols = assess_table(case, r, job.curves, solve_pairs)
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
     level = level_road_srt(case)
@@ -322,10 +333,10 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
 
 
 def level_road_srt(case: Case) -> float:
-    """The vehicle's level-road SRT, the one its rows' targets are judged on (app.srt.service.level_case): one more
-    solve per vehicle [g]; nan when the level case is refused."""
+    """The vehicle's level-road SRT, the one its rows' targets are judged on (:func:`app.srt.service.level_case`):
+    one more solve per vehicle [g]; nan when the level case is refused."""
     try:
-        return rollover_threshold(case.replace(road=Road())).srt
+        return rollover_threshold(level_case(case)).srt
     except RolloverError:
         return math.nan
 

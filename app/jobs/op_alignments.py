@@ -49,6 +49,8 @@ from app.alignments.service import (
     AlignmentAnswer,
     AlignmentJob,
     VehicleAnswer,
+    assess_table,
+    assessment_case,
     check_alignment,
     level_road_srt,
     resolve_alignment,
@@ -64,11 +66,9 @@ from app.jobs.columns import ColumnsError, codes_within, pack_columns, require, 
 from app.jobs.csv_columns import read_csv_columns
 from app.settings import Settings
 from app.vehicles.refs import vehicle_of_resolved
-from engine.case import Case, LoadCase
 from engine.road import (
     GOVERNED_BY,
     AlignmentColumns,
-    assess_alignment,
     solve_bank_grade_pairs,
     tilt_table_angle_deg,
 )
@@ -234,10 +234,11 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
     found = check_alignment(job)  # refuses now what the synchronous endpoint would refuse for the whole request
     r, t = job.resolved, job.curves
     pairs, inverse, distinct = found.pairs, found.inverse, found.distinct
-    srt = np.empty((len(job.vehicles), len(pairs)))
+    cases = [assessment_case(r, vehicle) for vehicle in job.vehicles]
+    srt = np.empty((len(cases), len(pairs)))
     solved_errors: list[dict[int, str]] = []
-    for v, vehicle in enumerate(job.vehicles):
-        srt[v], why = solve_bank_grade_pairs(_case(r, vehicle), pairs, block_map=solvers.block_map)
+    for v, case in enumerate(cases):
+        srt[v], why = solve_bank_grade_pairs(case, pairs, block_map=solvers.block_map)
         solved_errors.append(why)
     errors = sorted({msg for why in solved_errors for msg in why.values()})
     code = {msg: k for k, msg in enumerate(errors)}
@@ -260,7 +261,7 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
         "distinct_srt_solves": distinct,
         "chunk_curves": max(1, CHUNK_ROWS // nv),
         # each vehicle's level-road SRT, which its rows' targets are judged on (None: refused)
-        "level_srt": [_finite_or_none(level_road_srt(_case(r, vehicle))) for vehicle in job.vehicles],
+        "level_srt": [_finite_or_none(level_road_srt(case)) for case in cases],
     }
     etag = {"json": cache_key("alignments", job.resolved), "csv": cache_key("alignments-csv", job.resolved)}
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
@@ -289,20 +290,6 @@ RESULT_SCHEMA = {
     "error": "<i4",
 }
 _ENGINE_COLUMNS = [name for name in RESULT_SCHEMA if name != "station_m"]
-
-
-def _case(resolved: dict[str, Any], vehicle) -> Case:
-    """The SRT case of one vehicle, as :func:`app.alignments.service.solve_alignment` builds it."""
-    r = resolved
-    load = LoadCase(**r["load"])
-    return Case(
-        vehicle,
-        r["model"],
-        r["stage"],
-        trailer_angle_deg=r["trailer_angle_deg"],
-        load=load,
-        rear_llt_limit=r["rear_llt_limit"],
-    )
 
 
 def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
@@ -376,7 +363,7 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
     inputs = unpack_input(data)
     curves = inputs.curves
     resolved = shared["resolved"]
-    cases = [_case(resolved, vehicle_of_resolved(v)) for v in resolved["vehicles"]]
+    cases = [assessment_case(resolved, vehicle_of_resolved(v)) for v in resolved["vehicles"]]
     nv, n, step = len(cases), len(curves), shared["chunk_curves"]
     if inputs.srt.shape[0] != nv:
         raise ColumnsError(f"the part's SRTs are of {inputs.srt.shape[0]} vehicles, the job has {nv}")
@@ -385,20 +372,7 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
     for a in range(0, n, step):
         t = curves.sliced(a, min(a + step, n))
         for v, case in enumerate(cases):  # the pairs' SRTs gathered from the job's table
-            chunks[v].append(
-                assess_alignment(
-                    case,
-                    t.radius_m,
-                    t.superelevation_percent,
-                    t.grade_percent,
-                    t.posted_speed_kmh,
-                    design_standard=resolved["design_standard"],
-                    side_friction_bound=resolved["side_friction_bound"],
-                    max_superelevation_percent=resolved["max_superelevation_percent"],
-                    solve_pairs=gather[v],
-                    block_map=solvers.block_map,
-                )
-            )
+            chunks[v].append(assess_table(case, resolved, t, gather[v]))
         ctx.progress(min(a + step, n) * nv)
     summaries = []
     for v in range(nv):

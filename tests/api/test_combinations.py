@@ -88,8 +88,9 @@ def test_routes_and_jobs_take_a_combination_and_answer_what_the_alignment_answer
     """A route (JSON-wrapped and raw GPX) and an alignment job with a combination preset: the route's curves are
     assessed with the combination's SRT on each curve's bank and grade (the same as /v1/srt there), and the job's
     result is the synchronous alignment answer byte for byte."""
-    import time
     from pathlib import Path
+
+    from tests.jobs.conftest import wait_for
 
     gpx = (Path(__file__).resolve().parents[2] / "examples" / "road.gpx").read_text(encoding="utf-8")
     options = {"superelevation_percent": 7.5, "posted_speed_kmh": 60.0}
@@ -116,10 +117,7 @@ def test_routes_and_jobs_take_a_combination_and_answer_what_the_alignment_answer
     job = shared_client.post("/v1/jobs", json={"operation": "alignments.assess", "request": request})
     assert job.status_code == 202, job.text
     location = job.headers["Location"]
-    deadline = time.monotonic() + 60
-    while shared_client.get(location).json()["status"] not in ("done", "failed", "cancelled"):
-        assert time.monotonic() < deadline
-        time.sleep(0.05)
+    assert wait_for(shared_client, location)["status"] == "done"
     result = shared_client.get(f"{location}/result")
     assert result.status_code == 200 and result.content == sync.content
 

@@ -138,13 +138,13 @@ def test_summary_over_parts_counts_each_distinct_pair_once():
 
 def _slow_chunks(monkeypatch, seconds: float) -> None:
     """Each chunk's solve in a part takes ``seconds`` longer (the parts only gather their SRTs: they are quick)."""
-    assess = op_alignments.assess_alignment
+    assess = op_alignments.assess_table
 
     def slow(*args, **kw):
         time.sleep(seconds)
         return assess(*args, **kw)
 
-    monkeypatch.setattr(op_alignments, "assess_alignment", slow)
+    monkeypatch.setattr(op_alignments, "assess_table", slow)
 
 
 def test_progress_increases_while_a_part_is_solved(monkeypatch):

@@ -92,9 +92,10 @@ def _unit_index(spec: CombinationSpec, unit_index: int | None) -> int:
         return loaded[-1]
     if isinstance(unit_index, bool) or not isinstance(unit_index, int) or not 0 <= unit_index < len(spec.units):
         raise InvalidInput(
-            f"unit_index must select one of the combination's {len(spec.units)} units", field="unit_index",
+            f"unit_index must select one of the combination's {len(spec.units)} units",
+            field="unit_index",
             value=unit_index,
-        )  # fmt: skip
+        )
     return unit_index
 
 

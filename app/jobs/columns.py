@@ -105,6 +105,6 @@ def codes_within(values: np.ndarray, low: int, high: int, name: str) -> None:
 
 def strings(value: Any, n: int, name: str) -> list[str]:
     """``value`` (from a blob's meta) as a list of ``n`` strings (raises :class:`ColumnsError`)."""
-    if not isinstance(value, list) or len(value) != n or not all(type(s) is str for s in value):
+    if not isinstance(value, list) or len(value) != n or set(map(type, value)) - {str}:
         raise ColumnsError(f"{name} is not a list of {n} strings")
     return value

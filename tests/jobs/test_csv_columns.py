@@ -45,6 +45,7 @@ def test_a_plain_csv_is_read_csvs_table(text):
         "id;radius_m\nA;100\n",  # another separator
         HEADER + "\nA,100,6,-2,80\n\nB,100,6,-2,80\n",  # a blank row between curves
         HEADER + "\nA,100,6,-2\n",  # a field short
+        "id,radius_m,superelevation_percent\nC1,100,2,B\n200,4\n",  # a field too many, then one short: k * n in all
         HEADER + "\nA,100,x,-2,80\n",  # not a number
         HEADER + "\nA,100,nan,-2,80\n",  # not finite
         HEADER + "\nA,,6,-2,80\n",  # the radius missing
@@ -60,6 +61,21 @@ def test_a_plain_csv_is_read_csvs_table(text):
 )
 def test_anything_else_is_left_to_read_csv(text):
     assert read_csv_columns(text, max_curves=10) is None
+
+
+def test_columns_of_few_distinct_texts_parse_each_once_to_the_same_bits():
+    """A network's banks, grades and speeds repeat: each distinct text is parsed once (a table), the same bits as
+    read_csv; a column of distinct texts, and one whose repeated texts include a bad one, are read as before."""
+    rng = np.random.default_rng(3)
+    n = 3000
+    e = rng.choice(["6", "6.0", "-0", "0.1", "1e0", "2.50"], n)
+    lines = [
+        f"C{i},{100 + i * 0.37!r},{e[i]},{rng.choice(['-2', '0', '3.3'])},{rng.choice(['', '80'])}" for i in range(n)
+    ]
+    text = HEADER + "\n" + "\n".join(lines) + "\n"
+    same(read_csv_columns(text, max_curves=n), read_csv(text, max_curves=n))
+    bad = text.replace(",6.0,", ",6.0x,", 1)
+    assert read_csv_columns(bad, max_curves=n) is None
 
 
 def test_row_names_are_made_when_asked_for():

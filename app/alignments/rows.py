@@ -15,8 +15,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import orjson
 
-from app.formats.json_rows import RawJson, json_objects
-from app.formats.tables import Text, csv_line, csv_lines_of_columns, target_columns, target_columns_of
+from app.formats.segments import Codes, Segment, csv_floats, json_floats, write_rows
+from app.formats.tables import Text, csv_field, csv_fields, csv_line, target_columns
 from engine import ENGINE_VERSION
 from engine.road import GOVERNED_BY, AlignmentColumns
 
@@ -166,52 +166,62 @@ def json_vehicle_head(
 JSON_VEHICLE_END = b"]}"
 
 
-_SOURCE_JSON = np.array([b'"given"', b'"derived"'], dtype=object)
+def _json_ids(ids: list[str]) -> list[bytes]:
+    """Each id as a JSON string: one ``orjson`` call, cut at the ``","`` between two strings (inside a JSON string a
+    quote is always escaped, so that sequence is only ever between two)."""
+    return (b'"' + orjson.dumps(ids)[2:-2].replace(b'","', b'"\x01"') + b'"').split(b"\x01")
 
 
-_GOVERNED_JSON = np.array([orjson.dumps(g) for g in GOVERNED_BY], dtype=object)
+_SOURCE = ("given", "derived")  # by superelevation_derived
+_MEETS = (None, False, True)  # by meets_standard_min_radius + 1
 
 
-_MEETS_JSON = np.array([b"null", b"false", b"true"], dtype=object)  # by meets_standard_min_radius + 1
+def _json_layout(fields: list[tuple[str, Segment]]) -> list[Segment]:
+    """An object per row: each field's key before its value, the row opened with ``,{`` (the comma before a row)."""
+    out: list[Segment] = []
+    for k, (name, value) in enumerate(fields):
+        out += [(b",{" if k == 0 else b",") + orjson.dumps(name) + b":", value]
+    return [*out, b"}"]
 
 
-def _json_row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, Any]:
-    """:func:`_row_columns` as :func:`app.formats.json_rows.json_objects` writes them to the same JSON: a nan float is
-    written null as ``None`` is; the texts and the target checks already as JSON
-    (:class:`~app.formats.json_rows.RawJson`)."""
-    c, t, sl = v.columns, answer.curves, slice(start, stop)
-    pairs = v.pair_of_row[sl]
-    errors = np.array([b"null", *map(orjson.dumps, c.errors)], dtype=object)
-    return {
-        "id": t.ids[sl],
-        "station_m": t.station_m[sl].tolist(),
-        "radius_m": c.radius_m[sl].tolist(),
-        "superelevation_percent": c.superelevation_percent[sl].tolist(),
-        "superelevation_source": RawJson(_SOURCE_JSON[c.superelevation_derived[sl].astype(np.intp)].tolist()),
-        "grade_percent": c.grade_percent[sl].tolist(),
-        "srt_g": c.srt_g[sl].tolist(),
-        "level_road_srt": [v.level] * (stop - start),
-        "tilt_table_angle_deg": v.tilt_deg[pairs].tolist(),
-        "targets": RawJson(v.checks_json[pairs].tolist()),
-        "rollover_speed_kmh": c.rollover_speed_kmh[sl].tolist(),
-        "side_friction_speed_kmh": c.side_friction_speed_kmh[sl].tolist(),
-        "side_friction": c.side_friction[sl].tolist(),
-        "side_friction_clamped": c.side_friction_clamped[sl].tolist(),
-        "safe_speed_kmh": c.safe_speed_kmh[sl].tolist(),
-        "governed_by": RawJson(_GOVERNED_JSON[c.governed_by[sl]].tolist()),
-        "posted_speed_kmh": c.posted_speed_kmh[sl].tolist(),
-        "margin_kmh": c.margin_kmh[sl].tolist(),
-        "flagged": c.flagged[sl].tolist(),
-        "standard_min_radius_m": c.standard_min_radius_m[sl].tolist(),
-        "meets_standard_min_radius": RawJson(_MEETS_JSON[c.meets_standard_min_radius[sl] + 1].tolist()),
-        "error": RawJson(errors[c.error[sl] + 1].tolist()),
-    }
+def _json_codes(codes: np.ndarray, values: Any) -> Codes:
+    return Codes(codes, [orjson.dumps(x) for x in values])
 
 
 def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> bytes:
     """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets): ``orjson.dumps`` of
-    :func:`rows`, byte for byte, written column by column (:func:`app.formats.json_rows.json_objects`)."""
-    return json_objects(_json_row_columns(answer, v, start, stop))
+    :func:`rows`, byte for byte (tested), written a column at a time (:mod:`app.formats.segments`): the numbers of a
+    column in one ``orjson`` call, the texts, flags and the target checks (every row with an SRT is judged on the one
+    level-road SRT) written once and gathered by code."""
+    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    pairs = v.pair_of_row[sl]
+    judged = (v.srts[pairs] >= 0).astype(np.intp)
+    f = json_floats
+    fields: list[tuple[str, Segment]] = [
+        ("id", _json_ids(t.ids[sl])),
+        ("station_m", f(t.station_m[sl])),
+        ("radius_m", f(c.radius_m[sl])),
+        ("superelevation_percent", f(c.superelevation_percent[sl])),
+        ("superelevation_source", _json_codes(c.superelevation_derived[sl].astype(np.intp), _SOURCE)),
+        ("grade_percent", f(c.grade_percent[sl])),
+        ("srt_g", f(c.srt_g[sl])),
+        ("level_road_srt", orjson.dumps(v.level)),
+        ("tilt_table_angle_deg", f(v.tilt_deg[pairs])),
+        ("targets", Codes(judged, [b"[]", orjson.dumps(v.level_checks)])),
+        ("rollover_speed_kmh", f(c.rollover_speed_kmh[sl])),
+        ("side_friction_speed_kmh", f(c.side_friction_speed_kmh[sl])),
+        ("side_friction", f(c.side_friction[sl])),
+        ("side_friction_clamped", _json_codes(c.side_friction_clamped[sl].astype(np.intp), (False, True))),
+        ("safe_speed_kmh", f(c.safe_speed_kmh[sl])),
+        ("governed_by", _json_codes(c.governed_by[sl], GOVERNED_BY)),
+        ("posted_speed_kmh", f(c.posted_speed_kmh[sl])),
+        ("margin_kmh", f(c.margin_kmh[sl])),
+        ("flagged", _json_codes(c.flagged[sl].astype(np.intp), (False, True))),
+        ("standard_min_radius_m", f(c.standard_min_radius_m[sl])),
+        ("meets_standard_min_radius", _json_codes(c.meets_standard_min_radius[sl] + 1, _MEETS)),
+        ("error", _json_codes(c.error[sl] + 1, [None, *c.errors])),
+    ]
+    return write_rows(_json_layout(fields), stop - start)[1:]
 
 
 def json_tail() -> bytes:
@@ -230,8 +240,13 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     yield json_tail()
 
 
+def target_names(resolved: dict[str, Any]) -> list[str]:
+    """The targets in the order of their CSV columns (by threshold, then name)."""
+    return [n for n, _ in sorted(resolved["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
+
+
 def csv_columns(resolved: dict[str, Any]) -> list[str]:
-    names = [n for n, _ in sorted(resolved["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
+    names = target_names(resolved)
     return ["vehicle_index", "vehicle_preset", "vehicle_saved_id", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
 
 
@@ -240,15 +255,62 @@ def csv_header(resolved: dict[str, Any]) -> bytes:
     return csv_line(csv_columns(resolved))
 
 
+def _csv_codes(codes: np.ndarray, values: Any) -> Codes:
+    return Codes(codes, [csv_field(x) for x in values])
+
+
+def _csv_checks(v: VehicleAnswer, names: list[str]) -> bytes:
+    """The ``meets_<name>,margin_<name>_g`` fields of a row with an SRT, in the columns' order (empty where the level
+    SRT has no check of that name: no level SRT)."""
+    by_name: dict[str, dict[str, Any]] = {}
+    for check in v.level_checks:
+        by_name.setdefault(check["name"], check)
+    empty: dict[str, Any] = {}
+    return b",".join(csv_field(by_name.get(n, empty).get(k)) for n in names for k in ("meets", "margin_g"))
+
+
 def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str]) -> bytes:
-    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`)."""
-    rows = _row_columns(answer, v, start, stop)
-    n = stop - start
-    rows["vehicle_index"] = [v.index] * n
-    rows["vehicle_preset"] = [None if v.preset is None else Text(v.preset)] * n
-    rows["vehicle_saved_id"] = [None if v.saved_id is None else Text(v.saved_id)] * n
-    rows.update(target_columns_of(rows.pop("targets")))
-    return csv_lines_of_columns([rows.get(name, [None] * n) for name in columns])
+    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`): the cells of :func:`rows`
+    as :func:`app.formats.tables.csv_lines` writes them (tested), written a block of number columns at a time
+    (:mod:`app.formats.segments`); the vehicle's fields, the level-road SRT and the target checks written once."""
+    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    pairs = v.pair_of_row[sl]
+    names = target_names(answer.resolved)
+    vehicle = [v.index, None if v.preset is None else Text(v.preset), None if v.saved_id is None else Text(v.saved_id)]
+    checks = _csv_checks(v, names)
+    segments: list[Segment] = [
+        b",".join(map(csv_field, vehicle)) + b",",
+        csv_fields(t.ids[sl]),
+        b",",
+        csv_floats([t.station_m[sl], c.radius_m[sl], c.superelevation_percent[sl]]),
+        b",",
+        _csv_codes(c.superelevation_derived[sl].astype(np.intp), _SOURCE),
+        b",",
+        csv_floats([c.grade_percent[sl], c.srt_g[sl]]),
+        b"," + csv_field(v.level) + b",",
+        csv_floats([v.tilt_deg[pairs]]),
+        Codes((v.srts[pairs] >= 0).astype(np.intp), [b"," * len(names) * 2, b"," + checks if names else b""]),
+        b",",
+        csv_floats([c.rollover_speed_kmh[sl], c.side_friction_speed_kmh[sl], c.side_friction[sl]]),
+        b",",
+        _csv_codes(c.side_friction_clamped[sl].astype(np.intp), (False, True)),
+        b",",
+        csv_floats([c.safe_speed_kmh[sl]]),
+        b",",
+        _csv_codes(c.governed_by[sl], GOVERNED_BY),
+        b",",
+        csv_floats([c.posted_speed_kmh[sl], c.margin_kmh[sl]]),
+        b",",
+        _csv_codes(c.flagged[sl].astype(np.intp), (False, True)),
+        b",",
+        csv_floats([c.standard_min_radius_m[sl]]),
+        b",",
+        _csv_codes(c.meets_standard_min_radius[sl] + 1, _MEETS),
+        b",",
+        _csv_codes(c.error[sl] + 1, [None, *c.errors]),
+        b"\r\n",
+    ]
+    return write_rows(segments, stop - start)
 
 
 def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:

@@ -41,7 +41,7 @@ from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
 from app.settings import Settings
-from app.srt.service import level_case, resolve_targets, target_checks_json_many, target_checks_many
+from app.srt.service import level_case, resolve_targets, target_checks_many
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
 from engine.case import Case, LoadCase
 from engine.errors import InvalidInput, RolloverError
@@ -236,11 +236,10 @@ class VehicleAnswer:
         return [checks if ok else [] for ok in self._judged().tolist()]
 
     @cached_property
-    def checks_json(self) -> np.ndarray:  # per distinct SRT: the JSON of its ``checks`` (an object array, to index)
-        out = np.full(len(self.srts), b"[]", dtype=object)
-        if not math.isnan(self.level_srt):
-            out[self._judged()] = target_checks_json_many(np.array([self.level_srt]), self.targets)[0]
-        return out
+    def level_checks(self) -> list[dict[str, Any]]:  # the target checks of every row with an SRT ([] without a level)
+        if math.isnan(self.level_srt):
+            return []
+        return target_checks_many(np.array([self.level_srt]), self.targets)[0]
 
 
 @dataclass(frozen=True)

@@ -45,6 +45,23 @@ def _field(cell: Any) -> str:
     return str(cell)
 
 
+def csv_field(value: Any) -> bytes:
+    """One value as its CSV field (the rules of the module's docstring)."""
+    return _field(_cell(value)).encode()
+
+
+def csv_fields(values: Sequence[str]) -> list[bytes]:
+    """The CSV field of each text of ``values`` (quoted, formula prefixes neutralised), in one ``join`` where no text
+    holds a quote or begins with a formula prefix."""
+    if not values:
+        return []
+    text = _text_column(values)
+    fields = None if text is None else text.split(_SEP)
+    if fields is None or len(fields) != len(values):  # a text holding the separator
+        return [_text_field(v).encode() for v in values]
+    return fields
+
+
 def target_columns(names: Sequence[str]) -> list[str]:
     return [c for n in names for c in (f"meets_{n}", f"margin_{n}_g")]
 

@@ -19,13 +19,11 @@ import time
 from typing import Any
 
 import numpy as np
-import orjson
 from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache, cache_key
 from app.compute.coalescer import COALESCER
 from app.compute.results import Computed, cached
-from app.formats.json_rows import json_template
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
@@ -100,23 +98,6 @@ def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list
         for c in ordered
     ]
     return [list(checks) for checks in zip(*per_target, strict=True)] if per_target else [[] for _ in srts]
-
-
-def target_checks_json_many(srts: np.ndarray, targets: dict[str, float]) -> list[bytes]:
-    """The JSON of each list of :func:`target_checks_many` (``orjson.dumps`` of it, byte for byte), written on columns
-    (:func:`app.formats.json_rows.json_template`): no dict per SRT."""
-    ordered = _in_target_order(check_targets(0.0, targets))
-    if not ordered:
-        return [b"[]"] * len(srts)
-    fragments, columns = [b"["], []
-    for k, c in enumerate(ordered):
-        head = orjson.dumps({"name": c.name, "target_g": c.target_g, "meets": None})[: -len(b"null}")]
-        fragments[-1] += (b"," if k else b"") + head
-        fragments.append(b',"margin_g":')
-        fragments.append(b',"judged_on":' + orjson.dumps(JUDGED_ON) + b"}")
-        columns += [(srts >= c.target_g).tolist(), (srts - c.target_g).tolist()]
-    fragments[-1] += b"]"
-    return json_template(fragments, columns, b"\x00").split(b"\x00")[1:]
 
 
 def srt_key(

@@ -19,9 +19,10 @@ import numpy as np
 import orjson
 import pytest
 
-from app.alignments.rows import json_rows
+from app.alignments.rows import csv_columns, csv_rows, json_rows
 from app.alignments.rows import rows as _rows
 from app.alignments.service import parse_json_request, resolve_alignment, solve_alignment
+from app.formats.tables import Text, csv_lines_cellwise, flatten_targets
 from app.settings import Settings
 
 BTRAIN = "table16-btrain"
@@ -517,19 +518,17 @@ def test_uploads_apply_the_json_forms_bounds(shared_client, radius, form):
         assert json_form.status_code == 422
 
 
-def test_rows_written_by_columns_are_the_rows_as_dicts_byte_for_byte():
-    """The JSON writer (app.alignments.service.json_rows: column by column, a nan written as null, the texts and target
-    checks written once per distinct value) against orjson's JSON of the rows as dicts (the form the routes and
-    the schema use), on rows of every kind: given and derived superelevation, with and without a posted speed, a
-    station or none, refused (no SRT: no targets, no speeds, an error), a curve below the standard's minimum radius,
-    three targets (two equal), two vehicles."""
+def _every_kind_of_row():
+    """An answer of two vehicles over rows of every kind: given and derived superelevation, with and without a
+    posted speed, a station or none, refused (no SRT: no targets, no speeds, an error), a curve below the standard's
+    minimum radius, three targets (two equal), an id that needs quoting."""
     curves = [
         {"id": "C1", "radius_m": 120.0, "superelevation_percent": 8.0, "grade_percent": -4.0, "posted_speed_kmh": 70.0},
         {"id": "C2", "radius_m": 350.0, "posted_speed_kmh": 90.0},  # derived from the distribution (e_max given)
         {"id": 'C,"3"', "radius_m": 600.0, "superelevation_percent": 8.0, "grade_percent": -4.0},  # no posted speed
         # adverse crossfall past the rear LLT limit at rest: refused
         {"id": "C4", "radius_m": 200.0, "superelevation_percent": -20.0, "posted_speed_kmh": 50.0},
-        {"id": "C5", "radius_m": 25.0, "superelevation_percent": 2.0, "grade_percent": 3.0, "posted_speed_kmh": 80.0},
+        {"id": "=C5", "radius_m": 25.0, "superelevation_percent": 2.0, "grade_percent": 3.0, "posted_speed_kmh": 80.0},
     ]
     body = {
         "vehicles": [BTRAIN, "table23-semitrailer"],
@@ -540,7 +539,32 @@ def test_rows_written_by_columns_are_the_rows_as_dicts_byte_for_byte():
     }
     req, table = parse_json_request(orjson.dumps(body))
     table = dataclasses.replace(table, station_m=np.array([0.0, 150.5, np.nan, 900.0, 1200.0]))  # as from LandXML
-    answer = solve_alignment(resolve_alignment(req, table, Settings()))
+    return solve_alignment(resolve_alignment(req, table, Settings()))
+
+
+def test_csv_written_by_blocks_of_columns_is_the_rows_written_cell_by_cell():
+    """The CSV writer (app.alignments.rows.csv_rows: blocks of number columns in one call, the flags, texts and target
+    checks written once) against the cell-by-cell reference (app.formats.tables.csv_lines_cellwise) of the rows as
+    dicts with their targets flattened, on rows of every kind, whole and sliced."""
+    answer = _every_kind_of_row()
+    columns = csv_columns(answer.resolved)
+    for v in answer.vehicles:
+        for start, stop in ((0, 5), (1, 4), (4, 5)):
+            flat = [flatten_targets(r) for r in _rows(answer, v, start, stop)]
+            extra = {"vehicle_index": v.index, "vehicle_preset": Text(v.preset), "vehicle_saved_id": None}
+            cells = [[extra[c] if c in extra else r.get(c) for r in flat] for c in columns]
+            cells = [[Text(x) if isinstance(x, str) else x for x in col] for col in cells]
+            assert csv_rows(answer, v, start, stop, columns) == csv_lines_cellwise(cells)
+    rows = list(csv.reader(io.StringIO(csv_rows(answer, answer.vehicles[0], 0, 5, columns).decode())))
+    assert rows[4][columns.index("id")] == "'=C5" and rows[2][columns.index("id")] == 'C,"3"'
+    assert rows[3][columns.index("srt_g")] == "" and rows[3][columns.index("error")]
+
+
+def test_rows_written_by_columns_are_the_rows_as_dicts_byte_for_byte():
+    """The JSON writer (app.alignments.rows.json_rows: column by column, a nan written as null, the texts, flags and
+    target checks written once) against orjson's JSON of the rows as dicts (the form the routes and the schema use),
+    on rows of every kind (:func:`_every_kind_of_row`)."""
+    answer = _every_kind_of_row()
     for v in answer.vehicles:
         rows = _rows(answer, v, 0, 5)
         assert json_rows(answer, v, 0, 5) == orjson.dumps(rows)[1:-1]

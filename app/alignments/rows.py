@@ -188,8 +188,9 @@ def _json_codes(codes: np.ndarray, values: Any) -> Codes:
     return Codes(codes, [orjson.dumps(x) for x in values])
 
 
-def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> bytes:
-    """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets): ``orjson.dumps`` of
+def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, *, comma: bool = False) -> bytes:
+    """Rows [start, stop) of one vehicle as JSON objects separated by commas (no brackets; ``comma``: one before the
+    first too, for a chunk that follows another): ``orjson.dumps`` of
     :func:`rows`, byte for byte (tested), written a column at a time (:mod:`app.formats.segments`): the numbers of a
     column in one ``orjson`` call, the texts, flags and the target checks (every row with an SRT is judged on the one
     level-road SRT) written once and gathered by code."""
@@ -221,7 +222,7 @@ def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) 
         ("meets_standard_min_radius", _json_codes(c.meets_standard_min_radius[sl] + 1, _MEETS)),
         ("error", _json_codes(c.error[sl] + 1, [None, *c.errors])),
     ]
-    return write_rows(_json_layout(fields), stop - start)[1:]
+    return write_rows(_json_layout(fields), stop - start, drop=0 if comma else 1)
 
 
 def json_tail() -> bytes:
@@ -235,7 +236,7 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     for k, v in enumerate(answer.vehicles):
         yield json_vehicle_head(v.index, v.preset, v.saved_id, summary(v.columns), first=k == 0)
         for start in range(0, n, ROWS_PER_CHUNK):
-            yield (b"," if start else b"") + json_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n))
+            yield json_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), comma=start > 0)
         yield JSON_VEHICLE_END
     yield json_tail()
 

@@ -78,8 +78,9 @@ def _joined_codes(segments: list[Segment]) -> list[Segment]:
     return out
 
 
-def write_rows(segments: Sequence[Segment], n: int) -> bytes:
-    """``n`` rows of the layout ``segments`` as one text (each row its segments' texts in order)."""
+def write_rows(segments: Sequence[Segment], n: int, *, drop: int = 0) -> bytes:
+    """``n`` rows of the layout ``segments`` as one text (each row its segments' texts in order), less its first
+    ``drop`` bytes (a separator before the first row: cut before the join, not by copying the text)."""
     if n == 0:
         return b""
     layout = _joined_codes(_absorbed(segments))
@@ -93,6 +94,7 @@ def write_rows(segments: Sequence[Segment], n: int) -> bytes:
         if len(values) != n:
             raise ValueError(f"segment {j} has {len(values)} rows, not {n}")
         parts[j::width] = values
+    parts[0] = parts[0][drop:]
     return b"".join(parts)
 
 
@@ -107,8 +109,8 @@ def _repr_safe(block: np.ndarray) -> bool:
     """Whether orjson writes every value of ``block`` as ``repr`` does (nan aside): it does for every finite float in
     [1e-4, 1e16) in magnitude and for zero, and differs below and above (``0.00005`` for ``5e-05``, ``1e16`` for
     ``1e+16``) and for infinities (``null``)."""
-    a = np.abs(block[~np.isnan(block)])
-    return not ((a >= 1e16) | ((a < 1e-4) & (a != 0))).any()
+    a = np.abs(block)  # a nan compares false: never a reason
+    return not (np.any(a >= 1e16) or np.any((a < 1e-4) & (a != 0)))
 
 
 def csv_floats(columns: Sequence[np.ndarray]) -> list[bytes]:

@@ -394,7 +394,7 @@ def _rendered(
         if fmt == "csv":
             yield csv_rows(answer, va, start, stop, columns)
         else:
-            yield (b"," if start else b"") + json_rows(answer, va, start, stop)
+            yield json_rows(answer, va, start, stop, comma=start > 0)
 
 
 def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragments) -> None:

@@ -175,9 +175,16 @@ async def status(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
 
 
 def _coalesce(chunks: Iterator[bytes], size: int = SEND_PIECE) -> Iterator[bytes]:
+    """Small chunks joined into pieces of about ``size`` bytes; a chunk of that size or more sent as it is (no copy)."""
     buf: list[bytes] = []
     n = 0
     for c in chunks:
+        if len(c) >= size:
+            if buf:
+                yield b"".join(buf)
+                buf, n = [], 0
+            yield c
+            continue
         buf.append(c)
         n += len(c)
         if n >= size:

@@ -9,7 +9,7 @@ One renderer for every answer made of assessed curves: the synchronous alignment
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -22,6 +22,7 @@ from engine.road import GOVERNED_BY, AlignmentColumns
 
 if TYPE_CHECKING:
     from app.alignments.service import AlignmentAnswer, VehicleAnswer
+    from app.compute.resolved import ResolvedAlignment, ResolvedAssessment
 
 ROWS_PER_CHUNK = 1_000
 
@@ -132,25 +133,25 @@ def merge_summaries(parts: list[dict[str, Any]], distinct_srt_solves: int) -> di
     return out
 
 
-def default_model(vehicles: list[dict[str, Any]]) -> str:
+def default_model(vehicles: Sequence[dict[str, Any]]) -> str:
     """The model a request that names none is solved with: ``3d`` for records, ``combination`` for combinations,
     ``default`` for a mix of both (each vehicle with its own)."""
     kinds = {"combination" if "combination" in v else "3d" for v in vehicles}
     return kinds.pop() if len(kinds) == 1 else "default"
 
 
-def json_head(resolved: dict[str, Any], curves: int) -> bytes:
+def json_head(resolved: ResolvedAlignment, curves: int) -> bytes:
     """The AlignmentResult document up to its ``vehicles`` list (opened)."""
     r = resolved
-    model = r["model"] or default_model(r["vehicles"])
+    model = r.model or default_model(r.vehicles)
     head = {
         "model": model,
-        "stage": r["stage"] if model == "3d" else None,
-        "design_standard": r["design_standard"],
-        "side_friction_bound": r["side_friction_bound"],
-        "max_superelevation_percent": r["max_superelevation_percent"],
+        "stage": r.stage if model == "3d" else None,
+        "design_standard": r.design_standard,
+        "side_friction_bound": r.side_friction_bound,
+        "max_superelevation_percent": r.max_superelevation_percent,
         "curves": curves,
-        "csv_dialect": r.get("csv_dialect"),  # in the key (resolve_alignment) only when the curves came as CSV
+        "csv_dialect": r.csv_dialect,  # in the key (resolve_alignment) only when the curves came as CSV
     }
     return orjson.dumps(head)[:-1] + b',"vehicles":['
 
@@ -241,17 +242,17 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     yield json_tail()
 
 
-def target_names(resolved: dict[str, Any]) -> list[str]:
+def target_names(resolved: ResolvedAssessment) -> list[str]:
     """The targets in the order of their CSV columns (by threshold, then name)."""
-    return [n for n, _ in sorted(resolved["targets"].items(), key=lambda kv: (kv[1], kv[0]))]
+    return [n for n, _ in sorted(resolved.targets.items(), key=lambda kv: (kv[1], kv[0]))]
 
 
-def csv_columns(resolved: dict[str, Any]) -> list[str]:
+def csv_columns(resolved: ResolvedAssessment) -> list[str]:
     names = target_names(resolved)
     return ["vehicle_index", "vehicle_preset", "vehicle_saved_id", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
 
 
-def csv_header(resolved: dict[str, Any]) -> bytes:
+def csv_header(resolved: ResolvedAssessment) -> bytes:
     """The CSV answer's header row."""
     return csv_line(csv_columns(resolved))
 

@@ -33,7 +33,8 @@ from app.alignments.curves import curves_from_json
 from app.alignments.rows import render
 from app.alignments.schemas import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
 from app.compute import solvers
-from app.compute.cache import ResultCache, cache_key
+from app.compute.cache import ResultCache
+from app.compute.resolved import CurvesDigest, ResolvedAlignment, ResolvedAssessment
 from app.compute.results import Computed, Streamed
 from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
 from app.formats.jsonpieces import loads_in_pieces
@@ -136,10 +137,10 @@ def _digest(t: CurveTable) -> str:
 
 @dataclass(frozen=True)
 class AlignmentJob:
-    """A resolved alignment request: what the answer depends on (``resolved``, hashed into the key) and the
-    objects to compute it from."""
+    """A resolved alignment request: what the answer depends on (``resolved``, which holds its key: an alignment's, or
+    a route's for the route's curves) and the objects to compute it from."""
 
-    resolved: dict[str, Any]
+    resolved: ResolvedAssessment
     vehicles: list[Any]
     curves: CurveTable
     source: str  # the request field the curves came from, for an error in a document (``csv``, ``body``, ...)
@@ -149,24 +150,24 @@ class AlignmentJob:
         return len(self.curves) * len(self.vehicles)
 
 
-def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], settings: Settings) -> dict[str, Any]:
+def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], settings: Settings) -> ResolvedAssessment:
     """What an assessment's answer depends on besides its curves (part of its cache key): the vehicles' records
     (and preset ids, saved ids), the SRT options, the design standard, e_max and the targets. ``req`` is an
     alignment or a route request (they share these fields)."""
-    return {
-        "vehicles": [v.to_dict() for v in vehicles],
-        "presets": [r if isinstance(r, str) else None for r in refs],
-        "saved_ids": [r.id if isinstance(r, SavedRef) else None for r in refs],
-        "model": req.model,
-        "stage": req.stage,
-        "trailer_angle_deg": req.trailer_angle_deg,
-        "load": req.load.model_dump(),
-        "rear_llt_limit": req.rear_llt_limit,
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "max_superelevation_percent": req.max_superelevation_percent,
-        "targets": resolve_targets(req.targets, settings),
-    }
+    return ResolvedAssessment(
+        vehicles=tuple(v.to_dict() for v in vehicles),
+        presets=tuple(r if isinstance(r, str) else None for r in refs),
+        saved_ids=tuple(r.id if isinstance(r, SavedRef) else None for r in refs),
+        model=req.model,
+        stage=req.stage,
+        trailer_angle_deg=req.trailer_angle_deg,
+        load=req.load.model_dump(),
+        rear_llt_limit=req.rear_llt_limit,
+        design_standard=req.design_standard,
+        side_friction_bound=req.bound,
+        max_superelevation_percent=req.max_superelevation_percent,
+        targets=resolve_targets(req.targets, settings),
+    )
 
 
 def resolve_alignment(
@@ -190,12 +191,12 @@ def resolve_alignment(
             "request (split the alignment or the vehicles)",
         )
     vehicles = [resolve_vehicle(r) for r in refs]
-    resolved = {
-        **resolved_assessment(req, refs, vehicles, settings),
-        "curves": {"count": len(table), "sha256": _digest(table)},
-    }
-    if table.dialect is not None:  # the answer names it; the keys of curves and LandXML stay as they were
-        resolved["csv_dialect"] = table.dialect.as_dict()
+    resolved = ResolvedAlignment(
+        **resolved_assessment(req, refs, vehicles, settings).assessment_fields(),
+        curves=CurvesDigest(len(table), _digest(table)),
+        # the answer names it; the keys of curves and LandXML stay as they were (None: not in the key)
+        csv_dialect=None if table.dialect is None else table.dialect.as_dict(),
+    )
     source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
     return AlignmentJob(resolved, vehicles, table, source)
 
@@ -246,7 +247,7 @@ class VehicleAnswer:
 class AlignmentAnswer:
     """Every curve for every vehicle, as arrays: rendered to JSON or CSV in chunks."""
 
-    resolved: dict[str, Any]
+    resolved: ResolvedAssessment
     curves: CurveTable
     vehicles: list[VehicleAnswer]
 
@@ -274,32 +275,32 @@ def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
     return exc
 
 
-def as_fleet_error(exc: Exception, fleet: str | None, resolved: dict[str, Any]) -> Exception:
+def as_fleet_error(exc: Exception, fleet: str | None, resolved: ResolvedAssessment) -> Exception:
     """An error named after a vehicle the request took from a fleet (``vehicles.1.front_track_m``) names the fleet,
     the request's own field, and says which member in the message."""
     field = getattr(exc, "field", None) or ""
     if fleet is None or not isinstance(exc, InvalidInput) or not field.startswith("vehicles."):
         return exc
     index = int(field.split(".")[1])
-    member = resolved["saved_ids"][index] or resolved["presets"][index] or f"#{index}"
+    member = resolved.saved_ids[index] or resolved.presets[index] or f"#{index}"
     text = str(exc).removeprefix(f"vehicles[{index}]: ")
     return type(exc)(f"fleet {fleet}, member {index} ({member}): {text}", field="fleet", value=fleet)
 
 
-def assessment_case(resolved: dict[str, Any], vehicle: Any) -> Case:
+def assessment_case(resolved: ResolvedAssessment, vehicle: Any) -> Case:
     """The SRT case of one vehicle of a resolved assessment (its options; every curve has its own road)."""
     r = resolved
     return Case(
         vehicle,
-        r["model"],
-        r["stage"],
-        trailer_angle_deg=r["trailer_angle_deg"],
-        load=LoadCase(**r["load"]),
-        rear_llt_limit=r["rear_llt_limit"],
+        r.model,
+        r.stage,
+        trailer_angle_deg=r.trailer_angle_deg,
+        load=LoadCase(**r.load),
+        rear_llt_limit=r.rear_llt_limit,
     )
 
 
-def assess_table(case: Case, resolved: dict[str, Any], t: CurveTable, solve_pairs=None) -> AlignmentColumns:
+def assess_table(case: Case, resolved: ResolvedAssessment, t: CurveTable, solve_pairs=None) -> AlignmentColumns:
     """:func:`engine.road.assess_alignment` of the curves ``t`` with the resolved assessment's design options, its
     blocks on the solver threads (:mod:`app.compute.solvers`)."""
     return assess_alignment(
@@ -308,9 +309,9 @@ def assess_table(case: Case, resolved: dict[str, Any], t: CurveTable, solve_pair
         t.superelevation_percent,
         t.grade_percent,
         t.posted_speed_kmh,
-        design_standard=resolved["design_standard"],
-        side_friction_bound=resolved["side_friction_bound"],
-        max_superelevation_percent=resolved["max_superelevation_percent"],
+        design_standard=resolved.design_standard,
+        side_friction_bound=resolved.side_friction_bound,
+        max_superelevation_percent=resolved.max_superelevation_percent,
         solve_pairs=solve_pairs,
         block_map=solvers.block_map,
     )
@@ -327,8 +328,8 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
-    preset, saved = r["presets"][index], r["saved_ids"][index]
-    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r["targets"], level)
+    preset, saved = r.presets[index], r.saved_ids[index]
+    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r.targets, level)
 
 
 def level_road_srt(case: Case) -> float:
@@ -347,7 +348,7 @@ def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     started = time.perf_counter()
     vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
     answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
-    SOLVE_SECONDS.labels("alignments", job.resolved["model"] or "default").observe(time.perf_counter() - started)
+    SOLVE_SECONDS.labels("alignments", job.resolved.model or "default").observe(time.perf_counter() - started)
     return answer
 
 
@@ -377,9 +378,9 @@ def check_alignment(job: AlignmentJob) -> AlignmentPairs:
             t.radius_m,
             t.superelevation_percent,
             t.posted_speed_kmh,
-            design_standard=r["design_standard"],
-            side_friction_bound=r["side_friction_bound"],
-            max_superelevation_percent=r["max_superelevation_percent"],
+            design_standard=r.design_standard,
+            side_friction_bound=r.side_friction_bound,
+            max_superelevation_percent=r.max_superelevation_percent,
         )
     except InvalidInput as exc:
         raise _located(exc, job, 0) from None
@@ -421,12 +422,12 @@ async def compute_alignment(
     job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
     operation = "alignments-csv" if csv else "alignments"
     media_type = CSV_TYPE if csv else JSON_TYPE
-    key = cache_key(operation, job.resolved)
+    key = job.resolved.key(operation)
     body = (await cache.get(key, media_type)).value if job.rows <= STREAM_ROWS else None
     if body is not None:
         CACHE_LOOKUPS.labels(operation, "hit").inc()
         return Computed(body, key, True, media_type)
-    answer_key = cache_key("alignment-answer", job.resolved)
+    answer_key = job.resolved.key("alignment-answer")
     answer = cache.answers.get(answer_key)
     hit = answer is not None
     CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()

@@ -2,7 +2,8 @@
 
 Keys are ``<engine version>:<operation>:<sha256 of the canonical JSON of the resolved request>``
 (:func:`cache_key`): the case's every input explicit, the preset expanded to its full record, keys sorted by
-orjson's ``OPT_SORT_KEYS``. Values are the response bodies, the same bytes in both tiers (never pickle), so a hit
+orjson's ``OPT_SORT_KEYS`` (the batch features' requests are typed, :mod:`app.compute.resolved`, and hash their
+JSON form here). Values are the response bodies, the same bytes in both tiers (never pickle), so a hit
 returns exactly what the miss returned.
 
 **The shared tier is not trusted.** Whatever another process (or an attacker with access to Redis) left under a key

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from app.compute.cache import ResultCache, cache_key
+from app.compute.resolved import Resolved
 from app.metrics import CACHE_LOOKUPS
 
 
@@ -40,12 +41,13 @@ async def _lookup(cache: ResultCache, operation: str, key: str) -> bytes | None:
 async def cached(
     cache: ResultCache,
     operation: str,
-    resolved: dict[str, Any],
+    resolved: dict[str, Any] | Resolved,
     produce: Callable[[], Awaitable[bytes]],
     media_type: str = "application/json",
 ) -> Computed:
-    """The body for ``resolved`` from the cache, or from ``produce()`` (then stored under the same key)."""
-    key = cache_key(operation, resolved)
+    """The body for ``resolved`` (a resolved request's dict, or a typed one: :mod:`app.compute.resolved`) from the
+    cache, or from ``produce()`` (then stored under the same key)."""
+    key = resolved.key(operation) if isinstance(resolved, Resolved) else cache_key(operation, resolved)
     body = await _lookup(cache, operation, key)
     if body is not None:
         return Computed(body, key, True, media_type)

@@ -58,7 +58,7 @@ from app.alignments.service import (
     validate_request_data,
 )
 from app.compute import solvers
-from app.compute.cache import cache_key
+from app.compute.resolved import ResolvedAlignment
 from app.formats.alignment_io import CurveTable
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
@@ -255,7 +255,7 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
         parts.append((b - a) * nv)
         inputs.append(pack_input(t.sliced(a, b), pairs[used], srt[:, used], error[:, used], errors))
     shared = {
-        "resolved": job.resolved,
+        "resolved": job.resolved.to_json_dict(),
         "source": job.source,
         "curves": n,
         "distinct_srt_solves": distinct,
@@ -263,7 +263,7 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
         # each vehicle's level-road SRT, which its rows' targets are judged on (None: refused)
         "level_srt": [_finite_or_none(level_road_srt(case)) for case in cases],
     }
-    etag = {"json": cache_key("alignments", job.resolved), "csv": cache_key("alignments-csv", job.resolved)}
+    etag = {"json": job.resolved.key("alignments"), "csv": job.resolved.key("alignments-csv")}
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
 
 
@@ -346,14 +346,16 @@ def _level(shared: dict[str, Any], v: int) -> float:
     return float(value)
 
 
-def _part_answer(resolved: dict[str, Any], v: int, data: bytes, level: float) -> tuple[AlignmentAnswer, VehicleAnswer]:
+def _part_answer(
+    resolved: ResolvedAlignment, v: int, data: bytes, level: float
+) -> tuple[AlignmentAnswer, VehicleAnswer]:
     """A part's stored result of vehicle ``v`` as the answer the renderers take (what
     :func:`app.alignments.service.solve_alignment` builds for those curves)."""
     curves, cols = unpack_result(data)
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
-    preset, saved = resolved["presets"][v], resolved["saved_ids"][v]
-    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved["targets"], level)
+    preset, saved = resolved.presets[v], resolved.saved_ids[v]
+    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved.targets, level)
     return AlignmentAnswer(resolved, curves, [answer]), answer
 
 
@@ -362,8 +364,8 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
     result as columns (section = vehicle) and the summary of its curves; nothing is rendered here."""
     inputs = unpack_input(data)
     curves = inputs.curves
-    resolved = shared["resolved"]
-    cases = [assessment_case(resolved, vehicle_of_resolved(v)) for v in resolved["vehicles"]]
+    resolved = ResolvedAlignment.from_json_dict(shared["resolved"])
+    cases = [assessment_case(resolved, vehicle_of_resolved(v)) for v in resolved.vehicles]
     nv, n, step = len(cases), len(curves), shared["chunk_curves"]
     if inputs.srt.shape[0] != nv:
         raise ColumnsError(f"the part's SRTs are of {inputs.srt.shape[0]} vehicles, the job has {nv}")
@@ -384,7 +386,7 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
 
 
 def _rendered(
-    resolved: dict[str, Any], v: int, data: bytes, fmt: str, columns: list[str], level: float
+    resolved: ResolvedAlignment, v: int, data: bytes, fmt: str, columns: list[str], level: float
 ) -> Iterator[bytes]:
     """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks."""
     answer, va = _part_answer(resolved, v, data, level)
@@ -399,7 +401,7 @@ def _rendered(
 
 def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragments) -> None:
     """Every part's stored columns read back and checked (raises ValueError), before the result is streamed."""
-    nv = len(shared["resolved"]["vehicles"])
+    nv = len(ResolvedAlignment.from_json_dict(shared["resolved"]).vehicles)
     for v in range(nv):
         _level(shared, v)
     for k in range(len(metas)):
@@ -412,8 +414,8 @@ def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragme
 def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, fragments: Fragments) -> Iterator[bytes]:
     """The answer rendered from the parts' columns with the synchronous endpoint's renderers
     (:mod:`app.alignments.rows`): the same bytes."""
-    resolved = shared["resolved"]
-    nv = len(resolved["vehicles"])
+    resolved = ResolvedAlignment.from_json_dict(shared["resolved"])
+    nv = len(resolved.vehicles)
     columns = csv_columns(resolved)
     if fmt == "csv":
         yield csv_header(resolved)
@@ -424,7 +426,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
     yield json_head(resolved, shared["curves"])
     for v in range(nv):
         total = merge_summaries([m["summaries"][v] for m in metas], shared["distinct_srt_solves"])
-        yield json_vehicle_head(v, resolved["presets"][v], resolved["saved_ids"][v], total, first=v == 0)
+        yield json_vehicle_head(v, resolved.presets[v], resolved.saved_ids[v], total, first=v == 0)
         for k in range(len(metas)):
             if k:
                 yield b","

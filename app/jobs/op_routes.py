@@ -11,12 +11,13 @@ fleets of the caller, specs) are resolved there too, and the stored job holds th
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any
 
 import orjson
 from starlette.requests import Request
 
-from app.compute.cache import cache_key
+from app.compute.resolved import ResolvedRoute
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.routes.schemas import RouteRequest
 from app.routes.service import read_route, render_route, resolve_route_refs, resolved_route, route_refs
@@ -32,31 +33,42 @@ async def refs(request: Request, req: RouteRequest, settings: Settings) -> Route
     return await resolve_route_refs(request, req, settings)
 
 
-def resolve(req: RouteRequest, ctx: ResolveContext) -> dict[str, Any]:
+@dataclass(frozen=True)
+class RouteJob:
+    """A resolved route job: the request without its vehicle references (a worker rebuilds it, as JSON), the resolved
+    assessment and the document's number of vertices (the job's units)."""
+
+    request: dict[str, Any]
+    resolved: ResolvedRoute
+    vertices: int
+
+
+def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
     resolved = resolved_route(req, route_refs(req), ctx.settings)
     vertices = sum(int(p.lon_deg.size) for p in read_route(req))  # reading refuses bad geometry now (a 422)
     stored = req.model_dump(mode="json", exclude={"vehicle", "vehicles", "fleet"}, exclude_unset=True)
-    return {"request": stored, "resolved": resolved, "vertices": vertices}
+    return RouteJob(stored, resolved, vertices)
 
 
-def split(job: dict[str, Any], part_units: int) -> Prepared:
-    resolved = job["resolved"]
-    shared = {"request": job["request"], "resolved": resolved, "vertices": job["vertices"]}
-    etag = {"json": cache_key("route", resolved), "csv": cache_key("route-csv", resolved)}
-    return Prepared(shared, [(job["vertices"], b"{}")], etag)
+def split(job: RouteJob, part_units: int) -> Prepared:
+    resolved = job.resolved
+    shared = {"request": job.request, "resolved": resolved.to_json_dict(), "vertices": job.vertices}
+    etag = {"json": resolved.key("route"), "csv": resolved.key("route-csv")}
+    return Prepared(shared, [(job.vertices, b"{}")], etag)
 
 
-def request_of(shared: dict[str, Any]) -> RouteRequest:
+def request_of(shared: dict[str, Any], resolved: ResolvedRoute) -> RouteRequest:
     """The stored request validated again, its vehicles given as the resolved records (the worker solves those)."""
-    return RouteRequest.model_validate({**shared["request"], "vehicles": shared["resolved"]["vehicles"]})
+    return RouteRequest.model_validate({**shared["request"], "vehicles": list(resolved.vehicles)})
 
 
 def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
     if orjson.loads(data) != {}:
         raise ValueError("a route job has a single part without inputs of its own")
-    req = request_of(shared)
-    bodies = render_route(req, shared["resolved"], ("json", "csv"))
+    resolved = ResolvedRoute.from_json_dict(shared["resolved"])
+    req = request_of(shared, resolved)
+    bodies = render_route(req, resolved, ("json", "csv"))
     ctx.write("json", 0, bodies["json"])
     ctx.write("csv", 0, bodies["csv"])
     ctx.progress(shared["vertices"])

@@ -19,7 +19,7 @@ import orjson
 from pydantic import Field, model_validator
 from starlette.requests import Request
 
-from app.compute.cache import cache_key
+from app.compute.resolved import ResolvedSweep
 from app.http.schemas import describe, shape_error
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.settings import Settings
@@ -60,7 +60,7 @@ class SweepJobRequest(SweepRequest):
         return self
 
 
-def _render_block(resolved: dict[str, Any]) -> tuple[bytes, bytes]:
+def _render_block(resolved: ResolvedSweep) -> tuple[bytes, bytes]:
     """The synchronous sweep's JSON and CSV bodies for one (sub-)grid: the one call into :mod:`app.srt.sweep_service`
     (to follow it when the sweep is rendered in chunks)."""
     answer = sweep_answer(resolved)  # one solve, both renderings
@@ -73,7 +73,7 @@ def _cut(body: bytes) -> tuple[bytes, bytes, bytes]:
     return body[:start], body[start:end], body[end:]
 
 
-def _blocks(grid: dict[str, list[float]], part_cases: int) -> tuple[int, int]:
+def _blocks(grid: dict[str, tuple[float, ...]], part_cases: int) -> tuple[int, int]:
     """(j, block): the first j axes are fixed in a block of ``block`` cases (the others whole), block <= part_cases
     whenever the last axis alone allows it."""
     lengths = [len(v) for v in grid.values()]
@@ -93,14 +93,14 @@ async def refs(request: Request, req: SweepJobRequest, settings: Settings) -> Sw
     return await resolve_vehicle_refs(request, req, settings)
 
 
-def resolve(req: SweepJobRequest, ctx: ResolveContext) -> dict[str, Any]:
+def resolve(req: SweepJobRequest, ctx: ResolveContext) -> ResolvedSweep:
     return resolve_sweep(req, ctx.settings)
 
 
-def split(resolved: dict[str, Any], part_cases: int) -> Prepared:
-    grid = resolved["grid"]
+def split(resolved: ResolvedSweep, part_cases: int) -> Prepared:
+    grid = resolved.grid
     # the base case's refusals (a model the vehicle cannot use...) now, on the grid's first case
-    solve_sweep({"case": resolved["case"], "grid": {a: v[:1] for a, v in grid.items()}})
+    solve_sweep(resolved.on({a: v[:1] for a, v in grid.items()}))
     j, block = _blocks(grid, part_cases)
     n_blocks = math.prod(len(v) for v in list(grid.values())[:j])
     per_part = max(1, part_cases // block)
@@ -108,8 +108,8 @@ def split(resolved: dict[str, Any], part_cases: int) -> Prepared:
     for first in range(0, n_blocks, per_part):
         count = min(per_part, n_blocks - first)
         parts.append((count * block, orjson.dumps({"first_block": first, "blocks": count})))
-    shared = {"resolved": resolved, "fixed_axes": j}
-    etag = {"json": cache_key("srt-sweep", resolved), "csv": cache_key("srt-sweep-csv", resolved)}
+    shared = {"resolved": resolved.to_json_dict(), "fixed_axes": j}
+    etag = {"json": resolved.key("srt-sweep"), "csv": resolved.key("srt-sweep-csv")}
     return Prepared(shared, parts, etag)
 
 
@@ -118,14 +118,14 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
     first, count = spec["first_block"], spec["blocks"]
     if not (isinstance(first, int) and isinstance(count, int) and first >= 0 and count >= 1):
         raise ValueError("the part's block range is invalid")
-    resolved, j = shared["resolved"], shared["fixed_axes"]
-    grid = resolved["grid"]
+    resolved, j = ResolvedSweep.from_json_dict(shared["resolved"]), shared["fixed_axes"]
+    grid = resolved.grid
     axes, lengths = list(grid), [len(v) for v in grid.values()]
     meta: dict[str, Any] = {"cases": 0, "refused": 0}
     for i in range(count):
         index = np.unravel_index(first + i, lengths[:j]) if j else ()
         sub = {a: ([grid[a][int(index[n])]] if n < j else grid[a]) for n, a in enumerate(axes)}
-        body, csv = _render_block({"case": resolved["case"], "grid": sub})
+        body, csv = _render_block(resolved.on(sub))
         head, rows, tail = _cut(body)
         header, _, lines = csv.partition(b"\r\n")
         counts = orjson.loads(head + b"]}")

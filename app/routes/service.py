@@ -34,6 +34,7 @@ from app.alignments.service import (
     solve_alignment,
 )
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedRoute, RouteDocument
 from app.compute.results import Computed, cached
 from app.formats.alignment_io import CurveTable
 from app.formats.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
@@ -163,17 +164,18 @@ def _document_digest(req: RouteRequest) -> str:
     return hashlib.sha256(doc).hexdigest()
 
 
-def resolved_route(req: RouteRequest, refs: list[Any], settings: Settings) -> dict[str, Any]:
-    return {
-        **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings),
-        "route": {
-            "format": "geojson" if req.geojson is not None else "gpx",
-            "sha256": _document_digest(req),
-            "superelevation_percent": req.superelevation_percent,
-            "posted_speed_kmh": req.posted_speed_kmh,
-            "detection": req.detection.model_dump(),
-        },
-    }
+def resolved_route(req: RouteRequest, refs: list[Any], settings: Settings) -> ResolvedRoute:
+    """What the route's answer depends on (its key): the assessment's options and vehicles, and the document."""
+    return ResolvedRoute(
+        **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings).assessment_fields(),
+        route=RouteDocument(
+            format="geojson" if req.geojson is not None else "gpx",
+            sha256=_document_digest(req),
+            superelevation_percent=req.superelevation_percent,
+            posted_speed_kmh=req.posted_speed_kmh,
+            detection=req.detection.model_dump(),
+        ),
+    )
 
 
 # ---------------------------------------------------------------------------------------- rendering
@@ -247,9 +249,9 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
     found = zip(_curves(geo, answer), geo.curves, strict=True)
     curves = [{**props, "coordinates": _coordinates(c)} for props, c in found]
     out = {
-        "model": r["model"] or alignment_rows.default_model(r["vehicles"]),
-        "stage": r["stage"] if (r["model"] or alignment_rows.default_model(r["vehicles"])) == "3d" else None,
-        "design_standard": r["design_standard"],
+        "model": r.model or alignment_rows.default_model(r.vehicles),
+        "stage": r.stage if (r.model or alignment_rows.default_model(r.vehicles)) == "3d" else None,
+        "design_standard": r.design_standard,
         "length_m": float(sum(geo.length_m)),
         "parts": [
             {
@@ -337,14 +339,14 @@ def _named_after_the_route(exc: InvalidInput, table: CurveTable) -> InvalidInput
 
 
 def render_route(
-    req: RouteRequest, resolved: dict[str, Any], forms: tuple[str, ...], source_field: str | None = None
+    req: RouteRequest, resolved: ResolvedRoute, forms: tuple[str, ...], source_field: str | None = None
 ) -> dict[str, bytes]:
     """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
     ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets);
     ``source_field`` names an upload's document in errors (``body``, ``file``)."""
     parts = read_route(req, source_field)
     geo = find_route_curves(req, parts, source_field)
-    vehicles = [vehicle_of_resolved(v) for v in resolved["vehicles"]]
+    vehicles = [vehicle_of_resolved(v) for v in resolved.vehicles]
     if len(geo.curves) * len(vehicles) > MAX_ROWS:
         raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
     table = curve_table(req, geo)

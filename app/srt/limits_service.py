@@ -13,6 +13,7 @@ from typing import Any
 from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedLimits
 from app.compute.results import Computed, cached
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
@@ -25,17 +26,14 @@ from engine.models import rollover_threshold
 from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg, with_parameter
 
 
-def resolve_limits(req: LimitsRequest, settings: Settings) -> dict[str, Any]:
+def resolve_limits(req: LimitsRequest, settings: Settings) -> ResolvedLimits:
     table = None
     if req.parameter != "overweight_percent":
-        table = list(req.overweights_percent) if req.overweights_percent is not None else list(DEFAULT_OVERWEIGHTS)
+        table = tuple(req.overweights_percent) if req.overweights_percent is not None else tuple(DEFAULT_OVERWEIGHTS)
     target = req.target_srt_g if req.target_srt_g is not None else settings.srt_target_general_g
-    return {
-        "case": base_case_key(req, settings),
-        "parameter": req.parameter,
-        "target_srt_g": target,
-        "overweights_percent": table,
-    }
+    return ResolvedLimits(
+        case=base_case_key(req, settings), parameter=req.parameter, target_srt_g=target, overweights_percent=table
+    )
 
 
 def level_srt_at(base: Case, limit: Limit) -> float | None:
@@ -73,12 +71,12 @@ def _current_value(case: Case, parameter: str) -> float:
     return float(getattr(case.vehicle if holder == "vehicle" else case.load, name))
 
 
-def solve_limits(resolved: dict[str, Any]) -> bytes:
+def solve_limits(resolved: ResolvedLimits) -> bytes:
     """The limit and its table (blocking: called in a worker thread) -> LimitsResult JSON bytes."""
     started = time.perf_counter()
-    case = resolved["case"]
+    case = resolved.case
     base = case_of_key(case)
-    parameter, target = resolved["parameter"], resolved["target_srt_g"]
+    parameter, target = resolved.parameter, resolved.target_srt_g
     try:
         limit = parameter_limit(base, target, parameter)
     except InvalidInput as exc:
@@ -90,9 +88,9 @@ def solve_limits(resolved: dict[str, Any]) -> bytes:
         # the base case cannot be solved at the range's good end: point at the request's field
         raise type(exc)(str(exc), field="parameter", value=parameter) from exc
     table = None
-    if resolved["overweights_percent"] is not None:
+    if resolved.overweights_percent is not None:
         table = []
-        for ow in resolved["overweights_percent"]:
+        for ow in resolved.overweights_percent:
             try:
                 (row,) = limit_table(base, target, parameter, [ow])
             except RolloverError as exc:  # one row the engine cannot solve is reported, not dropped

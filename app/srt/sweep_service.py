@@ -20,7 +20,8 @@ import orjson
 from starlette.concurrency import run_in_threadpool
 
 from app.compute import solvers
-from app.compute.cache import ResultCache, cache_key
+from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedSweep
 from app.compute.results import Computed, Streamed, cached
 from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
@@ -39,13 +40,8 @@ STREAM_ROWS = 5_000
 ROWS_PER_CHUNK = 1_000
 
 
-def resolve_sweep(req: SweepRequest, settings: Settings) -> dict[str, Any]:
-    return {"case": base_case_key(req, settings), "grid": req.grid.axes()}
-
-
-def sweep_cases(resolved: dict[str, Any]) -> int:
-    """The number of cases (rows) of a resolved sweep: the product of its axes' lengths."""
-    return math.prod(len(values) for values in resolved["grid"].values())
+def resolve_sweep(req: SweepRequest, settings: Settings) -> ResolvedSweep:
+    return ResolvedSweep(case=base_case_key(req, settings), grid={a: tuple(v) for a, v in req.grid.axes().items()})
 
 
 @dataclass(frozen=True)
@@ -53,7 +49,7 @@ class SweepAnswer:
     """Every case of a grid as the engine's arrays (:class:`engine.models.SweepResult`) and the SRT targets they
     are checked against: rendered to JSON or CSV in chunks (:func:`sweep_json_chunks`, :func:`sweep_csv_chunks`)."""
 
-    resolved: dict[str, Any]
+    resolved: ResolvedSweep
     result: EngineSweep
     targets: tuple[tuple[str, float], ...]  # (name, target [g]) in the rows' order: increasing target, then name
     level_srt: np.ndarray  # (n_cases,) each row's level-road SRT (bank and slope zero) [g]; nan where it has none
@@ -89,13 +85,13 @@ def level_srts(base: Case, grid: dict[str, list[float]], result: EngineSweep) ->
     return srt[np.ravel_multi_index(index, tuple(len(v) for v in level_grid.values()))]
 
 
-def sweep_answer(resolved: dict[str, Any]) -> SweepAnswer:
+def sweep_answer(resolved: ResolvedSweep) -> SweepAnswer:
     """Every case of the grid (blocking: called in a worker thread), as arrays."""
     started = time.perf_counter()
-    case = resolved["case"]
+    case = resolved.case
     base = case_of_key(case)
-    result = sweep(base, resolved["grid"], block_map=solvers.block_map)
-    level = level_srts(base, resolved["grid"], result)
+    result = sweep(base, resolved.grid, block_map=solvers.block_map)
+    level = level_srts(base, resolved.grid, result)
     SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
     order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, case["targets"]))
     return SweepAnswer(resolved, result, order, level)
@@ -169,7 +165,7 @@ def render_sweep(answer: SweepAnswer, csv: bool) -> Iterator[bytes]:
     return sweep_csv_chunks(answer) if csv else sweep_json_chunks(answer)
 
 
-def solve_sweep(resolved: dict[str, Any]) -> bytes:
+def solve_sweep(resolved: ResolvedSweep) -> bytes:
     """Every case of the grid (blocking) -> the whole SweepResult JSON document."""
     return b"".join(sweep_json_chunks(sweep_answer(resolved)))
 
@@ -181,7 +177,7 @@ async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Setting
     solve and a large sweep asked again is rendered from it, never solved again."""
     resolved = resolve_sweep(req, settings)
     operation, media_type = ("srt-sweep-csv", CSV_TYPE) if csv else ("srt-sweep", JSON_TYPE)
-    answer_key = cache_key("srt-sweep-answer", resolved)
+    answer_key = resolved.key("srt-sweep-answer")
 
     async def answer() -> tuple[SweepAnswer, bool]:
         found = cache.answers.get(answer_key)
@@ -191,7 +187,7 @@ async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Setting
         cache.answers[answer_key] = found
         return found, False
 
-    if sweep_cases(resolved) <= STREAM_ROWS:
+    if resolved.cases <= STREAM_ROWS:
 
         async def produce() -> bytes:
             found, _ = await answer()
@@ -200,4 +196,4 @@ async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Setting
         return await cached(cache, operation, resolved, produce, media_type)
     found, hit = await answer()
     CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
-    return Streamed(render_sweep(found, csv), cache_key(operation, resolved), hit, media_type)
+    return Streamed(render_sweep(found, csv), resolved.key(operation), hit, media_type)

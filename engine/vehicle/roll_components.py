@@ -17,6 +17,15 @@ spring rate depends on the load: TruckSim's air spring ("Air Spring, 2000 N Fric
 of 0.6 F / F / 1.4 F at -100 / 0 / +100 mm, i.e. ``k = 0.004 F per mm`` (derived from its table), evaluated here at
 the axle's rated load (its GAWR split over two springs).
 
+Three leaf suspensions carry the **UMTRI Factbook**'s (Fancher et al. 1986, UMTRI-86-12) springs, as TruckSim's
+datasets "5.5t Leaf, Steer: Compliance", "8t Leaf, Trailer: Compliance" and "6.8t Leaf" and their springs cite it in
+their notes (page numbers of the 202-page scan: tractor front springs p. 189, single-axle trailer and dolly springs
+p. 192, trailer tandem springs p. 193; spring spreads and auxiliary roll stiffnesses pp. 196-200). The Factbook itself
+could be read only to its title page; its values here are those the datasets took from it. The trailer springs are
+tables of force against compression from the free spring, a loading and an unloading branch; their rate at the
+axle's rated load is the slope of the mid-line between the branches there (:func:`leaf_table_rate`, derived), the
+gap between the branches being the spring's Coulomb friction, which a static roll model does not carry.
+
 Roll-centre height
 ------------------
 TruckSim's notes define it from the lateral movement of the axle per degree of roll: "5 degrees of roll corresponds
@@ -40,6 +49,9 @@ References
 .. [2] Moreno (thesis), Eq. 2.11; Tables 15, 16, 22, 23.
 .. [3] SAE Cooperative Research Program on truck tyres (1990s), measured by UMTRI, as the TruckSim datasets
    "Steer Tire, Symmetric", "Drive Tire, Asymmetric" and "Widebase, Symmetric" state.
+.. [4] Fancher, Ervin, Winkler and Gillespie, A Factbook of the Mechanical Properties of the Components for
+   Single-Unit and Articulated Heavy Trucks, UMTRI-86-12 (1986), as cited page by page in the notes of the TruckSim
+   datasets [1] (the report's own tables were not readable here).
 """
 
 from __future__ import annotations
@@ -101,6 +113,37 @@ _RC_HEAVY = Sourced(
 _STEER_KIN = "Suspensions/Kin_Solid/KinSA_64c30f3c...par"
 _DRIVE_KIN = "Suspensions/Kin_Solid/KinSA_762a39b9...par"
 _TRAILER_KIN = "Suspensions/Kin_Solid/KinSA_fdc0b85f...par"
+
+
+# The UMTRI Factbook's leaf springs as TruckSim tabulates them (force [N] at compression [mm] from the free, unloaded
+# position; a loading and an unloading branch, their gap the spring's Coulomb friction), the points from 0 to 76.2 mm
+# of the datasets' FS_COMP_TABLE and FS_EXT_TABLE (the rebound points below 0 carry no load).
+_FACTBOOK_TANDEM_SPRING = (  # 'Tandem Axle Trailer, 8t / 17.6 kip' (Suspensions/Springs/Spring_b1276e96...par)
+    (0.0, 12.7, 25.4, 38.1, 50.8, 63.5, 76.2),
+    (0.0, 15012.0, 32523.776, 52539.776, 75060.0, 100080.0, 250200.0),
+    (0.0, 7503.776, 25020.0, 45036.0, 67551.776, 92571.776, 200160.0),
+)
+_FACTBOOK_SINGLE_SPRING = (  # 'Single Axle Trailer, 6.8t / 15 kip' (Suspensions/Springs/Spring_10789ed3...par)
+    (0.0, 12.7, 25.4, 38.1, 50.8, 63.5, 76.2),
+    (0.0, 16680.0, 36140.0, 58268.8, 83400.0, 111200.0, 275776.0),
+    (0.0, 8340.0, 27800.0, 50040.0, 75060.0, 102860.0, 222400.0),
+)
+_IN_LB = 4.4482216152605 * 0.0254  # 1 in-lb = 0.112985 N m
+
+
+def leaf_table_rate(table: tuple[tuple[float, ...], ...], spring_load_n: float) -> float:
+    """The rate [N/mm] of a tabulated leaf spring at a static load: the slope, at that load, of the mid-line between
+    its loading and unloading branches (the friction band taken out), piecewise linear as TruckSim interpolates it."""
+    x, comp, ext = table
+    mid = [(c + e) / 2.0 for c, e in zip(comp, ext, strict=True)]
+    for i in range(len(x) - 1):
+        if mid[i] <= spring_load_n <= mid[i + 1]:
+            return (mid[i + 1] - mid[i]) / (x[i + 1] - x[i])
+    raise ValueError(f"{spring_load_n} N is beyond the table")
+
+
+def _leaf_table_roll(table, gawr_kg: float, spacing_mm: float, aux_n_m_per_deg: float) -> float:
+    return _roll(leaf_table_rate(table, gawr_kg * G / 2.0), spacing_mm, aux_n_m_per_deg)
 
 
 def _air_roll(gawr_kg: float, aux: float) -> float:
@@ -352,19 +395,177 @@ SUSPENSIONS_IN_ROLL: dict[str, RollSuspension] = {
             Sourced(0.53, "m", _ts("15.5t Trailer, Dual Wheels - Kinematics", _TRAILER_KIN, "H_WC 530")),
             Sourced(6000.0, "kg", _ts("6t Air", "Suspensions/Compliance_SA/CmpSA_d15f1e92...par", "6 t GAWR")),
         ),
+        RollSuspension(
+            "factbook-steer-leaf-5.5t",
+            "Steel leaf steer axle, 5.5 t, with the UMTRI Factbook's tractor front springs "
+            "(TruckSim '5.5t Leaf, Steer: Compliance')",
+            "steel leaf, steer",
+            Sourced(
+                _roll(580, 813, 1500 * _IN_LB),
+                "kN m/rad",
+                _ts(
+                    "5.5t Leaf, Steer: Compliance",
+                    "Suspensions/Compliance_SA/CmpSA_290679cc...par (commit a7fa703ae736)",
+                    "FS_COMP_COEFFICIENT 580 N/mm per side (Coulomb friction 1334 N), L_SPRINGS 813 mm; its notes "
+                    "cite the UMTRI Factbook (UMTRI-86-12) p. 189 'Springs used on tractor front suspensions' and "
+                    "p. 200 'Spring Spread = 32 in, Auxiliary Roll Stiffness = 1500 in-lb/deg' (the dataset links "
+                    "'Linear: 170 N-m/deg'); derived 580 x 0.813^2/2 + 1500 in-lb/deg (169.5 N m/deg)",
+                ),
+            ),
+            _RC_STEER,
+            _NO_LASH,
+            Sourced(
+                0.813,
+                "m",
+                _ts(
+                    "5.5t Leaf, Steer: Compliance",
+                    "Suspensions/Compliance_SA/CmpSA_290679cc...par",
+                    "L_SPRINGS 813 (the Factbook's spring spread, 32 in, p. 200, as its notes cite)",
+                ),
+            ),
+            Sourced(
+                362.0,
+                "kg",
+                _ts("5.5t Steer, Single Wheel - Kinematics", _STEER_KIN, "M_US 362 (the library's steer axle)"),
+            ),
+            Sourced(0.51, "m", _ts("5.5t Steer, Single Wheel - Kinematics", _STEER_KIN, "H_CG_AXLE 510")),
+            Sourced(
+                5500.0,
+                "kg",
+                _ts(
+                    "5.5t Leaf, Steer: Compliance",
+                    "Suspensions/Compliance_SA/CmpSA_290679cc...par",
+                    "5.5 t (its title)",
+                ),
+            ),
+        ),
+        RollSuspension(
+            "factbook-trailer-tandem-leaf-8t",
+            "Steel multi-leaf trailer tandem, 8 t per axle, with the UMTRI Factbook's trailer tandem springs "
+            "(TruckSim '8t Leaf, Trailer: Compliance')",
+            "steel multi-leaf, trailer tandem",
+            Sourced(
+                _leaf_table_roll(_FACTBOOK_TANDEM_SPRING, 8000, 965, 1000 * _IN_LB),
+                "kN m/rad",
+                _ts(
+                    "8t Leaf, Trailer: Compliance",
+                    "Suspensions/Compliance_SA/CmpSA_6f4c3dbc...par (commit a7fa703ae736), its spring 'Tandem Axle "
+                    "Trailer, 8t / 17.6 kip' Suspensions/Springs/Spring_b1276e96...par (commit d36b1db6074)",
+                    "its notes cite the UMTRI Factbook (UMTRI-86-12) p. 193 'Springs used on trailer tandem axle "
+                    "rear suspension' (the spring's table) and p. 199 'Spring spread = 38 in, Auxiliary Roll "
+                    "Stiffness = 1000 in-lb/deg' (the dataset links 'Linear: 150 N-m/deg'); L_SPRINGS 965 mm; "
+                    "derived: the rate at the 8 t GAWR (39.2 kN per spring) is the slope of the mid-line of the "
+                    "table's loading and unloading branches, (52539.8 + 45036 - 32523.8 - 25020) / 2 / 12.7 = "
+                    "1576.1 N/mm, then 1576.1 x 0.965^2/2 + 1000 in-lb/deg (113.0 N m/deg)",
+                ),
+            ),
+            _RC_HEAVY,
+            _NO_LASH,
+            Sourced(
+                0.965,
+                "m",
+                _ts(
+                    "8t Leaf, Trailer: Compliance",
+                    "Suspensions/Compliance_SA/CmpSA_6f4c3dbc...par",
+                    "L_SPRINGS 965 (the Factbook's 38 in, p. 199, as its notes cite)",
+                ),
+            ),
+            Sourced(
+                445.0,
+                "kg",
+                _ts(
+                    "15.5t Trailer, Dual Wheels - Kinematics",
+                    _TRAILER_KIN,
+                    "M_US 445 (the library's trailer axle: the dataset names no kinematics)",
+                ),
+            ),
+            Sourced(0.53, "m", _ts("15.5t Trailer, Dual Wheels - Kinematics", _TRAILER_KIN, "H_WC 530")),
+            Sourced(
+                8000.0,
+                "kg",
+                _ts(
+                    "8t Leaf, Trailer: Compliance",
+                    "Suspensions/Compliance_SA/CmpSA_6f4c3dbc...par",
+                    "8 t per axle (its title; the spring's '8t / 17.6 kip')",
+                ),
+            ),
+        ),
+        RollSuspension(
+            "factbook-trailer-single-leaf-6.8t",
+            "Steel multi-leaf single trailer or dolly axle, 6.8 t, with the UMTRI Factbook's single-axle trailer "
+            "springs (TruckSim '6.8t Leaf')",
+            "steel multi-leaf, single trailer or dolly axle",
+            Sourced(
+                _leaf_table_roll(_FACTBOOK_SINGLE_SPRING, 6800, 965, 1500),
+                "kN m/rad",
+                _ts(
+                    "6.8t Leaf: +100 mm, -60 mm Travel",
+                    "Suspensions/Compliance_SA/CmpSA_0df2c525...par (commit d36b1db6074), its spring 'Single Axle "
+                    "Trailer, 6.8t / 15 kip' Suspensions/Springs/Spring_10789ed3...par (commit a7fa703ae736)",
+                    "its notes cite the UMTRI Factbook (UMTRI-86-12) p. 192 'Springs used on single axle trailer "
+                    "and dolly suspensions' and p. 196 'Spring Spread = 38 in'; L_SPRINGS 965 mm; aux 'Linear: 1500 "
+                    "N-m/deg' (title of the linked file); derived: the rate at the 6.8 t GAWR (33.4 kN per spring) is "
+                    "the slope of the mid-line of the table's branches, (58268.8 + 50040 - 36140 - 27800) / 2 / 12.7 "
+                    "= 1746.8 N/mm, then 1746.8 x 0.965^2/2 + 1500 N m/deg",
+                ),
+            ),
+            _RC_HEAVY,
+            _NO_LASH,
+            Sourced(
+                0.965,
+                "m",
+                _ts(
+                    "6.8t Leaf",
+                    "Suspensions/Compliance_SA/CmpSA_0df2c525...par",
+                    "L_SPRINGS 965 (the Factbook's 38 in, p. 196, as its notes cite)",
+                ),
+            ),
+            Sourced(
+                445.0,
+                "kg",
+                _ts(
+                    "15.5t Trailer, Dual Wheels - Kinematics",
+                    _TRAILER_KIN,
+                    "M_US 445 (the library's trailer axle: the dataset names no kinematics)",
+                ),
+            ),
+            Sourced(0.53, "m", _ts("15.5t Trailer, Dual Wheels - Kinematics", _TRAILER_KIN, "H_WC 530")),
+            Sourced(
+                6800.0,
+                "kg",
+                _ts(
+                    "6.8t Leaf",
+                    "Suspensions/Compliance_SA/CmpSA_0df2c525...par",
+                    "6.8 t (its title; the spring's '6.8t / 15 kip')",
+                ),
+            ),
+        ),
     )
 }
 
 #: looked for and not found, so not in the library: what was searched
 NOT_FOUND_IN_ROLL: dict[str, str] = {
     "walking-beam, trunnion / bogie and four-spring tandems": (
-        "no TruckSim dataset of these types is in the copy; the UMTRI Factbook (UMTRI-86-12) and Winkler, Bogard and "
-        "Karamihas (SAE 922426) tabulate them but only their title pages could be read"
+        "no TruckSim dataset of these types is in either copy of the database found (github.com/Steve-Krug/Axicle "
+        "04-Trucksim/, all 23 solid-axle compliance datasets read; github.com/LiAngHNU/CYBRIX "
+        "utils/resources/custom_TruckSim_dataset_2020.1/, two suspension files, copies of Axicle's); the UMTRI "
+        "Factbook (UMTRI-86-12), Winkler, Bogard and Karamihas (SAE 922426) and Fu and Cebon (2002, 61 measured "
+        "suspensions in eight categories) tabulate them, but only their title pages or abstracts could be read; the "
+        "library's Factbook trailer tandem is a leaf tandem whose dataset does not say whether it is four-spring"
     ),
-    "suspension lash (any type)": "TruckSim models none; the UMTRI reports that give it could not be read",
+    "suspension lash (any type)": (
+        "TruckSim models none; the UMTRI reports that give it (Ervin 1986, UMTRI-86-35, UMTRI-99-19) and the TERNZ "
+        "tilt-table report (2001) could be read only to their first pages"
+    ),
     "TERNZ / NZTA generic air (low and high roll stiffness) and generic steel values": (
-        "the calculator names the types but its values are inside the calculator; the library's two air "
-        "suspensions are TruckSim's, of low and high auxiliary roll stiffness"
+        "the calculator's help page (ternz.co.nz/SRT_Calculator/mainhelp.html) names the types 'Generic Air - low "
+        "roll stiffness', 'Generic Air - high roll stiffness', 'Generic Steel' and 'User Defined' but its values are "
+        "inside the calculator, and its user guide's tables could not be read; the library's two air suspensions "
+        "are TruckSim's, of low and high auxiliary roll stiffness"
+    ),
+    "manufacturer roll stiffness (Hendrickson, Reyco, SAF-Holland, BPW)": (
+        "the brochures found (Hendrickson L761 'Understanding Trailer Air Suspensions', L578, T15001; BPW and SAF "
+        "catalogues and design manuals) name roll stability but state no roll stiffness in what could be read"
     ),
 }
 

@@ -20,7 +20,7 @@ import numpy as np
 from fastapi.exceptions import RequestValidationError
 from pydantic import Field, TypeAdapter, ValidationError
 
-from app.alignments.schemas import CurveIn
+from app.alignments.schemas import CurveIn, as_a_job
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
 from engine.domain import BOUNDS
 
@@ -109,9 +109,10 @@ def curves_from_json(items: Any, max_curves: int = MAX_CURVES) -> CurveTable:
         try:  # pydantic's own error: not a list, or too short or too long
             _list(max_curves).validate_python(items, strict=True)
         except ValidationError as exc:
-            raise RequestValidationError(
-                [{**e, "loc": ("body", "curves", *e["loc"])} for e in exc.errors(include_url=False)]
-            ) from None
+            errors = [{**e, "loc": ("body", "curves", *e["loc"])} for e in exc.errors(include_url=False)]
+            if max_curves == MAX_CURVES:  # the synchronous request's limit: say where larger work goes
+                errors = [{**e, "msg": as_a_job(e["msg"])} if e["type"] == "too_long" else e for e in errors]
+            raise RequestValidationError(errors) from None
     fast = _columns_at_once(items)
     if fast is not None:
         return fast

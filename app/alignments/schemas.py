@@ -34,6 +34,20 @@ from app.srt.schemas import (
 MAX_VEHICLES = 10
 #: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)
 MAX_ROWS = 100_000
+#: an ``alignments.assess`` job's limits (:mod:`app.jobs.op_alignments`), named by the synchronous limits' errors
+MAX_JOB_CURVES = 1_000_000
+MAX_JOB_ROWS = 1_000_000
+
+
+def as_a_job(message: str) -> str:
+    """A synchronous size limit's message, with how to send the work instead."""
+    return (
+        f"{message}; larger work goes to a job: POST /v1/jobs with "
+        '{"operation": "alignments.assess", "request": <this request as JSON, a file as its "csv" or "landxml" text>} '
+        f"takes up to {MAX_JOB_CURVES:,} curves and {MAX_JOB_ROWS:,} rows (docs/jobs.md)"
+    )
+
+
 MAX_CSV_CHARS = 16_000_000
 MAX_LANDXML_CHARS = 64_000_000
 #: body limits [bytes]: the raw CSV and LandXML uploads as their documents' bounds (UTF-8 text of that many

@@ -31,7 +31,7 @@ from starlette.concurrency import run_in_threadpool
 
 from app.alignments.curves import curves_from_json
 from app.alignments.rows import render
-from app.alignments.schemas import MAX_ROWS, MAX_VEHICLES, AlignmentRequest
+from app.alignments.schemas import MAX_ROWS, MAX_VEHICLES, AlignmentRequest, as_a_job
 from app.compute import solvers
 from app.compute.cache import ResultCache
 from app.compute.resolved import CurvesDigest, ResolvedAlignment, ResolvedAssessment
@@ -124,6 +124,8 @@ def read_curves(
         if exc.location == "curve_overrides":
             where, location = "landxml.curve_overrides", None
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
+        if max_curves == MAX_CURVES and reason.startswith("more than"):  # the synchronous request's limit
+            reason = as_a_job(reason)
         raise InvalidAlignment(reason, source=where, location=location, column=exc.field) from None
 
 
@@ -185,11 +187,10 @@ def resolve_alignment(
     refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
     table = read_curves(req, curves, source_field, max_curves)
     if len(table) * len(refs) > max_rows:
-        raise request_error(
-            which,
-            f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {max_rows} per "
-            "request (split the alignment or the vehicles)",
-        )
+        rows = f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {max_rows}"
+        if max_rows == MAX_ROWS:
+            raise request_error(which, as_a_job(f"{rows} per request"))
+        raise request_error(which, f"{rows} per job (split the alignment or the vehicles)")
     vehicles = [resolve_vehicle(r) for r in refs]
     resolved = ResolvedAlignment(
         **resolved_assessment(req, refs, vehicles, settings).assessment_fields(),

@@ -38,6 +38,8 @@ from app.alignments.rows import (
     summary,
 )
 from app.alignments.schemas import (
+    MAX_JOB_CURVES,
+    MAX_JOB_ROWS,
     AlignmentRequest,
     CurveId,
     CurveIn,
@@ -73,9 +75,8 @@ from engine.road import (
     tilt_table_angle_deg,
 )
 
-#: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters)
-MAX_JOB_CURVES = 1_000_000
-MAX_JOB_ROWS = 1_000_000
+#: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters); the
+#: curves and rows in app.alignments.schemas, whose limit errors name them
 MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000
 #: rows (curves x vehicles) per part, and per chunk of a part (a progress report, a cancellation point)

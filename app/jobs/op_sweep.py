@@ -23,12 +23,11 @@ from app.compute.resolved import ResolvedSweep
 from app.http.schemas import describe, shape_error
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.settings import Settings
-from app.srt.sweep_schemas import AXIS_ORDER, MAX_AXIS_VALUES, SweepGrid, SweepRequest
+from app.srt.sweep_schemas import AXIS_ORDER, MAX_AXIS_VALUES, MAX_JOB_CASES, SweepGrid, SweepRequest
 from app.srt.sweep_service import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
 from app.vehicles.refs import resolve_vehicle_refs
 
-#: a job's limit (the synchronous request's: 20,000 cases)
-MAX_JOB_CASES = 1_000_000
+#: a job's limit, MAX_JOB_CASES, is in app.srt.sweep_schemas (the synchronous request's 20,000 cases' error names it)
 #: cases per part (and at most per block: one synchronous sweep's worth)
 PART_CASES = 20_000
 _ROWS_OPEN = b'"rows":['

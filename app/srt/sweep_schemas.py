@@ -13,6 +13,8 @@ from engine.domain import BOUNDS
 
 MAX_AXIS_VALUES = 200
 MAX_CASES = 20_000
+#: an ``srt.sweep`` job's limit (:mod:`app.jobs.op_sweep`), named by the synchronous limit's error
+MAX_JOB_CASES = 1_000_000
 #: 8 axes x 200 values of up to ~25 characters, with the base case: 256 KiB is ample [bytes]
 SWEEP_BODY_LIMIT = 256 * 1024
 
@@ -121,7 +123,11 @@ class SweepRequest(SrtInputs, SrtTargets):
         if cases > MAX_CASES:
             sizes = " x ".join(f"{len(v)} {a}" for a, v in axes.items())
             raise shape_error(
-                "SweepRequest", "grid", f"{sizes} = {cases} cases; at most {MAX_CASES} per request (split the grid)"
+                "SweepRequest",
+                "grid",
+                f"{sizes} = {cases} cases; at most {MAX_CASES} per request; larger work goes to a job: POST "
+                '/v1/jobs with {"operation": "srt.sweep", "request": <this request>} takes up to '
+                f"{MAX_JOB_CASES:,} cases (docs/jobs.md)",
             )
         return self
 

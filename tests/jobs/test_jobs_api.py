@@ -587,3 +587,30 @@ def test_a_landxml_job_keeps_the_stations_in_its_columns(accept):
     assert job.status_code == sync.status_code == 200 and job.content == sync.content
     if accept is None:
         assert orjson.loads(job.content)["vehicles"][0]["rows"][399]["station_m"] == 100.5 * 399
+
+
+# ------------------------------------------------------------------- synchronous limits point to jobs
+
+
+def test_a_request_past_a_synchronous_limit_is_told_to_send_a_job_and_that_job_is_taken():
+    """Past the synchronous limits (100,000 curves, 100,000 rows, 20,000 sweep cases) the 422 says where larger work
+    goes (POST /v1/jobs, the operation, the job's limit), and the same request sent that way is taken (202)."""
+    with make_client() as c:
+        rows = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(50_001, seed=5)}
+        text = "id,radius_m,superelevation_percent\n" + "".join(f"C{i},300,4\n" for i in range(100_001))
+        grid = {"bank_percent": [k / 10 for k in range(200)], "slope_percent": [k / 10 for k in range(101)]}
+        cases = [
+            ("/v1/alignments/assess", rows, "alignments.assess", "100002 rows; at most 100000 per request"),
+            ("/v1/alignments/assess", {"vehicle": "table16-btrain", "csv": text}, "alignments.assess", "more than"),
+            ("/v1/srt/sweep", {"vehicle": "table16-btrain", "grid": grid}, "srt.sweep", "20200 cases"),
+        ]
+        for path, body, operation, why in cases:
+            r = c.post(path, json=body)
+            assert r.status_code == 422, r.text
+            detail = r.json()["detail"]
+            assert why in detail and "POST /v1/jobs" in detail and f'"operation": "{operation}"' in detail, detail
+            assert "1,000,000" in detail
+            assert submit(c, operation, body).status_code == 202
+        many = [{"id": f"K{i}", "radius_m": 300.0, "superelevation_percent": 4.0} for i in range(100_001)]
+        r = c.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "curves": many})
+        assert r.status_code == 422 and "POST /v1/jobs" in r.json()["errors"][0]["message"]

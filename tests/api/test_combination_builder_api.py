@@ -68,6 +68,12 @@ def test_a_combination_spec_is_a_vehicle_with_the_presets_srt(shared_client):
     assert by_record["srt"] == by_spec["srt"]  # the built record is itself a vehicle
     speed = post(shared_client, "/v1/curve-speed", {"vehicle": {"combination_spec": table15_spec()}, "radius_m": 100})
     assert speed.json()["srt"] == pytest.approx(by_id["srt"], rel=1e-12)
+    # the 3D model of the last unit: the spec's last unit gets Table 15's record back, LLTf/LLTr from the combination
+    three_d = post(shared_client, "/v1/srt", {"vehicle": {"combination_spec": table15_spec()}, "model": "3d"}).json()
+    preset_3d = post(shared_client, "/v1/srt", {"vehicle": PRESET, "model": "3d"}).json()
+    assert three_d["model"] == "3d" and three_d["srt"] == pytest.approx(preset_3d["srt"], rel=1e-9)
+    built = post(shared_client, "/v1/combinations/build", {"combination_spec": table15_spec()}).json()
+    assert any("3D model" in n and "semitrailer" in n for n in built["notes"])
 
 
 def test_the_build_is_cached_and_its_key_holds_every_input(client):

@@ -97,9 +97,14 @@ def test_the_table15_preset_is_rebuilt_from_its_measurable_data():
             for f in dataclasses.fields(g):
                 assert same(getattr(g, f.name), getattr(pg, f.name)), (u.id, g.id, f.name)
     assert built.couplings == preset.couplings
-    # the only differences: the titles, and the preset's Table 15 record for the 3D model of the last unit
-    assert built.title == "Table 15 rebuilt" and built.last_unit_record is None
-    assert preset.last_unit_record is not None
+    # the titles differ; the last unit's record for the 3D model, built from the same measurable data
+    # (engine/vehicle/builder/last_unit.py), is Table 15's record (the preset's) field by field, with no LLTf/LLTr of
+    # its own (the combination computes it)
+    assert built.title == "Table 15 rebuilt"
+    derived, table15 = built.last_unit_record.to_dict(), preset.last_unit_record.to_dict()
+    assert derived["front_llt_ratio"] is None and table15["front_llt_ratio"] is None
+    for name, value in table15.items():
+        assert same(derived[name], value), name
     # Table 15's trailer: W = 364.147 kN less 3 axles of 445 kg is the sprung weight
     assert built.units[1].sprung_mass_kg == pytest.approx(364.147e3 / 9.81 - 3 * 445.0, rel=1e-12)
     # same SRT as the preset
@@ -320,10 +325,8 @@ def test_a_full_trailers_rear_group_load_is_levered_from_its_front_group():
     assert [g.id for u in b.combination.units for g in u.groups] == ["steer", "drive", "front", "rear"]
 
 
-def test_the_b_double_is_rebuilt_with_every_group_value_given():
-    """btrain-table16 (lead trailer and B-coupling kinds): each unit weighed with its axles, every group and coupling
-    value given explicitly (Table 16's derived values and the lead trailer's assumed ones): the same record and SRT."""
-    preset = COMBINATIONS["btrain-table16"]
+def every_value_given(preset) -> dict:
+    """A preset's spec with each unit weighed with its axles and every group and coupling value given explicitly."""
     spec = {"units": [], "couplings": []}
     for p in preset.units:
         m_u = sum(g.axles * g.unsprung_mass_kg for g in p.groups)
@@ -347,6 +350,14 @@ def test_the_b_double_is_rebuilt_with_every_group_value_given():
         spec["couplings"].append({"kind": cp.kind, "position_m": cp.position_m, "height_m": cp.height_m,
                                   "roll_stiffness_knm_per_rad": cp.roll_stiffness_knm_per_rad,
                                   "lash_deg": cp.lash_deg})  # fmt: skip
+    return spec
+
+
+def test_the_b_double_is_rebuilt_with_every_group_value_given():
+    """btrain-table16 (lead trailer and B-coupling kinds): each unit weighed with its axles, every group and coupling
+    value given explicitly (Table 16's derived values and the lead trailer's assumed ones): the same record and SRT."""
+    preset = COMBINATIONS["btrain-table16"]
+    spec = every_value_given(preset)
     b = build(spec)
     built = b.combination
     assert [u.kind for u in built.units] == ["tractor", "btrain-lead", "semitrailer"]
@@ -394,3 +405,54 @@ def test_payload_table_of_a_combination_finds_the_governing_srt_at_the_target_an
     with pytest.raises(InvalidInput) as err:
         payload_table(spec, 0.55, unit_index=0)  # the tractor carries nothing
     assert err.value.field == "payload_index"
+
+
+# ------------------------------------------------------------------ the last unit's record for the 3D model
+
+
+def test_a_built_combination_runs_the_3d_model_of_its_last_unit_as_its_preset_does():
+    """The Table 15 rebuilt: its last unit's record is Table 15's, so the 3D model of the last unit, with LLTf/LLTr
+    from the combination, gives the preset's SRT (to 1e-9: the builder's arithmetic reorders sums)."""
+    from engine.case import Case
+    from engine.models import rollover_threshold
+
+    built = build(table15_spec()).combination
+    preset = COMBINATIONS["tractor-semitrailer-table15"]
+    ours, theirs = rollover_threshold(Case(built, model="3d")), rollover_threshold(Case(preset, model="3d"))
+    assert ours.srt == pytest.approx(theirs.srt, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "cid, unit_type", [("btrain-table16", "btrain-rear"), ("adouble", "semitrailer"), ("truck-trailer", None)]
+)
+def test_the_last_units_record_is_made_where_the_3d_model_has_one(cid, unit_type):
+    """A semitrailer behind a B-coupling is a B-train's rear trailer, behind a dolly's fifth wheel a semitrailer; a
+    full trailer (a turntable, a pintle) has no 3D model: no record, and the build's notes say why."""
+    from engine.vehicle.builder.last_unit import last_unit_spec
+
+    if cid in WEIGHED:
+        data = weighed_spec(cid)
+    else:  # every value given, and Table 16's loaded radius (lr) on the trailers' tyres: ls = roll centre - lr
+        data = every_value_given(COMBINATIONS[cid])
+        for unit in data["units"][1:]:
+            for g in unit["axle_groups"]:
+                g["tyre"]["loaded_radius_m"] = PRESETS["table16-btrain"].rolling_radius_m
+    spec = CombinationSpec.from_dict(data)
+    built = build_combination(spec)
+    note = next(n for n in built.notes if "3D model" in n)
+    if unit_type is None:
+        assert built.combination.last_unit_record is None and "full-trailer" in note
+        return
+    assert built.combination.last_unit_record is not None and unit_type in note
+    vspec = last_unit_spec(spec, built.combination)
+    last, towing = spec.units[-1], spec.units[-2]
+    assert vspec.unit_type == unit_type
+    assert vspec.rear.centre_from_kingpin_m == last.axle_groups[0].position_m
+    # the front group: the towing unit's group under the coupling, l13 from the coupling's position
+    near = min(towing.axle_groups, key=lambda g: abs(g.position_m - spec.couplings[-1].position_m))
+    assert vspec.front.centre_from_kingpin_m == pytest.approx(near.position_m - spec.couplings[-1].position_m)
+    record = built.combination.last_unit_record
+    assert record.weight_kn == pytest.approx(built.units[-1].mass_kg * G_M_PER_S2 / 1000.0, rel=1e-12)
+    if cid == "btrain-table16":  # every value given: Table 16's own record (the preset's), field by field
+        for name, value in COMBINATIONS[cid].last_unit_record.to_dict().items():
+            assert same(getattr(record, name), value), name

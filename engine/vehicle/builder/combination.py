@@ -51,6 +51,7 @@ from dataclasses import asdict, dataclass
 
 from engine.errors import InvalidInput, InvalidVehicle
 from engine.vehicle.builder.build import _composite
+from engine.vehicle.builder.last_unit import last_unit_record
 from engine.vehicle.builder.payloads import payload_item, tare_item
 from engine.vehicle.builder.spec import (
     DeckSpec,
@@ -604,6 +605,9 @@ def build_combination(spec: CombinationSpec) -> BuiltCombination:
                     f"library tyre's rated {rated:g} kg"
                 )
     coupling_loads = tuple(st.coupling_kn[k] for k in range(len(c.couplings)))
+    record, note = last_unit_record(spec, c)  # for the 3D model of the last unit (LLTf/LLTr from the combination)
+    c = dataclasses.replace(c, last_unit_record=record)
+    notes.append(note)
     gross = sum(b.mass_kg for b in built)
     if not math.isfinite(gross):  # pragma: no cover - every mass is checked finite above
         raise InvalidVehicle("the masses are not finite", field=f"{ROOT}.units")

@@ -3,8 +3,7 @@ plain form (comma-separated, no quotes, one curve per line, ``\\n`` or ``\\r\\n`
 almost always is.
 
 The text is split once into its fields (``str.split``), each numeric column parsed by ``float`` over the whole
-column at once (``map``: the same parser ``read_csv`` uses, so the same bits; a column of few distinct texts through a
-table of each distinct text's ``float``) into a numpy array, and checked with
+column at once (``map``: the same parser ``read_csv`` uses, so the same bits) into a numpy array, and checked with
 numpy masks (finite, the bounds of the JSON form); the ids are checked on the whole column (empty, too long, control
 characters, duplicates). No row object, no dict and no Python call per curve besides the ids' ``strip``.
 
@@ -60,21 +59,11 @@ class RowNames(Sequence[str]):
         return f"row {self.start + i + 2}"
 
 
-def _parser(fields: list[str]):
-    """``float``, or for a column of few distinct texts (banks, grades and posted speeds of a network repeat, and so
-    do radii to the decimetre) a table of ``float`` of each distinct text: the same values, each text parsed once."""
-    sample = fields[:: max(1, len(fields) // 2000)]
-    if len(set(sample)) * 4 > len(sample):
-        return float
-    table = {f: float(f) for f in set(fields)}  # raises ValueError as float does: read_csv then says where
-    return table.__getitem__
-
-
 def _numbers(fields: list[str], *, optional: bool, empty: float) -> np.ndarray | None:
     """A numeric column (``float`` of each field; an empty one ``empty`` when ``optional``); None when a field is not
     a finite number (``read_csv`` says which)."""
     try:
-        values = np.fromiter(map(_parser(fields), fields), dtype=np.float64, count=len(fields))
+        values = np.fromiter(map(float, fields), dtype=np.float64, count=len(fields))
     except ValueError:
         if not optional:
             return None

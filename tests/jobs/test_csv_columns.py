@@ -63,21 +63,6 @@ def test_anything_else_is_left_to_read_csv(text):
     assert read_csv_columns(text, max_curves=10) is None
 
 
-def test_columns_of_few_distinct_texts_parse_each_once_to_the_same_bits():
-    """A network's banks, grades and speeds repeat: each distinct text is parsed once (a table), the same bits as
-    read_csv; a column of distinct texts, and one whose repeated texts include a bad one, are read as before."""
-    rng = np.random.default_rng(3)
-    n = 3000
-    e = rng.choice(["6", "6.0", "-0", "0.1", "1e0", "2.50"], n)
-    lines = [
-        f"C{i},{100 + i * 0.37!r},{e[i]},{rng.choice(['-2', '0', '3.3'])},{rng.choice(['', '80'])}" for i in range(n)
-    ]
-    text = HEADER + "\n" + "\n".join(lines) + "\n"
-    same(read_csv_columns(text, max_curves=n), read_csv(text, max_curves=n))
-    bad = text.replace(",6.0,", ",6.0x,", 1)
-    assert read_csv_columns(bad, max_curves=n) is None
-
-
 def test_row_names_are_made_when_asked_for():
     rows = RowNames(0, 5)
     assert list(rows) == [f"row {i}" for i in range(2, 7)] and rows[-1] == "row 6"

@@ -151,6 +151,21 @@ def _air_roll(gawr_kg: float, aux: float) -> float:
     return _roll(0.004 * spring_load_n, 1000.0, aux)
 
 
+#: the unsprung mass and CG height of the library's trailer axle, for the Factbook leaf suspensions, whose datasets
+#: name no kinematics of their own
+_BORROWED_TRAILER_AXLE = (
+    Sourced(
+        445.0,
+        "kg",
+        _ts(
+            "15.5t Trailer, Dual Wheels - Kinematics",
+            _TRAILER_KIN,
+            "M_US 445 (the library's trailer axle: the dataset names no kinematics)",
+        ),
+    ),
+    Sourced(0.53, "m", _ts("15.5t Trailer, Dual Wheels - Kinematics", _TRAILER_KIN, "H_WC 530")),
+)
+
 SUSPENSIONS_IN_ROLL: dict[str, RollSuspension] = {
     s.id: s
     for s in (
@@ -470,16 +485,7 @@ SUSPENSIONS_IN_ROLL: dict[str, RollSuspension] = {
                     "L_SPRINGS 965 (the Factbook's 38 in, p. 199, as its notes cite)",
                 ),
             ),
-            Sourced(
-                445.0,
-                "kg",
-                _ts(
-                    "15.5t Trailer, Dual Wheels - Kinematics",
-                    _TRAILER_KIN,
-                    "M_US 445 (the library's trailer axle: the dataset names no kinematics)",
-                ),
-            ),
-            Sourced(0.53, "m", _ts("15.5t Trailer, Dual Wheels - Kinematics", _TRAILER_KIN, "H_WC 530")),
+            *_BORROWED_TRAILER_AXLE,
             Sourced(
                 8000.0,
                 "kg",
@@ -520,16 +526,7 @@ SUSPENSIONS_IN_ROLL: dict[str, RollSuspension] = {
                     "L_SPRINGS 965 (the Factbook's 38 in, p. 196, as its notes cite)",
                 ),
             ),
-            Sourced(
-                445.0,
-                "kg",
-                _ts(
-                    "15.5t Trailer, Dual Wheels - Kinematics",
-                    _TRAILER_KIN,
-                    "M_US 445 (the library's trailer axle: the dataset names no kinematics)",
-                ),
-            ),
-            Sourced(0.53, "m", _ts("15.5t Trailer, Dual Wheels - Kinematics", _TRAILER_KIN, "H_WC 530")),
+            *_BORROWED_TRAILER_AXLE,
             Sourced(
                 6800.0,
                 "kg",

@@ -316,7 +316,8 @@ LEVEL_ROAD_SRT_TEXT = describe(
 )
 TILT_OUT = describe(
     "Tilt-table angle equivalent to the SRT, atan(SRT): the angle at which a tilt test would tip a vehicle with "
-    "this threshold.",
+    "this threshold. It is of the SRT beside it: on a banked or sloped road the curve's threshold; a tilt table "
+    "measures the level-road one (`level_road_srt`, atan of which is its tilt angle).",
     unit="deg",
     symbol="atan(SRT)",
 )

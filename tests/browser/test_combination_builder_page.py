@@ -138,6 +138,11 @@ def test_a_tractor_semitrailer_built_from_scratch_shows_the_apis_governing_srt(p
     assert page.text("#cb-gross") == f"Built: gross mass {built['gross_mass_kg']:.0f} kg in 2 units."
     rows = page.find_all("#units-table tbody tr")
     assert len(rows) == len(expected["roll_coupled_units"])
+    # the link reopens the editor with that spec and computes it again
+    page.open(f"?{urlsplit(page.driver.current_url).query}")
+    assert page.find('input[name="source"][value="combo"]').is_selected()
+    assert page.find(box_id("units.1.payloads.0.mass_kg")).get_attribute("value") == "22000"
+    assert shown_srt(page.text("#governing-unit")) == pytest.approx(governing["srt"], abs=DISPLAY_G)
 
 
 def test_a_preset_restated_unit_by_unit_has_the_presets_srt(page, api):
@@ -184,13 +189,39 @@ def test_a_tare_typed_in_tonnes_shows_the_apis_problem_at_that_box(page, api):
     assert len(page.find_all('#cb-editor [aria-invalid="true"]')) == 1
 
 
-def _table15_with_tare(page, tare_kg: float) -> dict:
+def test_a_tyre_size_without_data_is_refused_at_its_box_with_the_sizes_that_have_data(page, api):
+    open_editor(page)
+    set_box(page, "units.0.axle_groups.0.tyre.size", "12R19.5")
+    compute(page)
+    r = api.post(
+        "/v1/combinations/build",
+        json={"combination_spec": _table15_with(page, ("units", 0, "axle_groups", 0, "tyre", "size"), "12R19.5")},
+    )
+    assert r.status_code == 422, r.text
+    [error] = r.json()["errors"]
+    assert error["message"] in page.field_error(box_id("units.0.axle_groups.0.tyre.size"))
+    listed = error["message"].split("sizes with data: ")[1].split(" (or give")[0].split(", ")
+    suggested = {o.get_attribute("value") for o in page.find_all("#cb-tyre-sizes option")}
+    assert set(listed) <= suggested
+
+
+def _table15_with(page, where: tuple, value) -> dict:
+    spec = _table15_with_tare(page, None)
+    node = spec
+    for k in where[:-1]:
+        node = node[k]
+    node[where[-1]] = value
+    return spec
+
+
+def _table15_with_tare(page, tare_kg: float | None) -> dict:
     """The editor's default spec as its boxes hold it (read from the page's own module, then the test's change)."""
     spec = page.driver.execute_async_script(
         "const done = arguments[0]; import('/web/js/combobuilder.js').then((m) => done(m.TABLE15_SPEC));"
     )
     spec = copy.deepcopy(spec)
-    spec["units"][1]["tare"]["mass_kg"] = tare_kg
+    if tare_kg is not None:
+        spec["units"][1]["tare"]["mass_kg"] = tare_kg
     return spec
 
 

@@ -286,6 +286,7 @@ export function render(spec) {
     });
     return keep;
   });
+  suggestSizes(spec.units.flatMap((u) => (u.axle_groups || []).map((g) => g?.tyre?.size)));
   const root = clear($("#cb-units"));
   $("#cb-title").value = spec.title || "";
   $("#cb-front-llt").value = spec.front_llt_ratio ?? "";
@@ -449,8 +450,6 @@ export async function init(combinations) {
   state.library.suspensions = enumOf("RollSuspensionSpec", "type");
   state.library.fifthWheels = enumOf("CouplingSpec", "fifth_wheel");
   state.combinations = combinations || [];
-  const sizes = $("#cb-tyre-sizes");
-  for (const s of ["11R22.5", "295/80R22.5", "275/80R22.5", "295/75R22.5", "315/80R22.5", "385/65R22.5", "425/65R22.5"]) sizes.append(el("option", { value: s }));
   fillStart();
   render(state.pending || structuredClone(TABLE15_SPEC));
   const editor = $("#cb-editor");
@@ -462,9 +461,19 @@ export async function init(combinations) {
 
 // ------------------------------------------------------------------------------------------ building
 
-/** Open the folded boxes an error points at, so it is shown beside its box. */
+/** The tyre sizes offered as suggestions: those of the specs shown, and those the service lists with data. */
+function suggestSizes(sizes) {
+  const list = $("#cb-tyre-sizes");
+  const known = new Set($$("option", list).map((o) => o.value));
+  for (const s of sizes) if (s && !known.has(s)) list.append(el("option", { value: s }));
+}
+
+/** Open the folded boxes an error points at, so it is shown beside its box; an unknown tyre size's refusal lists
+ * the sizes the library has data for: they become the size boxes' suggestions. */
 function reveal(err) {
   for (const item of err?.problem?.errors || []) {
+    const listed = /sizes with data: ([^()]+?) \(or give/.exec(item.message || "");
+    if (listed) suggestSizes(listed[1].split(", "));
     const name = String(item.field || "").replace(/\[(\d+)\]/g, ".$1");
     for (const c of $$("#cb-editor [data-field]")) {
       if (c.dataset.field.split(" ").includes(name)) c.closest("details")?.setAttribute("open", "");

@@ -145,8 +145,8 @@ function box(spec, path, label, { kind = "number", options, hint, extraFields = 
   return el("div", { class: wide ? "field wide" : "field" }, el("label", { for: id }, label), control, hint ? el("span", { class: "hint" }, hint) : null);
 }
 
-const suspensionItems = () => [["", "(none: the explicit values below)"], ...state.library.suspensions.map((s) => [s, s])];
-const fifthWheelItems = () => [["", "(none: the explicit values below)"], ...state.library.fifthWheels.map((s) => [s, s])];
+const suspensionItems = () => [["", "(none: explicit values)"], ...state.library.suspensions.map((s) => [s, s])];
+const fifthWheelItems = () => [["", "(none: explicit values)"], ...state.library.fifthWheels.map((s) => [s, s])];
 
 function groupBox(spec, i, j, kind) {
   const p = `units.${i}.axle_groups.${j}`;

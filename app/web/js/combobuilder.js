@@ -119,7 +119,7 @@ export const state = {
   combinations: [], // GET /v1/combinations
   pending: null, // a spec from the link, shown once the library is read
   built: null, // the last POST /v1/combinations/build answer
-  extra: [], // per unit: the spec parts the editor has no box for (a tank, a sloping deck), kept as they are
+  extra: [], // per unit: the spec parts the editor has no box for (a title, group ids, a tank), kept as they are
 };
 
 // ------------------------------------------------------------------------------------------ the boxes
@@ -278,14 +278,6 @@ function unitBox(spec, i) {
 
 /** Draw the editor for `spec` (the boxes are the spec from now on). */
 export function render(spec) {
-  state.extra = spec.units.map((u) => {
-    const keep = {};
-    (u.payloads || []).forEach((pl, k) => {
-      const rest = Object.fromEntries(Object.entries(pl || {}).filter(([n]) => !["mass_kg", "deck_height_m", "load_height_m", "distribution", "cg_height_m", "cg_from_kingpin_m"].includes(n)));
-      if (Object.keys(rest).length) keep[k] = rest;
-    });
-    return keep;
-  });
   suggestSizes(spec.units.flatMap((u) => (u.axle_groups || []).map((g) => g?.tyre?.size)));
   const root = clear($("#cb-units"));
   $("#cb-title").value = spec.title || "";
@@ -294,6 +286,59 @@ export function render(spec) {
     root.append(unitBox(spec, i));
     if (i < spec.units.length - 1) root.append(couplingBox(spec, i, spec.units[i].kind));
   });
+  // what has no box is kept as it is (and said so under its unit)
+  const boxed = new Set($$("[data-cb]", root).map((c) => c.dataset.cb));
+  state.extra = spec.units.map((u, i) => strip(u, `units.${i}`, boxed) || {});
+  state.extra.forEach((extra, i) => {
+    const kept = [...leafPaths(extra)];
+    if (kept.length) $(`#cb-units .cb-unit[data-unit="${i}"] > .hint`).append(` Kept from the spec as it is (no box here): ${kept.join(", ")}.`);
+  });
+}
+
+const isObject = (v) => v !== null && typeof v === "object" && !Array.isArray(v);
+
+/** `node` without the paths that have a box (undefined when nothing is left); arrays keep their positions. */
+function strip(node, prefix, boxed) {
+  if (Array.isArray(node)) {
+    const out = node.map((v, k) => strip(v, `${prefix}.${k}`, boxed) ?? {});
+    return out.some((v) => Object.keys(v).length) ? out : undefined;
+  }
+  if (!isObject(node)) return undefined;
+  const out = {};
+  for (const [k, v] of Object.entries(node)) {
+    const p = `${prefix}.${k}`;
+    if (boxed.has(p) || v === undefined || v === null) continue;
+    if (Array.isArray(v) || isObject(v)) {
+      const rest = strip(v, p, boxed);
+      if (rest !== undefined) out[k] = rest;
+    } else {
+      out[k] = v;
+    }
+  }
+  return Object.keys(out).length ? out : undefined;
+}
+
+function* leafPaths(node, prefix = "") {
+  if (Array.isArray(node) || isObject(node)) {
+    for (const [k, v] of Object.entries(node)) yield* leafPaths(v, prefix ? `${prefix}.${k}` : k);
+  } else {
+    yield prefix;
+  }
+}
+
+/** Copy `src` into `target` (objects merged, arrays only as far as `target`'s own). */
+function merge(target, src) {
+  for (const [k, v] of Object.entries(src || {})) {
+    if (Array.isArray(v)) {
+      if (Array.isArray(target[k])) target[k].forEach((t, n) => merge(t, v[n]));
+    } else if (isObject(v)) {
+      target[k] = isObject(target[k]) ? target[k] : {};
+      merge(target[k], v);
+    } else {
+      target[k] = v;
+    }
+  }
+  return target;
 }
 
 function setPath(obj, path, v) {
@@ -318,8 +363,9 @@ export function readSpec() {
     spec.units[i] = {
       axle_groups: $$(".cb-group", unit).map(() => ({ tyre: {}, suspension: {} })),
       tare: {},
-      payloads: $$(".cb-payload", unit).map((_, k) => ({ ...structuredClone(state.extra[i]?.[k] || {}) })),
+      payloads: $$(".cb-payload", unit).map(() => ({})),
     };
+    merge(spec.units[i], structuredClone(state.extra[i] || {}));
   }
   for (const c of $$("#cb-units .cb-coupling")) spec.couplings[Number(c.dataset.coupling)] = {};
   for (const c of $$("#cb-units [data-cb]")) {
@@ -363,20 +409,14 @@ function onClick(ev) {
     restructure((spec) => {
       spec.units[i].payloads ??= [];
       spec.units[i].payloads.push({ distribution: "uniform" });
-      state.extra[i] ??= {};
     });
   } else if (b.classList.contains("cb-remove-payload")) {
     const k = Number(b.dataset.payload);
-    restructure((spec) => {
-      spec.units[i].payloads.splice(k, 1);
-      const kept = state.extra[i] || {};
-      state.extra[i] = Object.fromEntries(Object.entries(kept).filter(([n]) => Number(n) !== k).map(([n, v]) => [Number(n) > k ? Number(n) - 1 : Number(n), v]));
-    });
+    restructure((spec) => spec.units[i].payloads.splice(k, 1));
   } else if (b.classList.contains("cb-remove-unit")) {
     restructure((spec) => {
       spec.units.splice(i, 1);
       spec.couplings.splice(Math.min(i, spec.couplings.length - 1), 1);
-      state.extra.splice(i, 1);
     });
   }
 }
@@ -387,7 +427,6 @@ function addUnit() {
     const last = spec.units.at(-1);
     spec.units.push(newUnit(kind));
     if (last) spec.couplings.push(couplingFor(last.kind, kind));
-    state.extra.push({});
   });
 }
 

@@ -4,6 +4,7 @@
 import * as alignment from "./alignment.js";
 import * as api from "./api.js";
 import * as combination from "./combination.js";
+import * as combo from "./combobuilder.js";
 import { $, $$, clear, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
@@ -89,13 +90,13 @@ async function compute() {
     results.showResult(result, modelInfo());
     combination.show(v.combination || null, result);
     offerPayload(result, v);
-    stale.fresh(["srt", "builder", "summary"]);
+    stale.fresh(["srt", "builder", "combo", "summary"]);
     const link = writeUrl(stateParams(v.params));
     page.last = { vehicle: v, request, result, figures: [], link, design: null, speed: null };
     return page.last;
   });
   $("#results").setAttribute("aria-busy", "false");
-  if (!done) stale.mark(["srt", "design", "speed", "limits", "builder", "summary"], stale.FAILED);
+  if (!done) stale.mark(["srt", "design", "speed", "limits", "builder", "combo", "summary"], stale.FAILED);
   if (done) {
     status("");
     // the figures, the road design and the curve speed of the same case, side by side
@@ -389,6 +390,7 @@ async function init() {
   if (standards) road.fillStandards(standards);
   if (components) vehicle.fillComponents(components);
   await showOptionalParts();
+  if (await api.has("post", "/v1/combinations/build")) await combo.init(combinations || []);
   syncModel();
   document.body.dataset.ready = "true";
   if (wanted) await compute();

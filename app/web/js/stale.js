@@ -11,6 +11,7 @@ export const PANELS = {
   speed: "#speed-result",
   limits: "#limits-result",
   builder: "#build-result",
+  combo: "#cb-result",
   superelevation: "#super-output",
   alignment: "#alignment-results",
   summary: "#summary-body",
@@ -18,7 +19,7 @@ export const PANELS = {
 
 /** Which panels an input of each part of the page invalidates. */
 export const DEPENDS = {
-  vehicle: ["srt", "design", "speed", "limits", "builder", "alignment", "summary"],
+  vehicle: ["srt", "design", "speed", "limits", "builder", "combo", "alignment", "summary"],
   case: ["srt", "design", "speed", "limits", "alignment", "summary"],
   road: ["design", "summary"],
   speed: ["speed", "summary"],

@@ -1,8 +1,9 @@
-// Section 1: where the vehicle comes from -- a preset, a saved vehicle (bearer key), the vehicle builder, or a
-// pasted record -- and what the computations send as `vehicle` (a preset id or a full record).
+// Section 1: where the vehicle comes from -- a preset, a saved vehicle (bearer key), the vehicle builder, the
+// combination builder (combobuilder.js), or a pasted record -- and what the computations send as `vehicle` (a preset id or a full record).
 
 import * as api from "./api.js";
 import { sideView } from "./combination.js";
+import * as combo from "./combobuilder.js";
 import { $, $$, clear, el, fmt, scroller, table } from "./dom.js";
 import { value } from "./form.js";
 
@@ -154,6 +155,7 @@ export function defaultModel() {
 /** Whether the vehicle now chosen is a combination (a combination preset, or a pasted {"combination": ...}). */
 export function choosesCombination() {
   if (source() === "preset") return isCombination(preset());
+  if (source() === "combo") return true;
   if (source() === "record") return /^\s*\{\s*"combination"/.test($("#record-json").value);
   return false;
 }
@@ -382,6 +384,13 @@ export async function current() {
     const resolved = await resolveBody(saved.vehicle, `${saved.title} (${saved.id})`);
     return { ...resolved, record: resolved.ref, params: { vehicle: saved.id } };
   }
+  if (which === "combo") {
+    const spec = combo.readSpec();
+    const built = await combo.build(spec);
+    const body = { combination_spec: spec };
+    const label = spec.title || `Built combination: ${built.combination.units.map((u) => u.id).join(" + ")}`;
+    return { ref: body, label, record: null, body, combination: built.combination, params: { combination_spec: JSON.stringify(spec) } };
+  }
   if (which === "build") {
     const spec = specFromForm();
     const built = await build(spec);
@@ -407,6 +416,15 @@ export async function current() {
 
 /** Restore the vehicle from the URL parameters; returns whether there is one to compute. */
 export function fromParams(params) {
+  if (params.get("combination_spec")) {
+    try {
+      combo.setPending(JSON.parse(params.get("combination_spec")));
+      showPanel("combo");
+      return true;
+    } catch {
+      return false;
+    }
+  }
   if (params.get("spec")) {
     try {
       specToForm(JSON.parse(params.get("spec")));

@@ -109,8 +109,20 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _stable(K: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """Each row's J = K - P positive definite: the scalar's test (its Cholesky factor exists), row by row."""
     # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
-    return np.linalg.eigvalsh(K - P)[:, 0] > 0
+    return _definite(K - P)
+
+
+def _definite(J: np.ndarray) -> np.ndarray:
+    try:  # the usual case: every row stable, one call
+        np.linalg.cholesky(J)
+        return np.ones(J.shape[0], dtype=bool)
+    except np.linalg.LinAlgError:  # the stacked call fails if any row does: halves until the rows that do are found
+        if J.shape[0] == 1:
+            return np.zeros(1, dtype=bool)
+        h = J.shape[0] // 2
+        return np.concatenate([_definite(J[:h]), _definite(J[h:])])
 
 
 def _state(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):

@@ -266,9 +266,10 @@ class _Elements:
         self.capn_dof[self.tdof], self.capg_dof[self.tdof] = self.capn, self.capg
         self.pieces: dict = {}
         self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
-        self.slopes: dict = {}
+        self.loads: dict = {}
         self.ends: dict = {}
         self.tables: dict = {}
+        self.steps: dict = {}
 
     def piece(self, tyre: tuple, zone: tuple):
         """(K, S, kz) of a regime: its stiffness matrix, the sign of each lifted group's moment on its DOF (0 where
@@ -359,20 +360,26 @@ def _elements(s: System) -> _Elements:
 
 
 def _assemble(s: System, rg: Regime, phase: int):
-    """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1)."""
-    r = s.road
+    """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1); jp and
+    k cached per regime (they depend on the road, not on the P-Delta terms that the fixed point changes: a solve
+    assembled the same regimes' loads some 25 times, a tenth of its time)."""
     e = _elements(s)
-    K, S, kz = e.piece(tuple(rg.tyre), tuple(rg.zone))
-    J = K - s.P
-    capn, capg = e.capn_dof, e.capg_dof
-    if phase == 2:
-        jp = -(r.l1 * s.lat + r.n1 * s.off) + S * (r.n1 * capn)
-        k = -(r.l0 * s.lat + r.n0 * s.off) + S * (r.n0 * capn + r.grade * capg) + kz
-    else:  # at ay0: no lateral force; the offsets scaled by t
-        ay0 = r.neutral_ay
-        jp = -(r.n0 + r.n1 * ay0) * s.off
-        k = S * ((r.n0 + r.n1 * ay0) * capn + r.grade * capg) + kz
-    return J, jp, k
+    tyre, zone = tuple(rg.tyre), tuple(rg.zone)
+    K, S, kz = e.piece(tyre, zone)
+    key = (tyre, zone, phase)
+    loads = e.loads.get(key)
+    if loads is None:
+        r = s.road
+        capn, capg = e.capn_dof, e.capg_dof
+        if phase == 2:
+            jp = -(r.l1 * s.lat + r.n1 * s.off) + S * (r.n1 * capn)
+            k = -(r.l0 * s.lat + r.n0 * s.off) + S * (r.n0 * capn + r.grade * capg) + kz
+        else:  # at ay0: no lateral force; the offsets scaled by t
+            ay0 = r.neutral_ay
+            jp = -(r.n0 + r.n1 * ay0) * s.off
+            k = S * ((r.n0 + r.n1 * ay0) * capn + r.grade * capg) + kz
+        loads = e.loads[key] = (jp, k)
+    return K - s.P, loads[0], loads[1]
 
 
 def _constraint_rows(s: System, rg: Regime, phase: int, llt_limit: float | None):
@@ -410,17 +417,22 @@ def _rows_of(s: System, e: _Elements, key):
     return c1, c2, b, i1, i2, ends, np.maximum(1.0, np.abs(c1) + np.abs(c2))
 
 
-def _direction_terms(s: System, rg: Regime, phase: int):
-    """J and jp of :func:`_assemble` (the piece's direction needs no more), jp cached per regime: it depends on the
-    road, not on the P-Delta terms that the fixed point changes."""
+def _step_terms(s: System, rg: Regime, phase: int, llt_limit: float | None):
+    """What a step of the path needs of its regime, looked up once per step: (K, jp, :func:`_constraint_rows`,
+    :meth:`_Elements.row_of`); the same arrays as those functions give (cached per regime and road like them)."""
     e = _elements(s)
-    key = (tuple(rg.tyre), tuple(rg.zone), phase)
-    found = e.slopes.get(key)
-    if found is None:
-        J, jp, _k = _assemble(s, rg, phase)
-        e.slopes[key] = jp
-        return J, jp
-    return e.piece(key[0], key[1])[0] - s.P, found
+    key = (tuple(rg.tyre), tuple(rg.zone), phase, llt_limit)
+    out = e.steps.get(key)
+    if out is None:
+        _J, jp, _k = _assemble(s, rg, phase)
+        rows = _constraint_rows(s, rg, phase, llt_limit)
+        out = e.steps[key] = (
+            e.piece(key[0], key[1])[0],
+            jp,
+            rows,
+            e.row_of(key[0], key[1], phase, llt_limit is not None),
+        )
+    return out
 
 
 def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
@@ -458,9 +470,8 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
     prev_d = None
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
     for _ in range(max_steps):
-        J, jp = _direction_terms(s, rg, phase)
-        d = _null_direction(J, jp)
-        c1, c2, b, i1, i2, ends, scale = _constraint_rows(s, rg, phase, llt_limit)
+        K, jp, (c1, c2, b, i1, i2, ends, scale), back_rows = _step_terms(s, rg, phase, llt_limit)
+        d = _null_direction(K - s.P, jp)
         rates = c1 * d[i1] + c2 * d[i2]
         # orientation: the first piece by the outward roll of the sprung masses; a later one into its own interior
         if last is None:
@@ -471,11 +482,7 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
                 d, rates = -d, -rates
         else:
             kind, idx, previous = last
-            back = (
-                _elements(s)
-                .row_of(tuple(rg.tyre), tuple(rg.zone), phase, llt_limit is not None)
-                .get((kind, idx, previous))
-            )
+            back = back_rows.get((kind, idx, previous))
             rate = float(rates[back]) if back is not None else 0.0
             if abs(rate) > 1e-14:
                 if rate < 0:
@@ -623,17 +630,21 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
         if found is None:
             raise InvalidLoad("the vehicle does not stand at rest with this load case", field="load.lateral_offset_m")
         return np.append(found[0], ay0), found[1]
-    J, jp, _k = _assemble(lashless, linear, 2)
-    dq = np.linalg.solve(J, -jp)  # how the first ay loads each element
+    dq = None  # how the first ay loads each element: solved only for a suspension that nothing loads at rest
     zones = []
     for z in s.zones:
-        d, dd = q0[z.i] - q0[z.j], dq[z.i] - dq[z.j]
+        d = q0[z.i] - q0[z.j]
         if z.lash <= 0:
             zones.append(BAND)
         elif abs(d) > 1e-12:
             zones.append(PLUS if d > 0 else MINUS)
+        elif z.kind == "coupling":
+            zones.append(BAND)
         else:
-            zones.append(BAND if z.kind == "coupling" else PLUS if dd >= 0 else MINUS)
+            if dq is None:
+                J, jp, _k = _assemble(lashless, linear, 2)
+                dq = np.linalg.solve(J, -jp)
+            zones.append(PLUS if dq[z.i] - dq[z.j] >= 0 else MINUS)
     guess = Regime([LINEAR] * len(s.tyres), zones)
     for _ in range(len(s.zones) + 2):
         try:

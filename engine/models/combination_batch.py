@@ -155,9 +155,15 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
         ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
         ok &= _stable(e.piece(linear_t, band_z)[0], P)
         return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
-    dq = _solve(J0, -jp0)
-    d, dd = q0[:, e.zi] - q0[:, e.zj], dq[:, e.zi] - dq[:, e.zj]
+    d = q0[:, e.zi] - q0[:, e.zj]
     coupling = np.array([z.kind == "coupling" for z in s.zones])
+    # how the first ay loads each element, for the rows with a suspension that nothing loads at rest (the scalar
+    # solves it for those only; on a bank none is)
+    dd = np.zeros_like(d)
+    need = np.flatnonzero(np.any((e.lash > 0) & ~coupling & (np.abs(d) <= 1e-12), axis=1))
+    if need.size:
+        dq = _solve(J0[need], -jp0[need])
+        dd[need] = dq[:, e.zi] - dq[:, e.zj]
     guess = np.where(
         e.lash <= 0,
         BAND,

@@ -251,23 +251,27 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         except _Alone:
             ok[rows] = False
             continue
-        fine = np.all(np.isfinite(dq), axis=1) & (np.linalg.norm(dq, axis=1) < 1e12)
+        fine = np.einsum("ij,ij->i", dq, dq) < 1e24  # the scalar's test: finite and |dq| < 1e12
         if not fine.all():  # the scalar takes an SVD there: left to it
             ok[rows[~fine]] = False
             rows, z, dq, ri = rows[fine], z[fine], dq[fine], ri.take(np.flatnonzero(fine))
             prev_d = None if prev_d is None else prev_d[fine]
             if not rows.size:
                 continue
-        d = np.column_stack([dq, np.ones(rows.size)])
-        d = d / np.sqrt((d * d).sum(axis=1))[:, None]  # the scalar's normalisation, bit for bit
-        ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, 2, lim)
-        cp = _row(ri.n1) * e.capn[ti]
-        cc = _row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti]
-        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
         m = rows.size
-        c1 = np.concatenate([np.broadcast_to(sk * e.tk[ti], (m, ti.size)), np.broadcast_to(sg, (m, zi.size))], axis=1)
-        c2 = np.concatenate([fac * cp, np.broadcast_to(-sg, (m, zi.size))], axis=1)
-        b = np.concatenate([fac * cc, np.broadcast_to(sb * e.lash[zi], (m, zi.size))], axis=1)
+        d = np.empty((m, n + 1))
+        d[:, :n], d[:, n] = dq, 1.0
+        d /= np.sqrt((d * d).sum(axis=1))[:, None]  # the scalar's normalisation, bit for bit
+        ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, 2, lim)
+        # the constraint rows c1 x[i1] + c2 x[i2] + b >= 0: c1 is the regime's (the same on every row), c2 and b
+        # the row's on its tyre rows (filled in place: concatenating broadcast copies took a tenth of a step)
+        nt = ti.size
+        c1 = np.concatenate([sk * e.tk[ti], sg])
+        c2, b = np.empty((m, c1.size)), np.empty((m, c1.size))
+        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
+        c2[:, :nt] = fac * (_row(ri.n1) * e.capn[ti])
+        b[:, :nt] = fac * (_row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti])
+        c2[:, nt:], b[:, nt:] = -sg, sb * e.lash[zi]
         rates = c1 * d[:, i1] + c2 * d[:, i2]
         if last is None:
             w = d[:, :n] @ s.weights
@@ -293,8 +297,11 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         which = np.argmin(tau, axis=1)
         step = tau[np.arange(m), which]
         go = ~ended
-        z = z.copy()
-        z[go] = z[go] + step[go, None] * d[go]
+        if go.all():
+            z = z + step[:, None] * d
+        else:
+            z = z.copy()
+            z[go] = z[go] + step[go, None] * d[go]
         higher = go & (z[:, n] > best_ay[rows])
         best_ay[rows[higher]] = z[higher, n]
         best_z[rows[higher]] = z[higher]
@@ -303,7 +310,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
             h = np.flatnonzero(higher)
             w = which[h]
             peak_piece[rows[h]] = len(pieces) - 1
-            peak_row[rows[h]] = np.column_stack([c1[h, w], c2[h, w], b[h, w], i1[w], i2[w]])
+            peak_row[rows[h]] = np.column_stack([c1[w], c2[h, w], b[h, w], i1[w], i2[w]])
         for row in np.unique(which[go]):
             sel = go & (which == row)
             kc, idx, state = (int(x) for x in ends[row])
@@ -418,7 +425,8 @@ def batch(case: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassi
                 sel = good & (gov == u)
                 bodies = [s.body[k] for k in s.units]
                 srt[idx[sel]] = ays[sel, u]
-                roll[idx[sel]] = [max(math.degrees(x) for x in z) for z in zs[sel][:, bodies].tolist()]
+                # the scalar's max(math.degrees(x)): x * (180 / pi) in both, and the largest angle has the largest
+                roll[idx[sel]] = np.max(zs[sel][:, bodies], axis=1) * (180.0 / math.pi)
             for i in idx[~good]:
                 srt[i], roll[i] = _alone(c, bank[i], slope[i], load, llt[i])
     return srt, roll

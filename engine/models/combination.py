@@ -732,6 +732,8 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
     kd = np.diagonal(K, axis1=1, axis2=2)
     # a row stops at its own last step, whatever the others do: each step solves the rows still moving only (a row's
     # arithmetic is its own, so its bits do not depend on which rows share the call)
+    if m == 1:  # the scalar solve's one row: the same operations on the row itself (half the numpy calls)
+        return _vertex_newton(M[0], kd[0], rhs[0], pn, pg, float(n0[0]), float(n1[0]), float(grade[0]), float(a[0]))
     act = rows
     for _ in range(8):
         aa = a[act]
@@ -750,6 +752,29 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
         if not act.size:
             break
     return a
+
+
+def _vertex_newton(M, kd, rhs, pn, pg, n0: float, n1: float, grade: float, a: float) -> np.ndarray:
+    """:func:`_vertex_fixed_point`'s Newton steps on one row (M its system with K and the constraint in place, kd the
+    diagonal of K): the same operations in the same order, so the same bits."""
+    n = kd.size
+    diag = np.arange(n)
+    tail = np.zeros(1)
+    for _ in range(8):
+        M[diag, diag] = kd - ((n0 + n1 * a) * pn + grade * pg)
+        try:
+            z = np.linalg.solve(M, rhs)
+            dz = np.linalg.solve(M, np.concatenate([pn * z[:n], tail]))
+        except np.linalg.LinAlgError:
+            break
+        den = float(dz[n]) * n1 - 1.0
+        step = (float(z[n]) - a) / den if den != 0.0 else math.nan
+        if not math.isfinite(step):
+            break
+        a -= step
+        if abs(step) <= 1e-15:
+            break
+    return np.array([a])
 
 
 def _solve_unit_at(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:

@@ -55,6 +55,7 @@ References
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -264,11 +265,13 @@ class _Elements:
         self.lash = np.array([z.lash for z in s.zones], dtype=float)
         self.capn_dof, self.capg_dof = np.zeros(s.n), np.zeros(s.n)  # the same on the DOFs
         self.capn_dof[self.tdof], self.capg_dof[self.tdof] = self.capn, self.capg
-        self.pieces: dict = {}
+        # a regime's pieces, tables and ends depend on the elements alone, not on the road: shared by every system
+        # with the same elements (the next solve of the same vehicle, on any road, builds none of them again: a
+        # tenth of a banked solve's time)
+        key = tuple(x.tobytes() for x in (self.tdof, self.tk, self.steer, self.zi, self.zj, self.zk, self.lash))
+        self.pieces, self.tables, self.ends = _shared_regimes(self.n, key)
         self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
         self.loads: dict = {}
-        self.ends: dict = {}
-        self.tables: dict = {}
         self.steps: dict = {}
 
     def piece(self, tyre: tuple, zone: tuple):
@@ -297,7 +300,7 @@ class _Elements:
                     off = -k * lash * state  # PLUS: K (d - lash); MINUS: K (d + lash)
                     kz[i] += off
                     kz[j] -= off
-            out = self.pieces[key] = (K, S, kz)
+            out = self.pieces[key] = _frozen(K, S, kz)
         return out
 
     def table(self, tyre: tuple, zone: tuple, phase: int, limit: bool):
@@ -338,7 +341,7 @@ class _Elements:
             tr = np.array(trows, dtype=float).reshape(-1, 3)
             zr = np.array(zrows, dtype=float).reshape(-1, 3)
             ti, zi = np.array(ti, dtype=int), np.array(zi, dtype=int)
-            out = self.tables[key] = (ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
+            out = self.tables[key] = _frozen(ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
         return out
 
     def row_of(self, tyre: tuple, zone: tuple, phase: int, limit: bool) -> dict:
@@ -350,6 +353,18 @@ class _Elements:
             for k, e in enumerate(self.table(tyre, zone, phase, limit)[-1].tolist()):
                 out.setdefault(tuple(e), k)
         return out
+
+
+@functools.lru_cache(maxsize=256)
+def _shared_regimes(n: int, elements: tuple) -> tuple[dict, dict, dict]:
+    """The (pieces, tables, ends) caches of the systems with these elements (:class:`_Elements`)."""
+    return {}, {}, {}
+
+
+def _frozen(*arrays: np.ndarray) -> tuple:
+    for x in arrays:  # shared by every solve of the vehicle: read-only, so no caller can change another's
+        x.flags.writeable = False
+    return arrays
 
 
 def _elements(s: System) -> _Elements:

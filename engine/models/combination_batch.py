@@ -229,9 +229,11 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     return z0, regimes, which, ok
 
 
-def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok):
+def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok,
+           peaks: bool = True):  # fmt: skip
     """The scalar ``_trace`` from each row's start, rows in lockstep while their regimes agree. Returns (the largest
-    ay on each row's path, the state there (k, n+1), ok)."""
+    ay on each row's path, the state there (k, n+1), ok, and with ``peaks`` the piece and event of each row's peak:
+    the fixed point's start, which the solves at the limit's normal factor need not keep)."""
     n = s.n
     best_ay = z0[:, n].copy()
     best_z = z0.copy()
@@ -317,7 +319,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         higher = go & (z[:, n] > best_ay[rows])
         best_ay[rows[higher]] = z[higher, n]
         best_z[rows[higher]] = z[higher]
-        if higher.any():
+        if peaks and higher.any():  # only the rest solve's peaks start the fixed point
             pieces.append((tyre, zone))
             h = np.flatnonzero(higher)
             w = which[h]
@@ -340,13 +342,13 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
     return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
 
 
-def _solve_at(s, e, lashless, r, P, limit):
+def _solve_at(s, e, lashless, r, P, limit, peaks=True):
     try:
         z0, regimes, which, ok = _start(s, e, lashless, r, P)
     except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
         k = P.shape[0]
         return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
-    return _trace(s, e, r, P, limit, z0, regimes, which, ok)
+    return _trace(s, e, r, P, limit, z0, regimes, which, ok, peaks)
 
 
 def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
@@ -354,7 +356,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     e = whole._elements(s)
     lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
     P0 = _row(_row(r.n0)) * s.P_normal + _row(_row(r.grade)) * s.P_grade  # build_systems: the P at rest
-    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit)
+    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit, bool(np.any(r.n1 != 0.0)))
     active = np.flatnonzero(ok & (r.n1 != 0.0))
     a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
     pieces, peak_piece, peak_row = peaks
@@ -377,7 +379,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
         ra = r.take(active)
         normal = ra.n0 + ra.n1 * a1
         P = _row(_row(normal)) * s.P_normal + _row(_row(ra.grade)) * s.P_grade
-        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active])
+        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active], False)
         ok[active[~gok]] = False
         g1 = got - a1
         done = gok & (np.abs(g1) <= 1e-13)

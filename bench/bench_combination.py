@@ -3,9 +3,10 @@
 Run: ``python bench/bench_combination.py``. Prints, for each combination preset:
 
 1. the time of one whole-combination SRT (:func:`engine.models.combination.solve_combination`: every roll-coupled
-   unit from rest to its limit) on a level road and on a 6 % and a 10 % bank, min and median over repeated solves,
-   beside the time of one 3D solve of the thesis's B-train trailer measured just before in the same run (the ceiling
-   the issue sets is 2 ms), and the ratio of the mins;
+   unit from rest to its limit) on a level road and on a 6 % and a 10 % bank, min and median over repeated solves
+   and the min of a cold one (the vehicle's first solve: no regime of its elements cached yet), beside the time of one
+   3D solve of the thesis's B-train trailer measured just before in the same run (the ceiling the issue sets is
+   2 ms), and the ratio of the mins;
 2. the time per curve of :func:`engine.models.evaluate_arrays` over 100,000 distinct random bank/grade pairs (bank
    -2..10 %, grade -8..8 %, on a 0.01 % grid: the 0.1 % grid holds only 19,481 distinct pairs) for each preset, beside
    the single unit's 3D batch (``table16-btrain``) over the same pairs in the same rounds (the issue's target: a
@@ -31,6 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import numpy as np
 
 from engine import Case, get_preset, rollover_threshold
+from engine.models import combination
 from engine.models.combination import solve_combination
 from engine.models.combination_reference import reference_srt
 from engine.models.threshold import evaluate_arrays
@@ -90,13 +92,21 @@ def many_curves(quick: bool) -> None:
 def scalar_times(quick: bool) -> None:
     reps = 20 if quick else 200
     btrain = Case(get_preset("table16-btrain"))
-    print("One whole-combination SRT, beside one 3D solve of the Table 16 trailer (both stages) timed just before it:")
+
+    def cold(c, bank):  # the first solve of a vehicle: no regime of its elements built yet
+        combination._shared_regimes.cache_clear()
+        solve_combination(c, bank_percent=bank)
+
+    print("One whole-combination SRT, beside one 3D solve of the Table 16 trailer (both stages) timed just before it")
+    print("(cold: the first solve of the vehicle, before any of its regimes' pieces and tables is cached):")
     for cid, c in COMBINATIONS.items():
         for bank in (0.0, 6.0, 10.0):
             ceiling = timeit(lambda: rollover_threshold(btrain), reps // 2)
             t = timeit(lambda c=c, bank=bank: solve_combination(c, bank_percent=bank), reps)
+            first = timeit(lambda c=c, bank=bank: cold(c, bank), reps // 4)
             ratio = min(t) / min(ceiling)
-            print(f"  {cid:28s} bank {bank:4.1f} %: {ms(t)}  | 3D solve {ms(ceiling)}  ({ratio:4.2f} x)")
+            print(f"  {cid:28s} bank {bank:4.1f} %: {ms(t)}, cold min {min(first) * 1e3:6.3f} ms  | 3D solve "
+                  f"{ms(ceiling)}  ({ratio:4.2f} x)")  # fmt: skip
     print()
 
 

@@ -55,6 +55,7 @@ References
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -264,11 +265,14 @@ class _Elements:
         self.lash = np.array([z.lash for z in s.zones], dtype=float)
         self.capn_dof, self.capg_dof = np.zeros(s.n), np.zeros(s.n)  # the same on the DOFs
         self.capn_dof[self.tdof], self.capg_dof[self.tdof] = self.capn, self.capg
-        self.pieces: dict = {}
+        # a regime's pieces, tables and ends depend on the elements alone, not on the road: shared by every system
+        # with the same elements (the next solve of the same vehicle, on any road, builds none of them again: a
+        # tenth of a banked solve's time)
+        key = tuple(x.tobytes() for x in (self.tdof, self.tk, self.steer, self.zi, self.zj, self.zk, self.lash))
+        self.pieces, self.tables, self.ends = _shared_regimes(self.n, key)
         self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
-        self.slopes: dict = {}
-        self.ends: dict = {}
-        self.tables: dict = {}
+        self.loads: dict = {}
+        self.steps: dict = {}
 
     def piece(self, tyre: tuple, zone: tuple):
         """(K, S, kz) of a regime: its stiffness matrix, the sign of each lifted group's moment on its DOF (0 where
@@ -296,7 +300,7 @@ class _Elements:
                     off = -k * lash * state  # PLUS: K (d - lash); MINUS: K (d + lash)
                     kz[i] += off
                     kz[j] -= off
-            out = self.pieces[key] = (K, S, kz)
+            out = self.pieces[key] = _frozen(K, S, kz)
         return out
 
     def table(self, tyre: tuple, zone: tuple, phase: int, limit: bool):
@@ -337,7 +341,7 @@ class _Elements:
             tr = np.array(trows, dtype=float).reshape(-1, 3)
             zr = np.array(zrows, dtype=float).reshape(-1, 3)
             ti, zi = np.array(ti, dtype=int), np.array(zi, dtype=int)
-            out = self.tables[key] = (ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
+            out = self.tables[key] = _frozen(ti, tr[:, 1], tr[:, 2], zi, zr[:, 1], zr[:, 2], i1, i2, np.array(ends))
         return out
 
     def row_of(self, tyre: tuple, zone: tuple, phase: int, limit: bool) -> dict:
@@ -351,6 +355,18 @@ class _Elements:
         return out
 
 
+@functools.lru_cache(maxsize=256)
+def _shared_regimes(n: int, elements: tuple) -> tuple[dict, dict, dict]:
+    """The (pieces, tables, ends) caches of the systems with these elements (:class:`_Elements`)."""
+    return {}, {}, {}
+
+
+def _frozen(*arrays: np.ndarray) -> tuple:
+    for x in arrays:  # shared by every solve of the vehicle: read-only, so no caller can change another's
+        x.flags.writeable = False
+    return arrays
+
+
 def _elements(s: System) -> _Elements:
     e = s.cache.get("elements")
     if e is None:
@@ -359,20 +375,26 @@ def _elements(s: System) -> _Elements:
 
 
 def _assemble(s: System, rg: Regime, phase: int):
-    """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1)."""
-    r = s.road
+    """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1); jp and
+    k cached per regime (they depend on the road, not on the P-Delta terms that the fixed point changes: a solve
+    assembled the same regimes' loads some 25 times, a tenth of its time)."""
     e = _elements(s)
-    K, S, kz = e.piece(tuple(rg.tyre), tuple(rg.zone))
-    J = K - s.P
-    capn, capg = e.capn_dof, e.capg_dof
-    if phase == 2:
-        jp = -(r.l1 * s.lat + r.n1 * s.off) + S * (r.n1 * capn)
-        k = -(r.l0 * s.lat + r.n0 * s.off) + S * (r.n0 * capn + r.grade * capg) + kz
-    else:  # at ay0: no lateral force; the offsets scaled by t
-        ay0 = r.neutral_ay
-        jp = -(r.n0 + r.n1 * ay0) * s.off
-        k = S * ((r.n0 + r.n1 * ay0) * capn + r.grade * capg) + kz
-    return J, jp, k
+    tyre, zone = tuple(rg.tyre), tuple(rg.zone)
+    K, S, kz = e.piece(tyre, zone)
+    key = (tyre, zone, phase)
+    loads = e.loads.get(key)
+    if loads is None:
+        r = s.road
+        capn, capg = e.capn_dof, e.capg_dof
+        if phase == 2:
+            jp = -(r.l1 * s.lat + r.n1 * s.off) + S * (r.n1 * capn)
+            k = -(r.l0 * s.lat + r.n0 * s.off) + S * (r.n0 * capn + r.grade * capg) + kz
+        else:  # at ay0: no lateral force; the offsets scaled by t
+            ay0 = r.neutral_ay
+            jp = -(r.n0 + r.n1 * ay0) * s.off
+            k = S * ((r.n0 + r.n1 * ay0) * capn + r.grade * capg) + kz
+        loads = e.loads[key] = (jp, k)
+    return K - s.P, loads[0], loads[1]
 
 
 def _constraint_rows(s: System, rg: Regime, phase: int, llt_limit: float | None):
@@ -410,17 +432,22 @@ def _rows_of(s: System, e: _Elements, key):
     return c1, c2, b, i1, i2, ends, np.maximum(1.0, np.abs(c1) + np.abs(c2))
 
 
-def _direction_terms(s: System, rg: Regime, phase: int):
-    """J and jp of :func:`_assemble` (the piece's direction needs no more), jp cached per regime: it depends on the
-    road, not on the P-Delta terms that the fixed point changes."""
+def _step_terms(s: System, rg: Regime, phase: int, llt_limit: float | None):
+    """What a step of the path needs of its regime, looked up once per step: (K, jp, :func:`_constraint_rows`,
+    :meth:`_Elements.row_of`); the same arrays as those functions give (cached per regime and road like them)."""
     e = _elements(s)
-    key = (tuple(rg.tyre), tuple(rg.zone), phase)
-    found = e.slopes.get(key)
-    if found is None:
-        J, jp, _k = _assemble(s, rg, phase)
-        e.slopes[key] = jp
-        return J, jp
-    return e.piece(key[0], key[1])[0] - s.P, found
+    key = (tuple(rg.tyre), tuple(rg.zone), phase, llt_limit)
+    out = e.steps.get(key)
+    if out is None:
+        _J, jp, _k = _assemble(s, rg, phase)
+        rows = _constraint_rows(s, rg, phase, llt_limit)
+        out = e.steps[key] = (
+            e.piece(key[0], key[1])[0],
+            jp,
+            rows,
+            e.row_of(key[0], key[1], phase, llt_limit is not None),
+        )
+    return out
 
 
 def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
@@ -458,9 +485,8 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
     prev_d = None
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
     for _ in range(max_steps):
-        J, jp = _direction_terms(s, rg, phase)
-        d = _null_direction(J, jp)
-        c1, c2, b, i1, i2, ends, scale = _constraint_rows(s, rg, phase, llt_limit)
+        K, jp, (c1, c2, b, i1, i2, ends, scale), back_rows = _step_terms(s, rg, phase, llt_limit)
+        d = _null_direction(K - s.P, jp)
         rates = c1 * d[i1] + c2 * d[i2]
         # orientation: the first piece by the outward roll of the sprung masses; a later one into its own interior
         if last is None:
@@ -471,11 +497,7 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
                 d, rates = -d, -rates
         else:
             kind, idx, previous = last
-            back = (
-                _elements(s)
-                .row_of(tuple(rg.tyre), tuple(rg.zone), phase, llt_limit is not None)
-                .get((kind, idx, previous))
-            )
+            back = back_rows.get((kind, idx, previous))
             rate = float(rates[back]) if back is not None else 0.0
             if abs(rate) > 1e-14:
                 if rate < 0:
@@ -596,7 +618,9 @@ def _settled(s: System, q: np.ndarray, ay: float, made_in: Regime | None = None)
     if again.tyre != rg.tyre or again.zone != rg.zone:
         return None
     J, _jp, _k = _assemble(s, rg, 2)
-    if np.linalg.eigvalsh(0.5 * (J + J.T))[0] <= 0:
+    try:  # stable: J positive definite, which its Cholesky factor tells (a fifth of the time of its eigenvalues)
+        np.linalg.cholesky(0.5 * (J + J.T))
+    except np.linalg.LinAlgError:
         return None
     return exact, rg
 
@@ -621,17 +645,21 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
         if found is None:
             raise InvalidLoad("the vehicle does not stand at rest with this load case", field="load.lateral_offset_m")
         return np.append(found[0], ay0), found[1]
-    J, jp, _k = _assemble(lashless, linear, 2)
-    dq = np.linalg.solve(J, -jp)  # how the first ay loads each element
+    dq = None  # how the first ay loads each element: solved only for a suspension that nothing loads at rest
     zones = []
     for z in s.zones:
-        d, dd = q0[z.i] - q0[z.j], dq[z.i] - dq[z.j]
+        d = q0[z.i] - q0[z.j]
         if z.lash <= 0:
             zones.append(BAND)
         elif abs(d) > 1e-12:
             zones.append(PLUS if d > 0 else MINUS)
+        elif z.kind == "coupling":
+            zones.append(BAND)
         else:
-            zones.append(BAND if z.kind == "coupling" else PLUS if dd >= 0 else MINUS)
+            if dq is None:
+                J, jp, _k = _assemble(lashless, linear, 2)
+                dq = np.linalg.solve(J, -jp)
+            zones.append(PLUS if dq[z.i] - dq[z.j] >= 0 else MINUS)
     guess = Regime([LINEAR] * len(s.tyres), zones)
     for _ in range(len(s.zones) + 2):
         try:
@@ -710,26 +738,58 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
     pn, pg = np.diagonal(Pn), np.diagonal(Pg)
     rows = np.arange(m)
     M = np.zeros((m, n + 1, n + 1))
+    M[:, :n, :n] = K
     M[:, :n, n] = jp
     M[rows, n, ii[:, 0]] += c[:, 0]
     M[rows, n, ii[:, 1]] += c[:, 1]
     rhs = np.concatenate([-k, -b[:, None]], axis=1)
-    active = np.ones(m, dtype=bool)  # a row stops at its own last step, whatever the others do
+    diag = np.arange(n)
+    kd = np.diagonal(K, axis1=1, axis2=2)
+    # a row stops at its own last step, whatever the others do: each step solves the rows still moving only (a row's
+    # arithmetic is its own, so its bits do not depend on which rows share the call)
+    if m == 1:  # the scalar solve's one row: the same operations on the row itself (half the numpy calls)
+        return _vertex_newton(M[0], kd[0], rhs[0], pn, pg, float(n0[0]), float(n1[0]), float(grade[0]), float(a[0]))
+    act = rows
     for _ in range(8):
-        M[:, :n, :n] = K - ((n0 + n1 * a)[:, None] * pn + grade[:, None] * pg)[:, :, None] * np.eye(n)
+        aa = a[act]
+        Ma = M[act]
+        Ma[:, diag, diag] = kd[act] - ((n0[act] + n1[act] * aa)[:, None] * pn + grade[act][:, None] * pg)
         try:
-            z = np.linalg.solve(M, rhs[..., None])[..., 0]
-            dz = np.linalg.solve(M, np.concatenate([pn * z[:, :n], np.zeros((m, 1))], axis=1)[..., None])[..., 0]
+            z = np.linalg.solve(Ma, rhs[act][..., None])[..., 0]
+            dz = np.linalg.solve(Ma, np.concatenate([pn * z[:, :n], np.zeros((act.size, 1))], axis=1)[..., None])
         except np.linalg.LinAlgError:
             break
         with np.errstate(divide="ignore", invalid="ignore"):
-            step = (z[:, n] - a) / (dz[:, n] * n1 - 1.0)
-        step = np.where(active & np.isfinite(step), step, 0.0)
-        a = a - step
-        active &= np.abs(step) > 1e-15
-        if not active.any():
+            step = (z[:, n] - aa) / (dz[:, n, 0] * n1[act] - 1.0)
+        step = np.where(np.isfinite(step), step, 0.0)
+        a[act] = aa - step
+        act = act[np.abs(step) > 1e-15]
+        if not act.size:
             break
     return a
+
+
+def _vertex_newton(M, kd, rhs, pn, pg, n0: float, n1: float, grade: float, a: float) -> np.ndarray:
+    """:func:`_vertex_fixed_point`'s Newton steps on one row (M its system with K and the constraint in place, kd the
+    diagonal of K): the same operations in the same order, so the same bits."""
+    n = kd.size
+    diag = np.arange(n)
+    tail = np.zeros(1)
+    for _ in range(8):
+        M[diag, diag] = kd - ((n0 + n1 * a) * pn + grade * pg)
+        try:
+            z = np.linalg.solve(M, rhs)
+            dz = np.linalg.solve(M, np.concatenate([pn * z[:n], tail]))
+        except np.linalg.LinAlgError:
+            break
+        den = float(dz[n]) * n1 - 1.0
+        step = (float(z[n]) - a) / den if den != 0.0 else math.nan
+        if not math.isfinite(step):
+            break
+        a -= step
+        if abs(step) <= 1e-15:
+            break
+    return np.array([a])
 
 
 def _solve_unit_at(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:

@@ -34,6 +34,10 @@ from engine.models.combination import (
 )
 from engine.vehicle.combination import Combination, UnitLoad, check_combination_load
 
+#: rows solved together: the lockstep's arrays of 8,192 rows stay in the caches where 16,384 (a block of
+#: :func:`engine.models.threshold.evaluate_arrays`) do not: a tenth less time per row, measured
+BLOCK_ROWS = 8_192
+
 
 class _Alone(Exception):
     """A row the lockstep leaves to the scalar solve."""
@@ -45,11 +49,10 @@ class _Rows:
     def __init__(self, bank_percent: np.ndarray, slope_percent: np.ndarray):
         # the scalar's RoadFactors.of row by row: numpy's vectorised sin/cos/atan may differ from libm's in the last
         # bit, and a route's curve must give the bits /v1/srt gives for its bank and grade
-        # (its arithmetic inlined: building 100,000 records took a tenth of a batch)
-        b = [math.atan(x / 100.0) for x in bank_percent.tolist()]
-        g = [math.atan(x / 100.0) for x in slope_percent.tolist()]
-        cb, sb = np.array([math.cos(x) for x in b]), np.array([math.sin(x) for x in b])
-        cs, ss = np.array([math.cos(x) for x in g]), np.array([math.sin(x) for x in g])
+        # (its arithmetic inlined: building 100,000 records took a tenth of a batch; libm's once per distinct bank
+        # and per distinct grade: many curves share them, 100,000 pairs on a 0.01 % grid hold some 1,200 banks)
+        cb, sb = _cos_sin(bank_percent)
+        cs, ss = _cos_sin(slope_percent)
         self.n0, self.n1, self.l0, self.l1, self.grade = cb * cs, sb, -sb * cs, cb, ss
 
     def take(self, idx: np.ndarray) -> _Rows:
@@ -57,6 +60,15 @@ class _Rows:
         for k in ("n0", "n1", "l0", "l1", "grade"):
             setattr(out, k, getattr(self, k)[idx])
         return out
+
+
+def _cos_sin(percent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin of atan(percent / 100) by libm, once per distinct value (distinct bits: -0.0 is not 0.0)."""
+    percent = np.ascontiguousarray(percent, dtype=float)
+    _bits, first, inverse = np.unique(percent.view(np.int64), return_index=True, return_inverse=True)
+    angles = [math.atan(x / 100.0) for x in percent[first].tolist()]
+    cos, sin = np.array([math.cos(x) for x in angles]), np.array([math.sin(x) for x in angles])
+    return cos[inverse.reshape(-1)], sin[inverse.reshape(-1)]
 
 
 def _row(x: np.ndarray) -> np.ndarray:
@@ -109,8 +121,20 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _stable(K: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """Each row's J = K - P positive definite: the scalar's test (its Cholesky factor exists), row by row."""
     # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
-    return np.linalg.eigvalsh(K - P)[:, 0] > 0
+    return _definite(K - P)
+
+
+def _definite(J: np.ndarray) -> np.ndarray:
+    try:  # the usual case: every row stable, one call
+        np.linalg.cholesky(J)
+        return np.ones(J.shape[0], dtype=bool)
+    except np.linalg.LinAlgError:  # the stacked call fails if any row does: halves until the rows that do are found
+        if J.shape[0] == 1:
+            return np.zeros(1, dtype=bool)
+        h = J.shape[0] // 2
+        return np.concatenate([_definite(J[:h]), _definite(J[h:])])
 
 
 def _state(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
@@ -143,9 +167,15 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
         ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
         ok &= _stable(e.piece(linear_t, band_z)[0], P)
         return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
-    dq = _solve(J0, -jp0)
-    d, dd = q0[:, e.zi] - q0[:, e.zj], dq[:, e.zi] - dq[:, e.zj]
+    d = q0[:, e.zi] - q0[:, e.zj]
     coupling = np.array([z.kind == "coupling" for z in s.zones])
+    # how the first ay loads each element, for the rows with a suspension that nothing loads at rest (the scalar
+    # solves it for those only; on a bank none is)
+    dd = np.zeros_like(d)
+    need = np.flatnonzero(np.any((e.lash > 0) & ~coupling & (np.abs(d) <= 1e-12), axis=1))
+    if need.size:
+        dq = _solve(J0[need], -jp0[need])
+        dd[need] = dq[:, e.zi] - dq[:, e.zj]
     guess = np.where(
         e.lash <= 0,
         BAND,
@@ -199,9 +229,11 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     return z0, regimes, which, ok
 
 
-def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok):
+def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok,
+           peaks: bool = True):  # fmt: skip
     """The scalar ``_trace`` from each row's start, rows in lockstep while their regimes agree. Returns (the largest
-    ay on each row's path, the state there (k, n+1), ok)."""
+    ay on each row's path, the state there (k, n+1), ok, and with ``peaks`` the piece and event of each row's peak:
+    the fixed point's start, which the solves at the limit's normal factor need not keep)."""
     n = s.n
     best_ay = z0[:, n].copy()
     best_z = z0.copy()
@@ -233,23 +265,27 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         except _Alone:
             ok[rows] = False
             continue
-        fine = np.all(np.isfinite(dq), axis=1) & (np.linalg.norm(dq, axis=1) < 1e12)
+        fine = np.einsum("ij,ij->i", dq, dq) < 1e24  # the scalar's test: finite and |dq| < 1e12
         if not fine.all():  # the scalar takes an SVD there: left to it
             ok[rows[~fine]] = False
             rows, z, dq, ri = rows[fine], z[fine], dq[fine], ri.take(np.flatnonzero(fine))
             prev_d = None if prev_d is None else prev_d[fine]
             if not rows.size:
                 continue
-        d = np.column_stack([dq, np.ones(rows.size)])
-        d = d / np.sqrt((d * d).sum(axis=1))[:, None]  # the scalar's normalisation, bit for bit
-        ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, 2, lim)
-        cp = _row(ri.n1) * e.capn[ti]
-        cc = _row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti]
-        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
         m = rows.size
-        c1 = np.concatenate([np.broadcast_to(sk * e.tk[ti], (m, ti.size)), np.broadcast_to(sg, (m, zi.size))], axis=1)
-        c2 = np.concatenate([fac * cp, np.broadcast_to(-sg, (m, zi.size))], axis=1)
-        b = np.concatenate([fac * cc, np.broadcast_to(sb * e.lash[zi], (m, zi.size))], axis=1)
+        d = np.empty((m, n + 1))
+        d[:, :n], d[:, n] = dq, 1.0
+        d /= np.sqrt((d * d).sum(axis=1))[:, None]  # the scalar's normalisation, bit for bit
+        ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, 2, lim)
+        # the constraint rows c1 x[i1] + c2 x[i2] + b >= 0: c1 is the regime's (the same on every row), c2 and b
+        # the row's on its tyre rows (filled in place: concatenating broadcast copies took a tenth of a step)
+        nt = ti.size
+        c1 = np.concatenate([sk * e.tk[ti], sg])
+        c2, b = np.empty((m, c1.size)), np.empty((m, c1.size))
+        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
+        c2[:, :nt] = fac * (_row(ri.n1) * e.capn[ti])
+        b[:, :nt] = fac * (_row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti])
+        c2[:, nt:], b[:, nt:] = -sg, sb * e.lash[zi]
         rates = c1 * d[:, i1] + c2 * d[:, i2]
         if last is None:
             w = d[:, :n] @ s.weights
@@ -275,17 +311,20 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         which = np.argmin(tau, axis=1)
         step = tau[np.arange(m), which]
         go = ~ended
-        z = z.copy()
-        z[go] = z[go] + step[go, None] * d[go]
+        if go.all():
+            z = z + step[:, None] * d
+        else:
+            z = z.copy()
+            z[go] = z[go] + step[go, None] * d[go]
         higher = go & (z[:, n] > best_ay[rows])
         best_ay[rows[higher]] = z[higher, n]
         best_z[rows[higher]] = z[higher]
-        if higher.any():
+        if peaks and higher.any():  # only the rest solve's peaks start the fixed point
             pieces.append((tyre, zone))
             h = np.flatnonzero(higher)
             w = which[h]
             peak_piece[rows[h]] = len(pieces) - 1
-            peak_row[rows[h]] = np.column_stack([c1[h, w], c2[h, w], b[h, w], i1[w], i2[w]])
+            peak_row[rows[h]] = np.column_stack([c1[w], c2[h, w], b[h, w], i1[w], i2[w]])
         for row in np.unique(which[go]):
             sel = go & (which == row)
             kc, idx, state = (int(x) for x in ends[row])
@@ -303,13 +342,13 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
     return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
 
 
-def _solve_at(s, e, lashless, r, P, limit):
+def _solve_at(s, e, lashless, r, P, limit, peaks=True):
     try:
         z0, regimes, which, ok = _start(s, e, lashless, r, P)
     except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
         k = P.shape[0]
         return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
-    return _trace(s, e, r, P, limit, z0, regimes, which, ok)
+    return _trace(s, e, r, P, limit, z0, regimes, which, ok, peaks)
 
 
 def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
@@ -317,7 +356,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     e = whole._elements(s)
     lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
     P0 = _row(_row(r.n0)) * s.P_normal + _row(_row(r.grade)) * s.P_grade  # build_systems: the P at rest
-    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit)
+    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit, bool(np.any(r.n1 != 0.0)))
     active = np.flatnonzero(ok & (r.n1 != 0.0))
     a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
     pieces, peak_piece, peak_row = peaks
@@ -340,7 +379,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
         ra = r.take(active)
         normal = ra.n0 + ra.n1 * a1
         P = _row(_row(normal)) * s.P_normal + _row(_row(ra.grade)) * s.P_grade
-        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active])
+        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active], False)
         ok[active[~gok]] = False
         g1 = got - a1
         done = gok & (np.abs(g1) <= 1e-13)
@@ -379,7 +418,8 @@ def batch(case: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassi
     alone = np.asarray(col["trailer_angle_deg"]) != 0  # an input the model does not take: the scalar path refuses it
     for i in np.flatnonzero(alone):
         srt[i], roll[i] = math.nan, math.nan
-    for key in {tuple(x) for x in loads[~alone].tolist()}:
+    usual = loads[:1].tolist() if loads.size and np.all(loads == loads[0]) else None  # one load case: no set
+    for key in map(tuple, usual) if usual is not None else {tuple(x) for x in loads[~alone].tolist()}:
         load = UnitLoad(*key)
         for below in (False, True):
             idx = np.flatnonzero(~alone & np.all(loads == key, axis=1) & ((llt < 1.0) == below))
@@ -390,17 +430,20 @@ def batch(case: Case, col: dict[str, np.ndarray], chassis_closure: str = "chassi
                 systems = whole.build_systems(c, 0.0, 0.0, load)
             except RolloverError:
                 continue
-            r = _Rows(bank[idx], slope[idx])
-            limit = llt[idx] if below else None
-            per_unit = [_solve_unit(s, r, limit) for s in systems]
-            ays = np.column_stack([p[0] for p in per_unit])
-            good = np.all(np.column_stack([p[2] for p in per_unit]), axis=1)
-            gov = np.argmin(ays, axis=1)
-            for u, (s, (_a, zs, _ok)) in enumerate(zip(systems, per_unit, strict=True)):
-                sel = good & (gov == u)
-                bodies = [s.body[k] for k in s.units]
-                srt[idx[sel]] = ays[sel, u]
-                roll[idx[sel]] = [max(math.degrees(x) for x in z) for z in zs[sel][:, bodies].tolist()]
-            for i in idx[~good]:
-                srt[i], roll[i] = _alone(c, bank[i], slope[i], load, llt[i])
+            for lo in range(0, idx.size, BLOCK_ROWS):
+                part = idx[lo : lo + BLOCK_ROWS]
+                r = _Rows(bank[part], slope[part])
+                limit = llt[part] if below else None
+                per_unit = [_solve_unit(s, r, limit) for s in systems]
+                ays = np.column_stack([p[0] for p in per_unit])
+                good = np.all(np.column_stack([p[2] for p in per_unit]), axis=1)
+                gov = np.argmin(ays, axis=1)
+                for u, (s, (_a, zs, _ok)) in enumerate(zip(systems, per_unit, strict=True)):
+                    sel = good & (gov == u)
+                    bodies = [s.body[k] for k in s.units]
+                    srt[part[sel]] = ays[sel, u]
+                    # the scalar's max(math.degrees(x)): x * (180 / pi) in both, and the largest angle has the largest
+                    roll[part[sel]] = np.max(zs[sel][:, bodies], axis=1) * (180.0 / math.pi)
+                for i in part[~good]:
+                    srt[i], roll[i] = _alone(c, bank[i], slope[i], load, llt[i])
     return srt, roll

@@ -830,7 +830,8 @@ def _path_radius_lower(
     tangent_var). Where the vertices hardly constrain the radius (a short sharp arc whose offsets from its tangents
     are within the noise: the sum is flat toward a corner) the bound falls far below R* instead of the delta
     method's symmetric interval. Searched downward from R* - 0.9 z ``std`` on steps that grow (a fifth, then a
-    half, of d), down to R* / 50, interpolated linearly in the bracket; the minimum over Ls along the valley of
+    half, of d), down to R* / 50, the bracket cut in four when wider than 1 % of R*, interpolated linearly in it;
+    the minimum over Ls along the valley of
     :func:`_valley_ls` (:func:`_profile_ls`).
 
     The price: where the noise cannot rule a spiral out (short or flat arcs, a few metres of noise) a simple curve's
@@ -847,7 +848,8 @@ def _path_radius_lower(
             return np.where(dev > 0, d / np.sqrt(d * d / dev + tangent_var), 0.0)
 
     # R* - d on a grid of d from 0.9 z sigma_R (or from 3 % of R* without a standard error) that grows by a fifth,
-    # then by half, four radii at a time until the statistic exceeds z, then linearly inside the bracket
+    # then by half, four radii at a time until the statistic exceeds z; a bracket wider than 1 % of R* is cut in
+    # four; then linearly inside it
     d0 = 0.9 * z * std if std is not None and std > 0 else 0.03 * r
     d = d0 * np.concatenate((1.2 ** np.arange(8), 1.2**7 * 1.5 ** np.arange(1, 40)))
     grid = r - d[d < 0.98 * r]
@@ -860,33 +862,45 @@ def _path_radius_lower(
         if above.size:
             j = int(above[0])
             hi_r, hi_t = (rs[j - 1], t[j - 1]) if j > 0 else (prev_r, prev_t)
-            w = (z - hi_t) / (t[j] - hi_t)
-            return float(min(r, hi_r + w * (rs[j] - hi_r)))
+            lo_r, lo_t = rs[j], t[j]
+            if hi_r - lo_r > 0.01 * r:  # a wide bracket (a flat profile): three more radii inside it
+                inner = np.geomspace(hi_r, lo_r, 5)[1:-1]
+                ti = stat(inner)
+                rs, t = np.concatenate(([hi_r], inner, [lo_r])), np.concatenate(([hi_t], ti, [lo_t]))
+                j = int(np.flatnonzero(t > z)[0])
+                hi_r, hi_t, lo_r, lo_t = rs[j - 1], t[j - 1], rs[j], t[j]
+            w = (z - hi_t) / (lo_t - hi_t)
+            return float(min(r, hi_r + w * (lo_r - hi_r)))
         prev_r, prev_t = rs[-1], t[-1]
     return float(grid[-1])
 
 
 def _profile_ls(sse, rs: np.ndarray, valley: np.ndarray, ls_max: np.ndarray) -> np.ndarray:
-    """min over Ls >= 0 of the path's sum of squares at each arc radius of ``rs``: Ls = 0 and five spiral lengths
+    """min over Ls >= 0 of the path's sum of squares at each arc radius of ``rs``: Ls = 0 and seven spiral lengths
     about the valley's (a factor 1.2 apart), then the two halfway about the lowest and the vertex of the parabola
     through the three (two calls of ``sse``)."""
     step = math.log(1.2)
     centre = np.log(np.maximum(valley, 1e-3))
     lmax = np.log(np.maximum(ls_max, 1e-3))[:, None]
-    grid = centre[:, None] + np.arange(-2.0, 3.0)[None, :] * step
+    grid = centre[:, None] + np.arange(-3.0, 4.0)[None, :] * step
     cols = np.column_stack((np.zeros(rs.size), np.exp(np.minimum(grid, lmax))))
     vals = sse(np.broadcast_to(rs[:, None], cols.shape), cols)
     rows = np.arange(rs.size)
     simple, vals = vals[:, 0], vals[:, 1:]
-    j = np.clip(np.argmin(vals, axis=1), 1, 3)
+    j = np.clip(np.argmin(vals, axis=1), 1, grid.shape[1] - 2)
     x1 = grid[rows, j]
     half = 0.5 * step
     new = sse(np.broadcast_to(rs[:, None], (rs.size, 2)), np.exp(np.minimum(x1[:, None] + [-half, half], lmax)))
     y0, y1, y2 = new[:, 0], vals[rows, j], new[:, 1]
-    a = 0.5 * (y0 + y2) - y1  # >= |b| where the middle is the lowest: the vertex then lies between the outer two
+    a = 0.5 * (y0 + y2) - y1
     b = 0.5 * (y2 - y0)
+    # the vertex only where the three look like a parabola about its minimum: the middle the lowest and the rises to
+    # either side within a factor 9 (the vertex within 0.4 of a spacing of the middle); a kink of the piecewise sum
+    # (a vertex changing element) would otherwise put a far-off vertex well below every sample
+    rise_lo, rise_hi = np.minimum(y0, y2) - y1, np.maximum(y0, y2) - y1
+    shaped = (rise_lo >= 0.0) & (rise_hi <= 9.0 * rise_lo) & (a > 0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        vertex = np.where((y1 <= y0) & (y1 <= y2) & (a > 0), y1 - b * b / (4.0 * a), np.inf)
+        vertex = np.where(shaped, y1 - b * b / (4.0 * a), np.inf)
     return np.minimum.reduce([simple, vals.min(axis=1), y0, y2, vertex])
 
 

@@ -1,4 +1,4 @@
-"""Accuracy of curve finding on synthetic routes laid on WGS84 (the table of docs/routes.md). Prints figures only.
+"""Accuracy of curve finding on synthetic routes laid on WGS84 (the tables of docs/routes.md). Prints figures.
 
 Case classes: the noiseless mixed route of the tests (sharp, spiralled, flat and reverse curves) at 0/45/60/-35 deg
 and 5/10/20 m spacing; noisy simple and spiralled curves inside the tests' class (circle-fit Cramér-Rao bound at
@@ -6,21 +6,27 @@ most 5 %/3) and some outside it; long noisy tangents (phantoms); grades. Noisy c
 
 Then the calibration of the stated uncertainty (``radius_std_m``) and of the conservative radius (``radius_lower_m``):
 simple curves between 400 m tangents (the arc's ends are found by the method, as on a real track), short (25 deg) and
-long (90 deg) arcs of radius 60, 200 and 800 m, vertices every 10 m with 1, 2, 3 and 5 m of white GPS noise,
-``--tracks`` tracks per cell. Per cell: the observed scatter (standard deviation of the relative radius error), the
-mean stated standard error, their ratio (target: within a factor 1.5), the standard deviation of the normalised
-error (error / stated standard error, 1 when calibrated), the share of tracks whose ``radius_lower_m`` is at most
-the true radius (target: at least 95 %) and the median of ``radius_lower_m`` / true radius (what the conservatism
-costs), then the pooled figures. ``--quick`` runs only this part on a few tracks.
+long (90 deg) arcs of radius 60, 200 and 800 m, and spiralled curves (clothoid-arc-clothoid: R 150 m with a 100 m arc
+and 80 m spirals, R 250 / 300 / 60 m, R 600 / 400 / 100 m) between 600 m tangents, vertices every 10 m with 1, 2, 3
+and 5 m of white GPS noise, ``--tracks`` tracks per cell. Per cell: the mean relative radius error (bias), the
+observed scatter (its standard deviation), the mean stated standard error, their ratio (target: within a factor
+1.5), the standard deviation of the normalised error (error / stated standard error, 1 when calibrated), the share
+of tracks whose ``radius_lower_m`` is at most the true (arc's) radius (target: at least 95 %) and the median of
+``radius_lower_m`` / true radius (what the conservatism costs), then the pooled figures of each kind.
+``--quick`` runs only this part on 8 tracks. ``--write`` stores the calibration's figures in
+bench/route_calibration.json and puts the table rendered from them (:func:`render_table`) in docs/routes.md between
+its markers; tests/engine/test_route_calibration_doc.py checks that the doc is that rendering.
 
-    python bench/route_accuracy.py [--seeds 10] [--tracks 40] [--quick]
+    python bench/route_accuracy.py [--seeds 10] [--tracks 40] [--quick] [--write]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -123,12 +129,17 @@ CAL_DEFLECTIONS = (25.0, 90.0)
 CAL_NOISE = (1.0, 2.0, 3.0, 5.0)
 CAL_SPACING = 10.0
 CAL_TANGENT = 400.0
+#: spiralled cells (R, arc, spiral length) [m] at the same noise, 600 m tangents: the bound is on the arc's radius
+SPIRALLED = ((150.0, 100.0, 80.0), (250.0, 300.0, 60.0), (600.0, 400.0, 100.0))
+SPIRAL_TANGENT = 600.0
+#: the figures of the last ``--write`` run, from which the table of docs/routes.md is rendered
+FIGURES = ROOT / "bench" / "route_calibration.json"
+DOC = ROOT / "docs" / "routes.md"
+START, END = "<!-- route_accuracy:start -->", "<!-- route_accuracy:end -->"
 
 
-def calibration_cell(radius: float, deflection_deg: float, sigma: float, tracks: int, seed0: int = 1000) -> dict:
+def calibration_cell(route: list, radius: float, sigma: float, tracks: int, seed0: int) -> dict:
     """Errors, stated standard errors and lower bounds of one cell's tracks (the curve of largest deflection)."""
-    length = radius * math.radians(deflection_deg)
-    route = [Tangent(CAL_TANGENT), Arc(radius, length, "left"), Tangent(CAL_TANGENT)]
     err, std, covered, lower, missed = [], [], [], [], 0
     for k in range(tracks):
         found, _ = detect(route, CAL_SPACING, 45.0, noise=sigma, seed=seed0 + k)
@@ -144,68 +155,97 @@ def calibration_cell(radius: float, deflection_deg: float, sigma: float, tracks:
             "missed": missed}  # fmt: skip
 
 
-def calibration(tracks: int) -> None:
-    print()
-    print(f"Calibration: simple curves, h {CAL_SPACING:g} m, {tracks} tracks per cell, tangents {CAL_TANGENT:g} m")
-    head = f"| {'R m':>5} | {'D deg':>5} | {'sigma m':>7} | {'found':>5} | {'bias %':>7} | {'observed %':>10} | "
-    head += f"{'stated %':>8} | {'ratio':>5} | {'sd(z)':>5} | {'lower <= R':>10} | {'lower / R':>9} |"
-    print(head)
-    print("|" + "|".join("-" * (len(c)) for c in head.split("|")[1:-1]) + "|")
-    ratios, zs, cover, n_found, n_all, within = [], [], [], 0, 0, 0
+def cell_figures(cell: dict, tracks: int) -> dict:
+    """One cell's row: found, mean bias, observed scatter, mean stated error, their ratio, sd of the normalised
+    error, coverage (share with radius_lower_m <= R) and the median of radius_lower_m / R; None where too few."""
+    e, s, cv = cell["err"], cell["std"], cell["covered"]
+    out = {"tracks": tracks, "found": int(e.size), "covered": int(cv.sum())}
+    if e.size < 3:
+        return out
+    observed = float(np.std(e, ddof=1))
+    stated = float(np.mean(s))
+    z = e / np.where(s > 0, s, np.nan)
+    out.update(
+        bias=float(e.mean()),
+        observed=observed,
+        stated=stated,
+        ratio=stated / observed if observed > 0 else math.inf,
+        sd_z=float(np.nanstd(z, ddof=1)),
+        coverage=float(cv.mean()),
+        lower=float(np.median(cell["lower"])),
+        z=[round(float(v), 4) for v in z if np.isfinite(v)],
+    )
+    return out
+
+
+def calibration(tracks: int) -> dict:
+    """Every calibration cell, simple and spiralled, as stored in :data:`FIGURES` (the normalised errors kept for
+    the pooled figures)."""
+    cells = []
     for radius in CAL_RADII:
         for deflection in CAL_DEFLECTIONS:
+            length = radius * math.radians(deflection)
+            route = [Tangent(CAL_TANGENT), Arc(radius, length, "left"), Tangent(CAL_TANGENT)]
             for sigma in CAL_NOISE:
-                cell = calibration_cell(radius, deflection, sigma, tracks)
-                e, s, cv = cell["err"], cell["std"], cell["covered"]
-                n_all += tracks
-                n_found += e.size
-                if e.size < 3:
-                    print(f"| {radius:>5.0f} | {deflection:>5.0f} | {sigma:>7.0f} | {e.size:>5} | (too few found)")
-                    continue
-                observed = float(np.std(e, ddof=1))
-                stated = float(np.mean(s))
-                ratio = stated / observed if observed > 0 else math.inf
-                z = e / np.where(s > 0, s, np.nan)
-                sd_z = float(np.nanstd(z, ddof=1))
-                ratios.append(ratio)
-                zs.append(z)
-                cover.append(cv)
-                within += 1 / 1.5 <= ratio <= 1.5
-                print(
-                    f"| {radius:>5.0f} | {deflection:>5.0f} | {sigma:>7.0f} | {e.size:>5} | {100 * e.mean():>+7.2f} | "
-                    f"{100 * observed:>10.2f} | {100 * stated:>8.2f} | {ratio:>5.2f} | {sd_z:>5.2f} | "
-                    f"{100 * cv.mean():>9.1f}% | {np.median(cell['lower']):>9.3f} |"
-                )
-    z_all = np.concatenate(zs)
-    cv_all = np.concatenate(cover)
-    print(
-        f"Overall: {n_found}/{n_all} tracks with the curve found; ratio stated/observed median "
-        f"{np.median(ratios):.2f}, "
-        f"range {min(ratios):.2f}-{max(ratios):.2f}, {within}/{len(ratios)} cells within a factor 1.5; "
-        f"sd of the normalised error {np.nanstd(z_all, ddof=1):.2f}; radius_lower_m <= true radius in "
-        f"{100 * cv_all.mean():.1f} % of the tracks (worst cell {100 * min(c.mean() for c in cover):.1f} %)"
+                cell = calibration_cell(route, radius, sigma, tracks, 1000)
+                key = {"kind": "simple", "radius_m": radius, "deflection_deg": deflection, "sigma_m": sigma}
+                cells.append(key | cell_figures(cell, tracks))
+    for radius, arc, spiral in SPIRALLED:
+        route = [Tangent(SPIRAL_TANGENT), *spiral_curve(radius, arc, spiral, "left"), Tangent(SPIRAL_TANGENT)]
+        deflection = math.degrees((arc + spiral) / radius)
+        for sigma in CAL_NOISE:
+            cell = calibration_cell(route, radius, sigma, tracks, 2000)
+            key = {"kind": "spiralled", "radius_m": radius, "arc_m": arc, "spiral_m": spiral,
+                   "deflection_deg": round(deflection, 1), "sigma_m": sigma}  # fmt: skip
+            cells.append(key | cell_figures(cell, tracks))
+    return {"tracks": tracks, "spacing_m": CAL_SPACING, "cells": cells}
+
+
+def _pooled(cells: list[dict]) -> str:
+    rated = [c for c in cells if "ratio" in c]
+    ratios = [c["ratio"] for c in rated]
+    within = sum(1 / 1.5 <= r <= 1.5 for r in ratios)
+    z = np.array([v for c in rated for v in c["z"]], dtype=float)
+    found = sum(c["found"] for c in cells)
+    covered = sum(c["covered"] for c in cells)
+    worst = min(rated, key=lambda c: c["coverage"])
+    return (
+        f"{found}/{sum(c['tracks'] for c in cells)} tracks with the curve found; stated/observed median "
+        f"{np.median(ratios):.2f} (range {min(ratios):.2f}-{max(ratios):.2f}), {within} of {len(rated)} cells within "
+        f"a factor 1.5; sd of the normalised error {np.nanstd(z, ddof=1):.2f}; `radius_lower_m` at most the true "
+        f"radius in {100 * covered / max(found, 1):.1f} % of the tracks (worst cell {100 * worst['coverage']:.1f} %)"
     )
 
 
-#: spiralled curves (R, arc, spiral length, noise) [m]: the bound is taken on the simple curve the noise makes of them
-SPIRALLED = ((250.0, 300.0, 60.0, 2.5), (150.0, 100.0, 80.0, 2.0), (600.0, 400.0, 100.0, 3.0))
-
-
-def spiralled_coverage(tracks: int) -> None:
-    """Share of spiralled curves (600 m tangents, 10 m spacing) whose radius_lower_m is at most the arc's radius."""
-    for radius, arc, spiral, sigma in SPIRALLED:
-        err, cov = [], []
-        for k in range(tracks):
-            route = [Tangent(600.0), *spiral_curve(radius, arc, spiral, "left"), Tangent(600.0)]
-            found, _ = detect(route, CAL_SPACING, 45.0, noise=sigma, seed=2000 + k)
-            if found.curves:
-                c = max(found.curves, key=lambda c: c.deflection_deg)
-                err.append(c.radius_m / radius - 1.0)
-                cov.append(c.radius_lower_m <= radius)
-        print(
-            f"Spiralled R {radius:g} arc {arc:g} Ls {spiral:g} sigma {sigma:g}: {len(err)}/{tracks} found, "
-            f"bias {100 * np.mean(err):+.1f} %, radius_lower_m <= R in {100 * np.mean(cov):.0f} %"
+def render_table(figures: dict) -> str:
+    """The calibration block of docs/routes.md (between its markers) from a run's stored figures."""
+    head = "| curve | R m | D deg | sigma m | found | bias % | observed % | stated % | ratio | sd(z) | lower <= R "
+    head += "| lower / R |"
+    lines = [f"{figures['tracks']} tracks per cell, vertices every {figures['spacing_m']:g} m, run of "
+             f"{figures['date']} (`python bench/route_accuracy.py --write`).", "", head,
+             "|" + "|".join("---" for _ in head.split("|")[1:-1]) + "|"]  # fmt: skip
+    for c in figures["cells"]:
+        curve = "simple" if c["kind"] == "simple" else f"arc {c['arc_m']:g}, Ls {c['spiral_m']:g}"
+        lead = f"| {curve} | {c['radius_m']:g} | {c['deflection_deg']:g} | {c['sigma_m']:g} | {c['found']} |"
+        if "ratio" not in c:
+            lines.append(lead + " (too few found) | | | | | | |")
+            continue
+        lines.append(
+            f"{lead} {100 * c['bias']:+.2f} | {100 * c['observed']:.2f} | {100 * c['stated']:.2f} | {c['ratio']:.2f} | "
+            f"{c['sd_z']:.2f} | {100 * c['coverage']:.1f} % | {c['lower']:.3f} |"
         )
+    simple = [c for c in figures["cells"] if c["kind"] == "simple"]
+    spiralled = [c for c in figures["cells"] if c["kind"] == "spiralled"]
+    lines += ["", f"Simple curves: {_pooled(simple)}.", "", f"Spiralled curves: {_pooled(spiralled)}."]
+    return "\n".join(lines)
+
+
+def write_doc(text: str) -> None:
+    """The rendered block into docs/routes.md, between its markers."""
+    doc = DOC.read_text(encoding="utf-8")
+    head, rest = doc.split(START, 1)
+    _, tail = rest.split(END, 1)
+    DOC.write_text(f"{head}{START}\n{text}\n{END}{tail}", encoding="utf-8")
 
 
 def main() -> None:
@@ -213,23 +253,36 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--tracks", type=int, default=40, help="tracks per calibration cell")
     ap.add_argument("--quick", action="store_true", help="only the calibration, 8 tracks per cell")
+    ap.add_argument(
+        "--write", action="store_true", help=f"store the calibration in {FIGURES.name} and its table in docs/routes.md"
+    )
     args = ap.parse_args()
-    if args.quick:
-        calibration(8)
-        spiralled_coverage(4)
-        return
-    seeds = args.seeds
-    row("case class", "max |dR/R|", "max end error", "other")
-    print(f"|{'-' * 60}|{'-' * 18}|{'-' * 16}|{'-' * 30}|")
-    noiseless()
-    noisy(NOISY, seeds, "noisy, in class:")
-    spiral_noisy(seeds)
-    outside = [(450, 400, "right", 10, 3.0, 45.0), (100, 200, "left", 10, 3.0, 45.0), (60, 120, "left", 10, 3.0, 0.0)]
-    noisy(outside, seeds, "noisy, outside:")
-    phantoms(seeds)
-    grades(seeds)
-    calibration(args.tracks)
-    spiralled_coverage(20)
+    if args.write and args.quick:
+        ap.error("--write records a whole calibration: leave out --quick")
+    if not args.quick:
+        seeds = args.seeds
+        row("case class", "max |dR/R|", "max end error", "other")
+        print(f"|{'-' * 60}|{'-' * 18}|{'-' * 16}|{'-' * 30}|")
+        noiseless()
+        noisy(NOISY, seeds, "noisy, in class:")
+        spiral_noisy(seeds)
+        outside = [
+            (450, 400, "right", 10, 3.0, 45.0),
+            (100, 200, "left", 10, 3.0, 45.0),
+            (60, 120, "left", 10, 3.0, 0.0),
+        ]
+        noisy(outside, seeds, "noisy, outside:")
+        phantoms(seeds)
+        grades(seeds)
+        print()
+    figures = calibration(8 if args.quick else args.tracks)
+    figures["date"] = time.strftime("%Y-%m-%d", time.gmtime())
+    text = render_table(figures)
+    print(text)
+    if args.write:
+        FIGURES.write_text(json.dumps(figures, indent=1) + "\n", encoding="utf-8")
+        write_doc(text)
+        print(f"wrote {FIGURES.relative_to(ROOT)} and {DOC.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

@@ -226,10 +226,11 @@ class RouteCurveProperties(OutputModel):
     )
     radius_lower_m: float = Field(
         description=describe(
-            "Conservative radius: one-sided 95 % lower confidence bound of the radius (the true radius is at least "
-            "this with 95 % confidence given the track's noise); the assessment and its safe speed (Eq. 9.1) use it, "
-            "so GPS noise lowers a safe speed rather than raising it. Equal to `radius_m` without noise "
-            "(docs/routes.md: the method and its calibration).",
+            "Conservative radius: one-sided 95 % lower confidence bound of the circular part's radius (the true "
+            "radius is at least this with 95 % confidence given the track's noise), allowing for transition spirals "
+            "the noise hides (such a curve is fitted as a simple curve of a larger `radius_m`); the assessment and "
+            "its safe speed (Eq. 9.1) use it, so GPS noise lowers a safe speed rather than raising it. Equal to "
+            "`radius_m` without noise (docs/routes.md: the method and its calibration).",
             unit="m",
             symbol="R_lower (95 %)",
         )

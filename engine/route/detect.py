@@ -56,9 +56,11 @@ Method
    also uses the tangents' information. Without tangents (reverse, compound) the circle is used as it is.
    With fewer than 3 vertices on the arc the radius is 1/P and ``sparse`` is set.
    The radius's standard error ``radius_std_m`` counts the tangents' own errors (the path fit's delta method over
-   both stages, :func:`_path_radius_std`), and ``radius_lower_m`` is its one-sided 95 % lower confidence bound (a
-   profile-likelihood bound for the path fit, :func:`_path_radius_lower`; on the curvature otherwise,
-   :func:`engine.route.fit.radius_lower_bound_m`): the radius the safe speed uses (:meth:`HorizontalCurve.as_curve`).
+   both stages, :func:`_path_radius_std`), and ``radius_lower_m`` is a one-sided 95 % lower confidence bound of the
+   arc's radius (for the path fit a profile-likelihood bound over the whole tangent-clothoid-arc family, the
+   spiral's length profiled out, so that a spiral the noise hides is allowed for, :func:`_path_radius_lower`; on
+   the curvature otherwise, :func:`engine.route.fit.radius_lower_bound_m`): the radius the safe speed uses
+   (:meth:`HorizontalCurve.as_curve`).
 9. **Deflection**: the angle between the fitted tangents, else the change of the heading smoothed at tau_r
    2.5 tau_r beyond the curve (at a reverse junction, the fitted circle's tangent there); a curve turning less
    than ``min_deflection_deg``, or within ``significance`` standard deviations of that measurement's noise,
@@ -74,7 +76,7 @@ Where it fails (see also docs/routes.md)
   sigma / M; a curve whose offsets are within the noise is not detected at all.
 * Spirals are resolved from the diagram only when longer than 2 tau_r and the noise is small; with GPS noise
   their shift is usually below it and the curve is the equivalent simple curve, whose radius exceeds R by
-  about p sec(D/2) / (sec(D/2) - 1).
+  about p sec(D/2) / (sec(D/2) - 1); the path fit's ``radius_lower_m`` allows for such a hidden spiral.
 * A compound curve is one curve: its radius is that of its sharpest arc (the one that governs the safe
   speed) and it covers all its arcs; arcs whose curvatures differ by less than about 10 % are not told apart,
   and with GPS noise (curvature noise above 2 % of the plateau) compound arcs are not recognised at all.
@@ -771,6 +773,7 @@ def _fit_tangent_curve(
     k_g = np.clip(best_g * np.geomspace(0.55, 1.0 / 0.55, 5), 0.0, 0.98)
     best_r, best_g = _grid_min(sse, k_r, k_g, defl)
     best_ls = best_g * best_r * defl
+    best_r_joint, best_ls_joint = best_r, best_ls
     s_min = float(sse(np.array([best_r]), np.array([best_ls]))[0])
     var = min(s_min, s_zero) / max(sel.size - 2, 1)
     spiral = None
@@ -779,54 +782,126 @@ def _fit_tangent_curve(
     else:
         best_r, best_ls = r_simple, 0.0
     stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var)
-    if stds is not None:
-        std = stds[0]
-        lower = _path_radius_lower(sse, best_r, best_ls, var, stds[0] / stds[1])
-    else:  # the sum is not convex in R about the fit (few or no vertices on a short arc): the profile alone
-        lower = _path_radius_lower(sse, best_r, best_ls, var, 1.0)
+    # the bound is on the arc's radius over the whole tangent-clothoid-arc family: profiled over Ls, from the
+    # family's best fit (a spiral the likelihood-ratio test did not keep still lowers the arc's radius it allows)
+    r_ref, ls_ref, s_ref = (r_simple, 0.0, s_zero) if s_zero <= s_min else (float(best_r_joint), best_ls_joint, s_min)
+    tangent_var = max(stds[0] ** 2 - stds[1] ** 2, 0.0) if stds is not None else 0.0
+    std = stds[0] if stds is not None else None
+    lower = min(_path_radius_lower(sse, r_ref, ls_ref, s_ref, var, tangent_var, defl, std), float(best_r))
+    if stds is None:  # the sum is not convex in R about the fit (few or no vertices on a short arc): the profile alone
         std = (best_r - lower) / float(ndtri(RADIUS_CONFIDENCE)) if lower < best_r else None
     return _Composite(float(best_r), path.centre(best_r, best_ls), spiral, std, lower)
 
 
-def _path_radius_lower(sse, r: float, ls: float, var: float, widen: float) -> float:
-    """One-sided lower confidence bound (:data:`~engine.route.fit.RADIUS_CONFIDENCE`) of the path fit's radius [m].
+def _valley_ls(r: np.ndarray, r0: float, ls0: float, defl: float) -> np.ndarray:
+    """The spiral length that keeps the arc's apex where the fit (``r0``, ``ls0``) put it, for arc radii ``r`` [m].
 
-    A profile-likelihood bound: with Gaussian vertex noise of variance s^2 the deviance of a radius R is
-    D(R) = (S(R) - S(R*)) / s^2, S the path's sum of squares (the spiral, if kept, at its fitted length), and the
-    one-sided bound is the R < R* where sqrt(D(R)) = z, z the normal quantile of the confidence (1.645). For a sum
-    quadratic in R this is R* - z sigma_R|t, the standard error given the tangents (and the spiral's length); the
-    threshold is widened by ``widen`` = sigma_R / sigma_R|t (:func:`_path_radius_std`), so that the linear case
-    gives R* - z sigma_R with the tangents' error (and the spiral's) included. Where the vertices hardly constrain
-    the radius (a short sharp arc whose offsets from its tangents are within the noise: the sum is flat toward a
-    corner) the bound falls far below R* instead of the delta method's symmetric interval. Searched on a geometric
-    grid down to R* / 50, refined in the bracket twice, interpolated linearly in sqrt(D).
+    Between two given tangents the vertices fix first of all the curve's external distance
+    E = (R + p) / cos(D/2) - R (its offset from the tangents' intersection, where it lies farthest from both): a
+    sharper arc fits them as well only with a clothoid whose shift p = E cos(D/2) - R (1 - cos(D/2)) keeps E [3].
+    That is the valley of the sum of squares in (R, Ls); Ls from p by the clothoid's series (two terms, inverted).
+    """
+    half = 0.5 * defl
+    p0, _ = _clothoid_shift(r0, ls0)
+    e = (r0 + p0) / math.cos(half) - r0
+    p = np.maximum(e * math.cos(half) - r * (1.0 - math.cos(half)), 0.0)
+    a = 1.0 / (24.0 * r)
+    ls2 = (a - np.sqrt(np.maximum(a * a - 4.0 * p / (2688.0 * r**3), 0.0))) * 1344.0 * r**3
+    return np.sqrt(ls2)
 
-    Not covered: a spiral the noise hides. A curve with clothoids fitted as a simple curve has a larger radius than
-    its arc's (docs/routes.md, "Where it fails"), and the bound, taken on the simple curve, does not reach down to
-    the arc's radius.
+
+def _path_radius_lower(
+    sse, r: float, ls: float, s_ref: float, var: float, tangent_var: float, defl: float, std: float | None
+) -> float:
+    """One-sided lower confidence bound (:data:`~engine.route.fit.RADIUS_CONFIDENCE`) of the arc's radius [m].
+
+    A profile-likelihood bound over the tangent-clothoid-arc-clothoid-tangent family, with the spiral's length as a
+    nuisance parameter: with Gaussian vertex noise of variance s^2 the deviance of an arc radius R is
+    D(R) = (min_Ls S(R, Ls) - S*) / s^2, S the path's sum of squares and S* its minimum over the family at
+    (``r``, its Ls); a simple curve is Ls = 0. Profiling the spiral out matters because a curve whose clothoids the
+    noise hides is fitted best as a simple curve of a *larger* radius (docs/routes.md, "Where it fails"): the
+    vertices then cannot rule out a sharper arc with spirals, and the bound of the simple fit alone (R given Ls = 0)
+    misses the arc's radius on short spiralled curves. Where the track does rule a spiral out (a long arc, little
+    noise) the profile is that of the simple curve and so is the bound.
+
+    sqrt(D) is z sigma_R|t at R* - z sigma_R|t when S is quadratic, sigma_R|t the standard error given the tangents.
+    The tangents' own errors (variance ``tangent_var`` of R, :func:`_path_radius_std`) are added to it: the bound is
+    where d / sqrt(d^2 / D + tangent_var) = z, d = R* - R, so that the linear case gives R* - z sqrt(sigma_R|t^2 +
+    tangent_var). Where the vertices hardly constrain the radius (a short sharp arc whose offsets from its tangents
+    are within the noise: the sum is flat toward a corner) the bound falls far below R* instead of the delta
+    method's symmetric interval. Searched downward from R* - 0.9 z ``std`` on steps that grow (a fifth, then a
+    half, of d), down to R* / 50, the bracket cut in four when wider than 1 % of R*, interpolated linearly in it;
+    the minimum over Ls along the valley of
+    :func:`_valley_ls` (:func:`_profile_ls`).
+
+    The price: where the noise cannot rule a spiral out (short or flat arcs, a few metres of noise) a simple curve's
+    bound falls lower than its fit alone would put it (docs/routes.md gives the measured calibration).
     """
     if not var > 0:
         return float(r)
     z = float(ndtri(RADIUS_CONFIDENCE))
-    s_min = float(sse(np.array([r]), np.array([ls]))[0])
-    limit = z * widen  # on the signed root of the deviance, linear in R where the sum is quadratic
 
-    def root(rs: np.ndarray) -> np.ndarray:
-        return np.sqrt(np.maximum(sse(rs, np.full(rs.size, ls)) - s_min, 0.0) / var)
+    def stat(rs: np.ndarray) -> np.ndarray:
+        dev = np.maximum(_profile_ls(sse, rs, _valley_ls(rs, r, ls, defl), 0.95 * rs * defl) - s_ref, 0.0) / var
+        d = np.maximum(r - rs, 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(dev > 0, d / np.sqrt(d * d / dev + tangent_var), 0.0)
 
-    rs = r * np.geomspace(1.0, 0.02, 25)
-    for _ in range(3):  # the grid (steps of 15 %), then twice 9 points inside the bracket found
-        dev = root(rs)
-        above = np.flatnonzero(dev > limit)
-        if above.size == 0:
-            return float(rs[-1])
-        j = int(above[0])
-        if j == 0:
-            return float(r)
-        lo_r, hi_r = rs[j], rs[j - 1]
-        rs = np.geomspace(hi_r, lo_r, 9)
-    t = (limit - dev[j - 1]) / (dev[j] - dev[j - 1])
-    return float(min(r, hi_r + t * (lo_r - hi_r)))
+    # R* - d on a grid of d from 0.9 z sigma_R (or from 3 % of R* without a standard error) that grows by a fifth,
+    # then by half, four radii at a time until the statistic exceeds z; a bracket wider than 1 % of R* is cut in
+    # four; then linearly inside it
+    d0 = 0.9 * z * std if std is not None and std > 0 else 0.03 * r
+    d = d0 * np.concatenate((1.2 ** np.arange(8), 1.2**7 * 1.5 ** np.arange(1, 40)))
+    grid = r - d[d < 0.98 * r]
+    grid = np.append(grid, 0.02 * r)
+    prev_r, prev_t = r, 0.0
+    for k in range(0, grid.size, 4):
+        rs = grid[k : k + 4]
+        t = stat(rs)
+        above = np.flatnonzero(t > z)
+        if above.size:
+            j = int(above[0])
+            hi_r, hi_t = (rs[j - 1], t[j - 1]) if j > 0 else (prev_r, prev_t)
+            lo_r, lo_t = rs[j], t[j]
+            if hi_r - lo_r > 0.01 * r:  # a wide bracket (a flat profile): three more radii inside it
+                inner = np.geomspace(hi_r, lo_r, 5)[1:-1]
+                ti = stat(inner)
+                rs, t = np.concatenate(([hi_r], inner, [lo_r])), np.concatenate(([hi_t], ti, [lo_t]))
+                j = int(np.flatnonzero(t > z)[0])
+                hi_r, hi_t, lo_r, lo_t = rs[j - 1], t[j - 1], rs[j], t[j]
+            w = (z - hi_t) / (lo_t - hi_t)
+            return float(min(r, hi_r + w * (lo_r - hi_r)))
+        prev_r, prev_t = rs[-1], t[-1]
+    return float(grid[-1])
+
+
+def _profile_ls(sse, rs: np.ndarray, valley: np.ndarray, ls_max: np.ndarray) -> np.ndarray:
+    """min over Ls >= 0 of the path's sum of squares at each arc radius of ``rs``: Ls = 0 and seven spiral lengths
+    about the valley's (a factor 1.2 apart), then the two halfway about the lowest and the vertex of the parabola
+    through the three (two calls of ``sse``)."""
+    step = math.log(1.2)
+    centre = np.log(np.maximum(valley, 1e-3))
+    lmax = np.log(np.maximum(ls_max, 1e-3))[:, None]
+    grid = centre[:, None] + np.arange(-3.0, 4.0)[None, :] * step
+    cols = np.column_stack((np.zeros(rs.size), np.exp(np.minimum(grid, lmax))))
+    vals = sse(np.broadcast_to(rs[:, None], cols.shape), cols)
+    rows = np.arange(rs.size)
+    simple, vals = vals[:, 0], vals[:, 1:]
+    j = np.clip(np.argmin(vals, axis=1), 1, grid.shape[1] - 2)
+    x1 = grid[rows, j]
+    half = 0.5 * step
+    new = sse(np.broadcast_to(rs[:, None], (rs.size, 2)), np.exp(np.minimum(x1[:, None] + [-half, half], lmax)))
+    y0, y1, y2 = new[:, 0], vals[rows, j], new[:, 1]
+    a = 0.5 * (y0 + y2) - y1
+    b = 0.5 * (y2 - y0)
+    # the vertex only where the three look like a parabola about its minimum: the middle the lowest and the rises to
+    # either side within a factor 9 (the vertex within 0.4 of a spacing of the middle); a kink of the piecewise sum
+    # (a vertex changing element) would otherwise put a far-off vertex well below every sample
+    rise_lo, rise_hi = np.minimum(y0, y2) - y1, np.maximum(y0, y2) - y1
+    shaped = (rise_lo >= 0.0) & (rise_hi <= 9.0 * rise_lo) & (a > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vertex = np.where(shaped, y1 - b * b / (4.0 * a), np.inf)
+    return np.minimum.reduce([simple, vals.min(axis=1), y0, y2, vertex])
 
 
 def _shifted(line: _Line, angle: float, offset: float) -> _Line:
@@ -856,7 +931,8 @@ def _path_radius_std(
     formal standard error the fit reported before: it leaves out where the tangents and with them the curve's ends
     lie, which dominates on short and on flat arcs (docs/routes.md gives the measured calibration). The vertices
     are taken as independent (each GPS fix's error its own: the tracks' vertices, not the resampled ones).
-    Returns (sigma_R, sigma_R given the tangents and Ls), or None when the sum is not convex in R about the fit
+    Returns (sigma_R, sigma_R given the tangents, Ls free when kept: sqrt(2 s^2 [H^-1]_RR)), or None when the sum
+    is not convex in R about the fit
     (then the caller takes the standard error from the profile bound: (R* - R_lower) / z, the same in the linear
     case).
     """
@@ -913,7 +989,7 @@ def _path_radius_std(
                 return None
             dp = h_inv @ dg
             cov = cov + np.outer(dp, dp)
-    return float(math.sqrt(max(cov[0, 0], 0.0))), float(math.sqrt(2.0 * var / hess[0, 0]))
+    return float(math.sqrt(max(cov[0, 0], 0.0))), float(math.sqrt(max(2.0 * var * h_inv[0, 0], 0.0)))
 
 
 def _parabola_min(fun, rs: np.ndarray, costs: np.ndarray, i: int, r: float, s: float) -> tuple[float, float]:

@@ -9,13 +9,14 @@ One renderer for every answer made of assessed curves: the synchronous alignment
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import orjson
 
-from app.formats.segments import Codes, Segment, csv_floats, json_floats, write_rows
+from app.formats.segments import Codes, Segment, csv_floats, json_floats, repr_safe, write_rows
 from app.formats.tables import Text, csv_field, csv_fields, csv_line, target_columns
 from engine import ENGINE_VERSION
 from engine.road import GOVERNED_BY, AlignmentColumns
@@ -271,11 +272,41 @@ def _csv_checks(v: VehicleAnswer, names: list[str]) -> bytes:
     return b",".join(csv_field(by_name.get(n, empty).get(k)) for n in names for k in ("meets", "margin_g"))
 
 
-def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str]) -> bytes:
-    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`): the cells of :func:`rows`
-    as :func:`app.formats.tables.csv_lines` writes them (tested), written a block of number columns at a time
-    (:mod:`app.formats.segments`); the vehicle's fields, the level-road SRT and the target checks written once."""
+def _float_columns(answer: AlignmentAnswer, v: VehicleAnswer) -> list[np.ndarray]:
+    c = v.columns
+    return [answer.curves.station_m, *(getattr(c, name) for name in _CSV_FLOATS), v.tilt_deg]
+
+
+_CSV_FLOATS = (
+    "radius_m",
+    "superelevation_percent",
+    "grade_percent",
+    "srt_g",
+    "rollover_speed_kmh",
+    "side_friction_speed_kmh",
+    "side_friction",
+    "safe_speed_kmh",
+    "posted_speed_kmh",
+    "margin_kmh",
+    "standard_min_radius_m",
+)
+
+
+def csv_repr_safe(answer: AlignmentAnswer, v: VehicleAnswer) -> bool:
+    """Whether every number of one vehicle's CSV rows is written by orjson as ``repr`` writes it
+    (:func:`app.formats.segments.repr_safe`): checked once for the whole answer, not for each chunk."""
+    return all(map(repr_safe, _float_columns(answer, v)))
+
+
+def csv_rows(
+    answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str], *, safe: bool = False
+) -> bytes:
+    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`; ``safe``:
+    :func:`csv_repr_safe`): the cells of :func:`rows` as :func:`app.formats.tables.csv_lines` writes them (tested),
+    written a block of number columns at a time (:mod:`app.formats.segments`); the vehicle's fields, the level-road
+    SRT and the target checks written once."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
+    f = functools.partial(csv_floats, safe=safe)
     pairs = v.pair_of_row[sl]
     names = target_names(answer.resolved)
     vehicle = [v.index, None if v.preset is None else Text(v.preset), None if v.saved_id is None else Text(v.saved_id)]
@@ -284,28 +315,28 @@ def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, c
         b",".join(map(csv_field, vehicle)) + b",",
         csv_fields(t.ids[sl]),
         b",",
-        csv_floats([t.station_m[sl], c.radius_m[sl], c.superelevation_percent[sl]]),
+        f([t.station_m[sl], c.radius_m[sl], c.superelevation_percent[sl]]),
         b",",
         _csv_codes(c.superelevation_derived[sl].astype(np.intp), _SOURCE),
         b",",
-        csv_floats([c.grade_percent[sl], c.srt_g[sl]]),
+        f([c.grade_percent[sl], c.srt_g[sl]]),
         b"," + csv_field(v.level) + b",",
-        csv_floats([v.tilt_deg[pairs]]),
+        f([v.tilt_deg[pairs]]),
         Codes((v.srts[pairs] >= 0).astype(np.intp), [b"," * len(names) * 2, b"," + checks if names else b""]),
         b",",
-        csv_floats([c.rollover_speed_kmh[sl], c.side_friction_speed_kmh[sl], c.side_friction[sl]]),
+        f([c.rollover_speed_kmh[sl], c.side_friction_speed_kmh[sl], c.side_friction[sl]]),
         b",",
         _csv_codes(c.side_friction_clamped[sl].astype(np.intp), (False, True)),
         b",",
-        csv_floats([c.safe_speed_kmh[sl]]),
+        f([c.safe_speed_kmh[sl]]),
         b",",
         _csv_codes(c.governed_by[sl], GOVERNED_BY),
         b",",
-        csv_floats([c.posted_speed_kmh[sl], c.margin_kmh[sl]]),
+        f([c.posted_speed_kmh[sl], c.margin_kmh[sl]]),
         b",",
         _csv_codes(c.flagged[sl].astype(np.intp), (False, True)),
         b",",
-        csv_floats([c.standard_min_radius_m[sl]]),
+        f([c.standard_min_radius_m[sl]]),
         b",",
         _csv_codes(c.meets_standard_min_radius[sl] + 1, _MEETS),
         b",",
@@ -321,8 +352,9 @@ def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     yield csv_line(columns)
     n = len(answer.curves)
     for v in answer.vehicles:
+        safe = csv_repr_safe(answer, v)
         for start in range(0, n, ROWS_PER_CHUNK):
-            yield csv_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), columns)
+            yield csv_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), columns, safe=safe)
 
 
 def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:

@@ -105,7 +105,7 @@ def json_floats(values: np.ndarray) -> list[bytes]:
     return orjson.dumps(values.tolist())[1:-1].split(b",")
 
 
-def _repr_safe(block: np.ndarray) -> bool:
+def repr_safe(block: np.ndarray) -> bool:
     """Whether orjson writes every value of ``block`` as ``repr`` does (nan aside): it does for every finite float in
     [1e-4, 1e16) in magnitude and for zero, and differs below and above (``0.00005`` for ``5e-05``, ``1e16`` for
     ``1e+16``) and for infinities (``null``)."""
@@ -113,14 +113,15 @@ def _repr_safe(block: np.ndarray) -> bool:
     return not (np.any(a >= 1e16) or np.any((a < 1e-4) & (a != 0)))
 
 
-def csv_floats(columns: Sequence[np.ndarray]) -> list[bytes]:
+def csv_floats(columns: Sequence[np.ndarray], *, safe: bool = False) -> list[bytes]:
     """Consecutive float columns as the CSV fields of each row, joined by commas: each value as ``repr`` writes it,
     nan as an empty field (the table of :mod:`app.formats.tables`). One ``orjson`` call for the block; a block
-    holding a value orjson writes otherwise than ``repr`` is written value by value."""
+    holding a value orjson writes otherwise than ``repr`` is written value by value (``safe``: the caller has
+    found that no value is such, :func:`repr_safe` of the whole columns, once for all their chunks)."""
     block = np.column_stack([np.asarray(c, dtype=np.float64) for c in columns])
     if not len(block):
         return []
-    if not _repr_safe(block):
+    if not safe and not repr_safe(block):
         return [
             ",".join("" if x != x else repr(x) for x in row).encode()  # x != x: nan
             for row in block.tolist()

@@ -29,6 +29,7 @@ from app.alignments.rows import (
     ROWS_PER_CHUNK,
     csv_columns,
     csv_header,
+    csv_repr_safe,
     csv_rows,
     json_head,
     json_rows,
@@ -392,10 +393,11 @@ def _rendered(
     """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks."""
     answer, va = _part_answer(resolved, v, data, level)
     n = len(answer.curves)
+    safe = fmt == "csv" and csv_repr_safe(answer, va)
     for start in range(0, n, ROWS_PER_CHUNK):
         stop = min(start + ROWS_PER_CHUNK, n)
         if fmt == "csv":
-            yield csv_rows(answer, va, start, stop, columns)
+            yield csv_rows(answer, va, start, stop, columns, safe=safe)
         else:
             yield json_rows(answer, va, start, stop, comma=start > 0)
 

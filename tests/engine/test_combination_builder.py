@@ -19,10 +19,13 @@ import itertools
 
 import pytest
 
+from engine.case import Case
 from engine.errors import InvalidInput, InvalidVehicle
+from engine.models import rollover_threshold
 from engine.models.combination import rigid_srt, solve_combination
 from engine.vehicle import COMBINATIONS, PRESETS
 from engine.vehicle.builder import CombinationSpec, build_combination
+from engine.vehicle.builder.last_unit import last_unit_spec
 from engine.vehicle.combination import G_M_PER_S2, roll_coupled_units, static_loads
 
 T15 = PRESETS["table15-semitrailer"]
@@ -413,9 +416,6 @@ def test_payload_table_of_a_combination_finds_the_governing_srt_at_the_target_an
 def test_a_built_combination_runs_the_3d_model_of_its_last_unit_as_its_preset_does():
     """The Table 15 rebuilt: its last unit's record is Table 15's, so the 3D model of the last unit, with LLTf/LLTr
     from the combination, gives the preset's SRT (to 1e-9: the builder's arithmetic reorders sums)."""
-    from engine.case import Case
-    from engine.models import rollover_threshold
-
     built = build(table15_spec()).combination
     preset = COMBINATIONS["tractor-semitrailer-table15"]
     ours, theirs = rollover_threshold(Case(built, model="3d")), rollover_threshold(Case(preset, model="3d"))
@@ -428,8 +428,6 @@ def test_a_built_combination_runs_the_3d_model_of_its_last_unit_as_its_preset_do
 def test_the_last_units_record_is_made_where_the_3d_model_has_one(cid, unit_type):
     """A semitrailer behind a B-coupling is a B-train's rear trailer, behind a dolly's fifth wheel a semitrailer; a
     full trailer (a turntable, a pintle) has no 3D model: no record, and the build's notes say why."""
-    from engine.vehicle.builder.last_unit import last_unit_spec
-
     if cid in WEIGHED:
         data = weighed_spec(cid)
     else:  # every value given, and Table 16's loaded radius (lr) on the trailers' tyres: ls = roll centre - lr
@@ -453,6 +451,10 @@ def test_the_last_units_record_is_made_where_the_3d_model_has_one(cid, unit_type
     assert vspec.front.centre_from_kingpin_m == pytest.approx(near.position_m - spec.couplings[-1].position_m)
     record = built.combination.last_unit_record
     assert record.weight_kn == pytest.approx(built.units[-1].mass_kg * G_M_PER_S2 / 1000.0, rel=1e-12)
+    three_d = rollover_threshold(Case(built.combination, model="3d"))
+    assert 0.2 < three_d.srt < 0.7
     if cid == "btrain-table16":  # every value given: Table 16's own record (the preset's), field by field
         for name, value in COMBINATIONS[cid].last_unit_record.to_dict().items():
             assert same(getattr(record, name), value), name
+        preset_3d = rollover_threshold(Case(COMBINATIONS[cid], model="3d"))
+        assert three_d.srt == pytest.approx(preset_3d.srt, rel=1e-9)  # and so the preset's 3D SRT

@@ -8,8 +8,8 @@ the constants beside it (its texts are written once, not once per row), two code
 and the rows are put together by slice assignment and one ``join``.
 
 The numbers are written by ``orjson`` a whole column at a time (:func:`json_floats`, :func:`csv_floats`): an
-alignment answer of 100,000 rows holds about 2 million numbers, and a Python call per number is what made the CSV
-answer three times slower than the JSON one.
+alignment answer holds about twenty numbers a row, and a Python call per number would cost more than everything
+else it takes to write the row (``bench/bench_service.py`` times the 100,000-curve answer as JSON and as CSV).
 """
 
 from __future__ import annotations

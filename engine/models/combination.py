@@ -349,15 +349,20 @@ class _Elements:
         key = (tyre, zone, phase, limit)
         out = self.ends.get(key)
         if out is None:
-            out = self.ends[key] = {}
+            # built whole before it is stored: the table is shared by the solves of this vehicle on other threads
+            # (the solver threads), which must never see it half filled
+            built: dict = {}
             for k, e in enumerate(self.table(tyre, zone, phase, limit)[-1].tolist()):
-                out.setdefault(tuple(e), k)
+                built.setdefault(tuple(e), k)
+            out = self.ends.setdefault(key, built)
         return out
 
 
 @functools.lru_cache(maxsize=256)
 def _shared_regimes(n: int, elements: tuple) -> tuple[dict, dict, dict]:
-    """The (pieces, tables, ends) caches of the systems with these elements (:class:`_Elements`)."""
+    """The (pieces, tables, ends) caches of the systems with these elements (:class:`_Elements`): a memo of values
+    that depend on the elements alone, read-only once stored and stored only whole, so that solves on several
+    threads may share it (at worst two threads build the same entry, and one of the equal values is kept)."""
     return {}, {}, {}
 
 

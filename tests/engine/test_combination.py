@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -454,3 +455,31 @@ def _group(c, i, j, **changes):
 def test_weights_are_the_masses_times_g():
     c = tractor_semitrailer()
     assert c.units[1].sprung_weight_kn == pytest.approx(30000.0 * G_M_PER_S2 / 1000.0)
+
+
+def test_solves_of_one_vehicle_on_several_threads_are_the_solves_one_after_another():
+    """The per-regime tables a vehicle's solves share (engine.models.combination._shared_regimes) are built on
+    whichever thread needs them first (the service's solver threads): solved on four threads at once from an empty
+    memo, with the interpreter switching threads as often as it can, every bank gives the bits it gives solved
+    alone (an invariant of the shared memo; a race that changed a result would break it)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from engine.models import combination as model
+    from engine.vehicle import COMBINATIONS
+
+    c = COMBINATIONS["adouble"]
+    banks = [b / 4 for b in range(-8, 41)]
+    model._shared_regimes.cache_clear()
+    alone = [[r.srt for r in solve_combination(c, bank_percent=b).roll_coupled_units] for b in banks]
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # threads switched as often as possible: a half-built entry would be seen
+    try:
+        for _ in range(3):
+            model._shared_regimes.cache_clear()
+            with ThreadPoolExecutor(max_workers=4) as pool:
+                together = list(
+                    pool.map(lambda b: [r.srt for r in solve_combination(c, bank_percent=b).roll_coupled_units], banks)
+                )
+            assert together == alone
+    finally:
+        sys.setswitchinterval(interval)

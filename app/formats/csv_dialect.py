@@ -7,6 +7,9 @@ detected once per file, never guessed per row:
 
 * the **byte-order mark** (U+FEFF) at the start of the text is noted and dropped (it is not part of the first
   column's name);
+* a first line ``sep=;`` (``sep=,``, ``sep=`` and a tab), which Excel reads as the file's separator and some
+  programs write so that Excel opens their files in any locale, sets the separator and is dropped: the header is
+  the line after it, row 1, as the spreadsheet shows it (Excel does not show that line);
 * the **line ending** is that of the header line (``CRLF``, ``LF`` or ``CR``; the reader accepts any of them);
 * the **separator** (``,``, ``;`` or a tab) is the one that splits the header line into the most known column
   names (a tie: the one that occurs most often in the header; no separator at all: ``,``);
@@ -127,6 +130,21 @@ def _separator(header: str, known: Iterable[str]) -> str:
     return best[3] if best[0] or best[1] else ","
 
 
+def _sep_line(line: str) -> str | None:
+    """The separator a first line ``sep=X`` names (None: the line is not one); another X than the known separators
+    is refused."""
+    text = line.rstrip("\r\n")
+    if not text.lower().startswith("sep="):
+        return None
+    sep = text[4:]
+    if sep not in SEPARATORS:
+        raise CsvDialectError(
+            f"the first line {text!r} names the separator {sep!r}; a file may be separated by ',', ';' or tabs",
+            "the sep= line",
+        )
+    return sep
+
+
 def detect(text: str, known_columns: Iterable[str], numeric_columns: Iterable[str]) -> tuple[CsvDialect, str]:
     """The dialect of CSV ``text`` (see the module) and the text without its byte-order mark.
 
@@ -135,7 +153,11 @@ def detect(text: str, known_columns: Iterable[str], numeric_columns: Iterable[st
     bom = text.startswith(BOM)
     body = text[1:] if bom else text
     header = _header_line(body)
-    sep = _separator(header, known_columns)
+    forced = _sep_line(header)
+    if forced is not None:
+        body = body[len(header) :]
+        header = _header_line(body)
+    sep = forced or _separator(header, known_columns)
     ending = _line_ending(body)
     if sep == ",":
         return CsvDialect(",", ".", bom, ending), body

@@ -138,6 +138,11 @@ def test_a_portuguese_locale_file_is_read_with_its_decimal_commas(shared_client)
         ('id;radius_m;superelevation_percent\n"A;1";120,25;6\n', (";", ",", "LF"), [120.25]),
         # header names in another case
         ("ID,Radius_M,SUPERELEVATION_PERCENT\nC1,410.5,6\n", (",", ".", "LF"), [410.5]),
+        # Excel's separator line (it sets the separator; the header is the line after it)
+        ("sep=;\r\nid;radius_m;superelevation_percent\r\nC1;250,5;6\r\n", (";", ",", "CRLF"), [250.5]),
+        ("\ufeffSEP=\t\nid\tradius_m\tsuperelevation_percent\nC1\t99.5\t6\n", ("\t", ".", "LF"), [99.5]),
+        # ... which wins over the header's own counts: a comma-separated file with a sep=, line
+        ("sep=,\nid,radius_m,superelevation_percent\nC1,120,6\n", (",", ".", "LF"), [120.0]),
     ],
 )
 def test_other_dialects(shared_client, text, dialect, radii):
@@ -164,6 +169,10 @@ def test_other_dialects(shared_client, text, dialect, radii):
         ("Id;Radius_M;Id\nC1;250,5;6\n", "row 1 (header)", "body.Id", "duplicate column(s) Id"),
         # a header with none of the separators
         ("id|radius_m\nC1|250\n", "row 1 (header)", "body.id", "separated by ',', ';' or tabs"),
+        # a separator line naming another separator
+        ("sep=|\nid|radius_m\nC1|250\n", "the sep= line", "body", "names the separator '|'"),
+        # the rows are counted from the header, as the spreadsheet shows them (the sep= line hidden)
+        ("sep=;\nid;radius_m;superelevation_percent\nC1;250,5;6\nC2;300.5;6\n", "row 3", "body.radius_m", "row 2"),
     ],
 )  # fmt: skip
 def test_a_number_in_another_dialect_is_refused_with_its_row_and_column(shared_client, text, location, field, words):

@@ -1,0 +1,80 @@
+"""Rendering an alignment answer in process: JSON and CSV (app.alignments.rows.render, what the synchronous answer
+and a job's result are written with), beside writers in C of the same rows measured in the same run: orjson's JSON
+of the rows as dicts (the same bytes: the ceiling of a writer that had the dicts for free) and the csv module's
+writer of the rows as lists (a reference: it writes booleans as True/False). The dicts and lists are made before
+the clock starts.
+
+The curves are bench_jobs' synthetic ones (fixed seed), one vehicle (the Table 16 B-train, 3D model). Prints figures
+only (best of --repeat runs).
+
+    python bench/bench_render.py [--curves 100000] [--repeat 5]
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import sys
+import time
+from pathlib import Path
+
+import orjson
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
+
+from bench_jobs import curves_csv  # noqa: E402
+
+from app.alignments.rows import csv_columns, render, rows  # noqa: E402
+from app.alignments.schemas import AlignmentRequest  # noqa: E402
+from app.alignments.service import resolve_alignment, solve_alignment  # noqa: E402
+from app.formats.tables import flatten_targets  # noqa: E402
+from app.settings import Settings  # noqa: E402
+
+
+def best(repeat: int, fn) -> tuple[float, int]:
+    times, size = [], 0
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        size = fn()
+        times.append(time.perf_counter() - t0)
+    return min(times), size
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--curves", type=int, default=100_000)
+    ap.add_argument("--repeat", type=int, default=5)
+    args = ap.parse_args()
+    req = AlignmentRequest.model_validate({"vehicle": "table16-btrain", "csv": curves_csv(args.curves)})
+    answer = solve_alignment(resolve_alignment(req, None, Settings()))
+    v = answer.vehicles[0]
+    dicts = rows(answer, v, 0, len(answer.curves))
+    columns = csv_columns(answer.resolved)
+    lists = [[r.get(c) for c in columns] for r in map(flatten_targets, dicts)]
+
+    def ours(fmt_csv: bool):
+        return lambda: sum(map(len, render(answer, fmt_csv)))
+
+    def c_csv() -> int:
+        out = io.StringIO()
+        csv.writer(out).writerows(lists)
+        return len(out.getvalue())
+
+    n = args.curves
+    figures = [
+        ("JSON, app.alignments.rows", *best(args.repeat, ours(False))),
+        ("JSON, orjson.dumps of the row dicts (ceiling)", *best(args.repeat, lambda: len(orjson.dumps(dicts)))),
+        ("CSV, app.alignments.rows", *best(args.repeat, ours(True))),
+        ("CSV, csv.writer of the row lists (reference)", *best(args.repeat, c_csv)),
+    ]
+    print(f"{n:,} rows of one vehicle, best of {args.repeat}:")
+    for name, secs, size in figures:
+        print(f"  {name:48s} {size / 2**20:6.1f} MiB in {secs:.3f} s: {size / 2**20 / secs:5.0f} MiB/s, "
+              f"{secs / n * 1e6:.2f} us a row")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()

@@ -35,10 +35,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from engine.route.detect import find_curves  # noqa: E402
-from engine.route.geodesy import local_frame  # noqa: E402
 from tests.engine.test_geometry import LATITUDES, NOISY, ROUTE, ROUTE_CURVES, circle_crb, detect  # noqa: E402
-from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
+from tests.synthetic_routes import Arc, Tangent, spiral_curve  # noqa: E402
 
 
 def row(name: str, radius: str, chainage: str, other: str = "") -> None:
@@ -141,11 +139,16 @@ DOC = ROOT / "docs" / "routes.md"
 START, END = "<!-- route_accuracy:start -->", "<!-- route_accuracy:end -->"
 
 
-def calibration_cell(route: list, radius: float, sigma: float, tracks: int, seed0: int) -> dict:
-    """Errors, stated standard errors and lower bounds of one cell's tracks (the curve of largest deflection)."""
+def _white(route: list, sigma: float, seed: int):
+    return detect(route, CAL_SPACING, 45.0, noise=sigma, seed=seed)[0]
+
+
+def calibration_cell(route: list, radius: float, sigma: float, tracks: int, seed0: int, track=_white) -> dict:
+    """Errors, stated standard errors and lower bounds of one cell's tracks (the curve of largest deflection);
+    ``track(route, sigma, seed)`` finds the curves of one noisy track (white noise by default)."""
     err, std, covered, lower, missed = [], [], [], [], 0
     for k in range(tracks):
-        found, _ = detect(route, CAL_SPACING, 45.0, noise=sigma, seed=seed0 + k)
+        found = track(route, sigma, seed0 + k)
         if not found.curves:
             missed += 1
             continue
@@ -181,54 +184,26 @@ def cell_figures(cell: dict, tracks: int) -> dict:
     return out
 
 
-def _ar1(rng, n: int, sigma: float, rho: float) -> np.ndarray:
-    """n values of a stationary AR(1) sequence of standard deviation ``sigma`` and lag-one correlation ``rho``."""
-    out = np.empty(n)
-    out[0] = rng.normal(0.0, sigma)
-    kick = rng.normal(0.0, sigma * math.sqrt(1.0 - rho * rho), n)
-    for k in range(1, n):
-        out[k] = rho * out[k - 1] + kick[k]
-    return out
-
-
-def detect_correlated(route: list, spacing: float, lat: float, sigma: float, corr_m: float, seed: int):
-    """As the tests' detect, the GPS noise correlated along the track (a Gauss-Markov error of correlation length
-    ``corr_m``, each axis its own: a receiver's error drifts rather than jumping fix to fix)."""
-    x, y, _ = layout(route, spacing)
-    rng = np.random.default_rng(seed)
-    rho = math.exp(-spacing / corr_m)
-    x, y = x + _ar1(rng, x.size, sigma, rho), y + _ar1(rng, y.size, sigma, rho)
-    lon, lat_ = to_lonlat(x, y, lat)
-    frame = local_frame(lon, lat_, None)
-    return find_curves(frame.x_m, frame.y_m, frame.z_m)
-
-
 def correlated(tracks: int, corr_m: float) -> None:
     """The simple cells at 2 and 3 m with the noise correlated over ``corr_m`` (printed only: the stated uncertainty
     assumes independent vertices, and this shows how far that holds)."""
     print(f"simple curves, noise correlated over {corr_m:g} m along the track, {tracks} tracks a cell:")
     print("| R [m] | deflection [deg] | sigma [m] | found | stated/observed | coverage | lower/R (median) |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
+
+    def track(route: list, sigma: float, seed: int):
+        return detect(route, CAL_SPACING, 45.0, noise=sigma, seed=seed, corr_m=corr_m)[0]
+
     for radius in CAL_RADII:
         for deflection in CAL_DEFLECTIONS:
             route = [Tangent(CAL_TANGENT), Arc(radius, radius * math.radians(deflection), "left"), Tangent(CAL_TANGENT)]
             for sigma in (2.0, 3.0):
-                err, std, covered, lower = [], [], [], []
-                for k in range(tracks):
-                    found = detect_correlated(route, CAL_SPACING, 45.0, sigma, corr_m, 3000 + k)
-                    if not found.curves:
-                        continue
-                    c = max(found.curves, key=lambda c: c.deflection_deg)
-                    err.append(c.radius_m / radius - 1.0)
-                    std.append((c.radius_std_m or 0.0) / radius)
-                    covered.append(c.radius_lower_m <= radius)
-                    lower.append(c.radius_lower_m / radius)
-                if len(err) < 3:
-                    print(f"| {radius:g} | {deflection:g} | {sigma:g} | {len(err)} | - | - | - |")
+                cell = cell_figures(calibration_cell(route, radius, sigma, tracks, 3000, track), tracks)
+                if "ratio" not in cell:  # fewer than 3 tracks found a curve
+                    print(f"| {radius:g} | {deflection:g} | {sigma:g} | {cell['found']} | - | - | - |")
                     continue
-                ratio = float(np.mean(std)) / float(np.std(err, ddof=1))
-                print(f"| {radius:g} | {deflection:g} | {sigma:g} | {len(err)} | {ratio:.2f} | "
-                      f"{np.mean(covered):.0%} | {np.median(lower):.3f} |")  # fmt: skip
+                print(f"| {radius:g} | {deflection:g} | {sigma:g} | {cell['found']} | {cell['ratio']:.2f} | "
+                      f"{cell['coverage']:.0%} | {cell['lower']:.3f} |")  # fmt: skip
 
 
 def calibration(tracks: int) -> dict:

@@ -94,6 +94,17 @@ def curve_spans(elements: list) -> list[tuple[float, float]]:
     return spans
 
 
+def gauss_markov(rng, n: int, sigma: float, rho: float) -> np.ndarray:
+    """n values of a stationary AR(1) (Gauss-Markov) sequence of standard deviation ``sigma`` and lag-one
+    correlation ``rho``: a receiver's error that drifts rather than jumping fix to fix."""
+    out = np.empty(n)
+    out[0] = rng.normal(0.0, sigma)
+    kick = rng.normal(0.0, sigma * math.sqrt(1.0 - rho * rho), n)
+    for k in range(1, n):
+        out[k] = rho * out[k - 1] + kick[k]
+    return out
+
+
 def to_lonlat(x, y, lat0: float, lon0: float = 10.0) -> tuple[np.ndarray, np.ndarray]:
     """Lay a plane polyline on WGS84 keeping segment lengths and turning angles (geodesic direct problem)."""
     geod = Geodesic.WGS84

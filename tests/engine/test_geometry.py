@@ -34,16 +34,30 @@ from engine.route.fit import fit_circle
 from engine.route.geodesy import local_frame
 from engine.route.noise import curvature_noise_per_m, vertex_noise_m
 from engine.vehicle.presets import PRESETS
-from tests.synthetic_routes import Arc, Spiral, Tangent, curve_spans, layout, spiral_curve, to_lonlat
+from tests.synthetic_routes import (
+    Arc,
+    Spiral,
+    Tangent,
+    curve_spans,
+    gauss_markov,
+    layout,
+    spiral_curve,
+    to_lonlat,
+)
 
 LATITUDES = (0.0, 45.0, 60.0, -35.0)
 
 
-def detect(elements, spacing, lat, *, noise=0.0, seed=0, z_of_s=None, z_noise=0.0, **kwargs):
-    """Lay the route on WGS84 at ``lat``, read it back, find its curves; also returns the design chainage."""
+def detect(elements, spacing, lat, *, noise=0.0, seed=0, z_of_s=None, z_noise=0.0, corr_m=None, **kwargs):
+    """Lay the route on WGS84 at ``lat``, read it back, find its curves; also returns the design chainage. The
+    noise is white, or correlated over ``corr_m`` metres along the track (Gauss-Markov, each axis its own)."""
     x, y, s = layout(elements, spacing)
     rng = np.random.default_rng(seed)
-    if noise:
+    if noise and corr_m:
+        rho = math.exp(-spacing / corr_m)
+        x = x + gauss_markov(rng, x.size, noise, rho)
+        y = y + gauss_markov(rng, y.size, noise, rho)
+    elif noise:
         x = x + rng.normal(0.0, noise, x.size)
         y = y + rng.normal(0.0, noise, y.size)
     lon, lat_ = to_lonlat(x, y, lat)

@@ -227,21 +227,15 @@ class VehicleAnswer:
     def level(self) -> float | None:
         return None if math.isnan(self.level_srt) else self.level_srt
 
-    def _judged(self) -> np.ndarray:  # per distinct SRT: whether its rows carry the verdict (an SRT and a level SRT)
-        return (self.srts >= 0) & (not math.isnan(self.level_srt))
-
-    @cached_property
-    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: the target checks (on the level SRT) as dicts
-        if math.isnan(self.level_srt):
-            return [[] for _ in self.srts]
-        (checks,) = target_checks_many(np.array([self.level_srt]), self.targets)
-        return [checks if ok else [] for ok in self._judged().tolist()]
-
     @cached_property
     def level_checks(self) -> list[dict[str, Any]]:  # the target checks of every row with an SRT ([] without a level)
         if math.isnan(self.level_srt):
             return []
         return target_checks_many(np.array([self.level_srt]), self.targets)[0]
+
+    @cached_property
+    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: its rows' target checks (on the level SRT)
+        return [self.level_checks if has_srt else [] for has_srt in (self.srts >= 0).tolist()]
 
 
 @dataclass(frozen=True)

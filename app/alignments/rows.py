@@ -17,7 +17,7 @@ import numpy as np
 import orjson
 
 from app.formats.segments import Codes, Segment, csv_floats, json_floats, repr_safe, write_rows
-from app.formats.tables import Text, csv_field, csv_fields, csv_line, target_columns
+from app.formats.tables import Text, csv_field, csv_fields, csv_line, target_columns, target_columns_of
 from engine import ENGINE_VERSION
 from engine.road import GOVERNED_BY, AlignmentColumns
 
@@ -264,12 +264,9 @@ def _csv_codes(codes: np.ndarray, values: Any) -> Codes:
 
 def _csv_checks(v: VehicleAnswer, names: list[str]) -> bytes:
     """The ``meets_<name>,margin_<name>_g`` fields of a row with an SRT, in the columns' order (empty where the level
-    SRT has no check of that name: no level SRT)."""
-    by_name: dict[str, dict[str, Any]] = {}
-    for check in v.level_checks:
-        by_name.setdefault(check["name"], check)
-    empty: dict[str, Any] = {}
-    return b",".join(csv_field(by_name.get(n, empty).get(k)) for n in names for k in ("meets", "margin_g"))
+    SRT has no check of that name: no level SRT), as :func:`app.formats.tables.target_columns_of` flattens them."""
+    flat = target_columns_of([v.level_checks])
+    return b",".join(csv_field(flat.get(column, [None])[0]) for column in target_columns(names))
 
 
 def _float_columns(answer: AlignmentAnswer, v: VehicleAnswer) -> list[np.ndarray]:

@@ -319,7 +319,12 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
         cols = assess_table(case, r, job.curves, solve_pairs)
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
-    level = level_road_srt(case)
+    return vehicle_answer(r, index, cols, level_road_srt(case))
+
+
+def vehicle_answer(r: ResolvedAssessment, index: int, cols: AlignmentColumns, level: float) -> VehicleAnswer:
+    """Vehicle ``index``'s rows as the renderers take them, from its assessed columns and level-road SRT (a job's
+    part builds it from its stored columns the same way)."""
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)

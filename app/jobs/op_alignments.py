@@ -59,6 +59,7 @@ from app.alignments.service import (
     resolve_alignment,
     resolve_alignment_refs,
     validate_request_data,
+    vehicle_answer,
 )
 from app.compute import solvers
 from app.compute.resolved import ResolvedAlignment
@@ -73,7 +74,6 @@ from engine.road import (
     GOVERNED_BY,
     AlignmentColumns,
     solve_bank_grade_pairs,
-    tilt_table_angle_deg,
 )
 
 #: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters); the
@@ -354,10 +354,7 @@ def _part_answer(
     """A part's stored result of vehicle ``v`` as the answer the renderers take (what
     :func:`app.alignments.service.solve_alignment` builds for those curves)."""
     curves, cols = unpack_result(data)
-    srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
-    tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
-    preset, saved = resolved.presets[v], resolved.saved_ids[v]
-    answer = VehicleAnswer(v, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, resolved.targets, level)
+    answer = vehicle_answer(resolved, v, cols, level)
     return AlignmentAnswer(resolved, curves, [answer]), answer
 
 

@@ -442,7 +442,7 @@ def test_the_last_units_record_is_made_where_the_3d_model_has_one(cid, unit_type
         assert built.combination.last_unit_record is None and "full-trailer" in note
         return
     assert built.combination.last_unit_record is not None and unit_type in note
-    vspec = last_unit_spec(spec, built.combination)
+    vspec = last_unit_spec(spec, built.combination, built.derivation)
     last, towing = spec.units[-1], spec.units[-2]
     assert vspec.unit_type == unit_type
     assert vspec.rear.centre_from_kingpin_m == last.axle_groups[0].position_m

@@ -605,7 +605,8 @@ def build_combination(spec: CombinationSpec) -> BuiltCombination:
                     f"library tyre's rated {rated:g} kg"
                 )
     coupling_loads = tuple(st.coupling_kn[k] for k in range(len(c.couplings)))
-    record, note = last_unit_record(spec, c)  # for the 3D model of the last unit (LLTf/LLTr from the combination)
+    # the last unit's thesis record for its 3D model (LLTf/LLTr from the combination)
+    record, note = last_unit_record(spec, c, book.derivation)
     c = dataclasses.replace(c, last_unit_record=record)
     notes.append(note)
     gross = sum(b.mass_kg for b in built)

@@ -27,14 +27,14 @@ same data and builds it (:func:`~engine.vehicle.builder.build_vehicle`):
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from engine.errors import InvalidInput
 from engine.vehicle.builder.build import build_vehicle
-from engine.vehicle.builder.spec import AxleGroupSpec, SuspensionSpec, TyreSpec, VehicleSpec
+from engine.vehicle.builder.spec import AxleGroupSpec, FieldDerivation, SuspensionSpec, TyreSpec, VehicleSpec
 from engine.vehicle.combination import AxleGroup, Combination
 from engine.vehicle.record import Vehicle
-from engine.vehicle.roll_components import roll_tyre_for_size
 
 if TYPE_CHECKING:  # the combination builder calls this module: its spec types only for annotations
     from engine.vehicle.builder.combination import CombinationSpec, UnitGroupSpec
@@ -42,17 +42,9 @@ if TYPE_CHECKING:  # the combination builder calls this module: its spec types o
 _UNIT_TYPE = {"fifth-wheel": "semitrailer", "b-coupling": "btrain-rear"}
 
 
-def _loaded_radius(g: UnitGroupSpec) -> float | None:
-    """The group's loaded radius as the combination builder takes it: given, else the library tyre of its size."""
-    if g.tyre.loaded_radius_m is not None:
-        return g.tyre.loaded_radius_m
-    if g.tyre.size is not None:
-        return roll_tyre_for_size(g.tyre.size).loaded_radius_m
-    return None
-
-
-def _group(g: UnitGroupSpec, rec: AxleGroup, centre_from_kingpin_m: float) -> AxleGroupSpec:
-    lr = _loaded_radius(g)
+def _group(g: UnitGroupSpec, rec: AxleGroup, lr: float | None, centre_from_kingpin_m: float) -> AxleGroupSpec:
+    """The single-unit builder's group for one of the combination's (``lr``: its loaded radius as the combination's
+    build resolved it, None where it has none)."""
     ls = None if lr is None else rec.roll_centre_height_m - lr
     return AxleGroupSpec(
         axles=rec.axles,
@@ -69,9 +61,11 @@ def _group(g: UnitGroupSpec, rec: AxleGroup, centre_from_kingpin_m: float) -> Ax
     )
 
 
-def last_unit_spec(spec: CombinationSpec, combination: Combination) -> VehicleSpec:
-    """The last unit of ``spec`` (whose record is ``combination``) in the single-unit builder's terms (the module's
-    docstring).
+def last_unit_spec(
+    spec: CombinationSpec, combination: Combination, derivation: Mapping[str, FieldDerivation]
+) -> VehicleSpec:
+    """The last unit of ``spec`` (whose record is ``combination`` and the build's ``derivation``, record path -> how
+    its value was found) in the single-unit builder's terms (the module's docstring).
 
     Raises
     ------
@@ -90,8 +84,15 @@ def last_unit_spec(spec: CombinationSpec, combination: Combination) -> VehicleSp
     coupling, towing = couplings[-1], units[-2]
     towing_rec, last_rec = combination.units[-2], combination.units[-1]
     j = min(range(len(towing.axle_groups)), key=lambda k: abs(towing.axle_groups[k].position_m - coupling.position_m))
-    front = _group(towing.axle_groups[j], towing_rec.groups[j], towing.axle_groups[j].position_m - coupling.position_m)
-    rear = _group(last.axle_groups[0], last_rec.groups[0], last.axle_groups[0].position_m)
+    n = len(units)
+
+    def lr(unit: int, group: int) -> float | None:
+        d = derivation.get(f"units[{unit}].groups[{group}].tyre_loaded_radius_m")
+        return None if d is None else d.value
+
+    front_spec = towing.axle_groups[j]
+    front = _group(front_spec, towing_rec.groups[j], lr(n - 2, j), front_spec.position_m - coupling.position_m)
+    rear = _group(last.axle_groups[0], last_rec.groups[0], lr(n - 1, 0), last.axle_groups[0].position_m)
     return VehicleSpec(
         unit_type=_UNIT_TYPE[coupling.kind],
         rear=rear,
@@ -103,11 +104,13 @@ def last_unit_spec(spec: CombinationSpec, combination: Combination) -> VehicleSp
     )
 
 
-def last_unit_record(spec: CombinationSpec, combination: Combination) -> tuple[Vehicle | None, str]:
+def last_unit_record(
+    spec: CombinationSpec, combination: Combination, derivation: Mapping[str, FieldDerivation]
+) -> tuple[Vehicle | None, str]:
     """The last unit's thesis record (None where the 3D model cannot take it) and a note saying how it was made or
     why there is none."""
     try:
-        vspec = last_unit_spec(spec, combination)
+        vspec = last_unit_spec(spec, combination, derivation)
         # LLTf/LLTr is the combination's to compute (as a preset's record, none of its own)
         record = dataclasses.replace(build_vehicle(vspec).vehicle, front_llt_ratio=None)
     except InvalidInput as exc:

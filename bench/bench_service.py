@@ -9,10 +9,11 @@ Starts its own uvicorn processes on free ports (waits for /healthz, stops them a
   against the engine alone (``rollover_threshold`` on the same cases, in process);
 * ``--workers 2`` against 1 worker: latency of one kept-alive connection (``wrk -t1 -c1``) for ``/healthz`` and a
   cached ``/v1/srt`` (Nagle + delayed ACK would add ~40 ms a request: app/http/netopts.py);
-* a 100,000-curve alignment (every bank/grade pair distinct: 100,000 SRT solves): wall time, the server's peak RSS
+* the alignment at the synchronous limit (10,000 curves, every bank/grade pair distinct: 10,000 SRT solves; larger
+  work goes to a job: ``bench/bench_jobs.py``): wall time, the server's peak RSS
   (VmHWM) and RSS after, the worst ``/healthz`` latency polled every 20 ms meanwhile from another process; against
   ``engine.assessment.assess_alignment`` alone in a fresh process;
-* the largest sweep (20,000 cases, ``POST /v1/srt/sweep``; streamed): wall time and peak RSS, against
+* the largest synchronous sweep (10,000 cases, ``POST /v1/srt/sweep``): wall time and peak RSS, against
   ``engine.models.threshold.sweep`` alone in a fresh process;
 * the per-request HTTP metrics' share (app.http.request_metrics): cached-hit and ``/healthz`` throughput with
   ``ROLLOVER_METRICS=true`` and ``false``.
@@ -48,6 +49,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from app.formats.alignment_io import MAX_CURVES  # noqa: E402  (the synchronous limit the alignment run sits at)
+
 BTRAIN = "table16-btrain"
 SRT_BODY = json.dumps({"vehicle": BTRAIN, "road": {"bank_percent": 4.0}}, separators=(",", ":"))
 
@@ -56,8 +59,8 @@ BEFORE: dict[str, str] = {
     "cached h11": "1,294 req/s, p99 81 ms",
     "cached httptools": "1,664 req/s, p99 78 ms",
     "uncached": "354 req/s, p50 86 ms",
-    "alignment": "9.9 s, 1.0 GB peak, ~930 MB after",
-    "sweep": "1.49 s, 294 MB",
+    "alignment": "9.9 s, 1.0 GB peak, ~930 MB after (100,000 curves, the synchronous limit then)",
+    "sweep": "1.49 s, 294 MB (20,000 cases, the limit then)",
     "workers": "~40 ms a request (Nagle + delayed ACK)",
 }
 
@@ -559,7 +562,7 @@ print(json.dumps({{"seconds": time.perf_counter() - t0, "distinct": int(out.dist
     )
     row(
         f"POST /v1/alignments/assess, {n:,} curves ({pairs:,} distinct bank/grade pairs; {len(body) / 2**20:.0f} MB "
-        f"request, {len(r.content) / 2**20:.0f} MB answer streamed, {rows:,} rows), 1 worker",
+        f"request, {len(r.content) / 2**20:.1f} MB answer, {rows:,} rows), 1 worker",
         f"{wall:.2f} s; peak RSS {mb(peak)} (idle {mb(idle)}), {mb(after)} after; /healthz worst "
         f"{worst * 1e3:.0f} ms ({worst_at - since:.2f} s into the request) over {polls} polls; the same as CSV "
         f"(Accept: text/csv, {csv_size / 2**20:.0f} MB): {csv_wall:.2f} s, {csv_wall / wall:.2f}x the JSON",
@@ -573,7 +576,7 @@ print(json.dumps({{"seconds": time.perf_counter() - t0, "distinct": int(out.dist
 
 def measure_sweep(args) -> None:
     grid = {"bank_percent": [round(-10 + 0.2 * i, 1) for i in range(100)], "slope_percent": list(range(-10, 10)),
-            "lateral_offset_m": [0.0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45]}  # fmt: skip
+            "lateral_offset_m": [0.0, 0.1, 0.2, 0.3, 0.4]}  # fmt: skip
     cases = math.prod(len(v) for v in grid.values())
     body = json.dumps({"vehicle": BTRAIN, "rear_llt_limit": 0.6, "grid": grid}).encode()
     results = {}
@@ -641,9 +644,9 @@ def measure_instrumentator(args) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--duration", type=float, default=8.0, help="seconds of each wrk run (8, as issue 8)")
-    parser.add_argument("--curves", type=int, default=100_000, help="curves of the alignment run")
+    parser.add_argument("--curves", type=int, default=MAX_CURVES, help="curves of the alignment run")
     parser.add_argument("--rounds", type=int, default=2, help="alternated runs of the cached figures (best kept)")
-    parser.add_argument("--quick", action="store_true", help="2-second runs, 1 round, 10,000 curves (a smoke run)")
+    parser.add_argument("--quick", action="store_true", help="2-second runs, 1 round, 2,000 curves (a smoke run)")
     parser.add_argument(
         "--only", nargs="*", choices=["cached", "uncached", "workers", "alignment", "sweep", "instrumentator"]
     )
@@ -656,7 +659,7 @@ def main() -> None:
     if args.write and (args.only or args.quick):
         parser.error("--write records a whole run: leave out --only and --quick")
     if args.quick:
-        args.duration, args.curves, args.rounds = 2.0, 10_000, 1
+        args.duration, args.curves, args.rounds = 2.0, 2_000, 1
     if shutil.which("wrk") is None:
         raise SystemExit("wrk is not on the PATH (Debian: apt-get install wrk)")
     steps = {

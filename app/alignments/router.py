@@ -35,8 +35,9 @@ f_max (`design_standard`, AASHTO 2018 by default), the safe speed (the smaller) 
 margin against the posted speed (flagged when negative), and whether the radius meets the standard's minimum for the
 posted speed. A curve without a superelevation takes the standard's design value for its posted speed and the
 request's `max_superelevation_percent`. Curves sharing superelevation and grade share one SRT solve, and every
-distinct pair is solved in one batch. JSON, or CSV with `Accept: text/csv` (one row per vehicle and curve). Answers
-over 5,000 rows are streamed (chunked; the same bytes as a whole answer) and cached by reference."""
+distinct pair is solved in one batch. JSON, or CSV with `Accept: text/csv` (one row per vehicle and curve). At most
+10,000 rows (curves x vehicles) per request: larger work goes to a job (`POST /v1/jobs`, `alignments.assess`, up to
+1,000,000 rows), whose result is the same bytes."""
 
 
 @router.post(

@@ -2,7 +2,7 @@
 AlignmentResult, written column by column) and as CSV, in chunks of :data:`ROWS_PER_CHUNK` rows; and the vehicles'
 summaries.
 
-One renderer for every answer made of assessed curves: the synchronous alignment answer (whole or streamed), an
+One renderer for every answer made of assessed curves: the synchronous alignment answer, an
 ``alignments.assess`` job's parts (:mod:`app.jobs.op_alignments`), and the route answer's rows
 (:mod:`app.routes.service`: :func:`rows`, :func:`summary`, :func:`csv_columns`).
 """

@@ -32,8 +32,9 @@ from app.srt.schemas import (
 )
 
 MAX_VEHICLES = 10
-#: curves x vehicles: the rows of one answer (about 450 bytes each in JSON)
-MAX_ROWS = 100_000
+#: curves x vehicles: the rows of one synchronous answer (about 450 bytes each in JSON: some 4.5 MB, rendered and
+#: cached whole); larger work goes to a job
+MAX_ROWS = 10_000
 #: an ``alignments.assess`` job's limits (:mod:`app.jobs.op_alignments`), named by the synchronous limits' errors
 MAX_JOB_CURVES = 1_000_000
 MAX_JOB_ROWS = 1_000_000
@@ -151,8 +152,8 @@ ALIGNMENT_LANDXML_EXAMPLE = (
 
 class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
     """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve
-    has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 100,000 curves and
-    100,000 rows (curves x vehicles) per request.
+    has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 10,000 curves and
+    10,000 rows (curves x vehicles) per request; larger work goes to a job (`POST /v1/jobs`, `alignments.assess`).
 
     The CSV or LandXML file can also be sent as it is, with the options as query parameters (presets only), to
     `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`."""

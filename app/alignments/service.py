@@ -4,9 +4,9 @@ The curves come from a JSON list (read into columns by :mod:`app.alignments.curv
 (:mod:`app.formats.alignment_io`); all three become one :class:`~app.formats.alignment_io.CurveTable`, so the same
 curves share one cache entry whatever form they came in. The engine assesses each vehicle on arrays
 (:func:`engine.assessment.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the answer
-is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV in chunks (:mod:`app.alignments.rows`). A
-small answer is rendered whole and cached as bytes (and served by the fast path on a repeat); a large one is streamed,
-never built as one document, and cached by reference, as its arrays. Streamed or whole, the bytes are the same.
+is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV by :mod:`app.alignments.rows` (the
+renderers a job's result uses too). The answer (at most 10,000 rows) is rendered whole and cached as bytes, and served
+by the fast path on a repeat; larger work goes to a job.
 
 The assessment of a curve table is public for the routes (:mod:`app.routes.service`: a route's curves are assessed as
 an alignment's) and the jobs (:mod:`app.jobs.op_alignments`): :class:`AlignmentJob`, :func:`resolved_assessment`,
@@ -35,12 +35,12 @@ from app.alignments.schemas import MAX_ROWS, MAX_VEHICLES, AlignmentRequest, as_
 from app.compute import solvers
 from app.compute.cache import ResultCache
 from app.compute.resolved import CurvesDigest, ResolvedAlignment, ResolvedAssessment
-from app.compute.results import Computed, Streamed
+from app.compute.results import Computed, cached
 from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
 from app.formats.jsonpieces import loads_in_pieces
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
-from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_targets, target_checks_many
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
@@ -56,8 +56,6 @@ from engine.road import (
 )
 from engine.vehicle import Vehicle
 
-#: answers with more rows than this are streamed (and cached by reference), never built whole
-STREAM_ROWS = 5_000
 _PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curves while the rest is validated
 
 
@@ -246,11 +244,6 @@ class AlignmentAnswer:
     curves: CurveTable
     vehicles: list[VehicleAnswer]
 
-    @property
-    def nbytes(self) -> int:  # what keeping it costs (the cache bounds answers kept by reference by it)
-        per_row = 20 * 8
-        return 2_000 + len(self.curves) * (per_row * len(self.vehicles) + 48)
-
 
 def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
     """The engine's error with its field as a request path (``curves[3].x`` -> ``curves.3.x``, with the curve's id
@@ -415,30 +408,18 @@ async def compute_alignment(
     *,
     csv: bool,
     source_field: str | None = None,
-) -> Computed | Streamed:
-    """The assessment as a cached body (small answers) or a stream (large ones); the same bytes either way."""
+) -> Computed:
+    """The assessment as a cached body (at most :data:`~app.alignments.schemas.MAX_ROWS` rows: built whole)."""
     fleet = req.fleet
     req = await resolve_alignment_refs(request, req, settings)
     job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
     operation = "alignments-csv" if csv else "alignments"
-    media_type = CSV_TYPE if csv else JSON_TYPE
-    key = job.resolved.key(operation)
-    body = (await cache.get(key, media_type)).value if job.rows <= STREAM_ROWS else None
-    if body is not None:
-        CACHE_LOOKUPS.labels(operation, "hit").inc()
-        return Computed(body, key, True, media_type)
-    answer_key = job.resolved.key("alignment-answer")
-    answer = cache.answers.get(answer_key)
-    hit = answer is not None
-    CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
-    if answer is None:
+
+    async def produce() -> bytes:
         try:
             answer = await run_in_threadpool(solve_alignment, job)
         except InvalidInput as exc:
             raise as_fleet_error(exc, fleet, job.resolved) from None
-        cache.answers[answer_key] = answer
-    if job.rows <= STREAM_ROWS:
-        body = await run_in_threadpool(lambda: b"".join(render(answer, csv)))
-        await cache.set(key, body, media_type)
-        return Computed(body, key, hit, media_type)
-    return Streamed(render(answer, csv), key, hit, media_type)
+        return await run_in_threadpool(lambda: b"".join(render(answer, csv)))
+
+    return await cached(cache, operation, job.resolved, produce, CSV_TYPE if csv else JSON_TYPE)

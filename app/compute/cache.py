@@ -45,8 +45,6 @@ ENVELOPE_MAGIC = b"ROLLOVER1"
 _MAC_SIZE = hashlib.sha256().digest_size
 #: engine result objects memoised per process (a nested SRT, the curves of a plot)
 MEMO_ENTRIES = 1024
-#: large batch answers kept by reference, as their arrays (not as bytes), bounded by their size [bytes]
-ANSWER_BYTES = 128 * 2**20
 #: keys already logged as bad: each is logged once (bounded, so a flood of bad keys cannot grow memory)
 _LOGGED_BAD_KEYS = 10_000
 
@@ -129,8 +127,7 @@ class Lookup:
 
 
 class ResultCache:
-    """Two-tier cache of response bodies, the per-process memo of engine result objects (``objects``) and of large
-    batch answers kept by reference (``answers``, bounded by their size)."""
+    """Two-tier cache of response bodies and the per-process memo of engine result objects (``objects``)."""
 
     def __init__(
         self,
@@ -148,7 +145,6 @@ class ResultCache:
         #: memo keys being solved now -> the task solving them, so concurrent requests that need the same engine
         #: result (every banked request of one vehicle needs its level-road case) wait for one solve
         self.solving: dict[str, asyncio.Future] = {}
-        self.answers: LRUCache = LRUCache(maxsize=ANSWER_BYTES, getsizeof=lambda a: a.nbytes)
         self.max_entry_bytes = min(max_entry_bytes, max_bytes)
         self.redis = redis
         self.secret = secret

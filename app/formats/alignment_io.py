@@ -39,7 +39,9 @@ from app.formats.csv_dialect import CsvDialect, CsvDialectError, detect
 from engine.errors import InvalidRoad
 from engine.road import check_columns
 
-MAX_CURVES = 100_000
+#: a synchronous request's curves: what interactive use needs (a road's or a district's curves answer in a fraction
+#: of a second); larger work goes to a job (``app.alignments.schemas.MAX_JOB_CURVES``)
+MAX_CURVES = 10_000
 #: one limit for a curve id in every form (JSON, CSV, LandXML): 1-100 characters, none of them a control character
 #: (C0, DEL, C1: NUL, ESC, CR, tab... would corrupt a CSV answer or a terminal)
 CURVE_ID_MAX_CHARS = 100

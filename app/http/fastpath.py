@@ -6,7 +6,7 @@ query string, content type, the negotiated representation, body bytes) to the ca
 that the full path derived from it last time. When that key's body is still in the in-process cache, the answer
 goes out at once: no routing, no JSON parsing, no validation, no thread hop. Otherwise the request goes through the
 app as usual and, if its answer carries an ``ETag`` whose body the in-process cache now holds, the raw key is
-remembered for next time (a streamed answer is not kept as bytes: there is nothing to replay it from).
+remembered for next time.
 
 A request with credentials (an ``Authorization`` header) is never answered from here nor remembered: it may name a
 saved vehicle or a fleet, which its owner may edit and no other key may read, so the same bytes may mean another

@@ -1,15 +1,12 @@
-"""A computed answer as an HTTP response (whole or streamed, with its ETag and X-Cache) and its OpenAPI
-declaration."""
+"""A computed answer as an HTTP response (its body with its ETag and X-Cache) and its OpenAPI declaration."""
 
 from __future__ import annotations
 
 from typing import Any
 
 from fastapi import Response
-from fastapi.responses import StreamingResponse
-from starlette.concurrency import iterate_in_threadpool
 
-from app.compute.results import Computed, Streamed
+from app.compute.results import Computed
 from app.http.problems import error_responses
 
 CACHE_HEADERS: dict[str, Any] = {
@@ -66,10 +63,6 @@ def json_response(result: Computed) -> Response:
 ANSWER_MODELS: list[type] = []
 
 
-def table_answer(result: Computed | Streamed) -> Response:
-    """A table's answer (JSON or CSV by ``Accept``, so ``Vary: Accept``): a whole body with its headers, or a
-    streamed one (chunked) with the same headers."""
-    if isinstance(result, Computed):
-        return computed_response(result, vary_accept=True)
-    headers = {"ETag": result.etag, "X-Cache": "hit" if result.hit else "miss", "Vary": "Accept"}
-    return StreamingResponse(iterate_in_threadpool(result.chunks), media_type=result.media_type, headers=headers)
+def table_answer(result: Computed) -> Response:
+    """A table's answer (JSON or CSV by ``Accept``, so ``Vary: Accept``): the body with its headers."""
+    return computed_response(result, vary_accept=True)

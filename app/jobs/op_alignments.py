@@ -76,7 +76,7 @@ from engine.road import (
     solve_bank_grade_pairs,
 )
 
-#: a job's limits (the synchronous request's: 100,000 curves and rows, 16 M CSV and 64 M LandXML characters); the
+#: a job's limits (the synchronous request's: 10,000 curves and rows, 16 M CSV and 64 M LandXML characters); the
 #: curves and rows in app.alignments.schemas, whose limit errors name them
 MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000

@@ -20,7 +20,7 @@ from starlette.requests import Request
 from app.compute.resolved import ResolvedRoute
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.routes.schemas import RouteRequest
-from app.routes.service import read_route, render_route, resolve_route_refs, resolved_route, route_refs
+from app.routes.service import MAX_JOB_ROWS, read_route, render_route, resolve_route_refs, resolved_route, route_refs
 from app.settings import Settings
 
 
@@ -68,7 +68,7 @@ def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str,
         raise ValueError("a route job has a single part without inputs of its own")
     resolved = ResolvedRoute.from_json_dict(shared["resolved"])
     req = request_of(shared, resolved)
-    bodies = render_route(req, resolved, ("json", "csv"))
+    bodies = render_route(req, resolved, ("json", "csv"), max_rows=MAX_JOB_ROWS)
     ctx.write("json", 0, bodies["json"])
     ctx.write("csv", 0, bodies["csv"])
     ctx.progress(shared["vertices"])

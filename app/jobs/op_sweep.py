@@ -27,7 +27,7 @@ from app.srt.sweep_schemas import AXIS_ORDER, MAX_AXIS_VALUES, MAX_JOB_CASES, Sw
 from app.srt.sweep_service import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
 from app.vehicles.refs import resolve_vehicle_refs
 
-#: a job's limit, MAX_JOB_CASES, is in app.srt.sweep_schemas (the synchronous request's 20,000 cases' error names it)
+#: a job's limit, MAX_JOB_CASES, is in app.srt.sweep_schemas (the synchronous request's 10,000 cases' error names it)
 #: cases per part (and at most per block: one synchronous sweep's worth)
 PART_CASES = 20_000
 _ROWS_OPEN = b'"rows":['

@@ -32,6 +32,7 @@ from app.jobs.schemas import JobStatus, JobSubmission
 from app.jobs.service import parse_submission, prepare, status_body, under_request, visible_job
 from app.jobs.store import JobView, problem
 from app.logs import get_logger
+from app.routes.service import MAX_JOB_ROWS as ROUTE_JOB_ROWS
 from engine.errors import InvalidInput
 
 #: a job's request body: 1,000,000 curves as JSON are about 100 MB; a LandXML document of 200 M characters [bytes]
@@ -105,7 +106,7 @@ _SUBMIT_DESCRIPTION = (
     + "\n".join(f"* `{op.name}`: {op.description}" for op in OPERATIONS.values())
     + "\n\nLimits (beyond the JSON schema's): `alignments.assess` at most 1,000,000 rows (curves x vehicles); "
     "`srt.sweep` at most 1,000,000 cases (the product of the axes' lengths); `routes.assess` the synchronous "
-    "request's (100,000 rows: curves x vehicles)."
+    f"request's document (body and vertices) and at most {ROUTE_JOB_ROWS:,} rows (curves x vehicles)."
 )
 
 

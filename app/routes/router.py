@@ -70,7 +70,9 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     speed, the margin against the posted speed and the standard's minimum radius. JSON: `curves`, each with its
     geometry, vertices and assessment; GeoJSON with `Accept: application/geo+json`: the curves as a
     FeatureCollection (RFC 7946) with the same properties, ready for a GIS; CSV with `Accept: text/csv`: one row
-    per vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex."""
+    per vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex. At
+    most 10,000 rows (curves x vehicles) per request: a longer route goes to a job (`POST /v1/jobs`,
+    `routes.assess`)."""
     req = await run_in_threadpool(parse_route_request, await request.body())
     accept = request.headers.get("accept")
     form = negotiate(accept, WITH_GEOJSON)

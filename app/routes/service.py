@@ -48,6 +48,10 @@ from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.route import HorizontalCurve, find_curves, local_frame
 
+#: a ``routes.assess`` job's rows (curves x vehicles): a route is one request's document (its body and vertex limits
+#: are the synchronous request's), so a job takes what those documents hold, not an alignment job's million
+MAX_JOB_ROWS = 100_000
+
 #: the route's own columns in front of the alignment's in the CSV answer
 GEOMETRY_COLUMNS = (
     "part",
@@ -339,16 +343,32 @@ def _named_after_the_route(exc: InvalidInput, table: CurveTable) -> InvalidInput
 
 
 def render_route(
-    req: RouteRequest, resolved: ResolvedRoute, forms: tuple[str, ...], source_field: str | None = None
+    req: RouteRequest,
+    resolved: ResolvedRoute,
+    forms: tuple[str, ...],
+    source_field: str | None = None,
+    *,
+    max_rows: int | None = None,
 ) -> dict[str, bytes]:
     """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
     ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets);
-    ``source_field`` names an upload's document in errors (``body``, ``file``)."""
+    ``source_field`` names an upload's document in errors (``body``, ``file``); ``max_rows`` bounds curves x
+    vehicles (None: the synchronous request's :data:`~app.alignments.schemas.MAX_ROWS`; a job passes
+    :data:`MAX_JOB_ROWS`)."""
     parts = read_route(req, source_field)
     geo = find_route_curves(req, parts, source_field)
     vehicles = [vehicle_of_resolved(v) for v in resolved.vehicles]
-    if len(geo.curves) * len(vehicles) > MAX_ROWS:
-        raise request_error("vehicles", f"{len(geo.curves)} curves x {len(vehicles)} vehicles; at most {MAX_ROWS} rows")
+    rows, synchronous = len(geo.curves) * len(vehicles), max_rows is None
+    max_rows = MAX_ROWS if max_rows is None else max_rows
+    if rows > max_rows:
+        message = f"{len(geo.curves)} curves x {len(vehicles)} vehicles = {rows:,} rows; at most {max_rows:,} rows"
+        if synchronous:  # say where larger work goes
+            message += (
+                '; larger work goes to a job: POST /v1/jobs with {"operation": "routes.assess", "request": <this '
+                f'request as JSON, the file as its "gpx" text or "geojson" object>}} takes up to {MAX_JOB_ROWS:,} '
+                "rows (docs/jobs.md)"
+            )
+        raise request_error("vehicles", message)
     table = curve_table(req, geo)
     try:
         answer = solve_alignment(AlignmentJob(resolved, vehicles, table, _source(req, source_field)))

@@ -62,8 +62,8 @@ async def limits(body: LimitsRequest, request: Request, cache: CacheDep, setting
 @replayable("srt-sweep", offers=TABLE_FORMS)
 async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The SRT over the Cartesian product of up to eight axes (bank, slope, trailer angle, d1, d2, d3,
-    overweight, rear LLT limit; at most 20,000 cases), like the thesis's Tables 17 and 19, in one call; JSON, or
-    CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
+    overweight, rear LLT limit; at most 10,000 cases: a larger grid goes to a job), like the thesis's Tables 17 and
+    19, in one call; JSON, or CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
     body = await resolve_vehicle_refs(request, body, settings)
     csv = wants_csv(request.headers.get("accept"))
     return table_answer(await compute_sweep(cache, body, settings, csv=csv))

@@ -12,7 +12,8 @@ from app.srt.schemas import LEVEL_ROAD_SRT_TEXT, TARGETS_OUT, TILT_OUT, SrtInput
 from engine.domain import BOUNDS
 
 MAX_AXIS_VALUES = 200
-MAX_CASES = 20_000
+#: a synchronous sweep's cases, the rows of its answer: the synchronous batch answers' one size (alignments: MAX_ROWS)
+MAX_CASES = 10_000
 #: an ``srt.sweep`` job's limit (:mod:`app.jobs.op_sweep`), named by the synchronous limit's error
 MAX_JOB_CASES = 1_000_000
 #: 8 axes x 200 values of up to ~25 characters, with the base case: 256 KiB is ample [bytes]
@@ -89,8 +90,8 @@ class SweepGrid(InputModel):
 
 class SweepRequest(SrtInputs, SrtTargets):
     """The SRT over a grid: the SRT request fields are the base case, `grid` the axes to vary (at most
-    20,000 cases). Table 17 is bank x slope at a rear LLT limit of 0.6; Table 19 adds the trailer angle.
-    `Accept: text/csv` answers the rows as CSV with a header row."""
+    10,000 cases; a larger grid goes to a job: `POST /v1/jobs`, `srt.sweep`). Table 17 is bank x slope at a rear
+    LLT limit of 0.6; Table 19 adds the trailer angle. `Accept: text/csv` answers the rows as CSV with a header row."""
 
     model_config = ConfigDict(
         json_schema_extra={
@@ -108,7 +109,7 @@ class SweepRequest(SrtInputs, SrtTargets):
     grid: SweepGrid = Field(
         description=describe(
             f"Axes to vary and their values (at least one axis, 1-{MAX_AXIS_VALUES} values each, and at most "
-            f"{MAX_CASES:,} cases in all: the product of the axes' lengths; a larger grid is refused).",
+            f"{MAX_CASES:,} cases in all: the product of the axes' lengths; a larger grid goes to a job, `srt.sweep`).",
             unit="per axis",
             symbol="Tables 17, 19",
         )

@@ -2,9 +2,9 @@
 
 Same flow as :mod:`app.srt.service`: the fully resolved request (preset expanded, defaults and targets filled) is the
 cache key; the engine runs in a worker thread. The sweep's answer is kept as the engine's arrays (:class:`SweepAnswer`)
-and rendered to JSON or CSV in chunks, like the alignment assessment (:mod:`app.alignments.service`): a small grid is
-rendered whole and cached as bytes (served by the fast path on a repeat), a large one is streamed and cached by
-reference, as its arrays. Streamed or whole, the bytes are the same.
+and rendered to JSON or CSV in chunks, like the alignment assessment (:mod:`app.alignments.service`): the grid (at
+most 10,000 cases) is rendered whole and cached as bytes (served by the fast path on a repeat); a larger grid goes to
+a job (:mod:`app.jobs.op_sweep`), whose parts the same renderers write.
 """
 
 from __future__ import annotations
@@ -22,10 +22,10 @@ from starlette.concurrency import run_in_threadpool
 from app.compute import solvers
 from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedSweep
-from app.compute.results import Computed, Streamed, cached
+from app.compute.results import Computed, cached
 from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
-from app.metrics import CACHE_LOOKUPS, SOLVE_SECONDS
+from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import JUDGED_ON, base_case_key, case_of_key, level_case, target_checks
 from app.srt.sweep_schemas import SweepRequest
@@ -35,8 +35,6 @@ from engine.models import SweepResult as EngineSweep
 from engine.models import sweep
 from engine.road import tilt_table_angle_deg
 
-#: sweeps with more cases than this are streamed (and their answer cached by reference), never built whole
-STREAM_ROWS = 5_000
 ROWS_PER_CHUNK = 1_000
 
 
@@ -53,12 +51,6 @@ class SweepAnswer:
     result: EngineSweep
     targets: tuple[tuple[str, float], ...]  # (name, target [g]) in the rows' order: increasing target, then name
     level_srt: np.ndarray  # (n_cases,) each row's level-road SRT (bank and slope zero) [g]; nan where it has none
-
-    @property
-    def nbytes(self) -> int:  # what keeping it costs (the cache bounds answers kept by reference by it)
-        r = self.result
-        arrays = r.values.nbytes + r.srt.nbytes + r.roll_angle_deg.nbytes + self.level_srt.nbytes
-        return 2_000 + arrays + sum(100 + len(e) for e in r.errors.values())
 
 
 #: the axes a level-road SRT sets to zero
@@ -170,30 +162,13 @@ def solve_sweep(resolved: ResolvedSweep) -> bytes:
     return b"".join(sweep_json_chunks(sweep_answer(resolved)))
 
 
-async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed | Streamed:
-    """The sweep as a cached body (up to :data:`STREAM_ROWS` cases) or a stream (more); the same bytes either way.
-
-    The engine's answer is kept by reference (``cache.answers``), so the JSON and CSV forms of one grid share one
-    solve and a large sweep asked again is rendered from it, never solved again."""
+async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed:
+    """The sweep as a cached body (at most :data:`~app.srt.sweep_schemas.MAX_CASES` cases: built whole)."""
     resolved = resolve_sweep(req, settings)
     operation, media_type = ("srt-sweep-csv", CSV_TYPE) if csv else ("srt-sweep", JSON_TYPE)
-    answer_key = resolved.key("srt-sweep-answer")
 
-    async def answer() -> tuple[SweepAnswer, bool]:
-        found = cache.answers.get(answer_key)
-        if found is not None:
-            return found, True
+    async def produce() -> bytes:
         found = await run_in_threadpool(sweep_answer, resolved)
-        cache.answers[answer_key] = found
-        return found, False
+        return await run_in_threadpool(lambda: b"".join(render_sweep(found, csv)))
 
-    if resolved.cases <= STREAM_ROWS:
-
-        async def produce() -> bytes:
-            found, _ = await answer()
-            return await run_in_threadpool(lambda: b"".join(render_sweep(found, csv)))
-
-        return await cached(cache, operation, resolved, produce, media_type)
-    found, hit = await answer()
-    CACHE_LOOKUPS.labels(operation, "answer" if hit else "miss").inc()
-    return Streamed(render_sweep(found, csv), resolved.key(operation), hit, media_type)
+    return await cached(cache, operation, resolved, produce, media_type)

@@ -28,9 +28,9 @@ _CURSOR = "pass `next_cursor` of the previous page as it is"
 #: opaque token): (path, field) -> the words of the operation's description that state the rule
 UNSTATABLE = {
     ("/v1/plots/min-radius", "speed_max_kmh"): "`speed_max_kmh` must be above `speed_min_kmh`",
-    ("/v1/alignments/assess", "vehicles"): "100,000 rows (curves x vehicles)",
+    ("/v1/alignments/assess", "vehicles"): "10,000 rows (curves x vehicles)",
     # a product of the axes' lengths
-    ("/v1/srt/sweep", "grid"): "at most 20,000 cases",
+    ("/v1/srt/sweep", "grid"): "at most 10,000 cases",
     ("/v1/jobs", "request.vehicles"): "1,000,000 rows (curves x vehicles)",
     ("/v1/jobs", "request.grid"): "1,000,000 cases (the product of the axes' lengths)",
     # query parameters cannot state a rule between two of them

@@ -298,7 +298,7 @@ def test_sweep_errors_name_the_field(shared_client, grid, field, words):
 # ------------------------------------------------------------------------------------------ streaming
 
 #: 2 banks x 3 slopes x 2 d1 = 12 cases; the 6 with d1 = 1.0 m are refused (beyond the half track, 0.93 m)
-STREAMED = {
+CHUNKED = {
     "vehicle": BTRAIN,
     "rear_llt_limit": 0.6,
     "targets": {"general": 0.35, "tight": 0.2},
@@ -308,32 +308,25 @@ CASES = 12
 
 
 def sweep_bytes(client, accept: str) -> tuple[bytes, dict]:
-    with client.stream("POST", "/v1/srt/sweep", json=STREAMED, headers={"accept": accept}) as r:
+    with client.stream("POST", "/v1/srt/sweep", json=CHUNKED, headers={"accept": accept}) as r:
         assert r.status_code == 200, r.read()
         return b"".join(r.iter_raw()), dict(r.headers)
 
 
 @pytest.mark.parametrize("accept", ["application/json", "text/csv"])
-def test_a_sweep_above_the_threshold_is_streamed_and_is_the_same_bytes_as_below_it(monkeypatch, accept):
+def test_a_sweep_rendered_in_several_chunks_is_one_whole_cached_body(monkeypatch, accept):
     import app.srt.sweep_service as service_tools
 
     from .conftest import make_client
 
-    answers = {}
-    for threshold, streamed in ((CASES - 1, True), (CASES, False)):  # just below and just above the case count
-        monkeypatch.setattr(service_tools, "STREAM_ROWS", threshold)
-        monkeypatch.setattr(service_tools, "ROWS_PER_CHUNK", 5)  # several chunks, the last one short
-        with make_client() as client:  # a cache of its own: each answer is computed
-            body, headers = sweep_bytes(client, accept)
-            assert headers["x-cache"] == "miss" and headers["vary"] == "Accept"
-            assert headers["content-type"].startswith(accept)
-            # streamed: chunked, its length not known up front; whole: one body with its length
-            assert ("content-length" not in headers) is streamed
-            again, again_headers = sweep_bytes(client, accept)  # streamed: from the answer kept by reference
-            assert again == body and again_headers["x-cache"] == "hit" and again_headers["etag"] == headers["etag"]
-        answers[streamed] = (body, headers["etag"])
-    assert answers[True] == answers[False]  # the same bytes and the same entity tag
-    body = answers[True][0]
+    monkeypatch.setattr(service_tools, "ROWS_PER_CHUNK", 5)  # several chunks, the last one short
+    with make_client() as client:  # a cache of its own: the answer is computed
+        body, headers = sweep_bytes(client, accept)
+        assert headers["x-cache"] == "miss" and headers["vary"] == "Accept"
+        assert headers["content-type"].startswith(accept)
+        assert headers["content-length"] == str(len(body))  # whole: one body with its length
+        again, again_headers = sweep_bytes(client, accept)
+        assert again == body and again_headers["x-cache"] == "hit" and again_headers["etag"] == headers["etag"]
     if accept == "application/json":
         # byte for byte the document pydantic writes for the same result: the chunked renderer is not a variant
         assert SweepResult.model_validate_json(body).model_dump_json(exclude_unset=True).encode() == body
@@ -349,13 +342,8 @@ def test_a_sweep_above_the_threshold_is_streamed_and_is_the_same_bytes_as_below_
         assert list(rows[0])[-5:] == ["meets_tight", "margin_tight_g", "meets_general", "margin_general_g", "error"]
 
 
-def test_a_large_sweep_row_is_the_single_srt_answer(client, monkeypatch):
-    import app.srt.sweep_service as service_tools
-
-    monkeypatch.setattr(service_tools, "STREAM_ROWS", 2)
-    with client.stream("POST", "/v1/srt/sweep", json=TABLE17) as r:
-        assert "content-length" not in r.headers
-        rows = orjson.loads(b"".join(r.iter_raw()))["rows"]
+def test_a_sweep_row_is_the_single_srt_answer(client):
+    rows = post(client, "/v1/srt/sweep", TABLE17).json()["rows"]
     single = post(client, "/v1/srt", {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "road": {"bank_percent": 8}}).json()
     (row,) = [r for r in rows if r["bank_percent"] == 8 and r["slope_percent"] == 0]
     assert row["srt"] == pytest.approx(single["srt"], rel=1e-9)
@@ -363,7 +351,7 @@ def test_a_large_sweep_row_is_the_single_srt_answer(client, monkeypatch):
     assert same_targets(row["targets"], single["targets"])
 
 
-def test_the_json_and_csv_forms_of_a_sweep_share_one_solve(client):
+def test_each_form_of_a_sweep_is_solved_once_and_then_answered_from_the_cache(client):
     from prometheus_client import REGISTRY
 
     def solves() -> float:
@@ -374,5 +362,8 @@ def test_the_json_and_csv_forms_of_a_sweep_share_one_solve(client):
     body = {"vehicle": BTRAIN, "grid": {"bank_percent": [0, 1, 2]}}
     assert post(client, "/v1/srt/sweep", body).headers["x-cache"] == "miss"
     as_csv = post(client, "/v1/srt/sweep", body, headers={"Accept": "text/csv"})
-    assert as_csv.headers["x-cache"] == "miss"  # its own body and key, rendered from the answer already solved
-    assert solves() - before == 1
+    assert as_csv.headers["x-cache"] == "miss"  # its own body and key
+    assert solves() - before == 2
+    for accept in ("application/json", "text/csv"):  # each form again: its cached body, no solve
+        assert post(client, "/v1/srt/sweep", body, headers={"Accept": accept}).headers["x-cache"] == "hit"
+    assert solves() - before == 2

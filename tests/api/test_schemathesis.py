@@ -5,7 +5,7 @@ conform to the spec, invalid input is rejected with a 4xx, and no schema-valid r
 (the checks and their configuration are in ``fuzzing.py``, shared with the catalog's suite).
 
 The inverse limits (about ten SRT solves per limit, up to 25 table rows) and the batch operations (up to
-20,000 cases) cost far more per call than the rest: they get fewer examples each.
+10,000 cases) cost far more per call than the rest: they get fewer examples each.
 """
 
 from __future__ import annotations

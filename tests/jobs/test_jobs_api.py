@@ -88,7 +88,7 @@ def test_sweep_result_is_the_synchronous_answer_byte_for_byte(accept):
 
 
 def test_a_sweep_larger_than_the_synchronous_limit_runs_as_a_job():
-    """200 x 101 = 20,200 cases: refused by POST /v1/srt/sweep (at most 20,000), a job of 2 parts here."""
+    """200 x 101 = 20,200 cases: refused by POST /v1/srt/sweep (at most 10,000), a job of 2 parts here."""
     req = {
         "vehicle": "table16-btrain",
         "model": "rigid",
@@ -431,6 +431,30 @@ def test_route_result_is_the_synchronous_answer_byte_for_byte(accept):
         assert {"radius_m", "radius_lower_m", "radius_std_m"} <= set(job.text.splitlines()[0].split(","))
 
 
+def test_a_route_past_the_synchronous_rows_is_told_to_send_a_job_and_runs_as_one(monkeypatch):
+    """The synchronous route stops at MAX_ROWS rows (curves x vehicles; lowered here to 3 for the example's 2 curves
+    of 2 vehicles): the 422 names the field, the rows and where larger work goes, and the same request as a
+    ``routes.assess`` job (whose limit is MAX_JOB_ROWS) is done with both vehicles' rows."""
+    import app.routes.service as routes
+    from app.routes.schemas import EXAMPLE_GEOJSON
+
+    monkeypatch.setattr(routes, "MAX_ROWS", 3)
+    vehicles = ["table16-btrain", "table23-semitrailer"]
+    req = {"vehicles": vehicles, "geojson": EXAMPLE_GEOJSON, "superelevation_percent": 6.0}
+    with make_client() as c:
+        r = c.post("/v1/routes/assess", json=req)
+        assert r.status_code == 422, r.text
+        (error,) = r.json()["errors"]
+        assert error["field"] == "vehicles", error
+        assert "2 curves x 2 vehicles = 4 rows; at most 3 rows" in error["message"]
+        assert 'POST /v1/jobs with {"operation": "routes.assess"' in error["message"]
+        assert f"{routes.MAX_JOB_ROWS:,} rows" in error["message"]
+        location, status = run(c, "routes.assess", req)
+        assert status["status"] == "done"
+        curves = c.get(location + "/result").json()["curves"]
+        assert len(curves) == 2 and all(len(k["vehicles"]) == 2 for k in curves)
+
+
 def test_a_route_that_cannot_be_read_is_refused_at_submission():
     bad = {"type": "LineString", "coordinates": [[10.0, 45.0], [10.001, 45.0], [45.0, 100.0]]}  # latitude 100
     with make_client() as c:
@@ -593,16 +617,16 @@ def test_a_landxml_job_keeps_the_stations_in_its_columns(accept):
 
 
 def test_a_request_past_a_synchronous_limit_is_told_to_send_a_job_and_that_job_is_taken():
-    """Past the synchronous limits (100,000 curves, 100,000 rows, 20,000 sweep cases) the 422 says where larger work
+    """Past the synchronous limits (10,000 curves, 10,000 rows, 10,000 sweep cases) the 422 says where larger work
     goes (POST /v1/jobs, the operation, the job's limit), and the same request sent that way is taken (202)."""
     with make_client() as c:
-        rows = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(50_001, seed=5)}
-        text = "id,radius_m,superelevation_percent\n" + "".join(f"C{i},300,4\n" for i in range(100_001))
-        grid = {"bank_percent": [k / 10 for k in range(200)], "slope_percent": [k / 10 for k in range(101)]}
+        rows = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(5_001, seed=5)}
+        text = "id,radius_m,superelevation_percent\n" + "".join(f"C{i},300,4\n" for i in range(10_001))
+        grid = {"bank_percent": [k / 10 for k in range(101)], "slope_percent": [k / 10 for k in range(100)]}
         cases = [
-            ("/v1/alignments/assess", rows, "alignments.assess", "100002 rows; at most 100000 per request"),
+            ("/v1/alignments/assess", rows, "alignments.assess", "10002 rows; at most 10000 per request"),
             ("/v1/alignments/assess", {"vehicle": "table16-btrain", "csv": text}, "alignments.assess", "more than"),
-            ("/v1/srt/sweep", {"vehicle": "table16-btrain", "grid": grid}, "srt.sweep", "20200 cases"),
+            ("/v1/srt/sweep", {"vehicle": "table16-btrain", "grid": grid}, "srt.sweep", "10100 cases"),
         ]
         for path, body, operation, why in cases:
             r = c.post(path, json=body)
@@ -611,6 +635,6 @@ def test_a_request_past_a_synchronous_limit_is_told_to_send_a_job_and_that_job_i
             assert why in detail and "POST /v1/jobs" in detail and f'"operation": "{operation}"' in detail, detail
             assert "1,000,000" in detail
             assert submit(c, operation, body).status_code == 202
-        many = [{"id": f"K{i}", "radius_m": 300.0, "superelevation_percent": 4.0} for i in range(100_001)]
+        many = [{"id": f"K{i}", "radius_m": 300.0, "superelevation_percent": 4.0} for i in range(10_001)]
         r = c.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "curves": many})
         assert r.status_code == 422 and "POST /v1/jobs" in r.json()["errors"][0]["message"]

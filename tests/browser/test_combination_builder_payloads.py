@@ -224,6 +224,21 @@ def test_an_invalid_tank_value_shows_the_apis_problem_at_that_box(page, api, fie
     assert len(page.find_all('#cb-editor [aria-invalid="true"]')) == 1
 
 
+def test_a_tank_without_its_fill_is_refused_at_the_liquid_depth_box(page, api):
+    """The engine takes exactly one of the liquid depth and the fill fraction (payloads._tank_cg)."""
+    spec = with_payload(TANK)
+    page.open("?" + urlencode({"combination_spec": json.dumps(spec)}))
+    set_box(page, "units.1.payloads.0.tank.fill_fraction", "")
+    compute(page)
+    del spec["units"][1]["payloads"][0]["tank"]["fill_fraction"]
+    assert editor_spec(page) == spec
+    r = api.post("/v1/combinations/build", json={"combination_spec": spec})
+    assert r.status_code == 422, r.text
+    [error] = r.json()["errors"]
+    assert "fill_fraction" in error["message"]
+    assert error["message"] in page.field_error(box_id("units.1.payloads.0.tank.fill_height_m"))
+
+
 def test_a_rear_group_load_with_the_tare_cg_position_too_is_refused_at_the_position_box(page, api):
     """The engine takes exactly one of the tare CG position and the rear-group load (payloads.tare_item)."""
     open_editor(page)

@@ -197,10 +197,10 @@ function groupBox(spec, i, j, kind) {
  * a deck load on a level or a sloping deck; per way, the spec fields it has boxes for.
  */
 export const PAYLOAD_KINDS = {
-  deck: { text: "A load on a level deck: deck and load heights", fields: ["deck_height_m", "load_height_m", "distribution"] },
-  sloped: { text: "A load on a sloping deck: heights at its front and rear", fields: ["deck_height_m", "deck_height_rear_m", "load_height_m", "load_height_rear_m", "distribution"] },
-  cg: { text: "Its CG height, as measured", fields: ["cg_height_m"] },
-  tank: { text: "A liquid in a tank: the tank's size and its fill", fields: ["tank"] },
+  deck: { text: "Level deck: deck and load heights", fields: ["deck_height_m", "load_height_m", "distribution"] },
+  sloped: { text: "Sloping deck: heights at front and rear", fields: ["deck_height_m", "deck_height_rear_m", "load_height_m", "load_height_rear_m", "distribution"] },
+  cg: { text: "CG height, as measured", fields: ["cg_height_m"] },
+  tank: { text: "Liquid in a tank: size and fill", fields: ["tank"] },
 };
 /** The payload fields that say how high it sits (one way's fields; the others are dropped when the way changes). */
 const HEIGHT_FIELDS = ["deck_height_m", "load_height_m", "deck_height_rear_m", "load_height_rear_m", "distribution", "cg_height_m", "tank"];

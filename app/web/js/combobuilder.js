@@ -1,7 +1,9 @@
 // "Build the combination": each unit of a combination from what can be measured of it (axle groups with their
-// tyres and suspension from the roll component library, tare mass and CG, payloads, deck), the couplings between
-// them, units added and removed. The page posts the combination spec to POST /v1/combinations/build (and the
-// computations take it as `"vehicle": {"combination_spec": {...}}`); a 422 names the spec field as typed
+// tyres and suspension from the roll component library, tare mass and CG or its rear-group load, payloads, deck), the
+// couplings between them, units added and removed. Each payload gives its height one of the spec's ways, chosen per
+// payload: a load on a level or a sloping deck, a CG height, or a liquid in a tank (PayloadSpec, TankSpec). The page
+// posts the combination spec to POST /v1/combinations/build (and the computations take it as
+// `"vehicle": {"combination_spec": {...}}`); a 422 names the spec field as typed
 // (`combination_spec.units.1.tare.mass_kg`), shown beside its box. The library's suspension and fifth-wheel ids are
 // the ones the service's OpenAPI document lists for the spec (RollSuspensionSpec.type, CouplingSpec.fifth_wheel).
 
@@ -119,7 +121,7 @@ export const state = {
   combinations: [], // GET /v1/combinations
   pending: null, // a spec from the link, shown once the library is read
   built: null, // the last POST /v1/combinations/build answer
-  extra: [], // per unit: the spec parts the editor has no box for (a title, group ids, a tank), kept as they are
+  extra: [], // per unit: the spec parts the editor has no box for (a title, group ids), kept as they are
 };
 
 // ------------------------------------------------------------------------------------------ the boxes
@@ -142,7 +144,8 @@ function box(spec, path, label, { kind = "number", options, hint, extraFields = 
   } else {
     control = el("input", { id, "data-cb": path, "data-field": fields, inputmode: kind === "text" ? null : kind === "int" ? "numeric" : "decimal", type: "text", spellcheck: kind === "text" ? "false" : null, list: options?.list || null, value: v === undefined || v === null ? "" : String(v) });
   }
-  return el("div", { class: wide ? "field wide" : "field" }, el("label", { for: id }, label), control, hint ? el("span", { class: "hint" }, hint) : null);
+  if (hint) control.setAttribute("aria-describedby", `${id}-hint`);
+  return el("div", { class: wide ? "field wide" : "field" }, el("label", { for: id }, label), control, hint ? el("span", { class: "hint", id: `${id}-hint` }, hint) : null);
 }
 
 const suspensionItems = () => [["", "(none: explicit values)"], ...state.library.suspensions.map((s) => [s, s])];
@@ -189,21 +192,79 @@ function groupBox(spec, i, j, kind) {
   );
 }
 
+/**
+ * How a payload's height is given (the engine's payload_item: exactly one of a deck load, a CG height or a tank),
+ * a deck load on a level or a sloping deck; per way, the spec fields it has boxes for.
+ */
+export const PAYLOAD_KINDS = {
+  deck: { text: "Level deck: deck and load heights", fields: ["deck_height_m", "load_height_m", "distribution"] },
+  sloped: { text: "Sloping deck: heights at front and rear", fields: ["deck_height_m", "deck_height_rear_m", "load_height_m", "load_height_rear_m", "distribution"] },
+  cg: { text: "CG height, as measured", fields: ["cg_height_m"] },
+  tank: { text: "Liquid in a tank: size and fill", fields: ["tank"] },
+};
+/** The payload fields that say how high it sits (one way's fields; the others are dropped when the way changes). */
+const HEIGHT_FIELDS = ["deck_height_m", "load_height_m", "deck_height_rear_m", "load_height_rear_m", "distribution", "cg_height_m", "tank"];
+/** The way a payload's height is given, as chosen in the editor (kept on the spec object through a redraw). */
+const WAY = Symbol("payload kind");
+const given = (v) => v !== undefined && v !== null && v !== "";
+
+/** The way a payload of a spec gives its height (a tank, a sloping deck, a level deck, a CG height). */
+export function payloadKind(payload) {
+  if (payload?.[WAY]) return payload[WAY];
+  if (given(payload?.tank)) return "tank";
+  if (given(payload?.deck_height_rear_m) || given(payload?.load_height_rear_m)) return "sloped";
+  if (!given(payload?.deck_height_m) && given(payload?.cg_height_m)) return "cg";
+  return "deck";
+}
+
+const DISTRIBUTIONS = [["uniform", "Uniform density (CG at mid-height)"], ["mixed-freight", "Mixed freight (CG at 0.4 of the height)"]];
+
 function payloadBox(spec, i, k, ref) {
   const p = `units.${i}.payloads.${k}`;
+  const way = payloadKind(get(spec, p));
+  const wayId = `${idOf(p)}-kind`;
+  const boxes = {
+    deck: () => [
+      box(spec, `${p}.deck_height_m`, "Deck height above the road [m]"),
+      box(spec, `${p}.load_height_m`, "Top of the load above the road [m]"),
+      box(spec, `${p}.distribution`, "Load distribution", { kind: "select", options: { items: DISTRIBUTIONS } }),
+    ],
+    sloped: () => [
+      box(spec, `${p}.deck_height_m`, "Deck height at the load's front [m]"),
+      box(spec, `${p}.deck_height_rear_m`, "Deck height at the load's rear [m]", { hint: "Blank: the front's (a level deck)." }),
+      box(spec, `${p}.load_height_m`, "Top of the load at its front [m]", { hint: "Above the deck there." }),
+      box(spec, `${p}.load_height_rear_m`, "Top of the load at its rear [m]", { hint: "At least the deck there; blank: parallel to the deck." }),
+      box(spec, `${p}.distribution`, "Load distribution", { kind: "select", options: { items: DISTRIBUTIONS } }),
+    ],
+    cg: () => [box(spec, `${p}.cg_height_m`, "Payload CG height above the road [m]", { extraFields: fieldsFor(`${p}.deck_height_m`) })],
+    tank: () => [
+      box(spec, `${p}.tank.shape`, "Tank cross-section", { kind: "select", options: { items: [["circular", "Circular"], ["elliptical", "Elliptical"]] }, extraFields: fieldsFor(`${p}.tank`) }),
+      box(spec, `${p}.tank.height_m`, "Tank inside height [m]", { hint: "A circular tank's inside diameter; above 0." }),
+      box(spec, `${p}.tank.bottom_height_m`, "Tank inside bottom above the road [m]", { hint: "Above 0." }),
+      box(spec, `${p}.tank.fill_height_m`, "Liquid depth [m]", { hint: "Above 0, at most the tank's height; or give the fraction." }),
+      box(spec, `${p}.tank.fill_fraction`, "Or: fill by volume, fraction full [-]", { hint: "Above 0, at most 1 (0.8 = 80 % full)." }),
+    ],
+  };
+  const select = el("select", { id: wayId, "data-payload-kind": "", "data-unit": String(i), "data-payload": String(k) });
+  for (const [val, { text }] of Object.entries(PAYLOAD_KINDS)) select.append(el("option", { value: val }, text));
+  select.value = way;
   return el(
     "fieldset",
-    { class: "cb-payload", "data-payload": String(k) },
+    { class: "cb-payload", "data-payload": String(k), "data-kind": way },
     el("legend", {}, `Payload ${k + 1}`),
     el(
       "div",
       { class: "grid" },
       box(spec, `${p}.mass_kg`, "Payload mass [kg]", { extraFields: fieldsFor(p) }),
-      box(spec, `${p}.deck_height_m`, "Deck height above the road [m]"),
-      box(spec, `${p}.load_height_m`, "Top of the load above the road [m]"),
-      box(spec, `${p}.distribution`, "Load distribution", { kind: "select", options: { items: [["uniform", "Uniform density (CG at mid-height)"], ["mixed-freight", "Mixed freight (CG at 0.4 of the height)"]] } }),
-      box(spec, `${p}.cg_height_m`, "Or: payload CG height [m]"),
-      box(spec, `${p}.cg_from_kingpin_m`, `Payload CG behind ${ref} [m]`),
+      el("div", { class: "field wide" }, el("label", { for: wayId }, "Its height given as"), select),
+      boxes[way](),
+    ),
+    el(
+      "div",
+      { class: "grid" },
+      box(spec, `${p}.front_from_kingpin_m`, `Load front behind ${ref} [m]`, { hint: "Blank: the load centred on the deck." }),
+      box(spec, `${p}.length_m`, "Load length [m]", { hint: "Blank: the deck's length." }),
+      way === "sloped" ? null : box(spec, `${p}.cg_from_kingpin_m`, `Or: payload CG behind ${ref} [m]`),
     ),
     el("div", { class: "actions" }, el("button", { type: "button", class: "cb-remove-payload", "data-unit": String(i), "data-payload": String(k) }, `Remove payload ${k + 1}`)),
   );
@@ -233,6 +294,7 @@ function unitBox(spec, i) {
   const u = spec.units[i];
   const kind = u.kind;
   const ref = KIND_INFO[kind]?.ref || "the reference point";
+  const rearGroup = KIND_INFO[kind]?.groups.at(-1) || "rear axle group";
   const p = `units.${i}`;
   const groups = (u.axle_groups || []).map((_, j) => groupBox(spec, i, j, kind));
   const payloads = (u.payloads || []).map((_, k) => payloadBox(spec, i, k, ref));
@@ -258,6 +320,9 @@ function unitBox(spec, i) {
         box(spec, `${p}.tare.mass_kg`, "Tare mass [kg]", { extraFields: fieldsFor(`${p}.tare`) }),
         box(spec, `${p}.tare.cg_height_m`, "Tare CG height above the road [m]"),
         box(spec, `${p}.tare.cg_from_kingpin_m`, `Tare CG behind ${ref} [m]`),
+        box(spec, `${p}.tare.rear_group_load_kg`, `Or: tare load on the ${rearGroup.toLowerCase()} [kg]`, {
+          hint: `Optional; blank: not given. Its weighbridge load, unladen, instead of the tare CG position: x = L m_rear / m (L: front support to this group).`,
+        }),
       ),
     ),
     el(
@@ -363,7 +428,7 @@ export function readSpec() {
     spec.units[i] = {
       axle_groups: $$(".cb-group", unit).map(() => ({ tyre: {}, suspension: {} })),
       tare: {},
-      payloads: $$(".cb-payload", unit).map(() => ({})),
+      payloads: $$(".cb-payload", unit).map((fs) => ({ [WAY]: fs.dataset.kind })),
     };
     merge(spec.units[i], structuredClone(state.extra[i] || {}));
   }
@@ -430,8 +495,29 @@ function addUnit() {
   });
 }
 
+/** Another way of giving a payload's height: the boxes of that way, the previous way's values dropped. */
+function onPayloadKindChange(c) {
+  const i = Number(c.dataset.unit);
+  const k = Number(c.dataset.payload);
+  const way = c.value in PAYLOAD_KINDS ? c.value : "deck";
+  restructure((spec) => {
+    const payload = spec.units[i].payloads[k];
+    const keep = PAYLOAD_KINDS[way].fields;
+    for (const name of HEIGHT_FIELDS) if (!keep.includes(name)) delete payload[name];
+    if (way === "sloped") delete payload.cg_from_kingpin_m; // a sloping deck's CG is its load's centroid
+    if (keep.includes("distribution")) payload.distribution ??= "uniform";
+    if (way === "tank") payload.tank = isObject(payload.tank) ? payload.tank : { shape: "circular" };
+    payload[WAY] = way;
+  });
+  $(`#${c.id}`)?.focus();
+}
+
 function onKindChange(ev) {
   const c = ev.target;
+  if (c.matches?.("select[data-payload-kind]")) {
+    onPayloadKindChange(c);
+    return;
+  }
   if (!c.matches?.('select[data-cb$=".kind"]') || !c.dataset.cb.startsWith("units.")) return;
   const i = Number(c.dataset.cb.split(".")[1]);
   restructure((spec) => {

@@ -21,6 +21,7 @@ from .test_combination_builder_page import (
     DISPLAY_G,
     TYPED,
     api_ok,
+    assert_editor_fits,
     box_id,
     chosen,
     compute,
@@ -166,14 +167,7 @@ def test_a_link_with_a_tank_a_sloping_deck_and_a_rear_group_load_shows_them_in_t
     assert sent_spec(page) == edited
     assert page.srt_g() == pytest.approx(expected_srt(api, edited), abs=DISPLAY_G)
     # the editor fits the width with the new boxes
-    fits = page.driver.execute_script(
-        "const e = document.querySelector('#cb-editor'); const r = e.getBoundingClientRect();"
-        "const out = [...e.querySelectorAll('input, select, button, label, legend')]"
-        "  .filter((n) => n.getBoundingClientRect().right > r.right + 0.5).map((n) => n.id || n.textContent);"
-        "return {page: document.documentElement.scrollWidth <= document.documentElement.clientWidth,"
-        "  editor: e.scrollWidth <= e.clientWidth, out};"
-    )
-    assert fits == {"page": True, "editor": True, "out": []}
+    assert_editor_fits(page)
 
 
 def test_another_way_of_giving_the_height_shows_its_boxes_and_drops_the_others(page):

@@ -20,7 +20,16 @@ from starlette.requests import Request
 from app.compute.resolved import ResolvedRoute
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.routes.schemas import RouteRequest
-from app.routes.service import MAX_JOB_ROWS, read_route, render_route, resolve_route_refs, resolved_route, route_refs
+from app.routes.service import (
+    MAX_JOB_ROWS,
+    curve_table,
+    find_route_curves,
+    read_route,
+    render_route,
+    resolve_route_refs,
+    resolved_route,
+    route_refs,
+)
 from app.settings import Settings
 
 
@@ -46,7 +55,16 @@ class RouteJob:
 def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
     resolved = resolved_route(req, route_refs(req), ctx.settings)
-    vertices = sum(int(p.lon_deg.size) for p in read_route(req))  # reading refuses bad geometry now (a 422)
+    parts = read_route(req)  # reading refuses bad geometry now (a 422)
+    vertices = sum(int(p.lon_deg.size) for p in parts)
+    if (
+        req.superelevation_percent is None
+        and req.max_superelevation_percent is None
+        and any(p.properties.get("superelevation_percent") is None for p in parts)
+    ):
+        # the synchronous request refuses a found curve without a superelevation: with no default for it the
+        # curves are found now, so that such a job is refused here (the same 422), not failed by its worker
+        curve_table(req, find_route_curves(req, parts))
     stored = req.model_dump(mode="json", exclude={"vehicle", "vehicles", "fleet"}, exclude_unset=True)
     return RouteJob(stored, resolved, vertices)
 

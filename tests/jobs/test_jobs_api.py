@@ -463,6 +463,26 @@ def test_a_route_that_cannot_be_read_is_refused_at_submission():
     assert r.json()["errors"][0]["field"] == "request.geojson.coordinates.2" and "latitude" in r.json()["detail"]
 
 
+def test_a_route_whose_curves_have_no_superelevation_is_refused_at_submission_as_synchronously():
+    """No superelevation anywhere (request, feature properties): the synchronous request refuses the first found
+    curve; the job is refused at submission with the same message, not failed later by its worker. A route whose
+    features carry their own superelevation is taken."""
+    from app.routes.schemas import EXAMPLE_GEOJSON
+
+    bare = {"vehicle": "table16-btrain", "geojson": EXAMPLE_GEOJSON}
+    with make_client() as c:
+        sync = c.post("/v1/routes/assess", json=bare)
+        job = submit(c, "routes.assess", bare)
+        assert sync.status_code == job.status_code == 422, (sync.text, job.text)
+        (s,), (j,) = sync.json()["errors"], job.json()["errors"]
+        assert s["field"] == "superelevation_percent" and j["field"] == "request.superelevation_percent"
+        assert j["message"] == s["message"] and "has no superelevation" in s["message"]
+        own = orjson.loads(orjson.dumps(EXAMPLE_GEOJSON))
+        for feature in own["features"]:
+            feature["properties"]["superelevation_percent"] = 6.0
+        assert submit(c, "routes.assess", {**bare, "geojson": own}).status_code == 202
+
+
 # ------------------------------------------------------------------------- results rendered from columns
 
 KINDS = [

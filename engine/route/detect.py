@@ -1286,7 +1286,12 @@ def _assemble(
     kept: list[_Candidate] = []
     for c in cands:
         if kept and kept[-1].sign == c.sign and c.shape.start < kept[-1].shape.end:
-            continue  # the same curve found from two detection runs
+            # the same curve found from two detection runs: the one with the higher plateau is measured from the run
+            # that holds its peak. A weak run next to a sharp curve (a flat stretch of noise before it) reads its
+            # flank's P/2 crossing beyond the sharp curve, and would otherwise swallow it because it starts first
+            if c.shape.plateau > kept[-1].shape.plateau:
+                kept[-1] = c
+            continue
         kept.append(c)
     out = []
     for j, c in enumerate(kept):

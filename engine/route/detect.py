@@ -140,6 +140,9 @@ PRECISE_FRACTION = 0.005
 #: spirals and compound arcs are read off the curvature diagram only where its noise is below this fraction of
 #: the plateau (the P/10 and P/4 crossings are otherwise lost in the noise)
 SHAPE_NOISE_FRACTION = 0.02
+#: below this noise [m] the vertices are survey data (a centreline's rounding and interpolation, 1e-6 m or so), and
+#: their residuals' correlation is not looked for: a centimetre, far below any GPS noise (2-5 m)
+SURVEY_NOISE_M = 0.01
 #: ladder factor between refinement scales
 SCALE_FACTOR = 1.5
 #: gaussian_filter1d truncation [standard deviations]
@@ -1438,13 +1441,13 @@ def find_curves(
     # it. A given noise_m is sigma; the correlation is estimated all the same (a property of the track's shape).
     first = estimate_noise(xv, yv)
     sigma = first.sigma_m if noise_m is None else float(noise_m)
-    corr = first.corr_m if sigma > 0 else 0.0
+    corr = first.corr_m if sigma >= SURVEY_NOISE_M else 0.0
     args = (xv, yv, zv, idx, keep, n_in, seg, h_v, kt, step_m, significance, min_deflection_deg, max_radius_m)
     found = _find(*args, sigma, corr)
-    if sigma <= 0:
+    if sigma < SURVEY_NOISE_M:  # survey data: what remains is rounding, not a receiver's drift
         return found
     stretches = _tangent_stretches(found, found.chainage_m[idx], xv, yv, sigma)
-    model = residual_noise(stretches, h_v, None if noise_m is None else sigma)
+    model = residual_noise(stretches, h_v, None if noise_m is None else sigma, significance)
     if model is None or (model.corr_m <= 0 and corr <= 0):  # no tangent to tell, or white both ways
         return found
     if model.corr_m <= 0:  # the tangents show white noise: its lag-one estimate, as the method always took it

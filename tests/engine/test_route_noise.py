@@ -62,6 +62,21 @@ def test_tangent_residuals_recover_sigma_and_correlation_length(corr_m):
     assert abs(model.sigma_m / sigma - 1.0) <= 4.0 * rel_sigma
 
 
+def test_a_stretch_that_is_not_straight_is_left_out():
+    # a curve the first pass missed (an R 2000 m arc over 1 km: offsets up to 62 m) among 20 tangents: the estimate
+    # is that of the tangents alone (the same tolerance as above)
+    rng = np.random.default_rng(17)
+    sigma, corr_m, count, n = 3.0, 50.0, 20, 100
+    clean = stretches(rng, count, n, sigma, corr_m)
+    t = np.arange(n) * SPACING
+    arc = (t - t.mean()) ** 2 / (2.0 * 2000.0)
+    bent = (t, arc + gauss_markov(rng, n, sigma, math.exp(-SPACING / corr_m)))
+    model = residual_noise([*clean, bent], SPACING)
+    sd_rho, rel_sigma = ar1_errors(count * (n - 2), math.exp(-SPACING / corr_m))
+    assert abs(math.exp(-SPACING / model.corr_m) - math.exp(-SPACING / corr_m)) <= 4.0 * sd_rho
+    assert abs(model.sigma_m / sigma - 1.0) <= 4.0 * rel_sigma
+
+
 def test_white_tangents_stay_white():
     rng = np.random.default_rng(12)
     sigma, count, n = 2.0, 20, 100

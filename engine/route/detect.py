@@ -1406,7 +1406,8 @@ def find_curves(
         Resampling step; curves are resolved down to a few steps [m].
     noise_m : float or None, default None
         Position noise sigma of the vertices (GPS: 2-5 m; a surveyed centreline: 0); None estimates it
-        from the vertices [m].
+        from the vertices [m]. Its correlation length along the track is estimated either way (step 1;
+        ``RouteCurves.noise_corr_m``).
     max_radius_m : float, default 5000
         Curves flatter than this are tangents. At 120 km/h a 5000 m radius needs 0.023 g of lateral
         acceleration, an order of magnitude below any SRT [m].

@@ -124,6 +124,7 @@ from engine.route.noise import (
     curvature_noise_per_m,
     estimate_noise,
     heading_noise_rad,
+    rejects,
     residual_noise,
     variance_inflation,
     vertex_noise_m,
@@ -1452,6 +1453,8 @@ def find_curves(
     if model is None or (model.corr_m <= 0 and corr <= 0):  # no tangent to tell, or white both ways
         return found
     if model.corr_m <= 0:  # the tangents show white noise: its lag-one estimate, as the method always took it
+        if not rejects(stretches, NoiseModel(sigma, corr, h_v), significance):
+            return found  # unless they cannot contradict the first estimate (a short tangent or two)
         model = NoiseModel(vertex_noise_m(xv, yv) if noise_m is None else sigma, 0.0, h_v)
     return _find(*args, model.sigma_m, model.corr_m)
 

@@ -424,6 +424,31 @@ def _reml_deviance(stretches, corr_m: float, sigma_m: float | None) -> tuple[flo
     return dof * math.log(s2) + rss / s2 + logdet + loggram, s2
 
 
+def rejects(stretches, model: NoiseModel, significance: float = 4.0) -> bool:
+    """Whether the tangents' offsets reject ``model`` (sigma and L both fixed) against their own restricted
+    likelihood maximum (:func:`residual_noise`), by more than :data:`CORRELATION_SIGNIFICANCE`^2 in deviance: a
+    likelihood-ratio test of two parameters' worth at 3 standard deviations (conservative: the test of one
+    parameter's threshold). Used to keep a first estimate that the tangents cannot contradict (too few of them)
+    rather than fall back to white noise. Stretches as in :func:`residual_noise` (the same outlier rule)."""
+    kept = _straight(stretches, significance)
+    if not kept:
+        return False
+    longest = max(float(t[-1] - t[0]) for t, _ in kept)
+    grid = np.geomspace(0.2 * model.spacing_m, max(longest, model.spacing_m), 40)
+    best = min(_reml_deviance(kept, float(c), None)[0] for c in (0.0, *grid))  # the unrestricted maximum
+    return _reml_deviance(kept, model.corr_m, model.sigma_m)[0] - best > CORRELATION_SIGNIFICANCE**2
+
+
+def _straight(stretches, significance: float):
+    """The stretches of at least 8 vertices whose residual variance about their own line is at most
+    ``significance``^2 times the median stretch's (:func:`residual_noise`)."""
+    stretches = [(np.asarray(t, dtype=float), np.asarray(y, dtype=float)) for t, y in stretches if len(t) >= 8]
+    if not stretches:
+        return []
+    spread = np.array([_reml_terms(t, y, 0.0)[0] / (y.size - 2) for t, y in stretches])
+    return [st for st, v in zip(stretches, spread, strict=True) if v <= significance**2 * float(np.median(spread))]
+
+
 def residual_noise(
     stretches, spacing_m: float, sigma_m: float | None = None, significance: float = 4.0
 ) -> NoiseModel | None:
@@ -451,11 +476,9 @@ def residual_noise(
     [7] H. D. Patterson, R. Thompson (1971), Recovery of inter-block information when block sizes are unequal,
         Biometrika 58: restricted (residual) maximum likelihood.
     """
-    stretches = [(np.asarray(t, dtype=float), np.asarray(y, dtype=float)) for t, y in stretches if len(t) >= 8]
+    stretches = _straight(stretches, significance)
     if not stretches:
         return None
-    spread = np.array([_reml_terms(t, y, 0.0)[0] / (y.size - 2) for t, y in stretches])
-    stretches = [st for st, v in zip(stretches, spread, strict=True) if v <= significance**2 * float(np.median(spread))]
     white, s2_white = _reml_deviance(stretches, 0.0, sigma_m)
     longest = max(float(t[-1] - t[0]) for t, _ in stretches)
     grid = np.geomspace(0.2 * spacing_m, max(longest, spacing_m), 40)

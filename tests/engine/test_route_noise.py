@@ -23,6 +23,7 @@ from engine.route.noise import (
     NoiseModel,
     correlated_product,
     estimate_noise,
+    rejects,
     residual_noise,
     variance_inflation,
     vertex_noise_m,
@@ -75,6 +76,16 @@ def test_a_stretch_that_is_not_straight_is_left_out():
     sd_rho, rel_sigma = ar1_errors(count * (n - 2), math.exp(-SPACING / corr_m))
     assert abs(math.exp(-SPACING / model.corr_m) - math.exp(-SPACING / corr_m)) <= 4.0 * sd_rho
     assert abs(model.sigma_m / sigma - 1.0) <= 4.0 * rel_sigma
+
+
+def test_the_tangents_reject_a_first_estimate_only_when_they_can():
+    # 20 white tangents of 100 vertices reject 50 m of correlation; one tangent of 19 vertices (what a first pass
+    # with a large sigma leaves of a 1 km track) cannot, and the first estimate is kept
+    rng = np.random.default_rng(18)
+    first = NoiseModel(3.0, 50.0, SPACING)
+    assert rejects(stretches(rng, 20, 100, 3.0, 0.0), first)
+    assert not rejects(stretches(rng, 1, 19, 3.0, 50.0), first)
+    assert not rejects(stretches(rng, 20, 100, 3.0, 50.0), first)  # the truth is not rejected (at 3 sd)
 
 
 def test_white_tangents_stay_white():

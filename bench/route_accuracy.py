@@ -13,12 +13,16 @@ observed scatter (its standard deviation), the mean stated standard error, their
 1.5), the standard deviation of the normalised error (error / stated standard error, 1 when calibrated), the share
 of tracks whose ``radius_lower_m`` is at most the true (arc's) radius (target: at least 95 %) and the median of
 ``radius_lower_m`` / true radius (what the conservatism costs), then the pooled figures of each kind.
-``--quick`` runs only this part on 8 tracks. ``--write`` stores the calibration's figures in
-bench/route_calibration.json and puts the table rendered from them (:func:`render_table`) in docs/routes.md between
-its markers; tests/engine/test_route_calibration_doc.py checks that the doc is that rendering.
+Then the same figures for the simple cells at 2 and 3 m with the noise correlated along the track (Gauss-Markov,
+each axis its own sequence, correlated over :data:`CORRELATED_M` = 50 m: tests/synthetic_routes.gauss_markov through
+the tests' ``detect(corr_m=)``), which the stated uncertainty must also cover (engine/route/noise.py).
+``--quick`` runs only the calibration on 8 tracks. ``--write`` stores the calibration's figures in
+bench/route_calibration.json and puts the tables rendered from them (:func:`render_table`,
+:func:`render_correlated`) in docs/routes.md between their markers; tests/engine/test_route_calibration_doc.py checks
+that the doc is that rendering.
 
     python bench/route_accuracy.py [--seeds 10] [--tracks 40] [--quick] [--write]
-    python bench/route_accuracy.py --correlated 50 [--tracks 40]   # only: the noise correlated over 50 m
+    python bench/route_accuracy.py --correlated 100 [--tracks 40]   # only: the correlated cells at another length
 """
 
 from __future__ import annotations
@@ -137,6 +141,10 @@ SPIRAL_TANGENT = 600.0
 FIGURES = ROOT / "bench" / "route_calibration.json"
 DOC = ROOT / "docs" / "routes.md"
 START, END = "<!-- route_accuracy:start -->", "<!-- route_accuracy:end -->"
+CORR_START, CORR_END = "<!-- route_accuracy_correlated:start -->", "<!-- route_accuracy_correlated:end -->"
+#: the correlated cells: the simple curves at these noise levels, correlated over CORRELATED_M along the track
+CORRELATED_M = 50.0
+CORRELATED_NOISE = (2.0, 3.0)
 
 
 def _white(route: list, sigma: float, seed: int):
@@ -184,26 +192,22 @@ def cell_figures(cell: dict, tracks: int) -> dict:
     return out
 
 
-def correlated(tracks: int, corr_m: float) -> None:
-    """The simple cells at 2 and 3 m with the noise correlated over ``corr_m`` (printed only: the stated uncertainty
-    assumes independent vertices, and this shows how far that holds)."""
-    print(f"simple curves, noise correlated over {corr_m:g} m along the track, {tracks} tracks a cell:")
-    print("| R [m] | deflection [deg] | sigma [m] | found | stated/observed | coverage | lower/R (median) |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+def correlated_cells(tracks: int, corr_m: float) -> list[dict]:
+    """The simple cells at :data:`CORRELATED_NOISE` with the noise correlated over ``corr_m`` along the track."""
 
     def track(route: list, sigma: float, seed: int):
         return detect(route, CAL_SPACING, 45.0, noise=sigma, seed=seed, corr_m=corr_m)[0]
 
+    cells = []
     for radius in CAL_RADII:
         for deflection in CAL_DEFLECTIONS:
             route = [Tangent(CAL_TANGENT), Arc(radius, radius * math.radians(deflection), "left"), Tangent(CAL_TANGENT)]
-            for sigma in (2.0, 3.0):
-                cell = cell_figures(calibration_cell(route, radius, sigma, tracks, 3000, track), tracks)
-                if "ratio" not in cell:  # fewer than 3 tracks found a curve
-                    print(f"| {radius:g} | {deflection:g} | {sigma:g} | {cell['found']} | - | - | - |")
-                    continue
-                print(f"| {radius:g} | {deflection:g} | {sigma:g} | {cell['found']} | {cell['ratio']:.2f} | "
-                      f"{cell['coverage']:.0%} | {cell['lower']:.3f} |")  # fmt: skip
+            for sigma in CORRELATED_NOISE:
+                cell = calibration_cell(route, radius, sigma, tracks, 3000, track)
+                key = {"kind": "correlated", "radius_m": radius, "deflection_deg": deflection, "sigma_m": sigma,
+                       "corr_m": corr_m}  # fmt: skip
+                cells.append(key | cell_figures(cell, tracks))
+    return cells
 
 
 def calibration(tracks: int) -> dict:
@@ -226,7 +230,8 @@ def calibration(tracks: int) -> dict:
             key = {"kind": "spiralled", "radius_m": radius, "arc_m": arc, "spiral_m": spiral,
                    "deflection_deg": round(deflection, 1), "sigma_m": sigma}  # fmt: skip
             cells.append(key | cell_figures(cell, tracks))
-    return {"tracks": tracks, "spacing_m": CAL_SPACING, "cells": cells}
+    return {"tracks": tracks, "spacing_m": CAL_SPACING, "cells": cells,
+            "correlated": correlated_cells(tracks, CORRELATED_M)}  # fmt: skip
 
 
 def _pooled(cells: list[dict]) -> str:
@@ -268,12 +273,38 @@ def render_table(figures: dict) -> str:
     return "\n".join(lines)
 
 
-def write_doc(text: str) -> None:
-    """The rendered block into docs/routes.md, between its markers."""
+def render_correlated(figures: dict) -> str:
+    """The correlated block of docs/routes.md (between its markers) from a run's stored figures."""
+    cells = figures["correlated"]
+    head = (
+        "| curve | R m | D deg | sigma m | L m | found | bias % | observed % | stated % | ratio | sd(z) | lower <= R "
+    )
+    head += "| lower / R |"
+    lines = [f"{figures['tracks']} tracks per cell, vertices every {figures['spacing_m']:g} m, Gauss-Markov noise "
+             f"correlated over L along the track, run of {figures['date']} (`python bench/route_accuracy.py "
+             "--write`).", "", head, "|" + "|".join("---" for _ in head.split("|")[1:-1]) + "|"]  # fmt: skip
+    for c in cells:
+        lead = f"| simple | {c['radius_m']:g} | {c['deflection_deg']:g} | {c['sigma_m']:g} | {c['corr_m']:g} |"
+        lead += f" {c['found']} |"
+        if "ratio" not in c:
+            lines.append(lead + " (too few found) | | | | | | |")
+            continue
+        lines.append(
+            f"{lead} {100 * c['bias']:+.2f} | {100 * c['observed']:.2f} | {100 * c['stated']:.2f} | {c['ratio']:.2f} | "
+            f"{c['sd_z']:.2f} | {100 * c['coverage']:.1f} % | {c['lower']:.3f} |"
+        )
+    lines += ["", f"Correlated noise: {_pooled(cells)}."]
+    return "\n".join(lines)
+
+
+def write_doc(text: str, correlated_text: str) -> None:
+    """The rendered blocks into docs/routes.md, each between its markers."""
     doc = DOC.read_text(encoding="utf-8")
-    head, rest = doc.split(START, 1)
-    _, tail = rest.split(END, 1)
-    DOC.write_text(f"{head}{START}\n{text}\n{END}{tail}", encoding="utf-8")
+    for (start, end), block in (((START, END), text), ((CORR_START, CORR_END), correlated_text)):
+        head, rest = doc.split(start, 1)
+        _, tail = rest.split(end, 1)
+        doc = f"{head}{start}\n{block}\n{end}{tail}"
+    DOC.write_text(doc, encoding="utf-8")
 
 
 def main() -> None:
@@ -289,7 +320,9 @@ def main() -> None:
     )
     args = ap.parse_args()
     if args.correlated:
-        correlated(args.tracks, args.correlated)
+        figures = {"tracks": args.tracks, "spacing_m": CAL_SPACING, "date": time.strftime("%Y-%m-%d", time.gmtime()),
+                   "correlated": correlated_cells(args.tracks, args.correlated)}  # fmt: skip
+        print(render_correlated(figures))
         return
     if args.write and args.quick:
         ap.error("--write records a whole calibration: leave out --quick")
@@ -311,11 +344,13 @@ def main() -> None:
         print()
     figures = calibration(8 if args.quick else args.tracks)
     figures["date"] = time.strftime("%Y-%m-%d", time.gmtime())
-    text = render_table(figures)
+    text, correlated_text = render_table(figures), render_correlated(figures)
     print(text)
+    print()
+    print(correlated_text)
     if args.write:
         FIGURES.write_text(json.dumps(figures, indent=1) + "\n", encoding="utf-8")
-        write_doc(text)
+        write_doc(text, correlated_text)
         print(f"wrote {FIGURES.relative_to(ROOT)} and {DOC.relative_to(ROOT)}")
 
 

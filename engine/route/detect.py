@@ -14,7 +14,14 @@ Method
    noise-free vertices on a circle whatever their spacing, so the change of that curvature between
    neighbouring triples, scaled back to an offset (times a b / 2, a and b the two segment lengths), is pure
    noise with variance 5 sigma^2 for white lateral noise (:func:`vertex_noise_m`); its median absolute
-   deviation gives sigma robustly (tangent points and spiral ends are outliers it ignores).
+   deviation gives sigma robustly (tangent points and spiral ends are outliers it ignores). GPS errors are
+   correlated over several fixes, and correlated errors cancel in those differences: the noise is modelled as
+   Gauss-Markov along the track (sigma and a correlation length L, Eq. 3 of :mod:`engine.route.noise`), first
+   from the differences' variances at several lags (:func:`engine.route.noise.estimate_noise`), then, once the
+   curves are found, from the residuals of the tangents they leave (restricted likelihood,
+   :func:`engine.route.noise.residual_noise`); when those show correlated noise, steps 2-10 are run again with
+   it. Every noise figure below (Eq. 1, the fits' standard errors, the "precise" test of step 8) then counts the
+   correlation: with L = 0 all of them are the white-noise ones.
 2. **Chainage.** A noisy track is longer than the road: each segment gains about sigma^2 / spacing from the
    lateral noise (9 % at sigma = 3 m and 10 m spacing). Chainage is therefore the sum of the segments projected
    on the local direction of the path, taken between Gaussian-weighted means of the positions ahead and behind
@@ -56,11 +63,12 @@ Method
    also uses the tangents' information. Without tangents (reverse, compound) the circle is used as it is.
    With fewer than 3 vertices on the arc the radius is 1/P and ``sparse`` is set.
    The radius's standard error ``radius_std_m`` counts the tangents' own errors (the path fit's delta method over
-   both stages, :func:`_path_radius_std`), and ``radius_lower_m`` is a one-sided 95 % lower confidence bound of the
-   arc's radius (for the path fit a profile-likelihood bound over the whole tangent-clothoid-arc family, the
-   spiral's length profiled out, so that a spiral the noise hides is allowed for, :func:`_path_radius_lower`; on
-   the curvature otherwise, :func:`engine.route.fit.radius_lower_bound_m`): the radius the safe speed uses
-   (:meth:`HorizontalCurve.as_curve`).
+   both stages, :func:`_path_radius_std`; with correlated noise the sandwich of R's whole influence on the
+   vertices, so that a drift common to tangents and arc cancels), and ``radius_lower_m`` is a one-sided 95 %
+   lower confidence bound of the arc's radius (for the path fit a profile-likelihood bound over the whole
+   tangent-clothoid-arc family, the spiral's length profiled out, so that a spiral the noise hides is allowed
+   for, :func:`_path_radius_lower`; on the curvature otherwise, :func:`engine.route.fit.radius_lower_bound_m`):
+   the radius the safe speed uses (:meth:`HorizontalCurve.as_curve`).
 9. **Deflection**: the angle between the fitted tangents, else the change of the heading smoothed at tau_r
    2.5 tau_r beyond the curve (at a reverse junction, the fitted circle's tangent there); a curve turning less
    than ``min_deflection_deg``, or within ``significance`` standard deviations of that measurement's noise,
@@ -107,7 +115,20 @@ from scipy.special import ndtr, ndtri
 from engine.errors import InvalidInput
 from engine.road.curves import Curve
 from engine.route.fit import RADIUS_CONFIDENCE, CircleFit, fit_circle, fit_line, radius_lower_bound_m
-from engine.route.noise import G1, G2, HEADING_NOISE_RAD, curvature_noise_per_m, heading_noise_rad, vertex_noise_m
+from engine.route.noise import (
+    G1,
+    G2,
+    HEADING_NOISE_RAD,
+    NoiseModel,
+    absorbed_excess,
+    curvature_noise_per_m,
+    estimate_noise,
+    heading_noise_rad,
+    rejects,
+    residual_noise,
+    variance_inflation,
+    vertex_noise_m,
+)
 
 #: the refinement scale keeps the curvature noise below this fraction of the curve's peak curvature
 PEAK_NOISE_FRACTION = 0.1
@@ -120,6 +141,9 @@ PRECISE_FRACTION = 0.005
 #: spirals and compound arcs are read off the curvature diagram only where its noise is below this fraction of
 #: the plateau (the P/10 and P/4 crossings are otherwise lost in the noise)
 SHAPE_NOISE_FRACTION = 0.02
+#: below this noise [m] the vertices are survey data (a centreline's rounding and interpolation, 1e-6 m or so), and
+#: their residuals' correlation is not looked for: a centimetre, far below any GPS noise (2-5 m)
+SURVEY_NOISE_M = 0.01
 #: ladder factor between refinement scales
 SCALE_FACTOR = 1.5
 #: gaussian_filter1d truncation [standard deviations]
@@ -182,6 +206,7 @@ class RouteCurves:
     noise_m: float  # position noise sigma used (given or estimated) [m]
     detection_smoothing_m: float  # tau_d [m]
     tangent_curvature_per_m: float  # curvature threshold of a tangent, 1/max_radius_m [1/m]
+    noise_corr_m: float = 0.0  # correlation length of the noise along the track (0: white) [m]
 
 
 # -------------------------------------------------------------------------------- blurred clothoid
@@ -450,7 +475,24 @@ def _shape(k: np.ndarray, a: int, b: int, tau: float, step: float, s0: float, th
 
 
 def _refine(
-    kappa, theta, k_d, sign, i0, i1, ladder, extra, blur, threshold, sigma, h_v, h, tau_h, out, depth=0, walls=None
+    kappa,
+    theta,
+    k_d,
+    sign,
+    i0,
+    i1,
+    ladder,
+    extra,
+    blur,
+    threshold,
+    sigma,
+    h_v,
+    corr,
+    h,
+    tau_h,
+    out,
+    depth=0,
+    walls=None,
 ):
     """Steps 6-7 for one detection run: pick tau_r, split the run into curves, read each one's shape.
 
@@ -470,7 +512,9 @@ def _refine(
             k_r = sign * k_d[a0:b0]
         else:
             k_r = sign * _smooth(kappa[a0:b0], extra(tau), h, "constant" if a0 == 0 or b0 == n else "nearest")
-        if float(curvature_noise_per_m(sigma, h_v, tau)) <= PEAK_NOISE_FRACTION * float(k_r[i0 - a0 : i1 - a0].max()):
+        if float(curvature_noise_per_m(sigma, h_v, tau, corr)) <= PEAK_NOISE_FRACTION * float(
+            k_r[i0 - a0 : i1 - a0].max()
+        ):
             break
     thr = threshold(tau)
     th_r = None
@@ -486,8 +530,10 @@ def _refine(
             continue
         if th_r is None:
             th_r = _smooth(theta[a0:b0], extra(tau), h)
-        shape = _shape(k_r, int(a), int(b), blur(tau), h, a0 * h, thr, float(curvature_noise_per_m(sigma, h_v, tau)))
-        sd_r, sd_h = (float(heading_noise_rad(sigma, h_v, v)) for v in (tau, tau_h))
+        shape = _shape(
+            k_r, int(a), int(b), blur(tau), h, a0 * h, thr, float(curvature_noise_per_m(sigma, h_v, tau, corr))
+        )
+        sd_r, sd_h = (float(heading_noise_rad(sigma, h_v, v, corr)) for v in (tau, tau_h))
         out.append(_Candidate(shape, sign, tau, blur(tau), th_r, theta[a0:b0], sd_r, sd_h, a0 * h, h))
         covered[max(int(shape.start / h) - margin - i0, 0) : max(int(shape.end / h) + margin + 1 - i0, 0)] = True
     if depth >= 2 or tau == ladder[-1]:
@@ -497,7 +543,7 @@ def _refine(
         if b - a >= 2:
             w0 = i0 + int(a) if a > 0 and covered[a - 1] else None
             w1 = i0 + int(b) if b < covered.size and covered[b] else None
-            args = (ladder, extra, blur, threshold, sigma, h_v, h, tau_h, out, depth + 1, (w0, w1))
+            args = (ladder, extra, blur, threshold, sigma, h_v, corr, h, tau_h, out, depth + 1, (w0, w1))
             _refine(kappa, theta, k_d, sign, i0 + int(a), i0 + int(b), *args)
 
 
@@ -524,7 +570,9 @@ def _side(chain, xv, yv, sel: np.ndarray, centre: np.ndarray, radius: float, ent
     return _Side(float(chain[ref]) + foot_along - ref_along, dist - radius, u, int(sel.size))
 
 
-def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: float, significance: float):
+def _measure(
+    cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: float, significance: float, corr: float = 0.0
+):
     """Steps 8-9 for one curve: ((start, arc start, spiral in), (end, arc end, spiral out), fit, deflection,
     its standard deviation).
 
@@ -536,7 +584,7 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     route_ends = (lo_b <= 0.0, hi_b >= chain[-1])
     before = _between(chain, lo_b, sh.start - cand.tau_eff) if sh.open_in else np.empty(0, int)
     after = _between(chain, sh.end + cand.tau_eff, hi_b) if sh.open_out else np.empty(0, int)
-    lines = (_line(chain, xv, yv, before, True, sigma), _line(chain, xv, yv, after, False, sigma))
+    lines = (_line(chain, xv, yv, before, True, sigma, corr), _line(chain, xv, yv, after, False, sigma, corr))
     both = lines[0] is not None and lines[1] is not None
     if both:
         u1, u2 = lines[0].direction, lines[1].direction
@@ -549,8 +597,8 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     # tangents, go straight to the path fit
     tangent_fit = both and not sh.compound
     fit = None
-    if not (tangent_fit and _circle_error(sh, chain, sigma) > PRECISE_FRACTION):
-        fit = _arc_fit(sh, deflection, chain, xv, yv, sigma)
+    if not (tangent_fit and _circle_error(sh, chain, sigma, corr) > PRECISE_FRACTION):
+        fit = _arc_fit(sh, deflection, chain, xv, yv, sigma, corr)
     if not both and fit is not None and not sh.compound:
         deflection, d_sd = _deflection(cand, lo_b, hi_b, fit, (chain, xv, yv), route_ends)
     ends = [(sh.start, sh.arc_start, sh.spiral_in_m), (sh.end, sh.arc_end, sh.spiral_out_m)]
@@ -559,7 +607,7 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     if not precise and both and not sh.compound:
         reach = cand.tau_eff + 20.0  # the far tangent is known from its line: the fit needs the curve's ends
         lo_f, hi_f = max(lo_b, sh.start - reach), min(hi_b, sh.end + reach)
-        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_f, hi_f, 1.0 / sh.plateau, significance)
+        comp = _fit_tangent_curve(lines, chain, xv, yv, lo_f, hi_f, 1.0 / sh.plateau, significance, corr)
         if comp is not None:
             rms = fit.rms_m if fit is not None else float("nan")
             n_fit = fit.n_points if fit is not None else 0
@@ -584,17 +632,34 @@ def _measure(cand: _Candidate, lo_b: float, hi_b: float, chain, xv, yv, sigma: f
     return ends[0], ends[1], fit, deflection, d_sd
 
 
-def _circle_error(sh: _Shape, chain: np.ndarray, sigma: float) -> float:
-    """Expected relative standard error of a circle fitted through the vertices of the curve's arc [-]."""
+def _circle_error(sh: _Shape, chain: np.ndarray, sigma: float, corr: float = 0.0) -> float:
+    """Expected relative standard error of a circle fitted through the vertices of the curve's arc [-].
+
+    sqrt(180 / n) sigma / (4 M) for white noise; with correlated noise (Eq. 3 of :mod:`engine.route.noise`) times
+    the square root of the variance inflation of that fit's radius, from the influence of each vertex on R in the
+    geometric fit through the arc's design (J = [cos phi, sin phi, 1] at the vertices' angles phi about the centre,
+    the normals radial): correlated noise must not make a circle through a few correlated vertices look precise.
+    """
     if sigma <= 0:
         return 0.0
-    n = _between(chain, sh.arc_start, sh.arc_end).size
+    on_arc = _between(chain, sh.arc_start, sh.arc_end)
+    n = on_arc.size
     r = 1.0 / sh.plateau
     half_angle = min(0.5 * (sh.arc_end - sh.arc_start) / r, 0.5 * math.pi)
     middle_ordinate = r * (1.0 - math.cos(half_angle))
     if n < 4 or middle_ordinate <= 0:
         return math.inf
-    return math.sqrt(180.0 / n) * sigma / (4.0 * middle_ordinate)
+    factor = 1.0
+    if corr > 0:
+        s = chain[on_arc]
+        phi = (s - s.mean()) / r
+        jac = np.column_stack((np.cos(phi), np.sin(phi), np.ones_like(phi)))
+        try:
+            a = (np.linalg.inv(jac.T @ jac) @ jac.T)[2]
+            factor = variance_inflation(s, a, corr, jac[:, :2])
+        except np.linalg.LinAlgError:
+            factor = 1.0
+    return math.sqrt(180.0 / n * factor) * sigma / (4.0 * middle_ordinate)
 
 
 def _deflection(
@@ -633,7 +698,7 @@ def _deflection(
     return abs(heading[1] - heading[0]), math.sqrt(var)
 
 
-def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv, sigma: float = 0.0) -> CircleFit | None:
+def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv, sigma: float = 0.0, corr: float = 0.0) -> CircleFit | None:
     """Circle through the vertices of the arc's middle (see :func:`find_curves`, step 8), or None."""
     middle = 0.5 * (sh.mid_in + sh.mid_out)
     radius, fit, used = 1.0 / sh.plateau, None, None
@@ -650,7 +715,9 @@ def _arc_fit(sh: _Shape, deflection: float, chain, xv, yv, sigma: float = 0.0) -
         if used is not None and on_arc[0] == used[0] and on_arc.size == used.size:
             break  # the same vertices: the same circle
         used = on_arc
-        new = fit_circle(xv[on_arc], yv[on_arc], noise_m=sigma if sigma > 0 else None)
+        new = fit_circle(
+            xv[on_arc], yv[on_arc], noise_m=sigma if sigma > 0 else None, chain_m=chain[on_arc], corr_m=corr
+        )
         if new.radius_m * sh.plateau > 10.0:  # a straight line through nearly collinear points: no radius
             break
         fit, done = new, abs(new.radius_m - radius) <= 1e-9 * radius
@@ -737,9 +804,75 @@ class _TangentPath:
         d = np.minimum(d, np.where(inside, np.abs(np.hypot(qx, qy) - r), np.inf))  # the arc
         return np.einsum("ij,ij->i", d, d).reshape(shape)
 
+    def signed(self, r: float, ls: float) -> tuple[np.ndarray, np.ndarray]:
+        """Signed distances of the vertices to the path (positive toward the centre's side) and the unit normals
+        along which they are measured (toward the centre), for one (R, Ls): the residuals whose Jacobian gives
+        each vertex's influence on the fit (:func:`_path_influence`). A clothoid's vertices take its tangent's
+        normal (it turns by at most Ls / (2 R) from it)."""
+        px, py, pi = self.px, self.py, self.pi
+        p, k = _clothoid_shift(r, ls)
+        tl = (r + p) * math.tan(self.half) + k
+        c = pi + self.bis * (r + p) / math.cos(self.half)
+        xs_, ys_ = ls - ls**3 / (40.0 * r * r), ls**2 / (6.0 * r)
+        best = np.full(px.size, np.inf)
+        res = np.zeros(px.size)
+        nx, ny = np.zeros(px.size), np.zeros(px.size)
+        corners = []
+        for u, nrm, out in ((self.u1, self.n1, -1.0), (self.u2, self.n2, 1.0)):
+            tx, ty = pi[0] + out * u[0] * tl, pi[1] + out * u[1] * tl
+            dx, dy = px - tx, py - ty
+            x = -out * (dx * u[0] + dy * u[1])
+            y = dx * nrm[0] + dy * nrm[1]
+            cands = [
+                (np.where(x <= 0, np.abs(y), np.hypot(dx, dy)), np.where(x <= 0, y, np.sign(y) * np.hypot(dx, dy)))
+            ]
+            if ls > 0:
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    off = (y - x**3 / (6.0 * r * ls)) / np.sqrt(1 + (x * x / (2.0 * r * ls)) ** 2)
+                cands.append((np.where((x >= 0) & (x <= xs_), np.abs(off), np.inf), off))
+            for dist, val in cands:
+                take = dist < best
+                best, res = np.where(take, dist, best), np.where(take, val, res)
+                nx, ny = np.where(take, nrm[0], nx), np.where(take, nrm[1], ny)
+            corners.append((tx - out * u[0] * xs_ + nrm[0] * ys_, ty - out * u[1] * xs_ + nrm[1] * ys_))
+        (s1x, s1y), (s2x, s2y) = corners
+        qx, qy = px - c[0], py - c[1]
+        q = np.maximum(np.hypot(qx, qy), 1e-12)
+        inside = ((s1x - c[0]) * qy - (s1y - c[1]) * qx) * self.sgn > 0
+        inside &= (qx * (s2y - c[1]) - qy * (s2x - c[0])) * self.sgn > 0
+        take = inside & (np.abs(q - r) < best)
+        res = np.where(take, r - q, res)
+        nx, ny = np.where(take, -qx / q, nx), np.where(take, -qy / q, ny)
+        return res, np.column_stack((nx, ny))
+
+
+def _path_influence(path: _TangentPath, r: float, ls: float, steps: np.ndarray, free: int):
+    """(J, normals): the Jacobian of the vertices' signed distances to the path in (R) or (R, Ls) by central
+    differences at ``steps``, and the directions of those distances (:meth:`_TangentPath.signed`)."""
+    _, normals = path.signed(r, ls)
+    cols = [(path.signed(r + steps[0], ls)[0] - path.signed(r - steps[0], ls)[0]) / (2.0 * steps[0])]
+    if free == 2:
+        lo = max(ls - steps[1], 0.0)
+        cols.append((path.signed(r, ls + steps[1])[0] - path.signed(r, lo)[0]) / (ls + steps[1] - lo))
+    return np.column_stack(cols), normals
+
+
+def _inflation(jac: np.ndarray, normals: np.ndarray, chain: np.ndarray, corr: float, row: int = 0) -> float:
+    """Variance inflation of parameter ``row`` of a least-squares fit with Jacobian ``jac`` under noise correlated
+    over ``corr`` (:func:`engine.route.noise.variance_inflation` of its influence, a row of (J^T J)^-1 J^T); 1 for
+    white noise or a singular fit."""
+    if corr <= 0:
+        return 1.0
+    try:
+        a = (np.linalg.inv(jac.T @ jac) @ jac.T)[row]
+    except np.linalg.LinAlgError:
+        return 1.0
+    factor = variance_inflation(chain, a, corr, normals)
+    return factor if math.isfinite(factor) and factor > 0 else 1.0
+
 
 def _fit_tangent_curve(
-    lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float, significance: float
+    lines, chain, xv, yv, lo_b: float, hi_b: float, r0: float, significance: float, corr: float = 0.0
 ) -> _Composite | None:
     """Radius (and clothoids) of the curve between two fitted tangents that best fits the vertices.
 
@@ -749,6 +882,13 @@ def _fit_tangent_curve(
     variances (a likelihood-ratio test at ``significance`` standard deviations); the radius's standard error
     comes from the curvature of the sum at its minimum. Returns None when the tangents are nearly parallel or
     antiparallel.
+
+    Noise correlated over ``corr`` (Eq. 3 of :mod:`engine.route.noise`): the residual variance's divisor loses what
+    the fit absorbs beyond its parameters (:func:`engine.route.noise.absorbed_excess`), and the variance that scales
+    the sum's curvature (the standard error given the tangents, the deviance of the profile bound) is that of the
+    radius's own influence on the vertices, s^2 times its variance inflation (:func:`_inflation`); the spiral's
+    likelihood-ratio statistic is compared with significance^2 times the inflation of the spiral length's influence
+    (its chi-square scaled by the same factor under correlated noise).
     """
     sel = _between(chain, lo_b, hi_b)
     if sel.size > PATH_FIT_VERTICES:  # evenly thinned: a long curve's radius is precise with fewer
@@ -775,13 +915,26 @@ def _fit_tangent_curve(
     best_ls = best_g * best_r * defl
     best_r_joint, best_ls_joint = best_r, best_ls
     s_min = float(sse(np.array([best_r]), np.array([best_ls]))[0])
-    var = min(s_min, s_zero) / max(sel.size - 2, 1)
+    divisor, r_factor, ls_factor, joint = max(sel.size - 2, 1), 1.0, 1.0, None
+    if corr > 0:
+        cs = chain[sel]
+        jac, nrm = _path_influence(path, r_simple, 0.0, np.array([1e-3 * r_simple, 1.0]), 1)
+        r_factor = _inflation(jac, nrm, cs, corr)
+        divisor = max(sel.size - 2 - absorbed_excess(cs, jac, corr, nrm), 1.0)
+        if best_ls > 0:
+            steps = np.array([1e-3 * best_r, max(0.05 * best_ls, 0.5)])
+            joint = _path_influence(path, best_r, best_ls, steps, 2)
+            ls_factor = _inflation(*joint, cs, corr, row=1)
+    var = min(s_min, s_zero) / divisor
     spiral = None
-    if s_zero - s_min > significance**2 * var:
+    if s_zero - s_min > significance**2 * var * ls_factor:
         spiral = best_ls
+        if joint is not None:  # R's influence with the spiral's length free
+            r_factor = _inflation(*joint, chain[sel], corr, row=0)
     else:
         best_r, best_ls = r_simple, 0.0
-    stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var)
+    stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var, corr, chain[sel])
+    var = var * r_factor  # the variance that scales the deviance in R (the profile bound; 1 for white noise)
     # the bound is on the arc's radius over the whole tangent-clothoid-arc family: profiled over Ls, from the
     # family's best fit (a spiral the likelihood-ratio test did not keep still lowers the arc's radius it allows)
     r_ref, ls_ref, s_ref = (r_simple, 0.0, s_zero) if s_zero <= s_min else (float(best_r_joint), best_ls_joint, s_min)
@@ -913,7 +1066,7 @@ def _shifted(line: _Line, angle: float, offset: float) -> _Line:
 
 
 def _path_radius_std(
-    lines, px: np.ndarray, py: np.ndarray, r: float, ls: float | None, var: float
+    lines, px: np.ndarray, py: np.ndarray, r: float, ls: float | None, var: float, corr: float = 0.0, chain=None
 ) -> tuple[float, float] | None:
     """Standard error of the path fit's radius, the tangents' own errors included (delta method) [m].
 
@@ -931,6 +1084,14 @@ def _path_radius_std(
     formal standard error the fit reported before: it leaves out where the tangents and with them the curve's ends
     lie, which dominates on short and on flat arcs (docs/routes.md gives the measured calibration). The vertices
     are taken as independent (each GPS fix's error its own: the tracks' vertices, not the resampled ones).
+    With noise correlated over ``corr`` (Eq. 3 of :mod:`engine.route.noise`; ``chain`` the vertices' chainages) the
+    tangents' errors are no longer independent of each other nor of the curve's vertices: where the correlation
+    length is comparable with the curve, the noise is largely a common offset and drift, which moves tangents and
+    arc together and leaves R. So the variance is the sandwich of R's whole linearised influence on the vertices,
+    w^T Sigma w (:func:`engine.route.noise.variance_inflation`): w the path fit's Gauss-Newton influence
+    -[(J^T J)^-1 J^T]_R on the path's vertices (scaled by s), plus, on each tangent's vertices, dR/dt_j times the
+    line parameter's own influence ((t_i - mean t) / sum (t - mean t)^2 for the direction, 1 / n for the offset; scaled
+    by the track's sigma), each along its normal. The standard error given the tangents is the path part's alone.
     Returns (sigma_R, sigma_R given the tangents, Ls free when kept: sqrt(2 s^2 [H^-1]_RR)), or None when the sum
     is not convex in R about the fit
     (then the caller takes the standard error from the profile bound: (R* - R_lower) / z, the same in the linear
@@ -979,6 +1140,8 @@ def _path_radius_std(
     h_inv = np.linalg.inv(hess)
     cov = 2.0 * var * h_inv
     g0 = gradient(v0, steps, free)
+    if corr > 0 and chain is not None:
+        return _correlated_radius_std(lines, px, py, r, ls or 0.0, var, corr, chain, steps, free)
     for k, line in enumerate(lines):
         for angle, offset in ((line.direction_sd, 0.0), (0.0, line.offset_sd)):
             moved = list(lines)
@@ -990,6 +1153,49 @@ def _path_radius_std(
             dp = h_inv @ dg
             cov = cov + np.outer(dp, dp)
     return float(math.sqrt(max(cov[0, 0], 0.0))), float(math.sqrt(max(2.0 * var * h_inv[0, 0], 0.0)))
+
+
+def _correlated_radius_std(lines, px, py, r, ls, var, corr, chain, steps, free) -> tuple[float, float] | None:
+    """(sigma_R, sigma_R given the tangents) of the path fit under correlated noise: the sandwich of R's whole
+    linearised influence on the path's and the tangents' vertices (:func:`_path_radius_std`), or None when the fit
+    is singular or a moved tangent leaves no path.
+
+    One linearisation for both parts, Gauss-Newton on the vertices' signed distances r(p; t) to the path: a change
+    de of the path's vertices and dt of the tangents moves the fit by dp = -(J^T J)^-1 J^T (de + dr/dt dt). Then a
+    common translation of the vertices and of the tangents, which leaves the path's distances unchanged, leaves R
+    unchanged too, as it must: the cancellation of the common drift of strongly correlated noise is exact to
+    first order (two linearisations, one per part, would leave a residue of it). dr/dt by central differences
+    (1e-4 rad in direction, 1e-3 m in offset)."""
+    path = _TangentPath(lines, px, py)
+    jac, nrm = _path_influence(path, r, ls, steps, free)
+    try:
+        infl = -(np.linalg.inv(jac.T @ jac) @ jac.T)[0]  # dR per unit normal displacement of each path vertex
+    except np.linalg.LinAlgError:
+        return None
+    sd = math.sqrt(var)
+    given = math.sqrt(max(float(infl @ infl) * var * variance_inflation(chain, infl, corr, nrm), 0.0))
+    chains, weights, normals = [np.asarray(chain, dtype=float)], [infl * sd], [nrm]
+    for k, line in enumerate(lines):
+        left = np.array([-line.direction[1], line.direction[0]])
+        t = line.chain - line.chain.mean()
+        for angle, offset, own in ((1e-4, 0.0, t / float(t @ t)), (0.0, 1e-3, np.full(line.n, 1.0 / line.n))):
+            res = []
+            for sgn in (1.0, -1.0):
+                moved = list(lines)
+                moved[k] = _shifted(line, sgn * angle, sgn * offset)
+                path_m = _TangentPath(moved, px, py)
+                if not hasattr(path_m, "pi"):
+                    return None
+                res.append(path_m.signed(r, ls)[0])
+            d_r = float(infl @ ((res[0] - res[1]) / (2.0 * (angle or offset))))  # dR per unit of the parameter
+            chains.append(line.chain)
+            weights.append(d_r * own * line.sigma)
+            normals.append(np.broadcast_to(left, (line.n, 2)))
+    cs = np.concatenate(chains)
+    order = np.argsort(cs, kind="stable")
+    w = np.concatenate(weights)[order]
+    total = float(w @ w) * variance_inflation(cs[order], w, corr, np.concatenate(normals)[order])
+    return math.sqrt(max(total, given * given)), given
 
 
 def _parabola_min(fun, rs: np.ndarray, costs: np.ndarray, i: int, r: float, s: float) -> tuple[float, float]:
@@ -1027,18 +1233,32 @@ class _Line:
     n: int
     direction_sd: float  # [rad]
     offset_sd: float  # of the line's centroid, normal to it [m]
+    chain: np.ndarray = None  # chainage of its vertices [m]
+    sigma: float = 0.0  # the track's noise sigma [m]
 
 
-def _line(chain, xv, yv, sel: np.ndarray, entry: bool, sigma: float) -> _Line | None:
-    """The tangent next to a curve, fitted by total least squares (None when too short to fit)."""
+def _line(chain, xv, yv, sel: np.ndarray, entry: bool, sigma: float, corr: float = 0.0) -> _Line | None:
+    """The tangent next to a curve, fitted by total least squares (None when too short to fit).
+
+    Standard errors of its direction and of its offset at the centroid: sigma sqrt(12 / n) / L and sigma / sqrt(n)
+    for white noise, each times the square root of its variance inflation under correlated noise (Eq. 3 of
+    :mod:`engine.route.noise`), from its influence on the vertices: (t_i - mean t) / sum (t - mean t)^2 for the
+    slope, 1 / n for the offset (t the chainage; the two are uncorrelated for a stationary noise on evenly spaced
+    vertices, the slope's influence being odd about the centroid and the offset's even).
+    """
     if sel.size < 4 or chain[sel[-1]] - chain[sel[0]] < 20.0:
         return None
     c, u = fit_line(xv[sel], yv[sel])
     ref = sel[-1] if entry else sel[0]
     length = float(chain[sel[-1]] - chain[sel[0]])
     sd = sigma * math.sqrt(12.0 / sel.size) / length  # slope of a least-squares line over n points on length L
+    off = sigma / math.sqrt(sel.size)
+    if corr > 0:
+        t = chain[sel] - chain[sel].mean()
+        sd *= math.sqrt(variance_inflation(chain[sel], t / float(t @ t), corr))
+        off *= math.sqrt(variance_inflation(chain[sel], np.full(sel.size, 1.0 / sel.size), corr))
     along = float((np.array([xv[ref], yv[ref]]) - c) @ u)
-    return _Line(c, u, float(chain[ref]), along, int(sel.size), sd, sigma / math.sqrt(sel.size))
+    return _Line(c, u, float(chain[ref]), along, int(sel.size), sd, off, chain[sel], sigma)
 
 
 def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, sgn: float):
@@ -1051,13 +1271,15 @@ def _tangent_end(line: _Line, centre: np.ndarray, fit: CircleFit, sigma: float, 
     foot = _foot(line, centre)
     normal = np.array([-line.direction[1], line.direction[0]])
     shift = abs(float((centre - line.point) @ normal)) - r
-    sd = math.hypot(fit.radius_std_m or 0.0, sigma / math.sqrt(line.n))
+    sd = math.hypot(fit.radius_std_m or 0.0, line.offset_sd)  # the tangent's offset error (correlation included)
     ls = math.sqrt(24.0 * r * shift) if shift > max(3.0 * sd, 1e-4 * r) else None
     end = foot + sgn * _spiral_middle(ls, r)
     return end, end - sgn * (ls or 0.0), ls
 
 
-def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius):
+def _assemble(
+    cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius, corr=0.0
+):
     """Steps 8-10 for every candidate, in chainage order; overlapping duplicates are dropped.
 
     A curve is dropped when its deflection is below ``min_deflection_deg`` or within ``significance``
@@ -1068,14 +1290,19 @@ def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance,
     kept: list[_Candidate] = []
     for c in cands:
         if kept and kept[-1].sign == c.sign and c.shape.start < kept[-1].shape.end:
-            continue  # the same curve found from two detection runs
+            # the same curve found from two detection runs: the one with the higher plateau is measured from the run
+            # that holds its peak. A weak run next to a sharp curve (a flat stretch of noise before it) reads its
+            # flank's P/2 crossing beyond the sharp curve, and would otherwise swallow it because it starts first
+            if c.shape.plateau > kept[-1].shape.plateau:
+                kept[-1] = c
+            continue
         kept.append(c)
     out = []
     for j, c in enumerate(kept):
         lo_b = 0.0 if j == 0 else 0.5 * (kept[j - 1].shape.end + c.shape.start)
         hi_b = total if j == len(kept) - 1 else 0.5 * (c.shape.end + kept[j + 1].shape.start)
         (start, arc0, sp_in), (end, arc1, sp_out), fit, deflection, d_sd = _measure(
-            c, lo_b, hi_b, chain, xv, yv, sigma, significance
+            c, lo_b, hi_b, chain, xv, yv, sigma, significance, corr
         )
         start, end = max(start, lo_b), min(end, hi_b)
         arc0, arc1 = min(max(arc0, start), end), max(min(arc1, end), start)
@@ -1103,7 +1330,7 @@ def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance,
                 compound=c.shape.compound,
                 sparse=sparse,
                 truncated=truncated,
-                radius_std_m=(std := _radius_std(fit, radius, sigma, h_v, c.tau)),
+                radius_std_m=(std := _radius_std(fit, radius, sigma, h_v, c.tau, corr)),
                 radius_lower_m=_radius_lower(fit, radius, std, sigma),
                 smoothing_m=float(c.tau),
             )
@@ -1111,7 +1338,9 @@ def _assemble(cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance,
     return out
 
 
-def _radius_std(fit: CircleFit | None, radius: float, sigma: float, h_v: float, tau: float) -> float | None:
+def _radius_std(
+    fit: CircleFit | None, radius: float, sigma: float, h_v: float, tau: float, corr: float = 0.0
+) -> float | None:
     """Standard error of a curve's radius [m].
 
     The fit's: :func:`_path_radius_std` for the tangent-curve path, the circle fit's otherwise. Without a fit
@@ -1123,7 +1352,7 @@ def _radius_std(fit: CircleFit | None, radius: float, sigma: float, h_v: float, 
         return None
     if fit is not None and fit.radius_std_m is not None:
         return fit.radius_std_m
-    return radius * radius * float(curvature_noise_per_m(sigma, h_v, tau))
+    return radius * radius * float(curvature_noise_per_m(sigma, h_v, tau, corr))
 
 
 def _radius_lower(fit: CircleFit | None, radius: float, std: float | None, sigma: float) -> float:
@@ -1178,7 +1407,8 @@ def find_curves(
         Resampling step; curves are resolved down to a few steps [m].
     noise_m : float or None, default None
         Position noise sigma of the vertices (GPS: 2-5 m; a surveyed centreline: 0); None estimates it
-        from the vertices [m].
+        from the vertices [m]. Its correlation length along the track is estimated either way (step 1;
+        ``RouteCurves.noise_corr_m``).
     max_radius_m : float, default 5000
         Curves flatter than this are tangents. At 120 km/h a 5000 m radius needs 0.023 g of lateral
         acceleration, an order of magnitude below any SRT [m].
@@ -1206,20 +1436,68 @@ def find_curves(
     kt = 1.0 / max_radius_m
     seg = np.hypot(np.diff(xv), np.diff(yv))
     h_v = float(np.median(seg))  # vertex spacing
-    sigma = vertex_noise_m(xv, yv) if noise_m is None else float(noise_m)
+    # step 1: the noise. First from the variogram of the vertices' differences (:func:`engine.route.noise.
+    # estimate_noise`: white noise unless correlation is significant); the curves found with it leave tangents,
+    # whose residuals identify sigma and the correlation length far better (restricted likelihood,
+    # :func:`engine.route.noise.residual_noise`); when they show correlated noise, the curves are found again with
+    # it. A given noise_m is sigma; the correlation is estimated all the same (a property of the track's shape).
+    first = estimate_noise(xv, yv)
+    sigma = first.sigma_m if noise_m is None else float(noise_m)
+    corr = first.corr_m if sigma >= SURVEY_NOISE_M else 0.0
+    args = (xv, yv, zv, idx, keep, n_in, seg, h_v, kt, step_m, significance, min_deflection_deg, max_radius_m)
+    found = _find(*args, sigma, corr)
+    if sigma < SURVEY_NOISE_M:  # survey data: what remains is rounding, not a receiver's drift
+        return found
+    stretches = _tangent_stretches(found, found.chainage_m[idx], xv, yv, sigma)
+    model = residual_noise(stretches, h_v, None if noise_m is None else sigma, significance)
+    if model is None or (model.corr_m <= 0 and corr <= 0):  # no tangent to tell, or white both ways
+        return found
+    if model.corr_m <= 0:  # the tangents show white noise: its lag-one estimate, as the method always took it
+        if not rejects(stretches, NoiseModel(sigma, corr, h_v), significance):
+            return found  # unless they cannot contradict the first estimate (a short tangent or two)
+        model = NoiseModel(vertex_noise_m(xv, yv) if noise_m is None else sigma, 0.0, h_v)
+    return _find(*args, model.sigma_m, model.corr_m)
+
+
+def _tangent_stretches(found: RouteCurves, vchain, xv, yv, sigma: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(chainage, normal offset from their least-squares line) of the vertices of every tangent the curves found
+    leave, at least 8 vertices long: those farther from every curve's ends than sqrt(6 R sigma) (where an arc's
+    offset from its tangent reaches 3 sigma) and than its smoothing scale (where its ends are uncertain)."""
+    free = np.ones(xv.size, dtype=bool)
+    for c in found.curves:
+        margin = max(math.sqrt(6.0 * c.radius_m * sigma), c.smoothing_m)
+        free &= ~((vchain >= c.start_m - margin) & (vchain <= c.end_m + margin))
+    out = []
+    for a, b in zip(*_runs(free), strict=True):
+        if b - a < 8:
+            continue
+        sel = np.arange(a, b)
+        centre, u = fit_line(xv[sel], yv[sel])
+        normal = np.array([-u[1], u[0]])
+        offs = (xv[sel] - centre[0]) * normal[0] + (yv[sel] - centre[1]) * normal[1]
+        out.append((vchain[sel], offs))
+    return out
+
+
+def _find(
+    xv, yv, zv, idx, keep, n_in, seg, h_v, kt, step_m, significance, min_deflection_deg, max_radius_m, sigma, corr
+) -> RouteCurves:
+    """Steps 2-10 of the method for the cleaned vertices, with the noise sigma and its correlation length."""
     # step 3: light smoothing so that the heading noise stays below HEADING_NOISE_RAD
     tau_h = step_m
     if sigma > 0:
         tau_h = max(tau_h, (sigma * math.sqrt(G1 * h_v) / HEADING_NOISE_RAD) ** (2.0 / 3.0))
+        tau_h = _scale_where(lambda t: float(heading_noise_rad(sigma, h_v, t, corr)), HEADING_NOISE_RAD, tau_h)
     tau_min = max(step_m, h_v, tau_h)
     tau_d = tau_min
     if sigma > 0:
         tau_d = max(tau_min, (significance * sigma * math.sqrt(G2 * h_v) / kt) ** 0.4)
+        tau_d = _scale_where(lambda t: significance * float(curvature_noise_per_m(sigma, h_v, t, corr)), kt, tau_d)
     chain = _chainage(xv, yv, seg, step_m, tau_h, sigma, h_v)
     total = float(chain[-1])
     chain_in = np.maximum.accumulate(np.where(keep, np.repeat(chain, np.diff(np.append(idx, n_in))), 0.0))
     if idx.size < 3 or total < 3 * step_m:
-        return RouteCurves((), total, chain_in, sigma, tau_h, kt)
+        return RouteCurves((), total, chain_in, sigma, tau_h, kt, corr)
     # resample on the chainage (step 3)
     m = math.ceil(total / step_m) + 1
     s = np.linspace(0.0, total, m)
@@ -1236,7 +1514,7 @@ def find_curves(
         return math.sqrt(max(tau * tau - tau_h * tau_h, 0.0))
 
     def threshold(tau: float) -> float:
-        return max(kt, significance * float(curvature_noise_per_m(sigma, h_v, tau)))
+        return max(kt, significance * float(curvature_noise_per_m(sigma, h_v, tau, corr)))
 
     def blur(tau: float) -> float:  # tau plus the two central differences (2h boxes) and sparse vertices
         return math.sqrt(tau * tau + 2.0 * h * h / 3.0 + (h_v * h_v / 12.0 if h_v > h else 0.0))
@@ -1248,12 +1526,42 @@ def find_curves(
     for sign in (1.0, -1.0):
         for i0, i1 in zip(*_runs(sign * k_d > thr_d), strict=True):
             _refine(
-                kappa, theta, k_d, sign, int(i0), int(i1), ladder, extra, blur, threshold, sigma, h_v, h, tau_h, cands
+                kappa,
+                theta,
+                k_d,
+                sign,
+                int(i0),
+                int(i1),
+                ladder,
+                extra,
+                blur,
+                threshold,
+                sigma,
+                h_v,
+                corr,
+                h,
+                tau_h,
+                cands,
             )
     curves = _assemble(
-        cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius_m
+        cands, h, chain, xv, yv, zv, idx, total, sigma, h_v, significance, min_deflection_deg, max_radius_m, corr
     )
-    return RouteCurves(tuple(curves), total, chain_in, sigma, tau_d, kt)
+    return RouteCurves(tuple(curves), total, chain_in, sigma, tau_d, kt, corr)
+
+
+def _scale_where(noise, target: float, tau_white: float) -> float:
+    """The smoothing scale at which ``noise(tau)`` (a decreasing function) falls to ``target`` [m], from the white
+    noise's closed-form scale ``tau_white``: correlated noise (more power at long wavelengths) only raises it, so
+    the scale is bracketed upward by factors 1.5 and bisected in log tau. ``tau_white`` itself for white noise."""
+    if noise(tau_white) <= target * (1.0 + 1e-9):
+        return tau_white
+    lo, hi = tau_white, tau_white * 1.5
+    while noise(hi) > target and hi < 1e3 * tau_white:
+        lo, hi = hi, hi * 1.5
+    for _ in range(30):
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if noise(mid) > target else (lo, mid)
+    return hi
 
 
 def _projection_factor(w: np.ndarray, k: np.ndarray, gap: int, h: float, h_v: float, sigma: float) -> float:

@@ -9,6 +9,7 @@ import numpy as np
 from scipy.special import ndtri
 
 from engine.errors import InvalidInput
+from engine.route.noise import absorbed_excess, variance_inflation
 
 #: one-sided confidence of the conservative radius of a route's curve (:func:`radius_lower_bound_m`)
 RADIUS_CONFIDENCE = 0.95
@@ -27,7 +28,9 @@ class CircleFit:
     radius_lower_m: float | None = None  # a lower confidence bound of the radius when the fit gives its own
 
 
-def fit_circle(x_m, y_m, *, iterations: int = 10, noise_m: float | None = None) -> CircleFit:
+def fit_circle(
+    x_m, y_m, *, iterations: int = 10, noise_m: float | None = None, chain_m=None, corr_m: float = 0.0
+) -> CircleFit:
     """Geometric least-squares circle through points (Gauss-Newton from Kasa's algebraic fit) [1].
 
     Minimises sum (|p_i - c| - R)^2. The points are centred first, so routes far from the origin keep their
@@ -38,6 +41,13 @@ def fit_circle(x_m, y_m, *, iterations: int = 10, noise_m: float | None = None) 
     (1 degree) it is below a tenth of sigma^2 one time in four, and such a fit would claim a precision it does not
     have; the larger of the two keeps a misfit of the model (residuals above the noise) counted.
 
+    Noise correlated along the track over ``corr_m`` (Eq. 3 of :mod:`engine.route.noise`; ``chain_m`` the points'
+    chainages) leaves the estimate the least-squares one and makes its variance the sandwich: [(J^T J)^-1]_RR times
+    the variance inflation of R's influence on the points' radial displacements
+    (:func:`engine.route.noise.variance_inflation`); the residual variance's divisor n - 3 loses what the fit absorbs
+    of correlated noise beyond 3 degrees of freedom (:func:`engine.route.noise.absorbed_excess`). A few correlated
+    points on a short arc then count as the few independent ones they are.
+
     Parameters
     ----------
     x_m, y_m : array_like
@@ -46,6 +56,10 @@ def fit_circle(x_m, y_m, *, iterations: int = 10, noise_m: float | None = None) 
         Gauss-Newton iterations at most.
     noise_m : float or None
         Known position noise of the points, if any [m].
+    chain_m : array_like or None
+        Chainage of the points along the track, sorted [m] (needed with ``corr_m``).
+    corr_m : float, default 0
+        Correlation length of the points' noise along the track [m]; 0 for white noise.
     """
     x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
     if x.size < 3:
@@ -79,12 +93,22 @@ def fit_circle(x_m, y_m, *, iterations: int = 10, noise_m: float | None = None) 
     std = None
     if x.size > 3 or noise_m is not None:
         jac = np.column_stack((-du / d, -dv / d, -np.ones_like(d)))
-        s2 = float(res @ res) / (x.size - 3) if x.size > 3 else 0.0
+        factor, excess = 1.0, 0.0
+        if corr_m > 0 and chain_m is not None:
+            chain = np.asarray(chain_m, dtype=float)
+            normals = np.column_stack((du / d, dv / d))
+            try:
+                a = (np.linalg.inv(jac.T @ jac) @ jac.T)[2]
+                factor = variance_inflation(chain, a, corr_m, normals)
+                excess = absorbed_excess(chain, jac, corr_m, normals)
+            except np.linalg.LinAlgError:
+                pass
+        s2 = float(res @ res) / max(x.size - 3 - excess, 1.0) if x.size > 3 else 0.0
         if noise_m is not None:
             s2 = max(s2, (float(noise_m) / scale) ** 2)  # res is in units of scale
         try:
             cov = np.linalg.inv(jac.T @ jac) * s2
-            std = float(math.sqrt(max(cov[2, 2], 0.0))) * scale
+            std = float(math.sqrt(max(cov[2, 2] * factor, 0.0))) * scale
         except np.linalg.LinAlgError:
             std = None
     return CircleFit(x0 + p[0] * scale, y0 + p[1] * scale, abs(p[2]) * scale, rms, std, int(x.size))

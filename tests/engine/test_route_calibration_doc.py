@@ -1,6 +1,7 @@
-"""docs/routes.md's calibration table is what bench/route_accuracy.py renders from its last ``--write`` run's stored
-figures (bench/route_calibration.json), so the doc cannot drift from the run by hand-copying. The bench itself is not
-run here (it takes a minute): ``python bench/route_accuracy.py --write`` refreshes both."""
+"""docs/routes.md's calibration tables (white and correlated noise) are what bench/route_accuracy.py renders from its
+last ``--write`` run's stored figures (bench/route_calibration.json), so the doc cannot drift from the run by
+hand-copying. The bench itself is not run here (it takes a minute or two): ``python bench/route_accuracy.py --write``
+refreshes both."""
 
 from __future__ import annotations
 
@@ -22,10 +23,14 @@ def bench_module():
 def test_the_doc_table_is_the_rendering_of_the_stored_figures():
     bench = bench_module()
     doc = bench.DOC.read_text(encoding="utf-8")
-    assert doc.count(bench.START) == 1 and doc.count(bench.END) == 1
-    block = doc.split(bench.START, 1)[1].split(bench.END, 1)[0]
     figures = json.loads(bench.FIGURES.read_text(encoding="utf-8"))
-    assert block == "\n" + bench.render_table(figures) + "\n"
+    for (start, end), render in (
+        ((bench.START, bench.END), bench.render_table),
+        ((bench.CORR_START, bench.CORR_END), bench.render_correlated),
+    ):
+        assert doc.count(start) == 1 and doc.count(end) == 1
+        block = doc.split(start, 1)[1].split(end, 1)[0]
+        assert block == "\n" + render(figures) + "\n"
 
 
 def test_the_stored_figures_hold_every_cell_with_its_columns():
@@ -36,7 +41,14 @@ def test_the_stored_figures_hold_every_cell_with_its_columns():
     spiralled = {(c["radius_m"], c["arc_m"], c["spiral_m"], c["sigma_m"]) for c in cells if c["kind"] == "spiralled"}
     assert simple == {(r, d, s) for r in bench.CAL_RADII for d in bench.CAL_DEFLECTIONS for s in bench.CAL_NOISE}
     assert spiralled == {(*geometry, s) for geometry in bench.SPIRALLED for s in bench.CAL_NOISE}
-    for c in cells:
+    correlated = {(c["radius_m"], c["deflection_deg"], c["sigma_m"], c["corr_m"]) for c in figures["correlated"]}
+    assert correlated == {
+        (r, d, s, bench.CORRELATED_M)
+        for r in bench.CAL_RADII
+        for d in bench.CAL_DEFLECTIONS
+        for s in bench.CORRELATED_NOISE
+    }
+    for c in cells + figures["correlated"]:
         assert c["tracks"] == figures["tracks"] and 0 <= c["covered"] <= c["found"] <= c["tracks"]
         if c["found"] >= 3:  # coverage, stated/observed, mean bias, lower / true radius
             assert {"coverage", "ratio", "bias", "lower", "observed", "stated", "sd_z"} <= set(c)

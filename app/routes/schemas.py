@@ -238,8 +238,9 @@ class RouteCurveProperties(OutputModel):
     radius_std_m: float | None = Field(
         description=describe(
             "Standard error (1 sigma) of the fitted radius from the vertex noise, the error of the tangents and with "
-            "them of the curve's ends included; null without noise (the radius is then exact). Calibrated on "
-            "synthetic tracks of known geometry (docs/routes.md).",
+            "them of the curve's ends included, with white or correlated noise (`parts[].noise_corr_m`); null "
+            "without noise (the radius is then exact). Calibrated on synthetic tracks of known geometry "
+            "(docs/routes.md).",
             unit="m",
             symbol="sigma_R",
         )
@@ -321,6 +322,15 @@ class RoutePartOut(OutputModel):
     )
     curves: int = Field(description=describe("Curves found.", unit="count"))
     noise_m: float = Field(description=describe("Position noise used (given or estimated).", unit="m", symbol="sigma"))
+    noise_corr_m: float = Field(
+        description=describe(
+            "Correlation length of the position noise along the track, estimated (0: white noise, the fixes' errors "
+            "independent; a GPS receiver's drift is correlated over tens of metres): the radius uncertainties count "
+            "it (docs/routes.md).",
+            unit="m",
+            symbol="L",
+        )
+    )
     has_elevation: bool = Field(description=describe("Whether grades could be read.", unit="-"))
 
 

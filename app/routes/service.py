@@ -86,6 +86,7 @@ class Geometry:
     parts: list[RoutePart]
     curves: list[FoundCurve]
     noise_m: list[float]
+    noise_corr_m: list[float]  # each part's correlation length of the noise along the track (0: white) [m]
     found_per_part: list[int]
     length_m: list[float]  # along the road (the detection's chainage: vertex noise taken out)
 
@@ -114,7 +115,7 @@ def find_route_curves(req: RouteRequest, parts: list[RoutePart], source_field: s
     """Every part in its plane frame, through the curve detection."""
     d = req.detection
     curves: list[FoundCurve] = []
-    noise, found, length = [], [], []
+    noise, corr, found, length = [], [], [], []
     for p in parts:
         frame = local_frame(p.lon_deg, p.lat_deg, p.ele_m)
         try:
@@ -129,10 +130,11 @@ def find_route_curves(req: RouteRequest, parts: list[RoutePart], source_field: s
         except InvalidInput as exc:
             raise InvalidRoute(str(exc), source=_source(req, source_field), location=p.location, column=None) from None
         noise.append(rc.noise_m)
+        corr.append(rc.noise_corr_m)
         found.append(len(rc.curves))
         length.append(rc.length_m)
         curves += [FoundCurve(p, c, f"{p.source}-C{k + 1}") for k, c in enumerate(rc.curves)]
-    return Geometry(parts, curves, noise, found, length)
+    return Geometry(parts, curves, noise, corr, found, length)
 
 
 def _property(part: RoutePart, name: str, default: float | None) -> float:
@@ -265,9 +267,12 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
                 "length_m": length,
                 "curves": k,
                 "noise_m": s,
+                "noise_corr_m": corr,
                 "has_elevation": p.ele_m is not None,
             }
-            for p, k, s, length in zip(geo.parts, geo.found_per_part, geo.noise_m, geo.length_m, strict=True)
+            for p, k, s, corr, length in zip(
+                geo.parts, geo.found_per_part, geo.noise_m, geo.noise_corr_m, geo.length_m, strict=True
+            )
         ],
         "vehicles": [
             {

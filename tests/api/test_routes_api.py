@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 
 import numpy as np
 import pytest
 
 from engine.road import max_curve_speed_kmh
-from tests.synthetic_routes import Arc, Tangent, curve_spans, layout, spiral_curve, to_lonlat
+from tests.synthetic_routes import Arc, Tangent, curve_spans, gauss_markov, layout, spiral_curve, to_lonlat
 
 PATH = "/v1/routes/assess"
 BTRAIN = "table16-btrain"
@@ -73,6 +74,26 @@ def test_curves_found_with_their_radius_chainage_direction_and_grade(shared_clie
     assert (
         len(first["coordinates"]) >= 3 and len(first["coordinates"]) == first["vertices"][1] - first["vertices"][0] + 1
     )
+
+
+def test_each_part_names_its_noise_and_whether_it_is_correlated(shared_client):
+    """``parts[].noise_corr_m``: 0 for a surveyed centreline and for white noise; for a receiver's drift (Gauss-Markov
+    errors correlated over 50 m, lag-one correlation exp(-10 / 50) at 10 m spacing) a correlation length of that
+    order, the estimate's own accuracy being the engine tests' (tests/engine/test_route_noise.py)."""
+    x, y, s = layout(ELEMENTS, 10.0)
+    rng = np.random.default_rng(11)
+    rho = math.exp(-10.0 / 50.0)
+    drifted = x + gauss_markov(rng, x.size, 3.0, rho), y + gauss_markov(rng, y.size, 3.0, rho)
+    lon, lat = to_lonlat(*drifted, 45.0)
+    correlated = [[float(a), float(b), float(c)] for a, b, c in zip(lon, lat, 300.0 + GRADE * s, strict=True)]
+    parts = {}
+    for name, coords in (("survey", route(45.0)), ("white", route(45.0, 3.0)), ("drift", correlated)):
+        body = {"vehicle": BTRAIN, "geojson": feature_collection(coords), "superelevation_percent": 6.0}
+        (parts[name],) = post(shared_client, body).json()["parts"]
+    assert parts["survey"]["noise_m"] < 1e-6 and parts["survey"]["noise_corr_m"] == 0.0  # rounding of the layout
+    assert parts["white"]["noise_m"] == pytest.approx(3.0, rel=0.25) and parts["white"]["noise_corr_m"] == 0.0
+    assert parts["drift"]["noise_m"] == pytest.approx(3.0, rel=0.5)
+    assert 50.0 / 3 < parts["drift"]["noise_corr_m"] < 50.0 * 3
 
 
 def test_the_geojson_answer_is_a_feature_collection_of_the_same_curves(shared_client):

@@ -123,3 +123,29 @@ def test_a_refused_row_gets_the_scalar_message():
     with pytest.raises(RolloverError) as exc:
         rollover_threshold(case.replace(load=LoadCase(lateral_offset_m=1.2)))
     assert errors[1] == str(exc.value)
+
+
+def test_the_stability_bound_is_the_scalar_test():
+    # _stable's one eigenvalue bound for all rows must answer what each row's Cholesky factor answers: on stiffness
+    # matrices with diagonal P-Delta terms from clearly stable to unstable, through the edge
+    rng = np.random.default_rng(3)
+    n = 6
+    for trial in range(200):
+        A = rng.standard_normal((n, n))
+        K = A @ A.T + 0.1 * np.eye(n)
+        K = 0.5 * (K + K.T)
+        lam = np.linalg.eigvalsh(K)[0]
+        p = rng.uniform(0.0, 1.0, (25, n)) * lam * rng.choice([0.5, 0.99, 1.0, 1.01, 2.0])
+        P = np.zeros((25, n, n))
+        P[:, np.arange(n), np.arange(n)] = p
+        expect = np.array([_cholesky_exists(K - P[i]) for i in range(25)])
+        got = combination_batch._stable(K, P)
+        assert got.tolist() == expect.tolist(), trial
+
+
+def _cholesky_exists(J) -> bool:
+    try:
+        np.linalg.cholesky(0.5 * (J + J.T))
+    except np.linalg.LinAlgError:
+        return False
+    return True

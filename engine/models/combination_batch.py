@@ -120,15 +120,28 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return states[first], inverse.reshape(-1)
 
 
-def _stable(K: np.ndarray, P: np.ndarray) -> np.ndarray:
+def _minus(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
+    """Each row's J = K - P, the rows' P-Delta terms given by their diagonals ``pd`` (k, n) (P_normal and P_grade
+    are diagonal): K's off-diagonal entries, which less P's zeros are the same bits (K holds no -0.0), and K_ii -
+    P_ii. Built from K and the diagonals rather than from stacked (k, n, n) P's: forming and gathering those took
+    more of a step than its arithmetic."""
+    n = K.shape[0]
+    diag = np.arange(n)
+    J = np.empty((pd.shape[0], n, n))
+    J[:] = K
+    J[:, diag, diag] = K[diag, diag] - pd
+    return J
+
+
+def _stable(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
     """Each row's J = K - P positive definite: the scalar's test (its Cholesky factor exists), row by row."""
     # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
-    if P.shape[0] > 1 and _all_definite(K, P):
-        return np.ones(P.shape[0], dtype=bool)
-    return _definite(K - P)
+    if pd.shape[0] > 1 and _all_definite(K, pd):
+        return np.ones(pd.shape[0], dtype=bool)
+    return _definite(_minus(K, pd))
 
 
-def _all_definite(K: np.ndarray, P: np.ndarray) -> bool:
+def _all_definite(K: np.ndarray, pd: np.ndarray) -> bool:
     """True when every row's J = K - P is so clearly positive definite that its Cholesky factor exists in floating
     point (the scalar's test succeeds): one eigenvalue bound for all the rows instead of a factor per row (the
     factors took a tenth of a batch, profiled). False leaves the rows to the factors.
@@ -140,7 +153,7 @@ def _all_definite(K: np.ndarray, P: np.ndarray) -> bool:
     here, 1e-9, also covers eigvalsh's own error (a few eps ||W||)."""
     n = K.shape[0]
     diag = np.arange(n)
-    d = K[diag, diag] - P[:, diag, diag]  # the rows' J_ii, as K - P forms them
+    d = K[diag, diag] - pd  # the rows' J_ii, as K - P forms them
     if not np.isfinite(d).all():
         return False
     W = K.copy()
@@ -160,18 +173,18 @@ def _definite(J: np.ndarray) -> np.ndarray:
         return np.concatenate([_definite(J[:h]), _definite(J[h:])])
 
 
-def _state(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
+def _state(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
     """The equilibrium of every row in one regime (tyre states then zone states in ``key``) at its ay (the scalar
     ``_state_at``), or None when a row's equations are singular."""
     tyre, zone = tuple(key[:T].tolist()), tuple(key[T:].tolist())
     jp, k = _loads(s, e, r, tyre, zone)
     try:
-        return _solve(e.piece(tyre, zone)[0] - P, -(jp * _row(ay) + k))
+        return _solve(_minus(e.piece(tyre, zone)[0], pd), -(jp * _row(ay) + k))
     except _Alone:
         return None
 
 
-def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndarray):
+def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.ndarray):
     """The scalar ``_start`` for rows whose first guess settles: (z0 (k, n+1), the distinct starting regimes (tyre,
     zone tuples), each row's index among them, ok)."""
     n = s.n
@@ -180,7 +193,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     ay0 = -r.l0 / r.l1
     linear_t, band_z = (LINEAR,) * T, (BAND,) * Z
     K0 = el.piece(linear_t, band_z)[0]
-    J0 = K0 - P
+    J0 = _minus(K0, pd)
     jp0, k0 = _loads(lashless, el, r, linear_t, band_z)
     q0 = _solve(J0, -(jp0 * _row(ay0) + k0))
     k_rows = q0.shape[0]
@@ -188,7 +201,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     if not np.any(e.lash > 0):
         tyre, zone = _consistent(s, e, r, q0, ay0)
         ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
-        ok &= _stable(e.piece(linear_t, band_z)[0], P)
+        ok &= _stable(e.piece(linear_t, band_z)[0], pd)
         return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
     d = q0[:, e.zi] - q0[:, e.zj]
     coupling = np.array([z.kind == "coupling" for z in s.zones])
@@ -219,7 +232,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
         rows_p = np.flatnonzero(pending)
         for g, key in enumerate(keys):
             idx = rows_p[inv == g]
-            q = _state(s, e, r.take(idx), P[idx], ay0[idx], key, T)
+            q = _state(s, e, r.take(idx), pd[idx], ay0[idx], key, T)
             if q is None:
                 pending[idx], ok[idx] = False, False  # the scalar leaves the loop for its minimisation
                 continue
@@ -229,7 +242,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
             exact = q.copy()
             for key2 in _distinct(rg[~same])[0]:
                 sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
-                q2 = _state(s, e, r.take(idx[sub]), P[idx[sub]], ay0[idx[sub]], key2, T)
+                q2 = _state(s, e, r.take(idx[sub]), pd[idx[sub]], ay0[idx[sub]], key2, T)
                 if q2 is None:
                     exact[sub] = np.nan  # the scalar's settle fails there: next guess
                 else:
@@ -239,7 +252,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
             for key2 in _distinct(rg[settled])[0]:
                 sub = np.flatnonzero(settled & np.all(rg == key2, axis=1))
                 K = e.piece(tuple(key2[:T].tolist()), tuple(key2[T:].tolist()))[0]
-                settled[sub] &= _stable(K, P[idx[sub]])
+                settled[sub] &= _stable(K, pd[idx[sub]])
             done = idx[settled]
             z0[done, :n] = exact[settled]
             final[done] = rg[settled]
@@ -252,7 +265,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     return z0, regimes, which, ok
 
 
-def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok,
+def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok,
            peaks: bool = True):  # fmt: skip
     """The scalar ``_trace`` from each row's start, rows in lockstep while their regimes agree. Returns (the largest
     ay on each row's path, the state there (k, n+1), ok, and with ``peaks`` the piece and event of each row's peak:
@@ -274,24 +287,34 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         if rows.size:
             work.append((rows, z0[rows], None, key[0], key[1], None, 0))
     lim = limit is not None
+    # what every step takes of the rows' road, once per trace rather than once per step (the same products as the
+    # scalar's _assemble and _rows_of form, so the same bits): jp's regime-free part and the lifted groups' factor,
+    # and each group's n1 cap and n0 cap + grade cap (its constraint rows' c2 and b)
+    jp_free = -(_row(r.l1) * s.lat + _row(r.n1) * s.off)
+    jp_cap = _row(r.n1) * e.capn_dof
+    cap_ay = _row(r.n1) * e.capn
+    cap_0 = _row(r.n0) * e.capn + _row(r.grade) * e.capg
     while work:
         rows, z, prev_d, tyre, zone, last, steps = work.pop()
         if steps >= max_steps:
             ok[rows] = False
             continue
-        whole_set = rows.size == P.shape[0]  # every row, in order: no copies of the rows' arrays
-        ri = r if whole_set else r.take(rows)
-        K, _S, _kz = e.piece(tyre, zone)
-        jp = _slope(s, e, ri, tyre, zone)
+        whole_set = rows.size == pd.shape[0]  # every row, in order: no copies of the rows' arrays
+        if whole_set:
+            jf, jc, ca, c0, pr = jp_free, jp_cap, cap_ay, cap_0, pd
+        else:
+            jf, jc, ca, c0, pr = jp_free[rows], jp_cap[rows], cap_ay[rows], cap_0[rows], pd[rows]
+        K, S, _kz = e.piece(tyre, zone)
+        jp = jf + S * jc
         try:
-            dq = _solve(K - (P if whole_set else P[rows]), -jp)
+            dq = _solve(_minus(K, pr), -jp)
         except _Alone:
             ok[rows] = False
             continue
         fine = np.einsum("ij,ij->i", dq, dq) < 1e24  # the scalar's test: finite and |dq| < 1e12
         if not fine.all():  # the scalar takes an SVD there: left to it
             ok[rows[~fine]] = False
-            rows, z, dq, ri = rows[fine], z[fine], dq[fine], ri.take(np.flatnonzero(fine))
+            rows, z, dq, ca, c0 = rows[fine], z[fine], dq[fine], ca[fine], c0[fine]
             prev_d = None if prev_d is None else prev_d[fine]
             if not rows.size:
                 continue
@@ -306,8 +329,8 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         c1 = np.concatenate([sk * e.tk[ti], sg])
         c2, b = np.empty((m, c1.size)), np.empty((m, c1.size))
         fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
-        c2[:, :nt] = fac * (_row(ri.n1) * e.capn[ti])
-        b[:, :nt] = fac * (_row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti])
+        c2[:, :nt] = fac * ca[:, ti]
+        b[:, :nt] = fac * c0[:, ti]
         c2[:, nt:], b[:, nt:] = -sg, sb * e.lash[zi]
         rates = c1 * d[:, i1] + c2 * d[:, i2]
         if last is None:
@@ -365,21 +388,23 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
     return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
 
 
-def _solve_at(s, e, lashless, r, P, limit, peaks=True):
+def _solve_at(s, e, lashless, r, pd, limit, peaks=True):
     try:
-        z0, regimes, which, ok = _start(s, e, lashless, r, P)
+        z0, regimes, which, ok = _start(s, e, lashless, r, pd)
     except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
-        k = P.shape[0]
+        k = pd.shape[0]
         return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
-    return _trace(s, e, r, P, limit, z0, regimes, which, ok, peaks)
+    return _trace(s, e, r, pd, limit, z0, regimes, which, ok, peaks)
 
 
 def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     """The scalar :func:`~engine.models.combination.solve_unit` of every row: (srt, state at the limit, ok)."""
     e = whole._elements(s)
     lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
-    P0 = _row(_row(r.n0)) * s.P_normal + _row(_row(r.grade)) * s.P_grade  # build_systems: the P at rest
-    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit, bool(np.any(r.n1 != 0.0)))
+    # the P-Delta terms' diagonals (the P at rest of build_systems, on its diagonal: the same products)
+    pn, pg = np.diagonal(s.P_normal), np.diagonal(s.P_grade)
+    pd0 = _row(r.n0) * pn + _row(r.grade) * pg
+    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, pd0, limit, bool(np.any(r.n1 != 0.0)))
     active = np.flatnonzero(ok & (r.n1 != 0.0))
     a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
     pieces, peak_piece, peak_row = peaks
@@ -401,8 +426,8 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
             break
         ra = r.take(active)
         normal = ra.n0 + ra.n1 * a1
-        P = _row(_row(normal)) * s.P_normal + _row(_row(ra.grade)) * s.P_grade
-        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active], False)
+        pd = _row(normal) * pn + _row(ra.grade) * pg
+        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, pd, None if limit is None else limit[active], False)
         ok[active[~gok]] = False
         g1 = got - a1
         done = gok & (np.abs(g1) <= 1e-13)

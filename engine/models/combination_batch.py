@@ -126,10 +126,9 @@ def _minus(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
     P_ii. Built from K and the diagonals rather than from stacked (k, n, n) P's: forming and gathering those took
     more of a step than its arithmetic."""
     n = K.shape[0]
-    diag = np.arange(n)
     J = np.empty((pd.shape[0], n, n))
     J[:] = K
-    J[:, diag, diag] = K[diag, diag] - pd
+    J.reshape(-1, n * n)[:, :: n + 1] = np.diagonal(K) - pd  # the diagonal as a strided slice, not a fancy index
     return J
 
 
@@ -351,9 +350,14 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             ok[rows[ended & (d[:, n] > 1e-12)]] = False
         value = c1 * z[:, i1] + c2 * z[:, i2] + b
         scale = np.maximum(1.0, np.abs(c1) + np.abs(c2))
+        # the scalar's where(value > -TOL scale, max(value, 0) / -rates, 0), then inf where not falling, in place
+        # (x / -r is -(x / r) bit for bit: rounding is symmetric)
+        tau = np.maximum(value, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
-            tau = np.where(value > -TOL * scale, np.maximum(value, 0.0) / -rates, 0.0)
-        tau = np.where(falling, tau, np.inf)
+            np.divide(tau, rates, out=tau)
+        np.negative(tau, out=tau)
+        np.copyto(tau, 0.0, where=~(value > -TOL * scale))
+        np.copyto(tau, np.inf, where=~falling)
         which = np.argmin(tau, axis=1)
         step = tau[np.arange(m), which]
         go = ~ended
@@ -371,8 +375,8 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             w = which[h]
             peak_piece[rows[h]] = len(pieces) - 1
             peak_row[rows[h]] = np.column_stack([c1[w], c2[h, w], b[h, w], i1[w], i2[w]])
-        for row in np.unique(which[go]):
-            sel = go & (which == row)
+        events = np.flatnonzero(np.bincount(which[go], minlength=c1.size))
+        for row in events:
             kc, idx, state = (int(x) for x in ends[row])
             if kc == 2:
                 continue  # a group at the LLT limit: the path stops
@@ -384,7 +388,11 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             else:
                 previous = zone[idx]
                 new_t, new_z = tyre, (*zone[:idx], state, *zone[idx + 1 :])
-            work.append((rows[sel], z[sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
+            if events.size == 1 and go.all():  # the usual case: every row meets the same event, no copies
+                work.append((rows, z, d, new_t, new_z, (kc, idx, previous), steps + 1))
+            else:
+                sel = go & (which == row)
+                work.append((rows[sel], z[sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
     return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
 
 

@@ -43,8 +43,14 @@ class _Alone(Exception):
     """A row the lockstep leaves to the scalar solve."""
 
 
+_ROAD = ("n0", "n1", "l0", "l1", "grade")
+
+
 class _Rows:
-    """The road factors of some rows (arrays), each of shape (k,)."""
+    """The road factors of some rows (arrays), each of shape (k,), and with :meth:`of_system` what a system's steps
+    take of them."""
+
+    fields = _ROAD
 
     def __init__(self, bank_percent: np.ndarray, slope_percent: np.ndarray):
         # the scalar's RoadFactors.of row by row: numpy's vectorised sin/cos/atan may differ from libm's in the last
@@ -57,8 +63,29 @@ class _Rows:
 
     def take(self, idx: np.ndarray) -> _Rows:
         out = object.__new__(_Rows)
-        for k in ("n0", "n1", "l0", "l1", "grade"):
+        out.fields = self.fields
+        for k in self.fields:
             setattr(out, k, getattr(self, k)[idx])
+        return out
+
+    def of_system(self, s: System, e: whole._Elements) -> _Rows:
+        """These rows with the road's products that the steps of ``s`` (and of its lashless copy: the same loads and
+        tyres) take, formed once per block and gathered with the rows: they do not depend on the P-Delta terms the
+        fixed point changes, and forming them at every step and start took a tenth of a batch (profiled). The same
+        products as the scalar's :func:`~engine.models.combination._assemble` (jp = jp_free + S jp_cap, k = k_free +
+        S k_cap + kz), ``_rows_of`` (a group's c2 = fac cap_ay, b = fac cap_0) and ``_consistent`` at rest (the
+        groups' lift-off moments cap_rest at ay0), so the same bits."""
+        out = self.take(slice(None))
+        n0, n1, l0, l1, grade = (_row(getattr(self, k)) for k in _ROAD)
+        out.jp_free = -(l1 * s.lat + n1 * s.off)
+        out.jp_cap = n1 * e.capn_dof
+        out.k_free = -(l0 * s.lat + n0 * s.off)
+        out.k_cap = n0 * e.capn_dof + grade * e.capg_dof
+        out.cap_ay = n1 * e.capn
+        out.cap_0 = n0 * e.capn + grade * e.capg
+        out.ay0 = -self.l0 / self.l1  # the scalar's neutral_ay
+        out.cap_rest = _row(self.n0 + self.n1 * out.ay0) * e.capn + grade * e.capg
+        out.fields = (*_ROAD, "jp_free", "jp_cap", "k_free", "k_cap", "cap_ay", "cap_0", "ay0", "cap_rest")
         return out
 
 
@@ -75,19 +102,11 @@ def _row(x: np.ndarray) -> np.ndarray:
     return x[:, None]
 
 
-def _slope(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple) -> np.ndarray:
-    """jp of a regime for every row (the path's direction needs only it)."""
-    S = e.piece(tyre, zone)[1]
-    return -(_row(r.l1) * s.lat + _row(r.n1) * s.off) + S * (_row(r.n1) * e.capn_dof)
-
-
-def _loads(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
-    """jp, k of a regime for every row (the scalar :func:`~engine.models.combination._assemble`, phase 2)."""
+def _loads(e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
+    """jp, k of a regime for every row (the scalar :func:`~engine.models.combination._assemble`, phase 2; ``r`` of
+    the system, :meth:`_Rows.of_system`)."""
     _K, S, kz = e.piece(tyre, zone)
-    capn, capg = e.capn_dof, e.capg_dof
-    jp = _slope(s, e, r, tyre, zone)
-    k = -(_row(r.l0) * s.lat + _row(r.n0) * s.off) + S * (_row(r.n0) * capn + _row(r.grade) * capg) + kz
-    return jp, k
+    return r.jp_free + S * r.jp_cap, r.k_free + S * r.k_cap + kz
 
 
 def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -98,10 +117,11 @@ def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
         raise _Alone from None
 
 
-def _consistent(s: System, e: whole._Elements, r: _Rows, q: np.ndarray, ay: np.ndarray):
-    """The tyre and zone states of each row's q (the scalar ``_consistent``), as (k, T) and (k, Z) arrays."""
+def _consistent(e: whole._Elements, r: _Rows, q: np.ndarray):
+    """The tyre and zone states of each row's q at rest (the scalar ``_consistent`` at ay0), as (k, T) and (k, Z)
+    arrays."""
     m = e.tk * q[:, e.tdof]
-    cap = _row(r.n0 + r.n1 * ay) * e.capn + _row(r.grade) * e.capg
+    cap = r.cap_rest
     tyre = np.where(m > cap, LIFTED, np.where(m < -cap, LIFTED_OUT, LINEAR))
     d = q[:, e.zi] - q[:, e.zj]
     zone = np.where((e.lash <= 0) | (np.abs(d) <= e.lash), BAND, np.where(d > 0, PLUS, MINUS))
@@ -172,13 +192,13 @@ def _definite(J: np.ndarray) -> np.ndarray:
         return np.concatenate([_definite(J[:h]), _definite(J[h:])])
 
 
-def _state(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
-    """The equilibrium of every row in one regime (tyre states then zone states in ``key``) at its ay (the scalar
-    ``_state_at``), or None when a row's equations are singular."""
+def _state(e: whole._Elements, r: _Rows, pd: np.ndarray, key: np.ndarray, T: int):
+    """The equilibrium of every row in one regime (tyre states then zone states in ``key``) at rest (the scalar
+    ``_state_at`` at ay0), or None when a row's equations are singular."""
     tyre, zone = tuple(key[:T].tolist()), tuple(key[T:].tolist())
-    jp, k = _loads(s, e, r, tyre, zone)
+    jp, k = _loads(e, r, tyre, zone)
     try:
-        return _solve(_minus(e.piece(tyre, zone)[0], pd), -(jp * _row(ay) + k))
+        return _solve(_minus(e.piece(tyre, zone)[0], pd), -(jp * _row(r.ay0) + k))
     except _Alone:
         return None
 
@@ -189,16 +209,16 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
     n = s.n
     T, Z = len(s.tyres), len(s.zones)
     el = whole._elements(lashless)
-    ay0 = -r.l0 / r.l1
+    ay0 = r.ay0
     linear_t, band_z = (LINEAR,) * T, (BAND,) * Z
     K0 = el.piece(linear_t, band_z)[0]
     J0 = _minus(K0, pd)
-    jp0, k0 = _loads(lashless, el, r, linear_t, band_z)
+    jp0, k0 = _loads(el, r, linear_t, band_z)
     q0 = _solve(J0, -(jp0 * _row(ay0) + k0))
     k_rows = q0.shape[0]
     ok = np.ones(k_rows, dtype=bool)
     if not np.any(e.lash > 0):
-        tyre, zone = _consistent(s, e, r, q0, ay0)
+        tyre, zone = _consistent(e, r, q0)
         ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
         ok &= _stable(e.piece(linear_t, band_z)[0], pd)
         return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
@@ -231,27 +251,33 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
         rows_p = np.flatnonzero(pending)
         for g, key in enumerate(keys):
             idx = rows_p[inv == g]
-            q = _state(s, e, r.take(idx), pd[idx], ay0[idx], key, T)
+            every = idx.size == k_rows  # every row, in order (the usual case): no copies of the rows' arrays
+            ri, pi = (r, pd) if every else (r.take(idx), pd[idx])
+            q = _state(e, ri, pi, key, T)
             if q is None:
                 pending[idx], ok[idx] = False, False  # the scalar leaves the loop for its minimisation
                 continue
-            tyre, zone = _consistent(s, e, r.take(idx), q, ay0[idx])
+            tyre, zone = _consistent(e, ri, q)
             rg = np.column_stack([tyre, zone])
             same = np.all(rg == key, axis=1)
-            exact = q.copy()
-            for key2 in _distinct(rg[~same])[0]:
-                sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
-                q2 = _state(s, e, r.take(idx[sub]), pd[idx[sub]], ay0[idx[sub]], key2, T)
-                if q2 is None:
-                    exact[sub] = np.nan  # the scalar's settle fails there: next guess
-                else:
-                    exact[sub] = q2
-            t2, z2 = _consistent(s, e, r.take(idx), exact, ay0[idx])
-            settled = np.all(np.isfinite(exact), axis=1) & np.all(np.column_stack([t2, z2]) == rg, axis=1)
+            if same.all():  # every state in its guess's regime: already its exact equilibrium (the scalar's made_in)
+                settled = np.all(np.isfinite(q), axis=1)
+                exact = q
+            else:
+                exact = q.copy()
+                for key2 in _distinct(rg[~same])[0]:
+                    sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
+                    q2 = _state(e, ri.take(sub), pi[sub], key2, T)
+                    if q2 is None:
+                        exact[sub] = np.nan  # the scalar's settle fails there: next guess
+                    else:
+                        exact[sub] = q2
+                t2, z2 = _consistent(e, ri, exact)
+                settled = np.all(np.isfinite(exact), axis=1) & np.all(np.column_stack([t2, z2]) == rg, axis=1)
             for key2 in _distinct(rg[settled])[0]:
                 sub = np.flatnonzero(settled & np.all(rg == key2, axis=1))
                 K = e.piece(tuple(key2[:T].tolist()), tuple(key2[T:].tolist()))[0]
-                settled[sub] &= _stable(K, pd[idx[sub]])
+                settled[sub] &= _stable(K, pi[sub])
             done = idx[settled]
             z0[done, :n] = exact[settled]
             final[done] = rg[settled]
@@ -286,13 +312,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         if rows.size:
             work.append((rows, z0[rows], None, key[0], key[1], None, 0))
     lim = limit is not None
-    # what every step takes of the rows' road, once per trace rather than once per step (the same products as the
-    # scalar's _assemble and _rows_of form, so the same bits): jp's regime-free part and the lifted groups' factor,
-    # and each group's n1 cap and n0 cap + grade cap (its constraint rows' c2 and b)
-    jp_free = -(_row(r.l1) * s.lat + _row(r.n1) * s.off)
-    jp_cap = _row(r.n1) * e.capn_dof
-    cap_ay = _row(r.n1) * e.capn
-    cap_0 = _row(r.n0) * e.capn + _row(r.grade) * e.capg
+    jp_free, jp_cap, cap_ay, cap_0 = r.jp_free, r.jp_cap, r.cap_ay, r.cap_0  # r of the system: of_system
     while work:
         rows, z, prev_d, tyre, zone, last, steps = work.pop()
         if steps >= max_steps:
@@ -409,6 +429,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     """The scalar :func:`~engine.models.combination.solve_unit` of every row: (srt, state at the limit, ok)."""
     e = whole._elements(s)
     lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
+    r = r.of_system(s, e)
     # the P-Delta terms' diagonals (the P at rest of build_systems, on its diagonal: the same products)
     pn, pg = np.diagonal(s.P_normal), np.diagonal(s.P_grade)
     pd0 = _row(r.n0) * pn + _row(r.grade) * pg
@@ -422,7 +443,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
             continue
         rows = active[sel]
         ri = r.take(rows)
-        jp, k = _loads(s, e, ri, tyre, zone)
+        jp, k = _loads(e, ri, tyre, zone)
         K = np.broadcast_to(e.piece(tyre, zone)[0], (rows.size, s.n, s.n))
         pr = peak_row[rows]
         a1[sel] = whole._vertex_fixed_point(

@@ -351,7 +351,9 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         c2[:, :nt] = fac * ca[:, ti]
         b[:, :nt] = fac * c0[:, ti]
         c2[:, nt:], b[:, nt:] = -sg, sb * e.lash[zi]
-        rates = c1 * d[:, i1] + c2 * d[:, i2]
+        # the scalar's c1 x[i1] + c2 x[i2] (+ b), in place: the same operations in the same order, fewer temporaries
+        rates = c1 * d[:, i1]
+        rates += c2 * d[:, i2]
         if last is None:
             w = d[:, :n] @ s.weights
             w = np.where(w == 0.0, d[:, n], w)
@@ -362,21 +364,27 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             rate = rates[:, back[0]] if back.size else np.zeros(m)
             turned = np.einsum("ij,ij->i", prev_d, d) < 0
             flip = np.where(np.abs(rate) > 1e-14, rate < 0, turned)
-        sign = np.where(flip, -1.0, 1.0)
-        d, rates = d * sign[:, None], rates * sign[:, None]
+        sign = np.where(flip, -1.0, 1.0)[:, None]
+        d *= sign
+        rates *= sign
         falling = rates < -1e-15
         ended = ~falling.any(axis=1)
         if ended.any():  # the last piece: a path that still climbs never turns (the scalar's ConvergenceError)
             ok[rows[ended & (d[:, n] > 1e-12)]] = False
-        value = c1 * z[:, i1] + c2 * z[:, i2] + b
-        scale = np.maximum(1.0, np.abs(c1) + np.abs(c2))
+        value = c1 * z[:, i1]
+        value += c2 * z[:, i2]
+        value += b
+        reached = np.abs(c2)  # -TOL scale, scale = max(1, |c1| + |c2|), in place
+        reached += np.abs(c1)
+        np.maximum(reached, 1.0, out=reached)
+        reached *= -TOL
         # the scalar's where(value > -TOL scale, max(value, 0) / -rates, 0), then inf where not falling, in place
         # (x / -r is -(x / r) bit for bit: rounding is symmetric)
         tau = np.maximum(value, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             np.divide(tau, rates, out=tau)
         np.negative(tau, out=tau)
-        np.copyto(tau, 0.0, where=~(value > -TOL * scale))
+        np.copyto(tau, 0.0, where=~(value > reached))
         np.copyto(tau, np.inf, where=~falling)
         which = np.argmin(tau, axis=1)
         step = tau[np.arange(m), which]
@@ -387,8 +395,11 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             z = z.copy()
             z[go] = z[go] + step[go, None] * d[go]
         higher = go & (z[:, n] > best_ay[rows])
-        best_ay[rows[higher]] = z[higher, n]
-        best_z[rows[higher]] = z[higher]
+        if higher.all():  # the usual case before the peak: every row still climbs, no masked copies
+            best_ay[rows], best_z[rows] = z[:, n], z
+        else:
+            best_ay[rows[higher]] = z[higher, n]
+            best_z[rows[higher]] = z[higher]
         if peaks and higher.any():  # only the rest solve's peaks start the fixed point
             pieces.append((tyre, zone))
             h = np.flatnonzero(higher)

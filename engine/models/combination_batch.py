@@ -133,7 +133,8 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     coded as one integer in base 3 (np.unique over rows sorts them as records: most of a start's time, profiled)."""
     if not states.shape[0]:
         return states[:0], np.zeros(0, dtype=int)
-    code = ((states + 1).astype(np.int64) * 3 ** np.arange(states.shape[1], dtype=np.int64)).sum(axis=1)
+    # (an integer matmul: a sum over axis 1 of rows this short took a dozen times as long, measured)
+    code = (states + 1).astype(np.int64) @ 3 ** np.arange(states.shape[1], dtype=np.int64)
     if np.all(code == code[0]):  # the usual case: every row in the same regime
         return states[:1], np.zeros(states.shape[0], dtype=int)
     _values, first, inverse = np.unique(code, return_index=True, return_inverse=True)
@@ -294,10 +295,15 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
            peaks: bool = True):  # fmt: skip
     """The scalar ``_trace`` from each row's start, rows in lockstep while their regimes agree. Returns (the largest
     ay on each row's path, the state there (k, n+1), ok, and with ``peaks`` the piece and event of each row's peak:
-    the fixed point's start, which the solves at the limit's normal factor need not keep)."""
+    the fixed point's start, which the solves at the limit's normal factor need not keep).
+
+    The constraint rows are held constraint by row, (c, m), and the states DOF by row, (n+1, m): the regime's
+    coefficients then broadcast along the rows' long axis and the gathers take whole rows (on (m, c) arrays, c some
+    ten, each broadcast or gathered operation took three to four times as long, measured). Every value is the same
+    elementwise operation as before, so the same bits; the reductions over the constraints only compare."""
     n = s.n
     best_ay = z0[:, n].copy()
-    best_z = z0.copy()
+    best_zT = np.ascontiguousarray(z0.T)
     # the piece and event of each row's peak vertex (the scalar's Newton start on a bank): its regime's index in
     # ``pieces`` (-1: the peak is the start), and the event's constraint (c1, c2, b, i1, i2)
     pieces: list = []
@@ -305,24 +311,26 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
     peak_row = np.zeros((z0.shape[0], 5))
     ok = ok.copy()
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
-    # a group: (rows, z, prev_d, tyre, zone, last, steps)
+    # a group: (rows, its states (n+1, m), prev_d (m, n+1), tyre, zone, last, steps)
     work = []
     for g, key in enumerate(regimes):
         rows = np.flatnonzero(ok & (start_of == g))
         if rows.size:
-            work.append((rows, z0[rows], None, key[0], key[1], None, 0))
+            work.append((rows, np.ascontiguousarray(z0[rows].T), None, key[0], key[1], None, 0))
     lim = limit is not None
-    jp_free, jp_cap, cap_ay, cap_0 = r.jp_free, r.jp_cap, r.cap_ay, r.cap_0  # r of the system: of_system
+    jp_free, jp_cap = r.jp_free, r.jp_cap  # r of the system: of_system
+    cap_ayT, cap_0T = np.ascontiguousarray(r.cap_ay.T), np.ascontiguousarray(r.cap_0.T)
     while work:
-        rows, z, prev_d, tyre, zone, last, steps = work.pop()
+        rows, zT, prev_d, tyre, zone, last, steps = work.pop()
         if steps >= max_steps:
             ok[rows] = False
             continue
         whole_set = rows.size == pd.shape[0]  # every row, in order: no copies of the rows' arrays
         if whole_set:
-            jf, jc, ca, c0, pr = jp_free, jp_cap, cap_ay, cap_0, pd
+            jf, jc, caT, c0T, pr = jp_free, jp_cap, cap_ayT, cap_0T, pd
         else:
-            jf, jc, ca, c0, pr = jp_free[rows], jp_cap[rows], cap_ay[rows], cap_0[rows], pd[rows]
+            jf, jc, pr = jp_free[rows], jp_cap[rows], pd[rows]
+            caT, c0T = np.take(cap_ayT, rows, axis=1), np.take(cap_0T, rows, axis=1)
         K, S, _kz = e.piece(tyre, zone)
         jp = jf + S * jc
         try:
@@ -333,7 +341,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         fine = np.einsum("ij,ij->i", dq, dq) < 1e24  # the scalar's test: finite and |dq| < 1e12
         if not fine.all():  # the scalar takes an SVD there: left to it
             ok[rows[~fine]] = False
-            rows, z, dq, ca, c0 = rows[fine], z[fine], dq[fine], ca[fine], c0[fine]
+            rows, zT, dq, caT, c0T = rows[fine], zT[:, fine], dq[fine], caT[:, fine], c0T[:, fine]
             prev_d = None if prev_d is None else prev_d[fine]
             if not rows.size:
                 continue
@@ -346,14 +354,12 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         # the row's on its tyre rows (filled in place: concatenating broadcast copies took a tenth of a step)
         nt = ti.size
         c1 = np.concatenate([sk * e.tk[ti], sg])
-        c2, b = np.empty((m, c1.size)), np.empty((m, c1.size))
-        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
-        c2[:, :nt] = fac * ca[:, ti]
-        b[:, :nt] = fac * c0[:, ti]
-        c2[:, nt:], b[:, nt:] = -sg, sb * e.lash[zi]
-        # the scalar's c1 x[i1] + c2 x[i2] (+ b), in place: the same operations in the same order, fewer temporaries
-        rates = c1 * d[:, i1]
-        rates += c2 * d[:, i2]
+        c1c = c1[:, None]
+        c2T, bT = np.empty((c1.size, m)), np.empty((c1.size, m))
+        fac = np.where(sf[:, None] == 0.0, limit[rows][None, :] if lim else 0.0, sf[:, None])
+        c2T[:nt] = fac * caT[ti]
+        bT[:nt] = fac * c0T[ti]
+        c2T[nt:], bT[nt:] = -sg[:, None], (sb * e.lash[zi])[:, None]
         if last is None:
             w = d[:, :n] @ s.weights
             w = np.where(w == 0.0, d[:, n], w)
@@ -361,21 +367,28 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         else:
             kc, idx, previous = last
             back = np.flatnonzero((ends[:, 0] == kc) & (ends[:, 1] == idx) & (ends[:, 2] == previous))
-            rate = rates[:, back[0]] if back.size else np.zeros(m)
+            if back.size:  # the rate of the constraint just crossed (the scalar's rates[back]: the same operations)
+                j = back[0]
+                rate = c1[j] * d[:, i1[j]] + c2T[j] * d[:, i2[j]]
+            else:
+                rate = np.zeros(m)
             turned = np.einsum("ij,ij->i", prev_d, d) < 0
             flip = np.where(np.abs(rate) > 1e-14, rate < 0, turned)
-        sign = np.where(flip, -1.0, 1.0)[:, None]
-        d *= sign
-        rates *= sign
+        d *= np.where(flip, -1.0, 1.0)[:, None]
+        dT = np.ascontiguousarray(d.T)
+        # the scalar's c1 x[i1] + c2 x[i2] (+ b), in place: the same operations in the same order, fewer temporaries
+        # (on the oriented direction: -(c1 x + c2 y) is c1 (-x) + c2 (-y) bit for bit)
+        rates = c1c * dT[i1]
+        rates += c2T * dT[i2]
         falling = rates < -1e-15
-        ended = ~falling.any(axis=1)
+        ended = ~falling.any(axis=0)
         if ended.any():  # the last piece: a path that still climbs never turns (the scalar's ConvergenceError)
-            ok[rows[ended & (d[:, n] > 1e-12)]] = False
-        value = c1 * z[:, i1]
-        value += c2 * z[:, i2]
-        value += b
-        reached = np.abs(c2)  # -TOL scale, scale = max(1, |c1| + |c2|), in place
-        reached += np.abs(c1)
+            ok[rows[ended & (dT[n] > 1e-12)]] = False
+        value = c1c * zT[i1]
+        value += c2T * zT[i2]
+        value += bT
+        reached = np.abs(c2T)  # -TOL scale, scale = max(1, |c1| + |c2|), in place
+        reached += np.abs(c1c)
         np.maximum(reached, 1.0, out=reached)
         reached *= -TOL
         # the scalar's where(value > -TOL scale, max(value, 0) / -rates, 0), then inf where not falling, in place
@@ -386,26 +399,29 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         np.negative(tau, out=tau)
         np.copyto(tau, 0.0, where=~(value > reached))
         np.copyto(tau, np.inf, where=~falling)
-        which = np.argmin(tau, axis=1)
-        step = tau[np.arange(m), which]
+        # the scalar's argmin: the first constraint at the least tau (tau holds no nan: a nan value gives 0 above)
+        step = tau.min(axis=0)
+        which = np.zeros(m, dtype=np.intp)
+        for j in range(c1.size - 1, -1, -1):
+            which[tau[j] == step] = j
         go = ~ended
         if go.all():
-            z = z + step[:, None] * d
+            zT = zT + step * dT
         else:
-            z = z.copy()
-            z[go] = z[go] + step[go, None] * d[go]
-        higher = go & (z[:, n] > best_ay[rows])
+            zT = zT.copy()
+            zT[:, go] = zT[:, go] + step[go] * dT[:, go]
+        higher = go & (zT[n] > best_ay[rows])
         if higher.all():  # the usual case before the peak: every row still climbs, no masked copies
-            best_ay[rows], best_z[rows] = z[:, n], z
+            best_ay[rows], best_zT[:, rows] = zT[n], zT
         else:
-            best_ay[rows[higher]] = z[higher, n]
-            best_z[rows[higher]] = z[higher]
+            best_ay[rows[higher]] = zT[n, higher]
+            best_zT[:, rows[higher]] = zT[:, higher]
         if peaks and higher.any():  # only the rest solve's peaks start the fixed point
             pieces.append((tyre, zone))
             h = np.flatnonzero(higher)
             w = which[h]
             peak_piece[rows[h]] = len(pieces) - 1
-            peak_row[rows[h]] = np.column_stack([c1[w], c2[h, w], b[h, w], i1[w], i2[w]])
+            peak_row[rows[h]] = np.column_stack([c1[w], c2T[w, h], bT[w, h], i1[w], i2[w]])
         events = np.flatnonzero(np.bincount(which[go], minlength=c1.size))
         for row in events:
             kc, idx, state = (int(x) for x in ends[row])
@@ -420,11 +436,11 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
                 previous = zone[idx]
                 new_t, new_z = tyre, (*zone[:idx], state, *zone[idx + 1 :])
             if events.size == 1 and go.all():  # the usual case: every row meets the same event, no copies
-                work.append((rows, z, d, new_t, new_z, (kc, idx, previous), steps + 1))
+                work.append((rows, zT, d, new_t, new_z, (kc, idx, previous), steps + 1))
             else:
                 sel = go & (which == row)
-                work.append((rows[sel], z[sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
-    return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
+                work.append((rows[sel], zT[:, sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
+    return best_ay, np.ascontiguousarray(best_zT.T), ok, (pieces, peak_piece, peak_row)
 
 
 def _solve_at(s, e, lashless, r, pd, limit, peaks=True):

@@ -748,7 +748,6 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
     M[rows, n, ii[:, 0]] += c[:, 0]
     M[rows, n, ii[:, 1]] += c[:, 1]
     rhs = np.concatenate([-k, -b[:, None]], axis=1)
-    diag = np.arange(n)
     kd = np.diagonal(K, axis1=1, axis2=2)
     # a row stops at its own last step, whatever the others do: each step solves the rows still moving only (a row's
     # arithmetic is its own, so its bits do not depend on which rows share the call)
@@ -757,10 +756,15 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
     act = rows
     for _ in range(8):
         aa = a[act]
-        Ma = M[act]
-        Ma[:, diag, diag] = kd[act] - ((n0[act] + n1[act] * aa)[:, None] * pn + grade[act][:, None] * pg)
+        # while every row still moves (the first steps) M itself takes the new diagonal, not a gathered copy: only
+        # the rows' own entries change, and each step writes them before it solves
+        every = act.size == m
+        Ma = M if every else M[act]
+        Ma.reshape(act.size, -1)[:, :: n + 2][:, :n] = kd[act] - (
+            (n0[act] + n1[act] * aa)[:, None] * pn + grade[act][:, None] * pg
+        )  # K's diagonal as a strided slice, not a fancy index
         try:
-            z = np.linalg.solve(Ma, rhs[act][..., None])[..., 0]
+            z = np.linalg.solve(Ma, (rhs if every else rhs[act])[..., None])[..., 0]
             dz = np.linalg.solve(Ma, np.concatenate([pn * z[:, :n], np.zeros((act.size, 1))], axis=1)[..., None])
         except np.linalg.LinAlgError:
             break

@@ -477,10 +477,18 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
             K, jp, k, pr[:, :2], pr[:, 2], pr[:, 3:].astype(int), s.P_normal, s.P_grade, ri.n0, ri.n1, ri.grade,
             srt[rows],
         )  # fmt: skip
+    if active.size and ok.all() and active.size < ok.size:
+        # the rows on no bank join the fixed point's first solve, at their own SRT: there the normal factor is n0 +
+        # 0 ay = n0, the rest solve's P, so that solve gives their bits back and they settle at once (g1 = 0, the
+        # scalar's answer for them); it spares gathering every array of the block for the banked rows (profiled: a
+        # few % of a batch). Not in the Newton start above: a singular vertex there stops the steps of its whole call
+        every = srt.copy()
+        every[active] = a1
+        a0, g0, a1, active = np.zeros(ok.size), srt.copy(), every, np.arange(ok.size)
     for _ in range(30):
         if not active.size:
             break
-        ra = r.take(active)
+        ra = r if active.size == ok.size else r.take(active)
         normal = ra.n0 + ra.n1 * a1
         pd = _row(normal) * pn + _row(ra.grade) * pg
         got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, pd, None if limit is None else limit[active], False)

@@ -242,7 +242,8 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
     z0 = np.zeros((k_rows, n + 1))
     z0[:, n] = ay0
     # the scalar's guesses in turn: a row whose guess does not settle takes the regime its state lies in as the next
-    state = np.column_stack([np.full((k_rows, T), LINEAR), guess]).astype(int)
+    state = np.full((k_rows, T + Z), LINEAR)
+    state[:, T:] = guess
     final = np.zeros((k_rows, T + Z), dtype=int)
     pending = np.ones(k_rows, dtype=bool)
     for _ in range(Z + 2):
@@ -264,6 +265,12 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
             if same.all():  # every state in its guess's regime: already its exact equilibrium (the scalar's made_in)
                 settled = np.all(np.isfinite(q), axis=1)
                 exact = q
+                if settled.all():  # the usual case: the rows settle in their one regime if they are stable in it
+                    K = e.piece(tuple(key[:T].tolist()), tuple(key[T:].tolist()))[0]
+                    settled = _stable(K, pi)
+                    if settled.all():
+                        z0[idx, :n], final[idx], pending[idx] = q, key, False
+                        continue
             else:
                 exact = q.copy()
                 for key2 in _distinct(rg[~same])[0]:

@@ -5,10 +5,15 @@ cases). Solved one by one each case costs a whole path of small numpy calls (abo
 all rows are followed in lockstep while their regimes agree (one vehicle's event sequences over different roads are
 mostly the same), a group splitting where its rows meet different events. The arithmetic is the scalar solve's, row
 by row (:func:`engine.models.combination._assemble`, :meth:`engine.models.combination._Elements.table`, the same
-start, the same secant on the normal factor of a bank), so a row's answer is the scalar one to rounding
-(``tests/engine/test_combination_batch.py``). A row whose path leaves what the lockstep handles (a start that needs
-the scalar's further guesses or its minimisation, a singular piece, a path that does not turn, a fixed point that
-does not settle) is solved alone by :func:`engine.models.combination.solve_combination`: nan if that fails.
+start, the same secant on the normal factor of a bank), so a row's answer is the scalar one bit for bit (what
+``tests/engine/test_combination_batch.py`` asserts). A row whose path leaves what the lockstep handles (a start that
+needs the scalar's further guesses or its minimisation, a singular piece, a path that does not turn, a fixed point
+that does not settle) is solved alone by :func:`engine.models.combination.solve_combination`: nan if that fails.
+
+Giving the scalar's bits means making the scalar's own LAPACK solves, one gesv per solve and row: every row's J = K
+- P has its own P (the row's normal factor and grade), and gesv with two right-hand sides gives other last bits than
+two with one (measured), so no factor is shared. They are half or more of a batch's time, the floor under the
+lockstep's own work (``bench/bench_combination.py`` prints both).
 """
 
 from __future__ import annotations

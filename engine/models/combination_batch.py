@@ -172,10 +172,11 @@ def _all_definite(K: np.ndarray, pd: np.ndarray) -> bool:
     factors took a tenth of a batch, profiled). False leaves the rows to the factors.
 
     P is diagonal, so every row's J is ``W + diag(J_ii - w_i) >= W`` with W = K whose diagonal is the rows' least
-    ``w_i = min J_ii``: lambda_min(J) >= lambda_min(W) (Weyl). Cholesky runs to completion when lambda_min of
-    ``D^-1/2 J D^-1/2`` (D = diag(J)) exceeds ``n gamma_(n+1)``, some 1e-13 here (Higham, *Accuracy and Stability of
-    Numerical Algorithms*, 2nd ed., Thm 10.7), which ``lambda_min(J) / max J_ii`` bounds from below; the margin asked
-    here, 1e-9, also covers eigvalsh's own error (a few eps ||W||)."""
+    ``w_i = min J_ii``: lambda_min(J) >= lambda_min(W) (Weyl). Cholesky runs to completion when ``n gamma_(n+1)
+    kappa_2(H) < 1`` for ``H = D^-1/2 J D^-1/2``, D = diag(J) (Higham, *Accuracy and Stability of Numerical
+    Algorithms*, 2nd ed., Thm 10.7); H has a unit diagonal, so lambda_max(H) <= n and lambda_min(H) > n^2 gamma_(n+1)
+    (some 1e-12 for 30 DOFs) is enough, and ``lambda_min(J) / max J_ii`` bounds lambda_min(H) from below. The margin
+    asked, 1e-9, is far above that, and the 1e-12 ||W||_F taken off covers eigvalsh's own error (a few eps ||W||)."""
     n = K.shape[0]
     diag = np.arange(n)
     d = K[diag, diag] - pd  # the rows' J_ii, as K - P forms them

@@ -147,3 +147,27 @@ def _cholesky_exists(J) -> bool:
     except np.linalg.LinAlgError:
         return False
     return True
+
+
+def test_a_singular_vertex_stops_its_own_newton_steps_only():
+    # the batch's Newton start on many rows must give each row what it gives the row alone (the scalar's call): a
+    # row whose vertex system is singular stops where it is, and the others go on
+    rng = np.random.default_rng(0)
+    m, n = 6, 4
+    A = rng.standard_normal((m, n, n))
+    K = A @ A.transpose(0, 2, 1) + 5.0 * np.eye(n)
+    jp, k = rng.standard_normal((m, n)), rng.standard_normal((m, n))
+    c, b = rng.standard_normal((m, 2)), rng.standard_normal(m)
+    c[2] = 0.0  # row 2's constraint row is zero: its system is singular
+    ii = np.tile([1, n], (m, 1))
+    Pn, Pg = np.diag(rng.uniform(0.0, 1.0, n)), np.diag(rng.uniform(0.0, 0.1, n))
+    n0, n1, grade = rng.uniform(0.9, 1.0, m), rng.uniform(0.0, 0.1, m), rng.uniform(-0.05, 0.05, m)
+    a = rng.uniform(0.3, 0.5, m)
+    many = whole._vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a)
+    for i in range(m):
+        one = whole._vertex_fixed_point(
+            K[i : i + 1], jp[i : i + 1], k[i : i + 1], c[i : i + 1], b[i : i + 1], ii[i : i + 1], Pn, Pg, n0[i],
+            n1[i], grade[i], a[i],
+        )  # fmt: skip
+        assert many[i] == one[0], i
+    assert many[2] == a[2]  # the singular row did not move

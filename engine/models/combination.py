@@ -748,7 +748,6 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
     M[rows, n, ii[:, 0]] += c[:, 0]
     M[rows, n, ii[:, 1]] += c[:, 1]
     rhs = np.concatenate([-k, -b[:, None]], axis=1)
-    diag = np.arange(n)
     kd = np.diagonal(K, axis1=1, axis2=2)
     # a row stops at its own last step, whatever the others do: each step solves the rows still moving only (a row's
     # arithmetic is its own, so its bits do not depend on which rows share the call)
@@ -757,13 +756,24 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
     act = rows
     for _ in range(8):
         aa = a[act]
-        Ma = M[act]
-        Ma[:, diag, diag] = kd[act] - ((n0[act] + n1[act] * aa)[:, None] * pn + grade[act][:, None] * pg)
-        try:
-            z = np.linalg.solve(Ma, rhs[act][..., None])[..., 0]
-            dz = np.linalg.solve(Ma, np.concatenate([pn * z[:, :n], np.zeros((act.size, 1))], axis=1)[..., None])
-        except np.linalg.LinAlgError:
+        # while every row still moves (the first steps) M itself takes the new diagonal, not a gathered copy: only
+        # the rows' own entries change, and each step writes them before it solves
+        every = act.size == m
+        Ma = M if every else M[act]
+        Ma.reshape(act.size, -1)[:, :: n + 2][:, :n] = kd[act] - (
+            (n0[act] + n1[act] * aa)[:, None] * pn + grade[act][:, None] * pg
+        )  # K's diagonal as a strided slice, not a fancy index
+        # a row whose system is singular stops where it is, as the scalar's does (its break); the others go on (the
+        # stacked call fails whole: one singular row stopped every row of the call at its start)
+        z, solved = _solve_rows(Ma, (rhs if every else rhs[act])[..., None])
+        if not solved.all():
+            act, aa, Ma, z = act[solved], aa[solved], Ma[solved], z[solved]
+        dz, solved = _solve_rows(Ma, np.concatenate([pn * z[:, :n, 0], np.zeros((act.size, 1))], axis=1)[..., None])
+        if not solved.all():
+            act, aa, z, dz = act[solved], aa[solved], z[solved], dz[solved]
+        if not act.size:
             break
+        z = z[..., 0]
         with np.errstate(divide="ignore", invalid="ignore"):
             step = (z[:, n] - aa) / (dz[:, n, 0] * n1[act] - 1.0)
         step = np.where(np.isfinite(step), step, 0.0)
@@ -772,6 +782,20 @@ def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
         if not act.size:
             break
     return a
+
+
+def _solve_rows(M: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """np.linalg.solve of stacked systems and which it solved: a singular one (LAPACK's exact zero pivot) fails
+    alone, found by halves (the stacked call fails whole); each system's solution is the bits it has solved alone."""
+    try:
+        return np.linalg.solve(M, b), np.ones(M.shape[0], dtype=bool)
+    except np.linalg.LinAlgError:
+        if M.shape[0] == 1:
+            return np.full(b.shape, np.nan), np.zeros(1, dtype=bool)
+        h = M.shape[0] // 2
+        x1, ok1 = _solve_rows(M[:h], b[:h])
+        x2, ok2 = _solve_rows(M[h:], b[h:])
+        return np.concatenate([x1, x2]), np.concatenate([ok1, ok2])
 
 
 def _vertex_newton(M, kd, rhs, pn, pg, n0: float, n1: float, grade: float, a: float) -> np.ndarray:

@@ -5,10 +5,15 @@ cases). Solved one by one each case costs a whole path of small numpy calls (abo
 all rows are followed in lockstep while their regimes agree (one vehicle's event sequences over different roads are
 mostly the same), a group splitting where its rows meet different events. The arithmetic is the scalar solve's, row
 by row (:func:`engine.models.combination._assemble`, :meth:`engine.models.combination._Elements.table`, the same
-start, the same secant on the normal factor of a bank), so a row's answer is the scalar one to rounding
-(``tests/engine/test_combination_batch.py``). A row whose path leaves what the lockstep handles (a start that needs
-the scalar's further guesses or its minimisation, a singular piece, a path that does not turn, a fixed point that
-does not settle) is solved alone by :func:`engine.models.combination.solve_combination`: nan if that fails.
+start, the same secant on the normal factor of a bank), so a row's answer is the scalar one bit for bit (what
+``tests/engine/test_combination_batch.py`` asserts). A row whose path leaves what the lockstep handles (a start that
+needs the scalar's further guesses or its minimisation, a singular piece, a path that does not turn, a fixed point
+that does not settle) is solved alone by :func:`engine.models.combination.solve_combination`: nan if that fails.
+
+Giving the scalar's bits means making the scalar's own LAPACK solves, one gesv per solve and row: every row's J = K
+- P has its own P (the row's normal factor and grade), and gesv with two right-hand sides gives other last bits than
+two with one (measured), so no factor is shared. They are half or more of a batch's time, the floor under the
+lockstep's own work (``bench/bench_combination.py`` prints both).
 """
 
 from __future__ import annotations
@@ -43,8 +48,14 @@ class _Alone(Exception):
     """A row the lockstep leaves to the scalar solve."""
 
 
+_ROAD = ("n0", "n1", "l0", "l1", "grade")
+
+
 class _Rows:
-    """The road factors of some rows (arrays), each of shape (k,)."""
+    """The road factors of some rows (arrays), each of shape (k,), and with :meth:`of_system` what a system's steps
+    take of them."""
+
+    fields = _ROAD
 
     def __init__(self, bank_percent: np.ndarray, slope_percent: np.ndarray):
         # the scalar's RoadFactors.of row by row: numpy's vectorised sin/cos/atan may differ from libm's in the last
@@ -57,8 +68,29 @@ class _Rows:
 
     def take(self, idx: np.ndarray) -> _Rows:
         out = object.__new__(_Rows)
-        for k in ("n0", "n1", "l0", "l1", "grade"):
+        out.fields = self.fields
+        for k in self.fields:
             setattr(out, k, getattr(self, k)[idx])
+        return out
+
+    def of_system(self, s: System, e: whole._Elements) -> _Rows:
+        """These rows with the road's products that the steps of ``s`` (and of its lashless copy: the same loads and
+        tyres) take, formed once per block and gathered with the rows: they do not depend on the P-Delta terms the
+        fixed point changes, and forming them at every step and start took a tenth of a batch (profiled). The same
+        products as the scalar's :func:`~engine.models.combination._assemble` (jp = jp_free + S jp_cap, k = k_free +
+        S k_cap + kz), ``_rows_of`` (a group's c2 = fac cap_ay, b = fac cap_0) and ``_consistent`` at rest (the
+        groups' lift-off moments cap_rest at ay0), so the same bits."""
+        out = self.take(slice(None))
+        n0, n1, l0, l1, grade = (_row(getattr(self, k)) for k in _ROAD)
+        out.jp_free = -(l1 * s.lat + n1 * s.off)
+        out.jp_cap = n1 * e.capn_dof
+        out.k_free = -(l0 * s.lat + n0 * s.off)
+        out.k_cap = n0 * e.capn_dof + grade * e.capg_dof
+        out.cap_ay = n1 * e.capn
+        out.cap_0 = n0 * e.capn + grade * e.capg
+        out.ay0 = -self.l0 / self.l1  # the scalar's neutral_ay
+        out.cap_rest = _row(self.n0 + self.n1 * out.ay0) * e.capn + grade * e.capg
+        out.fields = (*_ROAD, "jp_free", "jp_cap", "k_free", "k_cap", "cap_ay", "cap_0", "ay0", "cap_rest")
         return out
 
 
@@ -75,19 +107,11 @@ def _row(x: np.ndarray) -> np.ndarray:
     return x[:, None]
 
 
-def _slope(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple) -> np.ndarray:
-    """jp of a regime for every row (the path's direction needs only it)."""
-    S = e.piece(tyre, zone)[1]
-    return -(_row(r.l1) * s.lat + _row(r.n1) * s.off) + S * (_row(r.n1) * e.capn_dof)
-
-
-def _loads(s: System, e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
-    """jp, k of a regime for every row (the scalar :func:`~engine.models.combination._assemble`, phase 2)."""
+def _loads(e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
+    """jp, k of a regime for every row (the scalar :func:`~engine.models.combination._assemble`, phase 2; ``r`` of
+    the system, :meth:`_Rows.of_system`)."""
     _K, S, kz = e.piece(tyre, zone)
-    capn, capg = e.capn_dof, e.capg_dof
-    jp = _slope(s, e, r, tyre, zone)
-    k = -(_row(r.l0) * s.lat + _row(r.n0) * s.off) + S * (_row(r.n0) * capn + _row(r.grade) * capg) + kz
-    return jp, k
+    return r.jp_free + S * r.jp_cap, r.k_free + S * r.k_cap + kz
 
 
 def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -98,10 +122,11 @@ def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
         raise _Alone from None
 
 
-def _consistent(s: System, e: whole._Elements, r: _Rows, q: np.ndarray, ay: np.ndarray):
-    """The tyre and zone states of each row's q (the scalar ``_consistent``), as (k, T) and (k, Z) arrays."""
+def _consistent(e: whole._Elements, r: _Rows, q: np.ndarray):
+    """The tyre and zone states of each row's q at rest (the scalar ``_consistent`` at ay0), as (k, T) and (k, Z)
+    arrays."""
     m = e.tk * q[:, e.tdof]
-    cap = _row(r.n0 + r.n1 * ay) * e.capn + _row(r.grade) * e.capg
+    cap = r.cap_rest
     tyre = np.where(m > cap, LIFTED, np.where(m < -cap, LIFTED_OUT, LINEAR))
     d = q[:, e.zi] - q[:, e.zj]
     zone = np.where((e.lash <= 0) | (np.abs(d) <= e.lash), BAND, np.where(d > 0, PLUS, MINUS))
@@ -113,17 +138,54 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     coded as one integer in base 3 (np.unique over rows sorts them as records: most of a start's time, profiled)."""
     if not states.shape[0]:
         return states[:0], np.zeros(0, dtype=int)
-    code = ((states + 1).astype(np.int64) * 3 ** np.arange(states.shape[1], dtype=np.int64)).sum(axis=1)
+    # (an integer matmul: a sum over axis 1 of rows this short took a dozen times as long, measured)
+    code = (states + 1).astype(np.int64) @ 3 ** np.arange(states.shape[1], dtype=np.int64)
     if np.all(code == code[0]):  # the usual case: every row in the same regime
         return states[:1], np.zeros(states.shape[0], dtype=int)
     _values, first, inverse = np.unique(code, return_index=True, return_inverse=True)
     return states[first], inverse.reshape(-1)
 
 
-def _stable(K: np.ndarray, P: np.ndarray) -> np.ndarray:
+def _minus(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
+    """Each row's J = K - P, the rows' P-Delta terms given by their diagonals ``pd`` (k, n) (P_normal and P_grade
+    are diagonal): K's off-diagonal entries, which less P's zeros are the same bits (K holds no -0.0), and K_ii -
+    P_ii. Built from K and the diagonals rather than from stacked (k, n, n) P's: forming and gathering those took
+    more of a step than its arithmetic."""
+    n = K.shape[0]
+    J = np.empty((pd.shape[0], n, n))
+    J[:] = K
+    J.reshape(-1, n * n)[:, :: n + 1] = np.diagonal(K) - pd  # the diagonal as a strided slice, not a fancy index
+    return J
+
+
+def _stable(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
     """Each row's J = K - P positive definite: the scalar's test (its Cholesky factor exists), row by row."""
     # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
-    return _definite(K - P)
+    if pd.shape[0] > 1 and _all_definite(K, pd):
+        return np.ones(pd.shape[0], dtype=bool)
+    return _definite(_minus(K, pd))
+
+
+def _all_definite(K: np.ndarray, pd: np.ndarray) -> bool:
+    """True when every row's J = K - P is so clearly positive definite that its Cholesky factor exists in floating
+    point (the scalar's test succeeds): one eigenvalue bound for all the rows instead of a factor per row (the
+    factors took a tenth of a batch, profiled). False leaves the rows to the factors.
+
+    P is diagonal, so every row's J is ``W + diag(J_ii - w_i) >= W`` with W = K whose diagonal is the rows' least
+    ``w_i = min J_ii``: lambda_min(J) >= lambda_min(W) (Weyl). Cholesky runs to completion when ``n gamma_(n+1)
+    kappa_2(H) < 1`` for ``H = D^-1/2 J D^-1/2``, D = diag(J) (Higham, *Accuracy and Stability of Numerical
+    Algorithms*, 2nd ed., Thm 10.7); H has a unit diagonal, so lambda_max(H) <= n and lambda_min(H) > n^2 gamma_(n+1)
+    (some 1e-12 for 30 DOFs) is enough, and ``lambda_min(J) / max J_ii`` bounds lambda_min(H) from below. The margin
+    asked, 1e-9, is far above that, and the 1e-12 ||W||_F taken off covers eigvalsh's own error (a few eps ||W||)."""
+    n = K.shape[0]
+    diag = np.arange(n)
+    d = K[diag, diag] - pd  # the rows' J_ii, as K - P forms them
+    if not np.isfinite(d).all():
+        return False
+    W = K.copy()
+    W[diag, diag] = d.min(axis=0)
+    lam = np.linalg.eigvalsh(W)[0]
+    return bool(lam - 1e-12 * np.linalg.norm(W) > 1e-9 * np.abs(d).max())
 
 
 def _definite(J: np.ndarray) -> np.ndarray:
@@ -137,35 +199,35 @@ def _definite(J: np.ndarray) -> np.ndarray:
         return np.concatenate([_definite(J[:h]), _definite(J[h:])])
 
 
-def _state(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, ay: np.ndarray, key: np.ndarray, T: int):
-    """The equilibrium of every row in one regime (tyre states then zone states in ``key``) at its ay (the scalar
-    ``_state_at``), or None when a row's equations are singular."""
+def _state(e: whole._Elements, r: _Rows, pd: np.ndarray, key: np.ndarray, T: int):
+    """The equilibrium of every row in one regime (tyre states then zone states in ``key``) at rest (the scalar
+    ``_state_at`` at ay0), or None when a row's equations are singular."""
     tyre, zone = tuple(key[:T].tolist()), tuple(key[T:].tolist())
-    jp, k = _loads(s, e, r, tyre, zone)
+    jp, k = _loads(e, r, tyre, zone)
     try:
-        return _solve(e.piece(tyre, zone)[0] - P, -(jp * _row(ay) + k))
+        return _solve(_minus(e.piece(tyre, zone)[0], pd), -(jp * _row(r.ay0) + k))
     except _Alone:
         return None
 
 
-def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndarray):
+def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.ndarray):
     """The scalar ``_start`` for rows whose first guess settles: (z0 (k, n+1), the distinct starting regimes (tyre,
     zone tuples), each row's index among them, ok)."""
     n = s.n
     T, Z = len(s.tyres), len(s.zones)
     el = whole._elements(lashless)
-    ay0 = -r.l0 / r.l1
+    ay0 = r.ay0
     linear_t, band_z = (LINEAR,) * T, (BAND,) * Z
     K0 = el.piece(linear_t, band_z)[0]
-    J0 = K0 - P
-    jp0, k0 = _loads(lashless, el, r, linear_t, band_z)
+    J0 = _minus(K0, pd)
+    jp0, k0 = _loads(el, r, linear_t, band_z)
     q0 = _solve(J0, -(jp0 * _row(ay0) + k0))
     k_rows = q0.shape[0]
     ok = np.ones(k_rows, dtype=bool)
     if not np.any(e.lash > 0):
-        tyre, zone = _consistent(s, e, r, q0, ay0)
+        tyre, zone = _consistent(e, r, q0)
         ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
-        ok &= _stable(e.piece(linear_t, band_z)[0], P)
+        ok &= _stable(e.piece(linear_t, band_z)[0], pd)
         return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
     d = q0[:, e.zi] - q0[:, e.zj]
     coupling = np.array([z.kind == "coupling" for z in s.zones])
@@ -186,7 +248,8 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     z0 = np.zeros((k_rows, n + 1))
     z0[:, n] = ay0
     # the scalar's guesses in turn: a row whose guess does not settle takes the regime its state lies in as the next
-    state = np.column_stack([np.full((k_rows, T), LINEAR), guess]).astype(int)
+    state = np.full((k_rows, T + Z), LINEAR)
+    state[:, T:] = guess
     final = np.zeros((k_rows, T + Z), dtype=int)
     pending = np.ones(k_rows, dtype=bool)
     for _ in range(Z + 2):
@@ -196,27 +259,39 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
         rows_p = np.flatnonzero(pending)
         for g, key in enumerate(keys):
             idx = rows_p[inv == g]
-            q = _state(s, e, r.take(idx), P[idx], ay0[idx], key, T)
+            every = idx.size == k_rows  # every row, in order (the usual case): no copies of the rows' arrays
+            ri, pi = (r, pd) if every else (r.take(idx), pd[idx])
+            q = _state(e, ri, pi, key, T)
             if q is None:
                 pending[idx], ok[idx] = False, False  # the scalar leaves the loop for its minimisation
                 continue
-            tyre, zone = _consistent(s, e, r.take(idx), q, ay0[idx])
+            tyre, zone = _consistent(e, ri, q)
             rg = np.column_stack([tyre, zone])
             same = np.all(rg == key, axis=1)
-            exact = q.copy()
-            for key2 in _distinct(rg[~same])[0]:
-                sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
-                q2 = _state(s, e, r.take(idx[sub]), P[idx[sub]], ay0[idx[sub]], key2, T)
-                if q2 is None:
-                    exact[sub] = np.nan  # the scalar's settle fails there: next guess
-                else:
-                    exact[sub] = q2
-            t2, z2 = _consistent(s, e, r.take(idx), exact, ay0[idx])
-            settled = np.all(np.isfinite(exact), axis=1) & np.all(np.column_stack([t2, z2]) == rg, axis=1)
+            if same.all():  # every state in its guess's regime: already its exact equilibrium (the scalar's made_in)
+                settled = np.all(np.isfinite(q), axis=1)
+                exact = q
+                if settled.all():  # the usual case: the rows settle in their one regime if they are stable in it
+                    K = e.piece(tuple(key[:T].tolist()), tuple(key[T:].tolist()))[0]
+                    settled = _stable(K, pi)
+                    if settled.all():
+                        z0[idx, :n], final[idx], pending[idx] = q, key, False
+                        continue
+            else:
+                exact = q.copy()
+                for key2 in _distinct(rg[~same])[0]:
+                    sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
+                    q2 = _state(e, ri.take(sub), pi[sub], key2, T)
+                    if q2 is None:
+                        exact[sub] = np.nan  # the scalar's settle fails there: next guess
+                    else:
+                        exact[sub] = q2
+                t2, z2 = _consistent(e, ri, exact)
+                settled = np.all(np.isfinite(exact), axis=1) & np.all(np.column_stack([t2, z2]) == rg, axis=1)
             for key2 in _distinct(rg[settled])[0]:
                 sub = np.flatnonzero(settled & np.all(rg == key2, axis=1))
                 K = e.piece(tuple(key2[:T].tolist()), tuple(key2[T:].tolist()))[0]
-                settled[sub] &= _stable(K, P[idx[sub]])
+                settled[sub] &= _stable(K, pi[sub])
             done = idx[settled]
             z0[done, :n] = exact[settled]
             final[done] = rg[settled]
@@ -229,14 +304,19 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, P: np.ndar
     return z0, regimes, which, ok
 
 
-def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok,
+def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.ndarray | None, z0, regimes, start_of, ok,
            peaks: bool = True):  # fmt: skip
     """The scalar ``_trace`` from each row's start, rows in lockstep while their regimes agree. Returns (the largest
     ay on each row's path, the state there (k, n+1), ok, and with ``peaks`` the piece and event of each row's peak:
-    the fixed point's start, which the solves at the limit's normal factor need not keep)."""
+    the fixed point's start, which the solves at the limit's normal factor need not keep).
+
+    The constraint rows are held constraint by row, (c, m), and the states DOF by row, (n+1, m): the regime's
+    coefficients then broadcast along the rows' long axis and the gathers take whole rows (on (m, c) arrays, c some
+    ten, each broadcast or gathered operation took three to four times as long, measured). Every value is the same
+    elementwise operation as before, so the same bits; the reductions over the constraints only compare."""
     n = s.n
     best_ay = z0[:, n].copy()
-    best_z = z0.copy()
+    best_zT = np.ascontiguousarray(z0.T)
     # the piece and event of each row's peak vertex (the scalar's Newton start on a bank): its regime's index in
     # ``pieces`` (-1: the peak is the start), and the event's constraint (c1, c2, b, i1, i2)
     pieces: list = []
@@ -244,31 +324,37 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
     peak_row = np.zeros((z0.shape[0], 5))
     ok = ok.copy()
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
-    # a group: (rows, z, prev_d, tyre, zone, last, steps)
+    # a group: (rows, its states (n+1, m), prev_d (m, n+1), tyre, zone, last, steps)
     work = []
     for g, key in enumerate(regimes):
         rows = np.flatnonzero(ok & (start_of == g))
         if rows.size:
-            work.append((rows, z0[rows], None, key[0], key[1], None, 0))
+            work.append((rows, np.ascontiguousarray(z0[rows].T), None, key[0], key[1], None, 0))
     lim = limit is not None
+    jp_free, jp_cap = r.jp_free, r.jp_cap  # r of the system: of_system
+    cap_ayT, cap_0T = np.ascontiguousarray(r.cap_ay.T), np.ascontiguousarray(r.cap_0.T)
     while work:
-        rows, z, prev_d, tyre, zone, last, steps = work.pop()
+        rows, zT, prev_d, tyre, zone, last, steps = work.pop()
         if steps >= max_steps:
             ok[rows] = False
             continue
-        whole_set = rows.size == P.shape[0]  # every row, in order: no copies of the rows' arrays
-        ri = r if whole_set else r.take(rows)
-        K, _S, _kz = e.piece(tyre, zone)
-        jp = _slope(s, e, ri, tyre, zone)
+        whole_set = rows.size == pd.shape[0]  # every row, in order: no copies of the rows' arrays
+        if whole_set:
+            jf, jc, caT, c0T, pr = jp_free, jp_cap, cap_ayT, cap_0T, pd
+        else:
+            jf, jc, pr = jp_free[rows], jp_cap[rows], pd[rows]
+            caT, c0T = np.take(cap_ayT, rows, axis=1), np.take(cap_0T, rows, axis=1)
+        K, S, _kz = e.piece(tyre, zone)
+        jp = jf + S * jc
         try:
-            dq = _solve(K - (P if whole_set else P[rows]), -jp)
+            dq = _solve(_minus(K, pr), -jp)
         except _Alone:
             ok[rows] = False
             continue
         fine = np.einsum("ij,ij->i", dq, dq) < 1e24  # the scalar's test: finite and |dq| < 1e12
         if not fine.all():  # the scalar takes an SVD there: left to it
             ok[rows[~fine]] = False
-            rows, z, dq, ri = rows[fine], z[fine], dq[fine], ri.take(np.flatnonzero(fine))
+            rows, zT, dq, caT, c0T = rows[fine], zT[:, fine], dq[fine], caT[:, fine], c0T[:, fine]
             prev_d = None if prev_d is None else prev_d[fine]
             if not rows.size:
                 continue
@@ -281,12 +367,12 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         # the row's on its tyre rows (filled in place: concatenating broadcast copies took a tenth of a step)
         nt = ti.size
         c1 = np.concatenate([sk * e.tk[ti], sg])
-        c2, b = np.empty((m, c1.size)), np.empty((m, c1.size))
-        fac = np.where(sf == 0.0, _row(limit[rows]) if lim else 0.0, sf)
-        c2[:, :nt] = fac * (_row(ri.n1) * e.capn[ti])
-        b[:, :nt] = fac * (_row(ri.n0) * e.capn[ti] + _row(ri.grade) * e.capg[ti])
-        c2[:, nt:], b[:, nt:] = -sg, sb * e.lash[zi]
-        rates = c1 * d[:, i1] + c2 * d[:, i2]
+        c1c = c1[:, None]
+        c2T, bT = np.empty((c1.size, m)), np.empty((c1.size, m))
+        fac = np.where(sf[:, None] == 0.0, limit[rows][None, :] if lim else 0.0, sf[:, None])
+        c2T[:nt] = fac * caT[ti]
+        bT[:nt] = fac * c0T[ti]
+        c2T[nt:], bT[nt:] = -sg[:, None], (sb * e.lash[zi])[:, None]
         if last is None:
             w = d[:, :n] @ s.weights
             w = np.where(w == 0.0, d[:, n], w)
@@ -294,39 +380,63 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
         else:
             kc, idx, previous = last
             back = np.flatnonzero((ends[:, 0] == kc) & (ends[:, 1] == idx) & (ends[:, 2] == previous))
-            rate = rates[:, back[0]] if back.size else np.zeros(m)
+            if back.size:  # the rate of the constraint just crossed (the scalar's rates[back]: the same operations)
+                j = back[0]
+                rate = c1[j] * d[:, i1[j]] + c2T[j] * d[:, i2[j]]
+            else:
+                rate = np.zeros(m)
             turned = np.einsum("ij,ij->i", prev_d, d) < 0
             flip = np.where(np.abs(rate) > 1e-14, rate < 0, turned)
-        sign = np.where(flip, -1.0, 1.0)
-        d, rates = d * sign[:, None], rates * sign[:, None]
+        d *= np.where(flip, -1.0, 1.0)[:, None]
+        dT = np.ascontiguousarray(d.T)
+        # the scalar's c1 x[i1] + c2 x[i2] (+ b), in place: the same operations in the same order, fewer temporaries
+        # (on the oriented direction: -(c1 x + c2 y) is c1 (-x) + c2 (-y) bit for bit)
+        rates = c1c * dT[i1]
+        rates += c2T * dT[i2]
         falling = rates < -1e-15
-        ended = ~falling.any(axis=1)
+        ended = ~falling.any(axis=0)
         if ended.any():  # the last piece: a path that still climbs never turns (the scalar's ConvergenceError)
-            ok[rows[ended & (d[:, n] > 1e-12)]] = False
-        value = c1 * z[:, i1] + c2 * z[:, i2] + b
-        scale = np.maximum(1.0, np.abs(c1) + np.abs(c2))
+            ok[rows[ended & (dT[n] > 1e-12)]] = False
+        value = c1c * zT[i1]
+        value += c2T * zT[i2]
+        value += bT
+        reached = np.abs(c2T)  # -TOL scale, scale = max(1, |c1| + |c2|), in place
+        reached += np.abs(c1c)
+        np.maximum(reached, 1.0, out=reached)
+        reached *= -TOL
+        # the scalar's where(value > -TOL scale, max(value, 0) / -rates, 0), then inf where not falling, in place
+        # (x / -r is -(x / r) bit for bit: rounding is symmetric)
+        tau = np.maximum(value, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
-            tau = np.where(value > -TOL * scale, np.maximum(value, 0.0) / -rates, 0.0)
-        tau = np.where(falling, tau, np.inf)
-        which = np.argmin(tau, axis=1)
-        step = tau[np.arange(m), which]
+            np.divide(tau, rates, out=tau)
+        np.negative(tau, out=tau)
+        np.copyto(tau, 0.0, where=~(value > reached))
+        np.copyto(tau, np.inf, where=~falling)
+        # the scalar's argmin: the first constraint at the least tau (tau holds no nan: a nan value gives 0 above)
+        step = tau.min(axis=0)
+        which = np.zeros(m, dtype=np.intp)
+        for j in range(c1.size - 1, -1, -1):
+            which[tau[j] == step] = j
         go = ~ended
         if go.all():
-            z = z + step[:, None] * d
+            zT = zT + step * dT
         else:
-            z = z.copy()
-            z[go] = z[go] + step[go, None] * d[go]
-        higher = go & (z[:, n] > best_ay[rows])
-        best_ay[rows[higher]] = z[higher, n]
-        best_z[rows[higher]] = z[higher]
+            zT = zT.copy()
+            zT[:, go] = zT[:, go] + step[go] * dT[:, go]
+        higher = go & (zT[n] > best_ay[rows])
+        if higher.all():  # the usual case before the peak: every row still climbs, no masked copies
+            best_ay[rows], best_zT[:, rows] = zT[n], zT
+        else:
+            best_ay[rows[higher]] = zT[n, higher]
+            best_zT[:, rows[higher]] = zT[:, higher]
         if peaks and higher.any():  # only the rest solve's peaks start the fixed point
             pieces.append((tyre, zone))
             h = np.flatnonzero(higher)
             w = which[h]
             peak_piece[rows[h]] = len(pieces) - 1
-            peak_row[rows[h]] = np.column_stack([c1[w], c2[h, w], b[h, w], i1[w], i2[w]])
-        for row in np.unique(which[go]):
-            sel = go & (which == row)
+            peak_row[rows[h]] = np.column_stack([c1[w], c2T[w, h], bT[w, h], i1[w], i2[w]])
+        events = np.flatnonzero(np.bincount(which[go], minlength=c1.size))
+        for row in events:
             kc, idx, state = (int(x) for x in ends[row])
             if kc == 2:
                 continue  # a group at the LLT limit: the path stops
@@ -338,25 +448,32 @@ def _trace(s: System, e: whole._Elements, r: _Rows, P: np.ndarray, limit: np.nda
             else:
                 previous = zone[idx]
                 new_t, new_z = tyre, (*zone[:idx], state, *zone[idx + 1 :])
-            work.append((rows[sel], z[sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
-    return best_ay, best_z, ok, (pieces, peak_piece, peak_row)
+            if events.size == 1 and go.all():  # the usual case: every row meets the same event, no copies
+                work.append((rows, zT, d, new_t, new_z, (kc, idx, previous), steps + 1))
+            else:
+                sel = go & (which == row)
+                work.append((rows[sel], zT[:, sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
+    return best_ay, np.ascontiguousarray(best_zT.T), ok, (pieces, peak_piece, peak_row)
 
 
-def _solve_at(s, e, lashless, r, P, limit, peaks=True):
+def _solve_at(s, e, lashless, r, pd, limit, peaks=True):
     try:
-        z0, regimes, which, ok = _start(s, e, lashless, r, P)
+        z0, regimes, which, ok = _start(s, e, lashless, r, pd)
     except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
-        k = P.shape[0]
+        k = pd.shape[0]
         return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
-    return _trace(s, e, r, P, limit, z0, regimes, which, ok, peaks)
+    return _trace(s, e, r, pd, limit, z0, regimes, which, ok, peaks)
 
 
 def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     """The scalar :func:`~engine.models.combination.solve_unit` of every row: (srt, state at the limit, ok)."""
     e = whole._elements(s)
     lashless = replace(s, zones=[DeadZone(z.i, z.j, z.k, 0.0, z.kind, z.ref) for z in s.zones], cache={})
-    P0 = _row(_row(r.n0)) * s.P_normal + _row(_row(r.grade)) * s.P_grade  # build_systems: the P at rest
-    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, P0, limit, bool(np.any(r.n1 != 0.0)))
+    r = r.of_system(s, e)
+    # the P-Delta terms' diagonals (the P at rest of build_systems, on its diagonal: the same products)
+    pn, pg = np.diagonal(s.P_normal), np.diagonal(s.P_grade)
+    pd0 = _row(r.n0) * pn + _row(r.grade) * pg
+    srt, zs, ok, peaks = _solve_at(s, e, lashless, r, pd0, limit, bool(np.any(r.n1 != 0.0)))
     active = np.flatnonzero(ok & (r.n1 != 0.0))
     a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
     pieces, peak_piece, peak_row = peaks
@@ -366,20 +483,28 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
             continue
         rows = active[sel]
         ri = r.take(rows)
-        jp, k = _loads(s, e, ri, tyre, zone)
+        jp, k = _loads(e, ri, tyre, zone)
         K = np.broadcast_to(e.piece(tyre, zone)[0], (rows.size, s.n, s.n))
         pr = peak_row[rows]
         a1[sel] = whole._vertex_fixed_point(
             K, jp, k, pr[:, :2], pr[:, 2], pr[:, 3:].astype(int), s.P_normal, s.P_grade, ri.n0, ri.n1, ri.grade,
             srt[rows],
         )  # fmt: skip
+    if active.size and ok.all() and active.size < ok.size:
+        # the rows on no bank join the fixed point's first solve, at their own SRT: there the normal factor is n0 +
+        # 0 ay = n0, the rest solve's P, so that solve gives their bits back and they settle at once (g1 = 0, the
+        # scalar's answer for them); it spares gathering every array of the block for the banked rows (profiled: a
+        # few % of a batch). Not in the Newton start above: a singular vertex there stops the steps of its whole call
+        every = srt.copy()
+        every[active] = a1
+        a0, g0, a1, active = np.zeros(ok.size), srt.copy(), every, np.arange(ok.size)
     for _ in range(30):
         if not active.size:
             break
-        ra = r.take(active)
+        ra = r if active.size == ok.size else r.take(active)
         normal = ra.n0 + ra.n1 * a1
-        P = _row(_row(normal)) * s.P_normal + _row(_row(ra.grade)) * s.P_grade
-        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, P, None if limit is None else limit[active], False)
+        pd = _row(normal) * pn + _row(ra.grade) * pg
+        got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, pd, None if limit is None else limit[active], False)
         ok[active[~gok]] = False
         g1 = got - a1
         done = gok & (np.abs(g1) <= 1e-13)

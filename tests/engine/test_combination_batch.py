@@ -123,3 +123,51 @@ def test_a_refused_row_gets_the_scalar_message():
     with pytest.raises(RolloverError) as exc:
         rollover_threshold(case.replace(load=LoadCase(lateral_offset_m=1.2)))
     assert errors[1] == str(exc.value)
+
+
+def test_the_stability_bound_is_the_scalar_test():
+    # _stable's one eigenvalue bound for all rows must answer what each row's Cholesky factor answers: on stiffness
+    # matrices with diagonal P-Delta terms from clearly stable to unstable, through the edge
+    rng = np.random.default_rng(3)
+    n = 6
+    for trial in range(200):
+        A = rng.standard_normal((n, n))
+        K = A @ A.T + 0.1 * np.eye(n)
+        K = 0.5 * (K + K.T)
+        lam = np.linalg.eigvalsh(K)[0]
+        p = rng.uniform(0.0, 1.0, (25, n)) * lam * rng.choice([0.5, 0.99, 1.0, 1.01, 2.0])
+        expect = np.array([_cholesky_exists(K - np.diag(p[i])) for i in range(25)])
+        got = combination_batch._stable(K, p)  # the rows' P by their diagonals
+        assert got.tolist() == expect.tolist(), trial
+
+
+def _cholesky_exists(J) -> bool:
+    try:
+        np.linalg.cholesky(0.5 * (J + J.T))
+    except np.linalg.LinAlgError:
+        return False
+    return True
+
+
+def test_a_singular_vertex_stops_its_own_newton_steps_only():
+    # the batch's Newton start on many rows must give each row what it gives the row alone (the scalar's call): a
+    # row whose vertex system is singular stops where it is, and the others go on
+    rng = np.random.default_rng(0)
+    m, n = 6, 4
+    A = rng.standard_normal((m, n, n))
+    K = A @ A.transpose(0, 2, 1) + 5.0 * np.eye(n)
+    jp, k = rng.standard_normal((m, n)), rng.standard_normal((m, n))
+    c, b = rng.standard_normal((m, 2)), rng.standard_normal(m)
+    c[2] = 0.0  # row 2's constraint row is zero: its system is singular
+    ii = np.tile([1, n], (m, 1))
+    Pn, Pg = np.diag(rng.uniform(0.0, 1.0, n)), np.diag(rng.uniform(0.0, 0.1, n))
+    n0, n1, grade = rng.uniform(0.9, 1.0, m), rng.uniform(0.0, 0.1, m), rng.uniform(-0.05, 0.05, m)
+    a = rng.uniform(0.3, 0.5, m)
+    many = whole._vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a)
+    for i in range(m):
+        one = whole._vertex_fixed_point(
+            K[i : i + 1], jp[i : i + 1], k[i : i + 1], c[i : i + 1], b[i : i + 1], ii[i : i + 1], Pn, Pg, n0[i],
+            n1[i], grade[i], a[i],
+        )  # fmt: skip
+        assert many[i] == one[0], i
+    assert many[2] == a[2]  # the singular row did not move

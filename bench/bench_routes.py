@@ -4,19 +4,22 @@ The route alternates tangents of 200-1500 m with curves: radius log-uniform in 6
 a third of them with clothoid transitions (Ls = 0.3 sqrt(R) ... of order 20-130 m). It is laid on WGS84 at 45 deg N
 (tests/synthetic_routes.py; needs the test extra's geographiclib) and timed through
 
-* ``engine.geometry.find_curves`` on the plane coordinates, without noise and with 3 m of GPS-like noise;
+* ``engine.route.find_curves`` on the plane coordinates, without noise, with 3 m of white GPS-like noise and with
+  3 m of noise correlated over 50 m along the track (a receiver's drift: Gauss-Markov);
 * ``engine.route.geodesy.local_frame`` + ``find_curves`` from longitude/latitude (the app's path);
 * ``app.formats.route_io.read_geojson`` of the same route as a GeoJSON LineString (parsed dict).
 
-Prints figures only (median of the repeats) and how many curves were found against the design.
+Prints figures only (median of the repeats) and how many curves were found against the design; ``--write`` puts
+the table in docs/routes.md ("Speed"), between its markers.
 
-    python bench/bench_routes.py [--km 500] [--spacing 10] [--repeat 3]
+    python bench/bench_routes.py [--km 500] [--spacing 10] [--repeat 3] [--write]
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import statistics
 import sys
 import time
@@ -29,7 +32,7 @@ sys.path.insert(0, str(ROOT))
 
 from app.formats.route_io import read_geojson  # noqa: E402
 from engine.route import find_curves, local_frame  # noqa: E402
-from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
+from tests.synthetic_routes import Arc, Tangent, gauss_markov, layout, spiral_curve, to_lonlat  # noqa: E402
 
 
 def design(km: float, seed: int = 3) -> list:
@@ -60,27 +63,52 @@ def timed(fn, repeat: int) -> tuple[float, object]:
     return statistics.median(times), out
 
 
+DOC = ROOT / "docs" / "routes.md"
+START, END = "<!-- bench_routes:start -->", "<!-- bench_routes:end -->"
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--km", type=float, default=500.0)
     ap.add_argument("--spacing", type=float, default=10.0)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--write", action="store_true", help="put this run's table in docs/routes.md (default size only)")
     args = ap.parse_args()
+    if args.write and (args.km != 500.0 or args.spacing != 10.0):
+        ap.error("--write records the default route: leave out --km and --spacing")
+    load = os.getloadavg()[0]
     els = design(args.km)
     n_design = sum(1 for e in els if isinstance(e, Arc))
     x, y, _ = layout(els, args.spacing, ds=0.5)
     rng = np.random.default_rng(1)
     xn, yn = x + rng.normal(0, 3.0, x.size), y + rng.normal(0, 3.0, y.size)
+    # a receiver's drift: Gauss-Markov errors of 3 m correlated over 50 m along the track (docs/routes.md)
+    rho = math.exp(-args.spacing / 50.0)
+    xc, yc = x + gauss_markov(rng, x.size, 3.0, rho), y + gauss_markov(rng, y.size, 3.0, rho)
     lon, lat = to_lonlat(x, y, 45.0)
     geojson = {"type": "LineString", "coordinates": np.column_stack((lon, lat)).tolist()}
-    print(f"route: {x.size - 1} segments, {args.km:g} km at {args.spacing:g} m, {n_design} designed curves")
+    route = f"{args.km:g} km at {args.spacing:g} m ({x.size - 1:,} segments, {n_design} designed curves)"
+    print(f"route: {route}")
+    rows: list[tuple[str, float, str]] = []
+
+    def row(what: str, seconds: float, found: str) -> None:
+        rows.append((what, seconds, found))
+        print(f"{what:<52} {seconds * 1000:8.1f} ms  ({found})")
 
     t, res = timed(lambda: find_curves(x, y), args.repeat)
-    print(f"find_curves, no noise:          {t * 1000:8.1f} ms  ({len(res.curves)} curves)")
+    row("find_curves, no noise", t, f"{len(res.curves)} curves")
     t, res = timed(lambda: find_curves(xn, yn), args.repeat)
-    print(
-        f"find_curves, 3 m noise:         {t * 1000:8.1f} ms  ({len(res.curves)} curves, "
-        f"sigma estimated {res.noise_m:.2f} m, detection scale {res.detection_smoothing_m:.0f} m)"
+    row(
+        "find_curves, 3 m white noise",
+        t,
+        f"{len(res.curves)} curves, sigma estimated {res.noise_m:.2f} m, detection scale "
+        f"{res.detection_smoothing_m:.0f} m",
+    )
+    t, res = timed(lambda: find_curves(xc, yc), args.repeat)
+    row(
+        "find_curves, 3 m noise correlated over 50 m",
+        t,
+        f"{len(res.curves)} curves, sigma estimated {res.noise_m:.2f} m, correlation length {res.noise_corr_m:.0f} m",
     )
 
     def from_lonlat():
@@ -88,9 +116,24 @@ def main() -> None:
         return find_curves(f.x_m, f.y_m)
 
     t, res = timed(from_lonlat, args.repeat)
-    print(f"local_frame + find_curves:      {t * 1000:8.1f} ms  ({len(res.curves)} curves)")
+    row("local_frame + find_curves (lon/lat, no noise)", t, f"{len(res.curves)} curves")
     t, parts = timed(lambda: read_geojson(geojson), args.repeat)
-    print(f"read_geojson (parsed dict):     {t * 1000:8.1f} ms  ({parts[0].lon_deg.size} vertices)")
+    row("read_geojson (parsed dict)", t, f"{parts[0].lon_deg.size:,} vertices")
+    if args.write:
+        stamp = time.strftime("%Y-%m-%d", time.gmtime())
+        table = [
+            f"{route}, median of {args.repeat} runs each, run of {stamp} (`python bench/bench_routes.py --write`), "
+            f"{os.cpu_count()} CPUs, load average {load:.1f} at the start.",
+            "",
+            "| step | wall time | found |",
+            "| --- | --- | --- |",
+            *(f"| {what} | {seconds:.2f} s | {found} |" for what, seconds, found in rows),
+        ]
+        text = DOC.read_text(encoding="utf-8")
+        head, rest = text.split(START, 1)
+        _, tail = rest.split(END, 1)
+        DOC.write_text(f"{head}{START}\n" + "\n".join(table) + f"\n{END}{tail}", encoding="utf-8")
+        print(f"wrote {DOC.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

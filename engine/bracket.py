@@ -5,7 +5,8 @@ that falls monotonically from a *good* end of a physical range to a *bad* end. N
 have no answer (the body collapses, the SRT leaves the mechanism's range): the margin function returns None
 there. :func:`bracketed_limit` then steps off an unsolvable good end, bisects an unsolvable bad end toward the
 good one until a solvable point misses the target, and calls Brent's method on the bracket. The outcome is
-``found`` (the margin is zero at ``value``), ``always-met`` (the whole solvable range meets the target:
+``found`` (the margin is zero at ``value`` to the tolerance, and never negative: ``value`` meets the target),
+``always-met`` (the whole solvable range meets the target:
 ``value`` is its bad end) or ``never-met`` (``value`` is None). The builder's payload limits and
 ``engine.assessment.parameter_limit`` (the record's own parameters) both use it.
 
@@ -25,6 +26,8 @@ from engine.errors import ConvergenceError, InvalidInput
 
 #: the bracket's bad end is bisected toward the good end at most this many times
 MAX_BISECTIONS = 60
+#: steps of the tolerance back toward the good end that a root on the failing side may take to meet the target
+MAX_STEPS_BACK = 8
 
 
 @dataclass(frozen=True)
@@ -33,7 +36,7 @@ class BracketedLimit:
 
     value : the limit (the root, or the bad end of the solvable range when always met); None if never met
     status : ``found``, ``always-met`` or ``never-met``
-    margin : the margin at ``value`` (zero up to the tolerance when found)
+    margin : the margin at ``value`` (zero up to the tolerance when found, and never below zero)
     evaluations : calls of the margin function
     """
 
@@ -113,4 +116,20 @@ def bracketed_limit(
         return value
 
     root = float(brentq(strict, min(good, bad), max(good, bad), xtol=xtol, rtol=1e-12))
-    return BracketedLimit(root, "found", strict(root), calls)
+    value = strict(root)
+    # Brent's root lies within its tolerance of the crossing, on either side; the limit is the largest (smallest)
+    # value that *meets* the target, so that a limit's own check passes (0.34999997 g would read "does not meet
+    # 0.35 g" at the limit): a root on the failing side steps back toward the good end (the margin is monotone, so
+    # a step of the tolerance reaches the met side unless the margin's own rounding hides it there)
+    step = xtol if good < bad else -xtol
+    for _ in range(MAX_STEPS_BACK):
+        if value >= 0.0:
+            break
+        root -= step
+        value = strict(root)
+    if value < 0.0:
+        raise ConvergenceError(
+            f"{field}: no value within {MAX_STEPS_BACK} x {xtol:g} of the root found by Brent's method meets the "
+            "target (the margin is not monotone there)"
+        )
+    return BracketedLimit(root, "found", value, calls)

@@ -26,10 +26,11 @@ MAX_TABLE_ROWS = 25
 MAX_TABLE_OVERWEIGHT = 50.0
 
 STATUS_TEXT = (
-    "`found`: the SRT equals the target at `value`; past it (above a `max` limit, below a `min` one) the target "
-    "is missed. `always-met`: every value of the admissible range [`range_min`, `range_max`] meets the target; "
-    "`value` is the range's end (or the last value at which the vehicle can still be solved) and the true limit "
-    "lies beyond what the model admits. `never-met`: no value of the range meets the target; `value` is null."
+    "`found`: the SRT equals the target at `value` to the search's tolerance and is never below it (`value` meets "
+    "the target); past it (above a `max` limit, below a `min` one) the target is missed. `always-met`: every value "
+    "of the admissible range [`range_min`, `range_max`] meets the target; `value` is the range's end (or the last "
+    "value at which the vehicle can still be solved) and the true limit lies beyond what the model admits. "
+    "`never-met`: no value of the range meets the target; `value` is null."
 )
 OverweightValue = Annotated[float, Field(ge=-MAX_TABLE_OVERWEIGHT, le=MAX_TABLE_OVERWEIGHT)]
 

@@ -434,6 +434,26 @@ def test_bracketed_limit_on_closed_forms():
     assert r.status == "found" and r.value == pytest.approx(1.0, abs=1e-9)
 
 
+@pytest.mark.parametrize("root", [0.3, 1.0 / 3.0, 0.7071067811865476, 1.2345678901, 1.9])
+@pytest.mark.parametrize("increasing", [False, True])
+def test_a_found_limit_meets_its_target(root, increasing):
+    """The limit is the last value that meets the target: its margin is never negative, and it lies within a few
+    tolerances of the root on the good side, for a max limit (good end below) and a min limit (good end above). The
+    margin tanh(5 (root - x))^3 is monotone and flat at its root, so Brent's estimate lands within its tolerance on
+    the failing side for some of these roots (measured: 0.3-1.2346 rising, 1.9 falling) and must step back."""
+    xtol = 1e-3
+
+    def margin(x: float) -> float:
+        return math.tanh(5.0 * ((x - root) if increasing else (root - x))) ** 3
+
+    r = bracketed_limit(margin, 2.0, 0.0, xtol=xtol) if increasing else bracketed_limit(margin, 0.0, 2.0, xtol=xtol)
+    assert r.status == "found" and r.margin >= 0.0 and r.margin == margin(r.value)
+    if increasing:
+        assert root <= r.value <= root + 3 * xtol
+    else:
+        assert root - 3 * xtol <= r.value <= root
+
+
 # ------------------------------------------------------------------------------------------------- refusals
 
 

@@ -156,13 +156,15 @@ def test_a_preset_restated_unit_by_unit_has_the_presets_srt(page, api):
     preset = api_ok(api, "/v1/srt", {"vehicle": "adouble", "model": "combination"})
     # the editor's values are rounded to 6 significant figures: the SRT to the three decimals shown
     assert page.srt_g() == pytest.approx(preset["srt"], abs=DISPLAY_G + 1e-4)
-    # what has no box (the preset's group ids) is kept in the spec the page sent, and said so
+    # the preset's group ids are in their boxes and in the spec the page sent; nothing is only kept from the spec
     record = api.get("/v1/combinations/adouble").json()["combination"]
     sent = json.loads(parse_qs(urlsplit(page.driver.current_url).query)["combination_spec"][0])
-    assert [[g.get("id") for g in u["axle_groups"]] for u in sent["units"]] == [
-        [g["id"] for g in u["groups"]] for u in record["units"]
-    ]
-    assert "axle_groups.0.id" in page.text("#cb-units .cb-unit[data-unit='0'] > .hint")
+    ids = [[g["id"] for g in u["groups"]] for u in record["units"]]
+    assert [[g.get("id") for g in u["axle_groups"]] for u in sent["units"]] == ids
+    for i, unit_ids in enumerate(ids):
+        for j, gid in enumerate(unit_ids):
+            assert page.find(box_id(f"units.{i}.axle_groups.{j}.id")).get_attribute("value") == gid
+        assert "Kept from the spec" not in page.text(f"#cb-units .cb-unit[data-unit='{i}'] > .hint")
     page.find("#cb-units .cb-unit[data-unit='3'] .cb-remove-unit").click()
     kinds = [chosen(page, f"units.{i}.kind") for i in range(3)]
     assert kinds == ["tractor", "semitrailer", "dolly"]

@@ -133,6 +133,8 @@ def test_a_payload_kind_or_rear_group_load_typed_in_the_editor_has_the_apis_srt(
 def test_a_link_with_a_tank_a_sloping_deck_and_a_rear_group_load_shows_them_in_their_boxes(page, api, width):
     spec = with_payload(TANK, REAR_LOAD_TARE)
     spec["units"][1]["payloads"].append({**SLOPED, "mass_kg": 2000, "deck_height_m": 1.3})
+    spec["units"][1]["title"] = "Tanker, 3 compartments"  # a unit's description and a group's name have boxes too
+    spec["units"][1]["axle_groups"][0]["id"] = "tri-axle"
     page.driver.set_window_size(width, 900)
     page.open("?" + urlencode({"combination_spec": json.dumps(spec)}))
     assert page.find('input[name="source"][value="combo"]').is_selected()

@@ -121,7 +121,7 @@ export const state = {
   combinations: [], // GET /v1/combinations
   pending: null, // a spec from the link, shown once the library is read
   built: null, // the last POST /v1/combinations/build answer
-  extra: [], // per unit: the spec parts the editor has no box for (a title, group ids), kept as they are
+  extra: [], // per unit: the spec parts the editor has no box for, kept as they are
 };
 
 // ------------------------------------------------------------------------------------------ the boxes
@@ -164,6 +164,7 @@ function groupBox(spec, i, j, kind) {
     el(
       "div",
       { class: "grid" },
+      box(spec, `${p}.id`, "Group name (optional)", { kind: "text", hint: "Blank: steer and drive, front and rear, or the unit's name. The lift-off sequence names it." }),
       box(spec, `${p}.axles`, "Axles [count]", { kind: "int", extraFields: fieldsFor(p) }),
       box(spec, `${p}.tyres_per_axle`, "Tyres per axle", { kind: "select", options: { int: true, items: [["2", "2 (single tyres)"], ["4", "4 (duals)"]] } }),
       box(spec, `${p}.track_m`, "Track [m]"),
@@ -307,6 +308,7 @@ function unitBox(spec, i) {
       { class: "grid" },
       box(spec, `${p}.kind`, "Kind of unit", { kind: "select", options: { items: Object.entries(KINDS).filter(([k]) => k in KIND_INFO) }, extraFields: fieldsFor(p) }),
       box(spec, `${p}.id`, "Name (unique)", { kind: "text" }),
+      box(spec, `${p}.title`, "Description (optional)", { kind: "text", hint: "A name for people, kept with the built unit." }),
     ),
     el("p", { class: "hint" }, `Positions along the unit are metres behind ${ref}.`),
     groups,

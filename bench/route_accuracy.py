@@ -260,17 +260,22 @@ def render_table(figures: dict) -> str:
     for c in figures["cells"]:
         curve = "simple" if c["kind"] == "simple" else f"arc {c['arc_m']:g}, Ls {c['spiral_m']:g}"
         lead = f"| {curve} | {c['radius_m']:g} | {c['deflection_deg']:g} | {c['sigma_m']:g} | {c['found']} |"
-        if "ratio" not in c:
-            lines.append(lead + " (too few found) | | | | | | |")
-            continue
-        lines.append(
-            f"{lead} {100 * c['bias']:+.2f} | {100 * c['observed']:.2f} | {100 * c['stated']:.2f} | {c['ratio']:.2f} | "
-            f"{c['sd_z']:.2f} | {100 * c['coverage']:.1f} % | {c['lower']:.3f} |"
-        )
+        lines.append(_cell_row(lead, c))
     simple = [c for c in figures["cells"] if c["kind"] == "simple"]
     spiralled = [c for c in figures["cells"] if c["kind"] == "spiralled"]
     lines += ["", f"Simple curves: {_pooled(simple)}.", "", f"Spiralled curves: {_pooled(spiralled)}."]
     return "\n".join(lines)
+
+
+def _cell_row(lead: str, c: dict) -> str:
+    """A cell's table row: its ``lead`` (the curve, the noise, how many found) and its figures, or that too few
+    tracks had the curve found to give them."""
+    if "ratio" not in c:
+        return lead + " (too few found) | | | | | | |"
+    return (
+        f"{lead} {100 * c['bias']:+.2f} | {100 * c['observed']:.2f} | {100 * c['stated']:.2f} | {c['ratio']:.2f} | "
+        f"{c['sd_z']:.2f} | {100 * c['coverage']:.1f} % | {c['lower']:.3f} |"
+    )
 
 
 def render_correlated(figures: dict) -> str:
@@ -286,13 +291,7 @@ def render_correlated(figures: dict) -> str:
     for c in cells:
         lead = f"| simple | {c['radius_m']:g} | {c['deflection_deg']:g} | {c['sigma_m']:g} | {c['corr_m']:g} |"
         lead += f" {c['found']} |"
-        if "ratio" not in c:
-            lines.append(lead + " (too few found) | | | | | | |")
-            continue
-        lines.append(
-            f"{lead} {100 * c['bias']:+.2f} | {100 * c['observed']:.2f} | {100 * c['stated']:.2f} | {c['ratio']:.2f} | "
-            f"{c['sd_z']:.2f} | {100 * c['coverage']:.1f} % | {c['lower']:.3f} |"
-        )
+        lines.append(_cell_row(lead, c))
     lines += ["", f"Correlated noise: {_pooled(cells)}."]
     return "\n".join(lines)
 

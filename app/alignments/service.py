@@ -416,10 +416,9 @@ async def compute_alignment(
     operation = "alignments-csv" if csv else "alignments"
 
     async def produce() -> bytes:
-        try:
-            answer = await run_in_threadpool(solve_alignment, job)
+        try:  # solved and rendered in one worker thread
+            return await run_in_threadpool(lambda: b"".join(render(solve_alignment(job), csv)))
         except InvalidInput as exc:
             raise as_fleet_error(exc, fleet, job.resolved) from None
-        return await run_in_threadpool(lambda: b"".join(render(answer, csv)))
 
     return await cached(cache, operation, job.resolved, produce, CSV_TYPE if csv else JSON_TYPE)

@@ -157,9 +157,9 @@ def render_sweep(answer: SweepAnswer, csv: bool) -> Iterator[bytes]:
     return sweep_csv_chunks(answer) if csv else sweep_json_chunks(answer)
 
 
-def solve_sweep(resolved: ResolvedSweep) -> bytes:
-    """Every case of the grid (blocking) -> the whole SweepResult JSON document."""
-    return b"".join(sweep_json_chunks(sweep_answer(resolved)))
+def solve_sweep(resolved: ResolvedSweep, csv: bool = False) -> bytes:
+    """Every case of the grid (blocking) -> the whole SweepResult JSON document (or its CSV table)."""
+    return b"".join(render_sweep(sweep_answer(resolved), csv))
 
 
 async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed:
@@ -168,7 +168,6 @@ async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Setting
     operation, media_type = ("srt-sweep-csv", CSV_TYPE) if csv else ("srt-sweep", JSON_TYPE)
 
     async def produce() -> bytes:
-        found = await run_in_threadpool(sweep_answer, resolved)
-        return await run_in_threadpool(lambda: b"".join(render_sweep(found, csv)))
+        return await run_in_threadpool(solve_sweep, resolved, csv)
 
     return await cached(cache, operation, resolved, produce, media_type)

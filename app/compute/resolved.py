@@ -11,7 +11,11 @@ trusted: a wrong shape is a :class:`ValueError`).
   :class:`ResolvedAlignment` (the curves' count and digest, the CSV dialect they came in) and :class:`ResolvedRoute`
   (the route document's digest and the options of its curves' detection);
 * :class:`ResolvedSweep`: a grid sweep (the base case, the axes);
-* :class:`ResolvedLimits`: an inverse limit (the base case, the parameter, the target, the overweights' table).
+* :class:`ResolvedLimits`: an inverse limit (the base case, the parameter, the target, the overweights' table);
+* the single answers: :class:`ResolvedCase` (an engine case and its targets, the base of the others),
+  :class:`ResolvedSrt`, :class:`ResolvedCurveSpeed`, :class:`ResolvedMinRadius`, :class:`ResolvedPlot`,
+  :class:`ResolvedSuperelevation`, :class:`ResolvedSuperelevationTable`, :class:`ResolvedBuild` and
+  :class:`ResolvedPayloadTable`.
 """
 
 from __future__ import annotations
@@ -23,16 +27,22 @@ from dataclasses import dataclass
 from typing import Any, Self
 
 import orjson
-from pydantic import ConfigDict, TypeAdapter, ValidationError
+from pydantic import ConfigDict, GetCoreSchemaHandler, TypeAdapter, ValidationError
+from pydantic_core import core_schema
 
 from app.compute.cache import cache_key
+from engine.case import Case
+from engine.vehicle.builder import CombinationSpec, VehicleSpec
 
 #: what :meth:`Resolved.from_json_dict` accepts: exactly the fields, of their types (ints for floats, arrays for tuples)
 _STRICT = ConfigDict(extra="forbid", strict=True)
 
 
 def _plain(value: Any) -> Any:
-    """A field's value as JSON types: tuples as lists, a nested dataclass as its fields (a dict)."""
+    """A field's value as JSON types: tuples as lists, a nested resolved request as its JSON form, a nested dataclass
+    as its fields (a dict)."""
+    if isinstance(value, Resolved):
+        return value.to_json_dict()
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return {f.name: _plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
     if isinstance(value, tuple | list):
@@ -164,14 +174,70 @@ class ResolvedRoute(ResolvedAssessment):
 # ------------------------------------------------------------------------------------- sweeps, limits
 
 
+def _read_by_from_json_dict(cls: type, source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+    """The pydantic schema of a resolved request whose JSON form is not its fields (a flat case): nested in another
+    request validated by pydantic (:meth:`Resolved.from_json_dict`), it is read by its own ``from_json_dict``."""
+    return core_schema.no_info_plain_validator_function(cls.from_json_dict)  # type: ignore[attr-defined]
+
+
+def _refused(cls: type, reason: str) -> ValueError:
+    return ValueError(f"the stored request is not a {cls.__name__}: {reason}")
+
+
+#: what every target verdict is judged on (``TargetCheckOut.judged_on``); also in every key of a case
+#: (:class:`ResolvedCase`), so an answer cached before the verdicts moved to the level road is never served again
+JUDGED_ON = "level_road_srt"
+
+_TARGETS = TypeAdapter(dict[str, float], config=ConfigDict(strict=True))
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedCase(Resolved):
+    """One engine case (its vehicle record or combination, model, road, load and parameters, defaults filled) and the
+    SRT targets it is judged against (name -> minimum SRT [g]; judged on the case's level-road SRT).
+
+    Its JSON form is the case's :meth:`~engine.case.Case.to_dict` beside ``targets`` and ``targets_judged_on``, one
+    flat object (the form the keys have always held). Nested in another request (a sweep's base case, the SRT of a
+    curve speed) it is validated by :meth:`from_json_dict` too."""
+
+    case: Case
+    targets: dict[str, float]
+
+    def to_json_dict(self) -> dict[str, Any]:
+        return {**self.case.to_dict(), "targets": dict(self.targets), "targets_judged_on": JUDGED_ON}
+
+    @classmethod
+    def from_json_dict(cls, data: Any) -> Self:
+        if not isinstance(data, dict):
+            raise _refused(cls, "not an object")
+        data = dict(data)
+        try:
+            targets = _TARGETS.validate_python(data.pop("targets"))
+        except KeyError:
+            raise _refused(cls, "targets: Field required") from None
+        except ValidationError as exc:
+            raise _refused(cls, f"targets: {exc.errors()[0]['msg']}") from None
+        if data.pop("targets_judged_on", None) != JUDGED_ON:
+            raise _refused(cls, f"targets_judged_on is not {JUDGED_ON!r}")
+        try:
+            case = Case.from_dict(data)
+        except (KeyError, TypeError, ValueError) as exc:  # the engine's InvalidInput is a ValueError
+            raise _refused(cls, f"case: {exc!r}") from None
+        if case.to_dict().keys() != data.keys():  # nothing left over: the case's every field, and only those
+            raise _refused(cls, f"case: the fields {sorted(data)} are not a case's")
+        return cls(case=case, targets=targets)
+
+    __get_pydantic_core_schema__ = classmethod(_read_by_from_json_dict)
+
+
 @dataclass(frozen=True, kw_only=True)
 class ResolvedSweep(Resolved):
-    """A grid sweep: the base case (:func:`app.srt.service.base_case_key`: the case's every input and the targets)
-    and the axes with their values, in the request's order (the first varies slowest)."""
+    """A grid sweep: the base case and its targets, and the axes with their values, in the request's order (the first
+    varies slowest)."""
 
     __pydantic_config__ = _STRICT
 
-    case: dict[str, Any]
+    case: ResolvedCase
     grid: dict[str, tuple[float, ...]]
 
     @property
@@ -186,12 +252,185 @@ class ResolvedSweep(Resolved):
 
 @dataclass(frozen=True, kw_only=True)
 class ResolvedLimits(Resolved):
-    """An inverse limit: the base case (as :class:`ResolvedSweep`'s), the parameter searched, the target SRT [g] and
-    the overweights of the table [%] (None: no table)."""
+    """An inverse limit: the base case and its targets, the parameter searched, the target SRT [g] and the
+    overweights of the table [%] (None: no table)."""
 
     __pydantic_config__ = _STRICT
 
-    case: dict[str, Any]
+    case: ResolvedCase
     parameter: str
     target_srt_g: float
     overweights_percent: tuple[float, ...] | None
+
+
+# ------------------------------------------------------------------------------------- single answers
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedSrt(Resolved):
+    """An SRT (POST /v1/srt), or the SRT inside a curve speed, a minimum radius or a plot: the case and its targets,
+    and whether (and at how many points) the curves are asked for. Without curves the number of points changes
+    nothing and is None. Its JSON form is the case's (:class:`ResolvedCase`) with the two curve fields beside it."""
+
+    base: ResolvedCase
+    include_curves: bool = False
+    curve_points: int | None = None
+
+    def __post_init__(self) -> None:
+        if not self.include_curves:  # without curves the points would only blur the key
+            object.__setattr__(self, "curve_points", None)
+
+    @property
+    def case(self) -> Case:
+        return self.base.case
+
+    @property
+    def targets(self) -> dict[str, float]:
+        return self.base.targets
+
+    def to_json_dict(self) -> dict[str, Any]:
+        return {**self.base.to_json_dict(), "include_curves": self.include_curves, "curve_points": self.curve_points}
+
+    @classmethod
+    def from_json_dict(cls, data: Any) -> Self:
+        if not isinstance(data, dict):
+            raise _refused(cls, "not an object")
+        data = dict(data)
+        curves, points = data.pop("include_curves", None), data.pop("curve_points", None)
+        if not isinstance(curves, bool):
+            raise _refused(cls, "include_curves: not a boolean")
+        if not (points is None or (isinstance(points, int) and not isinstance(points, bool))):
+            raise _refused(cls, "curve_points: not an integer")
+        return cls(base=ResolvedCase.from_json_dict(data), include_curves=curves, curve_points=points)
+
+    __get_pydantic_core_schema__ = classmethod(_read_by_from_json_dict)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedCurveSpeed(Resolved):
+    """A maximum curve speed (Eq. 9.1): the radius [m] and either a given SRT [g] or the SRT request (the other
+    None)."""
+
+    __pydantic_config__ = _STRICT
+
+    radius_m: float
+    srt: float | None
+    srt_request: ResolvedSrt | None
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedMinRadius(Resolved):
+    """A minimum radius (Eq. 9.3 against Eq. 9.2): the design speed [km/h], the superelevation [%], a given side
+    friction or the design standard (and bound) it is read from, and either a given SRT [g] or the SRT request on the
+    curve's bank."""
+
+    __pydantic_config__ = _STRICT
+
+    design_speed_kmh: float
+    superelevation_percent: float
+    side_friction: float | None
+    design_standard: str
+    side_friction_bound: str | None
+    srt: float | None
+    srt_request: ResolvedSrt | None
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedCurvesPlot(Resolved):
+    """A figure against ay/g: the SRT request with its curves, the figure, the label and the drawing's version."""
+
+    __pydantic_config__ = _STRICT
+
+    srt_request: ResolvedSrt
+    figure: str
+    label: str
+    svg_version: int
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedMinRadiusPlot(Resolved):
+    """The minimum radius against the design speed: the SRT request on the curve's bank, the speeds plotted (lowest
+    and highest [km/h], and how many), the design standard and bound, the label and the drawing's version."""
+
+    __pydantic_config__ = _STRICT
+
+    srt_request: ResolvedSrt
+    speeds_kmh: tuple[float, float, int]
+    design_standard: str
+    side_friction_bound: str | None
+    label: str
+    svg_version: int
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedSuperelevation(Resolved):
+    """A curve's superelevation by a design standard's distribution: every input of the request."""
+
+    __pydantic_config__ = _STRICT
+
+    design_standard: str
+    side_friction_bound: str | None
+    design_speed_kmh: float
+    radius_m: float
+    max_superelevation_percent: float
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedSuperelevationTable(Resolved):
+    """A superelevation table: the standard, bound, speed and e_max, and its radii (given, or their span and
+    count)."""
+
+    __pydantic_config__ = _STRICT
+
+    design_standard: str
+    side_friction_bound: str | None
+    design_speed_kmh: float
+    max_superelevation_percent: float
+    radii_m: tuple[float, ...] | None
+    radius_max_m: float | None
+    points: int
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedBuild(Resolved):
+    """A vehicle or a combination built from its spec (every input, defaults filled: the component library is the
+    engine's, versioned with it). Its JSON form is ``{"spec": ...}`` or ``{"combination_spec": ...}``."""
+
+    spec: VehicleSpec | CombinationSpec
+
+    def to_json_dict(self) -> dict[str, Any]:
+        kind = "combination_spec" if isinstance(self.spec, CombinationSpec) else "spec"
+        return {kind: self.spec.to_dict()}
+
+    @classmethod
+    def from_json_dict(cls, data: Any) -> Self:
+        if not isinstance(data, dict) or len(data) != 1 or not data.keys() <= {"spec", "combination_spec"}:
+            raise _refused(cls, "not an object of one spec or combination_spec")
+        ((kind, spec),) = data.items()
+        try:
+            built = (CombinationSpec if kind == "combination_spec" else VehicleSpec).from_dict(spec)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise _refused(cls, f"{kind}: {exc!r}") from None
+        return cls(spec=built)
+
+    __get_pydantic_core_schema__ = classmethod(_read_by_from_json_dict)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ResolvedPayloadTable(Resolved):
+    """A payload table (TERNZ style): the spec built from (as :class:`ResolvedBuild`), the unit, the target SRT [g],
+    the payload, the heights [m] and masses [kg] asked for (None: the defaults) and the rows."""
+
+    __pydantic_config__ = _STRICT
+
+    build: ResolvedBuild
+    unit_index: int | None
+    target_srt_g: float
+    payload_index: int
+    load_heights_m: tuple[float, ...] | None
+    payload_masses_kg: tuple[float, ...] | None
+    rows: int
+
+    def to_json_dict(self) -> dict[str, Any]:
+        out = super().to_json_dict()
+        return {**out.pop("build"), **out}  # the spec beside the options: one flat object, as the request's

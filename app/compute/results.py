@@ -12,9 +12,8 @@ from __future__ import annotations
 
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
-from typing import Any
 
-from app.compute.cache import ResultCache, cache_key
+from app.compute.cache import ResultCache
 from app.compute.resolved import Resolved
 from app.metrics import CACHE_LOOKUPS
 
@@ -42,13 +41,13 @@ async def _lookup(cache: ResultCache, operation: str, key: str, media_type: str)
 async def cached(
     cache: ResultCache,
     operation: str,
-    resolved: dict[str, Any] | Resolved,
+    resolved: Resolved,
     produce: Callable[[], Awaitable[bytes]],
     media_type: str = "application/json",
 ) -> Computed:
-    """The body for ``resolved`` (a resolved request's dict, or a typed one: :mod:`app.compute.resolved`) from the
-    cache, or from ``produce()`` (then stored under the same key)."""
-    key = resolved.key(operation) if isinstance(resolved, Resolved) else cache_key(operation, resolved)
+    """The body for ``resolved`` (a typed resolved request: :mod:`app.compute.resolved`) from the cache, or from
+    ``produce()`` (then stored under the same key: :meth:`~app.compute.resolved.Resolved.key`)."""
+    key = resolved.key(operation)
     body = await _lookup(cache, operation, key, media_type)
     if body is not None:
         return Computed(body, key, True, media_type)

@@ -13,11 +13,12 @@ from collections.abc import Callable
 import numpy as np
 
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedCurvesPlot, ResolvedMinRadiusPlot
 from app.compute.results import Computed, cached
 from app.formats.svg import Marker, Panel, Series, line_chart
 from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
 from app.settings import Settings
-from app.srt.service import resolve_case, solve, srt_key
+from app.srt.service import resolve_case, resolve_srt, solve
 from app.vehicles.refs import SavedRef
 from engine.case import Case, Road
 from engine.errors import InvalidRoad
@@ -152,12 +153,12 @@ async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, 
     """One of the figures against ay/g (``FIGURES``) as SVG."""
     case = resolve_case(req)
     label = _label(req)
-    resolved = {
-        "srt_request": srt_key(case, settings.default_targets(), include_curves=True, curve_points=req.curve_points),
-        "figure": kind,
-        "label": label,
-        "svg_version": SVG_VERSION,
-    }
+    resolved = ResolvedCurvesPlot(
+        srt_request=resolve_srt(case, settings.default_targets(), include_curves=True, curve_points=req.curve_points),
+        figure=kind,
+        label=label,
+        svg_version=SVG_VERSION,
+    )
 
     async def produce() -> bytes:
         result = await solve(cache, case, curve_points=req.curve_points)
@@ -238,14 +239,14 @@ async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, setting
     # the SRT of Eq. 9.3 is the one on the curve's bank (the superelevation) and slope
     case = resolve_case(req, road=Road(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent))
     label = _label(req)
-    resolved = {
-        "srt_request": srt_key(case, settings.default_targets()),
-        "speeds_kmh": list(req.speeds),
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "label": label,
-        "svg_version": SVG_VERSION,
-    }
+    resolved = ResolvedMinRadiusPlot(
+        srt_request=resolve_srt(case, settings.default_targets()),
+        speeds_kmh=tuple(req.speeds),
+        design_standard=req.design_standard,
+        side_friction_bound=req.bound,
+        label=label,
+        svg_version=SVG_VERSION,
+    )
 
     async def produce() -> bytes:
         return render_min_radius(req, await solve(cache, case), case, label).encode()

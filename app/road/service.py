@@ -8,11 +8,12 @@ process: the same case as ``POST /v1/srt`` is one solve); its key is part of the
 from __future__ import annotations
 
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedCurveSpeed, ResolvedMinRadius
 from app.compute.results import Computed, cached
 from app.road.schemas import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.settings import Settings
 from app.srt.schemas import SrtResult
-from app.srt.service import resolve_case, resolve_targets, solve_with_level, srt_key, srt_result
+from app.srt.service import resolve_case, resolve_srt, resolve_targets, solve_with_level, srt_result
 from engine import ENGINE_VERSION
 from engine.case import Case, Road
 from engine.road import max_curve_speed_kmh, min_radius, side_friction_factor
@@ -32,11 +33,9 @@ async def _srt_for(
 async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest, settings: Settings) -> Computed:
     targets = resolve_targets(req.targets, settings)
     case = resolve_case(req) if req.srt is None else None
-    resolved = {
-        "radius_m": req.radius_m,
-        "srt": req.srt,
-        "srt_request": None if case is None else srt_key(case, targets),
-    }
+    resolved = ResolvedCurveSpeed(
+        radius_m=req.radius_m, srt=req.srt, srt_request=None if case is None else resolve_srt(case, targets)
+    )
 
     async def produce() -> bytes:
         srt, source, inner = await _srt_for(cache, req, case, targets)
@@ -62,15 +61,15 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
     case = resolve_case(req, road=road) if req.srt is None else None
     if req.side_friction is None:  # refuse a speed outside the standard's range before solving for the SRT
         side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
-    resolved = {
-        "design_speed_kmh": req.design_speed_kmh,
-        "superelevation_percent": req.superelevation_percent,
-        "side_friction": req.side_friction,
-        "design_standard": req.design_standard,
-        "side_friction_bound": req.bound,
-        "srt": req.srt,
-        "srt_request": None if case is None else srt_key(case, targets),
-    }
+    resolved = ResolvedMinRadius(
+        design_speed_kmh=req.design_speed_kmh,
+        superelevation_percent=req.superelevation_percent,
+        side_friction=req.side_friction,
+        design_standard=req.design_standard,
+        side_friction_bound=req.bound,
+        srt=req.srt,
+        srt_request=None if case is None else resolve_srt(case, targets),
+    )
 
     async def produce() -> bytes:
         srt, source, inner = await _srt_for(cache, req, case, targets)

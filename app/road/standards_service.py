@@ -7,6 +7,7 @@ import numpy as np
 import orjson
 
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedSuperelevation, ResolvedSuperelevationTable
 from app.compute.results import Computed, cached
 from app.formats.tables import to_csv
 from app.road.standards_schemas import (
@@ -61,7 +62,13 @@ def get_standard_out(standard_id: str) -> StandardOut:
 
 
 async def compute_superelevation(cache: ResultCache, req: SuperelevationRequest) -> Computed:
-    resolved = req.model_dump(mode="json") | {"design_standard": req.design_standard}
+    resolved = ResolvedSuperelevation(
+        design_standard=req.design_standard,
+        side_friction_bound=req.side_friction_bound,
+        design_speed_kmh=req.design_speed_kmh,
+        radius_m=req.radius_m,
+        max_superelevation_percent=req.max_superelevation_percent,
+    )
 
     async def produce() -> bytes:
         r = superelevation_percent(
@@ -103,7 +110,15 @@ def table_radii(req: SuperelevationTableRequest) -> np.ndarray:
 
 
 async def compute_superelevation_table(cache: ResultCache, req: SuperelevationTableRequest, csv: bool) -> Computed:
-    resolved = req.model_dump(mode="json") | {"design_standard": req.design_standard}
+    resolved = ResolvedSuperelevationTable(
+        design_standard=req.design_standard,
+        side_friction_bound=req.side_friction_bound,
+        design_speed_kmh=req.design_speed_kmh,
+        max_superelevation_percent=req.max_superelevation_percent,
+        radii_m=None if req.radii_m is None else tuple(req.radii_m),
+        radius_max_m=req.radius_max_m,
+        points=req.points,
+    )
 
     async def produce() -> bytes:
         t = superelevation_table(

@@ -18,7 +18,7 @@ from app.compute.results import Computed, cached
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.limits_schemas import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
-from app.srt.service import base_case_key, case_of_key, level_case, target_checks
+from app.srt.service import level_case, resolve_base_case, target_checks
 from engine import ENGINE_VERSION
 from engine.case import Case
 from engine.errors import InvalidInput, RolloverError
@@ -32,7 +32,7 @@ def resolve_limits(req: LimitsRequest, settings: Settings) -> ResolvedLimits:
         table = tuple(req.overweights_percent) if req.overweights_percent is not None else tuple(DEFAULT_OVERWEIGHTS)
     target = req.target_srt_g if req.target_srt_g is not None else settings.srt_target_general_g
     return ResolvedLimits(
-        case=base_case_key(req, settings), parameter=req.parameter, target_srt_g=target, overweights_percent=table
+        case=resolve_base_case(req, settings), parameter=req.parameter, target_srt_g=target, overweights_percent=table
     )
 
 
@@ -74,8 +74,7 @@ def _current_value(case: Case, parameter: str) -> float:
 def solve_limits(resolved: ResolvedLimits) -> bytes:
     """The limit and its table (blocking: called in a worker thread) -> LimitsResult JSON bytes."""
     started = time.perf_counter()
-    case = resolved.case
-    base = case_of_key(case)
+    base, targets = resolved.case.case, resolved.case.targets
     parameter, target = resolved.parameter, resolved.target_srt_g
     try:
         limit = parameter_limit(base, target, parameter)
@@ -115,7 +114,7 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
                     "error": None,
                 }
             )
-    SOLVE_SECONDS.labels("srt-limits", case["model"]).observe(time.perf_counter() - started)
+    SOLVE_SECONDS.labels("srt-limits", base.model).observe(time.perf_counter() - started)
     unit, symbol, _ = PARAMETER_INFO[parameter]
     return (
         LimitsResult.model_validate(
@@ -127,10 +126,10 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
                 "description": LIMIT_PARAMETERS[parameter][1],
                 "target_srt_g": target,
                 "current_value": _current_value(base, parameter),
-                "limit": _limit_out(limit, case["targets"], level_srt_at(base, limit)),
+                "limit": _limit_out(limit, targets, level_srt_at(base, limit)),
                 "table": table,
-                "model": case["model"],
-                "stage": case["stage"] if case["model"] == "3d" else None,
+                "model": base.model,
+                "stage": base.stage if base.model == "3d" else None,
                 "engine_version": ENGINE_VERSION,
             }
         )

@@ -7,8 +7,9 @@ minimum radius or a plot) asks :func:`solve` for the engine's result object, mem
 parses another endpoint's cached bytes.
 
 Public for the other features (road, plots, limits, sweep, alignments, routes): :func:`resolve_case` (an SRT
-request's engine case), :func:`resolve_targets` and the target checks, :func:`srt_key` / :func:`base_case_key` (what
-a key holds of an SRT request), :func:`solve`, :func:`level_case` / :func:`solve_with_level` (the level-road case
+request's engine case), :func:`resolve_targets` and the target checks, :func:`resolve_srt` /
+:func:`resolve_base_case` (the typed requests whose keys hold an SRT request: :mod:`app.compute.resolved`),
+:func:`solve`, :func:`level_case` / :func:`solve_with_level` (the level-road case
 the targets are judged on) and :func:`srt_result`.
 """
 
@@ -23,6 +24,7 @@ from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache, cache_key
 from app.compute.coalescer import COALESCER
+from app.compute.resolved import JUDGED_ON, ResolvedCase, ResolvedSrt
 from app.compute.results import Computed, cached
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
@@ -56,11 +58,6 @@ def resolve_case(req: SrtInputs, *, road: Road | None = None, vehicle: Vehicle |
 def resolve_targets(targets: dict[str, float] | None, settings: Settings) -> dict[str, float]:
     """The SRT targets of a request: its own, else the configured defaults (name -> minimum SRT [g])."""
     return dict(targets) if targets is not None else settings.default_targets()
-
-
-#: what every target verdict is judged on (``TargetCheckOut.judged_on``); also in every SRT key (:func:`srt_key`), so
-#: an answer cached before the verdicts moved to the level road is never served again
-JUDGED_ON = "level_road_srt"
 
 
 def level_case(case: Case) -> Case:
@@ -100,31 +97,19 @@ def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list
     return [list(checks) for checks in zip(*per_target, strict=True)] if per_target else [[] for _ in srts]
 
 
-def srt_key(
+def resolve_srt(
     case: Case, targets: dict[str, float], *, include_curves: bool = False, curve_points: int | None = None
-) -> dict[str, Any]:
-    """The resolved SRT request hashed into the cache key: the case, whether (and how finely) the curves are
-    asked for, and the targets the result is checked against (they are in the body, so they are in the key)."""
-    return {
-        **case.to_dict(),
-        "include_curves": include_curves,
-        "curve_points": curve_points if include_curves else None,  # without curves it changes nothing
-        "targets": dict(targets),
-        "targets_judged_on": JUDGED_ON,
-    }
+) -> ResolvedSrt:
+    """The resolved SRT request hashed into a key: the case, whether (and how finely) the curves are asked for, and
+    the targets the result is checked against (they are in the body, so they are in the key)."""
+    return ResolvedSrt(
+        base=ResolvedCase(case=case, targets=dict(targets)), include_curves=include_curves, curve_points=curve_points
+    )
 
 
-def base_case_key(req: SrtInputs, settings: Settings) -> dict[str, Any]:
-    """The resolved base case of a limits or sweep request (no curves: those fields would only blur the key), as
-    :func:`srt_key` without the curve fields: what their cache keys hold of the SRT request."""
-    base = srt_key(resolve_case(req), resolve_targets(req.targets, settings))
-    del base["include_curves"], base["curve_points"]
-    return base
-
-
-def case_of_key(resolved_case: dict[str, Any]) -> Case:
-    """The engine case of :func:`base_case_key`'s dict (the inverse, targets left out)."""
-    return Case.from_dict({k: v for k, v in resolved_case.items() if k not in ("targets", "targets_judged_on")})
+def resolve_base_case(req: SrtInputs, settings: Settings) -> ResolvedCase:
+    """The base case of a limits or sweep request and its targets (no curves: those fields would only blur the key)."""
+    return ResolvedCase(case=resolve_case(req), targets=resolve_targets(req.targets, settings))
 
 
 # -------------------------------------------------------------------------------------- computing
@@ -193,7 +178,7 @@ async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -
     case = resolve_case(req)
     targets = resolve_targets(req.targets, settings)
     points = req.curve_points if req.include_curves else None
-    resolved = srt_key(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
+    resolved = resolve_srt(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
 
     async def produce() -> bytes:
         result, level = await solve_with_level(cache, case, curve_points=points)

@@ -21,13 +21,13 @@ from starlette.concurrency import run_in_threadpool
 
 from app.compute import solvers
 from app.compute.cache import ResultCache
-from app.compute.resolved import ResolvedSweep
+from app.compute.resolved import JUDGED_ON, ResolvedSweep
 from app.compute.results import Computed, cached
 from app.formats.tables import flatten_targets, target_columns, to_csv_chunks
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
-from app.srt.service import JUDGED_ON, base_case_key, case_of_key, level_case, target_checks
+from app.srt.service import level_case, resolve_base_case, target_checks
 from app.srt.sweep_schemas import SweepRequest
 from engine import ENGINE_VERSION
 from engine.case import Case
@@ -39,7 +39,7 @@ ROWS_PER_CHUNK = 1_000
 
 
 def resolve_sweep(req: SweepRequest, settings: Settings) -> ResolvedSweep:
-    return ResolvedSweep(case=base_case_key(req, settings), grid={a: tuple(v) for a, v in req.grid.axes().items()})
+    return ResolvedSweep(case=resolve_base_case(req, settings), grid={a: tuple(v) for a, v in req.grid.axes().items()})
 
 
 @dataclass(frozen=True)
@@ -80,12 +80,11 @@ def level_srts(base: Case, grid: dict[str, list[float]], result: EngineSweep) ->
 def sweep_answer(resolved: ResolvedSweep) -> SweepAnswer:
     """Every case of the grid (blocking: called in a worker thread), as arrays."""
     started = time.perf_counter()
-    case = resolved.case
-    base = case_of_key(case)
+    base = resolved.case.case
     result = sweep(base, resolved.grid, block_map=solvers.block_map)
     level = level_srts(base, resolved.grid, result)
-    SOLVE_SECONDS.labels("srt-sweep", case["model"]).observe(time.perf_counter() - started)
-    order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, case["targets"]))
+    SOLVE_SECONDS.labels("srt-sweep", base.model).observe(time.perf_counter() - started)
+    order = tuple((c["name"], c["target_g"]) for c in target_checks(0.0, resolved.case.targets))
     return SweepAnswer(resolved, result, order, level)
 
 

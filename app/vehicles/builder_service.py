@@ -14,6 +14,7 @@ import orjson
 from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedBuild, ResolvedPayloadTable
 from app.compute.results import Computed, cached
 from app.formats.tables import Text, to_csv
 from app.vehicles.builder_schemas import (
@@ -65,7 +66,7 @@ def build_result(built: BuiltVehicle) -> BuildResult:
 
 async def compute_build(cache: ResultCache, req: BuildRequest) -> Computed:
     spec = req.engine_spec()
-    resolved = {"spec": spec.to_dict()}
+    resolved = ResolvedBuild(spec=spec)
 
     async def produce() -> bytes:
         return build_result(build_spec(spec)).model_dump_json().encode()
@@ -150,8 +151,15 @@ def _solve_payload_table(req: PayloadTableRequest, spec: VehicleSpec | Combinati
 
 async def compute_payload_table(cache: ResultCache, req: PayloadTableRequest, csv: bool) -> Computed:
     spec = req.engine_spec()
-    kind = "combination_spec" if isinstance(spec, CombinationSpec) else "spec"
-    resolved = req.model_dump(mode="json", exclude={"spec", "combination_spec"}) | {kind: spec.to_dict()}
+    resolved = ResolvedPayloadTable(
+        build=ResolvedBuild(spec=spec),
+        unit_index=req.unit_index,
+        target_srt_g=req.target_srt_g,
+        payload_index=req.payload_index,
+        load_heights_m=None if req.load_heights_m is None else tuple(req.load_heights_m),
+        payload_masses_kg=None if req.payload_masses_kg is None else tuple(req.payload_masses_kg),
+        rows=req.rows,
+    )
 
     async def produce() -> bytes:
         table = await run_in_threadpool(_solve_payload_table, req, spec)  # tens of 3D solves: off the event loop

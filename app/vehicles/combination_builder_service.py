@@ -12,6 +12,7 @@ from typing import Any
 from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache
+from app.compute.resolved import ResolvedBuild
 from app.compute.results import Computed, cached
 from app.vehicles.builder_service import at_field
 from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
@@ -37,7 +38,7 @@ def build_combination_result(built: BuiltCombination) -> BuildCombinationResult:
 
 async def compute_combination_build(cache: ResultCache, req: BuildCombinationRequest) -> Computed:
     spec = req.engine_spec()
-    resolved = {"combination_spec": spec.to_dict()}  # every input, defaults filled; the library is the engine's
+    resolved = ResolvedBuild(spec=spec)  # every input, defaults filled; the library is the engine's
 
     async def produce() -> bytes:
         built = await run_in_threadpool(build_combination_spec, spec)

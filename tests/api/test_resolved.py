@@ -24,7 +24,7 @@ from app.routes.service import _document_digest, resolved_route, route_refs
 from app.settings import Settings
 from app.srt.limits_schemas import LimitsRequest
 from app.srt.limits_service import resolve_limits
-from app.srt.service import base_case_key
+from app.srt.service import resolve_case
 from app.srt.sweep_schemas import SweepRequest
 from app.srt.sweep_service import resolve_sweep
 from app.vehicles.refs import vehicle_preset
@@ -115,17 +115,23 @@ def test_a_routes_key_is_the_key_of_the_dict_it_replaces():
         assert resolved.key(op) == cache_key(op, old)
 
 
+def _case_dict(req, targets: dict | None = None) -> dict:
+    """What the keys held of an SRT request's case before the types: the case's dict beside the targets."""
+    targets = Settings().default_targets() if targets is None else targets
+    return {**resolve_case(req).to_dict(), "targets": targets, "targets_judged_on": "level_road_srt"}
+
+
 def test_a_sweeps_and_a_limits_key_are_the_keys_of_the_dicts_they_replace():
     settings = Settings()
     sweep = SweepRequest.model_validate({"vehicle": BTRAIN, "grid": {"slope_percent": [0, 4], "bank_percent": [2]}})
-    old = {"case": base_case_key(sweep, settings), "grid": {"bank_percent": [2.0], "slope_percent": [0.0, 4.0]}}
+    old = {"case": _case_dict(sweep), "grid": {"bank_percent": [2.0], "slope_percent": [0.0, 4.0]}}
     resolved = resolve_sweep(sweep, settings)
     assert list(resolved.grid) == ["bank_percent", "slope_percent"] and resolved.cases == 2
     for op in ("srt-sweep", "srt-sweep-csv", "srt-sweep-answer"):
         assert resolved.key(op) == cache_key(op, old)
     limits = LimitsRequest.model_validate({"vehicle": BTRAIN, "parameter": "cg_height_above_chassis_m"})
     old = {
-        "case": base_case_key(limits, settings),
+        "case": _case_dict(limits),
         "parameter": "cg_height_above_chassis_m",
         "target_srt_g": settings.srt_target_general_g,
         "overweights_percent": [0.0, 5.0, 10.0, 15.0, 20.0],

@@ -51,7 +51,7 @@ class _Context:
 
 def test_a_part_does_not_run_on_a_stored_request_of_another_shape():
     case = {"model": "3d"}
-    with pytest.raises(ValueError, match="not a ResolvedSweep: grid"):
+    with pytest.raises(ValueError, match="not a ResolvedSweep: case"):
         op_sweep.run_part(
             {"resolved": {"case": case, "grid": [0.0]}, "fixed_axes": 0},
             orjson.dumps({"first_block": 0, "blocks": 1}),

@@ -23,9 +23,10 @@ Limits (module constants, refused beyond them with the part named):
 * ``MAX_SEGMENT_M`` between consecutive vertices (10 km): longer jumps are what swapped or corrupted
   coordinates produce, and they also bound the error of the engine's plane frame
   (:mod:`engine.geodesy`: below 1e-7 relative);
-* ``MAX_VERTICES`` vertices (100,000) and ``MAX_PARTS`` parts (1,000) in one document, and
-  ``MAX_LENGTH_M`` of route in all (1,000 km): they bound the work of one request (a 500 km route at 10 m
-  spacing is 50,000 vertices).
+* ``MAX_VERTICES`` vertices (100,000: a job's; a reader's caller may set fewer, ``max_vertices``, as the
+  synchronous request does) and ``MAX_PARTS`` parts (1,000) in one document, and ``MAX_LENGTH_M`` of route in all
+  (1,000 km): they bound the work of one request (a 500 km route at 10 m spacing is 50,000 vertices). Beyond the
+  vertices, :class:`RouteTooLarge` (a :class:`RouteFormatError`), so a caller can say where larger work goes.
 """
 
 from __future__ import annotations
@@ -74,10 +75,20 @@ class RoutePart:
     length_m: float = 0.0
 
 
+class RouteTooLarge(RouteFormatError):
+    """More vertices than the reader was allowed (``max_vertices``)."""
+
+
 @dataclass
 class _Budget:
+    max_vertices: int = MAX_VERTICES
     vertices: int = 0
     length_m: float = 0.0
+
+    def check_part(self, n: int, location: str, what: str = "vertices") -> None:
+        """Refuse a part longer than the whole budget before reading it point by point."""
+        if n > self.max_vertices:
+            raise RouteTooLarge(f"more than {self.max_vertices:,} {what}", location)
 
 
 def _vertex(location: str, i: int, style: str) -> str:
@@ -116,8 +127,8 @@ def _part(source, location, style, lon, lat, ele, properties, budget: _Budget) -
         )
     budget.vertices += idx.size
     budget.length_m += float(seg.sum())
-    if budget.vertices > MAX_VERTICES:
-        raise RouteFormatError(f"more than {MAX_VERTICES} vertices in the document", location)
+    if budget.vertices > budget.max_vertices:
+        raise RouteTooLarge(f"more than {budget.max_vertices:,} vertices in the document", location)
     if budget.length_m > MAX_LENGTH_M:
         raise RouteFormatError(f"the route is longer than {MAX_LENGTH_M / 1000:g} km", location)
     e = None
@@ -133,12 +144,11 @@ def _number(v) -> bool:
     return isinstance(v, int | float) and not isinstance(v, bool)
 
 
-def _positions(coords, location: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+def _positions(coords, location: str, budget: _Budget) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     if not isinstance(coords, list):
         raise RouteFormatError("coordinates must be an array of positions", location, "coordinates")
     n = len(coords)
-    if n > MAX_VERTICES:
-        raise RouteFormatError(f"more than {MAX_VERTICES} vertices", location)
+    budget.check_part(n, location)
     lon, lat, ele = np.empty(n), np.empty(n), np.full(n, np.nan)
     for i, pos in enumerate(coords):
         if not isinstance(pos, list) or not 2 <= len(pos) <= 3 or not all(_number(v) for v in pos):
@@ -190,7 +200,7 @@ def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> li
     kind = geom.get("type")
     loc = _at(where, "coordinates")
     if kind == "LineString":
-        lon, lat, ele = _positions(geom.get("coordinates"), loc)
+        lon, lat, ele = _positions(geom.get("coordinates"), loc, budget)
         return [_part(source, loc, "json", lon, lat, ele, props, budget)]
     if kind == "MultiLineString":
         lines = geom.get("coordinates")
@@ -198,7 +208,7 @@ def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> li
             raise RouteFormatError("coordinates must be a non-empty array of lines", loc, "coordinates")
         out = []
         for j, line in enumerate(lines):
-            lon, lat, ele = _positions(line, f"{loc}[{j}]")
+            lon, lat, ele = _positions(line, f"{loc}[{j}]", budget)
             out.append(_part(f"{source} part {j}", f"{loc}[{j}]", "json", lon, lat, ele, props, budget))
         return out
     raise RouteFormatError(
@@ -206,8 +216,9 @@ def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> li
     )
 
 
-def read_geojson(doc) -> list[RoutePart]:
-    """Route parts from a GeoJSON object (parsed, or as JSON text); see the module docstring."""
+def read_geojson(doc, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
+    """Route parts from a GeoJSON object (parsed, or as JSON text), at most ``max_vertices`` vertices in all; see the
+    module docstring."""
     if isinstance(doc, str | bytes):
         try:
             doc = json.loads(doc)
@@ -220,7 +231,7 @@ def read_geojson(doc) -> list[RoutePart]:
         name = (crs.get("properties") or {}).get("name") if isinstance(crs, dict) else None
         if name not in _CRS84:
             raise RouteFormatError(f"crs {name!r} is not WGS84 longitude/latitude (CRS84)", "crs", "crs")
-    budget = _Budget()
+    budget = _Budget(max_vertices=max_vertices)
     kind = doc.get("type")
     if kind == "FeatureCollection":
         feats = doc.get("features")
@@ -264,10 +275,9 @@ def _child_text(el, name: str) -> str | None:
     return None
 
 
-def _gpx_points(points: list, label: str, tag: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _gpx_points(points: list, label: str, tag: str, budget: _Budget) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     n = len(points)
-    if n > MAX_VERTICES:
-        raise RouteFormatError(f"more than {MAX_VERTICES} points", label)
+    budget.check_part(n, label, "points")
     lon, lat, ele = np.empty(n), np.empty(n), np.full(n, np.nan)
     for i, pt in enumerate(points):
         where = f"{label} {tag}[{i + 1}]"
@@ -290,8 +300,9 @@ def _gpx_points(points: list, label: str, tag: str) -> tuple[np.ndarray, np.ndar
     return lon, lat, ele
 
 
-def read_gpx(text: str | bytes) -> list[RoutePart]:
-    """Route parts from a GPX 1.1 document: each track segment and each route; see the module docstring."""
+def read_gpx(text: str | bytes, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
+    """Route parts from a GPX 1.1 document: each track segment and each route, at most ``max_vertices`` vertices in
+    all; see the module docstring."""
     try:
         root = SafeET.fromstring(text)
     except DefusedXmlException as exc:
@@ -301,7 +312,7 @@ def read_gpx(text: str | bytes) -> list[RoutePart]:
         raise RouteFormatError(f"malformed XML: {exc}", f"GPX line {line}, column {col}") from None
     if _local(root.tag) != "gpx":
         raise RouteFormatError(f"the root element is <{_local(root.tag)}>, not <gpx>", "GPX")
-    budget, parts = _Budget(), []
+    budget, parts = _Budget(max_vertices=max_vertices), []
     t_index = r_index = 0
     for el in root:
         kind = _local(el.tag)
@@ -317,12 +328,12 @@ def read_gpx(text: str | bytes) -> list[RoutePart]:
                 raise RouteFormatError("has no trkseg", f"trk[{t_index}]{named}")
             for j, seg in enumerate(segs, start=1):
                 label = f"trk[{t_index}]{named} trkseg[{j}]"
-                lon, lat, ele = _gpx_points([p for p in seg if _local(p.tag) == "trkpt"], label, "trkpt")
+                lon, lat, ele = _gpx_points([p for p in seg if _local(p.tag) == "trkpt"], label, "trkpt", budget)
                 parts.append(_part(label, label, "trkpt", lon, lat, ele, props, budget))
         else:
             r_index += 1
             label = f"rte[{r_index}]{named}"
-            lon, lat, ele = _gpx_points([p for p in el if _local(p.tag) == "rtept"], label, "rtept")
+            lon, lat, ele = _gpx_points([p for p in el if _local(p.tag) == "rtept"], label, "rtept", budget)
             parts.append(_part(label, label, "rtept", lon, lat, ele, props, budget))
         if len(parts) > MAX_PARTS:
             raise RouteFormatError(f"more than {MAX_PARTS} tracks, segments and routes", "GPX")

@@ -55,7 +55,7 @@ class RouteJob:
 def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
     resolved = resolved_route(req, route_refs(req), ctx.settings)
-    parts = read_route(req)  # reading refuses bad geometry now (a 422)
+    parts = read_route(req, synchronous=False)  # reading refuses bad geometry now (a 422)
     vertices = sum(int(p.lon_deg.size) for p in parts)
     if (
         req.superelevation_percent is None

@@ -23,6 +23,11 @@ from app.http.schemas import (
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 
+#: the synchronous request's vertices: a track of 200 km at 10 m (about 3 s with 3 m of noise correlated over 50 m on
+#: the 2-core bench machine, docs/routes.md "Speed": 7 s for 500 km), what a page waits for; the page sends a larger
+#: file as a job, and a job reads up to :data:`~app.formats.route_io.MAX_VERTICES`
+MAX_SYNC_VERTICES = 20_000
+
 #: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX
 ROUTE_BODY_LIMIT = 32 * 2**20
 MAX_GPX_CHARS = 30_000_000
@@ -93,7 +98,8 @@ class RouteRequest(SrtOptions, SrtTargets, DesignOptions):
     """The vehicle(s), the SRT options, the design standard, and the route as `geojson` (a GeoJSON object:
     `FeatureCollection`/`Feature` of `LineString`/`MultiLineString`, WGS84 lon/lat, optional elevation [m] as the
     third coordinate) or `gpx` (GPX 1.1 text: tracks and routes, with `<ele>`). Limits: {vertices} vertices,
-    {parts} line parts and {km} km of route per request (a larger network: `POST /v1/jobs`)."""
+    {parts} line parts and {km} km of route per request; a longer track (up to {job_vertices} vertices) or a
+    larger network: `POST /v1/jobs` (`routes.assess`)."""
 
     model_config = ConfigDict(
         json_schema_extra={
@@ -200,7 +206,10 @@ class RouteRequest(SrtOptions, SrtTargets, DesignOptions):
 
 
 RouteRequest.__doc__ = (RouteRequest.__doc__ or "").format(
-    vertices=f"{MAX_VERTICES:,}", parts=f"{MAX_PARTS:,}", km=f"{MAX_LENGTH_M / 1000:,.0f}"
+    vertices=f"{MAX_SYNC_VERTICES:,}",
+    job_vertices=f"{MAX_VERTICES:,}",
+    parts=f"{MAX_PARTS:,}",
+    km=f"{MAX_LENGTH_M / 1000:,.0f}",
 )
 
 

@@ -37,19 +37,20 @@ from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedRoute, RouteDocument
 from app.compute.results import Computed, cached
 from app.formats.alignment_io import CurveTable
-from app.formats.route_io import RouteFormatError, RoutePart, read_geojson, read_gpx
+from app.formats.route_io import MAX_VERTICES, RouteFormatError, RoutePart, RouteTooLarge, read_geojson, read_gpx
 from app.formats.tables import Text, flatten_targets, to_csv
 from app.http.negotiation import GEOJSON_MEDIA_TYPE
 from app.http.problems import InvalidRoute, request_error
-from app.routes.schemas import RouteCurves, RouteRequest, RouteResult
+from app.routes.schemas import MAX_SYNC_VERTICES, RouteCurves, RouteRequest, RouteResult
 from app.settings import Settings
 from app.vehicles.refs import resolve_vehicle, vehicle_of_resolved
 from engine import ENGINE_VERSION
 from engine.errors import InvalidInput
 from engine.route import HorizontalCurve, find_curves, local_frame
 
-#: a ``routes.assess`` job's rows (curves x vehicles): a route is one request's document (its body and vertex limits
-#: are the synchronous request's), so a job takes what those documents hold, not an alignment job's million
+#: a ``routes.assess`` job's rows (curves x vehicles): a route job reads one document (the synchronous request's
+#: body limit, up to :data:`~app.formats.route_io.MAX_VERTICES` vertices), so a job takes what such documents hold,
+#: not an alignment job's million
 MAX_JOB_ROWS = 100_000
 
 #: the route's own columns in front of the alignment's in the CSV answer
@@ -100,14 +101,28 @@ def _source(req: RouteRequest, source_field: str | None) -> str:
     return source_field or ("geojson" if req.geojson is not None else "gpx")
 
 
-def read_route(req: RouteRequest, source_field: str | None = None) -> list[RoutePart]:
-    """The parts of the request's document; :class:`InvalidRoute` naming the part and vertex otherwise (and the
-    request field, ``source_field`` for an upload)."""
+def _to_a_job(limit: str) -> str:
+    """What a synchronous request beyond one of its limits is told: where larger work goes."""
+    return (
+        '; larger work goes to a job: POST /v1/jobs with {"operation": "routes.assess", "request": <this request as '
+        f'JSON, the file as its "gpx" text or "geojson" object>}} takes up to {limit} (docs/jobs.md)'
+    )
+
+
+def read_route(req: RouteRequest, source_field: str | None = None, *, synchronous: bool = True) -> list[RoutePart]:
+    """The parts of the request's document, at most :data:`~app.routes.schemas.MAX_SYNC_VERTICES` vertices for the
+    synchronous request and :data:`~app.formats.route_io.MAX_VERTICES` for a job; :class:`InvalidRoute` naming the
+    part and vertex otherwise (and the request field, ``source_field`` for an upload)."""
     source = _source(req, source_field)
+    limit = MAX_SYNC_VERTICES if synchronous else MAX_VERTICES
     try:
-        return read_geojson(req.geojson) if req.geojson is not None else read_gpx(req.gpx)
+        if req.geojson is not None:
+            return read_geojson(req.geojson, max_vertices=limit)
+        return read_gpx(req.gpx, max_vertices=limit)
     except RouteFormatError as exc:
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
+        if synchronous and isinstance(exc, RouteTooLarge):
+            reason += _to_a_job(f"{MAX_VERTICES:,} vertices")
         raise InvalidRoute(reason, source=source, location=exc.location, column=exc.field) from None
 
 
@@ -360,19 +375,16 @@ def render_route(
     ``source_field`` names an upload's document in errors (``body``, ``file``); ``max_rows`` bounds curves x
     vehicles (None: the synchronous request's :data:`~app.alignments.schemas.MAX_ROWS`; a job passes
     :data:`MAX_JOB_ROWS`)."""
-    parts = read_route(req, source_field)
+    synchronous = max_rows is None
+    parts = read_route(req, source_field, synchronous=synchronous)
     geo = find_route_curves(req, parts, source_field)
     vehicles = [vehicle_of_resolved(v) for v in resolved.vehicles]
-    rows, synchronous = len(geo.curves) * len(vehicles), max_rows is None
+    rows = len(geo.curves) * len(vehicles)
     max_rows = MAX_ROWS if max_rows is None else max_rows
     if rows > max_rows:
         message = f"{len(geo.curves)} curves x {len(vehicles)} vehicles = {rows:,} rows; at most {max_rows:,} rows"
-        if synchronous:  # say where larger work goes
-            message += (
-                '; larger work goes to a job: POST /v1/jobs with {"operation": "routes.assess", "request": <this '
-                f'request as JSON, the file as its "gpx" text or "geojson" object>}} takes up to {MAX_JOB_ROWS:,} '
-                "rows (docs/jobs.md)"
-            )
+        if synchronous:
+            message += _to_a_job(f"{MAX_JOB_ROWS:,} rows")
         raise request_error("vehicles", message)
     table = curve_table(req, geo)
     try:

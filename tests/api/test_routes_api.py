@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from engine.road import max_curve_speed_kmh
+from tests.api.conftest import ROOT
 from tests.synthetic_routes import Arc, Tangent, curve_spans, gauss_markov, layout, spiral_curve, to_lonlat
 
 PATH = "/v1/routes/assess"
@@ -220,6 +221,25 @@ def test_bad_geometry_names_the_feature_and_the_vertex(shared_client, coords, fi
     body = {"vehicle": BTRAIN, "geojson": feature_collection(coords), "superelevation_percent": 6}
     p = post(shared_client, body, 422).json()
     assert p["type"].endswith("invalid-route") and p["errors"][0]["field"] == field and words in p["detail"]
+
+
+def test_the_synchronous_request_reads_up_to_its_vertex_limit_and_points_past_it_to_a_job(shared_client):
+    from app.formats.route_io import MAX_VERTICES
+    from app.routes.schemas import MAX_SYNC_VERTICES
+
+    page = (ROOT / "app/web/js/alignment.js").read_text()
+    assert f"jobVertices: {MAX_SYNC_VERTICES}" in page  # the page sends a larger route as a job, not to a 422
+    line = route(45.0, spacing_m=0.19)  # the 4 km of ELEMENTS, logged every 0.19 m: 21,053 vertices
+    body = {
+        "vehicle": BTRAIN,
+        "geojson": feature_collection(line[: MAX_SYNC_VERTICES + 1]),
+        "superelevation_percent": 6,
+    }
+    p = post(shared_client, body, 422).json()
+    assert p["type"].endswith("invalid-route") and p["errors"][0]["field"] == "geojson.features.0.geometry.coordinates"
+    assert f"more than {MAX_SYNC_VERTICES:,} vertices" in p["detail"] and f"{MAX_VERTICES:,} vertices" in p["detail"]
+    body["geojson"] = feature_collection(line[:MAX_SYNC_VERTICES])  # at the limit: read, both curves found
+    assert len(post(shared_client, body).json()["curves"]) == 2
 
 
 def test_bad_gpx_names_the_point(shared_client):

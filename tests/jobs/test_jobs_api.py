@@ -455,6 +455,29 @@ def test_a_route_past_the_synchronous_rows_is_told_to_send_a_job_and_runs_as_one
         assert len(curves) == 2 and all(len(k["vehicles"]) == 2 for k in curves)
 
 
+def test_a_route_past_the_synchronous_vertices_is_told_to_send_a_job_and_runs_as_one(monkeypatch):
+    """The synchronous route reads at most MAX_SYNC_VERTICES vertices (lowered here to 10 for the example's 14):
+    the 422 names the document, the limit and where larger work goes; the same request as a job (which reads up to
+    MAX_VERTICES) is done with the example's two curves."""
+    import app.routes.service as routes
+    from app.formats.route_io import MAX_VERTICES
+    from app.routes.schemas import EXAMPLE_GEOJSON
+
+    monkeypatch.setattr(routes, "MAX_SYNC_VERTICES", 10)
+    req = {"vehicle": "table16-btrain", "geojson": EXAMPLE_GEOJSON, "superelevation_percent": 6.0}
+    with make_client() as c:
+        r = c.post("/v1/routes/assess", json=req)
+        assert r.status_code == 422, r.text
+        (error,) = r.json()["errors"]
+        assert error["field"].startswith("geojson"), error
+        assert "more than 10 vertices" in error["message"]
+        assert 'POST /v1/jobs with {"operation": "routes.assess"' in error["message"]
+        assert f"{MAX_VERTICES:,} vertices" in error["message"]
+        location, status = run(c, "routes.assess", req)
+        assert status["status"] == "done" and status["total"] == 14
+        assert len(c.get(location + "/result").json()["curves"]) == 2
+
+
 def test_a_route_that_cannot_be_read_is_refused_at_submission():
     bad = {"type": "LineString", "coordinates": [[10.0, 45.0], [10.001, 45.0], [45.0, 100.0]]}  # latitude 100
     with make_client() as c:

@@ -131,11 +131,21 @@ def test_not_json_and_not_an_object():
 
 
 def test_size_limits(monkeypatch):
-    monkeypatch.setattr(rio, "MAX_VERTICES", 4)
-    with pytest.raises(RouteFormatError, match="more than 4 vertices") as e:
-        read_geojson(collection(feature(line(STRAIGHT)), feature(line(STRAIGHT))))
+    n = len(STRAIGHT)
+    two = collection(feature(line(STRAIGHT)), feature(line(STRAIGHT)))
+    assert len(read_geojson(two, max_vertices=2 * n)) == 2  # the limit is inclusive
+    with pytest.raises(rio.RouteTooLarge, match=f"more than {2 * n - 1} vertices in the document") as e:
+        read_geojson(two, max_vertices=2 * n - 1)  # the document's total, counted part by part
     assert e.value.location == "features[1].geometry.coordinates"
-    monkeypatch.setattr(rio, "MAX_VERTICES", 100_000)
+    with pytest.raises(rio.RouteTooLarge, match=f"more than {n - 1} vertices") as e:
+        read_geojson(two, max_vertices=n - 1)  # one part alone is too long: refused before it is read
+    assert e.value.location == "features[0].geometry.coordinates"
+    gpx = "<gpx><trk><trkseg>" + "".join(f'<trkpt lat="45" lon="{10 + i * 1e-4}"/>' for i in range(5)) + "</trkseg>"
+    gpx += "</trk></gpx>"
+    assert len(read_gpx(gpx, max_vertices=5)) == 1
+    with pytest.raises(rio.RouteTooLarge, match="more than 4 points"):
+        read_gpx(gpx, max_vertices=4)
+    assert rio.MAX_VERTICES == 100_000  # a job's document; the synchronous request's is app.routes.schemas'
     monkeypatch.setattr(rio, "MAX_LENGTH_M", 300.0)  # each STRAIGHT is 157 m
     with pytest.raises(RouteFormatError, match=r"longer than 0\.3 km"):
         read_geojson(collection(feature(line(STRAIGHT)), feature(line(STRAIGHT))))

@@ -28,7 +28,7 @@ sys.path.insert(0, str(ROOT / "bench"))
 from bench_jobs import curves_csv  # noqa: E402
 
 from app.alignments.rows import csv_columns, render, rows  # noqa: E402
-from app.alignments.schemas import AlignmentRequest  # noqa: E402
+from app.alignments.schemas import MAX_JOB_CURVES, MAX_JOB_ROWS, AlignmentRequest  # noqa: E402
 from app.alignments.service import resolve_alignment, solve_alignment  # noqa: E402
 from app.formats.tables import flatten_targets  # noqa: E402
 from app.settings import Settings  # noqa: E402
@@ -49,7 +49,8 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     args = ap.parse_args()
     req = AlignmentRequest.model_validate({"vehicle": "table16-btrain", "csv": curves_csv(args.curves)})
-    answer = solve_alignment(resolve_alignment(req, None, Settings()))
+    # a job's size (the synchronous request stops at 10,000 curves): what a job's result is rendered at
+    answer = solve_alignment(resolve_alignment(req, None, Settings(), max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS))
     v = answer.vehicles[0]
     dicts = rows(answer, v, 0, len(answer.curves))
     columns = csv_columns(answer.resolved)

@@ -9,8 +9,9 @@ a third of them with clothoid transitions (Ls = 0.3 sqrt(R) ... of order 20-130 
 * ``engine.route.geodesy.local_frame`` + ``find_curves`` from longitude/latitude (the app's path);
 * ``app.formats.route_io.read_geojson`` of the same route as a GeoJSON LineString (parsed dict).
 
-Prints figures only (median of the repeats) and how many curves were found against the design; ``--write`` puts
-the table in docs/routes.md ("Speed"), between its markers.
+Prints figures only (median of the repeats) and how the curves found compare with the design (found, missed, phantom,
+the radius error of the long and of the short arcs, how often the lower radius bound holds the true radius);
+``--write`` puts both tables in docs/routes.md ("Speed" and the accuracy on this route), between their markers.
 
     python bench/bench_routes.py [--km 500] [--spacing 10] [--repeat 3] [--write]
 """
@@ -34,6 +35,9 @@ from app.formats.route_io import read_geojson  # noqa: E402
 from engine.route import find_curves, local_frame  # noqa: E402
 from tests.synthetic_routes import Arc, Tangent, gauss_markov, layout, spiral_curve, to_lonlat  # noqa: E402
 
+#: an arc at least this long is a "long" one in the accuracy table: ten vertices at 10 m [m]
+LONG_ARC_M = 100.0
+
 
 def design(km: float, seed: int = 3) -> list:
     rng = np.random.default_rng(seed)
@@ -54,6 +58,76 @@ def design(km: float, seed: int = 3) -> list:
     return elements
 
 
+def designed_curves(elements: list) -> list[tuple[float, float, float, float]]:
+    """(start, end chainage, radius, arc length) of each designed curve: a run of non-tangent elements, its radius
+    the sharpest arc's and its arc length that arc's [m]."""
+    out, s, run = [], 0.0, None
+    for el in elements:
+        if isinstance(el, Tangent):
+            if run is not None:
+                out.append((run[0], s, run[1], run[2]))
+                run = None
+        elif isinstance(el, Arc):
+            start = s if run is None else run[0]
+            if run is None or el.radius_m < run[1]:
+                run = (start, el.radius_m, el.length_m)
+        elif run is None:  # a spiral opens the curve
+            run = (s, math.inf, 0.0)
+        s += el.length_m
+    return out
+
+
+def accuracy(elements: list, s: np.ndarray, res) -> dict:
+    """The curves found against the design: each found curve is placed on the designed curve its vertices overlap
+    most, by their design chainage ``s`` (not by its own chainage, which a noisy track stretches); one that overlaps
+    none is a phantom."""
+    curves = designed_curves(elements)
+    starts, ends = np.array([c[0] for c in curves]), np.array([c[1] for c in curves])
+    hits: dict[int, list] = {}
+    phantoms = 0
+    for c in res.curves:
+        a, b = s[c.start_index], s[c.end_index]
+        overlap = np.minimum(ends, b) - np.maximum(starts, a)
+        k = int(np.argmax(overlap))
+        if overlap[k] > 0:
+            hits.setdefault(k, []).append(c)
+        else:
+            phantoms += 1
+    errors: dict[str, list[float]] = {"long": [], "short": []}
+    held = []
+    for k, found in hits.items():
+        _, _, radius, arc = curves[k]
+        c = min(found, key=lambda f: f.radius_m)  # a curve found in pieces: its sharpest piece
+        errors["long" if arc >= LONG_ARC_M else "short"].append(abs(c.radius_m - radius) / radius * 100)
+        if arc >= LONG_ARC_M and c.radius_std_m is not None:  # without noise the bound is the radius itself
+            held.append(c.radius_lower_m <= radius)
+    return {
+        "designed": len(curves),
+        "long": sum(1 for c in curves if c[3] >= LONG_ARC_M),
+        "found": len(res.curves),
+        "missed": len(curves) - len(hits),
+        "split": sum(1 for f in hits.values() if len(f) > 1),
+        "phantoms": phantoms,
+        "errors": errors,
+        "held": held,
+        "length_error_m": res.length_m - s[-1],
+    }
+
+
+def _errors(values: list[float]) -> str:
+    if not values:
+        return "none"
+    return f"{statistics.median(values):.2f} / {max(values):.1f} % ({len(values)})"
+
+
+def accuracy_row(what: str, a: dict) -> str:
+    held = f"{sum(a['held']) / len(a['held']) * 100:.0f} % of {len(a['held'])}" if a["held"] else "no bound (exact)"
+    return (
+        f"| {what} | {a['found']} | {a['missed']} | {a['split']} | {a['phantoms']} | {_errors(a['errors']['long'])} | "
+        f"{_errors(a['errors']['short'])} | {held} | {a['length_error_m']:+.0f} m |"
+    )
+
+
 def timed(fn, repeat: int) -> tuple[float, object]:
     times, out = [], None
     for _ in range(repeat):
@@ -65,6 +139,13 @@ def timed(fn, repeat: int) -> tuple[float, object]:
 
 DOC = ROOT / "docs" / "routes.md"
 START, END = "<!-- bench_routes:start -->", "<!-- bench_routes:end -->"
+ACCURACY_START, ACCURACY_END = "<!-- bench_routes_accuracy:start -->", "<!-- bench_routes_accuracy:end -->"
+
+
+def _replace(text: str, start: str, end: str, lines: list[str]) -> str:
+    head, rest = text.split(start, 1)
+    _, tail = rest.split(end, 1)
+    return f"{head}{start}\n" + "\n".join(lines) + f"\n{end}{tail}"
 
 
 def main() -> None:
@@ -79,7 +160,7 @@ def main() -> None:
     load = os.getloadavg()[0]
     els = design(args.km)
     n_design = sum(1 for e in els if isinstance(e, Arc))
-    x, y, _ = layout(els, args.spacing, ds=0.5)
+    x, y, s = layout(els, args.spacing, ds=0.5)
     rng = np.random.default_rng(1)
     xn, yn = x + rng.normal(0, 3.0, x.size), y + rng.normal(0, 3.0, y.size)
     # a receiver's drift: Gauss-Markov errors of 3 m correlated over 50 m along the track (docs/routes.md)
@@ -90,6 +171,11 @@ def main() -> None:
     route = f"{args.km:g} km at {args.spacing:g} m ({x.size - 1:,} segments, {n_design} designed curves)"
     print(f"route: {route}")
     rows: list[tuple[str, float, str]] = []
+    accuracies: list[str] = []
+
+    def judged(what: str, res) -> None:
+        accuracies.append(accuracy_row(what, accuracy(els, s, res)))
+        print(accuracies[-1])
 
     def row(what: str, seconds: float, found: str) -> None:
         rows.append((what, seconds, found))
@@ -97,6 +183,7 @@ def main() -> None:
 
     t, res = timed(lambda: find_curves(x, y), args.repeat)
     row("find_curves, no noise", t, f"{len(res.curves)} curves")
+    judged("no noise", res)
     t, res = timed(lambda: find_curves(xn, yn), args.repeat)
     row(
         "find_curves, 3 m white noise",
@@ -104,12 +191,14 @@ def main() -> None:
         f"{len(res.curves)} curves, sigma estimated {res.noise_m:.2f} m, detection scale "
         f"{res.detection_smoothing_m:.0f} m",
     )
+    judged("3 m white noise", res)
     t, res = timed(lambda: find_curves(xc, yc), args.repeat)
     row(
         "find_curves, 3 m noise correlated over 50 m",
         t,
         f"{len(res.curves)} curves, sigma estimated {res.noise_m:.2f} m, correlation length {res.noise_corr_m:.0f} m",
     )
+    judged("3 m noise correlated over 50 m", res)
 
     def from_lonlat():
         f = local_frame(lon, lat)
@@ -129,10 +218,20 @@ def main() -> None:
             "| --- | --- | --- |",
             *(f"| {what} | {seconds:.2f} s | {found} |" for what, seconds, found in rows),
         ]
-        text = DOC.read_text(encoding="utf-8")
-        head, rest = text.split(START, 1)
-        _, tail = rest.split(END, 1)
-        DOC.write_text(f"{head}{START}\n" + "\n".join(table) + f"\n{END}{tail}", encoding="utf-8")
+        curves = designed_curves(els)
+        long = sum(1 for c in curves if c[3] >= LONG_ARC_M)
+        judged_table = [
+            f"{route}: {len(curves)} designed curves, {long} of them with an arc of at least "
+            f"{LONG_ARC_M:g} m; run of {stamp} (`python bench/bench_routes.py --write`).",
+            "",
+            "| track | curves found | designed curves missed | found in pieces | phantoms | radius error, long arcs: "
+            "median / max (curves) | radius error, shorter arcs | lower radius bound <= true radius, long arcs | "
+            "route length error |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+            *accuracies,
+        ]
+        text = _replace(DOC.read_text(encoding="utf-8"), START, END, table)
+        DOC.write_text(_replace(text, ACCURACY_START, ACCURACY_END, judged_table), encoding="utf-8")
         print(f"wrote {DOC.relative_to(ROOT)}")
 
 

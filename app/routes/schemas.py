@@ -23,9 +23,9 @@ from app.http.schemas import (
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
 
-#: the synchronous request's vertices: a track of 200 km at 10 m (about 3 s with 3 m of noise correlated over 50 m on
-#: the 2-core bench machine, docs/routes.md "Speed": 7 s for 500 km), what a page waits for; the page sends a larger
-#: file as a job, and a job reads up to :data:`~app.formats.route_io.MAX_VERTICES`
+#: the synchronous request's vertices: a track of 200 km at 10 m, two fifths of the route docs/routes.md "Speed" times
+#: (the correlated-noise row is the slow one), what a page waits for; the page sends a larger file as a job, and a job
+#: reads up to :data:`~app.formats.route_io.MAX_VERTICES`
 MAX_SYNC_VERTICES = 20_000
 
 #: a GeoJSON document or GPX text: 100,000 vertices are about 5 MB of GeoJSON and 10 MB of GPX

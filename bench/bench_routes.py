@@ -33,6 +33,7 @@ sys.path.insert(0, str(ROOT))
 
 from app.formats.route_io import read_geojson  # noqa: E402
 from engine.route import find_curves, local_frame  # noqa: E402
+from scripts.docblock import replace_block  # noqa: E402
 from tests.synthetic_routes import Arc, Tangent, gauss_markov, layout, spiral_curve, to_lonlat  # noqa: E402
 
 #: an arc at least this long is a "long" one in the accuracy table: ten vertices at 10 m [m]
@@ -142,12 +143,6 @@ START, END = "<!-- bench_routes:start -->", "<!-- bench_routes:end -->"
 ACCURACY_START, ACCURACY_END = "<!-- bench_routes_accuracy:start -->", "<!-- bench_routes_accuracy:end -->"
 
 
-def _replace(text: str, start: str, end: str, lines: list[str]) -> str:
-    head, rest = text.split(start, 1)
-    _, tail = rest.split(end, 1)
-    return f"{head}{start}\n" + "\n".join(lines) + f"\n{end}{tail}"
-
-
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--km", type=float, default=500.0)
@@ -230,8 +225,8 @@ def main() -> None:
             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
             *accuracies,
         ]
-        text = _replace(DOC.read_text(encoding="utf-8"), START, END, table)
-        DOC.write_text(_replace(text, ACCURACY_START, ACCURACY_END, judged_table), encoding="utf-8")
+        text = replace_block(DOC.read_text(encoding="utf-8"), START, END, "\n".join(table))
+        DOC.write_text(replace_block(text, ACCURACY_START, ACCURACY_END, "\n".join(judged_table)), encoding="utf-8")
         print(f"wrote {DOC.relative_to(ROOT)}")
 
 

@@ -50,6 +50,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from app.formats.alignment_io import MAX_CURVES  # noqa: E402  (the synchronous limit the alignment run sits at)
+from scripts.docblock import write_block  # noqa: E402
 
 BTRAIN = "table16-btrain"
 SRT_BODY = json.dumps({"vehicle": BTRAIN, "road": {"bank_percent": 4.0}}, separators=(",", ":"))
@@ -696,12 +697,9 @@ def write_table(table: list[str], load: float) -> None:
     """The run's table into docs/performance.md, between its markers, with the date and the machine's load."""
     doc = ROOT / "docs" / "performance.md"
     start, end = "<!-- bench_service:start -->", "<!-- bench_service:end -->"
-    text = doc.read_text(encoding="utf-8")
-    head, rest = text.split(start, 1)
-    _, tail = rest.split(end, 1)
     stamp = time.strftime("%Y-%m-%d", time.gmtime())
     block = f"Run of {stamp}, {os.cpu_count()} CPUs, load average {load:.1f} at the start.\n\n" + "\n".join(table)
-    doc.write_text(f"{head}{start}\n{block}\n{end}{tail}", encoding="utf-8")
+    write_block(doc, start, end, block)
     print(f"wrote {doc.relative_to(ROOT)}")
 
 

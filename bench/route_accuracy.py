@@ -39,6 +39,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from scripts.docblock import replace_block  # noqa: E402
 from tests.engine.test_geometry import LATITUDES, NOISY, ROUTE, ROUTE_CURVES, circle_crb, detect  # noqa: E402
 from tests.synthetic_routes import Arc, Tangent, spiral_curve  # noqa: E402
 
@@ -298,12 +299,8 @@ def render_correlated(figures: dict) -> str:
 
 def write_doc(text: str, correlated_text: str) -> None:
     """The rendered blocks into docs/routes.md, each between its markers."""
-    doc = DOC.read_text(encoding="utf-8")
-    for (start, end), block in (((START, END), text), ((CORR_START, CORR_END), correlated_text)):
-        head, rest = doc.split(start, 1)
-        _, tail = rest.split(end, 1)
-        doc = f"{head}{start}\n{block}\n{end}{tail}"
-    DOC.write_text(doc, encoding="utf-8")
+    doc = replace_block(DOC.read_text(encoding="utf-8"), START, END, text)
+    DOC.write_text(replace_block(doc, CORR_START, CORR_END, correlated_text), encoding="utf-8")
 
 
 def main() -> None:

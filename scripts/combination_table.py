@@ -16,6 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from engine import COMBINATIONS, Case, MissingParameter, get_combination, rollover_threshold  # noqa: E402
+from scripts.docblock import write_block  # noqa: E402
 
 DOC = ROOT / "docs" / "combinations.md"
 START, END = "<!-- combination-table:start -->", "<!-- combination-table:end -->"
@@ -60,10 +61,7 @@ def main(argv: list[str] | None = None) -> int:
     if not args.write:
         print(table)
         return 0
-    text = DOC.read_text(encoding="utf-8")
-    head, rest = text.split(START, 1)
-    _, tail = rest.split(END, 1)
-    DOC.write_text(f"{head}{START}\n{table}\n{END}{tail}", encoding="utf-8")
+    write_block(DOC, START, END, table)
     print("docs/combinations.md table updated")
     return 0
 

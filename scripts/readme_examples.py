@@ -123,6 +123,7 @@ sys.path.insert(0, str(ROOT))
 from app.routes.schemas import EXAMPLE_GEOJSON  # noqa: E402
 from app.vehicles.builder_schemas import EXAMPLE_SPEC  # noqa: E402
 from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC  # noqa: E402
+from scripts.docblock import split_block  # noqa: E402
 
 CURVES_CSV = (
     "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\n"
@@ -597,12 +598,11 @@ def main(argv: list[str] | None = None) -> int:
         (EXAMPLES_DOC, EXAMPLES, (START, END)),
         (README, README_EXAMPLES, (README_START, README_END)),
     ):
-        text = doc.read_text(encoding="utf-8")
-        if start not in text or end not in text:
-            print(f"{doc.name} has no {start} ... {end} block", file=sys.stderr)
+        try:
+            head, _, tail = split_block(doc.read_text(encoding="utf-8"), start, end)
+        except ValueError as exc:
+            print(f"{doc.name}: {exc}", file=sys.stderr)
             return 1
-        head, rest = text.split(start, 1)
-        _, tail = rest.split(end, 1)
         doc.write_text(head + render(examples, (start, end)) + tail, encoding="utf-8")
         print(f"{doc.relative_to(ROOT)} examples updated")
     return 0

@@ -14,7 +14,8 @@ How: the first waiting solve schedules a flush (``loop.call_soon``) and waits on
 the server read in the same turns) joins it. One waiting solve is solved exactly as before. A flush takes at most
 :data:`MAX_FLUSH` cases; the rest go to the next one, so other requests (``/healthz``) get the loop between flushes.
 Waiting on the future is also the request's turn for the other connections (without such a turn a saturated worker
-stopped answering in arrival order: p99 1.1-1.6 s at 32 connections, bench/bench_service.py).
+stopped answering in arrival order: at 32 connections its p99 was over a second in bench/bench_service.py's uncached
+row, where it is now a few tens of milliseconds).
 """
 
 from __future__ import annotations

@@ -1,10 +1,11 @@
 """``orjson.loads`` of a large request without holding the interpreter for the whole parse.
 
-A 100,000-curve alignment is a 12 MB JSON body. ``orjson.loads`` parses it in one C call that holds the GIL for
-0.1-0.3 s: the event loop, in another thread, cannot answer anything meanwhile (``/healthz`` took 110-120 ms,
-``bench/bench_service.py``). Nearly all of such a body is one list (``curves``), so :func:`loads_in_pieces` parses
-the document around that list, then the list a slice of elements at a time (a few milliseconds each); between two
-slices the other threads run.
+An ``alignments.assess`` job of a million curves given as JSON is a body of more than a hundred megabytes (about
+120 bytes a curve). ``orjson.loads`` parses it in one C call that holds the GIL for the whole parse: the event loop,
+in another thread, cannot answer anything meanwhile, not even ``/healthz``. Nearly all of such a body is one list
+(``curves``), so :func:`loads_in_pieces` parses the document around that list, then the list a slice of elements at a
+time; between two slices the other threads run. (The synchronous alignment, at most 10,000 curves, is about a
+megabyte: parsed at once or in a few slices.)
 
 Where the list's elements begin and end is found by a lexical scan on numpy arrays (no Python per byte): the
 quotes, then the brackets, braces and commas outside strings and their depth. The scan needs no escapes: a body with
@@ -26,9 +27,9 @@ from typing import Any
 import numpy as np
 import orjson
 
-#: bodies shorter than this are parsed at once (a 1 MB parse holds the GIL for about 10 ms) [bytes]
+#: bodies shorter than this are parsed at once (a parse this short does not hold up the event loop noticeably) [bytes]
 SPLIT_BYTES = 1 << 20
-#: the list is parsed in slices of about this many bytes (~2 ms of orjson each) [bytes]
+#: the list is parsed in slices of about this many bytes (an eighth of SPLIT_BYTES: short holds of the GIL) [bytes]
 PIECE_BYTES = 128 * 1024
 #: a key whose text (e.g. ``"curves"``) appears more often than this (as values, say) is not looked for [-]
 MAX_KEY_TEXTS = 64

@@ -412,6 +412,8 @@ EXAMPLES = [
         headers={"Accept": "text/csv"},
         pipe="",
     ),
+    # the routes' examples print their numbers rounded: a route's radii come out of iterative fits whose last digits
+    # follow the machine's floating point (another CPU's LAPACK kernels), and a person reads a few digits anyway
     Example(
         "A route as GeoJSON: the curves found in it (geometry) and their assessment for the B-train",
         "POST",
@@ -420,8 +422,8 @@ EXAMPLES = [
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(p["id"], p["direction"], '
         'round(p["radius_m"], 1), "+-", p["radius_std_m"] and round(p["radius_std_m"], 1), "m;", '
         'round(p["length_m"]), "m long;", '
-        'a["srt_g"], a["safe_speed_kmh"], a["governed_by"], a["margin_kmh"], a["flagged"]) for p in '
-        'r["curves"] for a in [p["assessment"]]]\'',
+        'round(a["srt_g"], 4), "g;", round(a["safe_speed_kmh"], 2), "km/h", a["governed_by"], '
+        'round(a["margin_kmh"], 2), a["flagged"]) for p in r["curves"] for a in [p["assessment"]]]\'',
         heading="Routes: `POST /v1/routes/assess` (and `/gpx`, `/geojson`)",
         note="A GPX track goes in `gpx` (the file's text) instead, or as it is to `/v1/routes/assess/gpx` (below); "
         "`Accept: application/geo+json` answers the curves as a GeoJSON FeatureCollection for a GIS; "
@@ -434,8 +436,8 @@ EXAMPLES = [
         upload="road.gpx",
         headers={"Content-Type": "application/gpx+xml"},
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(p["id"], p["direction"], '
-        'round(p["radius_m"], 1), "m from", round(p["start_m"]), "m;", a["safe_speed_kmh"], a["governed_by"], '
-        'a["margin_kmh"]) for p in r["curves"] for a in [p["assessment"]]]\'',
+        'round(p["radius_m"], 1), "m from", round(p["start_m"]), "m;", round(a["safe_speed_kmh"], 2), "km/h", '
+        'a["governed_by"], round(a["margin_kmh"], 2)) for p in r["curves"] for a in [p["assessment"]]]\'',
         note="The same answer, byte for byte, as `POST /v1/routes/assess` with the file's text in `gpx`; the sample "
         "road's curves are K1 (right, R 250.5 m from 300 m) and K2 (left, R 180 m from 830 m).",
     ),
@@ -446,8 +448,8 @@ EXAMPLES = [
         upload="road.geojson",
         form=True,
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(p["id"], p["direction"], '
-        'round(p["radius_m"], 1), "m from", round(p["start_m"]), "m;", a["safe_speed_kmh"], a["governed_by"], '
-        'a["margin_kmh"]) for p in r["curves"] for a in [p["assessment"]]]\'',
+        'round(p["radius_m"], 1), "m from", round(p["start_m"]), "m;", round(a["safe_speed_kmh"], 2), "km/h", '
+        'a["governed_by"], round(a["margin_kmh"], 2)) for p in r["curves"] for a in [p["assessment"]]]\'',
         note="`--data-binary @examples/road.geojson -H 'Content-Type: application/geo+json'` sends it as the body.",
     ),
     Example(

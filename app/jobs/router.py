@@ -8,7 +8,9 @@ ownerless: once keys are configured nobody sees it (a job is visible only to the
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import asyncio
+import contextlib
+from collections.abc import AsyncIterator, Iterator
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Request, Response
@@ -16,7 +18,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, StreamingResponse
 from fastapi.security import HTTPAuthorizationCredentials
 from fastapi.security.utils import get_authorization_scheme_param
-from starlette.concurrency import iterate_in_threadpool, run_in_threadpool
+from starlette.concurrency import run_in_threadpool
 
 from app.catalog.auth import authenticate
 from app.deps import SettingsDep
@@ -195,6 +197,29 @@ def _coalesce(chunks: Iterator[bytes], size: int = SEND_PIECE) -> Iterator[bytes
         yield b"".join(buf)
 
 
+async def prefetched(chunks: Iterator[bytes]) -> AsyncIterator[bytes]:
+    """``chunks`` (a blocking iterator: the result rendered from its stored parts) with its next piece rendered in a
+    worker thread while this one is written to the socket (``iterate_in_threadpool`` renders a piece only once the
+    last is sent, so rendering and sending took turns). A thread is held only while a piece renders, never while a
+    slow client reads. An error in the rendering is raised here, after the pieces before it; a client that goes away
+    leaves the piece in progress to finish (a generator cannot be stopped from another thread) and nothing after."""
+    end = object()
+    it = iter(chunks)
+
+    def piece() -> Any:
+        return next(it, end)  # end, not StopIteration: that cannot cross a future
+
+    pending = asyncio.ensure_future(run_in_threadpool(piece))
+    try:
+        while (current := await pending) is not end:
+            pending = asyncio.ensure_future(run_in_threadpool(piece))
+            yield current
+    finally:
+        if not pending.done():
+            with contextlib.suppress(Exception):
+                await asyncio.shield(pending)
+
+
 def _fragments(jobs: Backend, view: JobView, op: Operation, fmt: str):
     """(part, section) -> the stored fragment's pieces, for ``assemble`` (the op's stored format, if it has one)."""
     store, compressed = jobs.store, op.stored is None
@@ -279,7 +304,7 @@ async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
     headers = {"ETag": f'"{view.record.etag[fmt]}"', "Vary": "Accept"}
     chunks = _coalesce(_result_chunks(jobs, view, op, fmt))
     media_type = CSV_TYPE if fmt == "csv" else JSON_TYPE
-    return StreamingResponse(iterate_in_threadpool(chunks), media_type=media_type, headers=headers)
+    return StreamingResponse(prefetched(chunks), media_type=media_type, headers=headers)
 
 
 @router.delete(

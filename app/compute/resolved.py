@@ -13,7 +13,8 @@ trusted: a wrong shape is a :class:`ValueError`).
 * :class:`ResolvedSweep`: a grid sweep (the base case, the axes);
 * :class:`ResolvedLimits`: an inverse limit (the base case, the parameter, the target, the overweights' table);
 * the single answers: :class:`ResolvedCase` (an engine case and its targets, the base of the others),
-  :class:`ResolvedSrt`, :class:`ResolvedCurveSpeed`, :class:`ResolvedMinRadius`, :class:`ResolvedPlot`,
+  :class:`ResolvedSrt`, :class:`ResolvedCurveSpeed`, :class:`ResolvedMinRadius`, :class:`ResolvedCurvesPlot`,
+  :class:`ResolvedMinRadiusPlot`,
   :class:`ResolvedSuperelevation`, :class:`ResolvedSuperelevationTable`, :class:`ResolvedBuild` and
   :class:`ResolvedPayloadTable`.
 """
@@ -92,6 +93,18 @@ class Resolved:
     def key(self, operation: str) -> str:
         """The cache key of the answer of ``operation`` to this request (:func:`app.compute.cache.cache_key`)."""
         return cache_key(operation, self.to_json_dict())
+
+    @classmethod
+    def of(cls, request: Any, **given: Any) -> Self:
+        """This kind from a validated HTTP request: each field ``given``, else the request's attribute of the same
+        name (a list as a tuple). A field the request lacks and nobody gives is an :class:`AttributeError`: the key
+        follows the request's own fields, so none is copied by hand and none can be left out unnoticed."""
+        names = [f.name for f in dataclasses.fields(cls)]  # type: ignore[arg-type]
+        unknown = set(given) - set(names)
+        if unknown:
+            raise TypeError(f"{cls.__name__} has no field(s) {sorted(unknown)}")
+        values = {n: given[n] if n in given else getattr(request, n) for n in names}
+        return cls(**{n: tuple(v) if isinstance(v, list) else v for n, v in values.items()})
 
 
 # ------------------------------------------------------------------------------------- assessments

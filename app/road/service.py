@@ -33,9 +33,7 @@ async def _srt_for(
 async def compute_curve_speed(cache: ResultCache, req: CurveSpeedRequest, settings: Settings) -> Computed:
     targets = resolve_targets(req.targets, settings)
     case = resolve_case(req) if req.srt is None else None
-    resolved = ResolvedCurveSpeed(
-        radius_m=req.radius_m, srt=req.srt, srt_request=None if case is None else resolve_srt(case, targets)
-    )
+    resolved = ResolvedCurveSpeed.of(req, srt_request=None if case is None else resolve_srt(case, targets))
 
     async def produce() -> bytes:
         srt, source, inner = await _srt_for(cache, req, case, targets)
@@ -61,14 +59,8 @@ async def compute_min_radius(cache: ResultCache, req: MinRadiusRequest, settings
     case = resolve_case(req, road=road) if req.srt is None else None
     if req.side_friction is None:  # refuse a speed outside the standard's range before solving for the SRT
         side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
-    resolved = ResolvedMinRadius(
-        design_speed_kmh=req.design_speed_kmh,
-        superelevation_percent=req.superelevation_percent,
-        side_friction=req.side_friction,
-        design_standard=req.design_standard,
-        side_friction_bound=req.bound,
-        srt=req.srt,
-        srt_request=None if case is None else resolve_srt(case, targets),
+    resolved = ResolvedMinRadius.of(  # the bound in force (Table 21's default filled), not the one typed
+        req, side_friction_bound=req.bound, srt_request=None if case is None else resolve_srt(case, targets)
     )
 
     async def produce() -> bytes:

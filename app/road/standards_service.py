@@ -62,13 +62,7 @@ def get_standard_out(standard_id: str) -> StandardOut:
 
 
 async def compute_superelevation(cache: ResultCache, req: SuperelevationRequest) -> Computed:
-    resolved = ResolvedSuperelevation(
-        design_standard=req.design_standard,
-        side_friction_bound=req.side_friction_bound,
-        design_speed_kmh=req.design_speed_kmh,
-        radius_m=req.radius_m,
-        max_superelevation_percent=req.max_superelevation_percent,
-    )
+    resolved = ResolvedSuperelevation.of(req)
 
     async def produce() -> bytes:
         r = superelevation_percent(
@@ -110,15 +104,7 @@ def table_radii(req: SuperelevationTableRequest) -> np.ndarray:
 
 
 async def compute_superelevation_table(cache: ResultCache, req: SuperelevationTableRequest, csv: bool) -> Computed:
-    resolved = ResolvedSuperelevationTable(
-        design_standard=req.design_standard,
-        side_friction_bound=req.side_friction_bound,
-        design_speed_kmh=req.design_speed_kmh,
-        max_superelevation_percent=req.max_superelevation_percent,
-        radii_m=None if req.radii_m is None else tuple(req.radii_m),
-        radius_max_m=req.radius_max_m,
-        points=req.points,
-    )
+    resolved = ResolvedSuperelevationTable.of(req)
 
     async def produce() -> bytes:
         t = superelevation_table(

@@ -177,8 +177,8 @@ def srt_result(result: RolloverResult, targets: dict[str, float], level: Rollove
 async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -> Computed:
     case = resolve_case(req)
     targets = resolve_targets(req.targets, settings)
-    points = req.curve_points if req.include_curves else None
     resolved = resolve_srt(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
+    points = resolved.curve_points  # None without curves (ResolvedSrt): what the key holds is what is solved
 
     async def produce() -> bytes:
         result, level = await solve_with_level(cache, case, curve_points=points)

@@ -151,15 +151,7 @@ def _solve_payload_table(req: PayloadTableRequest, spec: VehicleSpec | Combinati
 
 async def compute_payload_table(cache: ResultCache, req: PayloadTableRequest, csv: bool) -> Computed:
     spec = req.engine_spec()
-    resolved = ResolvedPayloadTable(
-        build=ResolvedBuild(spec=spec),
-        unit_index=req.unit_index,
-        target_srt_g=req.target_srt_g,
-        payload_index=req.payload_index,
-        load_heights_m=None if req.load_heights_m is None else tuple(req.load_heights_m),
-        payload_masses_kg=None if req.payload_masses_kg is None else tuple(req.payload_masses_kg),
-        rows=req.rows,
-    )
+    resolved = ResolvedPayloadTable.of(req, build=ResolvedBuild(spec=spec))
 
     async def produce() -> bytes:
         table = await run_in_threadpool(_solve_payload_table, req, spec)  # tens of 3D solves: off the event loop

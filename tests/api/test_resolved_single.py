@@ -225,3 +225,15 @@ def test_a_stored_build_of_another_shape_is_refused(data):
 def test_an_srt_without_curves_keeps_no_points():
     req = SrtRequest.model_validate({"vehicle": BTRAIN})
     assert ResolvedSrt(base=ResolvedCase(case=resolve_case(req), targets={}), curve_points=41).curve_points is None
+
+
+def test_of_takes_each_field_from_the_request_and_refuses_what_neither_gives():
+    req = SuperelevationTableRequest.model_validate(
+        {"design_speed_kmh": 70.0, "max_superelevation_percent": 8.0, "radii_m": [200.0, 400.0]}
+    )
+    table = ResolvedSuperelevationTable.of(req)
+    assert table.radii_m == (200.0, 400.0) and table.points == req.points  # a list kept as a tuple (frozen, hashable)
+    with pytest.raises(TypeError, match="no field"):
+        ResolvedSuperelevationTable.of(req, radius_m=1.0)
+    with pytest.raises(AttributeError, match="radius_m"):  # the table request has no single radius
+        ResolvedSuperelevation.of(req)

@@ -9,6 +9,7 @@ from pydantic import ConfigDict, Field, model_validator
 
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
+from app.http import problems
 from app.http.schemas import (
     ABSENT,
     EXAMPLE_PRESET,
@@ -41,12 +42,9 @@ MAX_JOB_ROWS = 1_000_000
 
 
 def as_a_job(message: str) -> str:
-    """A synchronous size limit's message, with how to send the work instead."""
-    return (
-        f"{message}; larger work goes to a job: POST /v1/jobs with "
-        '{"operation": "alignments.assess", "request": <this request as JSON, a file as its "csv" or "landxml" text>} '
-        f"takes up to {MAX_JOB_CURVES:,} curves and {MAX_JOB_ROWS:,} rows (docs/jobs.md)"
-    )
+    """A synchronous size limit's message, with how to send the work instead (an ``alignments.assess`` job)."""
+    limits = f"{MAX_JOB_CURVES:,} curves and {MAX_JOB_ROWS:,} rows"
+    return problems.as_a_job(message, "alignments.assess", 'a file as its "csv" or "landxml" text', limits)
 
 
 MAX_CSV_CHARS = 16_000_000

@@ -112,6 +112,15 @@ class InvalidRoute(InvalidAlignment):
     the vertex (``features[0].geometry.coordinates[17]``, ``trk[1] 'A1' trkseg[1] trkpt[18]``)."""
 
 
+def as_a_job(message: str, operation: str, document: str, limits: str) -> str:
+    """A synchronous size limit's ``message``, with how to send the work instead: the job ``operation``, how its
+    ``document`` goes in the job's request, and the job's ``limits`` (docs/jobs.md)."""
+    return (
+        f'{message}; larger work goes to a job: POST /v1/jobs with {{"operation": "{operation}", "request": <this '
+        f"request as JSON, {document}>}} takes up to {limits} (docs/jobs.md)"
+    )
+
+
 def request_error(field: str, message: str, value: Any = None) -> RequestValidationError:
     """A 422 validation problem for a rule that only the service can check (e.g. after reading a document),
     located at ``field`` (dotted) in the body."""

@@ -40,7 +40,7 @@ from app.formats.alignment_io import CurveTable
 from app.formats.route_io import MAX_VERTICES, RouteFormatError, RoutePart, RouteTooLarge, read_geojson, read_gpx
 from app.formats.tables import Text, flatten_targets, to_csv
 from app.http.negotiation import GEOJSON_MEDIA_TYPE
-from app.http.problems import InvalidRoute, request_error
+from app.http.problems import InvalidRoute, as_a_job, request_error
 from app.routes.schemas import MAX_SYNC_VERTICES, RouteCurves, RouteRequest, RouteResult
 from app.settings import Settings
 from app.vehicles.refs import resolve_vehicle, vehicle_of_resolved
@@ -101,12 +101,9 @@ def _source(req: RouteRequest, source_field: str | None) -> str:
     return source_field or ("geojson" if req.geojson is not None else "gpx")
 
 
-def _to_a_job(limit: str) -> str:
-    """What a synchronous request beyond one of its limits is told: where larger work goes."""
-    return (
-        '; larger work goes to a job: POST /v1/jobs with {"operation": "routes.assess", "request": <this request as '
-        f'JSON, the file as its "gpx" text or "geojson" object>}} takes up to {limit} (docs/jobs.md)'
-    )
+def _to_a_job(message: str, limits: str) -> str:
+    """A synchronous route's size limit ``message``, with how to send it as a ``routes.assess`` job instead."""
+    return as_a_job(message, "routes.assess", 'the file as its "gpx" text or "geojson" object', limits)
 
 
 def read_route(req: RouteRequest, source_field: str | None = None, *, synchronous: bool = True) -> list[RoutePart]:
@@ -122,7 +119,7 @@ def read_route(req: RouteRequest, source_field: str | None = None, *, synchronou
     except RouteFormatError as exc:
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
         if synchronous and isinstance(exc, RouteTooLarge):
-            reason += _to_a_job(f"{MAX_VERTICES:,} vertices")
+            reason = _to_a_job(reason, f"{MAX_VERTICES:,} vertices")
         raise InvalidRoute(reason, source=source, location=exc.location, column=exc.field) from None
 
 
@@ -384,7 +381,7 @@ def render_route(
     if rows > max_rows:
         message = f"{len(geo.curves)} curves x {len(vehicles)} vehicles = {rows:,} rows; at most {max_rows:,} rows"
         if synchronous:
-            message += _to_a_job(f"{MAX_JOB_ROWS:,} rows")
+            message = _to_a_job(message, f"{MAX_JOB_ROWS:,} rows")
         raise request_error("vehicles", message)
     table = curve_table(req, geo)
     try:

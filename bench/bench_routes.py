@@ -78,11 +78,10 @@ def designed_curves(elements: list) -> list[tuple[float, float, float, float]]:
     return out
 
 
-def accuracy(elements: list, s: np.ndarray, res) -> dict:
-    """The curves found against the design: each found curve is placed on the designed curve its vertices overlap
-    most, by their design chainage ``s`` (not by its own chainage, which a noisy track stretches); one that overlaps
-    none is a phantom."""
-    curves = designed_curves(elements)
+def accuracy(curves: list[tuple[float, float, float, float]], s: np.ndarray, res) -> dict:
+    """The curves found (``res``) against the designed ones (:func:`designed_curves`): each found curve is placed on
+    the designed curve its vertices overlap most, by their design chainage ``s`` (not by its own chainage, which a
+    noisy track stretches); one that overlaps none is a phantom."""
     starts, ends = np.array([c[0] for c in curves]), np.array([c[1] for c in curves])
     hits: dict[int, list] = {}
     phantoms = 0
@@ -100,11 +99,9 @@ def accuracy(elements: list, s: np.ndarray, res) -> dict:
         _, _, radius, arc = curves[k]
         c = min(found, key=lambda f: f.radius_m)  # a curve found in pieces: its sharpest piece
         errors["long" if arc >= LONG_ARC_M else "short"].append(abs(c.radius_m - radius) / radius * 100)
-        if arc >= LONG_ARC_M and c.radius_std_m is not None:  # without noise the bound is the radius itself
+        if arc >= LONG_ARC_M and c.radius_std_m is not None:  # None: no standard error, so no bound to judge
             held.append(c.radius_lower_m <= radius)
     return {
-        "designed": len(curves),
-        "long": sum(1 for c in curves if c[3] >= LONG_ARC_M),
         "found": len(res.curves),
         "missed": len(curves) - len(hits),
         "split": sum(1 for f in hits.values() if len(f) > 1),
@@ -154,8 +151,8 @@ def main() -> None:
         ap.error("--write records the default route: leave out --km and --spacing")
     load = os.getloadavg()[0]
     els = design(args.km)
-    n_design = sum(1 for e in els if isinstance(e, Arc))
     x, y, s = layout(els, args.spacing, ds=0.5)
+    curves = designed_curves(els)
     rng = np.random.default_rng(1)
     xn, yn = x + rng.normal(0, 3.0, x.size), y + rng.normal(0, 3.0, y.size)
     # a receiver's drift: Gauss-Markov errors of 3 m correlated over 50 m along the track (docs/routes.md)
@@ -163,13 +160,13 @@ def main() -> None:
     xc, yc = x + gauss_markov(rng, x.size, 3.0, rho), y + gauss_markov(rng, y.size, 3.0, rho)
     lon, lat = to_lonlat(x, y, 45.0)
     geojson = {"type": "LineString", "coordinates": np.column_stack((lon, lat)).tolist()}
-    route = f"{args.km:g} km at {args.spacing:g} m ({x.size - 1:,} segments, {n_design} designed curves)"
+    route = f"{args.km:g} km at {args.spacing:g} m ({x.size - 1:,} segments, {len(curves)} designed curves)"
     print(f"route: {route}")
     rows: list[tuple[str, float, str]] = []
     accuracies: list[str] = []
 
     def judged(what: str, res) -> None:
-        accuracies.append(accuracy_row(what, accuracy(els, s, res)))
+        accuracies.append(accuracy_row(what, accuracy(curves, s, res)))
         print(accuracies[-1])
 
     def row(what: str, seconds: float, found: str) -> None:
@@ -213,11 +210,10 @@ def main() -> None:
             "| --- | --- | --- |",
             *(f"| {what} | {seconds:.2f} s | {found} |" for what, seconds, found in rows),
         ]
-        curves = designed_curves(els)
         long = sum(1 for c in curves if c[3] >= LONG_ARC_M)
         judged_table = [
-            f"{route}: {len(curves)} designed curves, {long} of them with an arc of at least "
-            f"{LONG_ARC_M:g} m; run of {stamp} (`python bench/bench_routes.py --write`).",
+            f"{route}, {long} of them with an arc of at least {LONG_ARC_M:g} m; run of {stamp} "
+            "(`python bench/bench_routes.py --write`).",
             "",
             "| track | curves found | designed curves missed | found in pieces | phantoms | radius error, long arcs: "
             "median / max (curves) | radius error, shorter arcs | lower radius bound <= true radius, long arcs | "

@@ -42,7 +42,12 @@ def test_the_next_piece_renders_while_the_current_one_is_sent():
     async def run() -> list[tuple[bytes, int]]:
         seen = []
         async for piece in prefetched(render()):
-            await asyncio.sleep(0.05)  # a slow socket: the thread has rendered the next piece meanwhile
+            k = int(piece)
+            for _ in range(5000):  # a slow socket: the next piece is asked for while this one is still held
+                if len(asked) >= min(k + 2, 5):
+                    break
+                await asyncio.sleep(0.001)
+            await asyncio.sleep(0.01)  # and no further piece after it
             seen.append((piece, len(asked)))
         return seen
 

@@ -11,9 +11,9 @@ Run: ``python bench/bench_combination.py``. Prints, for each combination preset:
    -2..10 %, grade -8..8 %, on a 0.01 % grid: the 0.1 % grid holds only 19,481 distinct pairs) for each preset, beside
    the single unit's 3D batch (``table16-btrain``) over the same pairs in the same rounds (the issue's target: a
    combination over many curves as fast per curve as a single unit), min and median over the rounds, and, from one
-   more pass after the rounds, how much of a combination's curve went to the small stacked ``np.linalg.solve`` calls
-   (LAPACK's gesv on each row's matrix): the batch must give the scalar solve's bits, so it makes the scalar's own
-   solves, and these are the floor no lockstep overhead can go below;
+   more pass after the rounds, how much of a combination's curve went to the factors and solves of its roll
+   equations on their tree (:mod:`engine.models.roll_tree`, every row's in one column operation) and how many a
+   curve needs;
 3. each roll-coupled unit's SRT, what ended it, its lift-off sequence, and LLTf/LLTr of the last unit (for
    ``tractor-semitrailer-table15`` beside the 0.57 that the thesis's Ch. 8 reports from TruckSim), and on a 6 % and a
    10 % bank the SRT of the stepped solution beside the reference solution's
@@ -35,7 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import numpy as np
 
 from engine import Case, get_preset, rollover_threshold
-from engine.models import combination
+from engine.models import combination, roll_tree
 from engine.models.combination import solve_combination
 from engine.models.combination_reference import reference_srt
 from engine.models.threshold import evaluate_arrays
@@ -89,36 +89,44 @@ def many_curves(quick: bool) -> None:
         ratio = "" if k.startswith("table16") else f"  ({min(ts) / single:4.2f} x the single unit)"
         print(f"  {k:40s} min {min(ts) * 1e6:6.1f} us, median {statistics.median(ts) * 1e6:6.1f} us{ratio}; "
               f"{refused[k]} refused")  # fmt: skip
-    print("  of which in the rows' small LAPACK solves (np.linalg.solve, one more pass, timed per call):")
+    print("  of which in the factors and solves of the roll equations on their tree (one more pass, timed per call):")
     for k, case in cases.items():
         if not k.startswith("table16"):
-            spent, rows, total = solves_per_curve(case, arrays)
-            print(f"  {k:40s} {spent * 1e6:6.1f} us of {total * 1e6:6.1f} us, {rows:5.1f} solves per curve")
+            spent, factors, solves, total = tree_share(case, arrays)
+            print(f"  {k:40s} {spent * 1e6:6.1f} us of {total * 1e6:6.1f} us, {factors:5.1f} factors and "
+                  f"{solves:5.1f} solves per curve")  # fmt: skip
     print()
 
 
-def solves_per_curve(case: Case, arrays: dict[str, np.ndarray]) -> tuple[float, float, float]:
-    """Seconds per curve spent in np.linalg.solve during one evaluate_arrays call, the matrices it solved per curve,
-    and the call's seconds per curve (numpy's solve wrapped for that pass only)."""
-    real = np.linalg.solve
-    spent, rows = 0.0, 0
+def tree_share(case: Case, arrays: dict[str, np.ndarray]) -> tuple[float, float, float, float]:
+    """Seconds per curve spent in roll_tree's factor and solve during one evaluate_arrays call, the factors and
+    solves per curve (a call on columns of m rows counts m), and the call's seconds per curve (the two functions
+    wrapped for that pass only)."""
+    spent, counts = 0.0, {"factor": 0, "solve": 0}
+    real = {name: getattr(roll_tree, name) for name in counts}
 
-    def timed(a, b):
-        nonlocal spent, rows
-        t0 = time.perf_counter()
-        try:
-            return real(a, b)
-        finally:
-            spent += time.perf_counter() - t0
-            rows += a.shape[0] if a.ndim == 3 else 1
+    def timed(name):
+        def call(*args):
+            nonlocal spent
+            t0 = time.perf_counter()
+            try:
+                return real[name](*args)
+            finally:
+                spent += time.perf_counter() - t0
+                first = args[2][0] if name == "solve" else args[1][0]
+                counts[name] += 1 if isinstance(first, float) else len(first)
 
-    np.linalg.solve = timed
+        return call
+
+    for name in counts:
+        setattr(roll_tree, name, timed(name))
     try:
         total, _refused = per_curve(case, arrays)
     finally:
-        np.linalg.solve = real
+        for name, fn in real.items():
+            setattr(roll_tree, name, fn)
     n = len(arrays["bank_percent"])
-    return spent / n, rows / n, total
+    return spent / n, counts["factor"] / n, counts["solve"] / n, total
 
 
 def scalar_times(quick: bool) -> None:

@@ -62,6 +62,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from engine.errors import ConvergenceError, InvalidLoad
+from engine.models import roll_tree
 from engine.results import (
     CombinationDetail,
     CouplingState,
@@ -269,7 +270,8 @@ class _Elements:
         # with the same elements (the next solve of the same vehicle, on any road, builds none of them again: a
         # tenth of a banked solve's time)
         key = tuple(x.tobytes() for x in (self.tdof, self.tk, self.steer, self.zi, self.zj, self.zk, self.lash))
-        self.pieces, self.tables, self.ends = _shared_regimes(self.n, key)
+        self.pieces, self.tables, self.ends, self.trees = _shared_regimes(self.n, key)
+        self.tree = _tree(self.n, self.zi.tobytes(), self.zj.tobytes())
         self.rows: dict = {}  # road-dependent: an _Elements belongs to one System and its at_normal copies
         self.loads: dict = {}
         self.steps: dict = {}
@@ -301,6 +303,16 @@ class _Elements:
                     kz[i] += off
                     kz[j] -= off
             out = self.pieces[key] = _frozen(K, S, kz)
+        return out
+
+    def tree_piece(self, tyre: tuple, zone: tuple) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """A regime's K as :mod:`~engine.models.roll_tree` takes it: its diagonal and its entries on the tree's
+        edges, as floats (both modes subtract each row's P-Delta diagonal from the same floats)."""
+        key = (tyre, zone)
+        out = self.trees.get(key)
+        if out is None:
+            K = self.piece(tyre, zone)[0]
+            out = self.trees[key] = (tuple(np.diagonal(K).tolist()), roll_tree.edge_values(self.tree, K))
         return out
 
     def table(self, tyre: tuple, zone: tuple, phase: int, limit: bool):
@@ -359,11 +371,18 @@ class _Elements:
 
 
 @functools.lru_cache(maxsize=256)
-def _shared_regimes(n: int, elements: tuple) -> tuple[dict, dict, dict]:
-    """The (pieces, tables, ends) caches of the systems with these elements (:class:`_Elements`): a memo of values
-    that depend on the elements alone, read-only once stored and stored only whole, so that solves on several
+def _tree(n: int, zi: bytes, zj: bytes) -> roll_tree.Tree:
+    """The elimination order of a system's DOFs, joined by its suspensions and roll-stiff couplings (a tree)."""
+    return roll_tree.tree_of(n, list(zip(np.frombuffer(zi, dtype=int).tolist(), np.frombuffer(zj, dtype=int).tolist(),
+                                         strict=True)))  # fmt: skip
+
+
+@functools.lru_cache(maxsize=256)
+def _shared_regimes(n: int, elements: tuple) -> tuple[dict, dict, dict, dict]:
+    """The (pieces, tables, ends, trees) caches of the systems with these elements (:class:`_Elements`): a memo of
+    values that depend on the elements alone, read-only once stored and stored only whole, so that solves on several
     threads may share it (at worst two threads build the same entry, and one of the equal values is kept)."""
-    return {}, {}, {}
+    return {}, {}, {}, {}
 
 
 def _frozen(*arrays: np.ndarray) -> tuple:
@@ -380,12 +399,13 @@ def _elements(s: System) -> _Elements:
 
 
 def _assemble(s: System, rg: Regime, phase: int):
-    """The current piece's equations ``J q + j p + k = 0`` (p: ay in phase 2, the offset scale t in phase 1); jp and
-    k cached per regime (they depend on the road, not on the P-Delta terms that the fixed point changes: a solve
-    assembled the same regimes' loads some 25 times, a tenth of its time)."""
+    """The loads of the current piece's equations ``J q + jp p + k = 0`` (p: ay in phase 2, the offset scale t in
+    phase 1), (jp, k), cached per regime (they depend on the road, not on the P-Delta terms that the fixed point
+    changes: a solve assembled the same regimes' loads some 25 times, a tenth of its time). J = K - P is
+    :func:`_pivots`' (on the tree) or :func:`_stiffness`' (dense)."""
     e = _elements(s)
     tyre, zone = tuple(rg.tyre), tuple(rg.zone)
-    K, S, kz = e.piece(tyre, zone)
+    _K, S, kz = e.piece(tyre, zone)
     key = (tyre, zone, phase)
     loads = e.loads.get(key)
     if loads is None:
@@ -399,7 +419,27 @@ def _assemble(s: System, rg: Regime, phase: int):
             jp = -(r.n0 + r.n1 * ay0) * s.off
             k = S * ((r.n0 + r.n1 * ay0) * capn + r.grade * capg) + kz
         loads = e.loads[key] = (jp, k)
-    return K - s.P, loads[0], loads[1]
+    return loads
+
+
+def _stiffness(s: System, tyre: tuple, zone: tuple) -> np.ndarray:
+    """A piece's J = K - P as a dense matrix (for the SVD of a singular piece)."""
+    return _elements(s).piece(tyre, zone)[0] - s.P
+
+
+def _pivots(s: System, tyre: tuple, zone: tuple) -> tuple[roll_tree.Tree, roll_tree.Factor]:
+    """(tree, factor) of a piece's J = K - P (:mod:`~engine.models.roll_tree`, in floats); raises
+    :class:`~engine.models.roll_tree.Singular` at a zero pivot."""
+    e = _elements(s)
+    kd, ke = e.tree_piece(tyre, zone)
+    diag = [a - b for a, b in zip(kd, np.diagonal(s.P).tolist(), strict=True)]
+    return e.tree, roll_tree.factor(e.tree, diag, ke)
+
+
+def _tree_solve(s: System, tyre: tuple, zone: tuple, rhs: np.ndarray) -> np.ndarray:
+    """q with J q = rhs for a piece's J = K - P (raises Singular)."""
+    t, f = _pivots(s, tyre, zone)
+    return np.array(roll_tree.solve(t, f, rhs.tolist()))
 
 
 def _constraint_rows(s: System, rg: Regime, phase: int, llt_limit: float | None):
@@ -438,16 +478,17 @@ def _rows_of(s: System, e: _Elements, key):
 
 
 def _step_terms(s: System, rg: Regime, phase: int, llt_limit: float | None):
-    """What a step of the path needs of its regime, looked up once per step: (K, jp, :func:`_constraint_rows`,
-    :meth:`_Elements.row_of`); the same arrays as those functions give (cached per regime and road like them)."""
+    """What a step of the path needs of its regime, looked up once per step: ((tyre, zone), jp,
+    :func:`_constraint_rows`, :meth:`_Elements.row_of`); the same arrays as those functions give (cached per regime
+    and road like them)."""
     e = _elements(s)
     key = (tuple(rg.tyre), tuple(rg.zone), phase, llt_limit)
     out = e.steps.get(key)
     if out is None:
-        _J, jp, _k = _assemble(s, rg, phase)
+        jp, _k = _assemble(s, rg, phase)
         rows = _constraint_rows(s, rg, phase, llt_limit)
         out = e.steps[key] = (
-            e.piece(key[0], key[1])[0],
+            (key[0], key[1]),
             jp,
             rows,
             e.row_of(key[0], key[1], phase, llt_limit is not None),
@@ -455,17 +496,16 @@ def _step_terms(s: System, rg: Regime, phase: int, llt_limit: float | None):
     return out
 
 
-def _null_direction(J: np.ndarray, jp: np.ndarray) -> np.ndarray:
-    """The unit null vector of [J | jp] (the direction of the piece's solution line)."""
+def _null_direction(s: System, piece: tuple, jp: np.ndarray) -> np.ndarray:
+    """The unit null vector of [J | jp] (the direction of the piece's solution line) of the piece (tyre, zone)."""
     try:
-        dq = np.linalg.solve(J, -jp)
-        if float(dq @ dq) < 1e24:  # finite and |dq| < 1e12 (nan and inf fail the comparison)
-            d = np.append(dq, 1.0)
-            # sqrt(sum(d d)), not norm's dot: the batch solve normalises its rows so, and gives the same bits
-            return d / np.sqrt((d * d).sum())
-    except np.linalg.LinAlgError:
+        t, f = _pivots(s, *piece)
+        out, sq = roll_tree.direction(roll_tree.solve(t, f, [-x for x in jp.tolist()]))
+        if sq < 1e24:  # finite and |dq| < 1e12 (nan and inf fail the comparison)
+            return np.array(out)
+    except roll_tree.Singular:
         pass
-    _, _, vt = np.linalg.svd(np.column_stack([J, jp]))
+    _, _, vt = np.linalg.svd(np.column_stack([_stiffness(s, *piece), jp]))
     return vt[-1]
 
 
@@ -490,8 +530,8 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
     prev_d = None
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
     for _ in range(max_steps):
-        K, jp, (c1, c2, b, i1, i2, ends, scale), back_rows = _step_terms(s, rg, phase, llt_limit)
-        d = _null_direction(K - s.P, jp)
+        piece, jp, (c1, c2, b, i1, i2, ends, scale), back_rows = _step_terms(s, rg, phase, llt_limit)
+        d = _null_direction(s, piece, jp)
         rates = c1 * d[i1] + c2 * d[i2]
         # orientation: the first piece by the outward roll of the sprung masses; a later one into its own interior
         if last is None:
@@ -561,8 +601,8 @@ class UnitSolution:
 
 def _state_at(s: System, rg: Regime, ay: float) -> np.ndarray:
     """The equilibrium roll angles of one regime at a given ay (its equations solved for q)."""
-    J, jp, k = _assemble(s, rg, 2)
-    return np.linalg.solve(J, -(jp * ay + k))
+    jp, k = _assemble(s, rg, 2)
+    return _tree_solve(s, tuple(rg.tyre), tuple(rg.zone), -(jp * ay + k))
 
 
 def _consistent(s: System, q: np.ndarray, ay: float) -> Regime:
@@ -622,12 +662,11 @@ def _settled(s: System, q: np.ndarray, ay: float, made_in: Regime | None = None)
     again = _consistent(s, exact, ay)
     if again.tyre != rg.tyre or again.zone != rg.zone:
         return None
-    J, _jp, _k = _assemble(s, rg, 2)
-    try:  # stable: J positive definite, which its Cholesky factor tells (a fifth of the time of its eigenvalues)
-        np.linalg.cholesky(0.5 * (J + J.T))
-    except np.linalg.LinAlgError:
+    try:  # stable: J positive definite, which the signs of its pivots tell (Sylvester's law of inertia)
+        stable = roll_tree.positive(_pivots(s, tuple(rg.tyre), tuple(rg.zone))[1])
+    except roll_tree.Singular:
         return None
-    return exact, rg
+    return (exact, rg) if stable else None
 
 
 def _start(s: System) -> tuple[np.ndarray, Regime]:
@@ -662,8 +701,8 @@ def _start(s: System) -> tuple[np.ndarray, Regime]:
             zones.append(BAND)
         else:
             if dq is None:
-                J, jp, _k = _assemble(lashless, linear, 2)
-                dq = np.linalg.solve(J, -jp)
+                jp, _k = _assemble(lashless, linear, 2)
+                dq = _tree_solve(lashless, tuple(linear.tyre), tuple(linear.zone), -jp)
             zones.append(PLUS if dq[z.i] - dq[z.j] >= 0 else MINUS)
     guess = Regime([LINEAR] * len(s.tyres), zones)
     for _ in range(len(s.zones) + 2):
@@ -711,13 +750,13 @@ def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolut
         kind, idx, state = v.event
         code = (_KINDS.index(kind), idx, 0 if state is None else state)
         row = next(k for k, e in enumerate(ends.tolist()) if tuple(e) == code)
-        K, _S, _kz = _elements(s).piece(tuple(v.regime.tyre), tuple(v.regime.zone))
-        _J, jp, k = _assemble(s, v.regime, 2)
-        a1 = float(
-            _vertex_fixed_point(
-                K[None], jp[None], k[None], np.array([[c1[row], c2[row]]]), np.array([b[row]]),
-                np.array([[i1[row], i2[row]]]), s.P_normal, s.P_grade, r.n0, r.n1, r.grade, sol.srt,
-            )[0]
+        e = _elements(s)
+        kd, ke = e.tree_piece(tuple(v.regime.tyre), tuple(v.regime.zone))
+        jp, k = _assemble(s, v.regime, 2)
+        a1 = _vertex_fixed_point(
+            e.tree, kd, ke, jp.tolist(), k.tolist(), float(c1[row]), float(c2[row]), float(b[row]), int(i1[row]),
+            int(i2[row]), np.diagonal(s.P_normal).tolist(), np.diagonal(s.P_grade).tolist(), r.n0, r.n1, r.grade,
+            sol.srt,
         )  # fmt: skip
     for _ in range(30):
         sol = _solve_unit_at(s.at_normal(r.n0 + r.n1 * a1), llt_limit, watch_tyre)
@@ -731,94 +770,86 @@ def solve_unit(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolut
     raise ConvergenceError("the normal factor of the P-Delta terms did not settle at the limit")
 
 
-def _vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a):
-    """Rows of vertices (stacked on the first axis): each the point of its regime's line ``(K - P(N)) q + jp ay + k =
-    0`` where its event's constraint ``c . (x[i1], x[i2]) + b = 0`` holds, with the P-Delta terms ``P(N) = N Pn +
-    grade Pg`` at that point's own normal factor ``N = n0 + n1 ay``: a few Newton steps on ay from ``a``, each row on
-    its own (:mod:`engine.models.combination_batch` takes them for many rows; the same bits for one). Pn and Pg are
-    diagonal, so their products are elementwise."""
-    m, n = K.shape[0], K.shape[1]
-    a = np.array(a, dtype=float).reshape(m)
-    n0, n1, grade = (np.broadcast_to(np.asarray(x, dtype=float), (m,)) for x in (n0, n1, grade))
-    pn, pg = np.diagonal(Pn), np.diagonal(Pg)
-    rows = np.arange(m)
-    M = np.zeros((m, n + 1, n + 1))
-    M[:, :n, :n] = K
-    M[:, :n, n] = jp
-    M[rows, n, ii[:, 0]] += c[:, 0]
-    M[rows, n, ii[:, 1]] += c[:, 1]
-    rhs = np.concatenate([-k, -b[:, None]], axis=1)
-    kd = np.diagonal(K, axis1=1, axis2=2)
-    # a row stops at its own last step, whatever the others do: each step solves the rows still moving only (a row's
-    # arithmetic is its own, so its bits do not depend on which rows share the call)
-    if m == 1:  # the scalar solve's one row: the same operations on the row itself (half the numpy calls)
-        return _vertex_newton(M[0], kd[0], rhs[0], pn, pg, float(n0[0]), float(n1[0]), float(grade[0]), float(a[0]))
-    act = rows
+def _vertex_fixed_point(t, kd, ke, jp, k, c1, c2, b, i1, i2, pn, pg, n0, n1, grade, a):
+    """The point of a piece's line ``(K - P(N)) q + jp ay + k = 0`` where its event's constraint ``c1 x[i1] + c2 x[i2]
+    + b = 0`` holds (x = (q, ay): an index n is ay), with the P-Delta terms ``P(N) = N Pn + grade Pg`` at that
+    point's own normal factor ``N = n0 + n1 ay``: a few Newton steps on ay from ``a`` (:func:`_vertex_step`).
+
+    One row (floats: the scalar solve, ``i1``, ``i2`` ints) or many (arrays of shape (m,), ``i1``, ``i2`` int arrays:
+    :mod:`engine.models.combination_batch`): the same operations on each row, so a row gives the scalar's bits. K is
+    given on its tree (:meth:`_Elements.tree_piece`: ``kd`` its diagonal, ``ke`` its edges); ``jp``, ``k`` are columns
+    (one entry per DOF), ``pn``, ``pg`` the diagonals of Pn and Pg (both diagonal) as floats. A row stops at its own
+    last step, or where its system is singular (it keeps its ay there)."""
+    if isinstance(a, float):
+        for _ in range(8):
+            try:
+                step = _vertex_step(t, kd, ke, jp, k, c1, c2, b, i1, i2, pn, pg, n0, n1, grade, a)
+            except (roll_tree.Singular, ZeroDivisionError):
+                break
+            if not math.isfinite(step):
+                break
+            a -= step
+            if abs(step) <= 1e-15:
+                break
+        return a
+    a = np.array(a, dtype=float)
+    n0, n1, grade = (np.broadcast_to(np.asarray(x, dtype=float), a.shape) for x in (n0, n1, grade))
+    i1, i2 = _rows_by_index(i1), _rows_by_index(i2)
+    moving = np.ones(a.shape, dtype=bool)
     for _ in range(8):
-        aa = a[act]
-        # while every row still moves (the first steps) M itself takes the new diagonal, not a gathered copy: only
-        # the rows' own entries change, and each step writes them before it solves
-        every = act.size == m
-        Ma = M if every else M[act]
-        Ma.reshape(act.size, -1)[:, :: n + 2][:, :n] = kd[act] - (
-            (n0[act] + n1[act] * aa)[:, None] * pn + grade[act][:, None] * pg
-        )  # K's diagonal as a strided slice, not a fancy index
-        # a row whose system is singular stops where it is, as the scalar's does (its break); the others go on (the
-        # stacked call fails whole: one singular row stopped every row of the call at its start)
-        z, solved = _solve_rows(Ma, (rhs if every else rhs[act])[..., None])
-        if not solved.all():
-            act, aa, Ma, z = act[solved], aa[solved], Ma[solved], z[solved]
-        dz, solved = _solve_rows(Ma, np.concatenate([pn * z[:, :n, 0], np.zeros((act.size, 1))], axis=1)[..., None])
-        if not solved.all():
-            act, aa, z, dz = act[solved], aa[solved], z[solved], dz[solved]
-        if not act.size:
-            break
-        z = z[..., 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = (z[:, n] - aa) / (dz[:, n, 0] * n1[act] - 1.0)
-        step = np.where(np.isfinite(step), step, 0.0)
-        a[act] = aa - step
-        act = act[np.abs(step) > 1e-15]
-        if not act.size:
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            step, singular = _vertex_step(t, kd, ke, jp, k, c1, c2, b, i1, i2, pn, pg, n0, n1, grade, a)
+        moving &= ~singular & np.isfinite(step)
+        a = np.where(moving, a - step, a)
+        moving &= np.abs(step) > 1e-15
+        if not moving.any():
             break
     return a
 
 
-def _solve_rows(M: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """np.linalg.solve of stacked systems and which it solved: a singular one (LAPACK's exact zero pivot) fails
-    alone, found by halves (the stacked call fails whole); each system's solution is the bits it has solved alone."""
-    try:
-        return np.linalg.solve(M, b), np.ones(M.shape[0], dtype=bool)
-    except np.linalg.LinAlgError:
-        if M.shape[0] == 1:
-            return np.full(b.shape, np.nan), np.zeros(1, dtype=bool)
-        h = M.shape[0] // 2
-        x1, ok1 = _solve_rows(M[:h], b[:h])
-        x2, ok2 = _solve_rows(M[h:], b[h:])
-        return np.concatenate([x1, x2]), np.concatenate([ok1, ok2])
+def _rows_by_index(i: np.ndarray) -> list[tuple[int, np.ndarray | None]]:
+    """The rows of each distinct index in ``i`` (None: every row), for :func:`_pick`."""
+    if (i == i[0]).all():
+        return [(int(i[0]), None)]
+    return [(v, np.flatnonzero(i == v)) for v in np.unique(i).tolist()]
 
 
-def _vertex_newton(M, kd, rhs, pn, pg, n0: float, n1: float, grade: float, a: float) -> np.ndarray:
-    """:func:`_vertex_fixed_point`'s Newton steps on one row (M its system with K and the constraint in place, kd the
-    diagonal of K): the same operations in the same order, so the same bits."""
-    n = kd.size
-    diag = np.arange(n)
-    tail = np.zeros(1)
-    for _ in range(8):
-        M[diag, diag] = kd - ((n0 + n1 * a) * pn + grade * pg)
-        try:
-            z = np.linalg.solve(M, rhs)
-            dz = np.linalg.solve(M, np.concatenate([pn * z[:n], tail]))
-        except np.linalg.LinAlgError:
-            break
-        den = float(dz[n]) * n1 - 1.0
-        step = (float(z[n]) - a) / den if den != 0.0 else math.nan
-        if not math.isfinite(step):
-            break
-        a -= step
-        if abs(step) <= 1e-15:
-            break
-    return np.array([a])
+def _pick(x: list, i, last):
+    """x[i] of a column list extended by x[n] = ``last``: i an int (one row), or for columns of many rows each row's
+    own index, as :func:`_rows_by_index` groups them (a gather: no arithmetic)."""
+    n = len(x)
+    if isinstance(i, int):
+        return x[i] if i < n else last
+    if i[0][1] is None:
+        v = i[0][0]
+        return x[v] if v < n else np.full(x[0].shape, last)
+    out = np.empty(x[0].shape)
+    for v, rows in i:
+        out[rows] = x[v][rows] if v < n else last
+    return out
+
+
+def _vertex_step(t, kd, ke, jp, k, c1, c2, b, i1, i2, pn, pg, n0, n1, grade, a):
+    """One Newton step of :func:`_vertex_fixed_point` at ay = ``a`` (floats; with arrays also the rows whose J has a
+    zero pivot, whose values are meaningless).
+
+    The vertex x = (q, ay) solves the bordered system ``J q + jp ay = -k``, ``c1 x[i1] + c2 x[i2] = -b``: with ``J u =
+    -k`` and ``J w = jp``, q = u - ay w, so ay = (c1 u[i1] + c2 u[i2] + b) / (c1 w[i1] + c2 w[i2]) (u[n] = 0, w[n] =
+    -1). Its derivative in ``a`` solves the same system with the right-hand side (n1 Pn q, 0) (dJ/da = -n1 Pn); the
+    step is Newton's on g(a) = ay(a) - a."""
+    n = t.n
+    normal = n0 + n1 * a
+    f = roll_tree.factor(t, [kd[v] - (normal * pn[v] + grade * pg[v]) for v in range(n)], ke)
+    u = roll_tree.solve(t, f, [-x for x in k])
+    w = roll_tree.solve(t, f, jp)
+    den = c1 * _pick(w, i1, -1.0) + c2 * _pick(w, i2, -1.0)
+    ay = (c1 * _pick(u, i1, 0.0) + c2 * _pick(u, i2, 0.0) + b) / den
+    dq = roll_tree.solve(t, f, [pn[v] * (u[v] - ay * w[v]) for v in range(n)])
+    day = (c1 * _pick(dq, i1, 0.0) + c2 * _pick(dq, i2, 0.0)) / den
+    step = (ay - a) / (day * n1 - 1.0)
+    if isinstance(a, float):
+        return step
+    return step, roll_tree.zero_pivot(f)
 
 
 def _solve_unit_at(s: System, llt_limit: float, watch_tyre: int | None) -> UnitSolution:

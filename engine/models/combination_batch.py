@@ -10,10 +10,11 @@ start, the same secant on the normal factor of a bank), so a row's answer is the
 needs the scalar's further guesses or its minimisation, a singular piece, a path that does not turn, a fixed point
 that does not settle) is solved alone by :func:`engine.models.combination.solve_combination`: nan if that fails.
 
-Giving the scalar's bits means making the scalar's own LAPACK solves, one gesv per solve and row: every row's J = K
-- P has its own P (the row's normal factor and grade), and gesv with two right-hand sides gives other last bits than
-two with one (measured), so no factor is shared. They are half or more of a batch's time, the floor under the
-lockstep's own work (``bench/bench_combination.py`` prints both).
+The small linear systems of every step (a piece's direction, a state at rest, the stability of an equilibrium, the
+Newton steps of a vertex on a bank) are solved on the roll equations' tree (:mod:`engine.models.roll_tree`): one
+column operation per edge for all the rows at once, and the same code the scalar solve runs on floats, so the same
+bits by construction. (Before, every row's dense system went to LAPACK, one call per row and solve: half a batch's
+time, and the floor under the lockstep.)
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ import numpy as np
 from engine.case import Case
 from engine.errors import RolloverError
 from engine.models import combination as whole
+from engine.models import roll_tree
 from engine.models.combination import (
     BAND,
     LIFTED,
@@ -65,10 +67,15 @@ class _Rows:
         cb, sb = _cos_sin(bank_percent)
         cs, ss = _cos_sin(slope_percent)
         self.n0, self.n1, self.l0, self.l1, self.grade = cb * cs, sb, -sb * cs, cb, ss
+        # what the steps of a system form from these rows alone, not from the P-Delta terms: the fixed point's
+        # passes over the same rows (the rest solve's and the one at the limit's normal factor) meet the same
+        # regimes, and forming these again took a tenth of a pass (profiled); read-only once stored
+        self.memo: dict = {}
 
     def take(self, idx: np.ndarray) -> _Rows:
         out = object.__new__(_Rows)
         out.fields = self.fields
+        out.memo = {}
         for k in self.fields:
             setattr(out, k, getattr(self, k)[idx])
         return out
@@ -114,12 +121,28 @@ def _loads(e: whole._Elements, r: _Rows, tyre: tuple, zone: tuple):
     return r.jp_free + S * r.jp_cap, r.k_free + S * r.k_cap + kz
 
 
-def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """J x = b row by row (a singular row raises :class:`_Alone` for the rows, found one by one)."""
-    try:
-        return np.linalg.solve(J, b[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        raise _Alone from None
+def _every(mask: np.ndarray) -> np.ndarray:
+    """The rows (axis 0) whose entries are all true: one global test first (the usual case: all of them), since a
+    reduction along a short last axis takes several times as long (profiled)."""
+    return np.ones(mask.shape[0], dtype=bool) if mask.all() else np.all(mask, axis=1)
+
+
+def _pivots(e: whole._Elements, tyre: tuple, zone: tuple, pd: np.ndarray) -> roll_tree.Factor:
+    """The factor of every row's J = K - P of a piece on its tree (``pd``: the rows' P-Delta diagonals, DOF
+    by row, (n, k)): the scalar ``_pivots``' operations on columns of rows."""
+    kd, ke = e.tree_piece(tyre, zone)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return roll_tree.factor(e.tree, [kd[v] - pd[v] for v in range(e.n)], ke)
+
+
+def _solve(e: whole._Elements, tyre: tuple, zone: tuple, pd: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """J x = b row by row (b and x: (k, n)) for a piece's J = K - P; raises :class:`_Alone` when a row's J has a zero
+    pivot (the scalar raises there)."""
+    f = _pivots(e, tyre, zone, pd)
+    if roll_tree.zero_pivot(f).any():
+        raise _Alone
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return np.column_stack(roll_tree.solve(e.tree, f, [b[:, v] for v in range(e.n)]))
 
 
 def _consistent(e: whole._Elements, r: _Rows, q: np.ndarray):
@@ -138,65 +161,18 @@ def _distinct(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     coded as one integer in base 3 (np.unique over rows sorts them as records: most of a start's time, profiled)."""
     if not states.shape[0]:
         return states[:0], np.zeros(0, dtype=int)
+    if (states == states[0]).all():  # the usual case: every row in the same regime
+        return states[:1], np.zeros(states.shape[0], dtype=int)
     # (an integer matmul: a sum over axis 1 of rows this short took a dozen times as long, measured)
     code = (states + 1).astype(np.int64) @ 3 ** np.arange(states.shape[1], dtype=np.int64)
-    if np.all(code == code[0]):  # the usual case: every row in the same regime
-        return states[:1], np.zeros(states.shape[0], dtype=int)
     _values, first, inverse = np.unique(code, return_index=True, return_inverse=True)
     return states[first], inverse.reshape(-1)
 
 
-def _minus(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
-    """Each row's J = K - P, the rows' P-Delta terms given by their diagonals ``pd`` (k, n) (P_normal and P_grade
-    are diagonal): K's off-diagonal entries, which less P's zeros are the same bits (K holds no -0.0), and K_ii -
-    P_ii. Built from K and the diagonals rather than from stacked (k, n, n) P's: forming and gathering those took
-    more of a step than its arithmetic."""
-    n = K.shape[0]
-    J = np.empty((pd.shape[0], n, n))
-    J[:] = K
-    J.reshape(-1, n * n)[:, :: n + 1] = np.diagonal(K) - pd  # the diagonal as a strided slice, not a fancy index
-    return J
-
-
-def _stable(K: np.ndarray, pd: np.ndarray) -> np.ndarray:
-    """Each row's J = K - P positive definite: the scalar's test (its Cholesky factor exists), row by row."""
-    # K and the (diagonal) P-Delta terms are symmetric bit for bit, so J is the scalar's 0.5 (J + J^T) exactly
-    if pd.shape[0] > 1 and _all_definite(K, pd):
-        return np.ones(pd.shape[0], dtype=bool)
-    return _definite(_minus(K, pd))
-
-
-def _all_definite(K: np.ndarray, pd: np.ndarray) -> bool:
-    """True when every row's J = K - P is so clearly positive definite that its Cholesky factor exists in floating
-    point (the scalar's test succeeds): one eigenvalue bound for all the rows instead of a factor per row (the
-    factors took a tenth of a batch, profiled). False leaves the rows to the factors.
-
-    P is diagonal, so every row's J is ``W + diag(J_ii - w_i) >= W`` with W = K whose diagonal is the rows' least
-    ``w_i = min J_ii``: lambda_min(J) >= lambda_min(W) (Weyl). Cholesky runs to completion when ``n gamma_(n+1)
-    kappa_2(H) < 1`` for ``H = D^-1/2 J D^-1/2``, D = diag(J) (Higham, *Accuracy and Stability of Numerical
-    Algorithms*, 2nd ed., Thm 10.7); H has a unit diagonal, so lambda_max(H) <= n and lambda_min(H) > n^2 gamma_(n+1)
-    (some 1e-12 for 30 DOFs) is enough, and ``lambda_min(J) / max J_ii`` bounds lambda_min(H) from below. The margin
-    asked, 1e-9, is far above that, and the 1e-12 ||W||_F taken off covers eigvalsh's own error (a few eps ||W||)."""
-    n = K.shape[0]
-    diag = np.arange(n)
-    d = K[diag, diag] - pd  # the rows' J_ii, as K - P forms them
-    if not np.isfinite(d).all():
-        return False
-    W = K.copy()
-    W[diag, diag] = d.min(axis=0)
-    lam = np.linalg.eigvalsh(W)[0]
-    return bool(lam - 1e-12 * np.linalg.norm(W) > 1e-9 * np.abs(d).max())
-
-
-def _definite(J: np.ndarray) -> np.ndarray:
-    try:  # the usual case: every row stable, one call
-        np.linalg.cholesky(J)
-        return np.ones(J.shape[0], dtype=bool)
-    except np.linalg.LinAlgError:  # the stacked call fails if any row does: halves until the rows that do are found
-        if J.shape[0] == 1:
-            return np.zeros(1, dtype=bool)
-        h = J.shape[0] // 2
-        return np.concatenate([_definite(J[:h]), _definite(J[h:])])
+def _stable(e: whole._Elements, tyre: tuple, zone: tuple, pd: np.ndarray) -> np.ndarray:
+    """Each row's J = K - P positive definite: the scalar's test (every pivot positive), row by row."""
+    f = _pivots(e, tyre, zone, pd)
+    return roll_tree.positive(f) & ~roll_tree.zero_pivot(f)
 
 
 def _state(e: whole._Elements, r: _Rows, pd: np.ndarray, key: np.ndarray, T: int):
@@ -205,7 +181,7 @@ def _state(e: whole._Elements, r: _Rows, pd: np.ndarray, key: np.ndarray, T: int
     tyre, zone = tuple(key[:T].tolist()), tuple(key[T:].tolist())
     jp, k = _loads(e, r, tyre, zone)
     try:
-        return _solve(_minus(e.piece(tyre, zone)[0], pd), -(jp * _row(r.ay0) + k))
+        return _solve(e, tyre, zone, pd, -(jp * _row(r.ay0) + k))
     except _Alone:
         return None
 
@@ -218,16 +194,14 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
     el = whole._elements(lashless)
     ay0 = r.ay0
     linear_t, band_z = (LINEAR,) * T, (BAND,) * Z
-    K0 = el.piece(linear_t, band_z)[0]
-    J0 = _minus(K0, pd)
     jp0, k0 = _loads(el, r, linear_t, band_z)
-    q0 = _solve(J0, -(jp0 * _row(ay0) + k0))
+    q0 = _solve(el, linear_t, band_z, pd, -(jp0 * _row(ay0) + k0))
     k_rows = q0.shape[0]
     ok = np.ones(k_rows, dtype=bool)
     if not np.any(e.lash > 0):
         tyre, zone = _consistent(e, r, q0)
-        ok &= np.all(tyre == LINEAR, axis=1) & np.all(zone == BAND, axis=1)
-        ok &= _stable(e.piece(linear_t, band_z)[0], pd)
+        ok &= _every(tyre == LINEAR) & _every(zone == BAND)
+        ok &= _stable(e, linear_t, band_z, pd)
         return np.column_stack([q0, ay0]), [(linear_t, band_z)], np.zeros(k_rows, dtype=int), ok
     d = q0[:, e.zi] - q0[:, e.zj]
     coupling = np.array([z.kind == "coupling" for z in s.zones])
@@ -236,7 +210,7 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
     dd = np.zeros_like(d)
     need = np.flatnonzero(np.any((e.lash > 0) & ~coupling & (np.abs(d) <= 1e-12), axis=1))
     if need.size:
-        dq = _solve(J0[need], -jp0[need])
+        dq = _solve(el, linear_t, band_z, pd[:, need], -jp0[need])
         dd[need] = dq[:, e.zi] - dq[:, e.zj]
     guess = np.where(
         e.lash <= 0,
@@ -260,28 +234,28 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
         for g, key in enumerate(keys):
             idx = rows_p[inv == g]
             every = idx.size == k_rows  # every row, in order (the usual case): no copies of the rows' arrays
-            ri, pi = (r, pd) if every else (r.take(idx), pd[idx])
+            ri, pi = (r, pd) if every else (r.take(idx), pd[:, idx])
             q = _state(e, ri, pi, key, T)
             if q is None:
                 pending[idx], ok[idx] = False, False  # the scalar leaves the loop for its minimisation
                 continue
             tyre, zone = _consistent(e, ri, q)
             rg = np.column_stack([tyre, zone])
-            same = np.all(rg == key, axis=1)
+            same = _every(rg == key)
             if same.all():  # every state in its guess's regime: already its exact equilibrium (the scalar's made_in)
-                settled = np.all(np.isfinite(q), axis=1)
+                settled = _every(np.isfinite(q))
                 exact = q
                 if settled.all():  # the usual case: the rows settle in their one regime if they are stable in it
-                    K = e.piece(tuple(key[:T].tolist()), tuple(key[T:].tolist()))[0]
-                    settled = _stable(K, pi)
+                    settled = _stable(e, tuple(key[:T].tolist()), tuple(key[T:].tolist()), pi)
                     if settled.all():
-                        z0[idx, :n], final[idx], pending[idx] = q, key, False
+                        at = slice(None) if every else idx  # every row: plain stores, no scatter
+                        z0[at, :n], final[at], pending[at] = q, key, False
                         continue
             else:
                 exact = q.copy()
                 for key2 in _distinct(rg[~same])[0]:
                     sub = np.flatnonzero(~same & np.all(rg == key2, axis=1))
-                    q2 = _state(e, ri.take(sub), pi[sub], key2, T)
+                    q2 = _state(e, ri.take(sub), pi[:, sub], key2, T)
                     if q2 is None:
                         exact[sub] = np.nan  # the scalar's settle fails there: next guess
                     else:
@@ -290,15 +264,14 @@ def _start(s: System, e: whole._Elements, lashless: System, r: _Rows, pd: np.nda
                 settled = np.all(np.isfinite(exact), axis=1) & np.all(np.column_stack([t2, z2]) == rg, axis=1)
             for key2 in _distinct(rg[settled])[0]:
                 sub = np.flatnonzero(settled & np.all(rg == key2, axis=1))
-                K = e.piece(tuple(key2[:T].tolist()), tuple(key2[T:].tolist()))[0]
-                settled[sub] &= _stable(K, pi[sub])
+                settled[sub] &= _stable(e, tuple(key2[:T].tolist()), tuple(key2[T:].tolist()), pi[:, sub])
             done = idx[settled]
             z0[done, :n] = exact[settled]
             final[done] = rg[settled]
             pending[done] = False
             state[idx[~settled]] = rg[~settled]
     ok &= ~pending  # no guess settled: the scalar minimises the potential
-    ok &= np.all(final[:, :T] == LINEAR, axis=1)  # an offset that lifts a group at rest: the scalar refuses it
+    ok &= _every(final[:, :T] == LINEAR)  # an offset that lifts a group at rest: the scalar refuses it
     keys, which = _distinct(final)
     regimes = [(tuple(k[:T].tolist()), tuple(k[T:].tolist())) for k in keys]
     return z0, regimes, which, ok
@@ -324,71 +297,80 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
     peak_row = np.zeros((z0.shape[0], 5))
     ok = ok.copy()
     max_steps = 8 * (len(s.tyres) + len(s.zones)) + 40
-    # a group: (rows, its states (n+1, m), prev_d (m, n+1), tyre, zone, last, steps)
+    # a group: (rows, its states (n+1, m), its last direction (n+1, m), tyre, zone, last, steps)
     work = []
     for g, key in enumerate(regimes):
         rows = np.flatnonzero(ok & (start_of == g))
         if rows.size:
             work.append((rows, np.ascontiguousarray(z0[rows].T), None, key[0], key[1], None, 0))
     lim = limit is not None
-    jp_free, jp_cap = r.jp_free, r.jp_cap  # r of the system: of_system
-    cap_ayT, cap_0T = np.ascontiguousarray(r.cap_ay.T), np.ascontiguousarray(r.cap_0.T)
+    # the loads DOF by row, (n, k): a column of the tree's solve is then one contiguous row (r of the system: of_system)
+    memo = r.memo
+    if "T" not in memo:
+        memo["T"] = tuple(np.ascontiguousarray(x.T) for x in (r.jp_free, r.jp_cap, r.cap_ay, r.cap_0))
+    jp_free, jp_cap, cap_ayT, cap_0T = memo["T"]
     while work:
         rows, zT, prev_d, tyre, zone, last, steps = work.pop()
         if steps >= max_steps:
             ok[rows] = False
             continue
-        whole_set = rows.size == pd.shape[0]  # every row, in order: no copies of the rows' arrays
+        whole_set = rows.size == pd.shape[1]  # every row, in order: no copies of the rows' arrays
         if whole_set:
             jf, jc, caT, c0T, pr = jp_free, jp_cap, cap_ayT, cap_0T, pd
         else:
-            jf, jc, pr = jp_free[rows], jp_cap[rows], pd[rows]
+            jf, jc, pr = (np.take(x, rows, axis=1) for x in (jp_free, jp_cap, pd))
             caT, c0T = np.take(cap_ayT, rows, axis=1), np.take(cap_0T, rows, axis=1)
-        K, S, _kz = e.piece(tyre, zone)
-        jp = jf + S * jc
-        try:
-            dq = _solve(_minus(K, pr), -jp)
-        except _Alone:
-            ok[rows] = False
-            continue
-        fine = np.einsum("ij,ij->i", dq, dq) < 1e24  # the scalar's test: finite and |dq| < 1e12
-        if not fine.all():  # the scalar takes an SVD there: left to it
+        _K, S, _kz = e.piece(tyre, zone)
+        f = _pivots(e, tyre, zone, pr)
+        # -jp, jp = jp_free + S jp_cap (the scalar's loads): a column by DOF
+        minus_jp = memo.get(("jp", S.tobytes())) if whole_set else None
+        if minus_jp is None:
+            minus_jp = [-(jf[v] + S[v] * jc[v]) for v in range(n)]
+            if whole_set:
+                memo["jp", S.tobytes()] = minus_jp
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            # the direction, DOF by row (n + 1, m)
+            dT, sq = roll_tree.direction(roll_tree.solve(e.tree, f, minus_jp), np.empty((n + 1, jf.shape[1])))
+        # the scalar's test: finite and |dq| < 1e12; where it fails, or on a zero pivot, the scalar takes an SVD
+        fine = (sq < 1e24) & ~roll_tree.zero_pivot(f)
+        if not fine.all():  # left to the scalar
             ok[rows[~fine]] = False
-            rows, zT, dq, caT, c0T = rows[fine], zT[:, fine], dq[fine], caT[:, fine], c0T[:, fine]
-            prev_d = None if prev_d is None else prev_d[fine]
+            rows, zT, dT, caT, c0T = rows[fine], zT[:, fine], dT[:, fine], caT[:, fine], c0T[:, fine]
+            prev_d = None if prev_d is None else prev_d[:, fine]
             if not rows.size:
                 continue
         m = rows.size
-        d = np.empty((m, n + 1))
-        d[:, :n], d[:, n] = dq, 1.0
-        d /= np.sqrt((d * d).sum(axis=1))[:, None]  # the scalar's normalisation, bit for bit
         ti, sk, sf, zi, sg, sb, i1, i2, ends = e.table(tyre, zone, 2, lim)
         # the constraint rows c1 x[i1] + c2 x[i2] + b >= 0: c1 is the regime's (the same on every row), c2 and b
         # the row's on its tyre rows (filled in place: concatenating broadcast copies took a tenth of a step)
         nt = ti.size
         c1 = np.concatenate([sk * e.tk[ti], sg])
         c1c = c1[:, None]
-        c2T, bT = np.empty((c1.size, m)), np.empty((c1.size, m))
-        fac = np.where(sf[:, None] == 0.0, limit[rows][None, :] if lim else 0.0, sf[:, None])
-        c2T[:nt] = fac * caT[ti]
-        bT[:nt] = fac * c0T[ti]
-        c2T[nt:], bT[nt:] = -sg[:, None], (sb * e.lash[zi])[:, None]
+        shared = whole_set and m == jf.shape[1] and not lim  # the same rows and table in every pass
+        c2T, bT = memo.get(("rows", tyre, zone), (None, None)) if shared else (None, None)
+        if c2T is None:
+            c2T, bT = np.empty((c1.size, m)), np.empty((c1.size, m))
+            fac = np.where(sf[:, None] == 0.0, limit[rows][None, :] if lim else 0.0, sf[:, None])
+            c2T[:nt] = fac * caT[ti]
+            bT[:nt] = fac * c0T[ti]
+            c2T[nt:], bT[nt:] = -sg[:, None], (sb * e.lash[zi])[:, None]
+            if shared:
+                memo["rows", tyre, zone] = c2T, bT
         if last is None:
-            w = d[:, :n] @ s.weights
-            w = np.where(w == 0.0, d[:, n], w)
+            w = s.weights @ dT[:n]
+            w = np.where(w == 0.0, dT[n], w)
             flip = w < 0
         else:
             kc, idx, previous = last
             back = np.flatnonzero((ends[:, 0] == kc) & (ends[:, 1] == idx) & (ends[:, 2] == previous))
             if back.size:  # the rate of the constraint just crossed (the scalar's rates[back]: the same operations)
                 j = back[0]
-                rate = c1[j] * d[:, i1[j]] + c2T[j] * d[:, i2[j]]
+                rate = c1[j] * dT[i1[j]] + c2T[j] * dT[i2[j]]
             else:
                 rate = np.zeros(m)
-            turned = np.einsum("ij,ij->i", prev_d, d) < 0
+            turned = np.einsum("ij,ij->j", prev_d, dT) < 0
             flip = np.where(np.abs(rate) > 1e-14, rate < 0, turned)
-        d *= np.where(flip, -1.0, 1.0)[:, None]
-        dT = np.ascontiguousarray(d.T)
+        dT *= np.where(flip, -1.0, 1.0)
         # the scalar's c1 x[i1] + c2 x[i2] (+ b), in place: the same operations in the same order, fewer temporaries
         # (on the oriented direction: -(c1 x + c2 y) is c1 (-x) + c2 (-y) bit for bit)
         rates = c1c * dT[i1]
@@ -424,7 +406,9 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             zT = zT.copy()
             zT[:, go] = zT[:, go] + step[go] * dT[:, go]
         higher = go & (zT[n] > best_ay[rows])
-        if higher.all():  # the usual case before the peak: every row still climbs, no masked copies
+        if higher.all() and whole_set:  # the usual case before the peak: every row climbs, no scatter
+            best_ay[:], best_zT[:] = zT[n], zT
+        elif higher.all():
             best_ay[rows], best_zT[:, rows] = zT[n], zT
         else:
             best_ay[rows[higher]] = zT[n, higher]
@@ -433,8 +417,10 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             pieces.append((tyre, zone))
             h = np.flatnonzero(higher)
             w = which[h]
-            peak_piece[rows[h]] = len(pieces) - 1
-            peak_row[rows[h]] = np.column_stack([c1[w], c2T[w, h], bT[w, h], i1[w], i2[w]])
+            at = slice(None) if whole_set and h.size == m else rows[h]  # every row: plain stores, no scatter
+            peak_piece[at] = len(pieces) - 1
+            peak_row[at, 0], peak_row[at, 1], peak_row[at, 2] = c1[w], c2T[w, h], bT[w, h]
+            peak_row[at, 3], peak_row[at, 4] = i1[w], i2[w]
         events = np.flatnonzero(np.bincount(which[go], minlength=c1.size))
         for row in events:
             kc, idx, state = (int(x) for x in ends[row])
@@ -449,10 +435,10 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
                 previous = zone[idx]
                 new_t, new_z = tyre, (*zone[:idx], state, *zone[idx + 1 :])
             if events.size == 1 and go.all():  # the usual case: every row meets the same event, no copies
-                work.append((rows, zT, d, new_t, new_z, (kc, idx, previous), steps + 1))
+                work.append((rows, zT, dT, new_t, new_z, (kc, idx, previous), steps + 1))
             else:
                 sel = go & (which == row)
-                work.append((rows[sel], zT[:, sel], d[sel], new_t, new_z, (kc, idx, previous), steps + 1))
+                work.append((rows[sel], zT[:, sel], dT[:, sel], new_t, new_z, (kc, idx, previous), steps + 1))
     return best_ay, np.ascontiguousarray(best_zT.T), ok, (pieces, peak_piece, peak_row)
 
 
@@ -460,7 +446,7 @@ def _solve_at(s, e, lashless, r, pd, limit, peaks=True):
     try:
         z0, regimes, which, ok = _start(s, e, lashless, r, pd)
     except _Alone:  # a singular start somewhere in the rows: all of them alone (never seen on a valid vehicle)
-        k = pd.shape[0]
+        k = pd.shape[1]
         return np.zeros(k), np.zeros((k, s.n + 1)), np.zeros(k, dtype=bool), ([], np.full(k, -1), np.zeros((k, 5)))
     return _trace(s, e, r, pd, limit, z0, regimes, which, ok, peaks)
 
@@ -472,7 +458,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
     r = r.of_system(s, e)
     # the P-Delta terms' diagonals (the P at rest of build_systems, on its diagonal: the same products)
     pn, pg = np.diagonal(s.P_normal), np.diagonal(s.P_grade)
-    pd0 = _row(r.n0) * pn + _row(r.grade) * pg
+    pd0 = r.n0 * pn[:, None] + r.grade * pg[:, None]  # DOF by row, (n, k)
     srt, zs, ok, peaks = _solve_at(s, e, lashless, r, pd0, limit, bool(np.any(r.n1 != 0.0)))
     active = np.flatnonzero(ok & (r.n1 != 0.0))
     a0, g0, a1 = np.zeros(active.size), srt[active].copy(), srt[active].copy()
@@ -482,12 +468,13 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
         if not sel.size:
             continue
         rows = active[sel]
-        ri = r.take(rows)
+        ri = r if rows.size == srt.size else r.take(rows)  # every row (the usual case): no copies
         jp, k = _loads(e, ri, tyre, zone)
-        K = np.broadcast_to(e.piece(tyre, zone)[0], (rows.size, s.n, s.n))
+        kd, ke = e.tree_piece(tyre, zone)
         pr = peak_row[rows]
         a1[sel] = whole._vertex_fixed_point(
-            K, jp, k, pr[:, :2], pr[:, 2], pr[:, 3:].astype(int), s.P_normal, s.P_grade, ri.n0, ri.n1, ri.grade,
+            e.tree, kd, ke, [jp[:, v] for v in range(s.n)], [k[:, v] for v in range(s.n)], pr[:, 0], pr[:, 1],
+            pr[:, 2], pr[:, 3].astype(int), pr[:, 4].astype(int), pn.tolist(), pg.tolist(), ri.n0, ri.n1, ri.grade,
             srt[rows],
         )  # fmt: skip
     if active.size and ok.all() and active.size < ok.size:
@@ -503,7 +490,7 @@ def _solve_unit(s: System, r: _Rows, limit: np.ndarray | None):
             break
         ra = r if active.size == ok.size else r.take(active)
         normal = ra.n0 + ra.n1 * a1
-        pd = _row(normal) * pn + _row(ra.grade) * pg
+        pd = normal * pn[:, None] + ra.grade * pg[:, None]
         got, gz, gok, _peaks = _solve_at(s, e, lashless, ra, pd, None if limit is None else limit[active], False)
         ok[active[~gok]] = False
         g1 = got - a1

@@ -142,7 +142,9 @@ def test_the_examples_are_what_the_app_answers_today():
         [sys.executable, str(ROOT / "scripts" / "readme_examples.py")], capture_output=True, text=True, cwd=ROOT
     )
     assert done.returncode == 0, done.stderr[-2000:]
-    assert done.stdout.rstrip("\n") in EXAMPLES, "docs/examples.md is stale: python scripts/readme_examples.py --write"
+    assert _found_to_the_last_digits(done.stdout.rstrip("\n"), EXAMPLES), (
+        "docs/examples.md is stale: python scripts/readme_examples.py --write"
+    )
 
 
 @pytest.mark.slow
@@ -160,7 +162,44 @@ def test_the_readme_examples_are_what_the_app_answers_today():
     assert done.returncode == 0, done.stderr[-2000:]
     block = done.stdout.rstrip("\n")
     assert block.count("$ curl") >= 2
-    assert block in README, "the README's examples are stale: python scripts/readme_examples.py --write"
+    stale = "the README's examples are stale: python scripts/readme_examples.py --write"
+    assert _found_to_the_last_digits(block, README), stale
+
+
+#: a number as the answers print it (repr of a float, or an integer)
+_NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+
+
+def _found_to_the_last_digits(block: str, doc: str) -> bool:
+    """``block`` is in ``doc`` word for word, except that a float printed with all its digits may differ from the
+    committed one in its last two (relative 1e-13): the engine's iterative solves and libm's transcendental functions
+    round differently on other CPUs (seen between two machines of this project: the 14th digit of a 3D SRT), while
+    any real change of an answer moves digits far above that."""
+    if block in doc:
+        return True
+    pieces = _NUMBER.split(block)
+    numbers = _NUMBER.findall(block)
+    start = doc.find(pieces[0])
+    while start >= 0:
+        candidate = re.match(
+            "".join(re.escape(p) + (f"({_NUMBER.pattern})" if k < len(numbers) else "") for k, p in enumerate(pieces)),
+            doc[start:],
+            flags=re.S,
+        )
+        if candidate and all(_close(a, b) for a, b in zip(numbers, candidate.groups(), strict=True)):
+            return True
+        start = doc.find(pieces[0], start + 1)
+    return False
+
+
+def _close(a: str, b: str) -> bool:
+    if a == b:
+        return True
+    digits = len(re.sub(r"e.*|[^0-9]", "", a).lstrip("0"))
+    if digits < 15:  # a number printed short (rounded by the example) must match exactly
+        return False
+    x, y = float(a), float(b)
+    return abs(x - y) <= 1e-13 * max(abs(x), abs(y))
 
 
 def test_readme_stays_a_newcomer_s_page_and_links_the_reference():

@@ -90,8 +90,8 @@ def test_evaluate_arrays_and_sweeps_use_the_batch(monkeypatch):
 def test_a_row_the_lockstep_cannot_follow_is_solved_alone(monkeypatch):
     real = combination_batch._stable
 
-    def first_row_unstable(K, P):
-        out = real(K, P)
+    def first_row_unstable(*args):
+        out = real(*args)
         out[0] = False
         return out
 
@@ -125,20 +125,24 @@ def test_a_refused_row_gets_the_scalar_message():
     assert errors[1] == str(exc.value)
 
 
-def test_the_stability_bound_is_the_scalar_test():
-    # _stable's one eigenvalue bound for all rows must answer what each row's Cholesky factor answers: on stiffness
-    # matrices with diagonal P-Delta terms from clearly stable to unstable, through the edge
+def test_the_stability_test_is_cholesky_on_the_rows():
+    # _stable's pivots on the tree must answer what each row's dense Cholesky factor answers, on the presets' own
+    # pieces with P-Delta diagonals from clearly stable to unstable, through the edge
     rng = np.random.default_rng(3)
-    n = 6
-    for trial in range(200):
-        A = rng.standard_normal((n, n))
-        K = A @ A.T + 0.1 * np.eye(n)
-        K = 0.5 * (K + K.T)
-        lam = np.linalg.eigvalsh(K)[0]
-        p = rng.uniform(0.0, 1.0, (25, n)) * lam * rng.choice([0.5, 0.99, 1.0, 1.01, 2.0])
-        expect = np.array([_cholesky_exists(K - np.diag(p[i])) for i in range(25)])
-        got = combination_batch._stable(K, p)  # the rows' P by their diagonals
-        assert got.tolist() == expect.tolist(), trial
+    for cid in COMBINATIONS:
+        for s in whole.build_systems(COMBINATIONS[cid], 0.0, 0.0, whole.UnitLoad()):
+            e = whole._elements(s)
+            T, Z = len(s.tyres), len(s.zones)
+            for tyre in [(whole.LINEAR,) * T, (whole.LIFTED,) + (whole.LINEAR,) * (T - 1)]:
+                zone = (whole.PLUS,) * Z
+                K = e.piece(tyre, zone)[0]
+                lam = np.linalg.eigvalsh(K)[0]
+                scale = rng.choice([0.5, 0.99, 1.0, 1.01, 2.0], size=(40, 1))
+                pd = rng.uniform(0.0, 1.0, (40, s.n)) * abs(lam) * scale * s.n
+                expect = [_cholesky_exists(K - np.diag(p)) for p in pd]
+                got = combination_batch._stable(e, tyre, zone, np.ascontiguousarray(pd.T))  # DOF by row
+                assert got.tolist() == expect, cid
+                assert 0 < sum(expect) < len(expect), cid  # both answers seen
 
 
 def _cholesky_exists(J) -> bool:
@@ -152,22 +156,53 @@ def _cholesky_exists(J) -> bool:
 def test_a_singular_vertex_stops_its_own_newton_steps_only():
     # the batch's Newton start on many rows must give each row what it gives the row alone (the scalar's call): a
     # row whose vertex system is singular stops where it is, and the others go on
+    s = whole.build_systems(COMBINATIONS["btrain-table16"], 0.0, 0.0, whole.UnitLoad())[0]
+    e = whole._elements(s)
+    T, Z = len(s.tyres), len(s.zones)
+    kd, ke = e.tree_piece((whole.LINEAR,) * T, (whole.BAND,) * Z)
     rng = np.random.default_rng(0)
-    m, n = 6, 4
-    A = rng.standard_normal((m, n, n))
-    K = A @ A.transpose(0, 2, 1) + 5.0 * np.eye(n)
-    jp, k = rng.standard_normal((m, n)), rng.standard_normal((m, n))
-    c, b = rng.standard_normal((m, 2)), rng.standard_normal(m)
-    c[2] = 0.0  # row 2's constraint row is zero: its system is singular
-    ii = np.tile([1, n], (m, 1))
-    Pn, Pg = np.diag(rng.uniform(0.0, 1.0, n)), np.diag(rng.uniform(0.0, 0.1, n))
+    m, n = 6, s.n
+    jp, k = rng.standard_normal((m, n)) * 100.0, rng.standard_normal((m, n)) * 100.0
+    c1, c2, b = rng.standard_normal(m), rng.standard_normal(m), rng.standard_normal(m)
+    c1[2] = c2[2] = 0.0  # row 2's constraint row is zero: its system is singular
+    i1, i2 = np.full(m, 1), np.full(m, n)
+    pn, pg = np.diagonal(s.P_normal).tolist(), np.diagonal(s.P_grade).tolist()
     n0, n1, grade = rng.uniform(0.9, 1.0, m), rng.uniform(0.0, 0.1, m), rng.uniform(-0.05, 0.05, m)
     a = rng.uniform(0.3, 0.5, m)
-    many = whole._vertex_fixed_point(K, jp, k, c, b, ii, Pn, Pg, n0, n1, grade, a)
+    cols = lambda x: [x[:, v] for v in range(n)]  # noqa: E731
+    many = whole._vertex_fixed_point(e.tree, kd, ke, cols(jp), cols(k), c1, c2, b, i1, i2, pn, pg, n0, n1, grade, a)
     for i in range(m):
         one = whole._vertex_fixed_point(
-            K[i : i + 1], jp[i : i + 1], k[i : i + 1], c[i : i + 1], b[i : i + 1], ii[i : i + 1], Pn, Pg, n0[i],
-            n1[i], grade[i], a[i],
+            e.tree, kd, ke, jp[i].tolist(), k[i].tolist(), float(c1[i]), float(c2[i]), float(b[i]), 1, n, pn, pg,
+            float(n0[i]), float(n1[i]), float(grade[i]), float(a[i]),
         )  # fmt: skip
-        assert many[i] == one[0], i
+        assert many[i] == one, i
     assert many[2] == a[2]  # the singular row did not move
+    assert np.all(many[[0, 1, 3, 4, 5]] != a[[0, 1, 3, 4, 5]])
+
+
+def test_the_vertex_fixed_point_is_the_dense_bordered_solve():
+    # the Newton steps on the tree (a bordered elimination) against the same fixed point written densely: the vertex
+    # system [[K - P(n0 + n1 a), jp], [c]] (z) = (-k, -b) solved with LAPACK until z[n] = a
+    s = whole.build_systems(COMBINATIONS["adouble"], 6.0, 2.0, whole.UnitLoad())[1]
+    e = whole._elements(s)
+    T, Z = len(s.tyres), len(s.zones)
+    tyre, zone = (whole.LIFTED,) + (whole.LINEAR,) * (T - 1), (whole.PLUS,) * Z
+    K = e.piece(tyre, zone)[0]
+    kd, ke = e.tree_piece(tyre, zone)
+    jp, k = whole._assemble(s, whole.Regime(list(tyre), list(zone)), 2)
+    n, r = s.n, s.road
+    for i1, i2, c1, c2, b in ((1, n, 2000.0, -30.0, -5.0), (0, 2, 1.0, -1.0, 0.01)):
+        got = whole._vertex_fixed_point(
+            e.tree, kd, ke, jp.tolist(), k.tolist(), c1, c2, b, i1, i2, np.diagonal(s.P_normal).tolist(),
+            np.diagonal(s.P_grade).tolist(), r.n0, r.n1, r.grade, 0.3,
+        )  # fmt: skip
+        a = 0.3
+        for _ in range(50):
+            M = np.zeros((n + 1, n + 1))
+            M[:n, :n] = K - ((r.n0 + r.n1 * a) * s.P_normal + r.grade * s.P_grade)
+            M[:n, n] = jp
+            M[n, i1] += c1
+            M[n, i2] += c2
+            a = float(np.linalg.solve(M, np.append(-k, -b))[n])
+        assert got == pytest.approx(a, rel=1e-12, abs=1e-14)

@@ -9,7 +9,9 @@
 - :mod:`~engine.models.classic`: the closed forms of Ch. 2;
 - :mod:`~engine.models.threshold`: the entry points (one case, many cases, grids);
 - :mod:`~engine.models.combination`: the whole-combination static roll model (every unit, group and coupling),
-  and :mod:`~engine.models.combination_reference`, the same equations solved as a general nonlinear equilibrium.
+  its many-road batch :mod:`~engine.models.combination_batch`, the solve of its equations on their tree
+  :mod:`~engine.models.roll_tree`, and :mod:`~engine.models.combination_reference`, the same equations solved as a
+  general nonlinear equilibrium.
 """
 
 from .classic import (

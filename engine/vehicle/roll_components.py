@@ -544,25 +544,37 @@ SUSPENSIONS_IN_ROLL: dict[str, RollSuspension] = {
 NOT_FOUND_IN_ROLL: dict[str, str] = {
     "walking-beam, trunnion / bogie and four-spring tandems": (
         "no TruckSim dataset of these types is in either copy of the database found (github.com/Steve-Krug/Axicle "
-        "04-Trucksim/, all 23 solid-axle compliance datasets read; github.com/LiAngHNU/CYBRIX "
-        "utils/resources/custom_TruckSim_dataset_2020.1/, two suspension files, copies of Axicle's); the UMTRI "
-        "Factbook (UMTRI-86-12), Winkler, Bogard and Karamihas (SAE 922426) and Fu and Cebon (2002, 61 measured "
-        "suspensions in eight categories) tabulate them, but only their title pages or abstracts could be read; the "
-        "library's Factbook trailer tandem is a leaf tandem whose dataset does not say whether it is four-spring"
+        "04-Trucksim/, all 23 solid-axle compliance datasets read, and its springs, auxiliary roll moments and "
+        "kinematics; github.com/LiAngHNU/CYBRIX utils/resources/custom_TruckSim_dataset_2020.1/, two suspension "
+        "files, copies of Axicle's); the UMTRI Factbook (UMTRI-86-12), Winkler, Bogard and Karamihas (SAE 922426) "
+        "and Fu and Cebon (2002, 61 measured suspensions in eight categories; its Scribd copies show the first "
+        "page) tabulate them, but only their title pages or abstracts could be read; the per-axle roll values of "
+        "github.com/TomLousberg/LHVTool2016a (Files/custom_model/Tractor_initialize.m) carry no source, and Project "
+        "Chrono's military MTV walking beam (data/vehicle/mtv/) names only the M1078 operator's manual for its data, "
+        "its spring curve no source of its own; the library's Factbook trailer tandem is a leaf tandem whose "
+        "dataset does not say whether it is four-spring"
     ),
     "suspension lash (any type)": (
-        "TruckSim models none; the UMTRI reports that give it (Ervin 1986, UMTRI-86-35, UMTRI-99-19) and the TERNZ "
-        "tilt-table report (2001) could be read only to their first pages"
+        "TruckSim models none; the UMTRI reports that give it (Ervin 1986, UMTRI-86-35, UMTRI-99-19; Ervin's IJVD "
+        "7(5-6) abstract names 'spring lash properties at the various axle positions' without values) and the "
+        "TERNZ tilt-table report (2001) could be read only to their first pages"
     ),
     "TERNZ / NZTA generic air (low and high roll stiffness) and generic steel values": (
-        "the calculator's help page (ternz.co.nz/SRT_Calculator/mainhelp.html) names the types 'Generic Air - low "
-        "roll stiffness', 'Generic Air - high roll stiffness', 'Generic Steel' and 'User Defined' but its values are "
-        "inside the calculator, and its user guide's tables could not be read; the library's two air suspensions "
-        "are TruckSim's, of low and high auxiliary roll stiffness"
+        "the calculator's help pages (ternz.co.nz/SRT_Calculator/mainhelp.html, "
+        "mrwebapps.mainroads.wa.gov.au/srtcalculator/mainhelp.html) name the types 'Generic Air - low roll "
+        "stiffness', 'Generic Air - high roll stiffness', 'Generic Steel' and 'User Defined' but its values are "
+        "inside the calculator; its user guides (Main Roads WA, Tasmania DIER 2006) and Main Roads WA / ARRB's "
+        "re-implementation (ravrat.au/srt, ravrat.au/srt-help, 'based on the TERNZ Static Rollover Threshold "
+        "Calculator v3.01wa') could be read only to their introductions; the library's two air suspensions are "
+        "TruckSim's, of low and high auxiliary roll stiffness"
     ),
     "manufacturer roll stiffness (Hendrickson, Reyco, SAF-Holland, BPW)": (
         "the brochures found (Hendrickson L761 'Understanding Trailer Air Suspensions', L578, T15001; BPW and SAF "
-        "catalogues and design manuals) name roll stability but state no roll stiffness in what could be read"
+        "catalogues and design manuals) name roll stability but state no roll stiffness in what could be read; the "
+        "trailer-axle catalogues that give numbers (SAF 'Design Handbook SAF MODUL' 11a/2003; Vector Gigant's "
+        "'Permissible Centres of Gravity Height for Air Suspensions', p. 51, at '0,4g transverse acceleration' and "
+        "'about 3º inclination of body') tabulate permitted CG heights, not a roll stiffness, and name no roll "
+        "centre in what could be read"
     ),
 }
 

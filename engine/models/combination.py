@@ -155,13 +155,16 @@ class System:
     road: RoadFactors = field(default=None)  # type: ignore[assignment]
     P_normal: np.ndarray = field(default=None)  # type: ignore[assignment]  # P per unit normal factor
     P_grade: np.ndarray = field(default=None)  # type: ignore[assignment]  # P per unit sin(grade)
+    #: P's diagonal (P is diagonal) as floats, for the solves on the tree (:func:`_pivots`)
+    P_diag: tuple = field(default=None)  # type: ignore[assignment]
     #: the element arrays and the per-regime pieces (:func:`_elements`): they do not depend on the normal factor, so
     #: the copies :meth:`at_normal` makes share them across the fixed point's iterations
     cache: dict = field(default_factory=dict, compare=False, repr=False)
 
     def at_normal(self, normal: float) -> System:
         """The same equations with the P-Delta terms at the normal factor ``normal``."""
-        return replace(self, P=normal * self.P_normal + self.road.grade * self.P_grade)
+        P = normal * self.P_normal + self.road.grade * self.P_grade
+        return replace(self, P=P, P_diag=tuple(np.diagonal(P).tolist()))
 
     def cap(self, t: Tyres, ay: float) -> float:
         """The group's lift-off moment N(ay) T/2 [kN m]."""
@@ -235,7 +238,8 @@ def build_systems(c: Combination, bank_percent: float, slope_percent: float, loa
                              "coupling", (i, -1))
                 )  # fmt: skip
         P = road.n0 * Pn + road.grade * Pg  # at rest; solve_unit moves it to the limit's normal factor
-        out.append(System(members, n, body, axle, P, lat, off, weights, tyres, zones, coupl, road, Pn, Pg))
+        out.append(System(members, n, body, axle, P, lat, off, weights, tyres, zones, coupl, road, Pn, Pg,
+                          tuple(np.diagonal(P).tolist())))  # fmt: skip
     return out
 
 
@@ -432,7 +436,7 @@ def _pivots(s: System, tyre: tuple, zone: tuple) -> tuple[roll_tree.Tree, roll_t
     :class:`~engine.models.roll_tree.Singular` at a zero pivot."""
     e = _elements(s)
     kd, ke = e.tree_piece(tyre, zone)
-    diag = [a - b for a, b in zip(kd, np.diagonal(s.P).tolist(), strict=True)]
+    diag = [a - b for a, b in zip(kd, s.P_diag, strict=True)]
     return e.tree, roll_tree.factor(e.tree, diag, ke)
 
 

@@ -67,15 +67,10 @@ class _Rows:
         cb, sb = _cos_sin(bank_percent)
         cs, ss = _cos_sin(slope_percent)
         self.n0, self.n1, self.l0, self.l1, self.grade = cb * cs, sb, -sb * cs, cb, ss
-        # what the steps of a system form from these rows alone, not from the P-Delta terms: the fixed point's
-        # passes over the same rows (the rest solve's and the one at the limit's normal factor) meet the same
-        # regimes, and forming these again took a tenth of a pass (profiled); read-only once stored
-        self.memo: dict = {}
 
     def take(self, idx: np.ndarray) -> _Rows:
         out = object.__new__(_Rows)
         out.fields = self.fields
-        out.memo = {}
         for k in self.fields:
             setattr(out, k, getattr(self, k)[idx])
         return out
@@ -305,10 +300,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
             work.append((rows, np.ascontiguousarray(z0[rows].T), None, key[0], key[1], None, 0))
     lim = limit is not None
     # the loads DOF by row, (n, k): a column of the tree's solve is then one contiguous row (r of the system: of_system)
-    memo = r.memo
-    if "T" not in memo:
-        memo["T"] = tuple(np.ascontiguousarray(x.T) for x in (r.jp_free, r.jp_cap, r.cap_ay, r.cap_0))
-    jp_free, jp_cap, cap_ayT, cap_0T = memo["T"]
+    jp_free, jp_cap, cap_ayT, cap_0T = (np.ascontiguousarray(x.T) for x in (r.jp_free, r.jp_cap, r.cap_ay, r.cap_0))
     while work:
         rows, zT, prev_d, tyre, zone, last, steps = work.pop()
         if steps >= max_steps:
@@ -323,11 +315,7 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         _K, S, _kz = e.piece(tyre, zone)
         f = _pivots(e, tyre, zone, pr)
         # -jp, jp = jp_free + S jp_cap (the scalar's loads): a column by DOF
-        minus_jp = memo.get(("jp", S.tobytes())) if whole_set else None
-        if minus_jp is None:
-            minus_jp = [-(jf[v] + S[v] * jc[v]) for v in range(n)]
-            if whole_set:
-                memo["jp", S.tobytes()] = minus_jp
+        minus_jp = [-(jf[v] + S[v] * jc[v]) for v in range(n)]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             # the direction, DOF by row (n + 1, m)
             dT, sq = roll_tree.direction(roll_tree.solve(e.tree, f, minus_jp), np.empty((n + 1, jf.shape[1])))
@@ -346,16 +334,11 @@ def _trace(s: System, e: whole._Elements, r: _Rows, pd: np.ndarray, limit: np.nd
         nt = ti.size
         c1 = np.concatenate([sk * e.tk[ti], sg])
         c1c = c1[:, None]
-        shared = whole_set and m == jf.shape[1] and not lim  # the same rows and table in every pass
-        c2T, bT = memo.get(("rows", tyre, zone), (None, None)) if shared else (None, None)
-        if c2T is None:
-            c2T, bT = np.empty((c1.size, m)), np.empty((c1.size, m))
-            fac = np.where(sf[:, None] == 0.0, limit[rows][None, :] if lim else 0.0, sf[:, None])
-            c2T[:nt] = fac * caT[ti]
-            bT[:nt] = fac * c0T[ti]
-            c2T[nt:], bT[nt:] = -sg[:, None], (sb * e.lash[zi])[:, None]
-            if shared:
-                memo["rows", tyre, zone] = c2T, bT
+        c2T, bT = np.empty((c1.size, m)), np.empty((c1.size, m))
+        fac = np.where(sf[:, None] == 0.0, limit[rows][None, :] if lim else 0.0, sf[:, None])
+        c2T[:nt] = fac * caT[ti]
+        bT[:nt] = fac * c0T[ti]
+        c2T[nt:], bT[nt:] = -sg[:, None], (sb * e.lash[zi])[:, None]
         if last is None:
             w = s.weights @ dT[:n]
             w = np.where(w == 0.0, dT[n], w)

@@ -568,17 +568,17 @@ def _trace(s: System, z0: np.ndarray, rg: Regime, phase: int, llt_limit: float |
                     d, rates = -d, -rates
             elif prev_d is not None and float(prev_d @ d) < 0:
                 d, rates = -d, -rates
-        falling = rates < -1e-15
-        if not falling.any():
+        falling = (rates < -1e-15).nonzero()[0]
+        if not len(falling):
             vertices.append(_Vertex(z.copy(), Regime(list(rg.tyre), list(rg.zone)), ("end", d)))
             return vertices, "end"
-        value = c1 * z[i1] + c2 * z[i2] + b
-        with np.errstate(divide="ignore", invalid="ignore"):
-            tau = np.where(value > -TOL * scale, np.maximum(value, 0.0) / -rates, 0.0)
-        tau = np.where(falling, tau, np.inf)
-        row = int(np.argmin(tau))
-        best = float(tau[row])
-        kc, idx, state = (int(x) for x in ends[row])
+        # the step to each falling row's bound (its rate is negative: no division by zero, no errstate needed);
+        # the first of the nearest, as argmin over all rows with the others at infinity would pick
+        value = (c1 * z[i1] + c2 * z[i2] + b)[falling]
+        tau = np.where(value > -TOL * scale[falling], np.maximum(value, 0.0) / -rates[falling], 0.0)
+        k = int(np.argmin(tau))
+        row, best = int(falling[k]), float(tau[k])
+        kc, idx, state = ends[row].tolist()
         which = (_KINDS[kc], idx, None if kc == 2 else state)
         z = z + best * d
         prev_d = d

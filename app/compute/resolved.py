@@ -25,7 +25,7 @@ import dataclasses
 import functools
 import math
 from dataclasses import dataclass
-from typing import Any, Self
+from typing import Any, Literal, Self
 
 import orjson
 from pydantic import ConfigDict, GetCoreSchemaHandler, TypeAdapter, ValidationError
@@ -265,8 +265,9 @@ class ResolvedSweep(Resolved):
 
 @dataclass(frozen=True, kw_only=True)
 class ResolvedLimits(Resolved):
-    """An inverse limit: the base case and its targets, the parameter searched, the target SRT [g] and the
-    overweights of the table [%] (None: no table)."""
+    """An inverse limit: the base case and its targets, the parameter searched, the target SRT [g], the
+    overweights of the table [%] (None: no table) and where the target is applied (the level road or the request's
+    own road)."""
 
     __pydantic_config__ = _STRICT
 
@@ -274,6 +275,7 @@ class ResolvedLimits(Resolved):
     parameter: str
     target_srt_g: float
     overweights_percent: tuple[float, ...] | None
+    limit_on: Literal["level_road", "road"]
 
 
 # ------------------------------------------------------------------------------------- single answers

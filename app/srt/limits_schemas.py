@@ -33,6 +33,16 @@ STATUS_TEXT = (
     "`never-met`: no value of the range meets the target; `value` is null."
 )
 OverweightValue = Annotated[float, Field(ge=-MAX_TABLE_OVERWEIGHT, le=MAX_TABLE_OVERWEIGHT)]
+#: where the target SRT is applied: the level road (the targets' basis, default) or the request's own road
+LimitOn = Literal["level_road", "road"]
+LIMIT_ON_TEXT = describe(
+    "Where the target SRT is applied while the limit is searched: `level_road` (default), the same vehicle, load, "
+    "model and parameters on a level road, the basis every target is judged on (`targets[].judged_on`), so a found "
+    "limit meets the target as a certifier reads it whatever the request's bank and slope; `road`, the request's "
+    "own bank and slope: the limit for this curve's own threshold (on a bank it allows more than the targets do). "
+    "The same on a level road.",
+    unit="-",
+)
 
 
 class LimitsRequest(SrtInputs, SrtTargets):
@@ -88,6 +98,8 @@ class LimitsRequest(SrtInputs, SrtTargets):
         ),
     )
 
+    limit_on: LimitOn = Field("level_road", description=LIMIT_ON_TEXT)
+
     @model_validator(mode="after")
     def _no_table_over_itself(self) -> LimitsRequest:
         if self.parameter == "overweight_percent" and self.overweights_percent is not None:
@@ -121,14 +133,24 @@ class LimitOut(OutputModel):
     )
     srt_at_limit: float | None = Field(
         description=describe(
-            "SRT at `value` (the target when `found`; above it when `always-met`; null when `never-met`).",
+            "SRT at `value` on the road the limit is searched on (`limit_on`): the target when `found`, above it "
+            "when `always-met`, null when `never-met`.",
             unit="g",
             symbol="SRT",
         )
     )
     level_road_srt: float | None = Field(
-        description=LEVEL_ROAD_SRT_TEXT + " With the parameter at `value` (the limit is searched on the request's "
-        "road: on a banked or sloped road this differs from `srt_at_limit`); null without `value`."
+        description=LEVEL_ROAD_SRT_TEXT + " With the parameter at `value`: `srt_at_limit` itself when `limit_on` is "
+        "`level_road`; null without `value`."
+    )
+    road_srt: float | None = Field(
+        description=describe(
+            "SRT at `value` on the request's own road (its bank and slope): the curve's own threshold, as `srt` of "
+            "POST /v1/srt; `srt_at_limit` itself when `limit_on` is `road`, `level_road_srt` on a level road; null "
+            "without `value` or when the engine cannot solve that case.",
+            unit="g",
+            symbol="SRT",
+        )
     )
     evaluations: int = Field(description=describe("SRT solves the search took.", unit="count"))
     tilt_table_angle_deg: float | None = Field(description=TILT_OUT + " Of `srt_at_limit`; null without it.")
@@ -147,7 +169,11 @@ class LimitTableRowOut(OutputModel):
     status: Literal["found", "always-met", "never-met", "refused"] = Field(
         description=describe(STATUS_TEXT + " `refused`: the engine cannot solve this row (see `error`).", unit="-")
     )
-    srt_at_limit: float | None = Field(description=describe("SRT at `value`.", unit="g", symbol="SRT"))
+    srt_at_limit: float | None = Field(
+        description=describe(
+            "SRT at `value` on the road the limit is searched on (`limit_on`).", unit="g", symbol="SRT"
+        )
+    )
     evaluations: int = Field(description=describe("SRT solves the search took.", unit="count"))
     error: str | None = Field(description=describe("Why the row was refused (null otherwise).", unit="-"))
 
@@ -168,6 +194,7 @@ class LimitsResult(OutputModel):
     symbol: str = Field(description=describe("Thesis symbol of the parameter.", unit="-", symbol="l12, d1, b"))
     description: str = Field(description=describe("What the limit is.", unit="-"))
     target_srt_g: float = Field(description=describe("Target SRT.", unit="g", symbol="SRT target"))
+    limit_on: LimitOn = Field(description=LIMIT_ON_TEXT)
     current_value: float = Field(
         description=describe("The parameter's value in the request (the base case).", unit="`unit`")
     )

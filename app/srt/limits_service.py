@@ -32,26 +32,34 @@ def resolve_limits(req: LimitsRequest, settings: Settings) -> ResolvedLimits:
         table = tuple(req.overweights_percent) if req.overweights_percent is not None else tuple(DEFAULT_OVERWEIGHTS)
     target = req.target_srt_g if req.target_srt_g is not None else settings.srt_target_general_g
     return ResolvedLimits(
-        case=resolve_base_case(req, settings), parameter=req.parameter, target_srt_g=target, overweights_percent=table
+        case=resolve_base_case(req, settings),
+        parameter=req.parameter,
+        target_srt_g=target,
+        overweights_percent=table,
+        limit_on=req.limit_on,
     )
 
 
-def level_srt_at(base: Case, limit: Limit) -> float | None:
-    """The level-road SRT (:func:`app.srt.service.level_case`) of the base case with the parameter at the limit: what
-    the limit's targets are judged on; the SRT at the limit itself when the base case is level; None without a
-    limit value or when the engine refuses the level case."""
+def srt_at(case: Case, searched: Case, limit: Limit) -> float | None:
+    """The SRT of ``case`` with the parameter at the limit: the search's own ``srt_at_limit`` when ``case`` is the
+    case searched on; None without a limit value or when the engine refuses the case."""
     if limit.value is None or limit.srt_at_limit is None:
         return None
-    level = level_case(base)
-    if level is base:
+    if case is searched:
         return limit.srt_at_limit
     try:
-        return rollover_threshold(with_parameter(level, limit.parameter, limit.value)).srt
+        return rollover_threshold(with_parameter(case, limit.parameter, limit.value)).srt
     except RolloverError:
         return None
 
 
-def _limit_out(limit: Limit, targets: dict[str, float], level: float | None) -> dict[str, Any]:
+def searched_case(base: Case, limit_on: str) -> Case:
+    """The case the target is applied to: the level road's (:func:`app.srt.service.level_case`: the targets' basis,
+    ``base`` itself when level) or the request's own."""
+    return level_case(base) if limit_on == "level_road" else base
+
+
+def _limit_out(limit: Limit, targets: dict[str, float], level: float | None, road: float | None) -> dict[str, Any]:
     srt = limit.srt_at_limit
     return {
         "value": limit.value,
@@ -60,6 +68,7 @@ def _limit_out(limit: Limit, targets: dict[str, float], level: float | None) -> 
         "range_max": limit.range[1],
         "srt_at_limit": srt,
         "level_road_srt": level,
+        "road_srt": road,
         "evaluations": limit.evaluations,
         "tilt_table_angle_deg": None if srt is None else float(tilt_table_angle_deg(srt)),
         "targets": [] if level is None else target_checks(level, targets),
@@ -76,8 +85,9 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
     started = time.perf_counter()
     base, targets = resolved.case.case, resolved.case.targets
     parameter, target = resolved.parameter, resolved.target_srt_g
+    searched = searched_case(base, resolved.limit_on)
     try:
-        limit = parameter_limit(base, target, parameter)
+        limit = parameter_limit(searched, target, parameter)
     except InvalidInput as exc:
         if exc.field != parameter:
             raise
@@ -91,7 +101,7 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
         table = []
         for ow in resolved.overweights_percent:
             try:
-                (row,) = limit_table(base, target, parameter, [ow])
+                (row,) = limit_table(searched, target, parameter, [ow])
             except RolloverError as exc:  # one row the engine cannot solve is reported, not dropped
                 table.append(
                     {
@@ -125,8 +135,11 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
                 "symbol": symbol,
                 "description": LIMIT_PARAMETERS[parameter][1],
                 "target_srt_g": target,
+                "limit_on": resolved.limit_on,
                 "current_value": _current_value(base, parameter),
-                "limit": _limit_out(limit, targets, level_srt_at(base, limit)),
+                "limit": _limit_out(
+                    limit, targets, srt_at(level_case(base), searched, limit), srt_at(base, searched, limit)
+                ),
                 "table": table,
                 "model": base.model,
                 "stage": base.stage if base.model == "3d" else None,

@@ -135,6 +135,9 @@ def test_a_sweeps_and_a_limits_key_are_the_keys_of_the_dicts_they_replace():
         "parameter": "cg_height_above_chassis_m",
         "target_srt_g": settings.srt_target_general_g,
         "overweights_percent": [0.0, 5.0, 10.0, 15.0, 20.0],
+        # where the target is applied: added when the default moved to the level road, so an answer searched on
+        # the request's road under the old key is never served for the new default
+        "limit_on": "level_road",
     }
     assert resolve_limits(limits, settings).key("srt-limits") == cache_key("srt-limits", old)
 

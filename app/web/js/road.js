@@ -224,7 +224,7 @@ export async function limits(vehicleRef, caseRequest, { combination = false } = 
   const symbol = out.symbol || "l12";
   const box = clear($("#limits-result"));
   box.append(
-    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}; this vehicle: ${symbol} = ${fmt(out.current_value, 3)} ${out.unit}.`),
+    el("p", {}, `${out.description} for SRT >= ${srtText(out.target_srt_g)}${out.limit_on === "level_road" ? " on a level road (what the targets are judged on, whatever the bank)" : " on this road"}; this vehicle: ${symbol} = ${fmt(out.current_value, 3)} ${out.unit}.`),
     scroller(
       "Acceptable load by overweight",
       table(

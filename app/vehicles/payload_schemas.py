@@ -24,8 +24,9 @@ from engine.vehicle.builder import combination as ec
 class PayloadTableRequest(InputModel):
     """The acceptable payload table of a built vehicle (as TERNZ's results page shows it): for an SRT target, the
     largest payload mass at each load height and the largest load height at each payload mass, each solved with
-    the engine on the road and load case given: the 3D model's SRT for a single unit (`spec`), the governing SRT of
-    the whole-combination model for a combination (`combination_spec`, the payload of its unit `unit_index`)."""
+    the engine on a level road with the nominal load case (the basis every SRT target is judged on): the 3D model's
+    SRT for a single unit (`spec`), the governing SRT of the whole-combination model for a combination
+    (`combination_spec`, the payload of its unit `unit_index`)."""
 
     model_config = ConfigDict(
         json_schema_extra={

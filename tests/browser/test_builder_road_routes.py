@@ -154,6 +154,27 @@ def test_the_payload_table_of_a_built_vehicle_is_the_apis(page, api):
     assert len(heights) == len(expected["by_payload_mass"])
 
 
+def test_the_acceptable_load_on_a_banked_road_is_the_level_roads(page, api):
+    # the targets are judged on the level road (DESIGN.md), so the page's acceptable-load table on a 6 % bank is
+    # the level road's table, and says so; the banked road's own limits are larger (the bank raises the SRT)
+    page.open("?vehicle=table16-btrain&bank_percent=6")
+    page.type("#limit-target", "0.33")
+    page.run("limits", lambda: page.find("#limits-compute").click())
+    assert "on a level road" in page.text("#limits-result")
+    body = {"vehicle": "table16-btrain", "parameter": "cg_height_above_chassis_m", "target_srt_g": 0.33}
+    level = ok(api.post("/v1/srt/limits", json=body))["table"]
+    on_road = ok(api.post("/v1/srt/limits", json={**body, "road": {"bank_percent": 6}, "limit_on": "road"}))["table"]
+    shown = table_rows(page, "#limits-result tbody tr")
+    assert [c[0] for c in shown] == [f"{r['overweight_percent']:.0f}" for r in level]
+    found = 0
+    for cells, row, banked in zip(shown, level, on_road, strict=True):
+        if row["status"] == "found":
+            found += 1
+            assert cells[1] == f"{row['value']:.3f}" and cells[3] == "0.330"
+            assert banked["status"] != "found" or banked["value"] > row["value"]
+    assert found >= 1
+
+
 # ------------------------------------------------------------------------------------------- road design
 
 

@@ -4,6 +4,10 @@ of the rows as dicts (the same bytes: the ceiling of a writer that had the dicts
 writer of the rows as lists (a reference: it writes booleans as True/False). The dicts and lists are made before
 the clock starts.
 
+A last line times what any writer built on orjson pays before it places a single separator: the row's float cells
+(the tilt angle, station, radius, ... :func:`app.alignments.rows._float_columns`) written by orjson as one array and
+split into rows, its rate given as the CSV answer's size over that time (the ceiling of such a CSV writer).
+
 The curves are bench_jobs' synthetic ones (fixed seed), one vehicle (the Table 16 B-train, 3D model). Prints figures
 only (best of --repeat runs).
 
@@ -19,6 +23,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import orjson
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,7 +32,7 @@ sys.path.insert(0, str(ROOT / "bench"))
 
 from bench_jobs import curves_csv  # noqa: E402
 
-from app.alignments.rows import csv_columns, render, rows  # noqa: E402
+from app.alignments.rows import _float_columns, csv_columns, render, rows  # noqa: E402
 from app.alignments.schemas import MAX_JOB_CURVES, MAX_JOB_ROWS, AlignmentRequest  # noqa: E402
 from app.alignments.service import resolve_alignment, solve_alignment  # noqa: E402
 from app.formats.tables import flatten_targets  # noqa: E402
@@ -64,12 +69,21 @@ def main() -> None:
         csv.writer(out).writerows(lists)
         return len(out.getvalue())
 
+    *cells, tilt = _float_columns(answer, v)  # the tilt angle is per bank/grade pair: one per row here
+    block = np.column_stack([*cells, tilt[v.pair_of_row]])
+
+    def floats_only() -> int:
+        orjson.dumps(block, option=orjson.OPT_SERIALIZE_NUMPY)[2:-2].split(b"],[")
+        return csv_size
+
     n = args.curves
+    csv_size = sum(map(len, render(answer, True)))
     figures = [
         ("JSON, app.alignments.rows", *best(args.repeat, ours(False))),
         ("JSON, orjson.dumps of the row dicts (ceiling)", *best(args.repeat, lambda: len(orjson.dumps(dicts)))),
         ("CSV, app.alignments.rows", *best(args.repeat, ours(True))),
         ("CSV, csv.writer of the row lists (reference)", *best(args.repeat, c_csv)),
+        (f"CSV floor: orjson of the {block.shape[1]} float cells, split in rows", *best(args.repeat, floats_only)),
     ]
     print(f"{n:,} rows of one vehicle, best of {args.repeat}:")
     for name, secs, size in figures:

@@ -2,16 +2,24 @@
 plain form (comma-separated, no quotes, one curve per line, ``\\n`` or ``\\r\\n``), which a million-curve job
 almost always is.
 
-The text is split once into its fields (``str.split``), each numeric column parsed by ``float`` over the whole
-column at once (``map``: the same parser ``read_csv`` uses, so the same bits) into a numpy array, and checked with
-numpy masks (finite, the bounds of the JSON form); the ids are checked on the whole column (empty, too long, control
-characters, duplicates). No row object, no dict and no Python call per curve besides the ids' ``strip``.
+The text is read as bytes with numpy, without a Python object per field: the separators are found at once (every
+line must have its k - 1 commas), and each numeric column is parsed a character position at a time over all its
+fields (:func:`_numbers`). A field of the plain decimal form ``[+-]digits[.digits]`` with at most 15 significant
+digits is its integer significand M, read exactly, divided by 10^f (f its digits after the point, at most 22): both
+are exact doubles, so IEEE division rounds the quotient correctly, and that is the double ``float`` returns for the
+text, bit for bit (Clinger 1990, "How to read floating point numbers accurately", PLDI '90, the fast path; Python's
+``float`` rounds correctly, Gay's dtoa). Any other field (an exponent, spaces, underscores, more digits, other
+characters) is read by ``float`` itself, alone, so the table is always ``read_csv``'s. Only the ids become Python
+strings (stripped, checked: empty, too long, duplicates).
 
 It never decides an error: whatever it does not take as plain, or any check that fails, sends the text to
 :func:`~app.formats.alignment_io.read_csv` (``None`` from :func:`read_csv_columns`), which reads it again and reports
 the first bad line and field as it always does (and knows the dialects the fast path leaves to it). A table it does
 answer is the table ``read_csv`` would answer (the job tests compare them), except that its ``where`` (each curve's
 row, for error messages) is computed when asked for (:class:`RowNames`) instead of kept as a million strings.
+
+Why bytes and numpy: a million curves as ``str.split`` fields are five million Python strings (about 300 MB) and
+``float`` of four million of them, most of the submission's time (``bench/bench_jobs.py``).
 """
 
 from __future__ import annotations
@@ -19,7 +27,6 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Sequence
-from itertools import repeat
 from typing import overload
 
 import numpy as np
@@ -31,6 +38,21 @@ from engine.road import check_columns
 
 #: what the plain form has no place for: quotes, control characters but the line ends (and a BOM: a dialect)
 _NOT_PLAIN = re.compile(r'["\x00-\x09\x0b\x0c\x0e-\x1f\x7f-\x9f\ufeff]')
+#: the same, for ASCII bytes (the line ends are ``\n`` by then)
+_NOT_PLAIN_BYTE = np.zeros(256, dtype=bool)
+_NOT_PLAIN_BYTE[[*range(0x00, 0x0A), *range(0x0B, 0x20), 0x22, 0x7F]] = True
+
+_COMMA, _NEWLINE, _MINUS, _PLUS, _POINT, _ZERO = (ord(c) for c in ",\n-+.0")
+#: significant digits of the fast path: 10^15 < 2^53, so the significand is an exact double
+_MAX_DIGITS = 15
+_POWERS = 10.0 ** np.arange(23)  # 10^0 .. 10^22: exact doubles
+#: the numeric columns: (name, may be empty, the value of an empty field), as read_csv reads them
+_NUMERIC = (
+    ("radius_m", False, math.nan),
+    ("superelevation_percent", True, math.nan),
+    ("grade_percent", True, 0.0),
+    ("posted_speed_kmh", True, math.nan),
+)
 
 
 class RowNames(Sequence[str]):
@@ -59,25 +81,60 @@ class RowNames(Sequence[str]):
         return f"row {self.start + i + 2}"
 
 
-def _numbers(fields: list[str], *, optional: bool, empty: float) -> np.ndarray | None:
-    """A numeric column (``float`` of each field; an empty one ``empty`` when ``optional``); None when a field is not
-    a finite number (``read_csv`` says which)."""
-    try:
-        values = np.fromiter(map(float, fields), dtype=np.float64, count=len(fields))
-    except ValueError:
-        if not optional:
-            return None
+def _numbers(
+    buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, *, optional: bool, empty: float
+) -> np.ndarray | None:
+    """A numeric column: ``float`` of each field ``buf[starts[i]:ends[i]]`` (an empty or blank one ``empty`` when
+    ``optional``); None when a field is not a finite number (``read_csv`` says which). Plain decimals are read a
+    character position at a time over the whole column (the module's fast path); the others by ``float``."""
+    n = starts.size
+    lens = ends - starts
+    width = min(int(lens.max(initial=0)), _MAX_DIGITS + 2)  # the sign and the point besides the digits
+    last = max(buf.size - 1, 0)
+    significand = np.zeros(n, dtype=np.int64)
+    digits = np.zeros(n, dtype=np.int64)
+    fraction = np.zeros(n, dtype=np.int64)  # digits after the point
+    points = np.zeros(n, dtype=np.int64)
+    first = buf[np.minimum(starts, last)]
+    negative = first == _MINUS
+    signed = negative | (first == _PLUS)
+    for j in range(width):
+        c = buf[np.minimum(starts + j, last)]
+        inside = lens > j
+        d = c - np.uint8(_ZERO)  # a byte below '0' wraps to above 9
+        digit = (d < 10) & inside
+        significand = np.where(digit, significand * 10 + d, significand)
+        digits += digit
+        fraction += digit & (points > 0)
+        points += (c == _POINT) & inside
+    plain = (
+        (lens <= width) & (points <= 1) & (digits >= 1) & (digits <= _MAX_DIGITS) & (digits + points + signed == lens)
+    )
+    values = significand / _POWERS[fraction]
+    np.negative(values, out=values, where=negative)  # -0 is -0.0, as float("-0")
+    for i in np.flatnonzero(~plain).tolist():  # anything else: float's own reading of the field
+        field = buf[starts[i] : ends[i]].tobytes().decode()
         try:
-            values = np.array([float(f) if f.strip() else empty for f in fields], dtype=np.float64)
+            values[i] = float(field)
         except ValueError:
+            if not (optional and not field.strip()):
+                return None
+            values[i] = empty
+            continue
+        if not math.isfinite(values[i]):
             return None
-        given = np.fromiter((bool(f.strip()) for f in fields), dtype=bool, count=len(fields))
-        if not np.all(np.isfinite(values[given])):
-            return None
-        return values
-    if not np.all(np.isfinite(values)):
-        return None
     return values
+
+
+def _trailing_blank_lines(body: str) -> str:
+    """``body`` less its trailing lines of nothing but commas and spaces (a final newline, an empty row): not curves."""
+    end = len(body)
+    while end > 0:
+        start = body.rfind("\n", 0, end) + 1
+        if body[start:end].replace(",", "").strip():
+            break
+        end = start - 1
+    return body[: max(end, 0)]
 
 
 def read_csv_columns(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable | None:
@@ -89,42 +146,50 @@ def read_csv_columns(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable |
         if "\r" in text:
             return None
         line_ending = "CRLF"
-    if _NOT_PLAIN.search(text):
+    if not text.isascii() and _NOT_PLAIN.search(text):  # ASCII: the bytes are checked below
         return None
     head, sep, body = text.partition("\n")
     names = [h.strip().lower() for h in head.split(",")]
     known = CSV_REQUIRED + CSV_OPTIONAL
     if not sep or len(set(names)) != len(names) or not set(CSV_REQUIRED) <= set(names) <= set(known):
         return None
-    lines = body.split("\n")
-    while lines and not lines[-1].replace(",", "").strip():  # trailing blank rows (a final newline): not curves
-        lines.pop()
-    n, k = len(lines), len(names)
-    if n == 0 or n > max_curves:
+    data = (_trailing_blank_lines(body) + "\n").encode()
+    buf = np.frombuffer(data, dtype=np.uint8)
+    if np.any(_NOT_PLAIN_BYTE[buf]) or _NOT_PLAIN_BYTE[np.frombuffer(head.encode(), dtype=np.uint8)].any():
         return None
-    if set(map(str.count, lines, repeat(",", n))) != {k - 1}:  # every line its k fields (not just k * n in all)
+    k = len(names)
+    separators = np.flatnonzero((buf == _COMMA) | (buf == _NEWLINE))
+    n = separators.size // k
+    if n == 0 or n > max_curves or separators.size != n * k:
         return None
-    fields = ",".join(lines).split(",")
-    if len(fields) != n * k:
+    ends = separators.reshape(n, k)
+    kinds = buf[ends]  # every line its k - 1 commas and its newline
+    if not (np.all(kinds[:, -1] == _NEWLINE) and np.all(kinds[:, :-1] == _COMMA)):
         return None
-    del lines
-    cols = {name: fields[j::k] for j, name in enumerate(names)}
-    del fields
-    ids = list(map(str.strip, cols["id"]))
+
+    def field(name: str) -> tuple[np.ndarray, np.ndarray]:  # (start, end) of a column's fields in buf
+        j = names.index(name)
+        if j:
+            return ends[:, j - 1] + 1, ends[:, j]
+        starts = np.empty(n, dtype=ends.dtype)
+        starts[0], starts[1:] = 0, ends[:-1, -1] + 1
+        return starts, ends[:, 0]
+
+    ids = _texts(buf, *field("id"))
     if not all(ids) or max(map(len, ids)) > CURVE_ID_MAX_CHARS or len(set(ids)) != n:
         return None
     nan = math.nan
-    radius = _numbers(cols["radius_m"], optional=False, empty=nan)
-    e = _numbers(cols["superelevation_percent"], optional=True, empty=nan) if "superelevation_percent" in cols else None
-    grade = _numbers(cols["grade_percent"], optional=True, empty=0.0) if "grade_percent" in cols else None
-    posted = _numbers(cols["posted_speed_kmh"], optional=True, empty=nan) if "posted_speed_kmh" in cols else None
-    if radius is None or any(
-        name in cols and a is None for name, a in zip(CSV_OPTIONAL, (e, grade, posted), strict=True)
-    ):
-        return None
-    e = np.full(n, nan) if e is None else e
-    grade = np.zeros(n) if grade is None else grade
-    posted = np.full(n, nan) if posted is None else posted
+    columns: dict[str, np.ndarray] = {}
+    for name, optional, empty in _NUMERIC:
+        if name in names:
+            values = _numbers(buf, *field(name), optional=optional, empty=empty)
+            if values is None:
+                return None
+            columns[name] = values
+    radius = columns["radius_m"]
+    e = columns.get("superelevation_percent", np.full(n, nan))
+    grade = columns.get("grade_percent", np.zeros(n))
+    posted = columns.get("posted_speed_kmh", np.full(n, nan))
     try:
         check_columns(radius, e, grade, posted)
     except InvalidRoad:
@@ -132,3 +197,14 @@ def read_csv_columns(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable |
     # the plain form is the default dialect (comma, decimal point, no BOM), named in the answer as read_csv names it
     dialect = CsvDialect(line_ending=line_ending)
     return CurveTable(ids, radius, e, grade, posted, np.full(n, nan), where=RowNames(0, n), dialect=dialect)
+
+
+def _texts(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> list[str]:
+    """The fields ``buf[starts[i]:ends[i]]`` as stripped strings: the bytes of the column (each field with the
+    separator after it) taken at once, decoded and split."""
+    mark = np.zeros(buf.size + 1, dtype=np.int8)
+    mark[starts] += 1
+    mark[ends + 1] -= 1
+    inside = np.cumsum(mark[:-1], dtype=np.int8).view(bool)  # each field and its separator (0 or 1: no overlap)
+    column = buf[inside].tobytes().decode()
+    return list(map(str.strip, column[:-1].replace("\n", ",").split(",")))

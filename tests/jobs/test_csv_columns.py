@@ -69,3 +69,52 @@ def test_row_names_are_made_when_asked_for():
     assert list(rows[1:3]) == ["row 3", "row 4"] and len(rows[3:]) == 2 and len(rows[4:2]) == 0
     with pytest.raises(IndexError):
         rows[5]
+
+
+def _spellings(rng: np.random.Generator, x: float) -> list[str]:
+    """Ways a spreadsheet or a script writes ``x``: repr, fixed decimals (0-17), a sign, leading zeros, no digit
+    before or after the point, an exponent, an underscore, spaces (the last four are float's syntax beyond the
+    plain decimals the fast path reads)."""
+    d = int(rng.integers(0, 18))
+    fixed = f"{x:.{d}f}"
+    out = [repr(x), fixed, fixed if fixed.startswith("-") else "+" + fixed, f"{x:.6e}", f" {fixed} "]
+    body = fixed.lstrip("-")
+    sign = "-" if fixed.startswith("-") else ""
+    out.append(sign + "00" + body)
+    if body.startswith("0."):
+        out.append(sign + body[1:])  # .5
+    if "." not in body:
+        out.append(sign + body + ".")  # 5.
+    if len(body) > 2 and body[:2].isdigit():
+        out.append(sign + body[0] + "_" + body[1:])  # 1_500
+    return out
+
+
+def test_every_number_is_floats_own_reading_bit_for_bit():
+    """Random values in each column's bounds, each spelled every way, read by the fast path (plain decimals as
+    significand / 10^f) and by read_csv (``float`` of each field): the same doubles, -0.0 included."""
+    rng = np.random.default_rng(20261204)
+    lows, highs = (15.0, -12.0, -12.0, 5.0), (5000.0, 12.0, 12.0, 130.0)
+    for trial in range(20):
+        rows = []
+        for i in range(300):
+            values = [rng.uniform(lo, hi) for lo, hi in zip(lows, highs, strict=True)]
+            if rng.random() < 0.2:
+                values = [float(np.round(v, int(rng.integers(0, 4)))) for v in values]
+            if rng.random() < 0.05:
+                values[1] = -0.0
+            cells = [str(rng.choice(_spellings(rng, v))) for v in values]
+            rows.append(f"C{trial}-{i}," + ",".join(cells))
+        text = HEADER + "\n" + "\n".join(rows) + "\n"
+        fast = read_csv_columns(text, max_curves=1000)
+        assert fast is not None
+        same(fast, read_csv(text, max_curves=1000))
+    # the longest plain decimals: 15 significant digits and up to 22 after the point, then 16 (float's own reading)
+    for digits in ("123456789012345", "1234567890123456", "12345678901234567"):
+        for point in range(1, len(digits)):
+            text = f"id,radius_m,grade_percent\nA,100,{digits[:point]}.{digits[point:]}e-{len(digits) - 1}\n"
+            text2 = f"id,radius_m,grade_percent\nA,100,0.{'0' * (22 - len(digits))}{digits}\n"
+            for t in (text, text2):
+                fast = read_csv_columns(t, max_curves=10)
+                assert fast is not None
+                same(fast, read_csv(t, max_curves=10))

@@ -80,6 +80,10 @@ class BodyLimitMiddleware:
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
+            if scope["type"] == "lifespan" and self.limits is None:
+                # read at startup, not in the first request: the route table is expanded then (FastAPI builds an
+                # included router's routes lazily, some 75 ms for this app; the first request would pay it)
+                self.limits = self._limits()
             await self.app(scope, receive, send)
             return
         if self.limits is None:

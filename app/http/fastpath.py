@@ -133,6 +133,8 @@ class FastPathMiddleware:
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http" or scope["method"] != "POST":
+            if scope["type"] == "lifespan" and self.routes is None:
+                self.routes = self._routes()  # at startup, not in the first request (see BodyLimitMiddleware)
             await self.app(scope, receive, send)
             return
         if self.routes is None:

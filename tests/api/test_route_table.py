@@ -76,3 +76,20 @@ def test_the_document_is_built_on_first_use_and_once_per_process():
         assert client.get("/openapi.json").json() == SPEC
     assert fresh.openapi_schema is SPEC  # the same settings-independent document: built once, shared
     assert build_document(create_app()) == SPEC  # and building it again gives the same
+
+
+def test_the_middlewares_read_their_tables_at_startup_not_in_the_first_request():
+    """The lifespan reaches each middleware before any request: the body limits and the replay table are read then
+    (the route table's expansion, some 75 ms, is not the first request's)."""
+    from fastapi.testclient import TestClient
+
+    from app.http.bodylimit import BodyLimitMiddleware
+    from app.http.fastpath import FastPathMiddleware
+
+    with TestClient(create_app(Settings(cache_backend="memory"))) as c:
+        layers, node = {}, c.app.middleware_stack
+        while node is not None:
+            layers[type(node)] = node
+            node = getattr(node, "app", None)
+        assert layers[BodyLimitMiddleware].limits == route_limits(c.app.routes)
+        assert layers[FastPathMiddleware].routes is not None and set(layers[FastPathMiddleware].routes) == set(TABLE)

@@ -46,6 +46,8 @@ _COMMA, _NEWLINE, _MINUS, _PLUS, _POINT, _ZERO = (ord(c) for c in ",\n-+.0")
 #: significant digits of the fast path: 10^15 < 2^53, so the significand is an exact double
 _MAX_DIGITS = 15
 _POWERS = 10.0 ** np.arange(23)  # 10^0 .. 10^22: exact doubles
+#: a column with more fields than this (or 1/64 of them) not plain is read by float over its strings at once
+_FEW_ODD = 64
 #: the numeric columns: (name, may be empty, the value of an empty field), as read_csv reads them
 _NUMERIC = (
     ("radius_m", False, math.nan),
@@ -112,18 +114,34 @@ def _numbers(
     )
     values = significand / _POWERS[fraction]
     np.negative(values, out=values, where=negative)  # -0 is -0.0, as float("-0")
-    for i in np.flatnonzero(~plain).tolist():  # anything else: float's own reading of the field
-        field = buf[starts[i] : ends[i]].tobytes().decode()
-        try:
-            values[i] = float(field)
-        except ValueError:
-            if not (optional and not field.strip()):
-                return None
-            values[i] = empty
-            continue
-        if not math.isfinite(values[i]):
+    odd = np.flatnonzero(~plain)
+    if odd.size > max(_FEW_ODD, n // 64):  # a column of another form (spaces after the commas, exponents): float
+        return _floats(_fields(buf, starts, ends), optional=optional, empty=empty)  # over its strings at once
+    for i in odd.tolist():  # the odd field: float's own reading of it
+        value = _float(buf[starts[i] : ends[i]].tobytes().decode(), optional=optional, empty=empty)
+        if value is None:
             return None
+        values[i] = value
     return values
+
+
+def _float(field: str, *, optional: bool, empty: float) -> float | None:
+    """``float(field)`` (``empty`` for a blank field when ``optional``); None when it is not a finite number."""
+    try:
+        value = float(field)
+    except ValueError:
+        return empty if optional and not field.strip() else None
+    return value if math.isfinite(value) else None
+
+
+def _floats(fields: list[str], *, optional: bool, empty: float) -> np.ndarray | None:
+    """:func:`_numbers` of a column given as strings: ``float`` over all of them in one ``map``."""
+    try:
+        values = np.fromiter(map(float, fields), dtype=np.float64, count=len(fields))
+    except ValueError:
+        out = [_float(f, optional=optional, empty=empty) for f in fields]
+        return None if None in out else np.array(out, dtype=np.float64)
+    return values if np.all(np.isfinite(values)) else None
 
 
 def _trailing_blank_lines(body: str) -> str:
@@ -175,7 +193,7 @@ def read_csv_columns(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable |
         starts[0], starts[1:] = 0, ends[:-1, -1] + 1
         return starts, ends[:, 0]
 
-    ids = _texts(buf, *field("id"))
+    ids = list(map(str.strip, _fields(buf, *field("id"))))
     if not all(ids) or max(map(len, ids)) > CURVE_ID_MAX_CHARS or len(set(ids)) != n:
         return None
     nan = math.nan
@@ -199,12 +217,12 @@ def read_csv_columns(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable |
     return CurveTable(ids, radius, e, grade, posted, np.full(n, nan), where=RowNames(0, n), dialect=dialect)
 
 
-def _texts(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> list[str]:
-    """The fields ``buf[starts[i]:ends[i]]`` as stripped strings: the bytes of the column (each field with the
-    separator after it) taken at once, decoded and split."""
+def _fields(buf: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> list[str]:
+    """The fields ``buf[starts[i]:ends[i]]`` as strings: the bytes of the column (each field with the separator after
+    it) taken at once, decoded and split."""
     mark = np.zeros(buf.size + 1, dtype=np.int8)
     mark[starts] += 1
     mark[ends + 1] -= 1
     inside = np.cumsum(mark[:-1], dtype=np.int8).view(bool)  # each field and its separator (0 or 1: no overlap)
     column = buf[inside].tobytes().decode()
-    return list(map(str.strip, column[:-1].replace("\n", ",").split(",")))
+    return column[:-1].replace("\n", ",").split(",")

@@ -118,3 +118,16 @@ def test_every_number_is_floats_own_reading_bit_for_bit():
                 fast = read_csv_columns(t, max_curves=10)
                 assert fast is not None
                 same(fast, read_csv(t, max_curves=10))
+
+
+@pytest.mark.parametrize("spell", [lambda x: f" {x}", lambda x: f"{x:.3e}", lambda x: f"{x}"])
+def test_a_column_of_another_form_is_read_as_read_csv_reads_it(spell):
+    """Spaces after the commas or exponents in every row (the column read by float over its strings at once), or
+    plain decimals throughout: the same table either way; a column with one bad field among many is still refused."""
+    rng = np.random.default_rng(7)
+    rows = [f"C{i}," + ",".join(spell(float(np.round(rng.uniform(60, 900), 2))) for _ in range(1)) for i in range(500)]
+    text = "id,radius_m\n" + "\n".join(rows) + "\n"
+    fast = read_csv_columns(text, max_curves=1000)
+    assert fast is not None
+    same(fast, read_csv(text, max_curves=1000))
+    assert read_csv_columns(text.replace(rows[250] + "\n", rows[250] + "x\n"), max_curves=1000) is None

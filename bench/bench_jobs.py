@@ -10,6 +10,11 @@ so about 19,000 distinct bank/grade pairs, posted speeds 40-110 km/h; one vehicl
     python bench/bench_jobs.py [--curves 1000000] [--workers 2 1] [--no-docs]
     python bench/bench_jobs.py --workers 4
 
+Beside each figure, the same work measured in this process in the same run, without HTTP (the machine is shared and
+its speed varies from run to run: the reference says how fast it was): the submission's parse and split
+(``parse_submission`` + ``prepare``) and the result's assembly from the stored parts (``_check_result`` +
+``_result_chunks``, what ``GET .../result`` streams), so a figure reads against its own ceiling.
+
 The figures go into ``docs/jobs.md`` between the ``bench_jobs`` markers (a row per worker count, each with its date
 and machine; a run replaces the rows of the counts it measured and keeps the others), unless ``--no-docs``.
 """
@@ -45,12 +50,12 @@ COLUMNS = (
     "workers",
     "parts",
     "wall time [s]",
-    "submission [s]",
+    "submission [s] (in process)",
     "parts [s]",
     "curves/s",
     "peak RSS per worker [MiB]",
-    "JSON result",
-    "CSV result",
+    "JSON result (in process)",
+    "CSV result (in process)",
     "measured",
 )
 
@@ -147,6 +152,42 @@ def download(url: str, accept: str, client: httpx.Client) -> tuple[int, float]:
     return size, time.perf_counter() - t1
 
 
+def submission_in_process(body: bytes) -> float:
+    """The submission's parse and split in this process [s]: the POST's work without HTTP and the job store."""
+    from app.compute import solvers
+    from app.jobs.base import ResolveContext
+    from app.jobs.service import parse_submission, prepare
+    from app.settings import Settings
+
+    settings = Settings()
+    solvers.configure(settings.solve_threads)
+    t0 = time.perf_counter()
+    op, parsed = parse_submission(body)
+    prepare(op, parsed, ResolveContext(settings, None))
+    return time.perf_counter() - t0
+
+
+def result_in_process(env: dict[str, str], job_id: str, fmt: str) -> tuple[int, float]:
+    """(bytes, seconds) of the result assembled in this process from the stored parts, checked first, as ``GET
+    /v1/jobs/{id}/result`` streams it (without HTTP)."""
+    from app.jobs.operations import OPERATIONS
+    from app.jobs.router import _check_result, _coalesce, _result_chunks
+    from app.jobs.service import open_jobs, visible_job
+    from app.settings import Settings
+
+    jobs = open_jobs(Settings(jobs_backend="redis", redis_url=env["ROLLOVER_REDIS_URL"], cache_secret=SECRET))
+    try:
+        view = visible_job(jobs, job_id, None)
+        op = OPERATIONS[view.record.operation]
+        t0, size = time.perf_counter(), 0
+        assert _check_result(jobs, view, op, fmt)
+        for piece in _coalesce(_result_chunks(jobs, view, op, fmt)):
+            size += len(piece)
+        return size, time.perf_counter() - t0
+    finally:
+        jobs.close()
+
+
 def run_job(api: str, body: bytes, env: dict[str, str], n_workers: int) -> dict:
     workers = [
         start([sys.executable, "-m", "app.jobs.worker", "--name", f"bench{k}-{time.time_ns()}"], env)
@@ -171,6 +212,8 @@ def run_job(api: str, body: bytes, env: dict[str, str], n_workers: int) -> dict:
         assert s["status"] == "done", s
         parts_s = (_when(s["finished_at"]) - _when(s["started_at"])).total_seconds()
         results = {fmt: download(api + location + "/result", accept, c) for fmt, accept in FORMATS}
+        job_id = location.rsplit("/", 1)[1]
+        in_process = {fmt: result_in_process(env, job_id, fmt) for fmt, _ in FORMATS}
         c.delete(location)
     for w in workers:
         stop(w)
@@ -180,6 +223,7 @@ def run_job(api: str, body: bytes, env: dict[str, str], n_workers: int) -> dict:
         "parts_s": parts_s,
         "peaks": peaks,
         "results": results,
+        "in_process": in_process,
         "parts": s["parts"]["total"],
     }
 
@@ -268,12 +312,17 @@ def main() -> None:
         for n in args.workers:
             where = machine()
             out = run_job(f"http://127.0.0.1:{aport}", body, env, n)
+            submit_ref = submission_in_process(body)
             peaks = ", ".join(f"{v / 1024:.0f}" for v in out["peaks"].values())
-            cells = [str(n), str(out["parts"]), f"{out['wall']:.1f}", f"{out['submit']:.1f}", f"{out['parts_s']:.1f}"]
+            submit = f"{out['submit']:.1f} ({submit_ref:.1f})"
+            cells = [str(n), str(out["parts"]), f"{out['wall']:.1f}", submit, f"{out['parts_s']:.1f}"]
             cells += [f"{args.curves / out['wall']:,.0f}", peaks]
             for fmt in ("json", "csv"):
                 size, secs = out["results"][fmt]
-                cells.append(f"{size / 2**20:.0f} MiB in {secs:.1f} s ({size / 2**20 / secs:.0f} MiB/s)")
+                ref_size, ref_secs = out["in_process"][fmt]
+                assert ref_size == size, (fmt, ref_size, size)
+                rate, ref = size / 2**20 / secs, size / 2**20 / ref_secs
+                cells.append(f"{size / 2**20:.0f} MiB in {secs:.1f} s ({rate:.0f} MiB/s; {ref:.0f})")
             cells.append(f"{datetime.now(UTC):%Y-%m-%d %H:%M} UTC; {where}")
             rows[n] = cells
             print("| " + " | ".join(cells) + " |", flush=True)

@@ -905,7 +905,8 @@ def _fit_tangent_curve(
         r_simple, s_zero, grid = float(rs[i]), float(costs[i]), rs
         rs = r_simple * ratio ** np.linspace(-1.0, 1.0, 9)
         ratio = ratio**0.25
-    if 0 < i < costs.size - 1:
+    bracketed = 0 < i < costs.size - 1  # else the grid's edge: the sum still falls beyond it (see below)
+    if bracketed:
         r_simple, s_zero = _parabola_min(sse, grid, costs, i, r_simple, s_zero)
     # then with clothoids, which pull the circle inward (a smaller R): R x Ls / (R D) grid, refined once
     best_r, best_g = _grid_min(sse, r_simple * np.geomspace(0.5, 1.05, 7), np.geomspace(0.02, 0.95, 7), defl)
@@ -933,7 +934,13 @@ def _fit_tangent_curve(
             r_factor = _inflation(*joint, chain[sel], corr, row=0)
     else:
         best_r, best_ls = r_simple, 0.0
+    # the delta method linearises about a stationary minimum of the sum: where the simple fit's grid did not bracket
+    # one (a short flat arc whose sum keeps falling toward the tangents' corner, R -> 0) the radius is the grid's
+    # edge, the sum's slope there is not zero and its curvature says nothing of the radius's scatter, so the
+    # standard error is the profile bound's below, as where the sum is not convex
     stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var, corr, chain[sel])
+    if spiral is None and not bracketed:
+        stds = None
     var = var * r_factor  # the variance that scales the deviance in R (the profile bound; 1 for white noise)
     # the bound is on the arc's radius over the whole tangent-clothoid-arc family: profiled over Ls, from the
     # family's best fit (a spiral the likelihood-ratio test did not keep still lowers the arc's radius it allows)

@@ -76,9 +76,11 @@ def test_the_curve_record_carries_the_conservative_radius():
     assert c.as_curve("C1", superelevation_percent=6.0).radius_m == c.radius_lower_m  # the safe speed's radius
 
 
-@pytest.mark.parametrize(("radius", "deflection", "sigma"), [(180.0, 70.0, 2.5), (800.0, 90.0, 3.0)])
+@pytest.mark.parametrize(("radius", "deflection", "sigma"), [(180.0, 70.0, 2.5), (800.0, 90.0, 3.0), (60.0, 25.0, 2.0)])
 def test_stated_standard_error_matches_the_scatter_and_the_bound_covers(radius, deflection, sigma):
-    # the case (a 180 m curve through 70 deg, 2.5 m of noise) and a long flat arc; 40 tracks, fixed seeds
+    # the case (a 180 m curve through 70 deg, 2.5 m of noise), a long flat arc, and a short flat arc (26 m)
+    # whose simple fit often ends on its grid's edge (no stationary minimum: the standard error then comes from the
+    # profile bound, not the delta method, which there stated 4.4 times the scatter); 40 tracks, fixed seeds
     err, std, lower = sample(radius, deflection, sigma, 40)
     observed = float(np.std(err, ddof=1))
     assert 1 / 1.5 <= float(np.mean(std)) / observed <= 1.5

@@ -67,6 +67,7 @@ from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
 from app.vehicles.builder_service import build_spec
 from app.vehicles.combination_builder_schemas import CombinationSpecRef
+from app.vehicles.combination_builder_service import build_combination_spec, combination_of
 from app.vehicles.combination_schemas import CombinationRef
 from app.vehicles.schemas import VehicleRecord
 from engine.errors import InvalidVehicle, MissingParameter
@@ -400,15 +401,11 @@ def check_record(record: dict[str, Any]) -> None:
 def check_combination(data: dict[str, Any]) -> None:
     """The engine's checks of a combination (:func:`engine.vehicle.validate_combination`), errors under
     ``vehicle.combination``."""
-    from app.vehicles.refs import combination_of
-
     combination_of(data, "vehicle")
 
 
 def check_combination_spec(spec: dict[str, Any]) -> None:
     """The combination builder's checks (it builds the combination), errors under ``vehicle.combination_spec``."""
-    from app.vehicles.combination_builder_service import build_combination_spec
-
     build_combination_spec(spec, "vehicle")
 
 

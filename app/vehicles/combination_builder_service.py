@@ -17,6 +17,7 @@ from app.compute.results import Computed, cached
 from app.vehicles.builder_service import at_field
 from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
 from engine.errors import InvalidInput
+from engine.vehicle import Combination, validate_combination
 from engine.vehicle.builder import BuiltCombination, CombinationSpec, build_combination
 
 
@@ -45,3 +46,14 @@ async def compute_combination_build(cache: ResultCache, req: BuildCombinationReq
         return build_combination_result(built).model_dump_json().encode()
 
     return await cached(cache, "combination-build", resolved, produce)
+
+
+def combination_of(data: dict[str, Any], where: str | None) -> Combination:
+    """The engine's combination of a ``combination`` object, validated; its errors name ``<where>.combination.<...>``
+    (``combination.<...>`` when ``where`` is None: the request's own vehicle)."""
+    try:
+        c = Combination.from_dict(data)
+        validate_combination(c)
+    except InvalidInput as e:
+        raise at_field(e, where) from e
+    return c

@@ -32,11 +32,11 @@ from app.catalog import service as catalog
 from app.catalog.auth import authenticate
 from app.settings import Settings
 from app.vehicles.builder_schemas import SpecRef
-from app.vehicles.builder_service import at_field, build_spec
+from app.vehicles.builder_service import build_spec
 from app.vehicles.combination_builder_schemas import CombinationSpecRef
-from app.vehicles.combination_builder_service import build_combination_spec
+from app.vehicles.combination_builder_service import build_combination_spec, combination_of
 from app.vehicles.combination_schemas import CombinationRef
-from engine.errors import InvalidInput, UnknownPreset
+from engine.errors import UnknownPreset
 from engine.vehicle import (
     COMBINATIONS,
     PRESETS,
@@ -44,7 +44,6 @@ from engine.vehicle import (
     Vehicle,
     get_combination,
     get_preset,
-    validate_combination,
 )
 from engine.vehicle.plausibility import check_record_plausible
 
@@ -91,17 +90,6 @@ def vehicle_of_resolved(data: dict[str, Any]) -> Vehicle | Combination:
     if "combination" in data:
         return Combination.from_dict(data["combination"])
     return Vehicle.from_dict(data)
-
-
-def combination_of(data: dict[str, Any], where: str | None) -> Combination:
-    """The engine's combination of a ``combination`` object, validated; its errors name ``<where>.combination.<...>``
-    (``combination.<...>`` when ``where`` is None: the request's own vehicle)."""
-    try:
-        c = Combination.from_dict(data)
-        validate_combination(c)
-    except InvalidInput as e:
-        raise at_field(e, where) from e
-    return c
 
 
 def _credentials(request: Request) -> HTTPAuthorizationCredentials | None:

@@ -16,13 +16,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import orjson
 
+from app.alignments.answer import AlignmentAnswer, VehicleAnswer
 from app.formats.segments import Codes, Segment, csv_floats, json_floats, repr_safe, write_rows
 from app.formats.tables import Text, csv_field, csv_fields, csv_line, target_columns, target_columns_of
 from engine import ENGINE_VERSION
 from engine.road import GOVERNED_BY, AlignmentColumns
 
 if TYPE_CHECKING:
-    from app.alignments.service import AlignmentAnswer, VehicleAnswer
     from app.compute.resolved import ResolvedAlignment, ResolvedAssessment
 
 ROWS_PER_CHUNK = 1_000

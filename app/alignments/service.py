@@ -19,7 +19,6 @@ import hashlib
 import math
 import time
 from dataclasses import dataclass
-from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -29,6 +28,7 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
+from app.alignments.answer import AlignmentAnswer, VehicleAnswer, vehicle_answer
 from app.alignments.curves import curves_from_json
 from app.alignments.rows import render
 from app.alignments.schemas import MAX_ROWS, MAX_VEHICLES, AlignmentRequest, as_a_job
@@ -42,7 +42,7 @@ from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
-from app.srt.service import level_case, resolve_targets, target_checks_many
+from app.srt.service import level_case, resolve_targets
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
 from engine.case import Case, LoadCase
 from engine.errors import InvalidInput, RolloverError
@@ -52,7 +52,6 @@ from engine.road import (
     assess_alignment,
     bank_grade_pairs,
     superelevation_used,
-    tilt_table_angle_deg,
 )
 from engine.vehicle import Vehicle
 
@@ -203,48 +202,6 @@ def resolve_alignment(
 # ---------------------------------------------------------------------------------------- computing
 
 
-@dataclass(frozen=True)
-class VehicleAnswer:
-    """One vehicle's rows as arrays; what is shared by the curves of one SRT is kept once per distinct SRT."""
-
-    index: int
-    preset: str | None
-    saved_id: str | None
-    columns: AlignmentColumns
-    pair_of_row: np.ndarray  # distinct-SRT index of each row, for the shared tilt angle and target checks
-    srts: np.ndarray  # the distinct SRTs [g]; -1 for the rows without one
-    tilt_deg: np.ndarray  # per distinct SRT [deg]; nan without an SRT
-    targets: dict[str, float]
-    level_srt: float = math.nan  # the vehicle's level-road SRT (bank and grade zero) [g]; nan when refused
-
-    @cached_property
-    def tilt(self) -> list[float | None]:  # per distinct SRT
-        return [None if math.isnan(a) else a for a in self.tilt_deg.tolist()]
-
-    @cached_property
-    def level(self) -> float | None:
-        return None if math.isnan(self.level_srt) else self.level_srt
-
-    @cached_property
-    def level_checks(self) -> list[dict[str, Any]]:  # the target checks of every row with an SRT ([] without a level)
-        if math.isnan(self.level_srt):
-            return []
-        return target_checks_many(np.array([self.level_srt]), self.targets)[0]
-
-    @cached_property
-    def checks(self) -> list[list[dict[str, Any]]]:  # per distinct SRT: its rows' target checks (on the level SRT)
-        return [self.level_checks if has_srt else [] for has_srt in (self.srts >= 0).tolist()]
-
-
-@dataclass(frozen=True)
-class AlignmentAnswer:
-    """Every curve for every vehicle, as arrays: rendered to JSON or CSV in chunks."""
-
-    resolved: ResolvedAssessment
-    curves: CurveTable
-    vehicles: list[VehicleAnswer]
-
-
 def _located(exc: InvalidInput, job: AlignmentJob, index: int) -> Exception:
     """The engine's error with its field as a request path (``curves[3].x`` -> ``curves.3.x``, with the curve's id
     in the message), at the curve's row or element for a document, and, among several vehicles, with the vehicle's
@@ -313,16 +270,6 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
     return vehicle_answer(r, index, cols, level_road_srt(case))
-
-
-def vehicle_answer(r: ResolvedAssessment, index: int, cols: AlignmentColumns, level: float) -> VehicleAnswer:
-    """Vehicle ``index``'s rows as the renderers take them, from its assessed columns and level-road SRT (a job's
-    part builds it from its stored columns the same way)."""
-    srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
-    # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
-    tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
-    preset, saved = r.presets[index], r.saved_ids[index]
-    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r.targets, level)
 
 
 def level_road_srt(case: Case) -> float:

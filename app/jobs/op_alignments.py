@@ -24,6 +24,7 @@ import numpy as np
 from pydantic import Field
 from starlette.requests import Request
 
+from app.alignments.answer import AlignmentAnswer, VehicleAnswer, vehicle_answer
 from app.alignments.rows import (
     JSON_VEHICLE_END,
     ROWS_PER_CHUNK,
@@ -49,9 +50,7 @@ from app.alignments.schemas import (
     keys_match_the_id_pattern,
 )
 from app.alignments.service import (
-    AlignmentAnswer,
     AlignmentJob,
-    VehicleAnswer,
     assess_table,
     assessment_case,
     check_alignment,
@@ -59,7 +58,6 @@ from app.alignments.service import (
     resolve_alignment,
     resolve_alignment_refs,
     validate_request_data,
-    vehicle_answer,
 )
 from app.compute import solvers
 from app.compute.resolved import ResolvedAlignment

@@ -24,9 +24,9 @@ from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
 from app.alignments import rows as alignment_rows
+from app.alignments.answer import AlignmentAnswer
 from app.alignments.schemas import MAX_ROWS
 from app.alignments.service import (
-    AlignmentAnswer,
     AlignmentJob,
     as_fleet_error,
     resolve_alignment_refs,

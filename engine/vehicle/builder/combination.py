@@ -46,11 +46,19 @@ import dataclasses
 import math
 import re
 import typing
-from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 
 from engine.errors import InvalidInput, InvalidVehicle
 from engine.vehicle.builder.build import _composite
+from engine.vehicle.builder.combination_spec import (
+    ROOT,
+    CombinationSpec,
+    CouplingSpec,
+    RollSuspensionSpec,
+    RollTyreSpec,
+    UnitGroupSpec,
+    UnitSpec,
+)
 from engine.vehicle.builder.last_unit import last_unit_record
 from engine.vehicle.builder.payloads import payload_item, tare_item
 from engine.vehicle.builder.spec import (
@@ -59,7 +67,6 @@ from engine.vehicle.builder.spec import (
     MassItem,
     PayloadSpec,
     TareSpec,
-    _from_dict,
     check_choice,
     check_count,
     check_number,
@@ -88,142 +95,8 @@ from engine.vehicle.roll_components import (
 SPEC_COUPLING_KINDS = ("fifth-wheel", "b-coupling", "pintle", "ball")
 #: default group ids per unit kind (front to rear)
 _GROUP_IDS = {"tractor": ("steer", "drive"), "rigid-truck": ("steer", "drive"), "full-trailer": ("front", "rear")}
-ROOT = "combination_spec"
 
-# --------------------------------------------------------------------------------------------- the spec
-
-
-@dataclass(frozen=True)
-class RollTyreSpec:
-    """The tyres of an axle group, for the roll model: a size and/or explicit data (explicit values win).
-
-    size : size designation (``"295/80R22.5"``, ``"11R22.5"``): the library tyre of that size or size class [-]
-    stiffness_kn_per_m : kT, vertical (radial) rate of one tyre [kN/m]
-    loaded_radius_m : lr, static loaded radius (the axle centre's height) [m]
-    """
-
-    size: str | None = None
-    stiffness_kn_per_m: float | None = None
-    loaded_radius_m: float | None = None
-
-
-@dataclass(frozen=True)
-class RollSuspensionSpec:
-    """The suspension of an axle group in roll, per axle: a library type and/or explicit data (explicit values win).
-
-    type : a suspension of the roll component library (``GET /v1/components``, ``trucksim-...``) by its id [-]
-    roll_stiffness_knm_per_rad : k_theta, roll stiffness of one axle (springs and anti-roll) [kN m/rad]
-    roll_centre_height_m : height of the suspension's roll centre above the road [m]
-    spring_spacing_m : b, lateral spacing of the springs [m]
-    lash_deg : roll free play each way from centre before the suspension takes a moment [deg]
-    unsprung_mass_kg : mass of one axle with its wheels, tyres and brakes [kg]
-    unsprung_cg_height_m : height of the axle's CG above the road (default: the tyre's loaded radius) [m]
-    """
-
-    type: str | None = None
-    roll_stiffness_knm_per_rad: float | None = None
-    roll_centre_height_m: float | None = None
-    spring_spacing_m: float | None = None
-    lash_deg: float | None = None
-    unsprung_mass_kg: float | None = None
-    unsprung_cg_height_m: float | None = None
-
-
-@dataclass(frozen=True)
-class UnitGroupSpec:
-    """One axle group of a unit (load-sharing axles under one suspension).
-
-    axles : number of axles [-]
-    tyres_per_axle : 2 (single tyres) or 4 (duals) [-]
-    track_m : lateral spacing of the tyre contacts; for duals, of the centres of the dual pairs [m]
-    position_m : the group centre behind the unit's reference point (tractor, rigid truck: the front group centre, so
-        0 for the front group; semitrailer, lead trailer: the kingpin; dolly, full trailer: the drawbar eye) [m]
-    tyre : the group's tyres
-    suspension : the group's suspension
-    axle_spacing_m : spread between adjacent axles (recorded; the roll model has one equivalent axle per group) [m]
-    id : a name unique within its unit (default: steer, drive; front, rear; the unit's id) [-]
-    """
-
-    axles: int
-    tyres_per_axle: int
-    track_m: float
-    position_m: float
-    tyre: RollTyreSpec
-    suspension: RollSuspensionSpec
-    axle_spacing_m: float | None = None
-    id: str | None = None
-
-
-@dataclass(frozen=True)
-class CouplingSpec:
-    """The coupling between a unit (towing) and the next one (towed).
-
-    kind : ``fifth-wheel`` (on a tractor or a dolly), ``b-coupling`` (the fifth wheel of a B-train lead trailer),
-        ``pintle`` (a drawbar's eye on a pintle hook) or ``ball`` (an A-dolly's ball coupling): the last two pass no
-        roll moment [-]
-    position_m : on the towing unit, behind its reference point [m]
-    height_m : height above the road of the fifth-wheel plate, the pintle or the ball [m]
-    fifth_wheel : a fifth wheel of the roll component library by its id (fifth wheel, B-coupling) [-]
-    roll_stiffness_knm_per_rad : a fifth wheel's roll stiffness, instead of or over the library's [kN m/rad]
-    lash_deg : a fifth wheel's roll free play each way, instead of or over the library's [deg]
-    """
-
-    kind: str
-    position_m: float
-    height_m: float
-    fifth_wheel: str | None = None
-    roll_stiffness_knm_per_rad: float | None = None
-    lash_deg: float | None = None
-
-
-@dataclass(frozen=True)
-class UnitSpec:
-    """One unit in measurable terms.
-
-    kind : ``tractor``, ``rigid-truck``, ``semitrailer``, ``btrain-lead``, ``dolly`` or ``full-trailer`` [-]
-    axle_groups : its axle groups, front to rear (two for a tractor, rigid truck or full trailer, else one)
-    tare : its unladen mass with the axles (as weighed) and the tare CG, positions behind its reference point
-    payloads : 0 or more payloads, positions behind its reference point
-    deck : its load space (for payload positions), behind its reference point
-    id : a name unique within the combination (default: its kind, numbered when repeated) [-]
-    title : a name for people [-]
-    """
-
-    kind: str
-    axle_groups: tuple[UnitGroupSpec, ...]
-    tare: TareSpec
-    payloads: tuple[PayloadSpec, ...] = ()
-    deck: DeckSpec | None = None
-    id: str | None = None
-    title: str | None = None
-
-
-@dataclass(frozen=True)
-class CombinationSpec:
-    """A combination in measurable terms: units front to rear and one coupling between each two.
-
-    units : the units, towing unit first
-    couplings : ``couplings[i]`` joins ``units[i]`` and ``units[i + 1]``
-    title : a name for the combination [-]
-    front_llt_ratio : LLTf/LLTr for the 3D model of the last unit, given instead of computed [-]
-    """
-
-    units: tuple[UnitSpec, ...]
-    couplings: tuple[CouplingSpec, ...] = ()
-    title: str | None = None
-    front_llt_ratio: float | None = None
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, typing.Any]) -> CombinationSpec:
-        """Build from plain dicts and lists; unknown keys are refused naming them
-        (``combination_spec.units[1].tare.foo``)."""
-        return _from_dict(cls, data, ROOT)
-
-    def to_dict(self) -> dict[str, typing.Any]:
-        return asdict(self)
-
-
-# -------------------------------------------------------------------------------------------- the result
+# --------------------------------------------------------------------------------------------- the build
 
 
 @dataclass(frozen=True)

@@ -37,7 +37,7 @@ from engine.vehicle.combination import AxleGroup, Combination
 from engine.vehicle.record import Vehicle
 
 if TYPE_CHECKING:  # the combination builder calls this module: its spec types only for annotations
-    from engine.vehicle.builder.combination import CombinationSpec, UnitGroupSpec
+    from engine.vehicle.builder.combination_spec import CombinationSpec, UnitGroupSpec
 
 _UNIT_TYPE = {"fifth-wheel": "semitrailer", "b-coupling": "btrain-rear"}
 

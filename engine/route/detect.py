@@ -747,12 +747,41 @@ def _clothoid_shift(r, ls):
     return ls**2 / (24.0 * r) - ls**4 / (2688.0 * r**3), ls / 2.0 - ls**3 / (240.0 * r * r)
 
 
+def _clothoid_end(r, ls):
+    """The clothoid's end (x along its tangent, y normal to it) in the frame of its tangent-to-spiral point, the first
+    two terms of each series (as :func:`_clothoid_shift`, so that the arc meets it on the circle) [3]."""
+    return ls - ls**3 / (40.0 * r * r), ls**2 / (6.0 * r) - ls**4 / (336.0 * r**3)
+
+
+def _clothoid_offset(x, r, ls):
+    """(y, dy/dx) of the clothoid at x along its tangent: y = x^3 / (6 R Ls) + x^7 / (105 R^3 Ls^3), its series in
+    x to the second term (from x = l - l^5 / (40 R^2 Ls^2), y = l^3 / (6 R Ls) - l^7 / (336 R^3 Ls^3), l the length
+    along it [3]). The cubic alone ends 0.11 m (R 150 m, Ls 80 m) to 1 m (R 60 m, Ls 70 m) inside the arc's end, a
+    step in the distance of the vertices there that made the sum of squares jump as (R, Ls) moved the junction
+    across them; with the second term the step is 4 mm and 0.16 m."""
+    a, b = 1.0 / (6.0 * r * ls), 1.0 / (105.0 * r**3 * ls**3)
+    return a * x**3 + b * x**7, 3.0 * a * x * x + 7.0 * b * x**6
+
+
+def _before_end(x, y, xs, ys, r, ls):
+    """Whether the points (x, y) of a clothoid's tangent frame lie before the normal at its end (xs, ys), where it
+    has turned by Ls / (2 R) from its tangent [3]: the arc's sector begins on that normal. Bounded by x <= xs (the
+    tangent's normal) the clothoid and the arc would leave a wedge of that angle outside the curve's end that
+    neither claims, whose vertices would take their distance from the tangent-to-spiral point, tens of metres: the
+    sum of squares would jump a hundredfold as (R, Ls) moves the wedge across a vertex, most where the spirals take
+    most of the deflection."""
+    th = ls / (2.0 * r)
+    return (x - xs) * np.cos(th) + (y - ys) * np.sin(th) <= 0.0
+
+
 class _TangentPath:
     """Tangent-clothoid-arc-clothoid-tangent path between two fitted tangents, for arrays of (R, Ls).
 
     The centre lies on the bisector at (R + p) / cos(D/2) from the tangents' intersection PI [3]; a clothoid
-    is its cubic y = x^3 / (6 R Ls) in the frame of its tangent-to-spiral point (distances measured normal to
-    it), the arc is the circle between the spirals' ends, the tangents are half-lines.
+    is y = x^3 / (6 R Ls) + x^7 / (105 R^3 Ls^3) in the frame of its tangent-to-spiral point (distances measured
+    normal to it; :func:`_clothoid_offset`), ending where :func:`_clothoid_end` puts it, on the circle to the series'
+    order, and holding the vertices before the normal there (:func:`_before_end`); the arc is the circle between the
+    spirals' ends, the tangents are half-lines.
     """
 
     def __init__(self, lines, px: np.ndarray, py: np.ndarray) -> None:
@@ -783,7 +812,7 @@ class _TangentPath:
         tl = (r + p) * math.tan(self.half) + k  # PI to the tangent-to-spiral points
         cx = pi[0] + bis[0] * (r + p) / math.cos(self.half)
         cy = pi[1] + bis[1] * (r + p) / math.cos(self.half)
-        xs_, ys_ = ls - ls**3 / (40.0 * r * r), ls**2 / (6.0 * r)  # spiral end in its tangent frame
+        xs_, ys_ = _clothoid_end(r, ls)  # spiral end in its tangent frame
         d = np.full((r.shape[0], px.size), np.inf)
         corners = []
         for u, nrm, out in ((self.u1, self.n1, -1.0), (self.u2, self.n2, 1.0)):
@@ -792,10 +821,12 @@ class _TangentPath:
             x = -out * (dx * u[0] + dy * u[1])  # distance into the curve
             y = dx * nrm[0] + dy * nrm[1]  # toward the centre
             d = np.minimum(d, np.where(x <= 0, np.abs(y), np.hypot(dx, dy)))  # the tangent
+            before = _before_end(x, y, xs_, ys_, r, ls)
             if np.any(ls > 0):
                 with np.errstate(divide="ignore", invalid="ignore"):
-                    off = np.abs(y - x**3 / (6.0 * r * ls)) / np.sqrt(1 + (x * x / (2.0 * r * ls)) ** 2)
-                d = np.minimum(d, np.where((x >= 0) & (x <= xs_) & (ls > 0), off, np.inf))  # the clothoid
+                    f, df = _clothoid_offset(x, r, ls)
+                    off = np.abs(y - f) / np.sqrt(1 + df * df)
+                d = np.minimum(d, np.where((x >= 0) & before & (ls > 0), off, np.inf))  # the clothoid
             corners.append((tx - out * u[0] * xs_ + nrm[0] * ys_, ty - out * u[1] * xs_ + nrm[1] * ys_))
         (s1x, s1y), (s2x, s2y) = corners
         qx, qy = px - cx, py - cy
@@ -813,7 +844,7 @@ class _TangentPath:
         p, k = _clothoid_shift(r, ls)
         tl = (r + p) * math.tan(self.half) + k
         c = pi + self.bis * (r + p) / math.cos(self.half)
-        xs_, ys_ = ls - ls**3 / (40.0 * r * r), ls**2 / (6.0 * r)
+        xs_, ys_ = _clothoid_end(r, ls)
         best = np.full(px.size, np.inf)
         res = np.zeros(px.size)
         nx, ny = np.zeros(px.size), np.zeros(px.size)
@@ -826,10 +857,12 @@ class _TangentPath:
             cands = [
                 (np.where(x <= 0, np.abs(y), np.hypot(dx, dy)), np.where(x <= 0, y, np.sign(y) * np.hypot(dx, dy)))
             ]
+            before = _before_end(x, y, xs_, ys_, r, ls)
             if ls > 0:
                 with np.errstate(divide="ignore", invalid="ignore"):
-                    off = (y - x**3 / (6.0 * r * ls)) / np.sqrt(1 + (x * x / (2.0 * r * ls)) ** 2)
-                cands.append((np.where((x >= 0) & (x <= xs_), np.abs(off), np.inf), off))
+                    f, df = _clothoid_offset(x, r, ls)
+                    off = (y - f) / np.sqrt(1 + df * df)
+                cands.append((np.where((x >= 0) & before, np.abs(off), np.inf), off))
             for dist, val in cands:
                 take = dist < best
                 best, res = np.where(take, dist, best), np.where(take, val, res)
@@ -880,8 +913,9 @@ def _fit_tangent_curve(
     spiral (a geometric grid of R refined twice, then the vertex of a parabola in log R), then on a grid of R and
     Ls / (R D) refined once. The spiral is kept when it lowers the sum by more than significance^2 residual
     variances (a likelihood-ratio test at ``significance`` standard deviations); the radius's standard error
-    comes from the curvature of the sum at its minimum. Returns None when the tangents are nearly parallel or
-    antiparallel.
+    comes from the curvature of the sum at its minimum, or from the profile bound where that minimum is not a
+    stationary one or the spiral it keeps is not identified (below). Returns None when the tangents are nearly
+    parallel or antiparallel.
 
     Noise correlated over ``corr`` (Eq. 3 of :mod:`engine.route.noise`): the residual variance's divisor loses what
     the fit absorbs beyond its parameters (:func:`engine.route.noise.absorbed_excess`), and the variance that scales
@@ -913,6 +947,7 @@ def _fit_tangent_curve(
     k_r = best_r * np.geomspace(0.92, 1.0 / 0.92, 5)
     k_g = np.clip(best_g * np.geomspace(0.55, 1.0 / 0.55, 5), 0.0, 0.98)
     best_r, best_g = _grid_min(sse, k_r, k_g, defl)
+    filled = best_g >= 0.95  # the spirals take (nearly) all of the deflection: the coarse grid's top
     best_ls = best_g * best_r * defl
     best_r_joint, best_ls_joint = best_r, best_ls
     s_min = float(sse(np.array([best_r]), np.array([best_ls]))[0])
@@ -930,17 +965,24 @@ def _fit_tangent_curve(
     spiral = None
     if s_zero - s_min > significance**2 * var * ls_factor:
         spiral = best_ls
-        if joint is not None:  # R's influence with the spiral's length free
+        # R's influence with the spiral's length free; not where the spiral is not identified (below): the joint
+        # Jacobian is then near singular and the influence's inflation came out anywhere from 0.1 to 30 with the
+        # difference step, so R's own influence at the simple fit scales the profile, as without a spiral
+        if joint is not None and not filled:
             r_factor = _inflation(*joint, chain[sel], corr, row=0)
     else:
         best_r, best_ls = r_simple, 0.0
     # the delta method linearises about a stationary minimum of the sum: where the simple fit's grid did not bracket
     # one (a short flat arc whose sum keeps falling toward the tangents' corner, R -> 0) the radius is the grid's
     # edge, the sum's slope there is not zero and its curvature says nothing of the radius's scatter, so the
-    # standard error is the profile bound's below, as where the sum is not convex
-    stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var, corr, chain[sel])
-    if spiral is None and not bracketed:
-        stds = None
+    # standard error is the profile bound's below, as where the sum is not convex. So too where the kept spirals
+    # fill (nearly) all of the deflection: the track does not tell an arc between them from their meeting point, the
+    # spiral's length is not identified, and the sum's curvature in (R, Ls) is that of a ridge along which R and Ls
+    # trade (its inverse stated standard errors thousands of times R); the profile in R is still defined, and being
+    # one-sided at the family's edge (a sharper arc would need more spiral than the deflection allows) it is
+    # taken both ways
+    identified = bracketed if spiral is None else not filled
+    stds = _path_radius_std(lines, xv[sel], yv[sel], best_r, spiral, var, corr, chain[sel]) if identified else None
     var = var * r_factor  # the variance that scales the deviance in R (the profile bound; 1 for white noise)
     # the bound is on the arc's radius over the whole tangent-clothoid-arc family: profiled over Ls, from the
     # family's best fit (a spiral the likelihood-ratio test did not keep still lowers the arc's radius it allows)
@@ -948,7 +990,10 @@ def _fit_tangent_curve(
     tangent_var = max(stds[0] ** 2 - stds[1] ** 2, 0.0) if stds is not None else 0.0
     std = stds[0] if stds is not None else None
     lower = min(_path_radius_lower(sse, r_ref, ls_ref, s_ref, var, tangent_var, defl, std), float(best_r))
-    if stds is None:  # the sum is not convex in R about the fit (few or no vertices on a short arc): the profile alone
+    if not identified and spiral is not None:  # half the two-sided interval (z either side in the linear case)
+        upper = _path_radius_lower(sse, r_ref, ls_ref, s_ref, var, 0.0, defl, None, upward=True)
+        std = (upper - lower) / (2.0 * float(ndtri(RADIUS_CONFIDENCE))) if upper > lower else None
+    elif stds is None:  # the sum not convex in R about the fit (few or no vertices on a short arc): the profile alone
         std = (best_r - lower) / float(ndtri(RADIUS_CONFIDENCE)) if lower < best_r else None
     return _Composite(float(best_r), path.centre(best_r, best_ls), spiral, std, lower)
 
@@ -971,9 +1016,18 @@ def _valley_ls(r: np.ndarray, r0: float, ls0: float, defl: float) -> np.ndarray:
 
 
 def _path_radius_lower(
-    sse, r: float, ls: float, s_ref: float, var: float, tangent_var: float, defl: float, std: float | None
+    sse,
+    r: float,
+    ls: float,
+    s_ref: float,
+    var: float,
+    tangent_var: float,
+    defl: float,
+    std: float | None,
+    upward: bool = False,
 ) -> float:
-    """One-sided lower confidence bound (:data:`~engine.route.fit.RADIUS_CONFIDENCE`) of the arc's radius [m].
+    """One-sided lower confidence bound (:data:`~engine.route.fit.RADIUS_CONFIDENCE`) of the arc's radius [m]; with
+    ``upward`` the upper one, searched the same way upward up to 50 R*.
 
     A profile-likelihood bound over the tangent-clothoid-arc-clothoid-tangent family, with the spiral's length as a
     nuisance parameter: with Gaussian vertex noise of variance s^2 the deviance of an arc radius R is
@@ -1000,10 +1054,11 @@ def _path_radius_lower(
     if not var > 0:
         return float(r)
     z = float(ndtri(RADIUS_CONFIDENCE))
+    sign = 1.0 if upward else -1.0
 
     def stat(rs: np.ndarray) -> np.ndarray:
         dev = np.maximum(_profile_ls(sse, rs, _valley_ls(rs, r, ls, defl), 0.95 * rs * defl) - s_ref, 0.0) / var
-        d = np.maximum(r - rs, 0.0)
+        d = np.maximum(sign * (rs - r), 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(dev > 0, d / np.sqrt(d * d / dev + tangent_var), 0.0)
 
@@ -1012,8 +1067,8 @@ def _path_radius_lower(
     # four; then linearly inside it
     d0 = 0.9 * z * std if std is not None and std > 0 else 0.03 * r
     d = d0 * np.concatenate((1.2 ** np.arange(8), 1.2**7 * 1.5 ** np.arange(1, 40)))
-    grid = r - d[d < 0.98 * r]
-    grid = np.append(grid, 0.02 * r)
+    grid = r + sign * d[d < (49.0 if upward else 0.98) * r]
+    grid = np.append(grid, (50.0 if upward else 0.02) * r)
     prev_r, prev_t = r, 0.0
     for k in range(0, grid.size, 4):
         rs = grid[k : k + 4]
@@ -1023,14 +1078,15 @@ def _path_radius_lower(
             j = int(above[0])
             hi_r, hi_t = (rs[j - 1], t[j - 1]) if j > 0 else (prev_r, prev_t)
             lo_r, lo_t = rs[j], t[j]
-            if hi_r - lo_r > 0.01 * r:  # a wide bracket (a flat profile): three more radii inside it
+            if abs(hi_r - lo_r) > 0.01 * r:  # a wide bracket (a flat profile): three more radii inside it
                 inner = np.geomspace(hi_r, lo_r, 5)[1:-1]
                 ti = stat(inner)
                 rs, t = np.concatenate(([hi_r], inner, [lo_r])), np.concatenate(([hi_t], ti, [lo_t]))
                 j = int(np.flatnonzero(t > z)[0])
                 hi_r, hi_t, lo_r, lo_t = rs[j - 1], t[j - 1], rs[j], t[j]
             w = (z - hi_t) / (lo_t - hi_t)
-            return float(min(r, hi_r + w * (lo_r - hi_r)))
+            bound = hi_r + w * (lo_r - hi_r)
+            return float(max(r, bound) if upward else min(r, bound))
         prev_r, prev_t = rs[-1], t[-1]
     return float(grid[-1])
 

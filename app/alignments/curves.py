@@ -83,23 +83,33 @@ def _columns_at_once(items: list[Any]) -> CurveTable | None:
         return None
     if not (set(map(type, e)) <= _OPTIONAL_TYPES and set(map(type, posted)) <= _OPTIONAL_TYPES):
         return None
+    try:
+        r, g, ev, v = (np.array(c, dtype=float) for c in (radius, grade, e, posted))  # None -> nan
+    except OverflowError:  # an integer past the float range: the loop's error
+        return None
+    return plainly_valid(ids, r, ev, g, v)
+
+
+def plainly_valid(
+    ids: list[str], radius: np.ndarray, e: np.ndarray, grade: np.ndarray, posted: np.ndarray
+) -> CurveTable | None:
+    """The curves as a table when their ids and values pass the rules :func:`curves_from_json` checks (an id of 1 to
+    100 characters, no control characters, no duplicate; every value within its bounds, nan for an absent optional
+    one); None otherwise. Shared by :mod:`app.jobs.json_columns`, which reads the same list from the body's text."""
     lengths = set(map(len, ids))
     if (
-        min(lengths) < 1
+        not lengths
+        or min(lengths) < 1
         or max(lengths) > CURVE_ID_MAX_CHARS
         or _CONTROL.search(" ".join(ids))
         or len(set(ids)) < len(ids)
     ):
         return None
-    try:
-        r, g, ev, v = (np.array(c, dtype=float) for c in (radius, grade, e, posted))  # None -> nan
-    except OverflowError:  # an integer past the float range: the loop's error
-        return None
-    ok = _inside(r, "radius_m") & _inside(g, "slope_percent")
-    ok &= (np.isnan(ev) | _inside(ev, "bank_percent")) & (np.isnan(v) | _inside(v, "speed_kmh"))
+    ok = _inside(radius, "radius_m") & _inside(grade, "slope_percent")
+    ok &= (np.isnan(e) | _inside(e, "bank_percent")) & (np.isnan(posted) | _inside(posted, "speed_kmh"))
     if not ok.all():
         return None
-    return CurveTable(ids, r, ev, g, v, np.full(len(ids), math.nan))
+    return CurveTable(ids, radius, e, grade, posted, np.full(len(ids), math.nan))
 
 
 def curves_from_json(items: Any, max_curves: int = MAX_CURVES) -> CurveTable:

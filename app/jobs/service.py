@@ -13,6 +13,7 @@ from pydantic import ValidationError
 
 from app.formats.jsonpieces import loads_in_pieces
 from app.http.problems import InvalidAlignment, engine_field
+from app.jobs import op_alignments
 from app.jobs.backends import Backend
 from app.jobs.base import Operation, ResolveContext
 from app.jobs.operations import OPERATIONS
@@ -78,10 +79,16 @@ def under_request(exc: Exception) -> Exception:
 
 def parse_submission(body: bytes) -> tuple[Operation, Any]:
     """The job's operation and its validated request (blocking: a million curves take a few seconds)."""
-    try:
-        data = loads_in_pieces(body, ("request", "curves"))  # an alignment job's curves a slice at a time
-    except orjson.JSONDecodeError as exc:
-        raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    found = op_alignments.read_columns(body)  # an alignment job's plain curves straight from the text into columns
+    curves = None
+    if found is not None:
+        data, curves = found
+    else:
+        try:
+            data = loads_in_pieces(body, ("request", "curves"))  # an alignment job's curves a slice at a time
+        except orjson.JSONDecodeError as exc:
+            msg = f"JSON: {exc}"
+            raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": msg}]) from None
     if not isinstance(data, dict):
         raise RequestValidationError([{"type": "dict_type", "loc": ("body",), "msg": "Input should be an object"}])
     known = ", ".join(OPERATIONS)
@@ -102,7 +109,7 @@ def parse_submission(body: bytes) -> tuple[Operation, Any]:
         raise RequestValidationError(errors)
     op = OPERATIONS[operation]
     try:
-        return op, op.parse(data["request"])
+        return op, op.parse(data["request"]) if curves is None else op_alignments.parse(data["request"], curves)
     except ValidationError as exc:  # the request model's own errors
         errors = [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
         raise under_request(RequestValidationError(errors)) from None

@@ -95,7 +95,8 @@ def plainly_valid(
 ) -> CurveTable | None:
     """The curves as a table when their ids and values pass the rules :func:`curves_from_json` checks (an id of 1 to
     100 characters, no control characters, no duplicate; every value within its bounds, nan for an absent optional
-    one); None otherwise. Shared by :mod:`app.jobs.json_columns`, which reads the same list from the body's text."""
+    one); None otherwise. Shared by :mod:`app.alignments.json_curves`, which reads the same list from the body's
+    text."""
     lengths = set(map(len, ids))
     if (
         not lengths

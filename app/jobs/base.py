@@ -70,7 +70,7 @@ class Operation:
     unit: str  # what progress counts ("rows", "cases")
     part_units: int  # default units of work per part
     csv: bool  # whether the result is also offered as CSV
-    parse: Callable[[Any], Any]
+    parse: Callable[..., Any]  # (the request's JSON, *what read_body read besides it) -> the parsed request
     resolve: Callable[[Any, ResolveContext], Any]
     split: Callable[[Any, int], Prepared]
     run_part: Callable[[dict[str, Any], bytes, PartContext], dict[str, Any]]
@@ -83,6 +83,11 @@ class Operation:
     stored: str | None = None
     #: reads every fragment of a done job and raises ValueError when one cannot be rendered (None: no check)
     check: Callable[[dict[str, Any], list[dict[str, Any]], Fragments], None] | None = None
+    #: reads a submission's body whose bulk it can read better than ``orjson`` into a Python object per item (an
+    #: alignment's plain JSON curves, straight into columns): (the document with that bulk taken out, what it read),
+    #: the second handed to :attr:`parse` after the request; None when the body is not its operation's or not of
+    #: that form (the body is then parsed whole). Never decides an error: whatever it refuses is parsed as always.
+    read_body: Callable[[bytes], tuple[dict[str, Any], Any] | None] | None = None
 
     @property
     def formats(self) -> list[str]:

@@ -2,13 +2,13 @@
 plain form (comma-separated, no quotes, one curve per line, ``\\n`` or ``\\r\\n``), which a million-curve job
 almost always is.
 
-The text is read as bytes with numpy, without a Python object per field: the separators are found at once (every
-line must have its k - 1 commas), and each numeric column is parsed a character position at a time over all its
-fields (:func:`decimals`). A field of the plain decimal form ``[+-]digits[.digits]`` with at most 15 significant
-digits is its integer significand M, read exactly, divided by 10^f (f its digits after the point, at most 22): both
-are exact doubles, so IEEE division rounds the quotient correctly, and that is the double ``float`` returns for the
-text, bit for bit (Clinger 1990, "How to read floating point numbers accurately", PLDI '90, the fast path; Python's
-``float`` rounds correctly, Gay's dtoa). Any other field (an exponent, spaces, underscores, more digits, other
+The text is read as bytes with numpy, without a Python object per field: the separators are found at once (every line
+must have its k - 1 commas), and each numeric column is parsed a character position at a time over all its fields
+(:func:`app.formats.decimals.decimals`). A field of the plain decimal form ``[+-]digits[.digits]`` with at most 15
+significant digits is its integer significand M, read exactly, divided by 10^f (f its digits after the point, at most
+22): both are exact doubles, so IEEE division rounds the quotient correctly, and that is the double ``float`` returns
+for the text, bit for bit (Clinger 1990, "How to read floating point numbers accurately", PLDI '90, the fast path;
+Python's ``float`` rounds correctly, Gay's dtoa). Any other field (an exponent, spaces, underscores, more digits, other
 characters) is read by ``float`` itself, alone, so the table is always ``read_csv``'s. Only the ids become Python
 strings (stripped, checked: empty, too long, duplicates).
 
@@ -33,6 +33,7 @@ import numpy as np
 
 from app.formats.alignment_io import CSV_OPTIONAL, CSV_REQUIRED, CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
 from app.formats.csv_dialect import CsvDialect
+from app.formats.decimals import decimals
 from engine.errors import InvalidRoad
 from engine.road import check_columns
 
@@ -42,11 +43,7 @@ _NOT_PLAIN = re.compile(r'["\x00-\x09\x0b\x0c\x0e-\x1f\x7f-\x9f\ufeff]')
 _NOT_PLAIN_BYTE = np.zeros(256, dtype=bool)
 _NOT_PLAIN_BYTE[[*range(0x00, 0x0A), *range(0x0B, 0x20), 0x22, 0x7F]] = True
 
-_COMMA, _NEWLINE, _MINUS, _PLUS, _POINT, _ZERO = (ord(c) for c in ",\n-+.0")
-#: significant digits of the fast path: 10^15 < 2^53, so the significand is an exact double
-_MAX_DIGITS = 15
-_POWERS = 10.0 ** np.arange(23)  # 10^0 .. 10^22: exact doubles
-_INTEGER_POWERS = 10 ** np.arange(19, dtype=np.int64)
+_COMMA, _NEWLINE = (ord(c) for c in ",\n")
 #: a column with more fields than this (or 1/64 of them) not plain is read by float over its strings at once
 _FEW_ODD = 64
 #: the numeric columns: (name, may be empty, the value of an empty field), as read_csv reads them
@@ -82,57 +79,6 @@ class RowNames(Sequence[str]):
         if not 0 <= i < len(self):
             raise IndexError(i)
         return f"row {self.start + i + 2}"
-
-
-def decimals(
-    buf: np.ndarray, starts: np.ndarray, ends: np.ndarray, *, json: bool = False
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The module's fast path over the fields ``buf[starts[i]:ends[i]]``, a character position at a time over all of
-    them: ``(values, plain, integral)``, where ``plain`` marks the fields of the form ``[+-]digits[.digits]`` (also
-    ``digits.`` and ``.digits``) with at most 15 significant digits, whose ``values`` are ``float``'s bit for bit
-    (Clinger 1990's fast path: see the module's doc), and ``integral`` those without a point. The other fields'
-    values are meaningless: the caller reads them its own way (CSV with ``float``, JSON with ``orjson``). ``json``:
-    only JSON's numbers are plain (``-?(0|[1-9]digits)(.digits)?``: no ``+``, no leading zero, a digit on both sides
-    of the point), for :mod:`app.jobs.json_columns`."""
-    n = starts.size
-    lens = ends - starts
-    width = min(int(lens.max(initial=0)), _MAX_DIGITS + 2)  # the sign and the point besides the digits
-    last = max(buf.size - 1, 0)
-    significand = np.zeros(n, dtype=np.int64)
-    digits = np.zeros(n, dtype=np.int8)
-    before = np.zeros(n, dtype=np.int8)  # the digits before the point (of a field with a point)
-    points = np.zeros(n, dtype=np.int8)
-    first = buf[np.minimum(starts, last)]
-    negative = first == _MINUS
-    signed = negative | (first == _PLUS)
-    clamp = n > 0 and int(starts.max()) + width > buf.size  # a field near the end: keep the look-ups inside
-    at = starts.copy()
-    for j in range(width):  # in place, no temporary of the significands: a column is millions of fields
-        c = buf[np.minimum(at, last)] if clamp else buf[at]
-        inside = lens > j
-        d = c - np.uint8(_ZERO)  # a byte below '0' wraps to above 9
-        digit = d < 10
-        digit &= inside
-        np.multiply(significand, 10, out=significand, where=digit)
-        np.add(significand, d, out=significand, where=digit)
-        digits += digit
-        point = c == _POINT
-        point &= inside
-        points += point
-        np.copyto(before, digits, where=point)
-        at += 1
-    plain = (
-        (lens <= width) & (points <= 1) & (digits >= 1) & (digits <= _MAX_DIGITS) & (digits + points + signed == lens)
-    )
-    if json:
-        plain &= negative | ~signed
-        plain &= (points == 0) | ((before > 0) & (digits > before))
-        integer = np.where(points > 0, before, digits)  # no leading zero: the first digit is one when there are two
-        plain &= (integer <= 1) | (significand >= _INTEGER_POWERS[np.maximum(digits - 1, 0)])
-    fraction = np.where(points > 0, digits - before, 0)  # digits after the point: <= width <= 17
-    values = significand / _POWERS[fraction]
-    np.negative(values, out=values, where=negative)  # -0 is -0.0, as float("-0")
-    return values, plain, points == 0
 
 
 def _numbers(

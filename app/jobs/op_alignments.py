@@ -25,6 +25,7 @@ from pydantic import Field
 from starlette.requests import Request
 
 from app.alignments.answer import AlignmentAnswer, VehicleAnswer, vehicle_answer
+from app.alignments.json_curves import read_json_curves
 from app.alignments.rows import (
     JSON_VEHICLE_END,
     ROWS_PER_CHUNK,
@@ -66,7 +67,6 @@ from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.jobs.columns import ColumnsError, codes_within, pack_columns, require, strings, unpack_columns
 from app.jobs.csv_columns import read_csv_columns
-from app.jobs.json_columns import read_json_curves
 from app.settings import Settings
 from app.vehicles.refs import vehicle_of_resolved
 from engine.road import (
@@ -132,14 +132,14 @@ class AlignmentJobRequest(AlignmentRequest):
 
 def parse(data: Any, curves: CurveTable | None = None):
     """The request validated as the synchronous one is (``curves``: already read from the text by
-    :func:`read_columns`, the request's list then empty)."""
+    :func:`read_body`, the request's list then empty)."""
     return validate_request_data(data, model=AlignmentJobRequest, max_curves=MAX_JOB_CURVES, curves=curves)
 
 
-def read_columns(body: bytes) -> tuple[dict[str, Any], CurveTable] | None:
+def read_body(body: bytes) -> tuple[dict[str, Any], CurveTable] | None:
     """The job's document (``request.curves`` empty) and its curves read from the text straight into columns
-    (:func:`app.jobs.json_columns.read_json_curves`: no dict per curve) when it is an alignment job whose curves are
-    of the plain form; None otherwise (the body is then parsed whole, and the curves by :func:`parse`)."""
+    (:func:`app.alignments.json_curves.read_json_curves`: no dict per curve) when it is an alignment job whose
+    curves are of the plain form; None otherwise (the body is then parsed whole, and the curves by :func:`parse`)."""
     found = read_json_curves(body, ("request", "curves"), max_curves=MAX_JOB_CURVES)
     return found if found is not None and found[0].get("operation") == OPERATION.name else None
 
@@ -461,4 +461,5 @@ OPERATION = Operation(
     refs=refs,
     stored="columns",
     check=check,
+    read_body=read_body,
 )

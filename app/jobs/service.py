@@ -13,7 +13,6 @@ from pydantic import ValidationError
 
 from app.formats.jsonpieces import loads_in_pieces
 from app.http.problems import InvalidAlignment, engine_field
-from app.jobs import op_alignments
 from app.jobs.backends import Backend
 from app.jobs.base import Operation, ResolveContext
 from app.jobs.operations import OPERATIONS
@@ -79,11 +78,14 @@ def under_request(exc: Exception) -> Exception:
 
 def parse_submission(body: bytes) -> tuple[Operation, Any]:
     """The job's operation and its validated request (blocking: a million curves take a few seconds)."""
-    found = op_alignments.read_columns(body)  # an alignment job's plain curves straight from the text into columns
-    curves = None
-    if found is not None:
-        data, curves = found
-    else:
+    data, read, reader = None, (), None
+    for candidate in OPERATIONS.values():  # an operation that reads its bulk better than orjson (read_body)
+        found = candidate.read_body(body) if candidate.read_body is not None else None
+        if found is not None:
+            (data, part), reader = found, candidate
+            read = (part,)
+            break
+    if data is None:
         try:
             data = loads_in_pieces(body, ("request", "curves"))  # an alignment job's curves a slice at a time
         except orjson.JSONDecodeError as exc:
@@ -109,7 +111,7 @@ def parse_submission(body: bytes) -> tuple[Operation, Any]:
         raise RequestValidationError(errors)
     op = OPERATIONS[operation]
     try:
-        return op, op.parse(data["request"]) if curves is None else op_alignments.parse(data["request"], curves)
+        return op, op.parse(data["request"], *(read if op is reader else ()))
     except ValidationError as exc:  # the request model's own errors
         errors = [{**e, "loc": ("body", *e["loc"])} for e in exc.errors(include_url=False)]
         raise under_request(RequestValidationError(errors)) from None

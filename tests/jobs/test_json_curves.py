@@ -1,6 +1,6 @@
-"""app.jobs.json_columns: a JSON curves list read from the text is the table ``orjson.loads`` + ``curves_from_json``
-make of it, bit for bit, and anything it does not take as plain (any syntax error, an odd value, a check that
-fails) is left to that path (None), which answers exactly as before."""
+"""app.alignments.json_curves: a JSON curves list read from the text is the table ``orjson.loads`` +
+``curves_from_json`` make of it, bit for bit, and anything it does not take as plain (any syntax error, an odd value, a
+check that fails) is left to that path (None), which answers exactly as before."""
 
 from __future__ import annotations
 
@@ -10,11 +10,10 @@ import numpy as np
 import orjson
 import pytest
 
+from app.alignments import json_curves
 from app.alignments.curves import curves_from_json
-from app.alignments.service import JSON_COLUMNS_BYTES
+from app.alignments.json_curves import read_json_curves
 from app.formats.alignment_io import MAX_CURVES
-from app.jobs import json_columns
-from app.jobs.json_columns import read_json_curves
 from app.jobs.service import parse_submission
 from tests.api.conftest import make_client
 
@@ -89,11 +88,11 @@ def _document(rng: np.random.Generator, n: int, *, path=("curves",)) -> bytes:
     return (doc + sp()).encode()
 
 
-@pytest.fixture(params=[json_columns.PIECE_BYTES, 1, 40], ids=["one-piece", "a-piece-a-curve", "pieces"])
+@pytest.fixture(params=[json_curves.PIECE_BYTES, 1, 40], ids=["one-piece", "a-piece-a-curve", "pieces"])
 def pieces(request, monkeypatch):
     """The list read in one piece, or cut after every curve, or after every few (cuts after a comma between
     curves, never inside a string, which the ids' braces and commas would mislead a plain search into)."""
-    monkeypatch.setattr(json_columns, "PIECE_BYTES", request.param)
+    monkeypatch.setattr(json_curves, "PIECE_BYTES", request.param)
     return request.param
 
 
@@ -278,42 +277,22 @@ def test_a_plain_job_refused_for_the_rest_of_its_request_names_the_same_fields(m
             assert fast == before and fast[0] == 422, (request, fast)
 
 
-def test_the_synchronous_endpoint_reads_a_large_plain_list_into_the_same_answer(monkeypatch):
-    rng = np.random.default_rng(11)
-    doc = orjson.loads(_document(rng, 10))
-    curves = [{**c, "id": f"{c['id']}-{k}"} for k in range(MAX_CURVES // 10) for c in doc["curves"]]
-    body = orjson.dumps({"vehicle": "table16-btrain", "superelevation_percent": 2.0, "curves": curves})
-    assert len(body) >= JSON_COLUMNS_BYTES and read_json_curves(body) is not None
-    too_many = orjson.dumps({"vehicle": "table16-btrain", "curves": [*curves, {"id": "x", "radius_m": 100}]})
-    with make_client() as c:
-        for b in (body, too_many):
-            answers = []
-            for fast in (True, False):
-                with monkeypatch.context() as m:
-                    if not fast:
-                        m.setattr("app.alignments.service.read_json_curves", lambda *a, **k: None)
-                    r = c.post("/v1/alignments/assess", content=b, headers={"content-type": "application/json"})
-                answers.append((r.status_code, r.content))
-            assert answers[0] == answers[1]
-        assert answers[0][0] == 422 and b"too_long" in answers[0][1]
-
-
 def test_a_long_list_is_read_in_pieces_cut_between_curves(monkeypatch):
     """Cut after every curve or so: many pieces, the same table; a cut that falls inside an id (one with ``},{`` in
     it) is refused by the piece, and the old path reads the body."""
     rng = np.random.default_rng(5)
     body = _document(rng, 300)
     read = []
-    monkeypatch.setattr(json_columns, "PIECE_BYTES", 64)
+    monkeypatch.setattr(json_curves, "PIECE_BYTES", 64)
     monkeypatch.setattr(
-        json_columns, "_piece", lambda *a, _piece=json_columns._piece, **k: read.append(1) or _piece(*a, **k)
+        json_curves, "_piece", lambda *a, _piece=json_curves._piece, **k: read.append(1) or _piece(*a, **k)
     )
     found = read_json_curves(body)
     assert found is not None and len(read) > 10
     same(found[1], old(body))
     trap = b'{"curves":[' + b",".join(b'{"id":"x%d},{","radius_m":100}' % i for i in range(50)) + b"]}"
     assert read_json_curves(trap) is None
-    monkeypatch.setattr(json_columns, "PIECE_BYTES", 1 << 20)
+    monkeypatch.setattr(json_curves, "PIECE_BYTES", 1 << 20)
     same(read_json_curves(trap)[1], old(trap))  # in one piece: read
 
 

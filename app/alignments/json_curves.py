@@ -14,7 +14,7 @@ tokens at once (:data:`_ROLE`, :data:`_NEXT`). A value that is not a string lies
 token; every other gap must be whitespace, which one count checks (the bytes of the list less its whitespace are
 exactly its structural characters, its strings and its values). Keys are compared byte for byte with the five
 known names. Numbers are read a character position at a time over each column by
-:func:`app.jobs.csv_columns.decimals` (Clinger 1990, "How to read floating point numbers accurately", PLDI '90, the
+:func:`app.formats.decimals.decimals` (Clinger 1990, "How to read floating point numbers accurately", PLDI '90, the
 fast path: a plain decimal of at most 15 significant digits is its exact significand divided by an exact power of
 ten, the correctly rounded double, as ``orjson`` reads it), narrowed to JSON's syntax (no ``+``, no leading zero, a
 digit on both sides of the point); a JSON integer ``-0`` is the int 0, so 0.0. Any other value (an exponent, more
@@ -34,7 +34,7 @@ unknown or repeated key, ``true``, a string for a number, a syntax error, a chec
 :func:`~app.alignments.curves.plainly_valid` that fails, more curves than allowed) gives None, and the caller parses
 the body as before (``orjson``, :func:`~app.alignments.curves.curves_from_json`), which gives the value or reports
 the exact error it always did. A table it does answer is that path's table, bit for bit
-(``tests/jobs/test_json_columns.py`` compares them on generated documents). The rest of the document (all but the
+(``tests/jobs/test_json_curves.py`` compares them on generated documents). The rest of the document (all but the
 list) is parsed by ``orjson`` with the list replaced by ``[]``, as :func:`app.formats.jsonpieces.loads_in_pieces`
 does.
 """
@@ -49,7 +49,7 @@ import orjson
 
 from app.alignments.curves import plainly_valid
 from app.formats.alignment_io import MAX_CURVES, CurveTable
-from app.jobs.csv_columns import decimals
+from app.formats.decimals import decimals
 
 #: token kinds: what ``bytes.translate`` makes of each byte (0: anything else); a string is its opening quote
 _LIST, _END, _OPEN, _CLOSE, _COMMA, _COLON, _STRING = range(1, 8)

@@ -13,9 +13,9 @@ GeoJSON: a ``FeatureCollection`` of ``Feature``s, a ``Feature``, or a bare ``Lin
 other than CRS84 / EPSG:4326 is refused: only WGS84 longitude/latitude is read. A feature's ``properties``
 may carry ``superelevation_percent`` ([-20, 20]), ``posted_speed_kmh`` ((0, 200]), ``name`` and ``id``.
 
-GPX 1.1: every ``trk/trkseg`` (points ``trkpt``) and every ``rte`` (points ``rtept``), attributes ``lat`` and
-``lon`` in decimal degrees (WGS84, the GPX schema's datum) and an optional ``<ele>`` [m]. The part's
-properties hold its ``name``. Parsing uses defusedxml (no external entities, no entity expansion).
+GPX 1.1: every ``trk/trkseg`` (points ``trkpt``) and every ``rte`` (points ``rtept``), attributes ``lat`` and ``lon`` in
+decimal degrees (WGS84, the GPX schema's datum) and an optional ``<ele>`` [m]. The part's properties hold its ``name``.
+Parsing refuses what defusedxml refuses (no external entities, no entity expansion; :mod:`app.formats.xmlsafe`).
 
 Limits (module constants, refused beyond them with the part named):
 
@@ -36,9 +36,9 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from defusedxml import ElementTree as SafeET
 from defusedxml.common import DefusedXmlException
 
+from app.formats import xmlsafe
 from engine.route import segment_lengths_m
 
 MIN_VERTICES = 2
@@ -304,10 +304,10 @@ def read_gpx(text: str | bytes, *, max_vertices: int = MAX_VERTICES) -> list[Rou
     """Route parts from a GPX 1.1 document: each track segment and each route, at most ``max_vertices`` vertices in
     all; see the module docstring."""
     try:
-        root = SafeET.fromstring(text)
+        root = xmlsafe.fromstring(text)
     except DefusedXmlException as exc:
         raise RouteFormatError(f"refused: {exc.__class__.__name__} (entities are not allowed)", "GPX") from None
-    except SafeET.ParseError as exc:
+    except xmlsafe.ParseError as exc:
         line, col = getattr(exc, "position", (None, None))
         raise RouteFormatError(f"malformed XML: {exc}", f"GPX line {line}, column {col}") from None
     if _local(root.tag) != "gpx":

@@ -81,9 +81,8 @@ def parse_submission(body: bytes) -> tuple[Operation, Any]:
     data, read, reader = None, (), None
     for candidate in OPERATIONS.values():  # an operation that reads its bulk better than orjson (read_body)
         found = candidate.read_body(body) if candidate.read_body is not None else None
-        if found is not None:
-            (data, part), reader = found, candidate
-            read = (part,)
+        if found is not None:  # (the document without its bulk, what was read of it: handed to the op's parse)
+            data, read, reader = found[0], found[1:], candidate
             break
     if data is None:
         try:

@@ -50,6 +50,7 @@ import orjson
 from app.alignments.curves import plainly_valid
 from app.formats.alignment_io import MAX_CURVES, CurveTable
 from app.formats.decimals import decimals
+from app.formats.jsonpieces import WHITESPACE, skip_whitespace
 
 #: token kinds: what ``bytes.translate`` makes of each byte (0: anything else); a string is its opening quote
 _LIST, _END, _OPEN, _CLOSE, _COMMA, _COLON, _STRING = range(1, 8)
@@ -60,7 +61,7 @@ _SPACE = 0x80  # JSON's whitespace: not a token, counted
 _KINDS = bytearray(256)
 for _byte, _kind in zip(b'[]{},:"', range(1, 8), strict=True):
     _KINDS[_byte] = _kind
-for _byte in b" \t\n\r":
+for _byte in WHITESPACE:
     _KINDS[_byte] = _SPACE
 _KINDS = bytes(_KINDS)
 
@@ -97,9 +98,8 @@ _NULLABLE = (False, False, True, False, True)
 _BY_LENGTH = np.full(32, -1, dtype=np.int64)
 for _code, _key in enumerate(_KEYS):
     _BY_LENGTH[len(_key)] = _code
-_WHITESPACE = b" \t\n\r"  # JSON's four
 _IS_WHITESPACE = np.zeros(256, dtype=bool)
-_IS_WHITESPACE[list(_WHITESPACE)] = True
+_IS_WHITESPACE[list(WHITESPACE)] = True
 
 
 def read_json_curves(
@@ -114,10 +114,10 @@ def read_json_curves(
     key = orjson.dumps(path[-1])
     if body.count(key) != 1:  # the key's text once in the whole body: the `[]` put in its place is that member
         return None
-    opening = _skip_whitespace(body, body.find(key) + len(key))
+    opening = skip_whitespace(body, body.find(key) + len(key))
     if body[opening : opening + 1] != b":":
         return None
-    opening = _skip_whitespace(body, opening + 1)
+    opening = skip_whitespace(body, opening + 1)
     if body[opening : opening + 1] != b"[":
         return None
     try:
@@ -134,12 +134,6 @@ def read_json_curves(
     except (orjson.JSONDecodeError, UnicodeDecodeError, TypeError, KeyError, IndexError, ValueError):
         return None  # on any doubt, the old path (which reports the error, if there is one)
     return data, table
-
-
-def _skip_whitespace(body: bytes, pos: int) -> int:
-    while body[pos : pos + 1] in (b" ", b"\t", b"\n", b"\r"):
-        pos += 1
-    return pos
 
 
 def _curves(body: bytes, opening: int, max_curves: int) -> tuple[int, CurveTable] | None:
@@ -178,9 +172,9 @@ def _cut(body: bytes, lo: int) -> int | None:
     if q < 0 or body.find(b"]", lo, q) >= 0:
         return None
     while q >= 0:
-        comma = _skip_whitespace(body, q + 1)
+        comma = skip_whitespace(body, q + 1)
         if body[comma : comma + 1] == b",":
-            brace = _skip_whitespace(body, comma + 1)
+            brace = skip_whitespace(body, comma + 1)
             if body[brace : brace + 1] == b"{":
                 return comma + 1
         nxt = body.find(b"}", q + 1)

@@ -34,9 +34,17 @@ PIECE_BYTES = 128 * 1024
 #: a key whose text (e.g. ``"curves"``) appears more often than this (as values, say) is not looked for [-]
 MAX_KEY_TEXTS = 64
 
-_WHITESPACE = b" \t\r\n"
+#: JSON's four whitespace bytes (RFC 8259, section 2)
+WHITESPACE = b" \t\r\n"
 _QUOTE, _BACKSLASH, _COMMA, _COLON = 0x22, 0x5C, 0x2C, 0x3A
 _OPENS, _CLOSES = (0x7B, 0x5B), (0x7D, 0x5D)  # { [ and } ]
+
+
+def skip_whitespace(body: bytes, pos: int) -> int:
+    """The first position at or after ``pos`` that is not JSON whitespace (``len(body)`` at the end)."""
+    while pos < len(body) and body[pos] in WHITESPACE:
+        pos += 1
+    return pos
 
 
 class _Scan:
@@ -61,12 +69,6 @@ class _Scan:
         i = bisect.bisect_left(self.at, pos)
         return int(self.depth[i - 1]) if i else 0
 
-    def skip_whitespace(self, pos: int) -> int:
-        body = self.body
-        while pos < len(body) and body[pos] in _WHITESPACE:
-            pos += 1
-        return pos
-
     def member(self, key: str, depth: int, lo: int, hi: int) -> int | None:
         """Where the value of the one member ``key`` of the object at ``depth`` within ``[lo, hi)`` starts (None: not
         there, there twice, or the key's text found more than :data:`MAX_KEY_TEXTS` times: then each is not worth
@@ -78,9 +80,9 @@ class _Scan:
         while pos >= 0:
             opening = bisect.bisect_left(self.quotes, pos) % 2 == 0  # the token's first quote opens a string
             if opening and self.depth_at(pos) == depth:
-                colon = self.skip_whitespace(pos + len(token))
+                colon = skip_whitespace(self.body, pos + len(token))
                 if colon < hi and self.body[colon] == _COLON:
-                    found.append(self.skip_whitespace(colon + 1))
+                    found.append(skip_whitespace(self.body, colon + 1))
             pos = self.body.find(token, pos + 1, hi)
         return found[0] if len(found) == 1 else None
 
@@ -99,7 +101,7 @@ def _locate(body: bytes, path: Sequence[str]) -> tuple[int, int, np.ndarray] | N
     if body.find(b"\\") >= 0:
         return None
     scan = _Scan(body)
-    start = scan.skip_whitespace(0)
+    start = skip_whitespace(body, 0)
     if start >= len(body) or body[start] != 0x7B:
         return None
     span = scan.closing(start)

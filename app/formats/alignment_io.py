@@ -32,7 +32,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from defusedxml.common import DefusedXmlException
 
 from app.formats import xmlsafe
 from app.formats.csv_dialect import CsvDialect, CsvDialectError, detect
@@ -276,35 +275,18 @@ class CurveOverride:
     posted_speed_kmh: float | None = None
 
 
-def _local(tag: str) -> str:
-    return tag.rsplit("}", 1)[-1]
-
-
-def _parse_xml(text: str | bytes):
-    try:
-        root = xmlsafe.fromstring(text)
-    except DefusedXmlException as exc:
-        raise AlignmentFormatError(f"refused: {exc.__class__.__name__} (entities are not allowed)", "LandXML") from None
-    except xmlsafe.ParseError as exc:
-        line, col = getattr(exc, "position", (None, None))
-        raise AlignmentFormatError(f"malformed XML: {exc}", f"LandXML line {line}, column {col}") from None
-    if _local(root.tag) != "LandXML":
-        raise AlignmentFormatError(f"the root element is <{_local(root.tag)}>, not <LandXML>", "LandXML")
-    return root
-
-
 def _landxml_curves(root):
     """(alignment name, curve number, element) of every CoordGeom/Curve of every Alignment."""
-    # endswith first: a C call on every element of the document (a million and more), _local only on the few that pass
-    alignments = [e for e in root.iter() if e.tag.endswith("Alignment") and _local(e.tag) == "Alignment"]
+    # endswith first: a C call on every element of the document (a million and more), local() only on the few that pass
+    alignments = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
     if not alignments:
         raise AlignmentFormatError("no <Alignment> element", "LandXML")
     for a_index, alignment in enumerate(alignments, start=1):
         a_name = alignment.get("name") or f"alignment {a_index}"
         n = 0
-        for geom in (e for e in alignment if _local(e.tag) == "CoordGeom"):
+        for geom in (e for e in alignment if xmlsafe.local(e.tag) == "CoordGeom"):
             for el in geom:
-                if el.tag.endswith("Curve") and _local(el.tag) == "Curve":
+                if el.tag.endswith("Curve") and xmlsafe.local(el.tag) == "Curve":
                     n += 1
                     yield a_name, n, el
 
@@ -326,7 +308,7 @@ def read_landxml(
     """
     overrides = dict(overrides or {})
     curves = _Collector({"radius_m": "radius"}, id_column="name", max_curves=max_curves)
-    for a_name, n, el in _landxml_curves(_parse_xml(text)):
+    for a_name, n, el in _landxml_curves(xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)):
         where = f"Alignment {a_name[:CURVE_ID_MAX_CHARS]!r} CoordGeom Curve #{n}"
         cid = check_curve_id(el.get("name") or f"{a_name}#{n}", where, "name")
         where = f"{where} ({cid!r})"

@@ -36,7 +36,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from defusedxml.common import DefusedXmlException
 
 from app.formats import xmlsafe
 from engine.route import segment_lengths_m
@@ -264,13 +263,9 @@ def read_geojson(doc, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
 # --------------------------------------------------------------------------------------------- GPX
 
 
-def _local(tag: str) -> str:
-    return tag.rsplit("}", 1)[-1]
-
-
 def _child_text(el, name: str) -> str | None:
     for c in el:
-        if _local(c.tag) == name:
+        if xmlsafe.local(c.tag) == name:
             return (c.text or "").strip()
     return None
 
@@ -303,19 +298,11 @@ def _gpx_points(points: list, label: str, tag: str, budget: _Budget) -> tuple[np
 def read_gpx(text: str | bytes, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
     """Route parts from a GPX 1.1 document: each track segment and each route, at most ``max_vertices`` vertices in
     all; see the module docstring."""
-    try:
-        root = xmlsafe.fromstring(text)
-    except DefusedXmlException as exc:
-        raise RouteFormatError(f"refused: {exc.__class__.__name__} (entities are not allowed)", "GPX") from None
-    except xmlsafe.ParseError as exc:
-        line, col = getattr(exc, "position", (None, None))
-        raise RouteFormatError(f"malformed XML: {exc}", f"GPX line {line}, column {col}") from None
-    if _local(root.tag) != "gpx":
-        raise RouteFormatError(f"the root element is <{_local(root.tag)}>, not <gpx>", "GPX")
+    root = xmlsafe.document(text, "gpx", "GPX", RouteFormatError)
     budget, parts = _Budget(max_vertices=max_vertices), []
     t_index = r_index = 0
     for el in root:
-        kind = _local(el.tag)
+        kind = xmlsafe.local(el.tag)
         if kind not in ("trk", "rte"):
             continue
         name = _child_text(el, "name")
@@ -323,17 +310,17 @@ def read_gpx(text: str | bytes, *, max_vertices: int = MAX_VERTICES) -> list[Rou
         props = {"name": name} if name else {}
         if kind == "trk":
             t_index += 1
-            segs = [s for s in el if _local(s.tag) == "trkseg"]
+            segs = [s for s in el if xmlsafe.local(s.tag) == "trkseg"]
             if not segs:
                 raise RouteFormatError("has no trkseg", f"trk[{t_index}]{named}")
             for j, seg in enumerate(segs, start=1):
                 label = f"trk[{t_index}]{named} trkseg[{j}]"
-                lon, lat, ele = _gpx_points([p for p in seg if _local(p.tag) == "trkpt"], label, "trkpt", budget)
+                lon, lat, ele = _gpx_points([p for p in seg if xmlsafe.local(p.tag) == "trkpt"], label, "trkpt", budget)
                 parts.append(_part(label, label, "trkpt", lon, lat, ele, props, budget))
         else:
             r_index += 1
             label = f"rte[{r_index}]{named}"
-            lon, lat, ele = _gpx_points([p for p in el if _local(p.tag) == "rtept"], label, "rtept", budget)
+            lon, lat, ele = _gpx_points([p for p in el if xmlsafe.local(p.tag) == "rtept"], label, "rtept", budget)
             parts.append(_part(label, label, "rtept", lon, lat, ele, props, budget))
         if len(parts) > MAX_PARTS:
             raise RouteFormatError(f"more than {MAX_PARTS} tracks, segments and routes", "GPX")

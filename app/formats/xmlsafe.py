@@ -18,10 +18,11 @@ documents).
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from typing import NoReturn
 from xml.parsers import expat
 
-from defusedxml.common import EntitiesForbidden, ExternalReferenceForbidden
+from defusedxml.common import DefusedXmlException, EntitiesForbidden, ExternalReferenceForbidden
 
 ParseError = ET.ParseError
 
@@ -52,3 +53,24 @@ def fromstring(text: str | bytes) -> ET.Element:
         err.code, err.position = exc.code, (exc.lineno, exc.offset)
         raise err from None
     return ET.fromstring(text)
+
+
+def local(tag: str) -> str:
+    """An element's tag without its namespace (``{http://...}Curve`` -> ``Curve``)."""
+    return tag.rsplit("}", 1)[-1]
+
+
+def document(text: str | bytes, root: str, label: str, error: Callable[[str, str], Exception]) -> ET.Element:
+    """The root element of a document whose root must be ``<root>`` (any namespace); each refusal raised as
+    ``error(message, where)``, ``where`` starting with ``label`` (``"LandXML line 3, column 7"``): the one way the
+    readers of LandXML and GPX word them."""
+    try:
+        element = fromstring(text)
+    except DefusedXmlException as exc:
+        raise error(f"refused: {exc.__class__.__name__} (entities are not allowed)", label) from None
+    except ParseError as exc:
+        line, col = getattr(exc, "position", (None, None))
+        raise error(f"malformed XML: {exc}", f"{label} line {line}, column {col}") from None
+    if local(element.tag) != root:
+        raise error(f"the root element is <{local(element.tag)}>, not <{root}>", label)
+    return element

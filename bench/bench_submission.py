@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 from contextlib import contextmanager
 from pathlib import Path
 from unittest import mock
@@ -23,7 +22,7 @@ import orjson
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from bench.bench_jobs import curves_csv  # noqa: E402
+from bench.bench_jobs import curves_csv, submission_in_process  # noqa: E402
 
 KEYS = ("id", "radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh")
 
@@ -51,32 +50,16 @@ def old_readers():
         yield
 
 
-def submission(body: bytes) -> float:
-    """``parse_submission`` + ``prepare`` of the body [s]."""
-    from app.jobs.base import ResolveContext
-    from app.jobs.service import parse_submission, prepare
-    from app.settings import Settings
-
-    t0 = time.perf_counter()
-    op, parsed = parse_submission(body)
-    prepare(op, parsed, ResolveContext(Settings(), None))
-    return time.perf_counter() - t0
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--curves", type=int, default=1_000_000)
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
-    from app.compute import solvers
-    from app.settings import Settings
-
-    solvers.configure(Settings().solve_threads)
     for form, body in bodies(args.curves).items():
-        submission(body)  # warm: imports, the vehicle's solves
-        new = min(submission(body) for _ in range(args.repeat))
+        submission_in_process(body)  # warm: imports, the vehicle's solves
+        new = min(submission_in_process(body) for _ in range(args.repeat))
         with old_readers():
-            old = min(submission(body) for _ in range(args.repeat))
+            old = min(submission_in_process(body) for _ in range(args.repeat))
         print(
             f"{args.curves:,} curves as {form.upper():4} ({len(body) / 2**20:6.1f} MiB): "
             f"old reader {old:5.2f} s, columns {new:5.2f} s ({old / new:.1f}x)"

@@ -73,9 +73,13 @@ def cache_key(operation: str, resolved: dict[str, Any]) -> str:
 # ----------------------------------------------------------------------------------- the envelope
 
 
-def _mac(secret: bytes, key: str, media_type: str, body: bytes) -> bytes:
-    msg = b"\0".join((key.encode(), media_type.encode(), body))
-    return hmac.new(secret, msg, hashlib.sha256).digest()
+def _mac(secret: bytes, key: str, media_type: str, body: bytes | memoryview) -> bytes:
+    """HMAC-SHA256 over key NUL media type NUL body, fed in pieces (a job's result part is megabytes: not copied
+    into one message first)."""
+    mac = hmac.new(secret, key.encode(), hashlib.sha256)
+    mac.update(b"\0" + media_type.encode() + b"\0")
+    mac.update(body)
+    return mac.digest()
 
 
 def seal(secret: bytes, key: str, media_type: str, body: bytes) -> bytes:
@@ -88,18 +92,19 @@ def unseal(secret: bytes, key: str, value: Any) -> tuple[str, bytes] | None:
     key's value, a truncated or altered body, a value sealed with another secret)."""
     if not isinstance(value, bytes) or not value.startswith(ENVELOPE_MAGIC):
         return None
-    rest = value[len(ENVELOPE_MAGIC) :]
-    mac, rest = rest[:_MAC_SIZE], rest[_MAC_SIZE:]
-    media, sep, body = rest.partition(b"\0")
-    if not sep:
+    start = len(ENVELOPE_MAGIC) + _MAC_SIZE
+    end = value.find(b"\0", start)  # the media type's end (the body is checked in place and copied once)
+    if end < 0:
         return None
     try:
-        media_type = media.decode("ascii")
+        media_type = value[start:end].decode("ascii")
     except UnicodeDecodeError:
         return None
-    if not hmac.compare_digest(mac, _mac(secret, key, media_type, body)):
+    if not hmac.compare_digest(
+        value[len(ENVELOPE_MAGIC) : start], _mac(secret, key, media_type, memoryview(value)[end + 1 :])
+    ):
         return None
-    return media_type, body
+    return media_type, value[end + 1 :]
 
 
 # ------------------------------------------------------------------------------------- the tiers

@@ -7,9 +7,17 @@ SRT). :func:`write_rows` writes ``n`` rows of a layout as one text: constants ar
 the constants beside it (its texts are written once, not once per row), two code columns side by side become one,
 and the rows are put together by slice assignment and one ``join``.
 
-The numbers are written by ``orjson`` a whole column at a time (:func:`json_floats`, :func:`csv_floats`): an
-alignment answer holds about twenty numbers a row, and a Python call per number would cost more than everything
-else it takes to write the row (``bench/bench_service.py`` times the 100,000-curve answer as JSON and as CSV).
+Numbers come as :class:`Floats` (a block of float columns, written as CSV or JSON). Two writers take a layout:
+
+- the compiled one, ``app.formats._rowwriter`` (``app/formats/csrc/rowwriter.c``, built by ``setup.py`` where a C
+  compiler is found), writes each number with Ryu's shortest digits in ``repr``'s layout and the rows without a
+  Python object per cell, with the GIL released: a job's result is rendered on GET while the event loop sends it
+  (``bench/bench_jobs.py``: the streaming figures of docs/jobs.md);
+- the Python one (the reference, and what runs where the module was not built) writes the numbers with ``orjson``
+  a whole block at a time (:func:`json_floats`, :func:`csv_floats`: a Python call per number would cost more than
+  everything else it takes to write the row) and puts the rows together by slice assignment and one ``join``.
+
+Both write the same bytes (tests/api/test_segments.py, on random layouts and numbers of every magnitude).
 """
 
 from __future__ import annotations
@@ -19,6 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import orjson
+
+try:
+    from app.formats import _rowwriter
+except ImportError:  # built without a C compiler: the Python writer (the same text, slower)
+    _rowwriter = None
 
 #: a code table of at most this many texts takes in the constants beside it, and two such side by side are merged
 SMALL_TABLE = 256
@@ -37,7 +50,37 @@ class Codes:
         return table[self.codes].tolist()
 
 
-Segment = bytes | list[bytes] | Codes
+@dataclass(frozen=True)
+class Floats:
+    """Consecutive float columns written as CSV fields joined by commas (:func:`csv_floats`; ``safe``: the caller
+    has found with :func:`repr_safe` that orjson writes every value as ``repr`` does), or one column as JSON numbers
+    (``json``: :func:`json_floats`)."""
+
+    columns: Sequence[np.ndarray]
+    json: bool = False
+    safe: bool = False
+
+    def rows(self) -> list[bytes]:
+        if self.json:
+            (values,) = self.columns
+            return json_floats(values)
+        return csv_floats(self.columns, safe=self.safe)
+
+    def compiled(self) -> list[bytes | tuple | list[bytes]]:
+        """The block as segments of the compiled writer: a column a segment (commas between for CSV). A JSON column
+        with a value orjson writes otherwise than ``repr`` (the compiled writer's layout) comes written by orjson."""
+        if self.json:
+            (values,) = self.columns
+            values = np.ascontiguousarray(values, dtype=np.float64)
+            return [(1, values, 1)] if repr_safe(values) else [json_floats(values)]
+        out: list[bytes | tuple | list[bytes]] = []
+        for k, values in enumerate(self.columns):
+            out += [b","] if k else []
+            out.append((1, np.ascontiguousarray(values, dtype=np.float64), 0))
+        return out
+
+
+Segment = bytes | list[bytes] | Codes | Floats
 
 
 def _small(s: Segment) -> bool:
@@ -80,21 +123,42 @@ def _joined_codes(segments: list[Segment]) -> list[Segment]:
 
 def write_rows(segments: Sequence[Segment], n: int, *, drop: int = 0) -> bytes:
     """``n`` rows of the layout ``segments`` as one text (each row its segments' texts in order), less its first
-    ``drop`` bytes (a separator before the first row: cut before the join, not by copying the text)."""
+    ``drop`` bytes (a separator before the first row), by the compiled writer where it was built."""
     if n == 0:
         return b""
     layout = _joined_codes(_absorbed(segments))
+    return _write_compiled(layout, n, drop) if _rowwriter is not None else _write_python(layout, n, drop)
+
+
+def _write_compiled(layout: list[Segment], n: int, drop: int) -> bytes:
+    items: list[bytes | tuple | list[bytes]] = []
+    for s in layout:
+        if isinstance(s, Floats):
+            items += s.compiled()
+        elif isinstance(s, Codes):
+            items.append((0, np.ascontiguousarray(s.codes, dtype=np.intp), tuple(s.texts)))
+        else:
+            items.append(s if isinstance(s, bytes | list) else list(s))
+    return _rowwriter.write(items, n, drop)
+
+
+def _write_python(layout: list[Segment], n: int, drop: int) -> bytes:
+    """The rows put together by slice assignment and one ``join`` (the first ``drop`` bytes cut from the parts
+    before the join, not by copying the text)."""
     width = len(layout)
     parts: list[bytes] = [b""] * (width * n)
     for j, s in enumerate(layout):
         if isinstance(s, bytes):
             parts[j::width] = [s] * n
             continue
-        values = s.rows() if isinstance(s, Codes) else s
+        values = s.rows() if isinstance(s, Codes | Floats) else s
         if len(values) != n:
             raise ValueError(f"segment {j} has {len(values)} rows, not {n}")
         parts[j::width] = values
-    parts[0] = parts[0][drop:]
+    k = 0
+    while drop and k < len(parts):  # the text's first ``drop`` bytes, whichever parts they fall in
+        cut = min(drop, len(parts[k]))
+        parts[k], drop, k = parts[k][cut:], drop - cut, k + 1
     return b"".join(parts)
 
 

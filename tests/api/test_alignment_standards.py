@@ -149,10 +149,11 @@ def many_curves(n: int, seed: int = 3) -> list[dict]:
 
 
 @pytest.mark.parametrize("accept", ["application/json", "text/csv"])
-def test_an_answer_of_several_chunks_is_one_whole_body_as_pydantic_writes(client, accept):
-    from app.alignments.rows import ROWS_PER_CHUNK
+def test_an_answer_of_several_chunks_is_one_whole_body_as_pydantic_writes(client, accept, monkeypatch):
+    from app.alignments import rows
 
-    curves = many_curves(2 * ROWS_PER_CHUNK + 700)  # two vehicles: chunks of each, the last ones short
+    monkeypatch.setattr(rows, "ROWS_PER_CHUNK", 1_000)  # chunks of a size the synchronous limit holds several of
+    curves = many_curves(2 * rows.ROWS_PER_CHUNK + 700)  # two vehicles: chunks of each, the last ones short
     body = {"vehicles": [BTRAIN, "table23-semitrailer"], "curves": curves, "rear_llt_limit": 0.6}
     r = client.post(PATH, json=body, headers={"accept": accept})
     assert r.status_code == 200 and r.headers["x-cache"] == "miss"

@@ -5,8 +5,9 @@
  * exists: an alignment job's result is rendered on GET, and the Python writer spends about 1.7 us a CSV row making a
  * bytes object per cell, holding the GIL that the event loop needs to send what it made (docs/jobs.md: CSV at about
  * 115 MiB/s against the 300 MiB/s of issue 22). Here a row costs the shortest-digits conversion of its numbers
- * (Ryu, vendored in ryu/: Ulf Adams, "Ryu: fast float-to-string conversion", PLDI 2018; Apache-2.0 or Boost) and
- * the copies, and the GIL is released while it writes.
+ * (Ryu, vendored in ryu/: Ulf Adams, "Ryu: fast float-to-string conversion", PLDI 2018; Apache-2.0 or Boost; the
+ * files of github.com/ulfjack/ryu at e3e090c66efd258a0cee50ee93411ec99668d416, unmodified) and the copies, and the
+ * GIL is released while it writes.
  *
  * write(layout, n, drop) -> bytes: n rows, each the segments of `layout` in order, less the text's first `drop`
  * bytes. A segment is one of

@@ -9,7 +9,6 @@ One renderer for every answer made of assessed curves: the synchronous alignment
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -17,8 +16,17 @@ import numpy as np
 import orjson
 
 from app.alignments.answer import AlignmentAnswer, VehicleAnswer
-from app.formats.segments import Codes, Floats, Segment, repr_safe, write_rows
-from app.formats.tables import Text, csv_field, csv_fields, csv_line, target_columns, target_columns_of
+from app.formats.segments import Codes, Floats, Segment, Slices, write_rows
+from app.formats.tables import (
+    FORMULA_PREFIXES,
+    Text,
+    csv_field,
+    csv_fields,
+    csv_line,
+    target_columns,
+    target_columns_of,
+)
+from app.formats.texts import Texts
 from engine import ENGINE_VERSION
 from engine.road import GOVERNED_BY, AlignmentColumns
 
@@ -171,21 +179,47 @@ def json_vehicle_head(
 JSON_VEHICLE_END = b"]}"
 
 
-def _json_ids(ids: list[str]) -> list[bytes]:
-    """Each id as a JSON string: one ``orjson`` call, cut at the ``","`` between two strings (inside a JSON string a
-    quote is always escaped, so that sequence is only ever between two)."""
+def _json_ids(ids: Sequence[str]) -> Segment | tuple[Segment, ...]:
+    """Each id as a JSON string. Ids kept as one blob (:class:`Texts`, a job's part) that need no escape (no quote,
+    backslash or control character: orjson escapes only those) are their slices between quotes; others, one
+    ``orjson`` call cut at the ``","`` between two strings (inside a JSON string a quote is always escaped, so that
+    sequence is only ever between two)."""
+    if isinstance(ids, Texts):
+        span = ids.span()
+        if not ((span == 0x22) | (span == 0x5C) | (span < 0x20)).any():
+            return (b'"', Slices(ids.blob, ids.starts, ids.ends), b'"')
+        ids = list(ids)
     return (b'"' + orjson.dumps(ids)[2:-2].replace(b'","', b'"\x01"') + b'"').split(b"\x01")
+
+
+_FORMULA_BYTES = np.frombuffer("".join(FORMULA_PREFIXES).encode(), np.uint8)
+
+
+def _csv_ids(ids: Sequence[str]) -> tuple[Segment, ...]:
+    """Each id as its CSV field (:func:`app.formats.tables.csv_fields`: quoted, quotes doubled, a formula prefix
+    neutralised). Ids kept as one blob (:class:`Texts`) with no quote and no formula prefix are their slices between
+    quotes."""
+    if isinstance(ids, Texts):
+        span = ids.span()
+        if not (span == 0x22).any() and not np.isin(ids.first_bytes(), _FORMULA_BYTES).any():
+            return (b'"', Slices(ids.blob, ids.starts, ids.ends), b'"')
+        ids = list(ids)
+    return (csv_fields(ids),)
 
 
 _SOURCE = ("given", "derived")  # by superelevation_derived
 _MEETS = (None, False, True)  # by meets_standard_min_radius + 1
 
 
-def _json_layout(fields: list[tuple[str, Segment]]) -> list[Segment]:
-    """An object per row: each field's key before its value, the row opened with ``,{`` (the comma before a row)."""
+def _json_layout(fields: list[tuple[str, Segment | tuple[Segment, ...]]]) -> list[Segment]:
+    """An object per row: each field's key before its value (a segment, or a tuple of them), the row opened with
+    ``,{`` (the comma before a row)."""
     out: list[Segment] = []
     for k, (name, value) in enumerate(fields):
-        out += [(b",{" if k == 0 else b",") + orjson.dumps(name) + b":", value]
+        out += [
+            (b",{" if k == 0 else b",") + orjson.dumps(name) + b":",
+            *(value if isinstance(value, tuple) else [value]),
+        ]
     return [*out, b"}"]
 
 
@@ -206,7 +240,7 @@ def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, 
     pairs = v.pair_of_row[sl]
     judged = (v.srts[pairs] >= 0).astype(np.intp)
     f = _json_column
-    fields: list[tuple[str, Segment]] = [
+    fields: list[tuple[str, Segment | tuple[Segment, ...]]] = [
         ("id", _json_ids(t.ids[sl])),
         ("station_m", f(t.station_m[sl])),
         ("radius_m", f(c.radius_m[sl])),
@@ -275,48 +309,19 @@ def _csv_checks(v: VehicleAnswer, names: list[str]) -> bytes:
     return b",".join(csv_field(flat.get(column, [None])[0]) for column in target_columns(names))
 
 
-def _float_columns(answer: AlignmentAnswer, v: VehicleAnswer) -> list[np.ndarray]:
-    c = v.columns
-    return [answer.curves.station_m, *(getattr(c, name) for name in _CSV_FLOATS), v.tilt_deg]
-
-
-_CSV_FLOATS = (
-    "radius_m",
-    "superelevation_percent",
-    "grade_percent",
-    "srt_g",
-    "rollover_speed_kmh",
-    "side_friction_speed_kmh",
-    "side_friction",
-    "safe_speed_kmh",
-    "posted_speed_kmh",
-    "margin_kmh",
-    "standard_min_radius_m",
-)
-
-
-def csv_repr_safe(answer: AlignmentAnswer, v: VehicleAnswer) -> bool:
-    """Whether every number of one vehicle's CSV rows is written by orjson as ``repr`` writes it
-    (:func:`app.formats.segments.repr_safe`): checked once for the whole answer, not for each chunk."""
-    return all(map(repr_safe, _float_columns(answer, v)))
-
-
-def csv_rows(
-    answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str], *, safe: bool = False
-) -> bytes:
-    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`; ``safe``:
-    :func:`csv_repr_safe`): the cells of :func:`rows` as :func:`app.formats.tables.csv_lines` writes them (tested),
-    written a block of number columns at a time (:mod:`app.formats.segments`); the vehicle's fields, the level-road
-    SRT and the target checks written once."""
+def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, columns: list[str]) -> bytes:
+    """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`): the cells of :func:`rows`
+    as :func:`app.formats.tables.csv_lines` writes them (tested), written a block of number columns at a time
+    (:mod:`app.formats.segments`); the vehicle's fields, the level-road SRT and the target checks written once."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
-    f = functools.partial(Floats, safe=safe)
+    f = Floats
     pairs = v.pair_of_row[sl]
     names = target_names(answer.resolved)
     vehicle = [v.index, None if v.preset is None else Text(v.preset), None if v.saved_id is None else Text(v.saved_id)]
     checks = _csv_checks(v, names)
     segments: list[Segment] = [
         b",".join(map(csv_field, vehicle)) + b",",
-        csv_fields(t.ids[sl]),
+        *_csv_ids(t.ids[sl]),
         b",",
         f([t.station_m[sl], c.radius_m[sl], c.superelevation_percent[sl]]),
         b",",
@@ -355,9 +360,8 @@ def csv_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     yield csv_line(columns)
     n = len(answer.curves)
     for v in answer.vehicles:
-        safe = csv_repr_safe(answer, v)
         for start in range(0, n, ROWS_PER_CHUNK):
-            yield csv_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), columns, safe=safe)
+            yield csv_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), columns)
 
 
 def render(answer: AlignmentAnswer, csv: bool) -> Iterator[bytes]:

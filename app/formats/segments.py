@@ -1,11 +1,11 @@
 """Rows of text put together from segments, with no Python work per cell.
 
 A row layout is a list of *segments*: a constant (``bytes``: a separator, a JSON key, a line end), a column of
-per-row texts (``list[bytes]``, one per row), or :class:`Codes` (a small table of texts and each row's index into
-it: a boolean, a category, an error, or anything shared by many rows such as the cells that depend only on a row's
-SRT). :func:`write_rows` writes ``n`` rows of a layout as one text: constants are merged, a small code table takes in
-the constants beside it (its texts are written once, not once per row), two code columns side by side become one,
-and the rows are put together by slice assignment and one ``join``.
+per-row texts (``list[bytes]``, one per row, or :class:`Slices` of one blob), numbers (:class:`Floats`), or
+:class:`Codes` (a small table of texts and each row's index into it: a boolean, a category, an error, or anything
+shared by many rows such as the cells that depend only on a row's SRT). :func:`write_rows` writes ``n`` rows of a
+layout as one text: constants are merged, a small code table takes in the constants beside it (its texts are
+written once, not once per row), two code columns side by side become one.
 
 Numbers come as :class:`Floats` (a block of float columns, written as CSV or JSON). Two writers take a layout:
 
@@ -52,19 +52,17 @@ class Codes:
 
 @dataclass(frozen=True)
 class Floats:
-    """Consecutive float columns written as CSV fields joined by commas (:func:`csv_floats`; ``safe``: the caller
-    has found with :func:`repr_safe` that orjson writes every value as ``repr`` does), or one column as JSON numbers
-    (``json``: :func:`json_floats`)."""
+    """Consecutive float columns written as CSV fields joined by commas (:func:`csv_floats`), or one column as
+    JSON numbers (``json``: :func:`json_floats`)."""
 
     columns: Sequence[np.ndarray]
     json: bool = False
-    safe: bool = False
 
     def rows(self) -> list[bytes]:
         if self.json:
             (values,) = self.columns
             return json_floats(values)
-        return csv_floats(self.columns, safe=self.safe)
+        return csv_floats(self.columns)
 
     def compiled(self) -> list[bytes | tuple | list[bytes]]:
         """The block as segments of the compiled writer: a column a segment (commas between for CSV). A JSON column
@@ -80,7 +78,24 @@ class Floats:
         return out
 
 
-Segment = bytes | list[bytes] | Codes | Floats
+@dataclass(frozen=True)
+class Slices:
+    """A column of texts given as slices of one blob: row i's text is ``blob[starts[i]:ends[i]]``
+    (:class:`app.formats.texts.Texts`: no bytes object per row for the compiled writer)."""
+
+    blob: bytes
+    starts: np.ndarray
+    ends: np.ndarray
+
+    def rows(self) -> list[bytes]:
+        blob = self.blob
+        return [blob[a:b] for a, b in zip(self.starts.tolist(), self.ends.tolist(), strict=True)]
+
+    def compiled(self) -> tuple:
+        return (2, self.blob, np.ascontiguousarray(self.starts, np.intp), np.ascontiguousarray(self.ends, np.intp))
+
+
+Segment = bytes | list[bytes] | Codes | Floats | Slices
 
 
 def _small(s: Segment) -> bool:
@@ -135,6 +150,8 @@ def _write_compiled(layout: list[Segment], n: int, drop: int) -> bytes:
     for s in layout:
         if isinstance(s, Floats):
             items += s.compiled()
+        elif isinstance(s, Slices):
+            items.append(s.compiled())
         elif isinstance(s, Codes):
             items.append((0, np.ascontiguousarray(s.codes, dtype=np.intp), tuple(s.texts)))
         else:
@@ -151,7 +168,7 @@ def _write_python(layout: list[Segment], n: int, drop: int) -> bytes:
         if isinstance(s, bytes):
             parts[j::width] = [s] * n
             continue
-        values = s.rows() if isinstance(s, Codes | Floats) else s
+        values = s.rows() if isinstance(s, Codes | Floats | Slices) else s
         if len(values) != n:
             raise ValueError(f"segment {j} has {len(values)} rows, not {n}")
         parts[j::width] = values
@@ -177,15 +194,14 @@ def repr_safe(block: np.ndarray) -> bool:
     return not (np.any(a >= 1e16) or np.any((a < 1e-4) & (a != 0)))
 
 
-def csv_floats(columns: Sequence[np.ndarray], *, safe: bool = False) -> list[bytes]:
+def csv_floats(columns: Sequence[np.ndarray]) -> list[bytes]:
     """Consecutive float columns as the CSV fields of each row, joined by commas: each value as ``repr`` writes it,
     nan as an empty field (the table of :mod:`app.formats.tables`). One ``orjson`` call for the block; a block
-    holding a value orjson writes otherwise than ``repr`` is written value by value (``safe``: the caller has
-    found that no value is such, :func:`repr_safe` of the whole columns, once for all their chunks)."""
+    holding a value orjson writes otherwise than ``repr`` is written value by value."""
     block = np.column_stack([np.asarray(c, dtype=np.float64) for c in columns])
     if not len(block):
         return []
-    if not safe and not repr_safe(block):
+    if not repr_safe(block):
         return [
             ",".join("" if x != x else repr(x) for x in row).encode()  # x != x: nan
             for row in block.tolist()

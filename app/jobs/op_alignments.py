@@ -31,7 +31,6 @@ from app.alignments.rows import (
     ROWS_PER_CHUNK,
     csv_columns,
     csv_header,
-    csv_repr_safe,
     csv_rows,
     json_head,
     json_rows,
@@ -63,6 +62,7 @@ from app.alignments.service import (
 from app.compute import solvers
 from app.compute.resolved import ResolvedAlignment
 from app.formats.alignment_io import CurveTable
+from app.formats.texts import Texts, TextsError
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveContext
 from app.jobs.columns import ColumnsError, codes_within, pack_columns, require, strings, unpack_columns
@@ -163,6 +163,9 @@ def resolve(parsed, ctx: ResolveContext) -> AlignmentJob:
 #: a part's inputs (:mod:`app.jobs.columns`): its curves (ids in the meta), and the distinct (superelevation, grade)
 #: pairs they use, sorted, with each vehicle's SRT on each (``pair_srt``: vehicle-major, nv x m) and the code of the
 #: reason a pair has none (``pair_error``, into the meta's ``errors``; -1: solved), solved once for the whole job
+#: the curve ids as one UTF-8 blob and each one's end in it (:class:`~app.formats.texts.Texts`: read back with no
+#: Python string per id; in a JSON list they took 0.1 s per million to parse and check, at each read)
+_ID_SCHEMA = {"id_text": "|u1", "id_end": "<i8"}
 INPUT_SCHEMA = {
     "radius_m": "<f8",
     "superelevation_percent": "<f8",
@@ -173,6 +176,7 @@ INPUT_SCHEMA = {
     "pair_grade_percent": "<f8",
     "pair_srt": "<f8",
     "pair_error": "<i4",
+    **_ID_SCHEMA,
 }
 
 
@@ -193,8 +197,22 @@ def pack_input(t: CurveTable, pairs: np.ndarray, srt: np.ndarray, error: np.ndar
         "pair_grade_percent": pairs[:, 1],
         "pair_srt": srt,
         "pair_error": error,
+        **_id_columns(t),
     }
-    return pack_columns(columns, INPUT_SCHEMA, {"ids": t.ids, "errors": errors, "vehicles": int(srt.shape[0])})
+    return pack_columns(columns, INPUT_SCHEMA, {"errors": errors, "vehicles": int(srt.shape[0])})
+
+
+def _id_columns(t: CurveTable) -> dict[str, np.ndarray]:
+    blob, ends = Texts.of(t.ids).stored()
+    return {"id_text": blob, "id_end": ends}
+
+
+def _ids(cols: dict[str, np.ndarray], n: int) -> Texts:
+    """The part's curve ids read back (no Python string each: :class:`~app.formats.texts.Texts`), checked."""
+    try:
+        return Texts.read(cols["id_text"].data, cols["id_end"], n)
+    except TextsError as exc:
+        raise ColumnsError(f"the part's curve ids: {exc}") from None
 
 
 def unpack_input(data: bytes) -> PartInput:
@@ -206,7 +224,7 @@ def unpack_input(data: bytes) -> PartInput:
     require(cols, _COLUMNS, n)
     require(cols, ("pair_grade_percent",), m)
     require(cols, ("pair_srt", "pair_error"), nv * m)
-    ids = strings(meta.get("ids"), n, "the part's curve ids")
+    ids = _ids(cols, n)
     errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
     codes_within(cols["pair_error"], -1, len(errors) - 1, "pair_error")
     pairs = cols["pair_superelevation_percent"] + 1j * cols["pair_grade_percent"]
@@ -278,8 +296,8 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
     return Prepared(shared, list(zip(parts, inputs, strict=True)), etag)
 
 
-#: a part's result for one vehicle (:mod:`app.jobs.columns`): the curves' ids (meta) and stations, and the
-#: engine's :class:`~engine.road.AlignmentColumns` (the reasons ``error`` indexes in the meta)
+#: a part's result for one vehicle (:mod:`app.jobs.columns`): the curves' stations, the engine's
+#: :class:`~engine.road.AlignmentColumns` (the reasons ``error`` indexes in the meta) and the curves' ids
 RESULT_SCHEMA = {
     "station_m": "<f8",
     "radius_m": "<f8",
@@ -299,8 +317,9 @@ RESULT_SCHEMA = {
     "standard_min_radius_m": "<f8",
     "meets_standard_min_radius": "|i1",
     "error": "<i4",
+    **_ID_SCHEMA,
 }
-_ENGINE_COLUMNS = [name for name in RESULT_SCHEMA if name != "station_m"]
+_ENGINE_COLUMNS = [name for name in RESULT_SCHEMA if name != "station_m" and name not in _ID_SCHEMA]
 
 
 def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
@@ -317,7 +336,7 @@ def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
 def pack_result(curves: CurveTable, cols: AlignmentColumns) -> bytes:
     """One vehicle's result over a part's curves as columns (:data:`RESULT_SCHEMA`)."""
     arrays = {"station_m": curves.station_m, **{name: getattr(cols, name) for name in _ENGINE_COLUMNS}}
-    return pack_columns(arrays, RESULT_SCHEMA, {"ids": curves.ids, "errors": cols.errors})
+    return pack_columns(arrays | _id_columns(curves), RESULT_SCHEMA, {"errors": cols.errors})
 
 
 def unpack_result(data: bytes) -> tuple[CurveTable, AlignmentColumns]:
@@ -325,8 +344,8 @@ def unpack_result(data: bytes) -> tuple[CurveTable, AlignmentColumns]:
     :class:`~app.jobs.columns.ColumnsError`, a ValueError)."""
     cols, meta = unpack_columns(data, RESULT_SCHEMA)
     n = cols["radius_m"].size
-    require(cols, list(RESULT_SCHEMA), n)
-    ids = strings(meta.get("ids"), n, "the part's curve ids")
+    require(cols, [name for name in RESULT_SCHEMA if name not in _ID_SCHEMA], n)
+    ids = _ids(cols, n)
     errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
     codes_within(cols["governed_by"], 0, len(GOVERNED_BY) - 1, "governed_by")
     codes_within(cols["meets_standard_min_radius"], -1, 1, "meets_standard_min_radius")
@@ -399,11 +418,10 @@ def _rendered(
     """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks."""
     answer, va = _part_answer(resolved, v, data, level)
     n = len(answer.curves)
-    safe = fmt == "csv" and csv_repr_safe(answer, va)
     for start in range(0, n, ROWS_PER_CHUNK):
         stop = min(start + ROWS_PER_CHUNK, n)
         if fmt == "csv":
-            yield csv_rows(answer, va, start, stop, columns, safe=safe)
+            yield csv_rows(answer, va, start, stop, columns)
         else:
             yield json_rows(answer, va, start, stop, comma=start > 0)
 

@@ -60,6 +60,32 @@ def test_alignment_result_is_the_synchronous_answer_byte_for_byte(accept):
     assert job.content == sync.content
 
 
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_alignment_result_with_ids_of_every_kind_is_the_synchronous_answer(accept):
+    """Ids that CSV must escape or neutralise (a quote, a formula prefix) or JSON must escape (a quote, a backslash),
+    and ids of several bytes a character, in parts of 250 curves: the first part holds the odd ones, the next
+    plain ASCII and the last plain UTF-8 (a part's stored ids are written as slices of one blob where they need no
+    escape, else one by one): the same bytes as the synchronous answer."""
+    odd = ['say "hi"', "=SUM(A1)", "+1", "-3", "@x", "back\\slash", " lead", "x,y"]
+    curves = random_curves(750, seed=7)
+    for k, c in enumerate(curves):
+        if k < 250:
+            c["id"] = f"{odd[k % len(odd)]}{k}"
+        elif k >= 500:
+            c["id"] = f"Kurve-ä-曲線-{k}-🚛"
+    req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": curves}
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=500)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 3
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    assert job.content == sync.content
+    assert ('"say ""hi""0"' if accept else '"say \\"hi\\"0"').encode() in job.content
+    assert "Kurve-ä-曲線-500-🚛".encode() in job.content
+
+
 def test_alignment_csv_document_job_matches_synchronous_upload():
     """Curves sent as CSV text: the same answer as the synchronous request with the same CSV."""
     rows = random_curves(1200, seed=5)

@@ -15,6 +15,8 @@
  *   list of n bytes                row i's text is item i;
  *   (0, codes, texts)              codes: n integers (a C-contiguous buffer of Py_ssize_t, numpy's intp), texts: a
  *                                  tuple of bytes; row i's text is texts[codes[i]];
+ *   (2, blob, starts, ends)        blob: bytes, starts and ends: n integers each (as codes); row i's text is
+ *                                  blob[starts[i]:ends[i]] (a column of texts kept as one blob: app.formats.texts);
  *   (1, values, mode)              values: n float64 (a C-contiguous buffer of doubles), each written as Python's
  *                                  repr writes it (the shortest text that reads back to it, repr's layout: "0.0",
  *                                  "350.0", "0.0001", "1e-05", "1e+16"); mode 0 (CSV) writes nan as an empty field
@@ -31,7 +33,7 @@
 /* the longest float: a sign, 17 digits, a point and "e-308" (or "0.000" and 17 digits), with room to spare */
 #define FLOAT_MAX 26
 
-enum { SEG_CONSTANT, SEG_TEXTS, SEG_CODES, SEG_FLOATS };
+enum { SEG_CONSTANT, SEG_TEXTS, SEG_CODES, SEG_SLICES, SEG_FLOATS };
 enum { MODE_CSV = 0, MODE_JSON = 1 };
 
 typedef struct {
@@ -48,8 +50,12 @@ typedef struct {
     const Py_ssize_t *codes;
     const double *values;
     int mode;
+    const char *blob; /* SEG_SLICES: blob[codes[i]:ends[i]] */
+    const Py_ssize_t *ends;
     Py_buffer view;
     int has_view;
+    Py_buffer view2;
+    int has_view2;
 } segment_t;
 
 /* the m's decimal digits (n of them) written at out */
@@ -197,28 +203,31 @@ static void release(segment_t *segs, Py_ssize_t count, Py_ssize_t n) {
         if (g->has_view) {
             PyBuffer_Release(&g->view);
         }
+        if (g->has_view2) {
+            PyBuffer_Release(&g->view2);
+        }
     }
     PyMem_Free(segs);
 }
 
 /* a C-contiguous one-dimensional buffer of n items of the given size, or -1 with an exception */
-static int take_buffer(segment_t *g, PyObject *obj, Py_ssize_t itemsize, const char *formats, Py_ssize_t n,
-                       Py_ssize_t index, const char *what) {
-    if (PyObject_GetBuffer(obj, &g->view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+static int take_buffer(Py_buffer *view, int *has_view, PyObject *obj, Py_ssize_t itemsize, const char *formats,
+                       Py_ssize_t n, Py_ssize_t index, const char *what) {
+    if (PyObject_GetBuffer(obj, view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
         return -1;
     }
-    g->has_view = 1;
-    const char *format = g->view.format == NULL ? "B" : g->view.format;
+    *has_view = 1;
+    const char *format = view->format == NULL ? "B" : view->format;
     if (format[0] == '=' || format[0] == '@' || format[0] == '<') {
         format++;
     }
-    if (g->view.itemsize != itemsize || format[0] == '\0' || format[1] != '\0' || strchr(formats, format[0]) == NULL) {
+    if (view->itemsize != itemsize || format[0] == '\0' || format[1] != '\0' || strchr(formats, format[0]) == NULL) {
         PyErr_Format(PyExc_TypeError, "segment %zd: %s must be a buffer of %zd-byte items ('%s'), not '%s'", index,
-                     what, itemsize, formats, g->view.format == NULL ? "B" : g->view.format);
+                     what, itemsize, formats, view->format == NULL ? "B" : view->format);
         return -1;
     }
-    if (g->view.len / itemsize != n) {
-        PyErr_Format(PyExc_ValueError, "segment %zd has %zd rows, not %zd", index, g->view.len / itemsize, n);
+    if (view->len / itemsize != n) {
+        PyErr_Format(PyExc_ValueError, "segment %zd has %zd rows, not %zd", index, view->len / itemsize, n);
         return -1;
     }
     return 0;
@@ -262,13 +271,48 @@ static int prepare(segment_t *g, PyObject *item, Py_ssize_t n, Py_ssize_t index,
         *size = total;
         return 0;
     }
-    long tag;
-    if (!PyTuple_Check(item) || PyTuple_GET_SIZE(item) != 3 || !PyLong_Check(PyTuple_GET_ITEM(item, 0)) ||
-        ((tag = PyLong_AsLong(PyTuple_GET_ITEM(item, 0))) != 0 && tag != 1)) {
+    long tag = -1;
+    if (PyTuple_Check(item) && PyTuple_GET_SIZE(item) >= 3 && PyLong_Check(PyTuple_GET_ITEM(item, 0))) {
+        tag = PyLong_AsLong(PyTuple_GET_ITEM(item, 0));
+    }
+    if (!((tag == 0 || tag == 1) && PyTuple_GET_SIZE(item) == 3) && !(tag == 2 && PyTuple_GET_SIZE(item) == 4)) {
+        PyErr_Clear();
         PyErr_Format(PyExc_TypeError,
-                     "segment %zd must be bytes, a list of bytes, (0, codes, texts) or (1, values, mode), not %.100s",
+                     "segment %zd must be bytes, a list of bytes, (0, codes, texts), (1, values, mode) or "
+                     "(2, blob, starts, ends), not %.100s",
                      index, Py_TYPE(item)->tp_name);
         return -1;
+    }
+    if (tag == 2) {
+        g->kind = SEG_SLICES;
+        PyObject *blob = PyTuple_GET_ITEM(item, 1); /* the tuple holds it while the GIL is released */
+        if (!PyBytes_Check(blob)) {
+            PyErr_Format(PyExc_TypeError, "segment %zd: the blob must be bytes, not %.100s", index,
+                         Py_TYPE(blob)->tp_name);
+            return -1;
+        }
+        if (take_buffer(&g->view, &g->has_view, PyTuple_GET_ITEM(item, 2), (Py_ssize_t)sizeof(Py_ssize_t), "lqn", n,
+                        index, "starts") < 0 ||
+            take_buffer(&g->view2, &g->has_view2, PyTuple_GET_ITEM(item, 3), (Py_ssize_t)sizeof(Py_ssize_t), "lqn",
+                        n, index, "ends") < 0) {
+            return -1;
+        }
+        g->blob = PyBytes_AS_STRING(blob);
+        g->codes = (const Py_ssize_t *)g->view.buf;
+        g->ends = (const Py_ssize_t *)g->view2.buf;
+        const Py_ssize_t length = PyBytes_GET_SIZE(blob);
+        Py_ssize_t total = 0;
+        for (Py_ssize_t i = 0; i < n; i++) {
+            const Py_ssize_t a = g->codes[i], b = g->ends[i];
+            if (a < 0 || a > b || b > length) {
+                PyErr_Format(PyExc_ValueError, "segment %zd, row %zd: [%zd, %zd) is not a range of the blob's %zd bytes",
+                             index, i, a, b, length);
+                return -1;
+            }
+            total += b - a;
+        }
+        *size = total;
+        return 0;
     }
     if (tag == 0) {
         g->kind = SEG_CODES;
@@ -277,7 +321,8 @@ static int prepare(segment_t *g, PyObject *item, Py_ssize_t n, Py_ssize_t index,
             PyErr_Format(PyExc_TypeError, "segment %zd: the texts must be a tuple of bytes, at least one", index);
             return -1;
         }
-        if (take_buffer(g, PyTuple_GET_ITEM(item, 1), (Py_ssize_t)sizeof(Py_ssize_t), "lqn", n, index, "codes") < 0) {
+        if (take_buffer(&g->view, &g->has_view, PyTuple_GET_ITEM(item, 1), (Py_ssize_t)sizeof(Py_ssize_t), "lqn", n,
+                        index, "codes") < 0) {
             return -1;
         }
         g->codes = (const Py_ssize_t *)g->view.buf;
@@ -316,7 +361,8 @@ static int prepare(segment_t *g, PyObject *item, Py_ssize_t n, Py_ssize_t index,
         }
         return -1;
     }
-    if (take_buffer(g, PyTuple_GET_ITEM(item, 1), (Py_ssize_t)sizeof(double), "d", n, index, "values") < 0) {
+    if (take_buffer(&g->view, &g->has_view, PyTuple_GET_ITEM(item, 1), (Py_ssize_t)sizeof(double), "d", n, index,
+                    "values") < 0) {
         return -1;
     }
     g->values = (const double *)g->view.buf;
@@ -337,6 +383,10 @@ static char *put_rows(const segment_t *segs, Py_ssize_t count, Py_ssize_t n, cha
             case SEG_TEXTS:
                 t = &g->texts[i];
                 break;
+            case SEG_SLICES:
+                memcpy(out, g->blob + g->codes[i], (size_t)(g->ends[i] - g->codes[i]));
+                out += g->ends[i] - g->codes[i];
+                continue;
             case SEG_CODES: {
                 const Py_ssize_t k = g->codes[i];
                 if (k < 0 || k >= g->ntexts) {
@@ -358,6 +408,7 @@ static char *put_rows(const segment_t *segs, Py_ssize_t count, Py_ssize_t n, cha
 }
 
 static PyObject *rowwriter_write(PyObject *self, PyObject *args) {
+    (void)self;
     PyObject *layout;
     Py_ssize_t n, drop;
     if (!PyArg_ParseTuple(args, "O!nn:write", &PyList_Type, &layout, &n, &drop)) {
@@ -424,6 +475,7 @@ static PyMethodDef methods[] = {
 
 static struct PyModuleDef module = {
     PyModuleDef_HEAD_INIT, "_rowwriter", "Rows of text from segments, in C (app.formats.segments).", -1, methods,
+    NULL, NULL, NULL, NULL,
 };
 
 PyMODINIT_FUNC PyInit__rowwriter(void) { return PyModule_Create(&module); }

@@ -19,7 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from app.formats import segments
-from app.formats.segments import SMALL_TABLE, Codes, Floats, write_rows
+from app.formats.segments import SMALL_TABLE, Codes, Floats, Slices, write_rows
 
 
 @pytest.fixture(scope="module")
@@ -88,14 +88,19 @@ _TEXT = st.binary(max_size=6)
 
 @st.composite
 def _layouts(draw):
-    """A layout of every segment kind (constants, per-row texts, small and large code tables, CSV float blocks and
+    """A layout of every segment kind (constants, per-row texts as bytes and as slices of a blob, small and large
+    code tables, CSV float blocks and
     JSON float columns, of numbers of every magnitude and of few decimals), its row count and a drop."""
     n = draw(st.integers(0, 12))
     layout = []
     for _ in range(draw(st.integers(1, 8))):
-        kind = draw(st.sampled_from(["constant", "texts", "codes", "csv", "json"]))
+        kind = draw(st.sampled_from(["constant", "texts", "slices", "codes", "csv", "json"]))
         if kind == "constant":
             layout.append(draw(_TEXT))
+        elif kind == "slices":
+            blob = draw(st.binary(max_size=30))
+            bounds = [sorted(draw(st.lists(st.integers(0, len(blob)), min_size=2, max_size=2))) for _ in range(n)]
+            layout.append(Slices(blob, np.array([a for a, _ in bounds], np.intp), np.array([b for _, b in bounds])))
         elif kind == "texts":
             layout.append(draw(st.lists(_TEXT, min_size=n, max_size=n)))
         elif kind == "codes":
@@ -159,6 +164,15 @@ def test_bad_layouts_are_refused(rowwriter):
         rowwriter.write([3.5], n, 0)
     with pytest.raises(ValueError, match="mode must be 0"):
         rowwriter.write([(1, floats, 2)], n, 0)
+    with pytest.raises(ValueError, match=r"row 1: \[2, 4\) is not a range of the blob's 3 bytes"):
+        rowwriter.write([(2, b"abc", np.array([0, 2], np.intp), np.array([1, 4], np.intp))], n, 0)
+    with pytest.raises(ValueError, match=r"row 0: \[2, 1\) is not a range"):
+        rowwriter.write([(2, b"abc", np.array([2, 0], np.intp), np.array([1, 1], np.intp))], n, 0)
+    with pytest.raises(TypeError, match="the blob must be bytes"):
+        rowwriter.write([(2, "abc", np.array([0, 0], np.intp), np.array([1, 1], np.intp))], n, 0)
+    assert rowwriter.write([(2, b"abc", np.array([0, 1], np.intp), np.array([1, 3], np.intp)), b";"], n, 0) == (
+        b"a;bc;"
+    )
     assert rowwriter.write([b"ab", (1, floats, 0)], n, 3) == b".0ab2.0"
     assert rowwriter.write([b"ab", (1, floats, 0)], n, 99) == b""
     assert rowwriter.write([b"ab"], 0, 0) == b""

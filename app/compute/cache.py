@@ -107,6 +107,26 @@ def unseal(secret: bytes, key: str, value: Any) -> tuple[str, bytes] | None:
     return media_type, value[end + 1 :]
 
 
+def envelope_size(media_type: str) -> int:
+    """The bytes an envelope of ``media_type`` puts before its body."""
+    return len(ENVELOPE_MAGIC) + _MAC_SIZE + len(media_type.encode()) + 1
+
+
+def peek(value: Any) -> tuple[str, bytes] | None:
+    """(media type, the body's bytes present) of an envelope or of its first bytes, NOT verified: a look at a value
+    whose body is verified (:func:`unseal`) when it is used; None for anything that does not begin as an envelope."""
+    if not isinstance(value, bytes) or not value.startswith(ENVELOPE_MAGIC):
+        return None
+    start = len(ENVELOPE_MAGIC) + _MAC_SIZE
+    end = value.find(b"\0", start)
+    if end < 0:
+        return None
+    try:
+        return value[start:end].decode("ascii"), value[end + 1 :]
+    except UnicodeDecodeError:
+        return None
+
+
 # ------------------------------------------------------------------------------------- the tiers
 
 

@@ -60,6 +60,8 @@ class PartContext(Protocol):
 
 #: (part, section) -> the fragment's bytes, in pieces
 Fragments = Callable[[int, int], Iterator[bytes]]
+#: (part, section, length) -> the first ``length`` bytes of a raw fragment, not verified (a look at its layout)
+FragmentHeads = Callable[[int, int, int], bytes]
 
 
 @dataclass(frozen=True)
@@ -81,8 +83,9 @@ class Operation:
     #: the one format the parts write their fragments in (kept raw, rendered by ``assemble``); None: the parts write
     #: each of :attr:`formats`, rendered (zlib-compressed)
     stored: str | None = None
-    #: reads every fragment of a done job and raises ValueError when one cannot be rendered (None: no check)
-    check: Callable[[dict[str, Any], list[dict[str, Any]], Fragments], None] | None = None
+    #: looks at the fragments of a done job before its result is answered and raises ValueError when they cannot
+    #: be rendered (None: no check); ``assemble`` checks each again as it reads it
+    check: Callable[[dict[str, Any], list[dict[str, Any]], Fragments, FragmentHeads], None] | None = None
     #: reads a submission's body whose bulk it can read better than ``orjson`` into a Python object per item (an
     #: alignment's plain JSON curves, straight into columns): (the document with that bulk taken out, what it read),
     #: the second handed to :attr:`parse` after the request; None when the body is not its operation's or not of

@@ -47,21 +47,28 @@ def pack_columns(columns: Mapping[str, np.ndarray], schema: Schema, meta: dict[s
     return b"".join([_HEAD.pack(MAGIC, VERSION, len(header)), header, *(a.tobytes() for a in arrays)])
 
 
-def unpack_columns(data: bytes, schema: Schema) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
-    """The columns (read-only views of ``data``) and the meta of a :func:`pack_columns` blob of ``schema``; raises
-    :class:`ColumnsError` for anything else."""
-    if not isinstance(data, bytes | bytearray | memoryview) or len(data) < _HEAD.size:
+def header_length(prefix: bytes | memoryview) -> int:
+    """The bytes a blob's magic, version and header take (what :func:`read_header` needs of it), from its first
+    bytes; raises :class:`ColumnsError` when those are not a columns blob's."""
+    if len(prefix) < _HEAD.size:
         raise ColumnsError("the columns are truncated (no header)")
-    magic, version, size = _HEAD.unpack_from(data)
+    magic, version, size = _HEAD.unpack_from(prefix)
     if magic != MAGIC:
         raise ColumnsError("not a columns blob (bad magic)")
     if version != VERSION:
         raise ColumnsError(f"columns of version {version}, this reader knows {VERSION}")
-    start = _HEAD.size + size
-    if start > len(data):
+    return _HEAD.size + size
+
+
+def read_header(prefix: bytes | memoryview, schema: Schema) -> tuple[dict[str, int], dict[str, Any]]:
+    """Each column's length and the meta of a :func:`pack_columns` blob of ``schema``, from its first
+    :func:`header_length` bytes or more (the values are not looked at); raises :class:`ColumnsError` for another
+    magic, version or layout, or a header that does not parse."""
+    start = header_length(prefix)
+    if start > len(prefix):
         raise ColumnsError("the columns' header is truncated")
     try:
-        header = orjson.loads(bytes(data[_HEAD.size : start]))
+        header = orjson.loads(bytes(prefix[_HEAD.size : start]))
     except orjson.JSONDecodeError as exc:
         raise ColumnsError(f"the columns' header does not parse: {exc}") from None
     specs = header.get("columns") if isinstance(header, dict) else None
@@ -71,16 +78,28 @@ def unpack_columns(data: bytes, schema: Schema) -> tuple[dict[str, np.ndarray], 
     expected = [[n, d] for n, d in schema.items()]
     if [s[:2] if isinstance(s, list) and len(s) == 3 else None for s in specs] != expected:
         raise ColumnsError(f"the columns are {[s[:2] for s in specs if isinstance(s, list)]}, not {expected}")
-    out: dict[str, np.ndarray] = {}
-    offset = start
-    for name, dtype, length in specs:
+    lengths: dict[str, int] = {}
+    for name, _, length in specs:
         if type(length) is not int or length < 0:
             raise ColumnsError(f"column {name!r} has no valid length")
+        lengths[name] = length
+    return lengths, meta
+
+
+def unpack_columns(data: bytes, schema: Schema) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    """The columns (read-only views of ``data``) and the meta of a :func:`pack_columns` blob of ``schema``; raises
+    :class:`ColumnsError` for anything else."""
+    if not isinstance(data, bytes | bytearray | memoryview):
+        raise ColumnsError("the columns are truncated (no header)")
+    lengths, meta = read_header(data, schema)
+    out: dict[str, np.ndarray] = {}
+    offset = header_length(data)
+    for name, dtype in schema.items():
         dt = np.dtype(dtype)
-        end = offset + length * dt.itemsize
+        end = offset + lengths[name] * dt.itemsize
         if end > len(data):
             raise ColumnsError(f"column {name!r} is truncated")
-        out[name] = np.frombuffer(data, dtype=dt, count=length, offset=offset)
+        out[name] = np.frombuffer(data, dtype=dt, count=lengths[name], offset=offset)
         offset = end
     if offset != len(data):
         raise ColumnsError(f"{len(data) - offset} bytes after the last column")

@@ -29,6 +29,7 @@ class StorageFull(Exception):
 
 class KV(Protocol):
     def get(self, key: str) -> bytes | None: ...
+    def head(self, key: str, length: int) -> bytes | None: ...
     def mget(self, keys: list[str]) -> list[bytes | None]: ...
     def set(self, key: str, value: bytes, ttl_s: int) -> None: ...
     def set_many(self, items: dict[str, bytes], ttl_s: int) -> None: ...
@@ -87,6 +88,11 @@ class MemoryKV:
     def get(self, key: str) -> bytes | None:
         with self._lock:
             return self._live(key, time.time())
+
+    def head(self, key: str, length: int) -> bytes | None:
+        """The value's first ``length`` bytes (all of a shorter one); None when absent."""
+        value = self.get(key)
+        return None if value is None else value[:length]
 
     def mget(self, keys: list[str]) -> list[bytes | None]:
         with self._lock:
@@ -178,6 +184,15 @@ class RedisKV:
 
     def get(self, key: str) -> bytes | None:
         return self.redis.get(key)
+
+    def head(self, key: str, length: int) -> bytes | None:
+        """The value's first ``length`` bytes (GETRANGE: the rest does not cross the network); None when absent
+        (GETRANGE answers an empty string for a missing key: EXISTS tells them apart)."""
+        with self.redis.pipeline(transaction=False) as p:
+            p.exists(key)
+            p.getrange(key, 0, max(length, 1) - 1)
+            found, value = p.execute()
+        return value[:length] if found else None
 
     def mget(self, keys: list[str]) -> list[bytes | None]:
         return list(self.redis.mget(keys)) if keys else []

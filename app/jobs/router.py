@@ -227,6 +227,12 @@ def _fragments(jobs: Backend, view: JobView, op: Operation, fmt: str):
     return lambda k, s: store.read_fragment(view.id, keys[k][s], compressed=compressed)
 
 
+def _fragment_heads(jobs: Backend, view: JobView, op: Operation, fmt: str):
+    """(part, section, length) -> the first bytes of the stored fragment (its layout, unverified), for ``check``."""
+    keys = jobs.store.fragment_keys(view, op.stored or fmt)
+    return lambda k, s, length: jobs.store.fragment_head(keys[k][s], length)
+
+
 def _invalid(jobs: Backend, view: JobView, exc: Exception) -> None:
     _log.error("job_result_invalid", job=view.id, error=f"{type(exc).__name__}: {exc}")
     detail = f"{type(exc).__name__}: {exc}"
@@ -240,7 +246,8 @@ def _check_result(jobs: Backend, view: JobView, op: Operation, fmt: str) -> bool
     if op.check is None:
         return True
     try:
-        op.check(view.record.shared, [p.meta or {} for p in view.parts], _fragments(jobs, view, op, fmt))
+        metas = [p.meta or {} for p in view.parts]
+        op.check(view.record.shared, metas, _fragments(jobs, view, op, fmt), _fragment_heads(jobs, view, op, fmt))
     except (ValueError, KeyError, TypeError, IndexError) as exc:
         _invalid(jobs, view, exc)
         return False

@@ -39,7 +39,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from app.compute.cache import seal, unseal
+from app.compute.cache import envelope_size, peek, seal, unseal
 from app.jobs.kv import KV, PREFIX
 from app.logs import get_logger
 from app.metrics import JOB_PART_RETRIES, JOBS
@@ -527,6 +527,15 @@ class JobStore:
     def missing_fragments(self, view: JobView, fmt: str) -> int:
         keys = [k for part in self.fragment_keys(view, fmt) for k in part]
         return len(keys) - self.kv.exists(keys)
+
+    def fragment_head(self, key: str, length: int) -> bytes:
+        """The first ``length`` bytes (fewer if it is shorter) of a raw fragment's body, NOT verified (only its
+        envelope and media type are looked at; :meth:`read_fragment` verifies the body when it is used): a cheap look
+        at its layout without reading it whole. Raises :class:`ValueError` when it is gone or not a raw fragment."""
+        opened = peek(self.kv.head(key, envelope_size(RAW_FRAGMENT_TYPE) + length))
+        if opened is None or opened[0] != RAW_FRAGMENT_TYPE:
+            raise ValueError(f"{key} is missing (expired?) or not a job fragment (bad envelope or media type)")
+        return opened[1][:length]
 
     def read_fragment(self, job_id: str, key: str, *, compressed: bool = True) -> Iterator[bytes]:
         """The fragment under ``key``, decompressed, in pieces (a raw one whole, ``compressed=False``); raises

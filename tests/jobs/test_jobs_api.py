@@ -578,13 +578,22 @@ def test_rows_of_every_kind_rendered_from_columns_are_the_synchronous_answer(acc
         assert any(r["meets_standard_min_radius"] is False for r in rows)
 
 
-def _corrupt(c, location: str, body: bytes) -> None:
-    """Replace part 0's stored columns of vehicle 0 by ``body``, sealed as this deployment seals (so only the
-    columns' own checks can refuse it)."""
+def _corrupt(c, location: str, body: bytes, part: int = 0, *, sealed: bool = True) -> None:
+    """Replace a part's stored columns of vehicle 0 by ``body``, sealed as this deployment seals (so only the
+    columns' own checks can refuse it), or with a seal whose MAC is wrong (``sealed=False``)."""
     store = c.app.state.jobs.store
     view = store.view(location.rsplit("/", 1)[1])
-    key = store.fragment_keys(view, "columns")[0][0]
-    store.kv.set(key, store._seal(key, RAW_FRAGMENT_TYPE, body), 60)
+    key = store.fragment_keys(view, "columns")[part][0]
+    value = store._seal(key, RAW_FRAGMENT_TYPE, body)
+    if not sealed:
+        value = value[:9] + bytes(32) + value[41:]  # ROLLOVER1, then a MAC of zeros
+    store.kv.set(key, value, 60)
+
+
+def _good(c, location: str, part: int) -> bytes:
+    store = c.app.state.jobs.store
+    view = store.view(location.rsplit("/", 1)[1])
+    return b"".join(store.read_fragment(view.id, store.fragment_keys(view, "columns")[part][0], compressed=False))
 
 
 @pytest.mark.parametrize(
@@ -599,23 +608,76 @@ def _corrupt(c, location: str, body: bytes) -> None:
     ids=["truncated", "magic", "version", "trailing", "empty"],
 )
 def test_a_part_whose_columns_do_not_read_is_a_failed_job_never_a_500(damage):
-    """A part's stored columns that are sealed but do not read back (truncated, another layout or version): the
+    """The first part's stored columns sealed but not reading back (truncated, another layout or version): the
     result is 409 (the job failed with job-state-invalid naming the reason), before any byte of the answer."""
     req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
     with make_client(Settings(jobs_part_size=100)) as c:
         location, status = run(c, "alignments.assess", req)
         assert status["status"] == "done"
-        store = c.app.state.jobs.store
-        view = store.view(location.rsplit("/", 1)[1])
-        key = store.fragment_keys(view, "columns")[0][0]
-        good = b"".join(store.read_fragment(view.id, key, compressed=False))
-        _corrupt(c, location, damage(good))
+        _corrupt(c, location, damage(_good(c, location, 0)))
         for accept in ("application/json", "text/csv"):
             r = c.get(location + "/result", headers={"accept": accept})
             assert r.status_code == 409 and r.json()["job_status"] == "failed"
         body = c.get(location).json()
         assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
         assert "ColumnsError" in body["error"]["detail"]
+
+
+@pytest.mark.parametrize(
+    "damage",
+    [
+        lambda b: b"XCOLS" + b[5:],  # another magic
+        lambda b: b[:5] + b"\x09\x00" + b[7:],  # another version
+        lambda b: b[:11] + b[11:].replace(b'"radius_m"', b'"radius_x"', 1),  # another layout
+        lambda b: b[:8],  # no whole header
+        lambda b: b"",
+    ],
+    ids=["magic", "version", "layout", "no-header", "empty"],
+)
+def test_a_later_part_of_another_layout_is_refused_before_the_answer(damage):
+    """Parts after the first are looked at by their first bytes before the answer starts (not read whole: that
+    read them all twice): one of another magic, version or layout, or without a whole header, makes the result 409
+    and the job failed, before any byte of the answer."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == 3
+        _corrupt(c, location, damage(_good(c, location, 2)), part=2)
+        r = c.get(location + "/result", headers={"accept": "text/csv"})
+        assert r.status_code == 409 and r.json()["job_status"] == "failed"
+        body = c.get(location).json()
+        assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
+        assert "ColumnsError" in body["error"]["detail"]
+
+
+@pytest.mark.parametrize(
+    ("damage", "sealed", "reason"),
+    [
+        (lambda b: b[: len(b) // 2], True, "ColumnsError"),  # truncated
+        (lambda b: b + b"\x00" * 8, True, "ColumnsError"),  # trailing bytes
+        (lambda b: b, False, "not sealed by this deployment"),  # the MAC does not verify
+    ],
+    ids=["truncated", "trailing", "mac"],
+)
+def test_a_later_part_that_fails_as_it_is_streamed_ends_the_answer_and_fails_the_job(damage, sealed, reason):
+    """A later part whose layout looks right but whose body does not verify (altered since it was written) is found
+    when the stream reaches it, and is never used: the answer stops before its rows (never complete, so a client
+    cannot take it for the whole), the job is failed with the reason, and the result is 409 from then on."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["parts"]["total"] == 3
+        whole = c.get(location + "/result", headers={"accept": "text/csv"}).content
+        _corrupt(c, location, damage(_good(c, location, 2)), part=2, sealed=sealed)
+        r = c.get(location + "/result", headers={"accept": "text/csv"})
+        assert r.status_code == 200  # the answer had started
+        lines = r.content.count(b"\r\n")
+        assert len(r.content) < len(whole) and lines <= 1 + 200  # the header and at most the first two parts
+        assert whole.startswith(r.content)
+        body = c.get(location).json()
+        assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
+        assert reason in body["error"]["detail"]
+        assert c.get(location + "/result").status_code == 409
 
 
 def test_a_part_with_codes_outside_their_tables_is_refused():

@@ -18,7 +18,7 @@ import orjson
 import pytest
 
 from app.jobs import op_alignments
-from app.jobs.kv import PREFIX, RedisKV
+from app.jobs.kv import PREFIX, MemoryKV, RedisKV
 from app.jobs.store import JobStore
 from app.settings import Settings
 
@@ -119,6 +119,20 @@ def listening(url: str, n: int, timeout_s: float = 60.0) -> None:
 def parts_of(url: str, job_id: str):
     store = JobStore(RedisKV(url), SECRET.encode(), lease_s=LEASE_S, max_attempts=3)
     return store.view(job_id).parts
+
+
+def test_head_is_the_first_bytes_of_a_value_in_redis_as_in_memory(redis_server):
+    """KV.head (a fragment's layout looked at before a job's result is answered): GETRANGE on Redis, a slice in
+    memory; a missing key is None, an empty value is empty."""
+    for kv in (RedisKV(redis_server.url), MemoryKV(2**20)):
+        kv.set(PREFIX + "test:head", b"0123456789", 60)
+        kv.set(PREFIX + "test:empty", b"", 60)
+        assert kv.head(PREFIX + "test:head", 4) == b"0123"
+        assert kv.head(PREFIX + "test:head", 99) == b"0123456789"
+        assert kv.head(PREFIX + "test:head", 0) == b""
+        assert kv.head(PREFIX + "test:empty", 4) == b""
+        assert kv.head(PREFIX + "test:absent", 4) is None
+        kv.delete([PREFIX + "test:head", PREFIX + "test:empty"])
 
 
 def test_one_job_runs_across_two_worker_processes(redis_server, workers):

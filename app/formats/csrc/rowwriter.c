@@ -58,20 +58,36 @@ typedef struct {
     int has_view2;
 } segment_t;
 
-/* the m's decimal digits (n of them) written at out */
+/* v's 8 decimal digits (v < 10^8, leading zeros written) at p */
+static inline void put_8digits(char *p, uint32_t v) {
+    const uint32_t hi = v / 10000, lo = v % 10000;
+    memcpy(p, DIGIT_TABLE + 2 * (hi / 100), 2);
+    memcpy(p + 2, DIGIT_TABLE + 2 * (hi % 100), 2);
+    memcpy(p + 4, DIGIT_TABLE + 2 * (lo / 100), 2);
+    memcpy(p + 6, DIGIT_TABLE + 2 * (lo % 100), 2);
+}
+
+/* m's decimal digits (n of them, m < 10^17) written at out: blocks of eight in 32-bit arithmetic, then pairs */
 static inline void put_digits(char *out, uint64_t m, int n) {
     char *p = out + n;
-    while (m >= 100) {
-        const uint32_t r = (uint32_t)(m % 100);
-        m /= 100;
+    while (n > 8) {
+        const uint64_t q = m / 100000000;
+        p -= 8;
+        put_8digits(p, (uint32_t)(m - q * 100000000));
+        m = q;
+        n -= 8;
+    }
+    uint32_t r = (uint32_t)m;
+    while (r >= 100) {
+        p -= 2;
+        memcpy(p, DIGIT_TABLE + 2 * (r % 100), 2);
+        r /= 100;
+    }
+    if (r >= 10) {
         p -= 2;
         memcpy(p, DIGIT_TABLE + 2 * r, 2);
-    }
-    if (m >= 10) {
-        p -= 2;
-        memcpy(p, DIGIT_TABLE + 2 * m, 2);
     } else {
-        *--p = (char)('0' + m);
+        *--p = (char)('0' + r);
     }
 }
 
@@ -145,14 +161,16 @@ static inline char *put_float(char *out, double x, int mode) {
     }
     const int n = (int)decimalLength17(m);
     const int point = e + n; /* x = 0.d1d2...dn * 10^point */
-    char digits[20];
-    put_digits(digits, m, n);
-    if (point <= -4 || point > 16) {
-        *out++ = digits[0];
+    /* the digits are written straight into out, then moved or followed as the layout asks: out has room for
+     * FLOAT_MAX bytes here whatever this number's length (the caller's bound) */
+    if (point <= -4 || point > 16) { /* d.ddde+XX */
+        put_digits(out + 1, m, n);
+        out[0] = out[1];
         if (n > 1) {
-            *out++ = '.';
-            memcpy(out, digits + 1, (size_t)(n - 1));
-            out += n - 1;
+            out[1] = '.';
+            out += n + 1;
+        } else {
+            out += 1;
         }
         int k = point - 1;
         *out++ = 'e';
@@ -167,25 +185,28 @@ static inline char *put_float(char *out, double x, int mode) {
         memcpy(out, DIGIT_TABLE + 2 * k, 2);
         return out + 2;
     }
-    if (point <= 0) {
-        memcpy(out, "0.", 2);
-        out += 2;
-        memset(out, '0', (size_t)(-point));
-        out += -point;
-        memcpy(out, digits, (size_t)n);
+    if (point <= 0) { /* 0.000ddd */
+        *out++ = '0';
+        *out++ = '.';
+        for (int z = 0; z < -point; z++) {
+            *out++ = '0';
+        }
+        put_digits(out, m, n);
         return out + n;
     }
-    if (point < n) {
-        memcpy(out, digits, (size_t)point);
-        out += point;
-        *out++ = '.';
-        memcpy(out, digits + point, (size_t)(n - point));
-        return out + (n - point);
+    if (point < n) { /* ddd.ddd */
+        put_digits(out + 1, m, n);
+        for (int i = 0; i < point; i++) {
+            out[i] = out[i + 1];
+        }
+        out[point] = '.';
+        return out + n + 1;
     }
-    memcpy(out, digits, (size_t)n);
+    put_digits(out, m, n); /* ddd000.0 */
     out += n;
-    memset(out, '0', (size_t)(point - n));
-    out += point - n;
+    for (int z = 0; z < point - n; z++) {
+        *out++ = '0';
+    }
     memcpy(out, ".0", 2);
     return out + 2;
 }

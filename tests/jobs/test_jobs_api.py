@@ -42,19 +42,26 @@ def run(client, operation: str, request: dict, headers=None) -> tuple[str, dict]
 # ------------------------------------------------------------------------------- byte-identical results
 
 
+def job_and_sync(req: dict, accept: str | None, part_size: int, parts: int):
+    """(the job's status, its result, the synchronous answer) of an alignment request run as a job in parts of
+    ``part_size`` rows (``parts`` of them, checked) and sent to POST /v1/alignments/assess, both with ``accept``."""
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=part_size)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done" and status["parts"]["total"] == parts
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    return status, job, sync
+
+
 @pytest.mark.parametrize("accept", [None, "text/csv"])
 def test_alignment_result_is_the_synchronous_answer_byte_for_byte(accept):
     """Two vehicles, 3,000 curves split into parts of 500 rows (250 curves): the job's JSON and CSV are the bytes
     POST /v1/alignments/assess answers, with the same ETag (its cache key)."""
     req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": random_curves(3000, seed=2)}
-    headers = {"accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=500)) as c:
-        location, status = run(c, "alignments.assess", req)
-        assert status["status"] == "done" and status["parts"]["total"] == 12
-        assert status["done"] == status["total"] == 6000 and status["unit"] == "rows"
-        job = c.get(location + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
+    status, job, sync = job_and_sync(req, accept, 500, 12)
+    assert status["done"] == status["total"] == 6000 and status["unit"] == "rows"
     assert job.headers["content-type"] == sync.headers["content-type"]
     assert job.headers["etag"] == sync.headers["etag"]
     assert job.content == sync.content
@@ -74,13 +81,7 @@ def test_alignment_result_with_ids_of_every_kind_is_the_synchronous_answer(accep
         elif k >= 500:
             c["id"] = f"Kurve-ä-曲線-{k}-🚛"
     req = {"vehicles": ["table16-btrain", "table23-semitrailer"], "curves": curves}
-    headers = {"accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=500)) as c:
-        location, status = run(c, "alignments.assess", req)
-        assert status["status"] == "done" and status["parts"]["total"] == 3
-        job = c.get(location + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
+    _, job, sync = job_and_sync(req, accept, 500, 3)
     assert job.content == sync.content
     assert ('"say ""hi""0"' if accept else '"say \\"hi\\"0"').encode() in job.content
     assert "Kurve-ä-曲線-500-🚛".encode() in job.content
@@ -562,14 +563,8 @@ def test_rows_of_every_kind_rendered_from_columns_are_the_synchronous_answer(acc
         "targets": {"a": 0.3, "b": 0.45, "c": 0.3},
         "curves": curves,
     }
-    headers = {"accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=120)) as c:
-        location, status = run(c, "alignments.assess", req)
-        assert status["status"] == "done" and status["parts"]["total"] == 15
-        assert status["done"] == status["total"] == 1800
-        job = c.get(location + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
+    status, job, sync = job_and_sync(req, accept, 120, 15)
+    assert status["done"] == status["total"] == 1800
     assert job.headers["etag"] == sync.headers["etag"]
     assert job.content == sync.content
     if accept is None:
@@ -733,13 +728,8 @@ def test_a_landxml_job_keeps_the_stations_in_its_columns(accept):
         f'<Alignments><Alignment name="A1"><CoordGeom>{items}</CoordGeom></Alignment></Alignments></LandXML>'
     )
     req = {"vehicle": "table16-btrain", "landxml": {"document": document, "superelevation_percent": 4.0}}
-    headers = {"accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=100)) as c:
-        location, status = run(c, "alignments.assess", req)
-        assert status["status"] == "done" and status["parts"]["total"] == 4
-        job = c.get(location + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200 and job.content == sync.content
+    _, job, sync = job_and_sync(req, accept, 100, 4)
+    assert job.content == sync.content
     if accept is None:
         assert orjson.loads(job.content)["vehicles"][0]["rows"][399]["station_m"] == 100.5 * 399
 

@@ -281,7 +281,10 @@ def _result_chunks(jobs: Backend, view: JobView, op: Operation, fmt: str) -> Ite
         409: {**_PROBLEM, "description": "The job is not done (the problem's `status` says where it is)."},
     },
     description="The job's result once it is done: the same bytes the synchronous endpoint answers for the same "
-    "request, streamed from the stored parts.",
+    "request, streamed from the stored parts. The parts are checked before the answer starts (a part missing or "
+    "of another layout: 409, the job failed) and each again as it is streamed: a part altered since ends the "
+    "answer early (the connection closes before the chunked body's end, which HTTP clients report as an error) "
+    "and fails the job.",
 )
 async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) -> Response:
     view = await run_in_threadpool(visible_job, jobs, job_id, owner)

@@ -28,6 +28,7 @@ import csv
 import io
 import math
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -53,9 +54,10 @@ CSV_OPTIONAL = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
 @dataclass(frozen=True)
 class CurveTable:
     """Curves as columns: ids, radius [m], superelevation [%] (nan: derive it), grade [%], posted speed [km/h]
-    (nan: none) and station [m] (nan: none)."""
+    (nan: none) and station [m] (nan: none). The ids are a list, or one blob (:class:`app.formats.texts.Texts`) in
+    a job's part."""
 
-    ids: list[str]
+    ids: Sequence[str]
     radius_m: np.ndarray
     superelevation_percent: np.ndarray
     grade_percent: np.ndarray

@@ -187,9 +187,14 @@ def _json_ids(ids: Sequence[str]) -> Segment | tuple[Segment, ...]:
     if isinstance(ids, Texts):
         span = ids.span()
         if not ((span == 0x22) | (span == 0x5C) | (span < 0x20)).any():
-            return (b'"', Slices(ids.blob, ids.starts, ids.ends), b'"')
+            return _quoted(ids)
         ids = list(ids)
     return (b'"' + orjson.dumps(ids)[2:-2].replace(b'","', b'"\x01"') + b'"').split(b"\x01")
+
+
+def _quoted(ids: Texts) -> tuple[Segment, ...]:
+    """Each text of ``ids`` between double quotes, as it is in the blob."""
+    return (b'"', Slices(ids.blob, ids.starts, ids.ends), b'"')
 
 
 _FORMULA_BYTES = np.frombuffer("".join(FORMULA_PREFIXES).encode(), np.uint8)
@@ -202,7 +207,7 @@ def _csv_ids(ids: Sequence[str]) -> tuple[Segment, ...]:
     if isinstance(ids, Texts):
         span = ids.span()
         if not (span == 0x22).any() and not np.isin(ids.first_bytes(), _FORMULA_BYTES).any():
-            return (b'"', Slices(ids.blob, ids.starts, ids.ends), b'"')
+            return _quoted(ids)
         ids = list(ids)
     return (csv_fields(ids),)
 

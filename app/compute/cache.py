@@ -90,21 +90,29 @@ def seal(secret: bytes, key: str, media_type: str, body: bytes) -> bytes:
 def unseal(secret: bytes, key: str, value: Any) -> tuple[str, bytes] | None:
     """(media type, body) of a value this deployment wrote under ``key``; None for anything else (garbage, another
     key's value, a truncated or altered body, a value sealed with another secret)."""
+    opened = _envelope(value)
+    if opened is None:
+        return None
+    media_type, body = opened  # the body is checked in place and copied once
+    mac = value[len(ENVELOPE_MAGIC) : len(ENVELOPE_MAGIC) + _MAC_SIZE]
+    if not hmac.compare_digest(mac, _mac(secret, key, media_type, memoryview(value)[body:])):
+        return None
+    return media_type, value[body:]
+
+
+def _envelope(value: Any) -> tuple[str, int] | None:
+    """(media type, where the body starts) of an envelope or of its first bytes, unverified; None for anything that
+    does not begin as an envelope."""
     if not isinstance(value, bytes) or not value.startswith(ENVELOPE_MAGIC):
         return None
     start = len(ENVELOPE_MAGIC) + _MAC_SIZE
-    end = value.find(b"\0", start)  # the media type's end (the body is checked in place and copied once)
+    end = value.find(b"\0", start)
     if end < 0:
         return None
     try:
-        media_type = value[start:end].decode("ascii")
+        return value[start:end].decode("ascii"), end + 1
     except UnicodeDecodeError:
         return None
-    if not hmac.compare_digest(
-        value[len(ENVELOPE_MAGIC) : start], _mac(secret, key, media_type, memoryview(value)[end + 1 :])
-    ):
-        return None
-    return media_type, value[end + 1 :]
 
 
 def envelope_size(media_type: str) -> int:
@@ -115,16 +123,8 @@ def envelope_size(media_type: str) -> int:
 def peek(value: Any) -> tuple[str, bytes] | None:
     """(media type, the body's bytes present) of an envelope or of its first bytes, NOT verified: a look at a value
     whose body is verified (:func:`unseal`) when it is used; None for anything that does not begin as an envelope."""
-    if not isinstance(value, bytes) or not value.startswith(ENVELOPE_MAGIC):
-        return None
-    start = len(ENVELOPE_MAGIC) + _MAC_SIZE
-    end = value.find(b"\0", start)
-    if end < 0:
-        return None
-    try:
-        return value[start:end].decode("ascii"), value[end + 1 :]
-    except UnicodeDecodeError:
-        return None
+    opened = _envelope(value)
+    return None if opened is None else (opened[0], value[opened[1] :])
 
 
 # ------------------------------------------------------------------------------------- the tiers

@@ -17,7 +17,7 @@ Numbers come as :class:`Floats` (a block of float columns, written as CSV or JSO
   a whole block at a time (:func:`json_floats`, :func:`csv_floats`: a Python call per number would cost more than
   everything else it takes to write the row) and puts the rows together by slice assignment and one ``join``.
 
-Both write the same bytes (tests/api/test_segments.py, on random layouts and numbers of every magnitude).
+Both write the same bytes (tests/api/test_rowwriter.py, on random layouts and numbers of every magnitude).
 """
 
 from __future__ import annotations

@@ -473,8 +473,8 @@ def check(shared: dict[str, Any], metas: list[dict[str, Any]], fragments: Fragme
                 _rows(metas, k, v, len(curves))
                 continue
             head = heads(k, v, _HEAD_BYTES)
-            if header_length(head) > len(head):
-                head = heads(k, v, header_length(head))
+            if (needed := header_length(head)) > len(head):
+                head = heads(k, v, needed)
             lengths, _ = read_header(head, RESULT_SCHEMA)
             _rows(metas, k, v, lengths["radius_m"])
 
@@ -483,11 +483,17 @@ def _read_ahead(fragments: Fragments, order: list[tuple[int, int]]) -> Iterator[
     """The fragments of ``order`` read whole (their seals verified), each next one read in a thread while the one
     before it renders: the read's copies and HMAC release the GIL, as the compiled row writer does, so on two cores
     they overlap."""
+
+    def read(k: int, v: int) -> bytes:
+        return b"".join(fragments(k, v))
+
+    if not order:
+        return
     with ThreadPoolExecutor(max_workers=1) as pool:
-        ahead = [pool.submit(lambda k, v: b"".join(fragments(k, v)), *kv) for kv in order[:1]]
-        for i in range(len(order)):
-            data = ahead.pop().result()
-            ahead += [pool.submit(lambda k, v: b"".join(fragments(k, v)), *kv) for kv in order[i + 1 : i + 2]]
+        pending = pool.submit(read, *order[0])
+        for following in [*order[1:], None]:
+            data = pending.result()
+            pending = None if following is None else pool.submit(read, *following)
             yield data
 
 
@@ -501,7 +507,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
     order = [(k, v) for v in range(nv) for k in range(len(metas))]
     read = _read_ahead(fragments, order)
 
-    def part(k: int, v: int) -> Iterator[bytes]:
+    def part(k: int, v: int) -> Iterator[bytes]:  # called in ``order``
         data = next(read)
         return _rendered(resolved, v, data, fmt, columns, _level(shared, v), functools.partial(_rows, metas, k, v))
 

@@ -50,7 +50,8 @@ typedef struct {
     const Py_ssize_t *codes;
     const double *values;
     int mode;
-    const char *blob; /* SEG_SLICES: blob[codes[i]:ends[i]] */
+    const char *blob; /* SEG_SLICES: row i is blob[starts[i]:ends[i]] */
+    const Py_ssize_t *starts;
     const Py_ssize_t *ends;
     Py_buffer view;
     int has_view;
@@ -254,7 +255,8 @@ static int take_buffer(Py_buffer *view, int *has_view, PyObject *obj, Py_ssize_t
     return 0;
 }
 
-/* the largest text a row can take from segment g (the texts and constants exactly; a float its bound) */
+/* segment g read from item, and in *size the most its n rows can take (texts and constants exactly, a code the
+ * longest of its table, a float its bound) */
 static int prepare(segment_t *g, PyObject *item, Py_ssize_t n, Py_ssize_t index, Py_ssize_t *size) {
     if (PyBytes_Check(item)) {
         g->kind = SEG_CONSTANT;
@@ -319,12 +321,12 @@ static int prepare(segment_t *g, PyObject *item, Py_ssize_t n, Py_ssize_t index,
             return -1;
         }
         g->blob = PyBytes_AS_STRING(blob);
-        g->codes = (const Py_ssize_t *)g->view.buf;
+        g->starts = (const Py_ssize_t *)g->view.buf;
         g->ends = (const Py_ssize_t *)g->view2.buf;
         const Py_ssize_t length = PyBytes_GET_SIZE(blob);
         Py_ssize_t total = 0;
         for (Py_ssize_t i = 0; i < n; i++) {
-            const Py_ssize_t a = g->codes[i], b = g->ends[i];
+            const Py_ssize_t a = g->starts[i], b = g->ends[i];
             if (a < 0 || a > b || b > length) {
                 PyErr_Format(PyExc_ValueError, "segment %zd, row %zd: [%zd, %zd) is not a range of the blob's %zd bytes",
                              index, i, a, b, length);
@@ -405,8 +407,8 @@ static char *put_rows(const segment_t *segs, Py_ssize_t count, Py_ssize_t n, cha
                 t = &g->texts[i];
                 break;
             case SEG_SLICES:
-                memcpy(out, g->blob + g->codes[i], (size_t)(g->ends[i] - g->codes[i]));
-                out += g->ends[i] - g->codes[i];
+                memcpy(out, g->blob + g->starts[i], (size_t)(g->ends[i] - g->starts[i]));
+                out += g->ends[i] - g->starts[i];
                 continue;
             case SEG_CODES: {
                 const Py_ssize_t k = g->codes[i];

@@ -23,9 +23,10 @@ What is read (the business logic of the alignment, not its geometric representat
   at the inflection (its curvature is linear in length, so at ``L k1 / (k1 - k2)``); another transition that
   changes side is refused. Zero-length segments (the closing segment IFC 4.3 asks for) are listed as skipped.
 - **Vertical**: each ``IfcAlignmentVertical`` (the alignment's own, then those of its child alignments,
-  ``IfcRelAggregates``) is one :class:`~engine.road.geometry.Profile`: ``CONSTANTGRADIENT``, ``PARABOLICARC`` (the
-  grade linear from ``StartGradient`` to ``EndGradient``) and ``CIRCULARARC`` (``RadiusOfCurvature``, + sag,
-  - crest; checked against the grades) segments. A profile with a vertical ``CLOTHOID`` is skipped whole and listed.
+  ``IfcRelAggregates``, in entity-id order) is one :class:`~engine.road.geometry.Profile`: ``CONSTANTGRADIENT``,
+  ``PARABOLICARC`` (the grade linear from ``StartGradient`` to ``EndGradient``) and ``CIRCULARARC``
+  (``RadiusOfCurvature``, + sag, - crest; checked against the grades) segments. A profile with a vertical
+  ``CLOTHOID`` is skipped whole and listed.
 - **Cant**: ``IfcAlignmentCant`` (``RailHeadDistance``) segments' ``StartCantLeft``/``StartCantRight`` and
   ``EndCantLeft``/``EndCantRight`` (heights of the two sides above the profile) become a
   :class:`~engine.road.geometry.CrossSlope` at each segment's start and end: the plane through both sides, rising
@@ -308,11 +309,12 @@ def _nested(e: Any) -> list[Any]:
 
 
 def _children(alignment: Any) -> list[Any]:
-    """Child alignments (IfcRelAggregates), in order."""
+    """Child alignments (IfcRelAggregates), in the order of their entity ids: an aggregation is a set, without order,
+    and writers number entities as they create them."""
     out: list[Any] = []
     for rel in alignment.IsDecomposedBy or ():
         out.extend(o for o in rel.RelatedObjects or () if o.is_a("IfcAlignment"))
-    return out
+    return sorted(out, key=lambda o: o.id())
 
 
 def _is_child(alignment: Any) -> bool:

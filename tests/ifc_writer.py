@@ -16,7 +16,9 @@ What it writes, so that :func:`app.formats.ifc_io.read_ifc` has something to rea
 
 from __future__ import annotations
 
+import hashlib
 import math
+import re
 from collections.abc import Sequence
 
 import ifcopenshell
@@ -69,6 +71,9 @@ def _horizontal(f, layout, a: AlignmentGeometry, u: float) -> None:
             PredefinedType=kind,
         )
         end = ifcopenshell.api.alignment.create_layout_segment(f, layout, dp)
+        if e.name is not None:
+            (segment,) = (s for r in layout.IsNestedBy for s in r.RelatedObjects if s.DesignParameters == dp)
+            segment.Name = e.name
         m = np.asarray(end)
         point, direction = (float(m[0, 3]), float(m[1, 3])), math.atan2(float(m[1, 0]), float(m[0, 0]))
 
@@ -124,17 +129,17 @@ def write_ifc(
     *,
     unit: str = "metre",
     application: tuple[str, str] = ("rollover tests/ifc_writer.py", "1"),
+    stable: bool = False,
 ) -> bytes:
     """The alignments as an IFC 4.3 (IFC4X3_ADD2) file in ``unit`` (``"metre"``, ``"foot"``,
-    ``"us survey foot"``); ``application`` (name, version) is written as the owning application."""
+    ``"us survey foot"``); ``application`` (name, version) is written as the file's IfcApplication and in the header;
+    ``stable``: GUIDs numbered instead of random, so that the same records give the same bytes."""
     u = UNITS[unit][0]
     f = ifcopenshell.api.project.create_file(version="IFC4X3")
     org = f.createIfcOrganization(Name="rollover")
-    app = f.createIfcApplication(org, application[1], application[0], application[0].split()[0])
-    person = f.createIfcPersonAndOrganization(f.createIfcPerson(FamilyName="tests"), org)
-    history = f.createIfcOwnerHistory(person, app, None, "ADDED", None, None, None, 0)
-    project = ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="rollover road")
-    project.OwnerHistory = history
+    f.createIfcApplication(org, application[1], application[0], application[0].split()[0])
+    # no IfcOwnerHistory (optional in IFC 4.3): with one, IfcOpenShell's API stamps every change with the time
+    ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="rollover road")
     ifcopenshell.api.unit.assign_unit(
         f, units=[_length_unit(f, unit), f.createIfcSIUnit(None, "PLANEANGLEUNIT", None, "RADIAN")]
     )
@@ -169,4 +174,17 @@ def write_ifc(
                 eq.station_ahead_m / u,
                 incoming_station=eq.station_back_m / u,
             )
-    return f.to_string().encode()
+    header = f.header.file_name
+    header.name = "rollover.ifc"
+    header.time_stamp = "2026-01-01T00:00:00"
+    header.originating_system = header.preprocessor_version = application[0]
+    text = f.to_string()
+    if stable:  # the same file every time (examples/ is checked against what make_examples.py writes)
+        guids: dict[str, str] = {}
+
+        def stable_guid(m: re.Match) -> str:
+            g = guids.setdefault(m[2], ifcopenshell.guid.compress(hashlib.md5(f"{len(guids)}".encode()).hexdigest()))
+            return f"{m[1]}{g}'"
+
+        text = re.sub(r"(=IFC[A-Z0-9]+\(')([0-9A-Za-z_$]{22})'", stable_guid, text)
+    return text.encode()

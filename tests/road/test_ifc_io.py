@@ -151,7 +151,7 @@ def _same(read: AlignmentGeometry, written: AlignmentGeometry) -> None:
     assert _rel(read.start_station_m, written.start_station_m)
     assert len(read.elements) == len(written.elements)
     for r, w in zip(read.elements, written.elements, strict=True):
-        assert (r.kind, r.direction, r.spiral_type) == (w.kind, w.direction, w.spiral_type), r.where
+        assert (r.kind, r.direction, r.spiral_type, r.name) == (w.kind, w.direction, w.spiral_type, w.name), r.where
         assert _rel(r.length_m, w.length_m), r.where
         for a, b in ((r.radius_start_m, w.radius_start_m), (r.radius_end_m, w.radius_end_m)):
             assert (math.isinf(a) and math.isinf(b)) or _rel(a, b), r.where
@@ -487,3 +487,25 @@ def test_vertical_arc_radius_checked_against_its_grades() -> None:
 def test_no_alignment() -> None:
     with pytest.raises(AlignmentFormatError, match="no IfcAlignment"):
         read_ifc(write_ifc([]))
+
+
+def test_example_road_is_the_readme_road() -> None:
+    """examples/road.ifc is the road examples/README.md describes: K1 right-hand R 250.5 m (60 m spirals, 160 m of
+    arc) from chainage 300 m, K2 left-hand R 180 m (50 m spirals, 140 m of arc) from 830 m, tangents of 300, 250
+    and 300 m, +3.5 % from 880 m, full superelevation 7.5 % and 8 % (banked toward each curve's inside)."""
+    road = read_ifc((Path(__file__).resolve().parents[2] / "examples" / "road.ifc").read_bytes())
+    (a,) = road.alignments
+    arcs = {e.name: e for e in a.elements if e.kind == "arc"}
+    assert (arcs["K1"].direction, arcs["K1"].radius_start_m, arcs["K1"].length_m) == ("right", 250.5, 160.0)
+    assert (arcs["K2"].direction, arcs["K2"].radius_start_m, arcs["K2"].length_m) == ("left", 180.0, 140.0)
+    starts, s = {}, a.start_station_m
+    for e in a.elements:
+        starts.setdefault(e.name, s)
+        s += e.length_m
+    assert (starts["K1-TS"], starts["K2-TS"], s) == (300.0, 830.0, 1370.0)
+    (p,) = a.profiles
+    assert (p.segments[0].start_elevation_m, p.segments[0].start_grade) == (880.0, 0.035)
+    # on the arcs: K1 (right) -7.5 % rising left to right, i.e. banked down to the right, its inside; K2 (left) +8 %
+    on_k1 = [c.left_percent for c in a.cross_slopes if 360.0 <= c.distance_m <= 520.0]
+    on_k2 = [c.left_percent for c in a.cross_slopes if 880.0 <= c.distance_m <= 1020.0]
+    assert on_k1 == pytest.approx([-7.5, -7.5], rel=1e-12) and on_k2 == pytest.approx([8.0, 8.0], rel=1e-12)

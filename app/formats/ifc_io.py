@@ -125,10 +125,26 @@ _HEADER_SCAN = 64 * 1024  # the header section comes first; FILE_SCHEMA is found
 _FILE_SCHEMA = re.compile(rb"FILE_SCHEMA\s*\(\s*\(\s*'([^']*)'", re.IGNORECASE)
 #: a circular vertical arc's horizontal length against the one its radius and end grades give (relative)
 _ARC_TOLERANCE = 1e-3
+_Entity: Any = None  # ifcopenshell.entity_instance, once ifcopenshell is imported (on the first file read)
 
 
 def _ref(e: Any) -> str:
     return f"#{e.id()} {e.is_a()}"
+
+
+def _is(v: Any, ifc_type: str) -> bool:
+    """``v`` is an entity of ``ifc_type`` (IfcOpenShell hands over whatever the file wrote where an entity belongs:
+    None, a number, a string, a list)."""
+    return _Entity is not None and isinstance(v, _Entity) and v.is_a(ifc_type)
+
+
+def _entities(v: Any) -> list[Any]:
+    """The entities of an aggregate attribute (anything else in it dropped)."""
+    return [o for o in v if _Entity is not None and isinstance(o, _Entity)] if isinstance(v, tuple | list) else []
+
+
+def _describe(v: Any) -> str:
+    return _ref(v) if _Entity is not None and isinstance(v, _Entity) else repr(v)[:80]
 
 
 def _real(e: Any, attr: str, where: str, *, optional: bool = False) -> float | None:
@@ -201,14 +217,21 @@ def _open(data: bytes) -> Any:
         # ISO 10303-21 is 7-bit text (other characters as \X2\ escapes); some writers put Latin-1 in strings,
         # which only names carry
         text = data.decode("latin-1")
+    global _Entity
     import ifcopenshell  # ~0.2 s on first use: imported only when an IFC file is read
 
+    _Entity = ifcopenshell.entity_instance
     try:
         f = ifcopenshell.file.from_string(text)
+        # a header the parser could not read leaves the file without a schema ("No schema loaded")
+        parsed_schema = f.schema_identifier
     except Exception as exc:  # the parser's own errors (RuntimeError and the like) name what it could not read
-        raise AlignmentFormatError(f"unreadable IFC file: {exc}"[:300]) from None
-    if f.schema_identifier.upper() != SCHEMA:  # pragma: no cover - the header check above decides
-        raise AlignmentFormatError(f"the file's schema is {f.schema_identifier!r}", "HEADER", "FILE_SCHEMA")
+        reason = str(exc)
+        if reason == "No schema loaded":
+            reason = "the parser could not read its header and data sections (ISO 10303-21 syntax)"
+        raise AlignmentFormatError(f"unreadable IFC file: {reason}"[:300]) from None
+    if parsed_schema.upper() != SCHEMA:
+        raise AlignmentFormatError(f"the file's schema is {parsed_schema[:60]!r}", "HEADER", "FILE_SCHEMA")
     return f
 
 
@@ -221,11 +244,13 @@ def _length_unit(f: Any) -> tuple[float, str]:
         )
     p = projects[0]
     ua = p.UnitsInContext
-    if ua is None:
+    if not _is(ua, "IfcUnitAssignment"):
         raise AlignmentFormatError(
-            "has no UnitsInContext (IfcUnitAssignment): the length unit is unknown", _ref(p), "UnitsInContext"
+            f"has no UnitsInContext (IfcUnitAssignment), got {_describe(ua)}: the length unit is unknown",
+            _ref(p),
+            "UnitsInContext",
         )
-    lengths = [u for u in (ua.Units or ()) if getattr(u, "UnitType", None) == "LENGTHUNIT"]
+    lengths = [u for u in _entities(ua.Units) if u.is_a("IfcNamedUnit") and u.UnitType == "LENGTHUNIT"]
     if len(lengths) != 1:
         raise AlignmentFormatError(f"assigns {len(lengths)} LENGTHUNIT units; exactly one is needed", _ref(ua), "Units")
     return _unit_factor(lengths[0], 0)
@@ -249,15 +274,17 @@ def _unit_factor(u: Any, depth: int) -> tuple[float, str]:
     if u.is_a("IfcConversionBasedUnit"):
         name = _text(u.Name) or ""
         cf = u.ConversionFactor
-        if cf is None or not cf.is_a("IfcMeasureWithUnit"):
-            raise AlignmentFormatError("has no ConversionFactor (IfcMeasureWithUnit)", where, "ConversionFactor")
+        if not _is(cf, "IfcMeasureWithUnit"):
+            raise AlignmentFormatError(
+                f"ConversionFactor must be an IfcMeasureWithUnit, got {_describe(cf)}", where, "ConversionFactor"
+            )
         vc = cf.ValueComponent
         value = getattr(vc, "wrappedValue", vc)
         if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value <= 0:
             raise AlignmentFormatError(
                 f"ConversionFactor {value!r} is not a positive length"[:200], _ref(cf), "ValueComponent"
             )
-        if cf.UnitComponent is None or getattr(cf.UnitComponent, "UnitType", None) != "LENGTHUNIT":
+        if not _is(cf.UnitComponent, "IfcNamedUnit") or cf.UnitComponent.UnitType != "LENGTHUNIT":
             raise AlignmentFormatError("ConversionFactor is not in a length unit", _ref(cf), "UnitComponent")
         base, _ = _unit_factor(cf.UnitComponent, depth + 1)
         factor = float(value) * base
@@ -283,9 +310,8 @@ def _writer(f: Any) -> str | None:
         version = _text(app.Version)
         return f"{name} {version}" if name and version else name
 
-    project = f.by_type("IfcProject")[0]
-    history = project.OwnerHistory
-    if history is not None and history.OwningApplication is not None:
+    history = f.by_type("IfcProject")[0].OwnerHistory
+    if _is(history, "IfcOwnerHistory") and _is(history.OwningApplication, "IfcApplication"):
         return describe(history.OwningApplication)
     apps = f.by_type("IfcApplication")
     if len(apps) == 1:
@@ -304,7 +330,7 @@ def _nested(e: Any) -> list[Any]:
     """What ``e`` nests (IfcRelNests, in their order)."""
     out: list[Any] = []
     for rel in e.IsNestedBy or ():
-        out.extend(rel.RelatedObjects or ())
+        out.extend(_entities(rel.RelatedObjects))
     return out
 
 
@@ -313,12 +339,12 @@ def _children(alignment: Any) -> list[Any]:
     and writers number entities as they create them."""
     out: list[Any] = []
     for rel in alignment.IsDecomposedBy or ():
-        out.extend(o for o in rel.RelatedObjects or () if o.is_a("IfcAlignment"))
+        out.extend(o for o in _entities(rel.RelatedObjects) if o.is_a("IfcAlignment"))
     return sorted(out, key=lambda o: o.id())
 
 
 def _is_child(alignment: Any) -> bool:
-    return any(rel.RelatingObject.is_a("IfcAlignment") for rel in alignment.Decomposes or ())
+    return any(_is(rel.RelatingObject, "IfcAlignment") for rel in alignment.Decomposes or ())
 
 
 def _segments(layout: Any, kind: str) -> list[tuple[Any, Any]]:
@@ -328,10 +354,11 @@ def _segments(layout: Any, kind: str) -> list[tuple[Any, Any]]:
         if not seg.is_a("IfcAlignmentSegment"):
             continue
         dp = seg.DesignParameters
-        if dp is None or not dp.is_a(kind):
-            got = "none" if dp is None else _ref(dp)
+        if not _is(dp, kind):
             raise AlignmentFormatError(
-                f"DesignParameters must be an {kind} in {_ref(layout)}, got {got}", _ref(seg), "DesignParameters"
+                f"DesignParameters must be an {kind} in {_ref(layout)}, got {_describe(dp)}",
+                _ref(seg),
+                "DesignParameters",
             )
         out.append((seg, dp))
     return out
@@ -541,14 +568,12 @@ def _stations(
     alignment: Any, unit: float, label: str, notes: list[str], skipped: list[tuple[str, str]]
 ) -> tuple[float | None, list[StationEquation]]:
     """The start station and the station equations from the alignment's STATION referents."""
-    import ifcopenshell.util.element  # with ifcopenshell, already imported by _open
-
     marks: list[tuple[float | None, float, float | None, Any]] = []  # distance, station, incoming, referent
     for r in _nested(alignment):
         if not r.is_a("IfcReferent") or r.PredefinedType != "STATION":
             continue
         where = f"{label} {_ref(r)}"
-        pset = ifcopenshell.util.element.get_pset(r, "Pset_Stationing") or {}
+        pset = _pset_stationing(r)
         if pset.get("HasIncreasingStation") is False:
             raise AlignmentFormatError(
                 "decreasing stationing (Pset_Stationing.HasIncreasingStation false) is not read",
@@ -591,6 +616,21 @@ def _stations(
     return start_station, equations
 
 
+def _pset_stationing(referent: Any) -> dict[str, Any]:
+    """The single values of the referent's Pset_Stationing (``Station``, ``IncomingStation``,
+    ``HasIncreasingStation``), as written (a measure's value unwrapped)."""
+    out: dict[str, Any] = {}
+    for rel in referent.IsDefinedBy or ():
+        pset = getattr(rel, "RelatingPropertyDefinition", None)
+        if not _is(pset, "IfcPropertySet") or pset.Name != "Pset_Stationing":
+            continue
+        for prop in _entities(pset.HasProperties):
+            if prop.is_a("IfcPropertySingleValue") and isinstance(prop.Name, str):
+                v = prop.NominalValue
+                out[prop.Name] = getattr(v, "wrappedValue", v)
+    return out
+
+
 def _pset_length(pset: dict, key: str, where: str, unit: float) -> float:
     v = pset.get(key)
     if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
@@ -600,20 +640,20 @@ def _pset_length(pset: dict, key: str, where: str, unit: float) -> float:
 
 def _distance_along(referent: Any, unit: float, where: str) -> float | None:
     p = referent.ObjectPlacement
-    if p is None or not p.is_a("IfcLinearPlacement"):
+    if not _is(p, "IfcLinearPlacement") or not _is(p.RelativePlacement, "IfcAxis2PlacementLinear"):
         return None
-    loc = getattr(p.RelativePlacement, "Location", None)
-    if loc is None or not loc.is_a("IfcPointByDistanceExpression"):
+    loc = p.RelativePlacement.Location
+    if not _is(loc, "IfcPointByDistanceExpression"):
         return None
     d = loc.DistanceAlong
-    if d is None or not d.is_a("IfcLengthMeasure"):
+    if not _is(d, "IfcLengthMeasure"):
         raise AlignmentFormatError(
             f"the linear placement's DistanceAlong is not a length: {d!r}"[:200],
             f"{where} ({_ref(loc)})",
             "DistanceAlong",
         )
     v = d.wrappedValue
-    if not math.isfinite(v) or v < 0:
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
         raise AlignmentFormatError(f"DistanceAlong {v!r} is not a distance", f"{where} ({_ref(loc)})", "DistanceAlong")
     return float(v) * unit
 
@@ -695,10 +735,17 @@ def read_ifc(data: bytes) -> RoadFile:
     if not isinstance(data, bytes | bytearray | memoryview):
         raise TypeError("read_ifc takes the file's bytes")
     f = _open(bytes(data))
-    unit, unit_name = _length_unit(f)
     skipped: list[tuple[str, str]] = []
-    alignments = [a for a in f.by_type("IfcAlignment") if not _is_child(a)]
-    if not alignments:
-        raise AlignmentFormatError("the file has no IfcAlignment", None, "IfcAlignment")
-    read = tuple(_alignment(a, unit, skipped) for a in sorted(alignments, key=lambda a: a.id()))
-    return RoadFile(FORMAT, read, linear_unit=unit_name, writer=_writer(f), skipped=tuple(skipped))
+    try:
+        unit, unit_name = _length_unit(f)
+        alignments = [a for a in f.by_type("IfcAlignment") if not _is_child(a)]
+        if not alignments:
+            raise AlignmentFormatError("the file has no IfcAlignment", None, "IfcAlignment")
+        read = tuple(_alignment(a, unit, skipped) for a in sorted(alignments, key=lambda a: a.id()))
+        writer = _writer(f)
+    except AlignmentFormatError:
+        raise
+    except (AttributeError, TypeError, ValueError, RuntimeError, IndexError) as exc:
+        # the last guard: an entity where the schema puts another kind (IfcOpenShell keeps what the file wrote)
+        raise AlignmentFormatError(f"the file's alignment structure cannot be read: {exc}"[:300]) from None
+    return RoadFile(FORMAT, read, linear_unit=unit_name, writer=writer, skipped=tuple(skipped))

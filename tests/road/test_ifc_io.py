@@ -509,3 +509,39 @@ def test_example_road_is_the_readme_road() -> None:
     on_k1 = [c.left_percent for c in a.cross_slopes if 360.0 <= c.distance_m <= 520.0]
     on_k2 = [c.left_percent for c in a.cross_slopes if 880.0 <= c.distance_m <= 1020.0]
     assert on_k1 == pytest.approx([-7.5, -7.5], rel=1e-12) and on_k2 == pytest.approx([8.0, 8.0], rel=1e-12)
+
+
+def test_entities_of_the_wrong_kind_named() -> None:
+    """IfcOpenShell keeps whatever the file wrote where an entity belongs; the reader names the attribute."""
+    text = _one(H("line", 100.0))
+    # a segment's DesignParameters pointing at its own start point (an IfcCartesianPoint)
+    m = re.search(r"#(\d+)=IFCALIGNMENTHORIZONTALSEGMENT\(\$,\$,#(\d+),", text)
+    assert m is not None
+    seg = re.search(rf"(#\d+=IFCALIGNMENTSEGMENT\([^;]*,)#{m[1]}\);", text)
+    assert seg is not None
+    bad = text.replace(seg[0], f"{seg[1]}#{m[2]});")
+    with pytest.raises(AlignmentFormatError, match=r"must be an IfcAlignmentHorizontalSegment.*IfcCartesianPoint") as e:
+        _read(bad)
+    assert e.value.field == "DesignParameters"
+    # the project's units a string
+    bad = re.sub(r"(IFCPROJECT\([^;]*),#(\d+)\);", r"\1,'metres');", text)
+    with pytest.raises(AlignmentFormatError, match="no UnitsInContext") as e:
+        _read(bad)
+    assert e.value.field == "UnitsInContext"
+
+
+def test_station_from_pset_stationing_checked() -> None:
+    a = AlignmentGeometry("A", 1234.5, (H("line", 100.0),))
+    text = write_ifc([a]).decode()
+    assert _read(text).alignments[0].start_station_m == 1234.5
+    bad = text.replace("IFCLENGTHMEASURE(1234.5)", "IFCLABEL('1+234.5')")
+    assert bad != text
+    with pytest.raises(AlignmentFormatError, match="Station is not a number") as e:
+        _read(bad)
+    assert e.value.field == "Station" and "IfcReferent" in e.value.location
+
+
+def test_a_file_the_parser_cannot_read() -> None:
+    """A header that names IFC4X3_ADD2 and a data section cut off mid-entity."""
+    with pytest.raises(AlignmentFormatError, match="unreadable IFC file: the parser could not read"):
+        read_ifc(b"ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4X3_ADD2'));\nENDSEC;\nDATA;\n#1=IFCPROJECT(\n")

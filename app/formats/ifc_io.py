@@ -667,7 +667,14 @@ def _alignment(alignment: Any, unit: float, skipped: list[tuple[str, str]]) -> A
     notes: list[str] = []
     layouts = _nested(alignment)
     horizontals = [lay for lay in layouts if lay.is_a("IfcAlignmentHorizontal")]
-    if len(horizontals) != 1:
+    if not horizontals:
+        raise AlignmentFormatError(
+            "nests no IfcAlignmentHorizontal: an alignment given only as geometry (a polyline or curve without its "
+            "segments' design parameters) is not read",
+            label,
+            "IsNestedBy",
+        )
+    if len(horizontals) > 1:
         raise AlignmentFormatError(
             f"nests {len(horizontals)} IfcAlignmentHorizontal; an alignment has exactly one", label, "IsNestedBy"
         )

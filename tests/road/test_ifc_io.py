@@ -545,3 +545,20 @@ def test_a_file_the_parser_cannot_read() -> None:
     """A header that names IFC4X3_ADD2 and a data section cut off mid-entity."""
     with pytest.raises(AlignmentFormatError, match="unreadable IFC file: the parser could not read"):
         read_ifc(b"ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4X3_ADD2'));\nENDSEC;\nDATA;\n#1=IFCPROJECT(\n")
+
+
+def test_alignment_given_only_as_geometry_refused() -> None:
+    """IfcOpenShell's create_as_polyline writes an IfcAlignment with a polyline and no layouts: nothing to read."""
+    import ifcopenshell.api.alignment
+    import ifcopenshell.api.project
+    import ifcopenshell.api.root
+    import ifcopenshell.api.unit
+
+    f = ifcopenshell.api.project.create_file(version="IFC4X3")
+    ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="p")
+    ifcopenshell.api.unit.assign_unit(f, units=[f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE")])
+    points = [f.createIfcCartesianPoint(p) for p in ((0.0, 0.0), (100.0, 0.0), (200.0, 50.0))]
+    ifcopenshell.api.alignment.create_as_polyline(f, "poly", points)
+    with pytest.raises(AlignmentFormatError, match="only as geometry") as e:
+        read_ifc(f.to_string().encode())
+    assert e.value.location.startswith("IfcAlignment 'poly'")

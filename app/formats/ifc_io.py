@@ -16,8 +16,10 @@ What is read (the business logic of the alignment, not its geometric representat
   ``EndRadiusOfCurvature`` (signed: + centre of curvature on the left (counter-clockwise), - on the right; 0 =
   straight), ``PredefinedType``. ``LINE`` (both radii 0), ``CIRCULARARC`` (both radii equal), and the transitions
   ``CLOTHOID``, ``CUBIC``, ``HELMERTCURVE``, ``BLOSSCURVE``, ``COSINECURVE``, ``SINECURVE`` as spirals between their
-  two end radii, ``spiral_type`` the IFC name in lower case: the curvature of each of these varies monotonically
-  from one end to the other, so the end radii bound the spiral's radius. ``VIENNESEBEND`` is refused: its plan
+  two end radii, ``spiral_type`` the IFC name in lower case: the radius of each never falls below the smaller end
+  radius (the curvature of the clothoid, Bloss, cosine, sine and Helmert transitions varies monotonically from end
+  to end; the cubic parabola y = x^3 / (6 R L) has curvature (x / R L) / (1 + (x^2 / 2 R L)^2)^1.5, at most
+  1 / R), so the smaller end radius is the one a bend's assessment takes. ``VIENNESEBEND`` is refused: its plan
   curvature has a term of the cant and the height of the centre of gravity (``GravityCenterLineHeight``), so its
   end radii do not bound it. A clothoid whose end radii have opposite signs (an S through an inflection) is split
   at the inflection (its curvature is linear in length, so at ``L k1 / (k1 - k2)``); another transition that

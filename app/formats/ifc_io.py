@@ -366,6 +366,13 @@ def _segments(layout: Any, kind: str) -> list[tuple[Any, Any]]:
     return out
 
 
+def _zero_length(i: int, segments: list) -> str:
+    """Why a zero-length segment (the i-th, 1-based) is skipped."""
+    if i == len(segments):
+        return "a zero-length segment (the closing segment IFC 4.3 asks for at the end of a layout)"
+    return "a zero-length segment"
+
+
 # -- horizontal -------------------------------------------------------------------------------------------------
 
 
@@ -375,7 +382,8 @@ def _curvature(radius_m: float) -> float:
 
 def _horizontal(layout: Any, unit: float, label: str, skipped: list[tuple[str, str]]) -> list[HorizontalElement]:
     elements: list[HorizontalElement] = []
-    for i, (seg, dp) in enumerate(_segments(layout, "IfcAlignmentHorizontalSegment"), start=1):
+    segments = _segments(layout, "IfcAlignmentHorizontalSegment")
+    for i, (seg, dp) in enumerate(segments, start=1):
         where = f"{label} horizontal segment {i} ({_ref(seg)}, {_ref(dp)})"
         kind = _enum(dp, "PredefinedType", where, ("LINE", "CIRCULARARC", "VIENNESEBEND", *_SPIRALS))
         length = _length(dp, "SegmentLength", where, unit, nonnegative=True)
@@ -383,7 +391,7 @@ def _horizontal(layout: Any, unit: float, label: str, skipped: list[tuple[str, s
         r1 = _length(dp, "EndRadiusOfCurvature", where, unit)
         name = _text(seg.Name)
         if length == 0:
-            skipped.append((where, "a zero-length segment (the closing segment of an IFC 4.3 layout)"))
+            skipped.append((where, _zero_length(i, segments)))
             continue
         if kind == "LINE":
             if r0 != 0 or r1 != 0:
@@ -468,7 +476,8 @@ def _spiral(
 def _profile(layout: Any, unit: float, label: str, default_name: str, skipped: list[tuple[str, str]]) -> Profile | None:
     name = _text(layout.Name) or default_name
     segments: list[VerticalSegment] = []
-    for i, (seg, dp) in enumerate(_segments(layout, "IfcAlignmentVerticalSegment"), start=1):
+    segments_read = _segments(layout, "IfcAlignmentVerticalSegment")
+    for i, (seg, dp) in enumerate(segments_read, start=1):
         where = f"{label} vertical segment {i} ({_ref(seg)}, {_ref(dp)})"
         kind = _enum(dp, "PredefinedType", where, ("CONSTANTGRADIENT", "PARABOLICARC", "CIRCULARARC", "CLOTHOID"))
         start = _length(dp, "StartDistAlong", where, unit, nonnegative=True)
@@ -481,7 +490,7 @@ def _profile(layout: Any, unit: float, label: str, default_name: str, skipped: l
             skipped.append((f"{label} profile {name!r} ({_ref(layout)})", f"{where}: a vertical CLOTHOID is not read"))
             return None
         if length == 0:
-            skipped.append((where, "a zero-length segment (the closing segment of an IFC 4.3 layout)"))
+            skipped.append((where, _zero_length(i, segments_read)))
             continue
         radius = None
         if kind == "CONSTANTGRADIENT":
@@ -539,7 +548,8 @@ def _cross_slopes(layout: Any, unit: float, label: str, skipped: list[tuple[str,
             )
         return 100.0 * math.tan(math.asin(rise / rhd))
 
-    for i, (seg, dp) in enumerate(_segments(layout, "IfcAlignmentCantSegment"), start=1):
+    segments = _segments(layout, "IfcAlignmentCantSegment")
+    for i, (seg, dp) in enumerate(segments, start=1):
         where = f"{label} cant segment {i} ({_ref(seg)}, {_ref(dp)})"
         _enum(dp, "PredefinedType", where, _CANT_TYPES)
         start = _length(dp, "StartDistAlong", where, unit, nonnegative=True)
@@ -553,7 +563,7 @@ def _cross_slopes(layout: Any, unit: float, label: str, skipped: list[tuple[str,
         s0 = slope(sl, sr, where, "StartCantRight")
         s1 = slope(el, er, where, "EndCantRight")
         if length == 0:
-            skipped.append((where, "a zero-length segment (the closing segment of an IFC 4.3 layout)"))
+            skipped.append((where, _zero_length(i, segments)))
             continue
         for d, s in ((start, s0), (start + length, s1)):
             # a segment's start repeats the previous one's end (to rounding: start + length of the one before)

@@ -1,4 +1,5 @@
-"""Write the sample files of examples/: one road with two curves, as CSV (three dialects), LandXML, GPX and GeoJSON.
+"""Write the sample files of examples/: one road with two curves, as CSV (three dialects), LandXML, IFC 4.3, GPX and
+GeoJSON.
 
     python examples/make_examples.py            # (re)write the files beside this script
     python examples/make_examples.py --check    # exit 1 if a committed file differs from what this writes
@@ -13,8 +14,9 @@ route assessment should find are known:
   centreline; no GPS noise), near Curitiba (PR, Brazil): a made-up road, not a survey.
 
 The CSV files list the same two curves with a design superelevation, the grade and a posted speed; the LandXML
-alignment has the same elements (lines, spirals, curves with their stations and points); the GPX track and the
-GeoJSON line carry the vertices with their elevations.
+alignment has the same elements (lines, spirals, curves with their stations and points); the IFC 4.3 file has them
+too, with the grade as its profile and the superelevation as its cant; the GPX track and the GeoJSON line carry the
+vertices with their elevations.
 """
 
 from __future__ import annotations
@@ -143,6 +145,35 @@ def landxml_text() -> str:
     )
 
 
+def ifc_bytes() -> bytes:
+    """The alignment as IFC 4.3 (IFC4X3_ADD2), written with IfcOpenShell (tests/ifc_writer.py): the same lines,
+    clothoids and arcs as the LandXML file, the +3.5 % grade as the profile, and the cross slope as a cant: -2 %
+    (one-way crossfall, falling to the right) on the tangents, run off along the spirals to the full
+    superelevation on the arcs (K1, right-hand: -7.5 %; K2, left-hand: +8 %)."""
+    from engine.road.geometry import AlignmentGeometry, CrossSlope, HorizontalElement, Profile, VerticalSegment
+    from tests.ifc_writer import write_ifc
+
+    H = HorizontalElement
+    els = [H("line", TANGENTS_M[0])]
+    slopes, s = [CrossSlope(0.0, -2.0, -2.0)], TANGENTS_M[0]
+    for (cid, r, arc, spiral, direction, e, _), tangent in zip(CURVES, TANGENTS_M[1:], strict=True):
+        els += [
+            H("spiral", spiral, math.inf, r, direction, spiral_type="clothoid", name=f"{cid}-TS"),
+            H("arc", arc, r, r, direction, name=cid),
+            H("spiral", spiral, r, math.inf, direction, spiral_type="clothoid", name=f"{cid}-ST"),
+            H("line", tangent),
+        ]
+        full = e if direction == "left" else -e  # + rising from left to right: toward a left-hand curve's outside
+        for d, slope in ((s, -2.0), (s + spiral, full), (s + spiral + arc, full), (s + 2 * spiral + arc, -2.0)):
+            slopes.append(CrossSlope(d, slope, slope))
+        s += 2 * spiral + arc + tangent
+    slopes.append(CrossSlope(s, -2.0, -2.0))
+    grade = GRADE_PERCENT / 100
+    profile = Profile("design", (VerticalSegment("constant", 0.0, s, ELE0_M, grade, grade),))
+    road = AlignmentGeometry(NAME, 0.0, tuple(els), profiles=(profile,), cross_slopes=tuple(slopes))
+    return write_ifc([road], application=("rollover examples/make_examples.py", "1"), stable=True)
+
+
 def gpx_text() -> str:
     lon, lat, ele = vertices()
     points = "\n".join(
@@ -177,6 +208,7 @@ def files() -> dict[str, bytes]:
         "curves-semicolon.csv": b"\xef\xbb\xbf" + semicolon.encode(),
         "curves-tab.tsv": csv_text("\t", ".").encode(),
         "alignment.xml": landxml_text().encode(),
+        "road.ifc": ifc_bytes(),
         "road.gpx": gpx_text().encode(),
         "road.geojson": geojson_text().encode(),
     }

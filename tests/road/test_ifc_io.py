@@ -1,0 +1,564 @@
+"""IFC 4.3 alignments read into the neutral road geometry (app/formats/ifc_io.py).
+
+Expected values come from outside the reader: the records written by tests/ifc_writer.py (round trips), the public
+files' own STEP text parsed here with regular expressions (tests/data/ifc/README.md names their sources), the
+units' definitions (1 ft = 0.3048 m, 1 US survey foot = 1200/3937 m: NIST SP 811 appendix B) and closed forms.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+import re
+from pathlib import Path
+
+import pytest
+
+from app.formats.alignment_io import AlignmentFormatError
+from app.formats.ifc_io import read_ifc
+from engine.road.geometry import (
+    AlignmentGeometry,
+    CrossSlope,
+    HorizontalElement,
+    Profile,
+    StationEquation,
+    VerticalSegment,
+)
+from tests.ifc_writer import write_ifc
+
+DATA = Path(__file__).resolve().parent.parent / "data" / "ifc"
+REL = 1e-9
+
+# -- the STEP text, read independently of IfcOpenShell ----------------------------------------------------------
+
+_ENTITY = re.compile(r"^#(\d+)\s*=\s*([A-Z0-9_]+)\s*\((.*)\)\s*;\s*$", re.MULTILINE)
+
+
+def _split(args: str) -> list[str]:
+    """Top-level comma-separated arguments of a STEP entity (parentheses and quoted strings kept whole)."""
+    out, depth, quoted, cur = [], 0, False, ""
+    for ch in args:
+        if ch == "'":
+            quoted = not quoted
+        elif not quoted and ch == "(":
+            depth += 1
+        elif not quoted and ch == ")":
+            depth -= 1
+        elif not quoted and depth == 0 and ch == ",":
+            out.append(cur.strip())
+            cur = ""
+            continue
+        cur += ch
+    out.append(cur.strip())
+    return out
+
+
+def _step(path: Path) -> dict[int, tuple[str, list[str]]]:
+    text = path.read_text()
+    return {int(m[1]): (m[2], _split(m[3])) for m in _ENTITY.finditer(text)}
+
+
+def _ref(s: str) -> int:
+    return int(s.lstrip("#"))
+
+
+def _num(s: str) -> float:
+    return float(re.sub(r"^[A-Z]+\((.*)\)$", r"\1", s))
+
+
+def _nested_segments(step, layout_type: str) -> list[list[str]]:
+    """The design parameters' arguments of every segment nested in the (first) layout of ``layout_type``, in the
+    nesting order of the file's IFCRELNESTS."""
+    layout = next(i for i, (t, _) in step.items() if t == layout_type)
+    out = []
+    for t, a in step.values():
+        if t == "IFCRELNESTS" and _ref(a[4]) == layout:
+            for r in re.findall(r"#(\d+)", a[5]):
+                seg_type, seg = step[int(r)]
+                if seg_type == "IFCALIGNMENTSEGMENT":
+                    out.append(step[_ref(seg[7])][1])
+    return out
+
+
+def _rel(a: float, b: float, rel: float = REL) -> bool:
+    return a == b or abs(a - b) <= rel * max(abs(a), abs(b))
+
+
+# -- round trips ------------------------------------------------------------------------------------------------
+
+
+def _random_alignment(rng: random.Random, name: str) -> AlignmentGeometry:
+    """Lines, arcs with clothoids in and out (and now and then a bend of two clothoids only), a profile of grades
+    joined by parabolas and circular arcs, and a cant of cross slopes, in metres."""
+    H = HorizontalElement
+    elements: list[HorizontalElement] = [H("line", rng.uniform(20, 400))]
+    for _ in range(rng.randint(1, 4)):
+        r = rng.uniform(40, 3000)
+        side = rng.choice(("left", "right"))
+        ls = rng.uniform(10, 150)
+        elements.append(H("spiral", ls, math.inf, r, side, spiral_type="clothoid"))
+        if rng.random() < 0.8:
+            elements.append(H("arc", rng.uniform(5, 500), r, r, side))
+        elements.append(H("spiral", rng.uniform(10, 150), r, math.inf, side, spiral_type="clothoid"))
+        elements.append(H("line", rng.uniform(20, 400)))
+    total = sum(e.length_m for e in elements)
+
+    segments, d, z, g = [], 0.0, rng.uniform(-50, 2000), rng.uniform(-0.08, 0.08)
+    while d < total:
+        length = min(rng.uniform(50, 400), total - d)
+        kind = rng.choice(("constant", "parabolic", "circular"))
+        if kind == "constant":
+            segments.append(VerticalSegment("constant", d, length, z, g, g))
+            z += g * length
+        elif kind == "parabolic":
+            g1 = rng.uniform(-0.08, 0.08)
+            segments.append(VerticalSegment("parabolic", d, length, z, g, g1))
+            z += (g + g1) / 2 * length
+            g = g1
+        else:  # a circular arc of this horizontal length from grade g: R (sin t1 - sin t0) = length
+            g1 = rng.uniform(-0.08, 0.08)
+            t0, t1 = math.atan(g), math.atan(g1)
+            if abs(math.sin(t1) - math.sin(t0)) < 1e-3:
+                continue
+            radius = length / abs(math.sin(t1) - math.sin(t0))
+            segments.append(VerticalSegment("circular", d, length, z, g, g1, radius))
+            z += rng.uniform(-1, 1)  # the reader keeps the start heights as written
+            g = g1
+        d += length
+
+    slopes, d = [], 0.0
+    while d < total:
+        s = round(rng.uniform(-10, 10), 3)
+        slopes.append(CrossSlope(d, s, s))
+        d += rng.uniform(10, 200)
+    slopes.append(CrossSlope(total, slopes[-1].left_percent, slopes[-1].left_percent))
+
+    start = rng.uniform(-1000, 10000)
+    eq_d = rng.uniform(0.2, 0.8) * total
+    equations = (StationEquation(eq_d, start + eq_d, start + eq_d + rng.uniform(-500, 500)),)
+    return AlignmentGeometry(
+        name,
+        start,
+        tuple(elements),
+        station_equations=equations,
+        profiles=(Profile("design", tuple(segments)),),
+        cross_slopes=tuple(slopes),
+    )
+
+
+def _same(read: AlignmentGeometry, written: AlignmentGeometry) -> None:
+    assert read.name == written.name
+    assert _rel(read.start_station_m, written.start_station_m)
+    assert len(read.elements) == len(written.elements)
+    for r, w in zip(read.elements, written.elements, strict=True):
+        assert (r.kind, r.direction, r.spiral_type, r.name) == (w.kind, w.direction, w.spiral_type, w.name), r.where
+        assert _rel(r.length_m, w.length_m), r.where
+        for a, b in ((r.radius_start_m, w.radius_start_m), (r.radius_end_m, w.radius_end_m)):
+            assert (math.isinf(a) and math.isinf(b)) or _rel(a, b), r.where
+    assert len(read.station_equations) == len(written.station_equations)
+    for r, w in zip(read.station_equations, written.station_equations, strict=True):
+        assert _rel(r.distance_m, w.distance_m) and _rel(r.station_back_m, w.station_back_m)
+        assert _rel(r.station_ahead_m, w.station_ahead_m)
+    assert [p.name for p in read.profiles] == [p.name for p in written.profiles]
+    for rp, wp in zip(read.profiles, written.profiles, strict=True):
+        assert len(rp.segments) == len(wp.segments)
+        for r, w in zip(rp.segments, wp.segments, strict=True):
+            assert r.kind == w.kind
+            for a, b in zip(
+                (r.start_distance_m, r.length_m, r.start_elevation_m, r.start_grade, r.end_grade),
+                (w.start_distance_m, w.length_m, w.start_elevation_m, w.start_grade, w.end_grade),
+                strict=True,
+            ):
+                assert _rel(a, b) or abs(a - b) < 1e-12, (r, w)
+            assert (r.radius_m is None) == (w.radius_m is None) and (r.radius_m is None or _rel(r.radius_m, w.radius_m))
+    assert len(read.cross_slopes) == len(written.cross_slopes)
+    for r, w in zip(read.cross_slopes, written.cross_slopes, strict=True):
+        assert _rel(r.distance_m, w.distance_m) or abs(r.distance_m - w.distance_m) < 1e-9
+        assert _rel(r.left_percent, w.left_percent) and _rel(r.right_percent, w.right_percent)
+
+
+@pytest.mark.parametrize("unit", ["metre", "foot", "us survey foot"])
+@pytest.mark.parametrize("seed", range(4))
+def test_random_alignments_round_trip(seed: int, unit: str) -> None:
+    rng = random.Random(seed)
+    written = [_random_alignment(rng, f"road {seed}-{k}") for k in range(2)]
+    road = read_ifc(write_ifc(written, unit=unit))
+    assert road.format == "IFC 4.3 (IFC4X3_ADD2)"
+    assert road.linear_unit == {"metre": "metre", "foot": "FOOT", "us survey foot": "US SURVEY FOOT"}[unit]
+    assert road.writer == "rollover tests/ifc_writer.py 1"
+    assert len(road.alignments) == 2
+    for r, w in zip(road.alignments, written, strict=True):
+        _same(r, w)
+    # each layout's closing zero-length segment is listed, nothing else
+    assert len(road.skipped) == 3 * 2
+    assert all("zero-length segment (the closing segment" in why for _, why in road.skipped)
+
+
+def test_several_profiles_each_in_a_child_alignment() -> None:
+    """Two profiles over one horizontal (IFC CT 4.1.4.4.1.2: each vertical in a child IfcAlignment) read as two
+    profiles of the one alignment, in order."""
+    H = HorizontalElement
+    p1 = Profile("existing ground", (VerticalSegment("constant", 0.0, 300.0, 10.0, 0.01, 0.01),))
+    p2 = Profile("design", (VerticalSegment("parabolic", 0.0, 300.0, 12.0, 0.04, -0.02),))
+    a = AlignmentGeometry(
+        "two profiles", 0.0, (H("line", 100.0), H("arc", 200.0, 250.0, 250.0, "left")), profiles=(p1, p2)
+    )
+    road = read_ifc(write_ifc([a]))
+    assert [p.name for p in road.alignments[0].profiles] == ["existing ground", "design"]
+    assert road.alignments[0].profiles[1].segments[0].end_grade == -0.02
+
+
+def test_feet_and_metres_give_the_same_records() -> None:
+    """The same road written in metres and in feet reads to the same SI records (1e-9 relative)."""
+    written = [_random_alignment(random.Random(11), "twin")]
+    metric = read_ifc(write_ifc(written, unit="metre")).alignments[0]
+    feet = read_ifc(write_ifc(written, unit="foot")).alignments[0]
+    _same(feet, metric)
+
+
+# -- public files -----------------------------------------------------------------------------------------------
+
+
+def test_buildingsmart_fixed_reference_sample() -> None:
+    """buildingSMART's IFC 4.3 sample: a line, a clothoid and a circular arc turning right (negative radii), and a
+    profile with a circular sag, every number from the file's text."""
+    path = DATA / "fixed-reference-swept-area-solid.ifc"
+    step = _step(path)
+    h = [a for a in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(a[6]) > 0]
+    road = read_ifc(path.read_bytes())
+    assert road.linear_unit == "metre"  # IFCSIUNIT(*, .LENGTHUNIT., $, .METRE.)
+    (a,) = road.alignments
+    assert a.name == "Test Alignment"
+    assert [e.kind for e in a.elements] == ["line", "spiral", "arc"]
+    assert [e.spiral_type for e in a.elements] == [None, "clothoid", None]
+    for e, args in zip(a.elements, h, strict=True):
+        assert e.length_m == _num(args[6])
+        r_end = _num(args[5])
+        assert e.radius_end_m == (abs(r_end) if r_end else math.inf)
+        assert e.direction == (None if r_end == 0 else "left" if r_end > 0 else "right")
+    assert sum(e.length_m for e in a.elements) == sum(_num(x[6]) for x in h) == 950.0
+    v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
+    (p,) = a.profiles
+    assert [s.kind for s in p.segments] == ["constant", "circular", "constant"]
+    for s, args in zip(p.segments, v, strict=True):
+        assert s.start_distance_m == _num(args[2]) and s.length_m == _num(args[3])
+        assert s.start_elevation_m == _num(args[4])
+        assert (s.start_grade, s.end_grade) == (_num(args[5]), _num(args[6]))
+    assert p.segments[1].radius_m == _num(v[1][7])  # + : a sag, the grade rising from -0.1 % to +0.044 %
+    # no Pset_Stationing on its STATION referent: start station 0, said
+    assert a.start_station_m == 0.0 and a.notes
+    assert road.writer == "redacted redacted"  # IFCAPPLICATION(#5, 'redacted', 'redacted', 'redacted')
+
+
+def test_buildingsmart_rail_sample_cant_and_stationing() -> None:
+    """buildingSMART's linear placement sample (a railway): clothoid-arc-clothoid bends both ways, circular vertical
+    curves, a cant of +/-0.03 m on a rail head distance of 1.435 m, and a start station of -153.1 m."""
+    path = DATA / "linear-placement-of-signal.ifc"
+    text = path.read_text()
+    step = _step(path)
+    road = read_ifc(path.read_bytes())
+    (a,) = road.alignments
+    h = [x for x in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(x[6]) > 0]
+    assert len(a.elements) == len(h) == 9
+    assert math.isclose(sum(e.length_m for e in a.elements), sum(_num(x[6]) for x in h), rel_tol=1e-12)
+    arcs = [e for e in a.elements if e.kind == "arc"]
+    assert [(e.direction, e.radius_start_m) for e in arcs] == [
+        ("left", _num(h[2][4])),
+        ("right", -_num(h[6][4])),
+    ]
+    # the station of the STATION referent's Pset_Stationing
+    station = re.search(r"IFCPROPERTYSINGLEVALUE\('Station', \$, IFCLENGTHMEASURE\(([-0-9.E]+)\)", text)
+    assert station is not None and a.start_station_m == float(station[1]) == -153.1
+    # cant: the plane through both rails, 100 tan(asin((right - left) / RailHeadDistance))
+    rhd = _num(next(x for t, x in step.values() if t == "IFCALIGNMENTCANT")[7])
+    assert rhd == 1.435
+    c = [x for x in _nested_segments(step, "IFCALIGNMENTCANT") if _num(x[3]) > 0]
+    full = [x for x in c if x[8] == ".CONSTANTCANT." and _num(x[4]) != 0]
+    assert len(full) == 2
+    for x in full:
+        expected = 100 * math.tan(math.asin((_num(x[6]) - _num(x[4])) / rhd))
+        at = [s for s in a.cross_slopes if _rel(s.distance_m, _num(x[2]))]
+        assert at and math.isclose(at[-1].left_percent, expected, rel_tol=REL) and at[-1].right_percent == expected
+    # the left-hand bend (radius +1000) is banked up on the right: + rising left to right
+    assert a.cross_slopes[2].left_percent > 0 and arcs[0].direction == "left"
+
+
+def test_buildingsmart_cosine_transition_and_cosine_cant() -> None:
+    """A COSINECURVE transition from R 300 to R 1000 (both +: left) read as a spiral of that type; a cant of 0.16 m
+    on the right over a rail head distance of 1.5 m."""
+    path = DATA / "segmented-reference-curve.ifc"
+    road = read_ifc(path.read_bytes())
+    (a,) = road.alignments
+    (e,) = a.elements
+    assert (e.kind, e.spiral_type, e.direction, e.radius_start_m, e.radius_end_m, e.length_m) == (
+        "spiral",
+        "cosinecurve",
+        "left",
+        300.0,
+        1000.0,
+        100.0,
+    )  # #29=IFCALIGNMENTHORIZONTALSEGMENT($,$,#28,0.,300.,1000.,100.,$,.COSINECURVE.)
+    # #64=IFCALIGNMENTCANTSEGMENT($,$,0.,100.,0.,0.,0.16,0.,.COSINECURVE.) on #61 RailHeadDistance 1.5
+    assert [(s.distance_m, s.left_percent) for s in a.cross_slopes] == [
+        (0.0, 100 * math.tan(math.asin(0.16 / 1.5))),
+        (100.0, 0.0),
+    ]
+
+
+def test_ifcopenshell_fhwa_example_in_feet() -> None:
+    """The FHWA Bridge Geometry Manual example alignment as IfcOpenShell 0.8.0 wrote it: a length unit 'FEET' whose
+    conversion factor is 304.8 millimetres, three arcs and four parabolic vertical curves."""
+    path = DATA / "FHWA_Bridge_Geometry_Alignment_Example.ifc"
+    text = path.read_text()
+    step = _step(path)
+    # the unit from the text: IFCCONVERSIONBASEDUNIT(.., 'FEET', #9); #9 = 304.8 of #2 = MILLI METRE
+    (factor,) = re.findall(r"IFCMEASUREWITHUNIT\(IFCLENGTHMEASURE\(([0-9.]+)\),#2\)", text)
+    assert ".MILLI.,.METRE." in text
+    foot = float(factor) * 1e-3
+    assert foot == 0.3048  # the international foot
+    road = read_ifc(path.read_bytes())
+    assert road.linear_unit == "FEET" and road.writer == "IfcOpenShell 0.8.0"
+    (a,) = road.alignments
+    h = [x for x in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(x[6]) > 0]
+    assert len(a.elements) == len(h) == 7
+    for e, x in zip(a.elements, h, strict=True):
+        assert math.isclose(e.length_m, _num(x[6]) * foot, rel_tol=REL)
+        r = _num(x[4])
+        assert e.radius_start_m == (abs(r) * foot if r else math.inf) or math.isclose(
+            e.radius_start_m, abs(r) * foot, rel_tol=REL
+        )
+    assert [e.direction for e in a.elements if e.kind == "arc"] == ["left", "right", "right"]  # 1000, -1250, -950
+    v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
+    (p,) = a.profiles
+    assert [s.kind for s in p.segments] == ["constant", "parabolic"] * 4 + ["constant"]
+    for s, x in zip(p.segments, v, strict=True):
+        assert math.isclose(s.start_distance_m, _num(x[2]) * foot, rel_tol=REL, abs_tol=1e-12)
+        assert math.isclose(s.length_m, _num(x[3]) * foot, rel_tol=REL)
+        assert (s.start_grade, s.end_grade) == (_num(x[5]), _num(x[6]))
+    # a symmetric parabola's grade at its middle is the mean of its end grades; the file's own parabola constant
+    # (RadiusOfCurvature) is L / (g1 - g0), in feet
+    x = v[1]
+    assert math.isclose(_num(x[7]), _num(x[3]) / (_num(x[6]) - _num(x[5])), rel_tol=1e-12)
+
+
+def test_release_candidate_file_refused_by_schema_name() -> None:
+    """12d Model's IFC4X3_RC3 alignment (bSI InfraRoom unit test) is refused, naming its schema."""
+    data = (DATA / "Alignment-12d-1.ifc").read_bytes()
+    assert b"FILE_SCHEMA (('IFC4X3_RC3'))" in data
+    with pytest.raises(AlignmentFormatError, match="IFC4X3_RC3") as exc:
+        read_ifc(data)
+    assert exc.value.field == "FILE_SCHEMA" and exc.value.location == "HEADER"
+
+
+# -- refusals and edge cases ------------------------------------------------------------------------------------
+
+
+def _one(*elements: HorizontalElement, **kw) -> str:
+    return write_ifc([AlignmentGeometry("A", 0.0, elements, **kw)]).decode()
+
+
+def _read(text: str):
+    return read_ifc(text.encode())
+
+
+H = HorizontalElement
+
+
+@pytest.mark.parametrize(
+    ("data", "match"),
+    [
+        (b"", "not an IFC file"),
+        (b"<?xml version='1.0'?><LandXML/>", "not an IFC file"),
+        (b"ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC2X3'));\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n", "'IFC2X3'"),
+        (b"ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4X3_ADD1'));\nENDSEC;\n", "'IFC4X3_ADD1'"),
+        (b"ISO-10303-21;\nHEADER;\nENDSEC;\n", "names no schema"),
+    ],
+)
+def test_not_ifc_4_3(data: bytes, match: str) -> None:
+    with pytest.raises(AlignmentFormatError, match=match):
+        read_ifc(data)
+
+
+def test_viennese_bend_refused_by_name() -> None:
+    text = _one(H("line", 50.0), H("spiral", 60.0, math.inf, 400.0, "left", spiral_type="clothoid"))
+    text = text.replace(".CLOTHOID.", ".VIENNESEBEND.")
+    with pytest.raises(AlignmentFormatError, match="VIENNESEBEND") as exc:
+        _read(text)
+    assert exc.value.field == "PredefinedType"
+    assert re.search(r"#\d+ IfcAlignmentHorizontalSegment", exc.value.location)
+
+
+def test_other_transition_types_read_by_name() -> None:
+    text = _one(H("spiral", 60.0, math.inf, 400.0, "right", spiral_type="blosscurve"))
+    (e,) = _read(text).alignments[0].elements
+    assert (e.kind, e.spiral_type, e.direction, e.radius_end_m) == ("spiral", "blosscurve", "right", 400.0)
+
+
+def test_clothoid_through_an_inflection_split_where_its_curvature_is_zero() -> None:
+    """A clothoid from +300 m to -600 m over 90 m: curvature linear in length, zero at 90 (1/300) / (1/300 + 1/600)
+    = 60 m; a left spiral of 60 m ending straight and a right one of 30 m."""
+    text = _one(H("line", 10.0), H("spiral", 90.0, 300.0, 600.0, "left", spiral_type="clothoid"))
+    # make the end radius change side: the writer wrote +300 and +600
+    text = re.sub(r"(IFCALIGNMENTHORIZONTALSEGMENT\([^;]*,300\.,)600\.", r"\1-600.", text)
+    a, b = _read(text).alignments[0].elements[1:]
+    assert (a.direction, a.radius_start_m, a.radius_end_m) == ("left", 300.0, math.inf)
+    assert (b.direction, b.radius_start_m, b.radius_end_m) == ("right", math.inf, 600.0)
+    assert math.isclose(a.length_m, 60.0, rel_tol=1e-12) and math.isclose(b.length_m, 30.0, rel_tol=1e-12)
+
+
+def test_other_transition_changing_side_refused() -> None:
+    text = _one(H("spiral", 90.0, 300.0, 600.0, "left", spiral_type="sinecurve"))
+    text = re.sub(r"(IFCALIGNMENTHORIZONTALSEGMENT\([^;]*,300\.,)600\.", r"\1-600.", text)
+    with pytest.raises(AlignmentFormatError, match="SINECURVE transition whose radii change side"):
+        _read(text)
+
+
+@pytest.mark.parametrize(
+    ("edit", "field", "match"),
+    [
+        # a LINE with a radius
+        (lambda t: t.replace(",0.,0.,100.,$,.LINE.)", ",0.,250.,100.,$,.LINE.)"), "EndRadiusOfCurvature", "LINE"),
+        # a length that is text (IfcOpenShell reads it without complaint)
+        (lambda t: t.replace(",0.,0.,100.,$,.LINE.)", ",0.,0.,'100',$,.LINE.)"), "SegmentLength", "not a number"),
+        (lambda t: t.replace(",0.,0.,100.,$,.LINE.)", ",0.,0.,-100.,$,.LINE.)"), "SegmentLength", "negative"),
+        # an enumeration value the schema does not define
+        (lambda t: t.replace(".LINE.)", ".STRAIGHT.)", 1), "PredefinedType", "not a value the schema defines"),
+        # an arc whose two radii differ
+        (lambda t: t.replace("250.,250.,", "250.,260.,"), "EndRadiusOfCurvature", "CIRCULARARC"),
+    ],
+)
+def test_bad_horizontal_values_named(edit, field: str, match: str) -> None:
+    text = _one(H("line", 100.0), H("arc", 50.0, 250.0, 250.0, "left"))
+    changed = edit(text)
+    assert changed != text
+    with pytest.raises(AlignmentFormatError, match=match) as exc:
+        _read(changed)
+    assert exc.value.field == field
+    assert "IfcAlignmentHorizontalSegment" in exc.value.location and "IfcAlignment 'A'" in exc.value.location
+
+
+def test_units() -> None:
+    text = _one(H("line", 100.0))
+    # millimetres: an SI prefix
+    mm = text.replace("IFCSIUNIT(*,.LENGTHUNIT.,$,.METRE.)", "IFCSIUNIT(*,.LENGTHUNIT.,.MILLI.,.METRE.)")
+    road = _read(mm)
+    assert road.linear_unit == "millimetre" and road.alignments[0].elements[0].length_m == 0.1
+    # a foot whose factor is a US survey foot's is refused: the two differ by 2e-6
+    ft = write_ifc([AlignmentGeometry("A", 0.0, (H("line", 100.0),))], unit="foot").decode()
+    wrong = ft.replace("IFCLENGTHMEASURE(0.3048)", f"IFCLENGTHMEASURE({1200 / 3937!r})")
+    assert wrong != ft
+    with pytest.raises(AlignmentFormatError, match="names its unit 'FOOT'") as exc:
+        _read(wrong)
+    assert exc.value.field == "ConversionFactor"
+    # a unit of another name takes the file's own factor (a chain of 20.1168 m)
+    chain = ft.replace("'FOOT'", "'CHAIN'").replace("IFCLENGTHMEASURE(0.3048)", "IFCLENGTHMEASURE(20.1168)")
+    road = _read(chain)
+    assert road.linear_unit == "CHAIN"
+    assert math.isclose(road.alignments[0].elements[0].length_m, 100.0 / 0.3048 * 20.1168, rel_tol=REL)
+    # no unit assignment
+    none = re.sub(r"IFCPROJECT\(([^;]*),#(\d+)\);", r"IFCPROJECT(\1,$);", text)
+    assert none != text
+    with pytest.raises(AlignmentFormatError, match="length unit is unknown"):
+        _read(none)
+
+
+def test_vertical_clothoid_skips_the_profile_and_says_so() -> None:
+    p = Profile("design", (VerticalSegment("parabolic", 0.0, 100.0, 10.0, 0.01, 0.03),))
+    text = _one(H("line", 100.0), profiles=(p,)).replace(".PARABOLICARC.", ".CLOTHOID.")
+    road = _read(text)
+    assert road.alignments[0].profiles == ()
+    assert any("vertical CLOTHOID" in why for _, why in road.skipped)
+
+
+def test_vertical_arc_radius_checked_against_its_grades() -> None:
+    """A circular sag from -1 % to +1 % over 100 m has R = 100 / (sin atan 0.01 - sin atan -0.01) = 5000.25 m; a
+    crest's sign on it is refused."""
+    r = 100.0 / (math.sin(math.atan(0.01)) - math.sin(math.atan(-0.01)))
+    p = Profile("design", (VerticalSegment("circular", 0.0, 100.0, 10.0, -0.01, 0.01, r),))
+    text = _one(H("line", 100.0), profiles=(p,))
+    assert _read(text).alignments[0].profiles[0].segments[0].radius_m == pytest.approx(r, rel=REL)
+    flipped = re.sub(r"(-0\.01,0\.01,)([0-9.]+)", r"\1-\2", text)
+    assert flipped != text
+    with pytest.raises(AlignmentFormatError, match="crest") as exc:
+        _read(flipped)
+    assert exc.value.field == "RadiusOfCurvature"
+
+
+def test_no_alignment() -> None:
+    with pytest.raises(AlignmentFormatError, match="no IfcAlignment"):
+        read_ifc(write_ifc([]))
+
+
+def test_example_road_is_the_readme_road() -> None:
+    """examples/road.ifc is the road examples/README.md describes: K1 right-hand R 250.5 m (60 m spirals, 160 m of
+    arc) from chainage 300 m, K2 left-hand R 180 m (50 m spirals, 140 m of arc) from 830 m, tangents of 300, 250
+    and 300 m, +3.5 % from 880 m, full superelevation 7.5 % and 8 % (banked toward each curve's inside)."""
+    road = read_ifc((Path(__file__).resolve().parents[2] / "examples" / "road.ifc").read_bytes())
+    (a,) = road.alignments
+    arcs = {e.name: e for e in a.elements if e.kind == "arc"}
+    assert (arcs["K1"].direction, arcs["K1"].radius_start_m, arcs["K1"].length_m) == ("right", 250.5, 160.0)
+    assert (arcs["K2"].direction, arcs["K2"].radius_start_m, arcs["K2"].length_m) == ("left", 180.0, 140.0)
+    starts, s = {}, a.start_station_m
+    for e in a.elements:
+        starts.setdefault(e.name, s)
+        s += e.length_m
+    assert (starts["K1-TS"], starts["K2-TS"], s) == (300.0, 830.0, 1370.0)
+    (p,) = a.profiles
+    assert (p.segments[0].start_elevation_m, p.segments[0].start_grade) == (880.0, 0.035)
+    # on the arcs: K1 (right) -7.5 % rising left to right, i.e. banked down to the right, its inside; K2 (left) +8 %
+    on_k1 = [c.left_percent for c in a.cross_slopes if 360.0 <= c.distance_m <= 520.0]
+    on_k2 = [c.left_percent for c in a.cross_slopes if 880.0 <= c.distance_m <= 1020.0]
+    assert on_k1 == pytest.approx([-7.5, -7.5], rel=1e-12) and on_k2 == pytest.approx([8.0, 8.0], rel=1e-12)
+
+
+def test_entities_of_the_wrong_kind_named() -> None:
+    """IfcOpenShell keeps whatever the file wrote where an entity belongs; the reader names the attribute."""
+    text = _one(H("line", 100.0))
+    # a segment's DesignParameters pointing at its own start point (an IfcCartesianPoint)
+    m = re.search(r"#(\d+)=IFCALIGNMENTHORIZONTALSEGMENT\(\$,\$,#(\d+),", text)
+    assert m is not None
+    seg = re.search(rf"(#\d+=IFCALIGNMENTSEGMENT\([^;]*,)#{m[1]}\);", text)
+    assert seg is not None
+    bad = text.replace(seg[0], f"{seg[1]}#{m[2]});")
+    with pytest.raises(AlignmentFormatError, match=r"must be an IfcAlignmentHorizontalSegment.*IfcCartesianPoint") as e:
+        _read(bad)
+    assert e.value.field == "DesignParameters"
+    # the project's units a string
+    bad = re.sub(r"(IFCPROJECT\([^;]*),#(\d+)\);", r"\1,'metres');", text)
+    with pytest.raises(AlignmentFormatError, match="no UnitsInContext") as e:
+        _read(bad)
+    assert e.value.field == "UnitsInContext"
+
+
+def test_station_from_pset_stationing_checked() -> None:
+    a = AlignmentGeometry("A", 1234.5, (H("line", 100.0),))
+    text = write_ifc([a]).decode()
+    assert _read(text).alignments[0].start_station_m == 1234.5
+    bad = text.replace("IFCLENGTHMEASURE(1234.5)", "IFCLABEL('1+234.5')")
+    assert bad != text
+    with pytest.raises(AlignmentFormatError, match="Station is not a number") as e:
+        _read(bad)
+    assert e.value.field == "Station" and "IfcReferent" in e.value.location
+
+
+def test_a_file_the_parser_cannot_read() -> None:
+    """A header that names IFC4X3_ADD2 and a data section cut off mid-entity."""
+    with pytest.raises(AlignmentFormatError, match="unreadable IFC file: the parser could not read"):
+        read_ifc(b"ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4X3_ADD2'));\nENDSEC;\nDATA;\n#1=IFCPROJECT(\n")
+
+
+def test_alignment_given_only_as_geometry_refused() -> None:
+    """IfcOpenShell's create_as_polyline writes an IfcAlignment with a polyline and no layouts: nothing to read."""
+    import ifcopenshell.api.alignment
+    import ifcopenshell.api.project
+    import ifcopenshell.api.root
+    import ifcopenshell.api.unit
+
+    f = ifcopenshell.api.project.create_file(version="IFC4X3")
+    ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="p")
+    ifcopenshell.api.unit.assign_unit(f, units=[f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE")])
+    points = [f.createIfcCartesianPoint(p) for p in ((0.0, 0.0), (100.0, 0.0), (200.0, 50.0))]
+    ifcopenshell.api.alignment.create_as_polyline(f, "poly", points)
+    with pytest.raises(AlignmentFormatError, match="only as geometry") as e:
+        read_ifc(f.to_string().encode())
+    assert e.value.location.startswith("IfcAlignment 'poly'")

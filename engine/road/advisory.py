@@ -412,3 +412,148 @@ def method_source(method_id: str) -> tuple[str, bool, bool]:
     if method_id == "design-method":
         return DESIGN_METHOD_NOTE, False, False
     raise KeyError(method_id)
+
+
+# ------------------------------------------------------------------------------------------------------ alignments
+
+#: TxDOT (Design Method, Step 1; Direct Method, Step 1): "When two or more curves are separated by a tangent of 600 ft
+#: or less, one sign should apply for all curves" [m]
+SHARED_SIGN_TANGENT_M = 600.0 * 0.3048
+
+
+@dataclass(frozen=True)
+class AlignmentAdvice:
+    """What an alignment's assessed curves carry (one vehicle): the advisory columns (with the shared sign of curves
+    close together applied), the sign group of each curve (the index of its group's first curve; -1 where its
+    stations are unknown), and the truck's speed profile (:class:`engine.road.profile.SpeedProfile`) with its
+    per-curve figures (``approach_speed_kmh``, ``required_deceleration_mps2``, ...)."""
+
+    advisory: AdvisoryColumns
+    sign_group: np.ndarray
+    profile: object  # engine.road.profile.SpeedProfile
+
+    def treatment_devices(self, i: int) -> list[str]:
+        code = int(self.advisory.treatment[i])
+        return list(TREATMENTS[code]) if code >= 0 else []
+
+
+def sign_groups(start_station_m, length_m) -> np.ndarray:
+    """Index of the first curve of each curve's sign group: a curve whose tangent from the previous curve is at most
+    600 ft shares that curve's sign (TxDOT). -1 where a curve's stations are unknown or out of order (no group)."""
+    s = np.atleast_1d(np.asarray(start_station_m, dtype=float))
+    length = np.broadcast_to(np.asarray(length_m, dtype=float), s.shape)
+    n = len(s)
+    groups = np.arange(n)
+    ok = np.isfinite(s) & np.isfinite(length) & (length > 0)
+    if n > 1:
+        tangent = s[1:] - (s[:-1] + length[:-1])
+        joined = ok[1:] & ok[:-1] & (tangent >= 0) & (tangent <= SHARED_SIGN_TANGENT_M + 1e-9)
+        starts = np.ones(n, dtype=bool)
+        starts[1:] = ~joined
+        groups = np.maximum.accumulate(np.where(starts, np.arange(n), 0))
+    return np.where(ok, groups, -1)
+
+
+def advise_alignment(
+    columns,
+    start_station_m,
+    length_m,
+    *,
+    deflection_deg=None,
+    measured_car_speed_kmh=None,
+    desired_speed_kmh: float | None = None,
+    units: str = "us",
+    rollover_margin_kmh: float = ROLLOVER_MARGIN_KMH,
+    body_roll_deg_per_g: float = BODY_ROLL_DEG_PER_G,
+    deceleration_mps2: float | None = None,
+    reaction_time_s: float | None = None,
+    alignment_start_m: float | None = None,
+    alignment_end_m: float | None = None,
+) -> AlignmentAdvice:
+    """Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one alignment and one
+    vehicle: the function the alignment and route answers call per vehicle.
+
+    Parameters
+    ----------
+    columns : :class:`engine.road.curves.AlignmentColumns` of the vehicle (its radius, superelevation, grade,
+        posted, rollover and safe speeds are used)
+    start_station_m, length_m : each curve's start station and length, in travel order [m] (nan: unknown; such
+        curves get a reason and the alignment no profile)
+    deflection_deg, measured_car_speed_kmh : per curve, optional (see :func:`advise_curves`)
+    desired_speed_kmh : the tangent speed where a curve has no posted speed [km/h]; the posted speed otherwise
+    units, rollover_margin_kmh, body_roll_deg_per_g : see :func:`advise_curves`
+    deceleration_mps2, reaction_time_s, alignment_start_m, alignment_end_m : see
+        :func:`engine.road.profile.speed_profile` (None: its defaults)
+
+    Returns
+    -------
+    AlignmentAdvice
+        A group of curves that shares a sign shows its lowest advisory speed (this service's reading of TxDOT's rule:
+        the one sign has to be right for the sharpest curve); the treatment and W1-13 rule follow the shown speed.
+    """
+    from engine.road import profile as prof  # the profile module is the caller's second step; kept out of import time
+
+    cols = advise_curves(
+        columns.radius_m,
+        columns.superelevation_percent,
+        columns.posted_speed_kmh,
+        columns.rollover_speed_kmh,
+        deflection_deg=deflection_deg,
+        measured_car_speed_kmh=measured_car_speed_kmh,
+        units=units,
+        rollover_margin_kmh=rollover_margin_kmh,
+        body_roll_deg_per_g=body_roll_deg_per_g,
+    )
+    groups = sign_groups(start_station_m, length_m)
+    shown = cols.advisory_speed_kmh.copy()
+    grouped = groups >= 0
+    if np.any(grouped):
+        lowest = np.full(len(shown), np.inf)
+        np.minimum.at(lowest, groups[grouped], shown[grouped])
+        shown[grouped] = lowest[groups[grouped]]
+    posted = np.asarray(columns.posted_speed_kmh, dtype=float)
+    advisory = AdvisoryColumns(
+        units=units,
+        advisory_speed_kmh=shown,
+        governed_by=cols.governed_by,
+        methods=cols.methods,
+        treatment=treatment_code(posted, shown),
+        truck_rollover_warning=rollover_warning(columns.rollover_speed_kmh, shown, rollover_margin_kmh),
+        small_deflection=cols.small_deflection,
+        rollover_margin_kmh=rollover_margin_kmh,
+    )
+    desired = posted if desired_speed_kmh is None else np.where(np.isfinite(posted), posted, desired_speed_kmh)
+    options = {}
+    if deceleration_mps2 is not None:
+        options["deceleration_mps2"] = deceleration_mps2
+    if reaction_time_s is not None:
+        options["reaction_time_s"] = reaction_time_s
+    missing = ~np.isfinite(desired)
+    if np.any(missing):  # no speed to travel the tangents at: say so per curve, invent none
+        n = len(desired)
+        first = int(np.flatnonzero(missing)[0])
+        nan = np.full(n, np.nan)
+        reasons = [
+            "no posted speed and no desired_speed_kmh: the tangent speed is unknown"
+            if missing[i]
+            else f"no profile: curves[{first}] has no tangent speed"
+            for i in range(n)
+        ]
+        profile = prof.SpeedProfile(
+            np.empty(0), np.empty(0), nan, nan.copy(), nan.copy(), nan.copy(), np.zeros(n, bool), np.zeros(n, bool),
+            nan.copy(), nan.copy(), reasons, options.get("deceleration_mps2", prof.DECELERATION_MPS2),
+            options.get("reaction_time_s", prof.REACTION_TIME_S), ["no profile: a curve has no tangent speed"],
+        )  # fmt: skip
+    else:
+        profile = prof.speed_profile(
+            start_station_m,
+            length_m,
+            desired,
+            columns.safe_speed_kmh,
+            shown,
+            columns.grade_percent,
+            alignment_start_m=alignment_start_m,
+            alignment_end_m=alignment_end_m,
+            **options,
+        )
+    return AlignmentAdvice(advisory=advisory, sign_group=groups, profile=profile)

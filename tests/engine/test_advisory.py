@@ -126,3 +126,61 @@ def test_w1_13_rule():
     cols = adv.advise_curves([100.0, 100.0], [6.0, 6.0], [90.0, 90.0], [40.0, 200.0], deflection_deg=[30.0, 3.0])
     assert list(cols.truck_rollover_warning) == [True, False]
     assert list(cols.small_deflection) == [False, True]
+
+
+# ------------------------------------------------------------------------------------------------- alignments
+
+
+def test_curves_within_600_ft_share_one_sign():
+    # TxDOT: curves separated by a tangent of 600 ft (182.88 m) or less get one sign
+    start = np.array([0.0, 300.0, 600.0, 1000.0])
+    length = np.array([200.0, 200.0, 200.0, 100.0])  # tangents 100, 100, 200 m
+    assert list(adv.sign_groups(start, length)) == [0, 0, 0, 3]
+    assert list(adv.sign_groups([0.0, 200.0 + 182.88], [200.0, 50.0])) == [0, 0]  # exactly 600 ft: shared
+    assert list(adv.sign_groups([0.0, np.nan, 900.0], [200.0, 100.0, 100.0])) == [0, -1, 2]
+
+
+def _columns():
+    from engine.case import Case
+    from engine.road.curves import assess_alignment
+    from engine.vehicle.presets import PRESETS
+
+    case = Case(PRESETS["table16-btrain"], "3d")
+    radius = np.array([120.0, 400.0, 90.0, 800.0])
+    e = np.array([6.0, 4.0, 8.0, 2.0])
+    grade = np.array([0.0, -3.0, 2.0, 0.0])
+    posted = np.array([90.0, 90.0, 90.0, np.nan])
+    return assess_alignment(case, radius, e, grade, posted)
+
+
+def test_advise_alignment_groups_signs_and_carries_the_profile():
+    cols = _columns()
+    start = np.array([0.0, 250.0, 1500.0, 3000.0])
+    length = np.array([150.0, 200.0, 120.0, 150.0])  # tangents 100 m (shared sign), 1050 m, 1380 m
+    out = adv.advise_alignment(cols, start, length, desired_speed_kmh=80.0)
+    alone = adv.advise_curves(
+        cols.radius_m, cols.superelevation_percent, cols.posted_speed_kmh, cols.rollover_speed_kmh
+    )
+    shown = out.advisory.advisory_speed_kmh
+    assert list(out.sign_group) == [0, 0, 2, 3]
+    assert shown[0] == shown[1] == min(alone.advisory_speed_kmh[:2])  # the group's lowest
+    assert shown[2] == alone.advisory_speed_kmh[2]
+    assert list(out.advisory.truck_rollover_warning) == list(
+        adv.rollover_warning(cols.rollover_speed_kmh, shown, adv.ROLLOVER_MARGIN_KMH)
+    )
+    p = out.profile
+    assert p.reasons == [None] * 4 and p.station_m.size > 0
+    # the tangent speed: posted where given (90), else the desired 80 km/h; never above a curve's safe speed
+    assert p.speed_kmh.max() <= 90.0 + 1e-9
+    for i in range(4):
+        s = np.linspace(start[i], start[i] + length[i], 5)
+        v = np.sqrt(np.interp(s, p.station_m, p.speed_kmh**2))
+        assert np.all(v <= cols.safe_speed_kmh[i] + 1e-6) and np.all(v <= shown[i] + 1e-6)
+    assert np.all(np.isfinite(p.approach_speed_kmh)) and np.all(p.required_deceleration_mps2 >= 0)
+
+
+def test_advise_alignment_without_a_tangent_speed_gives_reasons():
+    cols = _columns()
+    out = adv.advise_alignment(cols, [0.0, 250.0, 1500.0, 3000.0], [150.0, 200.0, 120.0, 150.0])
+    assert out.profile.station_m.size == 0
+    assert out.profile.reasons[3].startswith("no posted speed") and out.profile.reasons[0].startswith("no profile")

@@ -76,18 +76,27 @@ CRAWL_FRACTION = 0.9
 
 
 def crawl_speed_kmh(grade_percent, **params) -> np.ndarray:
-    """The speed at which the truck's acceleration on a grade falls to 0 [km/h] (at most 200), by bisection: the
-    acceleration falls with speed, so there is one root."""
+    """The speed at which the truck's acceleration on a grade falls to 0 [km/h], at most 200.
+
+    a(v) = 0 with a = c1 / v - c2 - c3 v^2 (:func:`acceleration_mps2`) is the cubic c3 v^3 + c2 v - c1 = 0; since
+    c1, c3 > 0 it has one positive root (negative at 0, and once rising it keeps rising), solved in closed form
+    (Cardano; the trigonometric form's largest root where the cubic has three real roots, a steep downgrade).
+    """
+    p = {**ACCELERATION_DEFAULTS, **params}
     g = np.atleast_1d(np.asarray(grade_percent, dtype=float))
-    lo = np.full(g.shape, 0.5)
-    hi = np.full(g.shape, 200.0)
-    top = acceleration_mps2(hi, g, **params) >= 0
-    for _ in range(50):
-        mid = 0.5 * (lo + hi)
-        up = acceleration_mps2(mid, g, **params) > 0
-        lo = np.where(up, mid, lo)
-        hi = np.where(up, hi, mid)
-    return np.where(top, 200.0, 0.5 * (lo + hi))
+    c1 = p["transmission_efficiency"] * 1000.0 / p["weight_to_power_kg_per_kw"]
+    c2 = G * (p["rolling_resistance"] + 0.01 * g)
+    c3 = 0.5 * p["air_density_kg_m3"] * p["drag_area_m2_per_t"] / 1000.0
+    pp, qq = c2 / c3, -c1 / c3  # v^3 + pp v + qq = 0
+    disc = (qq / 2.0) ** 2 + (pp / 3.0) ** 3
+    with np.errstate(invalid="ignore"):
+        root = np.sqrt(np.maximum(disc, 0.0))
+        one = np.cbrt(-qq / 2.0 + root) + np.cbrt(-qq / 2.0 - root)
+        m = np.sqrt(np.maximum(-pp / 3.0, 0.0))
+        arg = np.clip(np.where(m > 0, (-qq / 2.0) / np.where(m > 0, m, 1.0) ** 3, 1.0), -1.0, 1.0)
+        three = 2.0 * m * np.cos(np.arccos(arg) / 3.0)
+    v = np.where(disc >= 0, one, three)
+    return np.minimum(v * 3.6, 200.0)
 
 
 def acceleration_mps2(speed_kmh, grade_percent, **params) -> np.ndarray:
@@ -241,8 +250,13 @@ def speed_profile(
     # the top speed on an element: the desired speed, or a fraction of the crawl speed on its grade (the tangent
     # after curve i keeps curve i's grade); the element's acceleration is the model's at that top speed, the lowest
     # over the speeds below it, so every step stays within the truck's power
-    top = CRAWL_FRACTION * crawl_speed_kmh(grade, **acc_params)
     desired_after = np.append(desired[1:], desired[-1])  # the tangent after curve i is the one before curve i + 1
+    top = np.full(shape, np.inf)
+    # the crawl speed only where it can bind: where the truck has no acceleration left at the higher of the curve's
+    # and the next tangent's desired speed over CRAWL_FRACTION
+    binds = acceleration_mps2(np.maximum(desired, desired_after) / CRAWL_FRACTION, grade, **acc_params) <= 0
+    if np.any(binds):
+        top[binds] = CRAWL_FRACTION * crawl_speed_kmh(grade[binds], **acc_params)
     cap = np.minimum(cap, top)
     tangent_cap = np.minimum(desired_after, top)
     a_curve = acceleration_mps2(cap, grade, **acc_params)
@@ -341,22 +355,27 @@ def _profile_points(node_s, v2, gaps, acc, d, caps_kmh):
     v2p, v2q = v2[:-1], v2[1:]
     c2 = (caps_kmh / 3.6) ** 2
     c2 = np.maximum(c2, np.maximum(v2p, v2q))  # a node at its cap is never above the element's cap
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s1 = np.where(acc > 0, s_p + (c2 - v2p) / (2.0 * np.where(acc > 0, acc, 1.0)), np.where(c2 <= v2p, s_p, np.inf))
+    acc = np.maximum(acc, 1e-12)  # positive by construction (every cap is below the crawl speed); guards the division
+    s1 = s_p + (c2 - v2p) / (2.0 * acc)
     s2 = s_q - (c2 - v2q) / (2.0 * d)
     meet = s1 > s2
-    # where the lines meet below the cap: v2p + 2 a (s - s_p) = v2q + 2 d (s_q - s)
-    s_star = (v2q - v2p + 2.0 * d * s_q + 2.0 * acc * s_p) / (2.0 * (acc + d))
-    s_star = np.clip(s_star, s_p, s_q)
-    v_star2 = np.minimum(v2p + 2.0 * acc * (s_star - s_p), v2q + 2.0 * d * (s_q - s_star))
-    a_s = np.where(meet, s_star, np.minimum(s1, s_q))
-    a_v = np.where(meet, v_star2, c2)
-    b_s = np.where(meet, s_star, np.maximum(s2, s_p))
-    b_v = np.where(meet, v_star2, c2)
-    pts_s = np.column_stack((s_p, a_s, b_s)).ravel()
-    pts_v = np.column_stack((v2p, a_v, b_v)).ravel()
-    pts_s = np.append(pts_s, s_q[-1])
-    pts_v = np.append(pts_v, v2q[-1])
+    m = len(s_p)
+    pts_s = np.empty((m + 1, 3))
+    pts_v = np.empty((m + 1, 3))
+    pts_s[:m, 0], pts_v[:m, 0] = s_p, v2p
+    np.minimum(s1, s_q, out=pts_s[:m, 1])
+    np.maximum(s2, s_p, out=pts_s[:m, 2])
+    pts_v[:m, 1] = c2
+    pts_v[:m, 2] = c2
+    if np.any(meet):  # where the lines meet below the cap: v2p + 2 a (s - s_p) = v2q + 2 d (s_q - s)
+        a, sp, sq, vp, vq = acc[meet], s_p[meet], s_q[meet], v2p[meet], v2q[meet]
+        s_star = np.clip((vq - vp + 2.0 * d * sq + 2.0 * a * sp) / (2.0 * (a + d)), sp, sq)
+        v_star2 = np.minimum(vp + 2.0 * a * (s_star - sp), vq + 2.0 * d * (sq - s_star))
+        rows = np.flatnonzero(meet)
+        pts_s[rows, 1] = pts_s[rows, 2] = s_star
+        pts_v[rows, 1] = pts_v[rows, 2] = v_star2
+    pts_s[m], pts_v[m] = s_q[-1], v2q[-1]  # the last node (thrice: the duplicates go below)
+    pts_s, pts_v = pts_s.ravel(), pts_v.ravel()
     keep = np.ones(len(pts_s), dtype=bool)
     keep[1:] = (np.diff(pts_s) > 1e-9) | (np.abs(np.diff(pts_v)) > 1e-9)
     return pts_s[keep], np.sqrt(np.maximum(pts_v[keep], 0.0)) * 3.6

@@ -34,14 +34,18 @@ def _speed_at(p, s):
 def test_never_above_desired_safe_or_advisory_and_steps_within_rates(seed):
     rng = np.random.default_rng(seed)
     start, length, safe, advisory, grade = _random_alignment(rng, 200)
-    desired = 100.0
+    desired = rng.choice([50.0, 70.0, 90.0, 110.0], 200)  # the tangent before each curve
     p = prof.speed_profile(start, length, desired, safe, advisory, grade, alignment_start_m=start[0] - 500.0,
                            alignment_end_m=start[-1] + length[-1] + 500.0)  # fmt: skip
     assert p.reasons == [None] * 200
+    assert np.all(np.isfinite(p.speed_kmh)) and np.all(np.isfinite(p.approach_speed_kmh))
     assert np.all(np.diff(p.station_m) >= 0)
-    assert np.all(p.speed_kmh <= desired + 1e-9)
+    # on each tangent (the one before curve i) at most its desired speed
+    for i in range(1, 200):
+        s = np.linspace(start[i - 1] + length[i - 1], start[i], 7)
+        assert np.all(_speed_at(p, s) <= desired[i] + 1e-6), i
     # inside every curve, at its ends and at 9 points between, no cap is exceeded
-    caps = np.fmin(np.fmin(safe, advisory), desired)
+    caps = np.fmin(np.fmin(safe, advisory), desired)  # a curve: at most its own tangent's desired speed too
     for i in range(200):
         s = np.linspace(start[i], start[i] + length[i], 11)
         assert np.all(_speed_at(p, s) <= caps[i] + 1e-6), i

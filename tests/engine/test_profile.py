@@ -109,3 +109,12 @@ def test_crawl_speed_is_where_the_model_stops_accelerating():
     v = prof.crawl_speed_kmh(g)
     assert np.allclose(prof.acceleration_mps2(v, g), 0.0, atol=1e-9)
     assert np.all(np.diff(v) < 0)  # steeper, slower
+
+
+def test_advance_sign_distance_in_metric_and_us_forms():
+    # the US form of the same distance (AASHTO's stopping-sight-distance form): d [ft] = 1.47 V t + 1.075 (V1^2 -
+    # V2^2) / a, V in mph, a in ft/s^2; its constants are rounded (1.4667, 1.0756), so within 0.3 %
+    p = prof.speed_profile([0.0], [200.0], 100.0, [120.0], [60.0], [0.0])
+    v1_mph, v2_mph = 100.0 / 1.609344, 60.0 / 1.609344
+    us_ft = 1.47 * v1_mph * 2.5 + 1.075 * (v1_mph**2 - v2_mph**2) / 10.0
+    assert p.advance_sign_distance_m[0] == pytest.approx(us_ft * 0.3048, rel=0.003)

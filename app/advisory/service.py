@@ -23,9 +23,11 @@ from app.srt.service import resolve_case, resolve_srt, solve
 from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION
 from engine.case import Road
+from engine.errors import InvalidInput
 from engine.road import advisory as adv
 from engine.road import max_curve_speed_kmh, side_friction_speed
 from engine.road.profile import check_deceleration
+from engine.vehicle import FIELD_DOCS
 
 OPERATION = "advisory-speed"
 
@@ -86,7 +88,14 @@ async def compute_advisory_speed(cache: ResultCache, req: AdvisorySpeedRequest) 
 
     async def produce() -> bytes:
         r, e = req.radius_m, req.superelevation_percent
-        srts = [(await solve(cache, c)).srt for c in cases]
+        srts = []
+        for i, c in enumerate(cases):
+            try:
+                srts.append((await solve(cache, c)).srt)
+            except InvalidInput as exc:  # a record field of vehicles[i]: point at that vehicle, not at `vehicle`
+                if req.vehicles is not None and exc.field in FIELD_DOCS:
+                    exc.field = f"vehicles[{i}].{exc.field}"
+                raise
         v_roll = [float(max_curve_speed_kmh(s, r)) for s in srts]  # Eq. 9.1: the SRT on this bank and grade
         cols = adv.advise_curves(
             [r],

@@ -89,3 +89,9 @@ def test_metric_plaque(client):
 def test_refusals_name_the_field(client, extra, field):
     r = post(client, {**CURVE, **extra}, status=422)
     assert any(e["field"] == field for e in r.json()["errors"]), r.text
+
+
+def test_a_vehicle_the_model_cannot_use_is_named_by_its_place_in_vehicles(client):
+    # the 3d model needs the front axle of table14-semitrailer, which its record leaves null
+    r = post(client, {**CURVE, "vehicles": [BTRAIN, "table14-semitrailer"]}, status=422)
+    assert r.json()["errors"][0]["field"] == "vehicles.1.front_track_m"

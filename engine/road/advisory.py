@@ -2,7 +2,8 @@
 the truck rollover warning (W1-13).
 
 What was read and where is in docs/advisory.md; every criterion below names its source and whether it was verified in
-a primary text. Nothing here imports the rest of the engine except :mod:`engine.errors`.
+a primary text. Nothing here imports the rest of the engine except :mod:`engine.errors` and
+:mod:`engine.road.profile` (the truck's speed profile, for :func:`advise_alignment`).
 
 Methods
 -------
@@ -38,6 +39,7 @@ from functools import lru_cache
 import numpy as np
 
 from engine.errors import InvalidRoad
+from engine.road import profile as prof
 
 KMH_PER_MPH = 1.609344  # exact (international mile)
 KMH2_PER_M_G = 127.0  # V^2 / (127 R) is the lateral acceleration in g for V in km/h, R in m (thesis Eq. 9.1)
@@ -430,7 +432,7 @@ class AlignmentAdvice:
 
     advisory: AdvisoryColumns
     sign_group: np.ndarray
-    profile: object  # engine.road.profile.SpeedProfile
+    profile: prof.SpeedProfile
 
     def treatment_devices(self, i: int) -> list[str]:
         code = int(self.advisory.treatment[i])
@@ -491,8 +493,6 @@ def advise_alignment(
         A group of curves that shares a sign shows its lowest advisory speed (this service's reading of TxDOT's rule:
         the one sign has to be right for the sharpest curve); the treatment and W1-13 rule follow the shown speed.
     """
-    from engine.road import profile as prof  # the profile module is the caller's second step; kept out of import time
-
     cols = advise_curves(
         columns.radius_m,
         columns.superelevation_percent,
@@ -532,18 +532,18 @@ def advise_alignment(
     if np.any(missing):  # no speed to travel the tangents at: say so per curve, invent none
         n = len(desired)
         first = int(np.flatnonzero(missing)[0])
-        nan = np.full(n, np.nan)
         reasons = [
             "no posted speed and no desired_speed_kmh: the tangent speed is unknown"
             if missing[i]
             else f"no profile: curves[{first}] has no tangent speed"
             for i in range(n)
         ]
-        profile = prof.SpeedProfile(
-            np.empty(0), np.empty(0), nan, nan.copy(), nan.copy(), nan.copy(), np.zeros(n, bool), np.zeros(n, bool),
-            nan.copy(), nan.copy(), reasons, options.get("deceleration_mps2", prof.DECELERATION_MPS2),
-            options.get("reaction_time_s", prof.REACTION_TIME_S), ["no profile: a curve has no tangent speed"],
-        )  # fmt: skip
+        profile = prof.SpeedProfile.none(
+            reasons,
+            options.get("deceleration_mps2", prof.DECELERATION_MPS2),
+            options.get("reaction_time_s", prof.REACTION_TIME_S),
+            "no profile: a curve has no tangent speed",
+        )
     else:
         profile = prof.speed_profile(
             start_station_m,

@@ -139,6 +139,17 @@ class SpeedProfile:
     reaction_time_s: float
     notes: list[str] = field(default_factory=list)
 
+    @classmethod
+    def none(cls, reasons: list[str | None], deceleration_mps2: float, reaction_time_s: float, note: str):
+        """No profile: empty stations and speeds, nan per-curve figures, a reason per curve."""
+        n = len(reasons)
+        nan = np.full(n, np.nan)
+        no = np.zeros(n, dtype=bool)
+        return cls(
+            np.empty(0), np.empty(0), nan, nan.copy(), nan.copy(), nan.copy(), no, no.copy(), nan.copy(), nan.copy(),
+            reasons, deceleration_mps2, reaction_time_s, [note],
+        )  # fmt: skip
+
 
 def check_stations(start_m: np.ndarray, length_m: np.ndarray) -> list[str | None]:
     """A reason per curve whose stations cannot carry a profile (None where fine): no station or length, a start
@@ -224,21 +235,14 @@ def speed_profile(
     grade = np.where(np.isfinite(grade), grade, 0.0)
     cap = np.fmin(np.fmin(desired, safe), advisory)  # fmin: nan (no safe/advisory speed) does not cap
 
-    nan = np.full(shape, np.nan)
     reasons = check_stations(s0, length) if n else []
     if any(reasons):
         first = next(i for i, r in enumerate(reasons) if r)
         reasons = [r or f"no profile: curves[{first}] cannot be placed (see its reason)" for r in reasons]
-        return SpeedProfile(
-            np.empty(0), np.empty(0), nan, nan.copy(), cap, nan.copy(), np.zeros(shape, bool), np.zeros(shape, bool),
-            nan.copy(), nan.copy(), reasons, deceleration_mps2, reaction_time_s,
-            ["no profile: the curves' stations overlap, run backwards or are missing"],
-        )  # fmt: skip
+        note = "no profile: the curves' stations overlap, run backwards or are missing"
+        return SpeedProfile.none(reasons, deceleration_mps2, reaction_time_s, note)
     if n == 0:
-        return SpeedProfile(
-            np.empty(0), np.empty(0), nan, nan, nan, nan, np.zeros(0, bool), np.zeros(0, bool), nan, nan, [],
-            deceleration_mps2, reaction_time_s,
-        )  # fmt: skip
+        return SpeedProfile.none([], deceleration_mps2, reaction_time_s, "no curves")
 
     end = s0 + length
     d = deceleration_mps2

@@ -129,7 +129,8 @@ class SpeedProfile:
     approach_speed_kmh: np.ndarray
     entry_speed_kmh: np.ndarray
     curve_speed_kmh: np.ndarray  # the cap the truck takes the curve at (lowest of desired, safe, advisory)
-    required_deceleration_mps2: np.ndarray  # to the curve speed, with the reaction distance (inf: no room)
+    required_deceleration_mps2: np.ndarray  # to the curve speed, with the reaction distance (inf: no room; nan: the
+    # first curve's approach length is unknown)
     slows_to_advisory: np.ndarray  # bool; True where there is no advisory below the approach
     slows_to_safe: np.ndarray
     advance_sign_distance_m: np.ndarray
@@ -299,6 +300,8 @@ def speed_profile(
         required = np.where(
             v1 <= target, 0.0, np.where(room > 0, (approach2 - target**2) / (2.0 * np.where(room > 0, room, 1)), np.inf)
         )
+    # the first curve approached from an unknown distance (no road start given): the rate it needs is unknown
+    required[~np.isfinite(tangent_before) & (v1 > target)] = np.nan
     adv = advisory / 3.6
     safe_v = safe / 3.6
     slows_adv = ~np.where(np.isfinite(adv), too_close(np.where(np.isfinite(adv), adv, 0.0)), False)

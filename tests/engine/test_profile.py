@@ -82,6 +82,10 @@ def test_too_close_exactly_at_the_braking_plus_reaction_distance(delta):
     assert bool(p.slows_to_safe[1]) is True  # 60 km/h needs less room
     # the required deceleration over the room left after reacting, to the curve's speed (50 km/h)
     assert p.required_deceleration_mps2[1] == pytest.approx((v1**2 - v2**2) / (2.0 * (tangent - v1 * t)), rel=1e-12)
+    assert p.required_deceleration_mps2[0] == 0.0  # the first curve does not slow the truck
+    # a first curve that does, approached from an unknown distance (no road start): no rate can be given
+    q = prof.speed_profile([0.0], [100.0], 80.0, [60.0])
+    assert np.isnan(q.required_deceleration_mps2[0]) and bool(q.slows_to_safe[0]) is True
 
 
 def test_overlapping_or_backward_stations_give_reasons_not_a_profile():

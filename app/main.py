@@ -12,6 +12,7 @@ from fastapi import FastAPI
 from fastapi_offline import FastAPIOffline
 from starlette.concurrency import run_in_threadpool
 
+from app.advisory import router as advisory_router
 from app.alignments import router as alignments_router
 from app.catalog import router as catalog_router
 from app.catalog.service import close_catalog, install_catalog_handlers, open_catalog
@@ -108,6 +109,7 @@ ROUTERS = (
     combination_router.router,
     srt_router.router,
     road_router.router,
+    advisory_router.router,
     standards_router.router,
     alignments_router.router,
     routes_router.router,

@@ -242,6 +242,26 @@ EXAMPLES = [
         {"design_speed_kmh": 80, "superelevation_percent": 10, "srt": 0.172},
     ),
     Example(
+        "Advisory speed of one curve (150 m, 6 %, posted 100 km/h) with the B-train's rollover check: the plaque's "
+        "speed, each method's, the treatment and the W1-13 rule",
+        "POST",
+        "/v1/advisory-speed",
+        {
+            "radius_m": 150,
+            "superelevation_percent": 6,
+            "deflection_deg": 40,
+            "posted_speed_kmh": 100,
+            "vehicle": BTRAIN,
+        },
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["advisory_speed_mph"], "mph by", '
+        'r["governed_by"]); [print(m["id"], None if m["speed_kmh"] is None else round(m["speed_kmh"], 1), '
+        '"legacy" if m["legacy"] else "", "" if m["verified"] else "unverified") for m in r["methods"]]; '
+        'print(r["treatment"]["devices"]); print("W1-13", r["truck_rollover_warning"]["recommended"])\'',
+        heading="Advisory speeds: `POST /v1/advisory-speed`",
+        note="The Design Method's curve speed model could not be read in its primary text: it is listed, unverified, "
+        "without a speed (docs/advisory.md).",
+    ),
+    Example(
         "SRT targets and the tilt-table angle: the rigid B-train against PBS / NZ and a fleet's own 0.45 g",
         "POST",
         "/v1/srt",

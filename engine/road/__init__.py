@@ -6,7 +6,9 @@
 - :mod:`~engine.road.superelevation`: the standards' superelevation distributions;
 - :mod:`~engine.road.targets`: SRT targets and the tilt-table angle;
 - :mod:`~engine.road.limits`: inverse limits (the largest payload, CG height, ... that still meets a target);
-- :mod:`~engine.road.curves`: the safe speed on every curve of an alignment.
+- :mod:`~engine.road.curves`: the safe speed on every curve of an alignment;
+- :mod:`~engine.road.advisory`: advisory speeds, the sign treatment and the truck rollover warning (W1-13);
+- :mod:`~engine.road.profile`: a truck's speed profile along the curves (braking into, accelerating out of them).
 """
 
 from .curves import (

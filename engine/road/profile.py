@@ -1,0 +1,388 @@
+"""The speed profile of a truck along a sequence of curves: desired speed on the tangents, braking into each curve at a
+stated rate, accelerating out of it within the truck's power on the grade, never above a curve's speed.
+
+Model
+-----
+The alignment is a chain of nodes (each curve's start and end). On every element the squared speed v^2 is bounded
+three ways: by the element's cap (the desired speed on a tangent; on a curve the lowest of the desired, safe and
+advisory speeds), by acceleration from the node before (v^2 = v0^2 + 2 a s, a the element's acceleration) and by
+braking to the node after (v^2 = v1^2 + 2 d (L - s), d the stated deceleration). The profile is the pointwise minimum:
+the forward pass is a min-plus recurrence solved with a cumulative minimum, the backward pass likewise, so 100,000
+curves take a few numpy passes. Between the returned stations v^2 is linear in station (constant rate).
+
+Rates
+-----
+- deceleration: 10 ft/s^2 = 3.048 m/s^2 and a 2.5 s reaction time by default, the basis of MUTCD 11e Table 2C-3
+  (as transcribed; unverified against the manual). The largest accepted is 15 ft/s^2 = 4.572 m/s^2, the emergency
+  braking rate NCHRP Report 774 (2014, Summary) studied for trucks on curves (its other rate: 11.2 ft/s^2, the
+  stopping-sight-distance rate); beyond it a loaded truck does not brake, so it is refused.
+- acceleration: a vehicle-dynamics model (tractive power against rolling, grade and air resistance; the form of
+  Rakha et al., ASCE J. Transp. Eng. 2001, whose abstract was read) evaluated at the desired speed, the lowest
+  acceleration over the speeds the truck passes through below it. The weight-to-power ratio default, 120 kg/kW
+  (200 lb/hp), is the HCM's typical truck named by Rakha and Yu; the efficiency, rolling and air coefficients are
+  assumed (:data:`ACCELERATION_DEFAULTS`). NCHRP's 2003 truck speed-profile model (Review of Truck Characteristics,
+  App. E) could not be read. Where the truck cannot accelerate at the desired speed (a steep upgrade) it holds the
+  speed it leaves the curve with (a stated simplification: the model's crawl speed is not computed).
+
+Per curve: the speed the truck can reach at the curve's start without braking for it (``approach_speed_kmh``), whether
+the tangent before lets it slow to the advisory and to the safe speed at the rate with the reaction distance
+(too close exactly when L < (v1^2 - v2^2) / (2 d) + v1 t), the deceleration it would need, the advance-sign distance
+and the speed drop. Curves whose stations overlap or run backwards carry a reason instead of a profile.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from engine.errors import InvalidRoad
+
+G = 9.81
+FT = 0.3048
+#: MUTCD 11e Table 2C-3 basis (as transcribed; unverified): 10 ft/s^2 deceleration, 2.5 s reaction
+DECELERATION_MPS2 = 10.0 * FT
+REACTION_TIME_S = 2.5
+#: NCHRP Report 774 (2014), Summary: emergency braking, -15 ft/s^2, the most a truck was taken to brake in a curve
+MAX_TRUCK_DECELERATION_MPS2 = 15.0 * FT
+#: NCHRP Report 774 (2014), Summary: stopping-sight-distance braking, -11.2 ft/s^2
+SSD_DECELERATION_MPS2 = 11.2 * FT
+
+#: acceleration model: weight-to-power 120 kg/kW (HCM typical truck, as named by Rakha and Yu); the rest assumed
+ACCELERATION_DEFAULTS = {
+    "weight_to_power_kg_per_kw": 120.0,
+    "transmission_efficiency": 0.94,  # assumed
+    "rolling_resistance": 0.0075,  # assumed, [-] of the weight
+    "drag_area_m2_per_t": 0.17,  # assumed C_d A per tonne (about 6 m^2 for 36 t)
+    "air_density_kg_m3": 1.2,  # assumed
+}
+
+
+def check_deceleration(deceleration_mps2: float, field: str = "deceleration_mps2") -> None:
+    """Refuse a deceleration a loaded truck cannot brake at (> NCHRP 774's 15 ft/s^2) or <= 0."""
+    if not (math.isfinite(deceleration_mps2) and 0 < deceleration_mps2 <= MAX_TRUCK_DECELERATION_MPS2 + 1e-12):
+        raise InvalidRoad(
+            f"deceleration must lie in (0, {MAX_TRUCK_DECELERATION_MPS2:.3f}] m/s^2: 15 ft/s^2 is the emergency "
+            "braking rate NCHRP Report 774 takes for trucks in curves; a loaded truck does not brake harder",
+            field=field,
+            value=deceleration_mps2,
+        )
+
+
+#: the share of the crawl speed (the speed the truck holds on a grade, acceleration 0) taken as its top speed there
+#: (assumed: at the crawl speed itself the model leaves no acceleration to reach it)
+CRAWL_FRACTION = 0.9
+
+
+def crawl_speed_kmh(grade_percent, **params) -> np.ndarray:
+    """The speed at which the truck's acceleration on a grade falls to 0 [km/h], at most 200.
+
+    a(v) = 0 with a = c1 / v - c2 - c3 v^2 (:func:`acceleration_mps2`) is the cubic c3 v^3 + c2 v - c1 = 0; since
+    c1, c3 > 0 it has one positive root (negative at 0, and once rising it keeps rising), solved in closed form
+    (Cardano; the trigonometric form's largest root where the cubic has three real roots, a steep downgrade).
+    """
+    p = {**ACCELERATION_DEFAULTS, **params}
+    g = np.atleast_1d(np.asarray(grade_percent, dtype=float))
+    c1 = p["transmission_efficiency"] * 1000.0 / p["weight_to_power_kg_per_kw"]
+    c2 = G * (p["rolling_resistance"] + 0.01 * g)
+    c3 = 0.5 * p["air_density_kg_m3"] * p["drag_area_m2_per_t"] / 1000.0
+    pp, qq = c2 / c3, -c1 / c3  # v^3 + pp v + qq = 0
+    disc = (qq / 2.0) ** 2 + (pp / 3.0) ** 3
+    with np.errstate(invalid="ignore"):
+        root = np.sqrt(np.maximum(disc, 0.0))
+        one = np.cbrt(-qq / 2.0 + root) + np.cbrt(-qq / 2.0 - root)
+        m = np.sqrt(np.maximum(-pp / 3.0, 0.0))
+        arg = np.clip(np.where(m > 0, (-qq / 2.0) / np.where(m > 0, m, 1.0) ** 3, 1.0), -1.0, 1.0)
+        three = 2.0 * m * np.cos(np.arccos(arg) / 3.0)
+    v = np.where(disc >= 0, one, three)
+    return np.minimum(v * 3.6, 200.0)
+
+
+def acceleration_mps2(speed_kmh, grade_percent, **params) -> np.ndarray:
+    """The truck's largest acceleration at a speed on a grade [m/s^2] (may be negative):
+    a = eta P / (m v) - g (C_r + G) - rho C_d A v^2 / (2 m), P/m from the weight-to-power ratio.
+
+    Parameters
+    ----------
+    speed_kmh : speed [km/h]
+    grade_percent : grade along travel, + uphill [%]
+    params : overrides of :data:`ACCELERATION_DEFAULTS`
+    """
+    p = {**ACCELERATION_DEFAULTS, **params}
+    v = np.maximum(np.asarray(speed_kmh, dtype=float) / 3.6, 0.1)
+    power_per_kg = 1000.0 / p["weight_to_power_kg_per_kw"]  # W/kg
+    grade = 0.01 * np.asarray(grade_percent, dtype=float)
+    drag = 0.5 * p["air_density_kg_m3"] * p["drag_area_m2_per_t"] / 1000.0 * v**2
+    return p["transmission_efficiency"] * power_per_kg / v - G * (p["rolling_resistance"] + grade) - drag
+
+
+@dataclass
+class SpeedProfile:
+    """A truck's profile along the curves: ``station_m``/``speed_kmh`` (empty when a curve's stations make a
+    profile impossible), and per curve (arrays, nan when no profile): the approach speed, the speed at the curve's
+    start in the profile, the required deceleration, the approach checks, the advance-sign distance, the speed drop
+    and a reason (None when the curve is fine)."""
+
+    station_m: np.ndarray
+    speed_kmh: np.ndarray
+    approach_speed_kmh: np.ndarray
+    entry_speed_kmh: np.ndarray
+    curve_speed_kmh: np.ndarray  # the cap the truck takes the curve at (lowest of desired, safe, advisory)
+    required_deceleration_mps2: np.ndarray  # to the curve speed, with the reaction distance (inf: no room; nan: the
+    # first curve's approach length is unknown)
+    slows_to_advisory: np.ndarray  # bool; True where there is no advisory below the approach
+    slows_to_safe: np.ndarray
+    advance_sign_distance_m: np.ndarray
+    speed_drop_kmh: np.ndarray
+    reasons: list[str | None]
+    deceleration_mps2: float
+    reaction_time_s: float
+    notes: list[str] = field(default_factory=list)
+
+    @classmethod
+    def none(cls, reasons: list[str | None], deceleration_mps2: float, reaction_time_s: float, note: str):
+        """No profile: empty stations and speeds, nan per-curve figures, a reason per curve."""
+        n = len(reasons)
+        nan = np.full(n, np.nan)
+        no = np.zeros(n, dtype=bool)
+        return cls(
+            np.empty(0), np.empty(0), nan, nan.copy(), nan.copy(), nan.copy(), no, no.copy(), nan.copy(), nan.copy(),
+            reasons, deceleration_mps2, reaction_time_s, [note],
+        )  # fmt: skip
+
+
+def check_stations(start_m: np.ndarray, length_m: np.ndarray) -> list[str | None]:
+    """A reason per curve whose stations cannot carry a profile (None where fine): no station or length, a start
+    before the previous curve's start (out of order) or before its end (overlap)."""
+    n = len(start_m)
+    reasons: list[str | None] = [None] * n
+    bad_station = ~np.isfinite(start_m) | ~np.isfinite(length_m) | (length_m <= 0)
+    for i in np.flatnonzero(bad_station):
+        reasons[i] = "no start station or no positive length: the curve cannot be placed in the profile"
+    if n > 1:
+        end = start_m + length_m
+        order = np.flatnonzero(start_m[1:] < start_m[:-1]) + 1
+        overlap = np.flatnonzero((start_m[1:] < end[:-1] - 1e-9) & ~(start_m[1:] < start_m[:-1])) + 1
+        for i in order:
+            if reasons[i] is None:
+                reasons[i] = f"out of order: starts at {start_m[i]:g} m, before curves[{i - 1}] ({start_m[i - 1]:g} m)"
+        for i in overlap:
+            if reasons[i] is None:
+                reasons[i] = f"overlaps curves[{i - 1}]: starts at {start_m[i]:g} m, before its end at {end[i - 1]:g} m"
+    return reasons
+
+
+def _cummin_forward(caps2, increments):
+    """u_0 = caps2_0, u_i = min(caps2_i, u_{i-1} + increments_{i-1}): u_i = K_i + cummin(caps2 - K)_i."""
+    k = np.concatenate(([0.0], np.cumsum(increments)))
+    return k + np.minimum.accumulate(caps2 - k)
+
+
+def speed_profile(
+    start_station_m,
+    length_m,
+    desired_speed_kmh,
+    safe_speed_kmh=None,
+    advisory_speed_kmh=None,
+    grade_percent=None,
+    *,
+    alignment_start_m: float | None = None,
+    alignment_end_m: float | None = None,
+    deceleration_mps2: float = DECELERATION_MPS2,
+    reaction_time_s: float = REACTION_TIME_S,
+    acceleration: dict | None = None,
+) -> SpeedProfile:
+    """The truck's speed profile along curves given by their start stations and lengths.
+
+    Parameters
+    ----------
+    start_station_m : curve start stations, in travel order [m]
+    length_m : curve lengths [m]
+    desired_speed_kmh : the speed on tangents (posted, or given): one value or one per curve (the tangent before
+        each curve) [km/h]
+    safe_speed_kmh : each curve's safe speed (Eq. 9.1 against side friction), nan = none [km/h]
+    advisory_speed_kmh : each curve's advisory speed, nan = none [km/h]
+    grade_percent : each curve's grade (also the tangent after it), + uphill [%]
+    alignment_start_m : where the road starts; None = the first curve is approached from far away at the desired
+        speed [m]
+    alignment_end_m : where the road ends (a last tangent); None = the last curve's end [m]
+    deceleration_mps2 : braking rate, at most :data:`MAX_TRUCK_DECELERATION_MPS2` [m/s^2]
+    reaction_time_s : reaction time before braking [s]
+    acceleration : overrides of :data:`ACCELERATION_DEFAULTS`
+
+    Returns
+    -------
+    SpeedProfile
+    """
+    check_deceleration(deceleration_mps2)
+    if not (math.isfinite(reaction_time_s) and 0 <= reaction_time_s <= 10):
+        raise InvalidRoad("reaction time must lie in [0, 10] s", field="reaction_time_s", value=reaction_time_s)
+    s0 = np.atleast_1d(np.asarray(start_station_m, dtype=float))
+    n = len(s0)
+    shape = (n,)
+
+    def column(x, fill):
+        return np.full(shape, fill) if x is None else np.array(np.broadcast_to(np.asarray(x, dtype=float), shape))
+
+    length = column(length_m, np.nan)
+    desired = column(desired_speed_kmh, np.nan)
+    if np.any(~np.isfinite(desired) | (desired <= 0)):
+        i = int(np.flatnonzero(~np.isfinite(desired) | (desired <= 0))[0])
+        raise InvalidRoad("the desired speed must be a positive speed", field=f"curves[{i}].desired_speed_kmh")
+    safe = column(safe_speed_kmh, np.nan)
+    advisory = column(advisory_speed_kmh, np.nan)
+    grade = column(grade_percent, 0.0)
+    grade = np.where(np.isfinite(grade), grade, 0.0)
+    cap = np.fmin(np.fmin(desired, safe), advisory)  # fmin: nan (no safe/advisory speed) does not cap
+
+    reasons = check_stations(s0, length) if n else []
+    if any(reasons):
+        first = next(i for i, r in enumerate(reasons) if r)
+        reasons = [r or f"no profile: curves[{first}] cannot be placed (see its reason)" for r in reasons]
+        note = "no profile: the curves' stations overlap, run backwards or are missing"
+        return SpeedProfile.none(reasons, deceleration_mps2, reaction_time_s, note)
+    if n == 0:
+        return SpeedProfile.none([], deceleration_mps2, reaction_time_s, "no curves")
+
+    end = s0 + length
+    d = deceleration_mps2
+    acc_params = acceleration or {}
+    # tangent i lies before curve i; the first one is unbounded unless the road's start is given
+    tangent_before = np.empty(shape)
+    tangent_before[0] = np.inf if alignment_start_m is None else max(s0[0] - alignment_start_m, 0.0)
+    tangent_before[1:] = s0[1:] - end[:-1]
+    # the top speed on an element: the desired speed, or a fraction of the crawl speed on its grade (the tangent
+    # after curve i keeps curve i's grade); the element's acceleration is the model's at that top speed, the lowest
+    # over the speeds below it, so every step stays within the truck's power
+    desired_after = np.append(desired[1:], desired[-1])  # the tangent after curve i is the one before curve i + 1
+    top = np.full(shape, np.inf)
+    # the crawl speed only where it can bind: where the truck has no acceleration left at the higher of the curve's
+    # and the next tangent's desired speed over CRAWL_FRACTION
+    binds = acceleration_mps2(np.maximum(desired, desired_after) / CRAWL_FRACTION, grade, **acc_params) <= 0
+    if np.any(binds):
+        top[binds] = CRAWL_FRACTION * crawl_speed_kmh(grade[binds], **acc_params)
+    cap = np.minimum(cap, top)
+    tangent_cap = np.minimum(desired_after, top)
+    a_curve = acceleration_mps2(cap, grade, **acc_params)
+    a_tangent = acceleration_mps2(tangent_cap, grade, **acc_params)
+
+    # nodes: start_0, end_0, start_1, end_1, ...; v^2 in (m/s)^2; a node is under both elements' caps
+    start_cap = cap.copy()
+    start_cap[1:] = np.minimum(cap[1:], tangent_cap[:-1])
+    end_cap = cap.copy()
+    end_cap[:-1] = np.minimum(cap[:-1], tangent_cap[:-1])
+    cap2 = (np.column_stack((start_cap, end_cap)).ravel() / 3.6) ** 2
+    lead_cap = min(desired[0], top[0])
+    node_s = np.column_stack((s0, end)).ravel()
+    gaps = np.diff(node_s)  # curve, tangent, curve, tangent, ...
+    acc = np.column_stack((a_curve, a_tangent)).ravel()[:-1]
+    fwd = _cummin_forward(cap2, 2.0 * acc * gaps)
+    bwd = _cummin_forward(cap2[::-1], 2.0 * d * gaps[::-1])[::-1]
+    v2 = np.minimum(fwd, bwd)
+
+    # approach: from the previous curve's exit accelerating along the tangent, capped by the desired speed
+    exit2 = v2[1::2]
+    approach2 = np.empty(shape)
+    approach2[0] = (lead_cap / 3.6) ** 2
+    approach2[1:] = np.minimum((tangent_cap[:-1] / 3.6) ** 2, exit2[:-1] + 2.0 * a_tangent[:-1] * tangent_before[1:])
+    v1 = np.sqrt(approach2)
+    target = cap / 3.6
+    t = reaction_time_s
+
+    def too_close(v2_target):
+        need = (approach2 - v2_target**2) / (2.0 * d) + v1 * t
+        with np.errstate(invalid="ignore"):
+            return (v1 > v2_target) & (tangent_before < need)
+
+    room = tangent_before - v1 * t
+    with np.errstate(divide="ignore", invalid="ignore"):
+        required = np.where(
+            v1 <= target, 0.0, np.where(room > 0, (approach2 - target**2) / (2.0 * np.where(room > 0, room, 1)), np.inf)
+        )
+    # the first curve approached from an unknown distance (no road start given): the rate it needs is unknown
+    required[~np.isfinite(tangent_before) & (v1 > target)] = np.nan
+    adv = advisory / 3.6
+    safe_v = safe / 3.6
+    slows_adv = ~np.where(np.isfinite(adv), too_close(np.where(np.isfinite(adv), adv, 0.0)), False)
+    slows_safe = ~np.where(np.isfinite(safe_v), too_close(np.where(np.isfinite(safe_v), safe_v, 0.0)), False)
+    # advance sign: reaction distance plus braking from the approach to the advisory speed (Table 2C-3's basis);
+    # without an advisory below the approach, the reaction distance alone
+    drop_to = np.where(np.isfinite(adv), np.minimum(adv, v1), v1)
+    sign_m = v1 * t + (approach2 - drop_to**2) / (2.0 * DECELERATION_MPS2)
+
+    # the profile's stations: per element the acceleration line, the cap, the braking line
+    element_caps = np.column_stack((cap, tangent_cap)).ravel()[:-1]  # curve 0, tangent 0, curve 1, ...
+    stations, speeds = _profile_points(node_s, v2, gaps, acc, d, element_caps)
+    if alignment_start_m is not None and alignment_start_m < s0[0]:
+        lead_len = s0[0] - alignment_start_m
+        lead_start2 = min(
+            (lead_cap / 3.6) ** 2, v2[0] + 2.0 * d * lead_len
+        )  # braked for the first curve within the lead
+        lead = _profile_points(
+            np.array([alignment_start_m, s0[0]]), np.array([lead_start2, v2[0]]), np.array([lead_len]),
+            acceleration_mps2(np.array([lead_cap]), grade[:1], **acc_params), d, np.array([lead_cap]),
+        )  # fmt: skip
+        stations = np.concatenate((lead[0][:-1], stations))
+        speeds = np.concatenate((lead[1][:-1], speeds))
+    if alignment_end_m is not None and alignment_end_m > end[-1]:
+        tail_len = alignment_end_m - end[-1]
+        tail_cap = min(desired[-1], top[-1])
+        tail_a = acceleration_mps2(np.array([tail_cap]), grade[-1:], **acc_params)
+        tail_end2 = min((tail_cap / 3.6) ** 2, v2[-1] + 2.0 * float(tail_a[0]) * tail_len)
+        tail = _profile_points(
+            np.array([end[-1], alignment_end_m]), np.array([v2[-1], tail_end2]), np.array([tail_len]),
+            tail_a, d, np.array([tail_cap]),
+        )  # fmt: skip
+        stations = np.concatenate((stations, tail[0][1:]))
+        speeds = np.concatenate((speeds, tail[1][1:]))
+
+    return SpeedProfile(
+        station_m=stations,
+        speed_kmh=speeds,
+        approach_speed_kmh=v1 * 3.6,
+        entry_speed_kmh=np.sqrt(v2[0::2]) * 3.6,
+        curve_speed_kmh=cap,
+        required_deceleration_mps2=required,
+        slows_to_advisory=slows_adv,
+        slows_to_safe=slows_safe,
+        advance_sign_distance_m=sign_m,
+        speed_drop_kmh=np.maximum(v1 * 3.6 - cap, 0.0),
+        reasons=[None] * n,
+        deceleration_mps2=d,
+        reaction_time_s=t,
+    )
+
+
+def _profile_points(node_s, v2, gaps, acc, d, caps_kmh):
+    """Stations and speeds [km/h] of the profile over the elements between nodes: for each element the point where
+    acceleration from its start reaches the cap, the point where braking to its end leaves it, or where the two
+    lines meet below the cap. v^2 is linear in station between consecutive points."""
+    s_p, s_q = node_s[:-1], node_s[1:]
+    v2p, v2q = v2[:-1], v2[1:]
+    c2 = (caps_kmh / 3.6) ** 2
+    c2 = np.maximum(c2, np.maximum(v2p, v2q))  # a node at its cap is never above the element's cap
+    acc = np.maximum(acc, 1e-12)  # positive by construction (every cap is below the crawl speed); guards the division
+    s1 = s_p + (c2 - v2p) / (2.0 * acc)
+    s2 = s_q - (c2 - v2q) / (2.0 * d)
+    meet = s1 > s2
+    m = len(s_p)
+    pts_s = np.empty((m + 1, 3))
+    pts_v = np.empty((m + 1, 3))
+    pts_s[:m, 0], pts_v[:m, 0] = s_p, v2p
+    np.minimum(s1, s_q, out=pts_s[:m, 1])
+    np.maximum(s2, s_p, out=pts_s[:m, 2])
+    pts_v[:m, 1] = c2
+    pts_v[:m, 2] = c2
+    if np.any(meet):  # where the lines meet below the cap: v2p + 2 a (s - s_p) = v2q + 2 d (s_q - s)
+        a, sp, sq, vp, vq = acc[meet], s_p[meet], s_q[meet], v2p[meet], v2q[meet]
+        s_star = np.clip((vq - vp + 2.0 * d * sq + 2.0 * a * sp) / (2.0 * (a + d)), sp, sq)
+        v_star2 = np.minimum(vp + 2.0 * a * (s_star - sp), vq + 2.0 * d * (sq - s_star))
+        rows = np.flatnonzero(meet)
+        pts_s[rows, 1] = pts_s[rows, 2] = s_star
+        pts_v[rows, 1] = pts_v[rows, 2] = v_star2
+    pts_s[m], pts_v[m] = s_q[-1], v2q[-1]  # the last node (thrice: the duplicates go below)
+    pts_s, pts_v = pts_s.ravel(), pts_v.ravel()
+    keep = np.ones(len(pts_s), dtype=bool)
+    keep[1:] = (np.diff(pts_s) > 1e-9) | (np.abs(np.diff(pts_v)) > 1e-9)
+    return pts_s[keep], np.sqrt(np.maximum(pts_v[keep], 0.0)) * 3.6

@@ -1,0 +1,124 @@
+"""The truck's speed profile (engine.road.profile) against its invariants and the closed form of the approach check.
+
+Expected numbers: the caps (desired, safe, advisory speeds) the profile may not exceed; the stated rates (braking
+10 ft/s^2, MUTCD 11e Table 2C-3's basis as transcribed; acceleration within the vehicle-dynamics model at every
+speed); the too-close condition L < (v1^2 - v2^2) / (2 d) + v1 t; NCHRP 774's 15 ft/s^2 as the most a truck brakes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from engine.errors import InvalidRoad
+from engine.road import profile as prof
+
+
+def _random_alignment(rng, n):
+    gaps = rng.uniform(0.0, 800.0, n)
+    length = rng.uniform(30.0, 400.0, n)
+    start = np.cumsum(gaps + np.concatenate(([0.0], length[:-1])))
+    safe = rng.uniform(30.0, 110.0, n)
+    advisory = np.where(rng.random(n) < 0.3, np.nan, rng.uniform(25.0, 100.0, n))
+    grade = rng.uniform(-6.0, 6.0, n)
+    return start, length, safe, advisory, grade
+
+
+def _speed_at(p, s):
+    """The profile's speed at stations s: v^2 is linear between its points."""
+    v2 = np.interp(s, p.station_m, p.speed_kmh**2)
+    return np.sqrt(v2)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_never_above_desired_safe_or_advisory_and_steps_within_rates(seed):
+    rng = np.random.default_rng(seed)
+    start, length, safe, advisory, grade = _random_alignment(rng, 200)
+    desired = rng.choice([50.0, 70.0, 90.0, 110.0], 200)  # the tangent before each curve
+    p = prof.speed_profile(start, length, desired, safe, advisory, grade, alignment_start_m=start[0] - 500.0,
+                           alignment_end_m=start[-1] + length[-1] + 500.0)  # fmt: skip
+    assert p.reasons == [None] * 200
+    assert np.all(np.isfinite(p.speed_kmh)) and np.all(np.isfinite(p.approach_speed_kmh))
+    assert np.all(np.diff(p.station_m) >= 0)
+    # on each tangent (the one before curve i) at most its desired speed
+    for i in range(1, 200):
+        s = np.linspace(start[i - 1] + length[i - 1], start[i], 7)
+        assert np.all(_speed_at(p, s) <= desired[i] + 1e-6), i
+    # inside every curve, at its ends and at 9 points between, no cap is exceeded
+    caps = np.fmin(np.fmin(safe, advisory), desired)  # a curve: at most its own tangent's desired speed too
+    for i in range(200):
+        s = np.linspace(start[i], start[i] + length[i], 11)
+        assert np.all(_speed_at(p, s) <= caps[i] + 1e-6), i
+    # every step: braking at most d, accelerating at most the model's acceleration at the step's end speed on the
+    # grade of the element it lies on (the model's acceleration falls with speed, so the end is the binding one)
+    ds = np.diff(p.station_m)
+    dv2 = np.diff((p.speed_kmh / 3.6) ** 2)
+    step = ds > 1e-9
+    rate = dv2[step] / (2.0 * ds[step])
+    assert np.all(rate >= -prof.DECELERATION_MPS2 * (1 + 1e-9) - 1e-12)
+    mid = 0.5 * (p.station_m[:-1] + p.station_m[1:])[step]
+    element = np.clip(np.searchsorted(start, mid, side="right") - 1, 0, 199)
+    a_max = prof.acceleration_mps2(p.speed_kmh[1:][step], grade[element])
+    up = rate > 1e-12
+    assert np.all(rate[up] <= a_max[up] + 1e-9)
+
+
+def test_regains_desired_speed_on_a_long_level_tangent():
+    p = prof.speed_profile([1000.0, 21000.0], [200.0, 200.0], 90.0, [50.0, 50.0], None, [0.0, 0.0])
+    between = (p.station_m > 1200.0) & (p.station_m < 21000.0)
+    assert p.speed_kmh[between].max() == pytest.approx(90.0, abs=1e-9)
+    assert p.approach_speed_kmh[1] == pytest.approx(90.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("delta", [-0.01, 0.01])
+def test_too_close_exactly_at_the_braking_plus_reaction_distance(delta):
+    # curve 0 does not slow the truck (safe speed above the desired 80 km/h), so it approaches curve 1 at 80 km/h
+    v1, v2, d, t = 80.0 / 3.6, 50.0 / 3.6, prof.DECELERATION_MPS2, prof.REACTION_TIME_S
+    need = (v1**2 - v2**2) / (2.0 * d) + v1 * t
+    tangent = need + delta
+    p = prof.speed_profile([0.0, 100.0 + tangent], [100.0, 100.0], 80.0, [120.0, 60.0], [np.nan, 50.0], [0.0, 0.0])
+    assert p.approach_speed_kmh[1] == pytest.approx(80.0, abs=1e-9)
+    assert bool(p.slows_to_advisory[1]) is (delta > 0)
+    assert bool(p.slows_to_safe[1]) is True  # 60 km/h needs less room
+    # the required deceleration over the room left after reacting, to the curve's speed (50 km/h)
+    assert p.required_deceleration_mps2[1] == pytest.approx((v1**2 - v2**2) / (2.0 * (tangent - v1 * t)), rel=1e-12)
+    assert p.required_deceleration_mps2[0] == 0.0  # the first curve does not slow the truck
+    # a first curve that does, approached from an unknown distance (no road start): no rate can be given
+    q = prof.speed_profile([0.0], [100.0], 80.0, [60.0])
+    assert np.isnan(q.required_deceleration_mps2[0]) and bool(q.slows_to_safe[0]) is True
+
+
+def test_overlapping_or_backward_stations_give_reasons_not_a_profile():
+    p = prof.speed_profile([0.0, 50.0, 400.0], [100.0, 100.0, 100.0], 90.0)
+    assert p.station_m.size == 0 and np.all(np.isnan(p.approach_speed_kmh))
+    assert p.reasons[1].startswith("overlaps curves[0]")
+    assert p.reasons[0].startswith("no profile") and p.reasons[2].startswith("no profile")
+    q = prof.speed_profile([500.0, 100.0], [100.0, 100.0], 90.0)
+    assert q.reasons[1].startswith("out of order")
+    r = prof.speed_profile([0.0, np.nan], [100.0, 100.0], 90.0)
+    assert r.reasons[1].startswith("no start station")
+
+
+def test_deceleration_beyond_a_loaded_truck_is_refused():
+    prof.check_deceleration(15.0 * 0.3048)
+    with pytest.raises(InvalidRoad) as e:
+        prof.speed_profile([0.0], [100.0], 90.0, deceleration_mps2=5.0)
+    assert e.value.field == "deceleration_mps2"
+    with pytest.raises(InvalidRoad):
+        prof.check_deceleration(0.0)
+
+
+def test_crawl_speed_is_where_the_model_stops_accelerating():
+    g = np.array([0.0, 3.0, 6.0])
+    v = prof.crawl_speed_kmh(g)
+    assert np.allclose(prof.acceleration_mps2(v, g), 0.0, atol=1e-9)
+    assert np.all(np.diff(v) < 0)  # steeper, slower
+
+
+def test_advance_sign_distance_in_metric_and_us_forms():
+    # the US form of the same distance (AASHTO's stopping-sight-distance form): d [ft] = 1.47 V t + 1.075 (V1^2 -
+    # V2^2) / a, V in mph, a in ft/s^2; its constants are rounded (1.4667, 1.0756), so within 0.3 %
+    p = prof.speed_profile([0.0], [200.0], 100.0, [120.0], [60.0], [0.0])
+    v1_mph, v2_mph = 100.0 / 1.609344, 60.0 / 1.609344
+    us_ft = 1.47 * v1_mph * 2.5 + 1.075 * (v1_mph**2 - v2_mph**2) / 10.0
+    assert p.advance_sign_distance_m[0] == pytest.approx(us_ft * 0.3048, rel=0.003)

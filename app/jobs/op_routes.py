@@ -55,7 +55,8 @@ class RouteJob:
 def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
     resolved = resolved_route(req, route_refs(req), ctx.settings)
-    parts = read_route(req, synchronous=False)  # reading refuses bad geometry now (a 422)
+    read = read_route(req, synchronous=False)  # reading refuses bad geometry now (a 422)
+    parts = read.parts
     vertices = sum(int(p.lon_deg.size) for p in parts)
     if (
         req.superelevation_percent is None
@@ -64,7 +65,7 @@ def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     ):
         # the synchronous request refuses a found curve without a superelevation: with no default for it the
         # curves are found now, so that such a job is refused here (the same 422), not failed by its worker
-        curve_table(req, find_route_curves(req, parts))
+        curve_table(req, find_route_curves(req, read))
     stored = req.model_dump(mode="json", exclude={"vehicle", "vehicles", "fleet"}, exclude_unset=True)
     return RouteJob(stored, resolved, vertices)
 

@@ -241,3 +241,56 @@ def test_a_bend_across_two_osm_ways_is_one_curve_and_takes_the_larger_posted_spe
     two = {"type": "FeatureCollection", "features": [way(a, name="X"), way(b, name="Y")]}
     cut = post(shared_client, {**body, "geojson": two}).json()
     assert len(cut["parts"]) == 2 and all(c["truncated"] for c in cut["curves"])
+
+
+# ------------------------------------------------------------------------------------------- examples/
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def example(client, name, query=""):
+    kind = "geojson" if name.endswith("geojson") else "gpx"
+    media = "application/geo+json" if kind == "geojson" else "application/gpx+xml"
+    r = client.post(
+        f"{PATH}/{kind}?vehicle={BTRAIN}&superelevation_percent=7.5&posted_speed_kmh=60{query}",
+        content=(EXAMPLES / name).read_bytes(),
+        headers={"content-type": media},
+    )
+    assert r.status_code == 200, r.text
+    return r.json()
+
+
+def test_the_drive_example_reads_as_a_gps_download(shared_client):
+    # examples/README.md: an empty ACTIVE LOG, a car park's 90-degree turn of R 4 m, then K1 (R 250.5 m) and K2
+    # (R 180 m) 140 m further on (40 m + 6.3 m of turn + 100 m before the road), a router's <rte> beside the track
+    out = example(shared_client, "drive.gpx")
+    assert [s["what"] for s in out["reading"]["skipped"]] == [
+        "trk[1] 'ACTIVE LOG' trkseg[1]",
+        "rte[1] 'Example road (synthetic): two curves: turn points'",
+    ]
+    turn, k1, k2 = out["curves"]
+    assert (
+        turn["radius_m"] == pytest.approx(4.0, rel=1e-2) and "outside the model's domain" in turn["assessment"]["error"]
+    )
+    assert k1["radius_m"] == pytest.approx(250.5, rel=1e-3) and k2["radius_m"] == pytest.approx(180.0, rel=1e-3)
+    lead = 40 + math.radians(90) * 4 + 100
+    assert k1["start_m"] == pytest.approx(lead + 300, abs=2) and k2["start_m"] == pytest.approx(lead + 830, abs=2)
+    assert k1["grade_percent"] == pytest.approx(3.5, rel=1e-3) and k1["assessment"]["error"] is None
+    # read with its turn points, the router's straight lines between them make up curves that are not on the road
+    both = example(shared_client, "drive.gpx", "&parts=all")
+    assert len(both["curves"]) > 3 and both["reading"]["skipped"][0]["what"] == "trk[1] 'ACTIVE LOG' trkseg[1]"
+
+
+def test_the_osm_ways_example_is_one_road_with_each_ways_maxspeed(shared_client):
+    # examples/README.md: three ways (split inside K1 and between the curves): 45 mph, 70, BR:rural
+    out = example(shared_client, "osm-ways.geojson")
+    (part,) = out["parts"]
+    assert part["ways"] == ["features[0]", "features[1]", "features[2]"]
+    k1, k2 = out["curves"]
+    assert k1["radius_m"] == pytest.approx(250.5, rel=1e-3) and not k1["truncated"]
+    # K1 lies on the first two ways: the larger of 45 mph (1.609344 km each) and 70 km/h
+    assert k1["assessment"]["posted_speed_kmh"] == pytest.approx(max(45 * 1.609344, 70.0))
+    # K2's way says BR:rural (no number): the request's 60 km/h, and the reading says why
+    assert k2["assessment"]["posted_speed_kmh"] == 60.0
+    ((skipped),) = out["reading"]["skipped"]
+    assert skipped["what"] == "features[2].properties.maxspeed 'BR:rural'" and "implicit" in skipped["why"]

@@ -100,9 +100,11 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
 
 OPERATION = Operation(
     name="routes.assess",
-    description="The route assessment of `POST /v1/routes/assess` (`request`: its JSON request) as a job: the "
-    "geometry is read at submission (a 422 when it cannot be), the curves are found and assessed by a worker; one "
-    "part; JSON or CSV.",
+    description="The route assessment of `POST /v1/routes/assess` (`request`: its JSON request, `parts` and "
+    "`use_elevation` included) as a job: the geometry is read at submission (a 422 when it cannot be), the curves are "
+    "found and assessed by a worker, a curve outside the model's domain as a row with `error`, a road without a "
+    "curve as an answer without curves; the answer's `reading` says what was read and skipped; one part; JSON or "
+    "CSV.",
     request_model=RouteRequest,
     unit="vertices",
     part_units=1,

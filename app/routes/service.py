@@ -501,8 +501,8 @@ def _no_curves(job: AlignmentJob) -> AlignmentAnswer:
     """The answer of a road without a curve: every vehicle with no rows (nothing is solved)."""
     empty = {f.name: np.empty(0) for f in dataclasses.fields(AlignmentColumns)}
     cols = AlignmentColumns(**{**empty, "errors": [], "distinct_cases": 0})
-    return AlignmentAnswer(job.resolved, job.curves, [vehicle_answer(job.resolved, k, cols, math.nan) for k in
-                                                      range(len(job.vehicles))])  # fmt: skip
+    vehicles = [vehicle_answer(job.resolved, k, cols, math.nan) for k in range(len(job.vehicles))]
+    return AlignmentAnswer(job.resolved, job.curves, vehicles)
 
 
 def _with_domain_errors(answer: AlignmentAnswer, table: CurveTable, reasons: list[str | None]) -> AlignmentAnswer:

@@ -275,6 +275,12 @@ def _properties(props, where: str, skipped: list[tuple[str, str]]) -> dict:
     return out
 
 
+def _listed(skipped: list[tuple[str, str]], at_most: int = 5) -> str:
+    """What was skipped, for a refusal's message: the first ``at_most`` and how many more."""
+    text = "; ".join(f"{w}: {y}" for w, y in skipped[:at_most])
+    return text + (f"; and {len(skipped) - at_most} more" if len(skipped) > at_most else "")
+
+
 def _at(where: str, name: str) -> str:
     """The JSON path of ``name`` inside the object at ``where`` ("" is the document itself)."""
     return f"{where}.{name}" if where else name
@@ -363,8 +369,7 @@ def read_geojson_document(doc, *, max_vertices: int = MAX_VERTICES) -> RouteRead
     if len(parts) > MAX_PARTS:
         raise RouteFormatError(f"more than {MAX_PARTS} line parts", "features")
     if not parts:
-        listed = "; ".join(f"{w}: {y}" for w, y in skipped[:5])
-        raise RouteFormatError(f"no LineString or MultiLineString feature ({listed})", "features", "features")
+        raise RouteFormatError(f"no LineString or MultiLineString feature ({_listed(skipped)})", "features", "features")
     joined = join_ways(parts)
     if len(joined) < len(parts):
         elements["roads joined from OSM ways"] = sum(1 for p in joined if p.ways is not None)
@@ -622,14 +627,14 @@ def read_gpx_document(text: str | bytes, *, parts: str | None = None, max_vertic
         raise RouteFormatError("no trk or rte element", "GPX")
     has = {k: any(c.kind == k for c in found) for k in ("trk", "rte")}
     if not found:
-        listed = "; ".join(f"{w}: {y}" for w, y in skipped[:5])
-        raise RouteFormatError(f"no track or route with at least {MIN_VERTICES} distinct points ({listed})", "GPX")
+        raise RouteFormatError(
+            f"no track or route with at least {MIN_VERTICES} distinct points ({_listed(skipped)})", "GPX"
+        )
     wanted = parts or ("trk" if has["trk"] else "rte")
     if wanted != "all" and not has[wanted]:
-        other = "rte" if wanted == "trk" else "trk"
         what = "track (trk) segment" if wanted == "trk" else "route (rte)"
-        raise RouteFormatError(f"parts={wanted}: the file has no {what} with points; parts={other} reads its "
-                               f"{'routes' if other == 'rte' else 'tracks'}", "parts", "parts")  # fmt: skip
+        other = "parts=rte reads its routes" if wanted == "trk" else "parts=trk reads its tracks"
+        raise RouteFormatError(f"parts={wanted}: the file has no {what} with points; {other}", "parts", "parts")
     out = []
     for c in found:
         if wanted in ("all", c.kind):

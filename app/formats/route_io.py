@@ -1,21 +1,31 @@
-"""Readers for route geometry: GeoJSON (RFC 7946) and GPX 1.1 -> polylines of WGS84 longitude/latitude/elevation.
+"""Readers for route geometry: GeoJSON (RFC 7946) and GPX 1.1 (1.0 alike) -> WGS84 longitude/latitude/elevation lines.
 
-Both return a list of :class:`RoutePart` (one per GeoJSON ``LineString`` or ``MultiLineString`` part, one per
-GPX track segment or route) with the part's source label, its properties and its vertices, or raise
-:class:`RouteFormatError` naming the part and the vertex (``features[0].geometry.coordinates[17]``,
-``trk[1] 'A1' trkseg[2] trkpt[18]``) and what is wrong. Nothing is repaired silently except repeated
-consecutive points (a receiver standing still), which are dropped; ``RoutePart.vertex_index`` maps each kept
-vertex back to its position in the source, so curves found on the part can be mapped back to the file.
+:func:`read_gpx_document` and :func:`read_geojson_document` return a :class:`RouteRead`: the :class:`RoutePart` parts
+read (one per GeoJSON ``LineString`` or ``MultiLineString`` part or joined OSM road, one per GPX track segment or
+route) with each part's source label, properties and vertices, and what the answer's ``reading`` reports (format,
+writer, the elements by type, and every part, feature or tag skipped with the reason); :func:`read_gpx` and
+:func:`read_geojson` return the parts alone. They raise :class:`RouteFormatError` naming the part and the vertex
+(``features[0].geometry.coordinates[17]``, ``trk[1] 'A1' trkseg[2] trkpt[18]``) and what is wrong. Nothing is
+repaired or dropped silently: repeated consecutive points (a receiver standing still) are dropped
+(``RoutePart.vertex_index`` maps each kept vertex back to its position in the source, so curves found on the part
+can be mapped back to the file), and what is skipped is listed.
 
 GeoJSON: a ``FeatureCollection`` of ``Feature``s, a ``Feature``, or a bare ``LineString`` /
 ``MultiLineString`` geometry. Positions are ``[longitude, latitude]`` or ``[longitude, latitude, height]``
 (RFC 7946 section 3.1.1; height [m] above the WGS84 ellipsoid, section 4). A ``crs`` member (GeoJSON 2008)
 other than CRS84 / EPSG:4326 is refused: only WGS84 longitude/latitude is read. A feature's ``properties``
-may carry ``superelevation_percent`` ([-20, 20]), ``posted_speed_kmh`` ((0, 200]), ``name`` and ``id``.
+may carry ``superelevation_percent`` ([-20, 20]), ``posted_speed_kmh`` ((0, 200]), ``name`` and ``id``; an OSM
+``maxspeed`` is read as the posted speed where it is a speed (:func:`maxspeed_kmh`). In a collection, a feature
+that is not a line (an export's nodes and areas) is skipped and listed; OSM ways (features with ``highway``) that
+meet end to end are joined into one road (:func:`join_ways`).
 
-GPX 1.1: every ``trk/trkseg`` (points ``trkpt``) and every ``rte`` (points ``rtept``), attributes ``lat`` and ``lon`` in
+GPX: every ``trk/trkseg`` (points ``trkpt``) and every ``rte`` (points ``rtept``), attributes ``lat`` and ``lon`` in
 decimal degrees (WGS84, the GPX schema's datum) and an optional ``<ele>`` [m]. The part's properties hold its ``name``.
-Parsing refuses what defusedxml refuses (no external entities, no entity expansion; :mod:`app.formats.xmlsafe`).
+By default the tracks are read and the routes skipped when the file has a track (a router writes its turn points
+as ``<rte>`` beside the geometry as ``<trk>``); ``parts`` (:data:`PARTS`) chooses. Tracks, segments and routes with
+fewer than 2 distinct points are skipped and listed (GPSBabel's empty ``ACTIVE LOG``); a file with nothing else is
+refused. Parsing refuses what defusedxml refuses (no external entities, no entity expansion;
+:mod:`app.formats.xmlsafe`).
 
 Limits (module constants, refused beyond them with the part named):
 

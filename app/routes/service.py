@@ -231,8 +231,8 @@ def outside_domain(h: HorizontalCurve) -> str | None:
     r = h.radius_lower_m
     if not b.contains(r):
         return (
-            f"radius {r:.3g} m is outside the model's domain [{b.minimum:g}, {b.maximum:g}] m ({b.why}): a "
-            "manoeuvre such as a car park's or a junction's, not a road curve; no speed is given for it"
+            f"radius {r:.3g} m (radius_lower_m) is outside the model's domain [{b.minimum:g}, {b.maximum:g}] m "
+            f"({b.why}): a manoeuvre such as a car park's or a junction's, not a road curve; no speed is given for it"
         )
     return None
 

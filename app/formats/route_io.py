@@ -599,10 +599,12 @@ def read_gpx_document(text: str | bytes, *, parts: str | None = None, max_vertic
     fmt = f"GPX {version}" if version in ("1.0", "1.1") else "GPX"
     creator = (root.get("creator") or "").strip()
     budget, skipped = _Budget(max_vertices=max_vertices), []
-    elements = {"trk": 0, "trkseg": 0, "trkpt": 0, "rte": 0, "rtept": 0}
+    elements = {"trk": 0, "trkseg": 0, "trkpt": 0, "rte": 0, "rtept": 0, "wpt": 0}
     found: list[_Candidate] = []
     for el in root:
         kind = xmlsafe.local(el.tag)
+        if kind == "wpt":
+            elements["wpt"] += 1
         if kind not in ("trk", "rte"):
             continue
         elements[kind] += 1
@@ -633,6 +635,8 @@ def read_gpx_document(text: str | bytes, *, parts: str | None = None, max_vertic
             found.append(_Candidate(kind, where, tag, lon, lat, ele, props, idx))
         if len(found) > MAX_PARTS:
             raise RouteFormatError(f"more than {MAX_PARTS} tracks, segments and routes", "GPX")
+    if elements["wpt"]:
+        skipped.append((f"wpt ({elements['wpt']})", "waypoints are single points, not a line to find curves on"))
     if not elements["trk"] and not elements["rte"]:
         raise RouteFormatError("no trk or rte element", "GPX")
     has = {k: any(c.kind == k for c in found) for k in ("trk", "rte")}

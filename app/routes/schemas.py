@@ -466,8 +466,8 @@ class RouteReading(OutputModel):
     )
     elements: dict[str, int] = Field(
         description=describe(
-            "What the document holds, by type (GPX: `trk`, `trkseg`, `trkpt`, `rte`, `rtept`; GeoJSON: features by "
-            "geometry type, and the roads joined from OSM ways).",
+            "What the document holds, by type (GPX: `trk`, `trkseg`, `trkpt`, `rte`, `rtept`, `wpt`; GeoJSON: "
+            "features by geometry type, and the roads joined from OSM ways).",
             unit="count",
         )
     )

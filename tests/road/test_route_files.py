@@ -58,8 +58,9 @@ def test_a_gpsbabel_garmin_download_skips_its_empty_active_log_and_reads_the_res
     assert read.format == "GPX 1.0" and read.writer == creator(text) == "GPSBabel - http://www.gpsbabel.org"
     empty = [i for i, s in enumerate(segs) if distinct(s) < 2]
     assert empty == [0]  # GPSBabel's empty "ACTIVE LOG" track
-    assert [w for w, _ in read.skipped] == ["trk[1] 'ACTIVE LOG' trkseg[1]"]
-    assert "has no points" in read.skipped[0][1]
+    wpt = len(re.findall(r"<wpt\s", text))
+    assert wpt == 7 and [w for w, _ in read.skipped] == ["trk[1] 'ACTIVE LOG' trkseg[1]", f"wpt ({wpt})"]
+    assert "has no points" in read.skipped[0][1] and read.elements["wpt"] == wpt
     assert [p.lon_deg.size for p in read.parts] == [distinct(s) for s in segs if distinct(s) >= 2]
     assert read.elements["trkpt"] == sum(len(s) for s in segs) and read.elements["trkseg"] == len(segs)
 

@@ -365,7 +365,9 @@ class RouteCurveProperties(OutputModel):
     truncated: bool = Field(description=describe("The curve runs into the start or end of its part.", unit="-"))
     vertices: list[int] = Field(
         description=describe(
-            "First and last vertex of the curve in the part's vertex list, as in the document.", unit="-"
+            "First and last vertex of the curve in the part's vertex list, as in the document (on a road joined "
+            "from OSM ways, along the joined road: `parts[].ways`).",
+            unit="-",
         )
     )
     governing_vehicle: int = Field(

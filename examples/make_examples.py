@@ -17,6 +17,14 @@ The CSV files list the same two curves with a design superelevation, the grade a
 alignment has the same elements (lines, spirals, curves with their stations and points); the IFC 4.3 file has them
 too, with the grade as its profile and the superelevation as its cant; the GPX track and the GeoJSON line carry the
 vertices with their elevations.
+
+Two more show the road as devices and OSM exports write it (docs/routes.md, "Files as devices and OSM write them"):
+
+* ``drive.gpx``: a drive as a GPS download holds it: an empty ``ACTIVE LOG`` track first (as GPSBabel writes a
+  Garmin download), then the track: a car park's 90-degree turn of radius 4 m (:data:`MANOEUVRE`) and 100 m of
+  tangent before the road, and a router's ``<rte>`` of the turn points beside it;
+* ``osm-ways.geojson``: the road as an Overpass export of OSM ``highway`` ways, split in three where tags change
+  (inside K1 and between the curves), each with its ``maxspeed`` (:data:`WAYS`).
 """
 
 from __future__ import annotations
@@ -32,7 +40,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
-from tests.synthetic_routes import Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
+from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
 
 NAME = "Example road (synthetic): two curves"
 LAT0, LON0 = -25.4300, -49.0200  # the first vertex
@@ -47,6 +55,15 @@ CURVES = [
     ("K2", 180.0, 140.0, 50.0, "left", 8.0, 60.0),
 ]
 TANGENTS_M = (300.0, 250.0, 300.0)
+
+#: drive.gpx: a car park's turn before the road: tangent [m], radius [m], deflection [deg], tangent to the road [m]
+MANOEUVRE = (40.0, 4.0, 90.0, 100.0)
+#: osm-ways.geojson: each way's last vertex (index every SPACING_M; the last way runs to the end) and tags
+WAYS = [
+    (40, {"maxspeed": "45 mph"}),  # ends at 400 m: inside K1's arc (360-520 m)
+    (70, {"maxspeed": "70"}),  # ends at 700 m: on the tangent between the curves
+    (None, {"maxspeed": "BR:rural"}),  # an implicit limit: no number
+]
 
 
 def elements() -> list:
@@ -200,6 +217,55 @@ def geojson_text() -> str:
     )
 
 
+def drive_text() -> str:
+    """The road as a GPS download: an empty track, the drive (a car park's turn, then the road) with elevations, and
+    a router's turn points as a route."""
+    lead, r, deflection, approach = MANOEUVRE
+    turn = Arc(r, math.radians(deflection) * r, "left")
+    els = [Tangent(lead), turn, Tangent(approach), *elements()]
+    x, y, s = layout(els, 2.0, heading_deg=HEADING_DEG - deflection)
+    lon, lat = to_lonlat(x, y, LAT0, LON0)
+    ele = ELE0_M + GRADE_PERCENT / 100 * np.maximum(s - (lead + turn.length_m + approach), 0.0)
+    points = "\n".join(
+        f'      <trkpt lat="{la:.8f}" lon="{lo:.8f}"><ele>{el:.2f}</ele></trkpt>'
+        for lo, la, el in zip(lon.tolist(), lat.tolist(), ele.tolist(), strict=True)
+    )
+    start = lead + turn.length_m + approach  # where the road begins
+    turns = [0.0, lead, *(start + c for c in curve_starts()), float(s[-1])]
+    rte = "\n".join(
+        f'    <rtept lat="{np.interp(t, s, lat):.8f}" lon="{np.interp(t, s, lon):.8f}"><name>{k + 1}</name></rtept>'
+        for k, t in enumerate(turns)
+    )
+    return (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<gpx version="1.1" creator="rollover examples/make_examples.py (a drive as a GPS download)" '
+        'xmlns="http://www.topografix.com/GPX/1/1">\n'
+        "  <trk>\n    <name>ACTIVE LOG</name>\n    <trkseg>\n    </trkseg>\n  </trk>\n"
+        f"  <trk>\n    <name>{NAME}: a drive</name>\n    <trkseg>\n{points}\n    </trkseg>\n  </trk>\n"
+        f"  <rte>\n    <name>{NAME}: turn points</name>\n{rte}\n  </rte>\n</gpx>\n"
+    )
+
+
+def osm_ways_text() -> str:
+    """The road as an Overpass export of OSM ways (vertices without elevation, as OSM has none)."""
+    lon, lat, _ = vertices()
+    features, first = [], 0
+    for k, (last, tags) in enumerate(WAYS):
+        end = lon.size - 1 if last is None else last
+        coords = [[lo, la] for lo, la in zip(lon[first : end + 1].tolist(), lat[first : end + 1].tolist(), strict=True)]
+        props = {"@id": f"way/{k + 1}", "highway": "secondary", "name": NAME, "ref": "PR-000", **tags}
+        geometry = {"type": "LineString", "coordinates": coords}
+        features.append({"type": "Feature", "properties": props, "geometry": geometry, "id": f"way/{k + 1}"})
+        first = end
+    doc = {
+        "type": "FeatureCollection",
+        "generator": "rollover examples/make_examples.py (as overpass-turbo exports)",
+        "copyright": "A made-up road (examples/README.md), not OpenStreetMap data.",
+        "features": features,
+    }
+    return json.dumps(doc, indent=1) + "\n"
+
+
 def files() -> dict[str, bytes]:
     """name -> bytes of every sample file."""
     semicolon = csv_text(";", ",").replace("\n", "\r\n")  # as a decimal-comma spreadsheet saves "CSV UTF-8"
@@ -211,6 +277,8 @@ def files() -> dict[str, bytes]:
         "road.ifc": ifc_bytes(),
         "road.gpx": gpx_text().encode(),
         "road.geojson": geojson_text().encode(),
+        "drive.gpx": drive_text().encode(),
+        "osm-ways.geojson": osm_ways_text().encode(),
     }
 
 

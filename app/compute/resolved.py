@@ -165,8 +165,9 @@ class ResolvedAlignment(ResolvedAssessment):
 
 @dataclass(frozen=True)
 class RouteDocument:
-    """A route's document as the key holds it: its format and SHA-256, the defaults of its curves' superelevation and
-    posted speed, and the curve detection's options."""
+    """A route's document as the key holds it: its format and SHA-256, the defaults of its curves' superelevation,
+    posted speed and grade, the curve detection's options, which GPX parts are read and whether the elevations are
+    used."""
 
     __pydantic_config__ = _STRICT
 
@@ -175,6 +176,9 @@ class RouteDocument:
     superelevation_percent: float | None
     posted_speed_kmh: float | None
     detection: dict[str, Any]
+    parts: str | None = None
+    use_elevation: bool = True
+    grade_percent: float | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -1,21 +1,31 @@
-"""Readers for route geometry: GeoJSON (RFC 7946) and GPX 1.1 -> polylines of WGS84 longitude/latitude/elevation.
+"""Readers for route geometry: GeoJSON (RFC 7946) and GPX 1.1 (1.0 alike) -> WGS84 longitude/latitude/elevation lines.
 
-Both return a list of :class:`RoutePart` (one per GeoJSON ``LineString`` or ``MultiLineString`` part, one per
-GPX track segment or route) with the part's source label, its properties and its vertices, or raise
-:class:`RouteFormatError` naming the part and the vertex (``features[0].geometry.coordinates[17]``,
-``trk[1] 'A1' trkseg[2] trkpt[18]``) and what is wrong. Nothing is repaired silently except repeated
-consecutive points (a receiver standing still), which are dropped; ``RoutePart.vertex_index`` maps each kept
-vertex back to its position in the source, so curves found on the part can be mapped back to the file.
+:func:`read_gpx_document` and :func:`read_geojson_document` return a :class:`RouteRead`: the :class:`RoutePart` parts
+read (one per GeoJSON ``LineString`` or ``MultiLineString`` part or joined OSM road, one per GPX track segment or
+route) with each part's source label, properties and vertices, and what the answer's ``reading`` reports (format,
+writer, the elements by type, and every part, feature or tag skipped with the reason); :func:`read_gpx` and
+:func:`read_geojson` return the parts alone. They raise :class:`RouteFormatError` naming the part and the vertex
+(``features[0].geometry.coordinates[17]``, ``trk[1] 'A1' trkseg[2] trkpt[18]``) and what is wrong. Nothing is
+repaired or dropped silently: repeated consecutive points (a receiver standing still) are dropped
+(``RoutePart.vertex_index`` maps each kept vertex back to its position in the source, so curves found on the part
+can be mapped back to the file), and what is skipped is listed.
 
 GeoJSON: a ``FeatureCollection`` of ``Feature``s, a ``Feature``, or a bare ``LineString`` /
 ``MultiLineString`` geometry. Positions are ``[longitude, latitude]`` or ``[longitude, latitude, height]``
 (RFC 7946 section 3.1.1; height [m] above the WGS84 ellipsoid, section 4). A ``crs`` member (GeoJSON 2008)
 other than CRS84 / EPSG:4326 is refused: only WGS84 longitude/latitude is read. A feature's ``properties``
-may carry ``superelevation_percent`` ([-20, 20]), ``posted_speed_kmh`` ((0, 200]), ``name`` and ``id``.
+may carry ``superelevation_percent`` ([-20, 20]), ``posted_speed_kmh`` ((0, 200]), ``name`` and ``id``; an OSM
+``maxspeed`` is read as the posted speed where it is a speed (:func:`maxspeed_kmh`). In a collection, a feature
+that is not a line (an export's nodes and areas) is skipped and listed; OSM ways (features with ``highway``) that
+meet end to end are joined into one road (:func:`join_ways`).
 
-GPX 1.1: every ``trk/trkseg`` (points ``trkpt``) and every ``rte`` (points ``rtept``), attributes ``lat`` and ``lon`` in
+GPX: every ``trk/trkseg`` (points ``trkpt``) and every ``rte`` (points ``rtept``), attributes ``lat`` and ``lon`` in
 decimal degrees (WGS84, the GPX schema's datum) and an optional ``<ele>`` [m]. The part's properties hold its ``name``.
-Parsing refuses what defusedxml refuses (no external entities, no entity expansion; :mod:`app.formats.xmlsafe`).
+By default the tracks are read and the routes skipped when the file has a track (a router writes its turn points
+as ``<rte>`` beside the geometry as ``<trk>``); ``parts`` (:data:`PARTS`) chooses. Tracks, segments and routes with
+fewer than 2 distinct points are skipped and listed (GPSBabel's empty ``ACTIVE LOG``); a file with nothing else is
+refused. Parsing refuses what defusedxml refuses (no external entities, no entity expansion;
+:mod:`app.formats.xmlsafe`).
 
 Limits (module constants, refused beyond them with the part named):
 
@@ -33,6 +43,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -72,6 +83,25 @@ class RoutePart:
     ele_m: np.ndarray | None = field(repr=False)  # NaN where a vertex has none; None when none has one
     vertex_index: np.ndarray = field(repr=False)  # index of each kept vertex in the source list
     length_m: float = 0.0
+    #: an OSM road joined from several ways: each way's (first vertex, last vertex, properties) in the part's vertex
+    #: list (a curve takes its posted speed and superelevation from the ways it lies on), and the ways' sources in
+    #: travel order (" reversed" where a way is drawn against it); None for a single line
+    spans: tuple[tuple[int, int, dict], ...] | None = field(default=None, repr=False)
+    ways: tuple[str, ...] | None = None
+
+
+@dataclass(frozen=True)
+class RouteRead:
+    """What a reader made of a route document: the parts read and the facts the answer's ``reading`` reports
+    (``format`` such as ``"GPX 1.1"`` or ``"GeoJSON"``; ``writer``: the GPX ``creator`` or the GeoJSON
+    ``generator``; ``elements``: what the document holds, by type; ``skipped``: (what, why) for everything read but
+    not used)."""
+
+    format: str
+    writer: str | None
+    parts: list[RoutePart]
+    elements: dict[str, int]
+    skipped: list[tuple[str, str]]
 
 
 class RouteTooLarge(RouteFormatError):
@@ -94,10 +124,9 @@ def _vertex(location: str, i: int, style: str) -> str:
     return f"{location}[{i}]" if style == "json" else f"{location} {style}[{i + 1}]"
 
 
-def _part(source, location, style, lon, lat, ele, properties, budget: _Budget) -> RoutePart:
-    """Checks shared by both formats; ``lon``/``lat``/``ele`` are float arrays (NaN ele: none)."""
-    n = lon.size
-    for i in range(n):  # a plain loop: the first bad vertex is the one to name
+def _check_coordinates(location: str, style: str, lon: np.ndarray, lat: np.ndarray) -> None:
+    """Refuse the first vertex whose coordinates are not finite WGS84 longitude/latitude, naming it."""
+    for i in range(lon.size):  # a plain loop: the first bad vertex is the one to name
         lo, la = lon[i], lat[i]
         where = _vertex(location, i, style)
         if not (math.isfinite(lo) and math.isfinite(la)):
@@ -107,12 +136,32 @@ def _part(source, location, style, lon, lat, ele, properties, budget: _Budget) -
             raise RouteFormatError(f"latitude {la} is outside [-90, 90]{hint}", where, "latitude")
         if abs(lo) > 180.0:
             raise RouteFormatError(f"longitude {lo} is outside [-180, 180]", where, "longitude")
-    keep = np.ones(n, dtype=bool)
-    keep[1:] = (lon[1:] != lon[:-1]) | (lat[1:] != lat[:-1])  # repeated points: dropped (GPS standing still)
-    idx = np.flatnonzero(keep)
+
+
+def _distinct(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
+    """Indices of the vertices kept: repeated consecutive points dropped (a GPS standing still)."""
+    keep = np.ones(lon.size, dtype=bool)
+    keep[1:] = (lon[1:] != lon[:-1]) | (lat[1:] != lat[:-1])
+    return np.flatnonzero(keep)
+
+
+def _too_few(n: int, distinct: int) -> str:
+    """Why a list of ``n`` points with ``distinct`` distinct ones is no line."""
+    if n == 0:
+        return "has no points"
+    what = f"all {n} vertices are the same point" if n > 1 and distinct == 1 else f"has {n} vertex"
+    return f"{what}; a route part needs at least {MIN_VERTICES} distinct vertices"
+
+
+def _part(source, location, style, lon, lat, ele, properties, budget: _Budget, idx=None) -> RoutePart:
+    """Checks shared by both formats; ``lon``/``lat``/``ele`` are float arrays (NaN ele: none); ``idx``: the distinct
+    vertices when the caller has checked the coordinates already."""
+    n = lon.size
+    if idx is None:
+        _check_coordinates(location, style, lon, lat)
+        idx = _distinct(lon, lat)
     if idx.size < MIN_VERTICES:
-        what = f"all {n} vertices are the same point" if n > 1 else f"has {n} vertex"
-        raise RouteFormatError(f"{what}; a route part needs at least {MIN_VERTICES} distinct vertices", location)
+        raise RouteFormatError(_too_few(n, idx.size), location)
     lon, lat = lon[idx], lat[idx]
     seg = segment_lengths_m(lon, lat)
     jumps = np.flatnonzero(seg > MAX_SEGMENT_M)
@@ -164,7 +213,48 @@ def _positions(coords, location: str, budget: _Budget) -> tuple[np.ndarray, np.n
     return lon, lat, ele
 
 
-def _properties(props, where: str) -> dict:
+#: the international mile and nautical mile [m] (the international yard and pound agreement, 1959: 1 yd = 0.9144 m
+#: exactly, so 1 mi = 1760 yd = 1609.344 m; the International Hydrographic Conference, 1929: 1 nmi = 1852 m)
+MILE_M = 1609.344
+NAUTICAL_MILE_M = 1852.0
+#: OSM ``maxspeed`` units (wiki Key:maxspeed: a bare number is km/h; "mph" and "knots" follow the number)
+_SPEED_UNITS = {"": 1.0, "km/h": 1.0, "kmh": 1.0, "kph": 1.0, "mph": MILE_M / 1000.0, "knots": NAUTICAL_MILE_M / 1000.0}
+_MAXSPEED = re.compile(r"^\s*(\d+(?:\.\d+)?)\s*(km/h|kmh|kph|mph|knots)?\s*$")
+_COUNTRY_CODE = re.compile(r"^[A-Z]{2}(-[A-Z0-9]{1,3})?:\S+$")
+_WORDS = {
+    "none": "no numeric limit (maxspeed=none)",
+    "walk": "walking speed, no number (maxspeed=walk)",
+    "signals": "a variable limit shown on signs (maxspeed=signals)",
+    "variable": "a variable limit (maxspeed=variable)",
+}
+
+
+def maxspeed_kmh(value) -> tuple[float | None, str | None]:
+    """An OSM ``maxspeed`` tag as a posted speed [km/h], or None and why it is not one.
+
+    A bare number is km/h, ``"50 mph"`` 50 international miles an hour (1.609344 km), ``"10 knots"`` nautical miles
+    (1.852 km) (OSM wiki, Key:maxspeed). ``none``, ``walk``, ``signals``, a country's implicit code (``DE:urban``,
+    ``RO:rural``), several values (``50;30``) and anything else are not a number of km/h: None, with the reason; so is
+    a speed outside (0, 200] km/h.
+    """
+    text = str(value).strip()
+    m = _MAXSPEED.match(text)
+    if m is None:
+        low = text.lower()
+        if low in _WORDS:
+            return None, _WORDS[low]
+        if _COUNTRY_CODE.match(text):
+            return None, "a country's implicit limit code, not a number (it depends on the vehicle and road class)"
+        if ";" in text:
+            return None, "several values (by lane, time or direction): no single posted speed"
+        return None, "not a number of km/h, mph or knots"
+    kmh = float(m.group(1)) * _SPEED_UNITS[m.group(2) or ""]
+    if not 0.0 < kmh <= POSTED_SPEED_LIMIT_KMH:
+        return None, f"{kmh:g} km/h is outside (0, {POSTED_SPEED_LIMIT_KMH:g}] km/h"
+    return kmh, None
+
+
+def _properties(props, where: str, skipped: list[tuple[str, str]]) -> dict:
     if props is None:
         return {}
     if not isinstance(props, dict):
@@ -185,12 +275,28 @@ def _properties(props, where: str) -> dict:
         v = props.get(key)
         if v is not None and not isinstance(v, str | int | float):
             raise RouteFormatError(f"{key} must be a string or a number, got {type(v).__name__}", f"{where}.{key}", key)
+    if out.get("posted_speed_kmh") is None and out.get("maxspeed") is not None:
+        kmh, why = maxspeed_kmh(out["maxspeed"])
+        if kmh is None:
+            what = f"{where}.maxspeed {str(out['maxspeed'])[:40]!r}"
+            skipped.append((what, f"{why}: the request's posted speed applies"))
+        else:
+            out["posted_speed_kmh"] = kmh
     return out
+
+
+def _listed(skipped: list[tuple[str, str]], at_most: int = 5) -> str:
+    """What was skipped, for a refusal's message: the first ``at_most`` and how many more."""
+    text = "; ".join(f"{w}: {y}" for w, y in skipped[:at_most])
+    return text + (f"; and {len(skipped) - at_most} more" if len(skipped) > at_most else "")
 
 
 def _at(where: str, name: str) -> str:
     """The JSON path of ``name`` inside the object at ``where`` ("" is the document itself)."""
     return f"{where}.{name}" if where else name
+
+
+_LINES = ("LineString", "MultiLineString")
 
 
 def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> list[RoutePart]:
@@ -215,9 +321,11 @@ def _geometry(geom, where: str, source: str, props: dict, budget: _Budget) -> li
     )
 
 
-def read_geojson(doc, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
-    """Route parts from a GeoJSON object (parsed, or as JSON text), at most ``max_vertices`` vertices in all; see the
-    module docstring."""
+def read_geojson_document(doc, *, max_vertices: int = MAX_VERTICES) -> RouteRead:
+    """Route parts from a GeoJSON object (parsed, or as JSON text), at most ``max_vertices`` vertices in all, and what
+    was skipped: in a ``FeatureCollection`` a feature without a line (an OSM export's nodes and areas) is skipped and
+    listed; OSM ways (features with a ``highway`` property) that meet end to end are joined into one road
+    (:func:`join_ways`); see the module docstring."""
     if isinstance(doc, str | bytes):
         try:
             doc = json.loads(doc)
@@ -230,7 +338,9 @@ def read_geojson(doc, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
         name = (crs.get("properties") or {}).get("name") if isinstance(crs, dict) else None
         if name not in _CRS84:
             raise RouteFormatError(f"crs {name!r} is not WGS84 longitude/latitude (CRS84)", "crs", "crs")
-    budget = _Budget(max_vertices=max_vertices)
+    generator = doc.get("generator")
+    writer = generator.strip()[:200] if isinstance(generator, str) and generator.strip() else None
+    budget, skipped = _Budget(max_vertices=max_vertices), []
     kind = doc.get("type")
     if kind == "FeatureCollection":
         feats = doc.get("features")
@@ -241,23 +351,179 @@ def read_geojson(doc, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
         items = [(f, f"features[{i}]") for i, f in enumerate(feats)]
     elif kind == "Feature":
         items = [(doc, "")]  # the document itself: its paths start at its members
-    elif kind in ("LineString", "MultiLineString"):
-        return _geometry(doc, "", "geometry", {}, budget)
+    elif kind in _LINES:
+        parts = _geometry(doc, "", "geometry", {}, budget)
+        return RouteRead("GeoJSON", writer, parts, {kind: 1}, skipped)
     else:
         raise RouteFormatError(
             f"type {kind!r}: expected FeatureCollection, Feature, LineString or MultiLineString", "type", "type"
         )
     parts: list[RoutePart] = []
+    elements: dict[str, int] = {}
+    collection = kind == "FeatureCollection"
     for feat, where in items:
         if not isinstance(feat, dict) or feat.get("type") != "Feature":
             raise RouteFormatError("must be a Feature object", where, "type")
-        props = _properties(feat.get("properties"), _at(where, "properties"))
+        geom = feat.get("geometry")
+        gtype = geom.get("type") if isinstance(geom, dict) else None
+        label = gtype if isinstance(gtype, str) else "no geometry"
+        elements[label] = elements.get(label, 0) + 1
+        if collection and gtype not in _LINES and (geom is None or isinstance(gtype, str)):
+            # an export's points (an OSM node with tags) and areas: not a road's line
+            skipped.append((where, f"{'a ' + gtype if gtype else 'a null geometry'} is not a line"))
+            continue
+        props = _properties(feat.get("properties"), _at(where, "properties"), skipped)
         if "id" in feat and "id" not in props:
             props["id"] = feat["id"]
-        parts.extend(_geometry(feat.get("geometry"), _at(where, "geometry"), where or "feature", props, budget))
+        parts.extend(_geometry(geom, _at(where, "geometry"), where or "feature", props, budget))
     if len(parts) > MAX_PARTS:
         raise RouteFormatError(f"more than {MAX_PARTS} line parts", "features")
-    return parts
+    if not parts:
+        raise RouteFormatError(f"no LineString or MultiLineString feature ({_listed(skipped)})", "features", "features")
+    joined = join_ways(parts)
+    if len(joined) < len(parts):
+        elements["roads joined from OSM ways"] = sum(1 for p in joined if p.ways is not None)
+    return RouteRead("GeoJSON", writer, joined, elements, skipped)
+
+
+def read_geojson(doc, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
+    """The parts of :func:`read_geojson_document`."""
+    return read_geojson_document(doc, max_vertices=max_vertices).parts
+
+
+# ------------------------------------------------------------------------------------------ OSM ways
+
+
+def _is_way(p: RoutePart) -> bool:
+    """An OSM way as Overpass and osmtogeojson export it: a line feature with a ``highway`` tag."""
+    return p.properties.get("highway") is not None and p.ways is None and " part " not in p.source
+
+
+def _oneway(p: RoutePart) -> bool:
+    return str(p.properties.get("oneway", "")).lower() in ("yes", "true", "1", "-1", "reversible")
+
+
+def _names(p: RoutePart) -> set[tuple[str, str]]:
+    """What names the road a way belongs to: its ``ref`` and its ``name``."""
+    return {(k, str(p.properties[k]).strip()) for k in ("ref", "name") if str(p.properties.get(k) or "").strip()}
+
+
+def _pair(ends: list[tuple[int, int]], parts: list[RoutePart]) -> tuple[tuple[int, int], tuple[int, int]] | None:
+    """The two way ends at one node that continue each other, or None. Ends of two different ways continue when one
+    ends where the other starts (or both end or both start there and neither is one-way: one is drawn the other way
+    round), and they are the same road: at a node where only those two ways end, when their ref and name do not
+    contradict; at a junction (three ends or more), the one such pair with the same ref or name."""
+    candidates = []
+    for a in range(len(ends)):
+        for b in range(a + 1, len(ends)):
+            (i, si), (j, sj) = ends[a], ends[b]
+            if i == j:
+                continue
+            if si == sj and (_oneway(parts[i]) or _oneway(parts[j])):
+                continue
+            candidates.append((ends[a], ends[b]))
+    if len(ends) == 2 and len(candidates) == 1:
+        (i, _), (j, _) = candidates[0]
+        ni, nj = _names(parts[i]), _names(parts[j])
+        return candidates[0] if not (ni and nj and not ni & nj) else None
+    same = [c for c in candidates if _names(parts[c[0][0]]) & _names(parts[c[1][0]])]
+    return same[0] if len(same) == 1 else None
+
+
+def _chains(links: dict[tuple[int, int], tuple[int, int]], ways: list[int]) -> list[list[tuple[int, bool]]]:
+    """The joined roads: each a list of (way, reversed) in travel order; a closed loop is opened at its first way."""
+    seen: set[int] = set()
+    out = []
+    starts = [(i, s) for i in ways for s in (0, 1) if (i, s) not in links]
+    starts += [(i, 0) for i in ways]  # loops: every end linked
+    for i, side in starts:
+        if i in seen:
+            continue
+        chain = []
+        while i not in seen:
+            seen.add(i)
+            chain.append((i, side == 1))  # entered at its end: travelled from its last vertex to its first
+            nxt = links.get((i, 1 - side))
+            if nxt is None:
+                break
+            i, side = nxt
+        out.append(chain)
+    return out
+
+
+def _joined(parts: list[RoutePart], chain: list[tuple[int, bool]]) -> RoutePart:
+    """One road from its ways in travel order: vertices concatenated (each shared node once)."""
+    # travel along the one-way ways' own direction (else along most of the ways' drawn direction)
+    judged = [(parts[i].length_m, rev) for i, rev in chain if _oneway(parts[i])] or [
+        (parts[i].length_m, rev) for i, rev in chain
+    ]
+    if sum(n for n, rev in judged if rev) > sum(n for n, rev in judged if not rev):
+        chain = [(i, not rev) for i, rev in reversed(chain)]
+    lons, lats, eles, spans, ways = [], [], [], [], []
+    n = 0
+    has_ele = any(parts[i].ele_m is not None for i, _ in chain)
+    for k, (i, rev) in enumerate(chain):
+        p = parts[i]
+        order = slice(None, None, -1) if rev else slice(None)
+        lo, la = p.lon_deg[order], p.lat_deg[order]
+        e = p.ele_m[order] if p.ele_m is not None else np.full(lo.size, np.nan)
+        skip = 1 if k else 0  # the node shared with the previous way
+        lons.append(lo[skip:])
+        lats.append(la[skip:])
+        eles.append(e[skip:])
+        first = max(n - 1, 0)
+        n += lo.size - skip
+        spans.append((first, n - 1, p.properties))
+        ways.append(p.source + (" reversed" if rev else ""))
+    first = parts[chain[0][0]]
+    names = {k: v for k, v in first.properties.items() if k in ("name", "ref", "highway")}
+    lon, lat = np.concatenate(lons), np.concatenate(lats)
+    ele = np.concatenate(eles) if has_ele else None
+    source = f"{first.source} +{len(chain) - 1} way{'s' if len(chain) > 2 else ''}"
+    length = float(sum(parts[i].length_m for i, _ in chain))
+    index = np.arange(lon.size)
+    return RoutePart(source, first.location, names, lon, lat, ele, index, length, tuple(spans), tuple(ways))
+
+
+def join_ways(parts: list[RoutePart]) -> list[RoutePart]:
+    """OSM ways that meet end to end joined into one road, so that a bend is not cut where a way ends.
+
+    An OSM export splits a road into ways wherever a tag changes (a bridge, a speed limit, a lane count); two ways
+    of one road share their end node, whose coordinates are written identically in both. Ways are joined at a node
+    where they continue each other (:func:`_pair`); everything else (a single line, a feature without ``highway``,
+    a way meeting no continuation) is left as it is. The joined road keeps each way's properties over its own
+    vertices (``RoutePart.spans``) and lists its ways (``RoutePart.ways``); it lies where its first way lay in the
+    document's order."""
+    ways = [i for i, p in enumerate(parts) if _is_way(p)]
+    if len(ways) < 2:
+        return parts
+    nodes: dict[tuple[float, float], list[tuple[int, int]]] = {}
+    for i in ways:
+        p = parts[i]
+        for side, k in ((0, 0), (1, -1)):
+            nodes.setdefault((float(p.lon_deg[k]), float(p.lat_deg[k])), []).append((i, side))
+    links: dict[tuple[int, int], tuple[int, int]] = {}
+    for ends in nodes.values():
+        pair = _pair(ends, parts) if len(ends) >= 2 else None
+        if pair is not None:
+            a, b = pair
+            links[a], links[b] = b, a
+    if not links:
+        return parts
+    road_of: dict[int, RoutePart | None] = {}
+    for chain in _chains(links, ways):
+        if len(chain) == 1:
+            continue
+        road_of[min(i for i, _ in chain)] = _joined(parts, chain)
+        for i, _ in chain:
+            road_of.setdefault(i, None)
+    out = []
+    for i, p in enumerate(parts):
+        if i not in road_of:
+            out.append(p)
+        elif road_of[i] is not None:
+            out.append(road_of[i])
+    return out
 
 
 # --------------------------------------------------------------------------------------------- GPX
@@ -295,35 +561,105 @@ def _gpx_points(points: list, label: str, tag: str, budget: _Budget) -> tuple[np
     return lon, lat, ele
 
 
-def read_gpx(text: str | bytes, *, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
-    """Route parts from a GPX 1.1 document: each track segment and each route, at most ``max_vertices`` vertices in
-    all; see the module docstring."""
+#: which GPX parts are read: ``trk`` (track segments: the geometry a device logged or a router drew), ``rte`` (routes:
+#: a plan's or a router's turn points), ``all``; None: the tracks when the file has any, else its routes
+PARTS = ("trk", "rte", "all")
+
+_WHY_RTE = (
+    "the file also has a track: a router writes the turn points as <rte> beside the geometry as <trk>, and turn "
+    "points joined by straight lines make up curves that are not on the road (parts=rte or parts=all reads it)"
+)
+
+
+@dataclass
+class _Candidate:
+    kind: str  # "trk" or "rte"
+    label: str
+    tag: str
+    lon: np.ndarray
+    lat: np.ndarray
+    ele: np.ndarray
+    props: dict
+    idx: np.ndarray
+
+
+def read_gpx_document(text: str | bytes, *, parts: str | None = None, max_vertices: int = MAX_VERTICES) -> RouteRead:
+    """Route parts from a GPX document (1.1, or 1.0: the same elements), at most ``max_vertices`` vertices in the parts
+    read, and what was skipped.
+
+    ``parts`` (:data:`PARTS`): which of the tracks and routes are read; by default the tracks, and the routes only
+    when the file has no track with points. A track with no segment, a segment or route with fewer than 2 distinct
+    points (GPSBabel writes an empty ``ACTIVE LOG`` track in every Garmin download) is skipped and listed; a file
+    with nothing else is refused, naming what it holds.
+    """
+    if parts is not None and parts not in PARTS:
+        raise RouteFormatError(f"parts must be one of {', '.join(PARTS)}, got {parts!r}", "parts", "parts")
     root = xmlsafe.document(text, "gpx", "GPX", RouteFormatError)
-    budget, parts = _Budget(max_vertices=max_vertices), []
-    t_index = r_index = 0
+    version = (root.get("version") or "").strip()
+    fmt = f"GPX {version}" if version in ("1.0", "1.1") else "GPX"
+    creator = (root.get("creator") or "").strip()
+    budget, skipped = _Budget(max_vertices=max_vertices), []
+    elements = {"trk": 0, "trkseg": 0, "trkpt": 0, "rte": 0, "rtept": 0, "wpt": 0}
+    found: list[_Candidate] = []
     for el in root:
         kind = xmlsafe.local(el.tag)
+        if kind == "wpt":
+            elements["wpt"] += 1
         if kind not in ("trk", "rte"):
             continue
+        elements[kind] += 1
         name = _child_text(el, "name")
         named = f" {name!r}" if name else ""
         props = {"name": name} if name else {}
         if kind == "trk":
-            t_index += 1
+            label = f"trk[{elements['trk']}]{named}"
             segs = [s for s in el if xmlsafe.local(s.tag) == "trkseg"]
             if not segs:
-                raise RouteFormatError("has no trkseg", f"trk[{t_index}]{named}")
-            for j, seg in enumerate(segs, start=1):
-                label = f"trk[{t_index}]{named} trkseg[{j}]"
-                lon, lat, ele = _gpx_points([p for p in seg if xmlsafe.local(p.tag) == "trkpt"], label, "trkpt", budget)
-                parts.append(_part(label, label, "trkpt", lon, lat, ele, props, budget))
+                skipped.append((label, "has no trkseg (an empty track)"))
+            pieces = [(f"{label} trkseg[{j}]", "trkpt", seg) for j, seg in enumerate(segs, start=1)]
         else:
-            r_index += 1
-            label = f"rte[{r_index}]{named}"
-            lon, lat, ele = _gpx_points([p for p in el if xmlsafe.local(p.tag) == "rtept"], label, "rtept", budget)
-            parts.append(_part(label, label, "rtept", lon, lat, ele, props, budget))
-        if len(parts) > MAX_PARTS:
+            label = f"rte[{elements['rte']}]{named}"
+            pieces = [(label, "rtept", el)]
+        for where, tag, holder in pieces:
+            if tag == "trkpt":
+                elements["trkseg"] += 1
+            points = [p for p in holder if xmlsafe.local(p.tag) == tag]
+            elements[tag] += len(points)
+            lon, lat, ele = _gpx_points(points, where, tag, budget)
+            _check_coordinates(where, tag, lon, lat)
+            idx = _distinct(lon, lat)
+            if idx.size < MIN_VERTICES:
+                empty = "an empty segment" if tag == "trkpt" else "an empty route"
+                skipped.append((where, f"{_too_few(len(points), idx.size)} ({empty})"))
+                continue
+            found.append(_Candidate(kind, where, tag, lon, lat, ele, props, idx))
+        if len(found) > MAX_PARTS:
             raise RouteFormatError(f"more than {MAX_PARTS} tracks, segments and routes", "GPX")
-    if not parts:
+    if elements["wpt"]:
+        skipped.append((f"wpt ({elements['wpt']})", "waypoints are single points, not a line to find curves on"))
+    if not elements["trk"] and not elements["rte"]:
         raise RouteFormatError("no trk or rte element", "GPX")
-    return parts
+    has = {k: any(c.kind == k for c in found) for k in ("trk", "rte")}
+    if not found:
+        raise RouteFormatError(
+            f"no track or route with at least {MIN_VERTICES} distinct points ({_listed(skipped)})", "GPX"
+        )
+    wanted = parts or ("trk" if has["trk"] else "rte")
+    if wanted != "all" and not has[wanted]:
+        what = "track (trk) segment" if wanted == "trk" else "route (rte)"
+        other = "parts=rte reads its routes" if wanted == "trk" else "parts=trk reads its tracks"
+        raise RouteFormatError(f"parts={wanted}: the file has no {what} with points; {other}", "parts", "parts")
+    out = []
+    for c in found:
+        if wanted in ("all", c.kind):
+            out.append(_part(c.label, c.label, c.tag, c.lon, c.lat, c.ele, c.props, budget, c.idx))
+        elif c.kind == "rte":
+            skipped.append((c.label, _WHY_RTE if parts is None else "parts=trk"))
+        else:
+            skipped.append((c.label, "parts=rte"))
+    return RouteRead(fmt, creator[:200] or None, out, elements, skipped)
+
+
+def read_gpx(text: str | bytes, *, parts: str | None = None, max_vertices: int = MAX_VERTICES) -> list[RoutePart]:
+    """The parts of :func:`read_gpx_document`."""
+    return read_gpx_document(text, parts=parts, max_vertices=max_vertices).parts

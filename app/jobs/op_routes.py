@@ -55,7 +55,8 @@ class RouteJob:
 def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
     resolved = resolved_route(req, route_refs(req), ctx.settings)
-    parts = read_route(req, synchronous=False)  # reading refuses bad geometry now (a 422)
+    read = read_route(req, synchronous=False)  # reading refuses bad geometry now (a 422)
+    parts = read.parts
     vertices = sum(int(p.lon_deg.size) for p in parts)
     if (
         req.superelevation_percent is None
@@ -64,7 +65,7 @@ def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
     ):
         # the synchronous request refuses a found curve without a superelevation: with no default for it the
         # curves are found now, so that such a job is refused here (the same 422), not failed by its worker
-        curve_table(req, find_route_curves(req, parts))
+        curve_table(req, find_route_curves(req, read))
     stored = req.model_dump(mode="json", exclude={"vehicle", "vehicles", "fleet"}, exclude_unset=True)
     return RouteJob(stored, resolved, vertices)
 
@@ -99,9 +100,11 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
 
 OPERATION = Operation(
     name="routes.assess",
-    description="The route assessment of `POST /v1/routes/assess` (`request`: its JSON request) as a job: the "
-    "geometry is read at submission (a 422 when it cannot be), the curves are found and assessed by a worker; one "
-    "part; JSON or CSV.",
+    description="The route assessment of `POST /v1/routes/assess` (`request`: its JSON request, `parts` and "
+    "`use_elevation` included) as a job: the geometry is read at submission (a 422 when it cannot be), the curves are "
+    "found and assessed by a worker, a curve outside the model's domain as a row with `error`, a road without a "
+    "curve as an answer without curves; the answer's `reading` says what was read and skipped; one part; JSON or "
+    "CSV.",
     request_model=RouteRequest,
     unit="vertices",
     part_units=1,

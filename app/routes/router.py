@@ -70,9 +70,14 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     speed, the margin against the posted speed and the standard's minimum radius. JSON: `curves`, each with its
     geometry, vertices and assessment; GeoJSON with `Accept: application/geo+json`: the curves as a
     FeatureCollection (RFC 7946) with the same properties, ready for a GIS; CSV with `Accept: text/csv`: one row
-    per vehicle and curve. Geometry that cannot be read is a 422 naming the feature (or track) and the vertex. At
-    most 10,000 rows (curves x vehicles) per request: a longer route goes to a job (`POST /v1/jobs`,
-    `routes.assess`)."""
+    per vehicle and curve. Every answer carries `reading`: the file's format and writer, the parts read, and what was
+    skipped and why (empty track segments, a router's `<rte>` beside its `<trk>` unless `parts` asks, features that
+    are not lines, `maxspeed` values that are no speed). A curve outside the model's domain (a car park's or a
+    junction's turn of a few metres) is a row with `error`, never a refusal of the document; a road without a curve
+    answers 200 with none; grades from elevations are clipped to +/-20 % with `grade_clipped` (or ignored:
+    `use_elevation` false); OSM ways that meet end to end are joined into one road and their `maxspeed` read.
+    Geometry that cannot be read is a 422 naming the feature (or track) and the vertex. At most 10,000 rows (curves
+    x vehicles) per request: a longer route goes to a job (`POST /v1/jobs`, `routes.assess`)."""
     req = await run_in_threadpool(parse_route_request, await request.body())
     accept = request.headers.get("accept")
     form = negotiate(accept, WITH_GEOJSON)
@@ -83,8 +88,9 @@ UPLOAD = """
 
 The body is the {what} itself (`--data-binary @{file}`), or the part `file` of a `multipart/form-data` body
 (`-F file=@{file}`); the options are query parameters (`vehicle` repeated for several presets; the detection's
-`noise_m`, `max_radius_m`, `min_deflection_deg` as plain parameters). The same request as `POST /v1/routes/assess`
-with `{field}`: the same answer, byte for byte, and the same cache entry. A rule the query's schema cannot state:
+`noise_m`, `max_radius_m`, `min_deflection_deg` as plain parameters; `parts`, `use_elevation`, `grade_percent` as
+they are). The same request as `POST /v1/routes/assess` with `{field}`: the same answer, byte for byte, and the same
+cache entry. A rule the query's schema cannot state:
 `side_friction_bound` only with `design_standard` `thesis-table21` (or alone)."""
 
 

@@ -22,6 +22,11 @@ from app.http.schemas import (
 )
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
+from engine.domain import BOUNDS
+
+#: the model's domain of a curve (:data:`engine.domain.BOUNDS`): a route's curve outside it is a row with ``error``
+MIN_RADIUS_M = BOUNDS["radius_m"].minimum
+MAX_GRADE_PERCENT = BOUNDS["slope_percent"].maximum
 
 #: the synchronous request's vertices: a track of 200 km at 10 m, two fifths of the route docs/routes.md "Speed" times
 #: (the correlated-noise row is the slow one), what a page waits for; the page sends a larger file as a job, and a job
@@ -186,6 +191,34 @@ class RouteRequest(SrtOptions, SrtTargets, DesignOptions):
         "flag are against it.",
         symbol="V",
     )
+    grade_percent: float = bounded(
+        "slope_percent",
+        None,
+        text="Grade of every curve whose grade is not read from elevations (no elevations, or `use_elevation` "
+        "false); default 0.",
+        symbol="slope",
+    )
+    parts: Literal["trk", "rte", "all"] = Field(
+        None,
+        json_schema_extra=ABSENT,
+        description=describe(
+            "GPX: which parts are read: `trk` (the track segments: the geometry a device logged or a router drew), "
+            "`rte` (the routes: a plan's or a router's turn points), `all`. Default: the tracks when the file has any "
+            "with points, else its routes; a router's file that holds the same path as `<rte>` turn points and as "
+            "`<trk>` geometry is read once, its route listed in `reading.skipped`. Ignored for GeoJSON.",
+            unit="-",
+        ),
+    )  # type: ignore[assignment]
+    use_elevation: bool = Field(
+        True,
+        description=describe(
+            "Whether the grades come from the document's elevations (GPX `<ele>`, a GeoJSON position's third "
+            "coordinate): a least-squares line of elevation against distance over each curve (docs/routes.md), "
+            f"clipped to +/-{MAX_GRADE_PERCENT:g} % (`grade_clipped`). False: every curve takes `grade_percent` (0 "
+            "by default), e.g. when the elevations are a GPS's or a coarse DEM's.",
+            unit="-",
+        ),
+    )
     detection: Detection = Field(
         default_factory=Detection,
         description=describe("How the curves are found (defaults suit GPS tracks).", unit="see its fields"),
@@ -214,6 +247,42 @@ RouteRequest.__doc__ = (RouteRequest.__doc__ or "").format(
 
 
 # ------------------------------------------------------------------------------------------- output
+
+
+class RouteCurveRow(CurveRow):
+    """A vehicle's assessment of a route's curve: an alignment's row; on a curve outside the model's domain (a radius
+    below the smallest a heavy vehicle can turn on: a car park's or a junction's manoeuvre) `error` says why, `flagged`
+    is true and every computed value (SRT, speeds, side friction, a superelevation derived from the radius) is null."""
+
+    superelevation_percent: float | None = Field(
+        description=describe(
+            "Superelevation used (given, or derived: see `superelevation_source`); null on a row outside the model's "
+            "domain whose superelevation would be derived from its radius.",
+            unit="%",
+            symbol="e",
+        )
+    )
+    side_friction_speed_kmh: float | None = Field(
+        description=describe(
+            "Side-friction speed (Eq. 9.2 solved for V); null on a row outside the model's domain.",
+            unit="km/h",
+            symbol="V_f",
+        )
+    )
+    side_friction: float | None = Field(
+        description=describe(
+            "The standard's side-friction factor at that speed; null on a row outside the model's domain.",
+            unit="-",
+            symbol="f",
+        )
+    )
+    side_friction_clamped: bool | None = Field(
+        description=describe(
+            "The side-friction speed lies outside the standard's table (its end value used); null on a row outside "
+            "the model's domain.",
+            unit="-",
+        )
+    )
 
 
 class RouteCurveProperties(OutputModel):
@@ -266,10 +335,27 @@ class RouteCurveProperties(OutputModel):
     spiral_out_m: float | None = Field(description=describe("Exit transition length, if resolved.", unit="m"))
     grade_percent: float | None = Field(
         description=describe(
-            "Grade over the curve from the elevations, + uphill in the direction of travel; null without elevations "
-            "(the assessment then uses 0 %).",
+            "Grade over the curve from the elevations as read: the slope of the least-squares line of elevation "
+            "against distance along the curve, + uphill in the direction of travel; null without elevations or with "
+            "`use_elevation` false. The assessment uses it clipped to the model's domain (`grade_clipped`), or the "
+            "request's `grade_percent` (`grade_source`).",
             unit="%",
             symbol="slope",
+        )
+    )
+    grade_source: Literal["elevations", "request"] = Field(
+        description=describe(
+            "Where the assessed grade came from: the document's `elevations`, or the `request` (`grade_percent`, 0 by "
+            "default) where there are none or `use_elevation` is false.",
+            unit="-",
+        )
+    )
+    grade_clipped: bool = Field(
+        description=describe(
+            f"The grade from the elevations lies beyond +/-{MAX_GRADE_PERCENT:g} %, the model's domain (what GPS or "
+            "DEM elevations make between close fixes): the assessment used the bound, `grade_percent` keeps the "
+            "value read.",
+            unit="-",
         )
     )
     compound: bool = Field(description=describe("Several arcs of one direction with no tangent between.", unit="-"))
@@ -279,19 +365,22 @@ class RouteCurveProperties(OutputModel):
     truncated: bool = Field(description=describe("The curve runs into the start or end of its part.", unit="-"))
     vertices: list[int] = Field(
         description=describe(
-            "First and last vertex of the curve in the part's vertex list, as in the document.", unit="-"
+            "First and last vertex of the curve in the part's vertex list, as in the document (on a road joined "
+            "from OSM ways, along the joined road: `parts[].ways`).",
+            unit="-",
         )
     )
     governing_vehicle: int = Field(
         description=describe("Index of the vehicle with the lowest safe speed (its row is `assessment`).", unit="-")
     )
-    assessment: CurveRow = Field(
+    assessment: RouteCurveRow = Field(
         description=describe(
-            "The governing vehicle's assessment, of the conservative radius (its `radius_m` is `radius_lower_m`).",
+            "The governing vehicle's assessment, of the conservative radius (its `radius_m` is `radius_lower_m`); a "
+            "curve outside the model's domain has `error` and no speeds.",
             unit="see its fields",
         )
     )
-    vehicles: list[CurveRow] | None = Field(
+    vehicles: list[RouteCurveRow] | None = Field(
         description=describe("Every vehicle's assessment, in the request's order (only with several).", unit="-")
     )
 
@@ -320,6 +409,9 @@ class RouteFeature(OutputModel):
 class RouteCurves(OutputModel):
     type: Literal["FeatureCollection"] = Field(description=describe("GeoJSON object type.", unit="-"))
     features: list[RouteFeature] = Field(description=describe("One feature per curve, in route order.", unit="-"))
+    reading: RouteReading = Field(
+        description=describe("What was read from the file (a foreign member, RFC 7946 section 6.1).", unit="-")
+    )
 
 
 class RoutePartOut(OutputModel):
@@ -340,7 +432,69 @@ class RoutePartOut(OutputModel):
             symbol="L",
         )
     )
-    has_elevation: bool = Field(description=describe("Whether grades could be read.", unit="-"))
+    has_elevation: bool = Field(
+        description=describe("Whether the part has elevations (used unless `use_elevation` is false).", unit="-")
+    )
+    ways: list[str] | None = Field(
+        description=describe(
+            "An OSM road joined from ways that meet end to end: its features in travel order (` reversed` where a "
+            "way is drawn the other way); its `vertices` then count along the joined road. Null for a single line.",
+            unit="-",
+        )
+    )
+
+
+class SkippedOut(OutputModel):
+    what: str = Field(description=describe("What was not used: the part, feature or tag as in the document.", unit="-"))
+    why: str = Field(description=describe("Why it was not used.", unit="-"))
+
+
+class RouteReading(OutputModel):
+    """What was read from the file and what was not (nothing is dropped silently)."""
+
+    format: str = Field(description=describe("The document's format: `GPX 1.1`, `GPX 1.0` or `GeoJSON`.", unit="-"))
+    writer: str | None = Field(
+        description=describe(
+            "The application that wrote it, where the file says: the GPX `creator`, the GeoJSON `generator`.", unit="-"
+        )
+    )
+    linear_unit: str = Field(
+        description=describe(
+            "Length unit of the file's elevations (GPX and GeoJSON: `meter`; positions are WGS84 degrees).", unit="-"
+        )
+    )
+    alignments: list[str] = Field(
+        description=describe("The parts read (tracks' segments, routes, lines, joined roads), in order.", unit="-")
+    )
+    elements: dict[str, int] = Field(
+        description=describe(
+            "What the document holds, by type (GPX: `trk`, `trkseg`, `trkpt`, `rte`, `rtept`, `wpt`; GeoJSON: "
+            "features by geometry type, and the roads joined from OSM ways).",
+            unit="count",
+        )
+    )
+    profile: str | None = Field(
+        description=describe(
+            "Where the grades came from: `elevations` (the document's), or null (none read: the request's "
+            "`grade_percent`).",
+            unit="-",
+        )
+    )
+    superelevation_from: Literal["file", "request", "standard"] | None = Field(
+        description=describe(
+            "Where the curves' superelevation came from: the features' `superelevation_percent` (`file`, where any "
+            "gives it), the request's `superelevation_percent`, or the standard's distribution "
+            "(`max_superelevation_percent`); null without curves.",
+            unit="-",
+        )
+    )
+    skipped: list[SkippedOut] = Field(
+        description=describe(
+            "What was read but not used, and why: empty track segments, a router's `<rte>` beside its `<trk>`, "
+            "features that are not lines, `maxspeed` values that are not a speed.",
+            unit="-",
+        )
+    )
 
 
 class RouteResult(OutputModel):
@@ -363,5 +517,8 @@ class RouteResult(OutputModel):
             "One entry per vehicle: its summary over the curves (`rows` empty: see `curves`).", unit="-"
         )
     )
-    curves: list[RouteCurve] = Field(description=describe("The curves, in route order.", unit="-"))
+    curves: list[RouteCurve] = Field(
+        description=describe("The curves, in route order (none on a road without a curve).", unit="-")
+    )
+    reading: RouteReading = Field(description=describe("What was read from the file and what was not.", unit="-"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -33,7 +33,14 @@ from app.routes.schemas import Detection, RouteRequest
 from app.srt.schemas import LoadIn
 
 #: the alignment uploads' options, and a route's own superelevation and posted speed for every curve
-OPTIONS = (*alignment_uploads.OPTIONS, "superelevation_percent", "posted_speed_kmh")
+OPTIONS = (
+    *alignment_uploads.OPTIONS,
+    "superelevation_percent",
+    "posted_speed_kmh",
+    "grade_percent",
+    "parts",
+    "use_elevation",
+)
 LOAD = alignment_uploads.LOAD
 DETECTION = ("noise_m", "max_radius_m", "min_deflection_deg")
 

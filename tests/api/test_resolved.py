@@ -109,6 +109,10 @@ def test_a_routes_key_is_the_key_of_the_dict_it_replaces():
         "superelevation_percent": 5.0,
         "posted_speed_kmh": None,
         "detection": req.detection.model_dump(),
+        # in the key since the GPX parts read and the use of elevations became options (issue 39)
+        "parts": None,
+        "use_elevation": True,
+        "grade_percent": None,
     }
     old = {**_assessment_dict([BTRAIN], max_superelevation_percent=req.max_superelevation_percent), "route": route}
     for op in ("route", "route-csv", "route-geojson"):

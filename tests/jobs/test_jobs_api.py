@@ -3,6 +3,7 @@ over parts, progress, cancellation, owners, expiry, refusals at submission, stor
 
 from __future__ import annotations
 
+import json
 import math
 import time
 
@@ -456,6 +457,49 @@ def test_route_result_is_the_synchronous_answer_byte_for_byte(accept):
         assert all(c["radius_lower_m"] <= c["radius_m"] for c in job.json()["curves"])  # both radii in the job's
     else:
         assert {"radius_m", "radius_lower_m", "radius_std_m"} <= set(job.text.splitlines()[0].split(","))
+
+
+ROUTE_FILES = [
+    ("drive.gpx", {}),
+    ("drive.gpx", {"parts": "all"}),
+    ("osm-ways.geojson", {"use_elevation": False, "grade_percent": 2.0}),
+]
+
+
+@pytest.mark.parametrize(("name", "options"), ROUTE_FILES)
+def test_a_route_file_as_a_job_answers_as_the_synchronous_request(name, options):
+    """examples/drive.gpx (an empty track, a 4 m turn outside the model's domain, a router's <rte>) and
+    examples/osm-ways.geojson (three OSM ways, maxspeed) as ``routes.assess`` jobs: the same bytes as POST
+    /v1/routes/assess, the turn a row with ``error``, the reading's skipped parts there."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / name).read_text()
+    doc = {"gpx": text} if name.endswith(".gpx") else {"geojson": json.loads(text)}
+    req = {"vehicle": "table16-btrain", **doc, "superelevation_percent": 7.5, "posted_speed_kmh": 60, **options}
+    with make_client() as c:
+        location, status = run(c, "routes.assess", req)
+        assert status["status"] == "done"
+        job = c.get(location + "/result")
+        sync = c.post("/v1/routes/assess", json=req)
+    assert job.status_code == sync.status_code == 200 and job.content == sync.content
+    out = job.json()
+    if name == "drive.gpx":
+        assert out["curves"][0]["assessment"]["error"] is not None  # the car park's turn
+        assert out["reading"]["skipped"][0]["what"] == "trk[1] 'ACTIVE LOG' trkseg[1]"
+    else:
+        assert all(k["grade_source"] == "request" and k["assessment"]["grade_percent"] == 2.0 for k in out["curves"])
+
+
+def test_a_road_without_a_curve_as_a_job_is_done_with_none():
+    line = {"type": "LineString", "coordinates": [[10.0, 45.0], [10.001, 45.0], [10.002, 45.0]]}
+    req = {"vehicle": "table16-btrain", "superelevation_percent": 6.0, "geojson": line}
+    with make_client() as c:
+        location, status = run(c, "routes.assess", req)
+        assert status["status"] == "done"
+        out = c.get(location + "/result").json()
+        csv_text = c.get(location + "/result", headers={"accept": "text/csv"}).text
+    assert out["curves"] == [] and out["vehicles"][0]["summary"]["curves"] == 0
+    assert len(csv_text.strip().splitlines()) == 1
 
 
 def test_a_route_past_the_synchronous_rows_is_told_to_send_a_job_and_runs_as_one(monkeypatch):

@@ -90,12 +90,14 @@ def test_geojson_vertex_refusals_name_the_vertex(coords, location, message):
 @pytest.mark.parametrize(
     ("doc", "location", "message"),
     [
+        # in a collection, a feature without a line is skipped (an OSM export's nodes): none left is the refusal
         (
             collection(feature({"type": "Point", "coordinates": [10.0, 45.0]})),
-            "features[0].geometry.type",
-            "not a line",
+            "features",
+            r"no LineString or MultiLineString feature \(features\[0\]: a Point is not a line\)",
         ),
-        (collection(feature(None)), "features[0].geometry", "LineString or MultiLineString"),
+        (collection(feature(None)), "features", "a null geometry is not a line"),
+        (feature({"type": "Point", "coordinates": [10.0, 45.0]}), "geometry.type", "not a line"),
         (collection({"type": "Polygon"}), "features[0]", "Feature"),
         ({"type": "FeatureCollection", "features": []}, "features", "non-empty"),
         ({"type": "GeometryCollection", "geometries": []}, "type", "expected FeatureCollection"),
@@ -173,7 +175,7 @@ GPX = """<?xml version="1.0" encoding="UTF-8"?>
 
 
 def test_gpx_tracks_segments_routes():
-    parts = read_gpx(GPX)
+    parts = read_gpx(GPX, parts="all")
     assert [p.source for p in parts] == ["trk[1] 'A1' trkseg[1]", "trk[1] 'A1' trkseg[2]", "rte[1]"]
     a = parts[0]
     assert a.vertex_index.tolist() == [0, 2, 3]
@@ -195,8 +197,9 @@ def test_gpx_tracks_segments_routes():
             "trk[1] 'X' trkseg[1] trkpt[2]",
             "not a number",
         ),
-        ('<trk><trkseg><trkpt lat="45" lon="10"/></trkseg></trk>', "trk[1] trkseg[1]", "has 1 vertex"),
-        ("<trk><trkseg></trkseg></trk>", "trk[1] trkseg[1]", "has 0 vertex"),
+        # a segment without a line is skipped and listed: with nothing else, the file is refused naming it
+        ('<trk><trkseg><trkpt lat="45" lon="10"/></trkseg></trk>', "GPX", r"trk\[1\] trkseg\[1\]: has 1 vertex"),
+        ("<trk><trkseg></trkseg></trk>", "GPX", r"no track or route .*trk\[1\] trkseg\[1\]: has no points"),
         ('<rte><rtept lat="10" lon="45"/><rtept lat="95" lon="45"/></rte>', "rte[1] rtept[2]", "swapped"),
         ('<rte><rtept lat="45" lon="10"/><rtept lat="45" lon="11"/></rte>', "rte[1] rtept[2]", "jumps 78.8 km"),
         (
@@ -204,7 +207,7 @@ def test_gpx_tracks_segments_routes():
             "rte[1] rtept[1]",
             "ele",
         ),
-        ("<trk><name>Y</name></trk>", "trk[1] 'Y'", "no trkseg"),
+        ("<trk><name>Y</name></trk>", "GPX", "trk\\[1\\] 'Y': has no trkseg"),
         ('<wpt lat="45" lon="10"/>', "GPX", "no trk or rte"),
     ],
 )

@@ -1,0 +1,266 @@
+"""What the yaw-roll model needs beyond the combination description, and how it is estimated where not given.
+
+The static description (:class:`~engine.vehicle.combination.Combination`) has masses, CG heights and positions,
+axle groups and couplings. The motion also needs, per unit, a yaw and a roll inertia and the body's extent (for the
+low-speed corners), and per axle group a cornering coefficient and the axle spacing. Each may be given
+(:class:`DynamicsData`); otherwise it is estimated here, and every value carries where it came from
+(:class:`Parameter`: ``source`` is the given value's, or ``"estimated: <formula>; <source>"``).
+
+Estimates
+---------
+* cornering stiffness of an axle ``C = Cc N`` with ``N`` its static load and ``Cc`` the cornering coefficient
+  [1/rad]; default ``Cc = 5.5 /rad`` for every axle, the value OpenPBS gives every axle of its parameter sets
+  (``OpenPBS/Parameters/Base/VehicleModel.mo``, ``Cc``, "Cornering coefficient per axle"). One value for all tyre
+  types: no readable source gave coefficients by tyre type (say so in the answer). Accepted range 2-12 /rad
+  (assumed: about half and twice the OpenPBS value, outside any truck tyre's linear coefficient);
+* axle spacing within a group: 1.27 m (the spacing of the tandems and tridems of the TruckSim example database
+  the presets use: LX_AXLE 5000 / 6270 / 7540 mm, 5230 / 6500 mm);
+* body extent (ahead of / behind the unit's reference point): a uniform load-carrying body centred on its sprung
+  CG, its front ``front_m`` ahead of the reference point (assumed 1.0 m ahead of a kingpin or turntable; a
+  tractor's or rigid truck's front 1.4 m ahead of the steer axle; a dolly's body from its eye to 0.5 m behind its
+  axle), so ``rear = 2 x_cg + front`` for a load carrier; a tractor's rear 1.0 m behind its rear group;
+* width: 2.5 m (assumed: the common general width limit of heavy vehicles);
+* yaw inertia of the sprung mass about its CG: a uniform box, ``m (L^2 + w^2) / 12`` (Gillespie 1992, the
+  moments of inertia of a rectangular body); the axles' own yaw inertia is that of their masses as points;
+* roll inertia of the sprung mass about its CG: a uniform box ``m (w^2 + H^2) / 12`` with ``H = 2 (h_cg - h_rc)``
+  (the box from its highest roll centre up, centred on the CG);
+* suspension roll damping per axle ``c = tau K_s`` with ``tau = 0.02 s`` (assumed: no readable source; it sets a
+  sprung-mass roll damping ratio of roughly 0.1-0.3 on the presets and does not enter any steady answer).
+
+References
+----------
+.. [1] OpenPBS (performance-based-standards/OpenPBS), ``OpenPBS/Parameters/Base/VehicleModel.mo``: ``Cc = 5.5``
+   cornering coefficient per axle (cornering stiffness per unit vertical load).
+.. [2] Gillespie, T. D. (1992), *Fundamentals of Vehicle Dynamics*, SAE, ch. 6.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from engine.errors import InvalidVehicle
+from engine.vehicle.combination import G_M_PER_S2, Combination, static_loads
+
+CORNERING_COEFFICIENT_PER_RAD = 5.5
+CORNERING_SOURCE = "OpenPBS, OpenPBS/Parameters/Base/VehicleModel.mo: Cc = 5.5, 'Cornering coefficient per axle'"
+CORNERING_RANGE_PER_RAD = (2.0, 12.0)
+AXLE_SPACING_M = 1.27
+AXLE_SPACING_SOURCE = "TruckSim 2022.1 example database tandems and tridems: LX_AXLE 5000/6270/7540 and 5230/6500 mm"
+WIDTH_M = 2.5
+ROLL_DAMPING_TAU_S = 0.02
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A value with where it comes from: ``given``, a preset's source, or ``estimated: formula; source``."""
+
+    value: float
+    unit: str
+    source: str
+
+
+@dataclass(frozen=True)
+class UnitData:
+    """Optional per-unit data (None: estimated). Extents are metres ahead of / behind the unit's reference point."""
+
+    yaw_inertia_kgm2: float | None = None
+    roll_inertia_kgm2: float | None = None
+    front_overhang_m: float | None = None
+    rear_extent_m: float | None = None
+    width_m: float | None = None
+
+
+@dataclass(frozen=True)
+class GroupData:
+    """Optional per-group data: cornering coefficient [1/rad] and axle spacing [m] (None: estimated)."""
+
+    cornering_coefficient_per_rad: float | None = None
+    axle_spacing_m: float | None = None
+
+
+@dataclass(frozen=True)
+class DynamicsData:
+    """What the caller gives beyond the description: ``units`` by unit id, ``groups`` by ``(unit id, group id)``."""
+
+    units: dict[str, UnitData] = field(default_factory=dict)
+    groups: dict[tuple[str, str], GroupData] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class UnitParameters:
+    """The resolved data of one unit (all SI): see the module docstring for the estimates."""
+
+    yaw_inertia_kgm2: Parameter
+    roll_inertia_kgm2: Parameter
+    front_overhang_m: Parameter
+    rear_extent_m: Parameter
+    width_m: Parameter
+
+
+@dataclass(frozen=True)
+class GroupParameters:
+    cornering_coefficient_per_rad: Parameter
+    axle_spacing_m: Parameter
+    axle_positions_m: tuple[float, ...]
+    axle_load_kn: float
+    cornering_stiffness_kn_per_rad: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class ResolvedParameters:
+    units: tuple[UnitParameters, ...]
+    groups: dict[tuple[int, int], GroupParameters]
+    roll_damping_tau_s: Parameter
+
+
+def _front_estimate(kind: str) -> tuple[float, str]:
+    if kind in ("tractor", "rigid-truck"):
+        return 1.4, "assumed: the front 1.4 m ahead of the steer axle (cab-over front overhang)"
+    if kind == "dolly":
+        return 0.0, "assumed: a dolly's front is its drawbar eye"
+    return 1.0, "assumed: the body's front 1.0 m ahead of its kingpin or drawbar eye"
+
+
+def _check_range(value: float, low: float, high: float, path: str, what: str) -> None:
+    if not isinstance(value, int | float) or isinstance(value, bool) or not low <= value <= high:
+        raise InvalidVehicle(f"{path} must be from {low:g} to {high:g} for {what}, got {value!r}", field=path,
+                             value=value)  # fmt: skip
+
+
+def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParameters:
+    """Every unit's and group's dynamic data, given or estimated, with sources; refuse impossible given values.
+
+    Raises
+    ------
+    InvalidVehicle : a negative overhang, an extent that leaves a coupling or an axle outside its unit, a yaw
+        inertia below the point-mass bound of the unit's own axles, a cornering coefficient outside 2-12 /rad;
+        ``field`` is ``dynamics.units[<unit id>].<name>`` or ``dynamics.groups[<unit id>/<group id>].<name>``.
+    """
+    data = data or DynamicsData()
+    known_units = {u.id for u in c.units}
+    for uid in data.units:
+        if uid not in known_units:
+            raise InvalidVehicle(f"dynamics.units: no unit {uid!r} (units: {', '.join(sorted(known_units))})",
+                                 field=f"dynamics.units[{uid}]", value=uid)  # fmt: skip
+    known_groups = {(u.id, g.id) for u in c.units for g in u.groups}
+    for key in data.groups:
+        if key not in known_groups:
+            raise InvalidVehicle(f"dynamics.groups: no group {key[1]!r} on unit {key[0]!r}",
+                                 field=f"dynamics.groups[{key[0]}/{key[1]}]", value=key[1])  # fmt: skip
+    st = static_loads(c)
+    groups: dict[tuple[int, int], GroupParameters] = {}
+    for i, u in enumerate(c.units):
+        for j, g in enumerate(u.groups):
+            gd = data.groups.get((u.id, g.id), GroupData())
+            path = f"dynamics.groups[{u.id}/{g.id}]"
+            if gd.cornering_coefficient_per_rad is not None:
+                _check_range(
+                    gd.cornering_coefficient_per_rad,
+                    *CORNERING_RANGE_PER_RAD,
+                    f"{path}.cornering_coefficient_per_rad",
+                    "a truck tyre's linear cornering coefficient",
+                )
+                cc = Parameter(gd.cornering_coefficient_per_rad, "1/rad", "given")
+            else:
+                cc = Parameter(CORNERING_COEFFICIENT_PER_RAD, "1/rad", f"estimated: the default; {CORNERING_SOURCE}")
+            if gd.axle_spacing_m is not None:
+                _check_range(gd.axle_spacing_m, 0.9, 3.0, f"{path}.axle_spacing_m", "axles of one group")
+                sp = Parameter(gd.axle_spacing_m, "m", "given")
+            else:
+                sp = Parameter(AXLE_SPACING_M, "m", f"estimated: {AXLE_SPACING_SOURCE}")
+            n = g.axles
+            xs = tuple(g.position_m + (k - (n - 1) / 2.0) * sp.value for k in range(n))
+            load = st.normal_kn[(i, j)] / n
+            groups[(i, j)] = GroupParameters(cc, sp, xs, load, tuple(cc.value * load for _ in xs))
+    units = []
+    for i, u in enumerate(c.units):
+        ud = data.units.get(u.id, UnitData())
+        path = f"dynamics.units[{u.id}]"
+        xs_all = [x for j in range(len(u.groups)) for x in groups[(i, j)].axle_positions_m]
+        if ud.front_overhang_m is not None:
+            _check_range(ud.front_overhang_m, 0.0, 5.0, f"{path}.front_overhang_m", f"unit {u.id!r} (ahead of its "
+                         "reference point)")  # fmt: skip
+            front = Parameter(ud.front_overhang_m, "m", "given")
+        else:
+            f, why = _front_estimate(u.kind)
+            front = Parameter(f, "m", f"estimated: {why}")
+        if ud.rear_extent_m is not None:
+            rear = Parameter(ud.rear_extent_m, "m", "given")
+        elif u.kind in ("tractor",):
+            rear = Parameter(u.groups[-1].position_m + 1.0, "m", "estimated: 1.0 m behind the rear group (assumed)")
+        elif u.kind == "dolly":
+            rear = Parameter(u.groups[-1].position_m + 0.5, "m", "estimated: 0.5 m behind the axle (assumed)")
+        else:
+            hitch = c.couplings[i].position_m + 0.3 if i < len(c.couplings) else 0.0
+            r = max(2.0 * u.cg_position_m + front.value, max(xs_all) + 0.5, hitch)
+            why = "at least 0.5 m behind the last axle and 0.3 m behind a rear coupling; assumed"
+            rear = Parameter(r, "m", f"estimated: uniform body centred on the sprung CG, rear = 2 x_cg + front ({why})")
+        # a coupling or an axle must lie on the unit
+        reach = max([*xs_all, c.couplings[i].position_m if i < len(c.couplings) else 0.0])
+        if not rear.value >= reach:
+            raise InvalidVehicle(
+                f"{path}.rear_extent_m = {rear.value:g} m leaves an axle or the rear coupling ({reach:g} m behind "
+                f"the reference point) outside unit {u.id!r}",
+                field=f"{path}.rear_extent_m",
+                value=rear.value,
+            )
+        if ud.width_m is not None:
+            _check_range(ud.width_m, 1.5, 3.5, f"{path}.width_m", f"unit {u.id!r}")
+            width = Parameter(ud.width_m, "m", "given")
+        else:
+            width = Parameter(WIDTH_M, "m", "estimated: assumed 2.5 m, the common general width limit")
+        length = rear.value + front.value
+        m = u.sprung_mass_kg
+        axle_mass = [(g.unsprung_mass_kg, x) for j, g in enumerate(u.groups) for x in groups[(i, j)].axle_positions_m]
+        if ud.yaw_inertia_kgm2 is not None:
+            total = m + sum(ma for ma, _ in axle_mass)
+            x_cg = (m * u.cg_position_m + sum(ma * x for ma, x in axle_mass)) / total
+            bound = sum(ma * (x - x_cg) ** 2 for ma, x in axle_mass) + m * (u.cg_position_m - x_cg) ** 2
+            if not ud.yaw_inertia_kgm2 > bound:
+                raise InvalidVehicle(
+                    f"{path}.yaw_inertia_kgm2 = {ud.yaw_inertia_kgm2:g} kg m^2 is below the point-mass bound of "
+                    f"unit {u.id!r}'s own masses about its CG ({bound:.0f} kg m^2)",
+                    field=f"{path}.yaw_inertia_kgm2", value=ud.yaw_inertia_kgm2)  # fmt: skip
+            iz = Parameter(ud.yaw_inertia_kgm2 - bound, "kg m^2", "given (the unit's, about its CG; the axles' point "
+                           "masses taken out)")  # fmt: skip
+        else:
+            iz = Parameter(m * (length**2 + width.value**2) / 12.0, "kg m^2",
+                           f"estimated: sprung mass as a uniform box m (L^2 + w^2)/12, L = {length:.2f} m, w = "
+                           f"{width.value:g} m (Gillespie 1992)")  # fmt: skip
+        hr = max(g.roll_centre_height_m for g in u.groups)
+        if ud.roll_inertia_kgm2 is not None:
+            _check_range(ud.roll_inertia_kgm2, 1.0, 1e6, f"{path}.roll_inertia_kgm2", f"unit {u.id!r}")
+            ix = Parameter(ud.roll_inertia_kgm2, "kg m^2", "given")
+        else:
+            height = 2.0 * (u.cg_height_m - hr)
+            formula = f"a uniform box m (w^2 + H^2)/12 with H = 2 (h_cg - h_rc) = {height:.2f} m"
+            ix = Parameter(m * (width.value**2 + height**2) / 12.0, "kg m^2", f"estimated: {formula}")
+        units.append(UnitParameters(iz, ix, front, rear, width))
+    tau = Parameter(ROLL_DAMPING_TAU_S, "s", "assumed: suspension roll damping c = 0.02 s x roll stiffness (no "
+                    "readable source)")  # fmt: skip
+    return ResolvedParameters(tuple(units), groups, tau)
+
+
+def unit_total_mass_kg(c: Combination, i: int) -> float:
+    u = c.units[i]
+    return u.sprung_mass_kg + sum(g.axles * g.unsprung_mass_kg for g in u.groups)
+
+
+def as_dict(c: Combination, p: ResolvedParameters) -> dict:
+    """The parameters used, plain JSON types: units and groups with value, unit and source (for the answers)."""
+    units = []
+    for u, up in zip(c.units, p.units, strict=True):
+        units.append({"unit": u.id, **{k: vars(getattr(up, k)) for k in
+                                       ("yaw_inertia_kgm2", "roll_inertia_kgm2", "front_overhang_m", "rear_extent_m",
+                                        "width_m")}})  # fmt: skip
+    groups = []
+    for (i, j), gp in p.groups.items():
+        groups.append({
+            "unit": c.units[i].id, "group": c.units[i].groups[j].id,
+            "cornering_coefficient_per_rad": vars(gp.cornering_coefficient_per_rad),
+            "axle_spacing_m": vars(gp.axle_spacing_m),
+            "axle_positions_m": list(gp.axle_positions_m),
+            "cornering_stiffness_kn_per_rad": list(gp.cornering_stiffness_kn_per_rad),
+        })  # fmt: skip
+    return {"units": units, "groups": groups, "roll_damping_tau_s": vars(p.roll_damping_tau_s),
+            "gravity_m_per_s2": G_M_PER_S2}  # fmt: skip

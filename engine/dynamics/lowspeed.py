@@ -97,50 +97,41 @@ def low_speed_turn(model: YawRollModel, *, step_m: float = STEP_M, path_every_m:
     arc = rc * turn
     s_all = np.arange(0.0, total + arc + total + step_m / 2, step_m)
 
-    def path(s: float) -> tuple[float, float]:  # the steer axle's centre; turn centre at the origin, a left turn
-        if s <= total:
-            return s - total, -rc
-        if s <= total + arc:
-            a = (s - total) / rc
-            return rc * math.sin(a), -rc * math.cos(a)
-        e = s - total - arc
-        return rc * math.sin(turn) + e * math.cos(turn), -rc * math.cos(turn) + e * math.sin(turn)
+    # the steer axle's centre; turn centre at the origin, a left turn
+    e = np.clip(s_all - total - arc, 0.0, None)
+    a = np.clip(s_all - total, 0.0, arc) / rc
+    px = np.where(s_all <= total, s_all - total, rc * np.sin(a) + e * math.cos(turn))
+    py = np.where(s_all <= total, -rc, -rc * np.cos(a) + e * math.sin(turn))
 
     chain = _chain(model)
     nb = len(model.bodies)
-    # start straight along the entry tangent, heading +x
-    guide_pos = [[0.0, 0.0] for _ in range(nb)]
-    head = [0.0] * nb
-    ref_pos = [[0.0, 0.0] for _ in range(nb)]  # each body's x = 0 point
-    x0, y0 = path(0.0)
-    for b, guide, _, towing, tx in chain:
-        g = [x0 - guide, y0] if towing is None else [ref_pos[towing][0] - tx, y0]
-        guide_pos[b] = g
-        ref_pos[b] = [g[0] + guide, g[1]]
     n = len(s_all)
     heads = np.zeros((n, nb))
     refs = np.zeros((n, nb, 2))
-    for k, s in enumerate(s_all):
-        for b, guide, leq, towing, tx in chain:
-            if towing is None:
-                gx, gy = path(s)
-            else:
-                th = head[towing]
-                gx = ref_pos[towing][0] - tx * math.cos(th)
-                gy = ref_pos[towing][1] - tx * math.sin(th)
-            ox, oy = guide_pos[b]
-            ds = math.hypot(gx - ox, gy - oy)
-            if ds > 0.0:
-                # exact tractrix over a straight step of the guide: tan(phi/2) decays as exp(-ds/L_eq), phi the body
-                # axis's angle to the guide's motion
-                beta = math.atan2(gy - oy, gx - ox)
-                phi = (head[b] - beta + math.pi) % (2.0 * math.pi) - math.pi
-                head[b] = beta + 2.0 * math.atan(math.tan(phi / 2.0) * math.exp(-ds / leq))
-            guide_pos[b] = [gx, gy]
-            ux, uy = math.cos(head[b]), math.sin(head[b])
-            ref_pos[b] = [gx + guide * ux, gy + guide * uy]
-            heads[k, b] = head[b]
-            refs[k, b] = ref_pos[b]
+    for b, guide, leq, towing, tx in chain:
+        if towing is None:
+            gx, gy = px - guide, py  # the steer axle is the first body's reference and guide (guide = 0)
+        else:
+            gx = refs[:, towing, 0] - tx * np.cos(heads[:, towing])
+            gy = refs[:, towing, 1] - tx * np.sin(heads[:, towing])
+        dx, dy = np.diff(gx), np.diff(gy)
+        ds = np.hypot(dx, dy)
+        beta = np.arctan2(dy, dx).tolist()
+        decay = np.exp(-ds / leq).tolist()
+        moving = (ds > 0.0).tolist()
+        # exact tractrix over each straight step of the guide: tan(phi/2) decays as exp(-ds/L_eq), phi the body
+        # axis's angle to the guide's motion; the vehicle starts straight on the entry tangent
+        h = [0.0] * n
+        cur = 0.0
+        two_pi, pi = 2.0 * math.pi, math.pi
+        for k in range(n - 1):
+            if moving[k]:
+                phi = (cur - beta[k] + pi) % two_pi - pi
+                cur = beta[k] + 2.0 * math.atan(math.tan(phi / 2.0) * decay[k])
+            h[k + 1] = cur
+        heads[:, b] = h
+        refs[:, b, 0] = gx + guide * np.cos(heads[:, b])
+        refs[:, b, 1] = gy + guide * np.sin(heads[:, b])
     # bodies of the units (a full trailer's body is its second yaw body): rectangles in their own frames
     units, paths = [], []
     every = max(1, round(path_every_m / step_m))

@@ -101,14 +101,24 @@ def _foh(A: np.ndarray, B: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarra
 
 
 def simulate(A: np.ndarray, B: np.ndarray, u: np.ndarray, dt: float, x0: np.ndarray | None = None) -> np.ndarray:
-    """States at every sample of ``u`` (first-order hold, exact for an input linear between samples)."""
+    """States at every sample of ``u`` (first-order hold, exact for an input linear between samples).
+
+    The recursion ``x_k+1 = Phi x_k + w_k`` is summed as a prefix scan (Hillis and Steele 1986): at each of the
+    ``log2(N)`` levels every partial sum takes the one ``2^j`` steps earlier through ``Phi^(2^j)``, one matrix
+    product over all steps at once instead of ``N`` small ones.
+    """
     phi, g0, g1 = _foh(A, B, dt)
-    x = np.zeros((len(u), A.shape[0]))
+    n_steps = len(u)
+    s = np.zeros((n_steps, A.shape[0]))
+    s[1:] = np.outer(u[:-1], g0) + np.outer(u[1:], g1)
     if x0 is not None:
-        x[0] = x0
-    for k in range(len(u) - 1):
-        x[k + 1] = phi @ x[k] + g0 * u[k] + g1 * u[k + 1]
-    return x
+        s[0] = x0
+    power, shift = phi, 1
+    while shift < n_steps:
+        s[shift:] = s[shift:] + s[:-shift] @ power.T
+        power = power @ power
+        shift *= 2
+    return s
 
 
 def follow(ss: StateSpace, output: tuple[np.ndarray, float], target: np.ndarray, dt: float

@@ -52,14 +52,14 @@ from engine.dynamics.response import (
     simulate,
     steady_state,
 )
-from engine.errors import InvalidRoad
+from engine.errors import InvalidRoad, RolloverError
 from engine.vehicle.combination import G_M_PER_S2
 
 MAX_SPEED_KMH = 200.0
 DT_S = 0.02
 
 
-class Unstable(ArithmeticError):
+class Unstable(RolloverError, ArithmeticError):
     """The vehicle is unstable at this speed: ``limit_kmh`` is the stability limit and ``kind`` its mode."""
 
     def __init__(self, speed_kmh: float, limit_kmh: float | None, kind: str) -> None:

@@ -59,6 +59,25 @@ class Parameter:
     source: str
 
 
+#: every optional per-unit field: (description, unit, lowest, highest) -- the one definition the schemas follow
+UNIT_DATA_DOCS: dict[str, tuple[str, str, float, float]] = {
+    "yaw_inertia_kgm2": ("Yaw inertia of the whole unit (sprung and axles) about its own CG; at least the point-mass "
+                         "bound of its own masses", "kg m^2", 1.0, 5e6),
+    "roll_inertia_kgm2": ("Roll inertia of the sprung mass about its CG", "kg m^2", 1.0, 1e6),
+    "front_overhang_m": ("How far the unit's front lies ahead of its reference point (a full trailer's: of its "
+                         "turntable)", "m", 0.0, 5.0),
+    "rear_extent_m": ("How far the unit's rear lies behind its reference point; must reach its axles and its rear "
+                      "coupling", "m", 0.5, 25.0),
+    "width_m": ("Overall width of the unit", "m", 1.5, 3.5),
+}  # fmt: skip
+#: every optional per-group field: (description, unit, lowest, highest)
+GROUP_DATA_DOCS: dict[str, tuple[str, str, float, float]] = {
+    "cornering_coefficient_per_rad": ("Cornering stiffness of each axle per unit of its vertical load",
+                                      "1/rad", *CORNERING_RANGE_PER_RAD),
+    "axle_spacing_m": ("Spacing of the group's axles", "m", 0.9, 3.0),
+}  # fmt: skip
+
+
 @dataclass(frozen=True)
 class UnitData:
     """Optional per-unit data (None: estimated). Extents are metres ahead of / behind the unit's reference point."""

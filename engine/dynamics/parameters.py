@@ -205,15 +205,18 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             front = Parameter(f, "m", f"estimated: {why}")
         if ud.rear_extent_m is not None:
             rear = Parameter(ud.rear_extent_m, "m", "given")
-        elif u.kind in ("tractor",):
-            rear = Parameter(u.groups[-1].position_m + 1.0, "m", "estimated: 1.0 m behind the rear group (assumed)")
-        elif u.kind == "dolly":
-            rear = Parameter(u.groups[-1].position_m + 0.5, "m", "estimated: 0.5 m behind the axle (assumed)")
         else:
             hitch = c.couplings[i].position_m + 0.3 if i < len(c.couplings) else 0.0
-            r = max(2.0 * u.cg_position_m + front.value, max(xs_all) + 0.5, hitch)
-            why = "at least 0.5 m behind the last axle and 0.3 m behind a rear coupling; assumed"
-            rear = Parameter(r, "m", f"estimated: uniform body centred on the sprung CG, rear = 2 x_cg + front ({why})")
+            if u.kind == "tractor":
+                r, why = max(max(xs_all) + 1.0, hitch), "1.0 m behind the last axle"
+            elif u.kind == "dolly":
+                r, why = max(max(xs_all) + 0.5, hitch), "0.5 m behind the last axle"
+            else:
+                r = max(2.0 * u.cg_position_m + front.value, max(xs_all) + 0.5, hitch)
+                why = (
+                    "uniform body centred on the sprung CG, rear = 2 x_cg + front, 0.5 m behind the last axle at least"
+                )
+            rear = Parameter(r, "m", f"estimated: {why} and 0.3 m behind a rear coupling (assumed)")
         # a coupling or an axle must lie on the unit
         reach = max([*xs_all, c.couplings[i].position_m if i < len(c.couplings) else 0.0])
         if not rear.value >= reach:

@@ -1,9 +1,10 @@
-r"""The tractor-semitrailer's yaw-plane equations derived by hand: the independent check of the assembly.
+r"""Yaw-plane equations derived by hand: the independent check of the assembly (:func:`chain_matrices`).
 
-Newton-Euler for each unit as one rigid body (mass ``m_i``, CG ``x_i`` behind its reference point, yaw inertia
-``I_i`` about the CG), the hitch force ``H = sum_2 F - m_2 a_2`` (on the tractor, + left) eliminated; coordinates
-``q = (y_1, psi_1, psi_2)``, the steer axle's lateral position and the two yaw angles; the kingpin at ``x_c``
-behind the steer axle::
+For a tractor-semitrailer the equations read as below (:func:`chain_matrices` writes them for any chain of single-
+body units). Newton-Euler for each unit as one rigid body (mass ``m_i``, CG ``x_i`` behind its reference point, yaw
+inertia ``I_i`` about the CG), the hitch force ``H = sum_2 F - m_2 a_2`` (on the tractor, + left) eliminated;
+coordinates ``q = (y_1, psi_1, psi_2)``, the steer axle's lateral position and the two yaw angles; the kingpin at
+``x_c`` behind the steer axle::
 
     a_1 = y_1'' - x_1 psi_1'',   a_2 = y_1'' - x_c psi_1'' - x_2 psi_2''
     m_1 a_1 + m_2 a_2                 = sum_1 F + sum_2 F
@@ -12,7 +13,9 @@ behind the steer axle::
 
 with ``F_k = C_k (psi_i + delta_k - Y_k' / u)`` at every axle (Gillespie 1992, ch. 6, for the tyre law; the
 articulated-vehicle equations as in Vlk, F. (1982), Lateral dynamics of commercial vehicle combinations - a
-literature survey, Vehicle System Dynamics 11(6)). Its eigenvalues must equal the assembly's without roll.
+literature survey, Vehicle System Dynamics 11(6)). Their eigenvalues must equal the assembly's without roll
+(:func:`engine.dynamics.model.build` with ``roll=False``), which reaches them by another route: virtual work on the
+kinetic energy of every mass, the couplings as constraints eliminated by a null-space map.
 """
 
 from __future__ import annotations
@@ -35,44 +38,66 @@ def unit_rigid_body(c: Combination, p: ResolvedParameters, i: int) -> tuple[floa
     return m, xc, iz
 
 
-def tractor_semitrailer_matrices(c: Combination, p: ResolvedParameters, speed_mps: float):
-    """``(M, C, K, B)`` of the hand-derived equations (module docstring) for a two-unit combination."""
-    if len(c.units) != 2 or c.units[1].kind not in ("semitrailer", "btrain-lead"):
-        raise ValueError("the hand-derived equations are those of a tractor and a semitrailer")
+def chain_matrices(c: Combination, p: ResolvedParameters, speed_mps: float):
+    """``(M, C, K, B)`` of the hand-derived equations of a chain of single-body units (any combination without a
+    full trailer's turntable): Newton-Euler per unit with the hitch forces eliminated from the rear forward.
+
+    Coordinates ``q = (y_1, psi_1, ..., psi_n)``: the steer axle's lateral position and every unit's yaw. The
+    reference point of unit ``i`` is at ``y_1 - sum_{k<i} x_c,k psi_k``; the hitch force ``H_i`` (on unit ``i`` at
+    its reference point, from the unit ahead) follows from unit ``i``'s lateral balance,
+    ``H_i = m_i a_i - sum_i F + H_i+1`` (``H_n+1 = 0``); the equations are the first unit's lateral balance
+    (``H_1 = 0``) and every unit's yaw balance about its CG,
+    ``I_i psi_i'' = -sum_i (x_k - x_i) F_k + x_i H_i + (x_c,i - x_i) H_i+1``.
+    """
+    if any(u.kind == "full-trailer" for u in c.units):
+        raise ValueError("the hand-derived chain has one yaw body per unit (no full trailer's turntable)")
+    n = len(c.units)
+    nq = n + 1
     u = speed_mps
-    m1, x1, i1 = unit_rigid_body(c, p, 0)
-    m2, x2, i2 = unit_rigid_body(c, p, 1)
-    xc = c.couplings[0].position_m
-    a1 = np.array([1.0, -x1, 0.0])
-    a2 = np.array([1.0, -xc, -x2])
-    psi = [np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])]
-    # rows of each equation: accelerations, and the force sums as (K-part, C-part, B-part) in F = kq q + cq q' + b
-    M = np.zeros((3, 3))
-    C = np.zeros((3, 3))
-    K = np.zeros((3, 3))
-    B = np.zeros(3)
-    M[0] = m1 * a1 + m2 * a2
-    M[1] = i1 * psi[0] - (xc - x1) * m2 * a2
-    M[2] = i2 * psi[1] - x2 * m2 * a2
+
+    def e(k: int) -> np.ndarray:
+        v = np.zeros(nq)
+        v[k] = 1.0
+        return v
+
+    ref = [e(0)]
+    for i in range(1, n):
+        ref.append(ref[i - 1] - c.couplings[i - 1].position_m * e(i))
+    zero = (np.zeros(nq), np.zeros(nq), np.zeros(nq), 0.0)
+
+    def add(a, b, scale=1.0):  # linear forms (on q'', q', q, delta)
+        return (a[0] + scale * b[0], a[1] + scale * b[1], a[2] + scale * b[2], a[3] + scale * b[3])
+
+    bodies = [unit_rigid_body(c, p, i) for i in range(n)]
+    inertial = [(m * (ref[i] - x * e(i + 1)), np.zeros(nq), np.zeros(nq), 0.0) for i, (m, x, _) in enumerate(bodies)]
+    forces: list[list[tuple[float, tuple]]] = [[] for _ in range(n)]  # per unit: (x_k, F_k as a linear form)
     for (i, j), gp in p.groups.items():
         steer = c.units[i].groups[j].steer
         for x, ck in zip(gp.axle_positions_m, gp.cornering_stiffness_kn_per_rad, strict=True):
             cn = ck * 1000.0
-            J = np.array([1.0, -x, 0.0]) if i == 0 else np.array([1.0, -xc, -x])
-            # F = cn (psi_i q + delta - J q' / u): on the right side; moved to the left: K -= cn psi, C += cn J/u
-            coef = np.zeros(3)
-            if i == 0:
-                coef[0] = 1.0
-                coef[1] = -(x - x1)
-            else:
-                coef[0] = 1.0
-                coef[1] = -(xc - x1)  # through the hitch force
-                coef[2] = -x
-            for row in range(3):
-                K[row] -= coef[row] * cn * psi[i]
-                C[row] += coef[row] * cn * J / u
-                if steer:
-                    B[row] += coef[row] * cn
+            J = ref[i] - x * e(i + 1)  # F = C (psi_i + delta - J q' / u)
+            forces[i].append((x, (np.zeros(nq), -cn * J / u, cn * e(i + 1), cn if steer else 0.0)))
+    total = [zero] * n
+    for i in range(n):
+        for _, fk in forces[i]:
+            total[i] = add(total[i], fk)
+    hitch = [zero] * (n + 1)  # H_i for i = 0..n (H_0 unused, H_n = 0 past the last unit)
+    for i in range(n - 1, 0, -1):
+        hitch[i] = add(add(inertial[i], total[i], -1.0), hitch[i + 1])
+    rows = [add(add(inertial[0], total[0], -1.0), hitch[1])]  # the first unit's lateral balance
+    for i, (_, xi, iz) in enumerate(bodies):
+        r = (iz * e(i + 1), np.zeros(nq), np.zeros(nq), 0.0)
+        for x, fk in forces[i]:
+            r = add(r, fk, (x - xi))  # + (x_k - x_i) F_k on the left
+        if i > 0:
+            r = add(r, hitch[i], -xi)
+        if i + 1 < n:
+            r = add(r, hitch[i + 1], -(c.couplings[i].position_m - xi))
+        rows.append(r)
+    M = np.array([r[0] for r in rows])
+    C = np.array([r[1] for r in rows])
+    K = np.array([r[2] for r in rows])
+    B = -np.array([r[3] for r in rows])
     return M, C, K, B
 
 

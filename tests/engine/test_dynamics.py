@@ -18,7 +18,7 @@ from engine.dynamics.manoeuvres import (
     stability,
     steady_turn,
 )
-from engine.dynamics.reference import state_matrix, tractor_semitrailer_matrices
+from engine.dynamics.reference import chain_matrices, state_matrix
 from engine.dynamics.response import (
     damping_ratio,
     eigen,
@@ -121,10 +121,51 @@ def test_assembly_equals_hand_derived_equations_on_random_tractor_semitrailers()
         m = build(c, data, roll=False)
         u = float(rng.uniform(10, 35))
         w1 = np.sort_complex(np.linalg.eigvals(m.state_space(u).A))
-        M, C, K, _ = tractor_semitrailer_matrices(c, m.parameters, u)
+        M, C, K, _ = chain_matrices(c, m.parameters, u)
         w2 = np.sort_complex(np.linalg.eigvals(state_matrix(M, C, K)))
         big = np.abs(w1) > 1e-6
         np.testing.assert_allclose(w1[big], np.sort_complex(w2[np.abs(w2) > 1e-6]), rtol=1e-8)
+
+
+def _random_chain(rng: np.random.Generator, cid: str) -> tuple[Combination, DynamicsData]:
+    """A preset chain with its masses, CGs, couplings, group positions, axle counts and coefficients drawn anew."""
+    base = COMBINATIONS[cid]
+    units = []
+    for u in base.units:
+        groups = tuple(
+            replace(g, axles=int(rng.integers(1, 4)) if not g.steer else 1,
+                    position_m=g.position_m * float(rng.uniform(0.9, 1.1)) if g.position_m else 0.0)
+            for g in u.groups
+        )  # fmt: skip
+        if len(groups) == 2 and groups[1].position_m <= groups[0].position_m + 1.0:
+            groups = (groups[0], replace(groups[1], position_m=groups[0].position_m + 3.0))
+        xs = [g.position_m for g in groups]
+        units.append(replace(u, groups=groups, sprung_mass_kg=u.sprung_mass_kg * float(rng.uniform(0.5, 1.5)),
+                             cg_position_m=float(rng.uniform(0.3, 0.9)) * max(xs)))  # fmt: skip
+    couplings = []
+    for i, cp in enumerate(base.couplings):
+        rear = units[i].groups[-1].position_m
+        x = rear * float(rng.uniform(0.6, 0.95)) if cp.kind == "fifth-wheel" else rear + float(rng.uniform(0.5, 2.0))
+        if cp.kind == "b-coupling":
+            x = rear * float(rng.uniform(0.8, 1.0))
+        couplings.append(replace(cp, position_m=x))
+    groups = {(u.id, g.id): GroupData(float(rng.uniform(4, 8))) for u in units for g in u.groups}
+    return replace(base, units=tuple(units), couplings=tuple(couplings)), DynamicsData(groups=groups)
+
+
+@pytest.mark.parametrize("cid", ["tractor-semitrailer-table15", "btrain-table16", "adouble"])
+def test_assembly_equals_hand_derived_equations_on_random_chains(cid):
+    """The same on random B-doubles and A-doubles (dolly and pintle included): the eigenvalues of the null-space
+    assembly equal those of the recursive Newton-Euler equations."""
+    rng = np.random.default_rng(11)
+    for _ in range(8):
+        c, data = _random_chain(rng, cid)
+        m = build(c, data, roll=False)
+        u = float(rng.uniform(10, 35))
+        w1 = np.sort_complex(np.linalg.eigvals(m.state_space(u).A))
+        M, C, K, _ = chain_matrices(c, m.parameters, u)
+        w2 = np.sort_complex(np.linalg.eigvals(state_matrix(M, C, K)))
+        np.testing.assert_allclose(w1[np.abs(w1) > 1e-6], w2[np.abs(w2) > 1e-6], rtol=1e-7)
 
 
 @pytest.mark.parametrize("cid", sorted(COMBINATIONS))

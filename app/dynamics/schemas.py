@@ -170,7 +170,10 @@ class LaneChangeResult(ScreeningOut):
     ra_definition: RaDefinition = f(..., RA_TEXT)
     rearward_amplification: float | None = f(..., "Peak rear over peak steer-axle lateral acceleration.")
     high_speed_transient_offtracking_m: float | None = f(
-        ..., "Largest lateral distance between the rearmost axle's path and the steer axle's.", "m"
+        ..., "The rearmost axle's lateral overshoot beyond the steer axle's final path (definition unverified).", "m"
+    )
+    max_path_deviation_m: float | None = f(
+        None, "Largest lateral distance between the rearmost axle's path and the steer axle's at the same station.", "m"
     )
     steer_axle_lateral_offset_m: float | None = f(
         ..., "The steer axle's lateral displacement at the end of the period, A/(2 pi f^2).", "m"

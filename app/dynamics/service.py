@@ -166,6 +166,7 @@ async def compute_lane_change(cache: ResultCache, req: s.LaneChangeRequest) -> C
             **base, **_common(model, lc.validity), rearward_amplification=lc.rearward_amplification,
             high_speed_transient_offtracking_m=lc.high_speed_transient_offtracking_m,
             steer_axle_lateral_offset_m=lc.steer_axle_lateral_offset_m, roll_coupled_units=lc.roll_coupled_units,
+            max_path_deviation_m=lc.max_path_deviation_m,
             units=lc.units, time_step_s=lc.time_step_s, history=lc.history or None,
         )  # fmt: skip
 

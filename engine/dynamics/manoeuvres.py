@@ -8,8 +8,10 @@ Definitions (PBS texts: the NTC rules could not be read here, so every PBS manoe
   (:func:`engine.dynamics.response.follow`), so the steer axle moves sideways by exactly ``A / (2 pi f^2)``.
   **Rearward amplification** (RA): the peak lateral acceleration of the rearmost unit's CG (``ra_definition``
   ``"cg"``) or of the rearmost axle (``"axle"``) over the steer axle's. **High-speed transient offtracking**
-  (HSTO): the largest lateral distance between the rearmost axle's path and the steer axle's path at the same
-  station (the steer axle's position ``d / u`` earlier, ``d`` the distance between them along the vehicle).
+  (HSTO): the rearmost axle's lateral overshoot beyond the steer axle's final path (its largest lateral position
+  less ``A / (2 pi f^2)``, as an open PBS implementation measures it: unverified against the rules); beside it the
+  largest lateral distance between the rearmost axle's path and the steer axle's at the same station (the steer
+  axle's position ``d / u`` earlier, ``d`` the distance between them along the vehicle).
   Per roll-coupled unit the peak **load transfer ratio** (a measure, not a PBS standard); per unit the peak lateral
   acceleration (at the sprung CG, in the yaw plane) and roll; a unit whose peak exceeds its roll-coupled unit's
   static SRT flags lift-off, where the linear model's validity ends.
@@ -130,6 +132,7 @@ class LaneChange:
     validity: list[str]
     time_step_s: float
     history: dict = field(default_factory=dict)
+    max_path_deviation_m: float = 0.0
 
 
 def unit_cg_outputs(ss: StateSpace) -> list[tuple[np.ndarray, float]]:
@@ -167,7 +170,12 @@ def lane_change(model: YawRollModel, speed_kmh: float, *, frequency_hz: float = 
     d = body_offsets(model)[ab] + ax
     y_steer_at = np.interp(t - d / u, t, y_steer, left=0.0)
     offtrack = y_rear - y_steer_at
-    hsto = float(np.max(np.abs(offtrack)))
+    final = float(y_steer[-1])
+    # HSTO: the rearmost axle's overshoot beyond the steer axle's final path (as the open PBS implementation
+    # measures it: the largest lateral position less the lane change's width); the path deviation at equal stations
+    # is reported beside it
+    hsto = max(0.0, float(np.max(y_rear * math.copysign(1.0, final))) - abs(final))
+    deviation = float(np.max(np.abs(offtrack)))
     rolls = np.array([q @ r for r in model.phi_unit_rows]) if model.roll else np.zeros((len(c.units), len(t)))
     rcu = []
     validity = []
@@ -199,8 +207,8 @@ def lane_change(model: YawRollModel, speed_kmh: float, *, frequency_hz: float = 
                 "lateral_acceleration_g": {un.id: (a_units[i][::step] / G_M_PER_S2).tolist()
                                            for i, un in enumerate(c.units)},
                 "rear_offtracking_m": offtrack[::step].tolist()}  # fmt: skip
-    return LaneChange(speed_kmh, frequency_hz, amplitude_g, ra_definition, ra, hsto, float(y_steer[-1]), rcu, units,
-                      validity, dt, hist)  # fmt: skip
+    return LaneChange(speed_kmh, frequency_hz, amplitude_g, ra_definition, ra, hsto, final, rcu, units, validity, dt,
+                      hist, deviation)  # fmt: skip
 
 
 def rearward_amplification_spectrum(model: YawRollModel, speed_kmh: float, freqs_hz: np.ndarray,

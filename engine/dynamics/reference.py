@@ -1,10 +1,10 @@
 r"""Yaw-plane equations derived by hand: the independent check of the assembly (:func:`chain_matrices`).
 
-For a tractor-semitrailer the equations read as below (:func:`chain_matrices` writes them for any chain of single-
-body units). Newton-Euler for each unit as one rigid body (mass ``m_i``, CG ``x_i`` behind its reference point, yaw
-inertia ``I_i`` about the CG), the hitch force ``H = sum_2 F - m_2 a_2`` (on the tractor, + left) eliminated;
-coordinates ``q = (y_1, psi_1, psi_2)``, the steer axle's lateral position and the two yaw angles; the kingpin at
-``x_c`` behind the steer axle::
+For a tractor-semitrailer the equations read as below (:func:`chain_matrices` writes them for any chain of
+single-body units). Newton-Euler for each unit as one rigid body (mass ``m_i``, CG ``x_i`` behind its reference
+point, yaw inertia ``I_i`` about the CG), the hitch force ``H = sum_2 F - m_2 a_2`` (on the tractor, + left)
+eliminated; coordinates ``q = (y_1, psi_1, psi_2)``, the steer axle's lateral position and the two yaw angles; the
+kingpin at ``x_c`` behind the steer axle::
 
     a_1 = y_1'' - x_1 psi_1'',   a_2 = y_1'' - x_c psi_1'' - x_2 psi_2''
     m_1 a_1 + m_2 a_2                 = sum_1 F + sum_2 F

@@ -156,3 +156,12 @@ def test_an_unstable_speed_is_answered_unstable_with_the_limit(shared_client):
     body = r.json()
     assert r.status_code == 200 and body["stable"] is False and body["rearward_amplification"] is None
     assert body["stability_limit_kmh"] == pytest.approx(limit) and "unstable" in body["validity"][0]
+    for path, extra, measure in (
+        ("pulse-steer", {}, "yaw_damping_ratio"),
+        ("steady-turn", {"radius_m": 300.0}, "lateral_acceleration_g"),
+        ("frequency-response", {}, "rearward_amplification"),
+    ):
+        req = {"vehicle": {"combination": one}, "dynamics": dyn, "speed_kmh": limit + 10, **extra}
+        body = shared_client.post(f"/v1/dynamics/{path}", json=req).json()
+        assert body["stable"] is False and body[measure] is None, path
+        assert body["stability_limit_kmh"] == pytest.approx(limit, abs=0.1), path

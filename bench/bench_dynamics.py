@@ -96,7 +96,7 @@ def main() -> None:
     for cid, comb in COMBINATIONS.items():
         m = build(comb)
         sc = screen(m)
-        v = {s.id: s.value for s in sc.standards}
+        v = {s.id: (s.value if s.value is not None else float("nan")) for s in sc.standards}
         st = stability(m)
         print(f"  {cid:<29} {v['srt']:.3f}    {v['rearward_amplification']:.3f}  "
               f"{v['high_speed_transient_offtracking']:.3f}     {v['yaw_damping']:.3f}        "

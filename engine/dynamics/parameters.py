@@ -9,10 +9,12 @@ low-speed corners), and per axle group a cornering coefficient and the axle spac
 Estimates
 ---------
 * cornering stiffness of an axle ``C = Cc N`` with ``N`` its static load and ``Cc`` the cornering coefficient
-  [1/rad]; default ``Cc = 5.5 /rad`` for every axle, the value OpenPBS gives every axle of its parameter sets
-  (``OpenPBS/Parameters/Base/VehicleModel.mo``, ``Cc``, "Cornering coefficient per axle"). One value for all tyre
-  types: no readable source gave coefficients by tyre type (say so in the answer). Accepted range 2-12 /rad
-  (assumed: about half and twice the OpenPBS value, outside any truck tyre's linear coefficient);
+  [1/rad]. Given, ``Cc`` is constant; estimated, each tyre's cornering stiffness is the presets' tyre class's at its
+  static load, from TruckSim's measured-style carpet plot of that tyre (:data:`TYRE_FY_1DEG`: 9.8 /rad at 7.4 kN a
+  tyre falling to 7.4 /rad at 58.9 kN), since the description does not name its tyres; the only other readable
+  value, OpenPBS's constant 5.5 /rad for every axle (``OpenPBS/Parameters/Base/VehicleModel.mo``, ``Cc``), is
+  kept for comparison (:data:`CORNERING_COEFFICIENT_PER_RAD`). Accepted range 2-12 /rad (assumed: outside it no
+  truck tyre's linear coefficient lies);
 * axle spacing within a group: 1.27 m (the spacing of the tandems and tridems of the TruckSim example database
   the presets use: LX_AXLE 5000 / 6270 / 7540 mm, 5230 / 6500 mm);
 * body extent (ahead of / behind the unit's reference point): a uniform load-carrying body centred on its sprung
@@ -29,18 +31,32 @@ Estimates
 
 References
 ----------
-.. [1] OpenPBS (performance-based-standards/OpenPBS), ``OpenPBS/Parameters/Base/VehicleModel.mo``: ``Cc = 5.5``
-   cornering coefficient per axle (cornering stiffness per unit vertical load).
+.. [1] TruckSim 2022.1 example dataset, github.com/Steve-Krug/Axicle, 04-Trucksim/Tires/Fy/TireFy_b8272e0f...par
+   ('Fy: 3000 kg Load Rating'); OpenPBS (performance-based-standards/OpenPBS),
+   ``OpenPBS/Parameters/Base/VehicleModel.mo``: ``Cc = 5.5`` cornering coefficient per axle.
 .. [2] Gillespie, T. D. (1992), *Fundamentals of Vehicle Dynamics*, SAE, ch. 6.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from engine.errors import InvalidVehicle
 from engine.vehicle.combination import G_M_PER_S2, Combination, static_loads
 
+#: the tyre class of the presets (TruckSim's 3000 kg radial: 305/75R22.5, 11.00R22, 12R24.5): lateral force at 1 deg
+#: slip [N] against vertical load [N], from its carpet plot (the linear range: the 2 deg column is 1.94-1.96 x this)
+TYRE_FY_1DEG = ((0.0, 0.0), (7357.5, 1253.8), (14715.0, 2418.0), (29430.0, 4477.9), (44145.0, 6179.4),
+                (58860.0, 7612.3))  # fmt: skip
+TYRE_SOURCE = (
+    "TruckSim 2022.1 example dataset 'Fy: 3000 kg Load Rating' (github.com/Steve-Krug/Axicle, "
+    "04-Trucksim/Tires/Fy/TireFy_b8272e0f...par, FY_TIRE_CARPET at 1 deg), the tyre of the '510 mm Radius (Trailer)' "
+    "3000 kg dataset the presets use; interpolated at each tyre's static load"
+)
+#: a constant coefficient for comparison: OpenPBS gives every axle 5.5 /rad
 CORNERING_COEFFICIENT_PER_RAD = 5.5
 CORNERING_SOURCE = "OpenPBS, OpenPBS/Parameters/Base/VehicleModel.mo: Cc = 5.5, 'Cornering coefficient per axle'"
 CORNERING_RANGE_PER_RAD = (2.0, 12.0)
@@ -181,7 +197,9 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                 )
                 cc = Parameter(gd.cornering_coefficient_per_rad, "1/rad", "given")
             else:
-                cc = Parameter(CORNERING_COEFFICIENT_PER_RAD, "1/rad", f"estimated: the default; {CORNERING_SOURCE}")
+                per_tyre = st.normal_kn[(i, j)] * 1000.0 / g.axles / g.tyres_per_axle
+                cc = Parameter(tyre_cornering_stiffness_n_per_rad(per_tyre) / per_tyre, "1/rad",
+                               f"estimated: {TYRE_SOURCE} ({per_tyre / 1000.0:.1f} kN a tyre)")  # fmt: skip
             if gd.axle_spacing_m is not None:
                 _check_range(gd.axle_spacing_m, 0.9, 3.0, f"{path}.axle_spacing_m", "axles of one group")
                 sp = Parameter(gd.axle_spacing_m, "m", "given")
@@ -261,6 +279,18 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
     tau = Parameter(ROLL_DAMPING_TAU_S, "s", "assumed: suspension roll damping c = 0.02 s x roll stiffness (no "
                     "readable source)")  # fmt: skip
     return ResolvedParameters(tuple(units), groups, tau)
+
+
+def tyre_cornering_stiffness_n_per_rad(load_n: float) -> float:
+    """Cornering stiffness of one tyre of the presets' class at a vertical load: its lateral force at 1 deg slip
+    (:data:`TYRE_FY_1DEG`, linear between the loads of the table, by the last two beyond it) per radian [N/rad]."""
+    fz = [p[0] for p in TYRE_FY_1DEG]
+    fy = [p[1] for p in TYRE_FY_1DEG]
+    if load_n > fz[-1]:
+        fy1 = fy[-1] + (fy[-1] - fy[-2]) / (fz[-1] - fz[-2]) * (load_n - fz[-1])
+    else:
+        fy1 = float(np.interp(load_n, fz, fy))
+    return fy1 * 180.0 / math.pi
 
 
 def unit_total_mass_kg(c: Combination, i: int) -> float:

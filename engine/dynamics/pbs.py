@@ -130,6 +130,9 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
     try:
         ps = pulse_steer(model, pulse_speed_kmh)
         values["yaw_damping"] = ps.yaw_damping_ratio
+        if ps.yaw_damping_ratio is None and ps.articulation != "none":
+            # no two same-sign peaks: the articulation settles without swaying, more than any minimum damping
+            notes["yaw_damping"] = "no sway: the rearmost articulation settles without overshoot after the pulse"
         validity += ps.validity
     except Unstable as exc:
         values["yaw_damping"] = None
@@ -146,10 +149,12 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
         rows = [{"level": lv, "limit": lim, "sense": sense, "source": UNVERIFIED, "verified": False}
                 for lv, lim in limits.items()]  # fmt: skip
         verified = {r["level"]: r["limit"] for r in rows if r["verified"]}
-        standards.append(Standard(
-            sid, values[sid], unit, rows, _levels(values[sid], sense, verified), _levels(values[sid], sense, limits),
-            f"{RULES_VERSION}: {what}", notes.get(sid, ""),
-        ))  # fmt: skip
+        if notes.get(sid, "").startswith("no sway"):  # meets any minimum damping
+            level, level_unverified = max(verified, default=None), max(limits)
+        else:
+            level, level_unverified = _levels(values[sid], sense, verified), _levels(values[sid], sense, limits)
+        standards.append(Standard(sid, values[sid], unit, rows, level, level_unverified, f"{RULES_VERSION}: {what}",
+                                  notes.get(sid, "")))  # fmt: skip
     length = vehicle_length_m(model)
     by_length = {
         "class_a": min((lv for lv, (a, _) in LENGTH_LEVELS.items() if length <= a), default=None),

@@ -10,7 +10,8 @@ from app.dynamics import schemas as s
 from app.dynamics import service
 from app.http.fastpath import replayable
 from app.http.problems import VEHICLE_REF_CODES
-from app.http.responses import computed_responses, json_response
+from app.http.responses import computed_response, computed_responses, json_response
+from app.plots.router import svg_responses
 from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1/dynamics", tags=["dynamics"])
@@ -85,3 +86,35 @@ async def pbs(body: s.PbsRequest, request: Request, cache: CacheDep, settings: S
     certification."""
     body = await resolve_vehicle_refs(request, body, settings)
     return json_response(await service.compute_pbs(cache, body))
+
+
+@router.post("/plots/lane-change", name="plot_lane_change", response_class=Response,
+             responses=svg_responses("lateral acceleration of every unit against time in the lane change"))  # fmt: skip
+@replayable("dynamics-plot-lane-change")
+async def plot_lane_change(body: s.LaneChangeRequest, request: Request, cache: CacheDep,
+                           settings: SettingsDep) -> Response:  # fmt: skip
+    """The lane change's lateral acceleration of every unit against time, as SVG (the lane change's body)."""
+    body = await resolve_vehicle_refs(request, body, settings)
+    return computed_response(await service.plot_lane_change(cache, body))
+
+
+@router.post("/plots/frequency-response", name="plot_frequency_response", response_class=Response,
+             responses=svg_responses("rearward amplification against frequency, the worst marked"))  # fmt: skip
+@replayable("dynamics-plot-frequency-response")
+async def plot_frequency_response(body: s.FrequencyResponseRequest, request: Request, cache: CacheDep,
+                                  settings: SettingsDep) -> Response:  # fmt: skip
+    """Rearward amplification against frequency, the worst frequency marked, as SVG."""
+    body = await resolve_vehicle_refs(request, body, settings)
+    return computed_response(await service.plot_frequency_response(cache, body))
+
+
+LOW_SPEED_SVG = svg_responses("the paths of every corner of every unit in the 90 degree turn, to scale")
+
+
+@router.post("/plots/low-speed-turn", name="plot_low_speed_turn", response_class=Response, responses=LOW_SPEED_SVG)
+@replayable("dynamics-plot-low-speed-turn")
+async def plot_low_speed_turn(body: s.LowSpeedTurnRequest, request: Request, cache: CacheDep,
+                              settings: SettingsDep) -> Response:  # fmt: skip
+    """The low-speed turn's corner paths and the outer steer tyre's path, to scale, as SVG."""
+    body = await resolve_vehicle_refs(request, body, settings)
+    return computed_response(await service.plot_low_speed_turn(cache, body))

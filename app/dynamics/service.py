@@ -17,11 +17,12 @@ from starlette.concurrency import run_in_threadpool
 from app.compute.cache import ResultCache, cache_key
 from app.compute.resolved import Resolved
 from app.compute.results import Computed, cached
+from app.dynamics import plots
 from app.dynamics import schemas as s
 from app.vehicles.refs import resolve_vehicle
 from engine import ENGINE_VERSION
 from engine.dynamics import DynamicsData, GroupData, UnitData, build
-from engine.dynamics.lowspeed import low_speed_turn
+from engine.dynamics.lowspeed import OUTER_RADIUS_M, low_speed_turn
 from engine.dynamics.manoeuvres import (
     Unstable,
     lane_change,
@@ -270,3 +271,76 @@ async def compute_pbs(cache: ResultCache, req: s.PbsRequest) -> Computed:
         )  # fmt: skip
 
     return await _answer(cache, "pbs", req, opts, compute)
+
+
+# ------------------------------------------------------------------------------------------------ figures
+
+SVG_MEDIA_TYPE = "image/svg+xml"
+
+
+def _label(req: s.DynamicsInputs) -> str:
+    v = req.vehicle
+    if isinstance(v, str):
+        return v
+    if isinstance(v, Combination) and v.title:
+        return v.title
+    return "the given combination"
+
+
+async def _figure(cache: ResultCache, operation: str, req: s.DynamicsInputs, options: dict[str, Any], draw
+                  ) -> Computed:  # fmt: skip
+    c, data, resolved = resolve(req, **options, svg_version=plots.SVG_VERSION, label=_label(req))
+    model = _model(cache, c, data, resolved, req)
+
+    async def produce() -> bytes:
+        return (await run_in_threadpool(draw, model)).encode()
+
+    return await cached(cache, operation, resolved, produce, SVG_MEDIA_TYPE)
+
+
+def _unstable_svg(exc: Unstable) -> InvalidVehicle:
+    return InvalidVehicle(f"no figure: {_unstable(exc)[0]}", field="speed_kmh", value=exc.speed_kmh)
+
+
+async def plot_lane_change(cache: ResultCache, req: s.LaneChangeRequest) -> Computed:
+    opts = req.model_dump(exclude={"vehicle", "dynamics", "include_history"})
+
+    def draw(model: YawRollModel) -> str:
+        try:
+            lc = lane_change(model, req.speed_kmh, frequency_hz=req.frequency_hz, amplitude_g=req.amplitude_g,
+                             ra_definition=req.ra_definition, history=True)  # fmt: skip
+        except Unstable as exc:
+            raise _unstable_svg(exc) from exc
+        return plots.lane_change_svg(_label(req), lc.history, lc.rearward_amplification,
+                                     lc.high_speed_transient_offtracking_m, req.speed_kmh, req.frequency_hz,
+                                     req.amplitude_g)  # fmt: skip
+
+    return await _figure(cache, "dynamics-plot-lane-change", req, opts, draw)
+
+
+async def plot_frequency_response(cache: ResultCache, req: s.FrequencyResponseRequest) -> Computed:
+    freqs = tuple(req.frequencies_hz) if req.frequencies_hz is not None else DEFAULT_FREQUENCIES_HZ
+    opts = {"speed_kmh": req.speed_kmh, "frequencies_hz": list(freqs), "ra_definition": req.ra_definition}
+
+    def draw(model: YawRollModel) -> str:
+        st = stability(model)
+        limits = [v for v in (st.sway_critical_speed_kmh, st.divergence_speed_kmh) if v is not None]
+        if limits and req.speed_kmh >= min(limits):
+            raise _unstable_svg(Unstable(req.speed_kmh, min(limits), "a growing mode"))
+        ra = rearward_amplification_spectrum(model, req.speed_kmh, np.array(freqs), req.ra_definition)
+        wf, wra = worst_frequency(model, req.speed_kmh, req.ra_definition)
+        return plots.frequency_response_svg(_label(req), list(freqs), ra.tolist(), wf, wra, req.speed_kmh,
+                                            req.ra_definition)  # fmt: skip
+
+    return await _figure(cache, "dynamics-plot-frequency-response", req, opts, draw)
+
+
+async def plot_low_speed_turn(cache: ResultCache, req: s.LowSpeedTurnRequest) -> Computed:
+    opts = {"path_step_m": req.path_step_m}
+
+    def draw(model: YawRollModel) -> str:
+        ls = low_speed_turn(model, path_every_m=req.path_step_m)
+        return plots.low_speed_turn_svg(_label(req), ls.paths, OUTER_RADIUS_M, ls.swept_path_width_m,
+                                        ls.tail_swing_m, ls.frontal_swing_m)  # fmt: skip
+
+    return await _figure(cache, "dynamics-plot-low-speed-turn", req, opts, draw)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from engine import get_combination
@@ -165,3 +166,47 @@ def test_an_unstable_speed_is_answered_unstable_with_the_limit(shared_client):
         body = shared_client.post(f"/v1/dynamics/{path}", json=req).json()
         assert body["stable"] is False and body[measure] is None, path
         assert body["stability_limit_kmh"] == pytest.approx(limit, abs=0.1), path
+
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def _series(svg: bytes) -> dict[str, tuple[list[float], list[float]]]:
+    import xml.etree.ElementTree as ET
+
+    out = {}
+    for g in ET.fromstring(svg).iter(f"{SVG}g"):
+        if g.get("class") == "series":
+            line = g.find(f"{SVG}polyline")
+            out[g.get("data-name")] = ([float(v) for v in line.get("data-x").split()],
+                                       [float(v) for v in line.get("data-y").split()])  # fmt: skip
+    return out
+
+
+def test_plots_draw_the_answers(shared_client):
+    body = {"vehicle": "adouble"}
+    r = shared_client.post("/v1/dynamics/plots/lane-change", json=body)
+    assert r.status_code == 200 and r.headers["content-type"] == "image/svg+xml" and r.headers["ETag"]
+    series = _series(r.content)
+    assert set(series) == {"tractor", "trailer1", "dolly", "trailer2"}
+    lc = shared_client.post("/v1/dynamics/lane-change", json={**body, "include_history": True}).json()
+    assert series["trailer2"][1] == pytest.approx(lc["history"]["lateral_acceleration_g"]["trailer2"], abs=1e-5)
+    r = shared_client.post("/v1/dynamics/plots/frequency-response", json=body)
+    fr = shared_client.post("/v1/dynamics/frequency-response", json=body).json()
+    assert _series(r.content)["RA"][1] == pytest.approx(fr["rearward_amplification"], rel=1e-5)
+    r = shared_client.post("/v1/dynamics/plots/low-speed-turn", json=body)
+    series = _series(r.content)
+    assert len(series) == 4 * 4 + 1
+    x, y = series["outer steer tyre path"]
+    assert np.hypot(x, y) == pytest.approx(12.5, rel=1e-5)  # the arc the outer steer tyre follows
+
+
+def test_a_plot_above_the_stability_limit_is_a_422_naming_the_speed(shared_client):
+    c = get_combination("truck-trailer").to_dict()["combination"]
+    one = {"units": [c["units"][0]], "couplings": []}
+    one["units"][0]["groups"][1]["axles"] = 1
+    dyn = {"groups": [{"unit": "truck", "group": "steer", "cornering_coefficient_per_rad": 9.0},
+                      {"unit": "truck", "group": "drive", "cornering_coefficient_per_rad": 3.0}]}  # fmt: skip
+    r = shared_client.post("/v1/dynamics/plots/lane-change",
+                           json={"vehicle": {"combination": one}, "dynamics": dyn, "speed_kmh": 150})  # fmt: skip
+    assert r.status_code == 422 and r.json()["errors"][0]["field"] == "speed_kmh"

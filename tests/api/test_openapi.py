@@ -72,6 +72,9 @@ OPERATIONS = {
     ("post", "/v1/dynamics/steady-turn"): "dynamics-steady_turn",
     ("post", "/v1/dynamics/low-speed-turn"): "dynamics-low_speed_turn",
     ("post", "/v1/pbs"): "pbs-pbs",
+    ("post", "/v1/dynamics/plots/lane-change"): "dynamics-plot_lane_change",
+    ("post", "/v1/dynamics/plots/frequency-response"): "dynamics-plot_frequency_response",
+    ("post", "/v1/dynamics/plots/low-speed-turn"): "dynamics-plot_low_speed_turn",
 }
 
 
@@ -143,9 +146,12 @@ DYNAMICS = {
     "/v1/dynamics/steady-turn": "SteadyTurnRequest",
     "/v1/dynamics/low-speed-turn": "LowSpeedTurnRequest",
     "/v1/pbs": "PbsRequest",
+    "/v1/dynamics/plots/lane-change": "LaneChangeRequest",
+    "/v1/dynamics/plots/frequency-response": "FrequencyResponseRequest",
+    "/v1/dynamics/plots/low-speed-turn": "LowSpeedTurnRequest",
 }
 #: the operations that answer an SVG image
-PLOTS = {p for p in COMPUTED if p.startswith("/v1/plots/")}
+PLOTS = {p for p in COMPUTED | DYNAMICS if "/plots/" in p}
 #: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
 TABLES = {
     "/v1/srt/sweep",

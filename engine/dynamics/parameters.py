@@ -18,9 +18,10 @@ Estimates
 * axle spacing within a group: 1.27 m (the spacing of the tandems and tridems of the TruckSim example database
   the presets use: LX_AXLE 5000 / 6270 / 7540 mm, 5230 / 6500 mm);
 * body extent (ahead of / behind the unit's reference point): a uniform load-carrying body centred on its sprung
-  CG, its front ``front_m`` ahead of the reference point (assumed 1.0 m ahead of a kingpin or turntable; a
-  tractor's or rigid truck's front 1.4 m ahead of the steer axle; a dolly's body from its eye to 0.5 m behind its
-  axle), so ``rear = 2 x_cg + front`` for a load carrier; a tractor's rear 1.0 m behind its rear group;
+  CG, its front at ``x_front`` (assumed 1.0 m ahead of a kingpin or of a full trailer's turntable; a tractor's or
+  rigid truck's front 1.4 m ahead of the steer axle; a dolly's body from its eye to 0.5 m behind its last axle), so
+  ``rear = 2 x_cg - x_front`` for a load carrier; a tractor's rear 1.0 m behind its last axle; every rear at least
+  0.3 m behind a rear coupling;
 * width: 2.5 m (assumed: the common general width limit of heavy vehicles);
 * yaw inertia of the sprung mass about its CG: a uniform box, ``m (L^2 + w^2) / 12`` (Gillespie 1992, the
   moments of inertia of a rectangular body); the axles' own yaw inertia is that of their masses as points;
@@ -153,7 +154,9 @@ def _front_estimate(kind: str) -> tuple[float, str]:
         return 1.4, "assumed: the front 1.4 m ahead of the steer axle (cab-over front overhang)"
     if kind == "dolly":
         return 0.0, "assumed: a dolly's front is its drawbar eye"
-    return 1.0, "assumed: the body's front 1.0 m ahead of its kingpin or drawbar eye"
+    if kind == "full-trailer":
+        return 1.0, "assumed: the body's front 1.0 m ahead of its turntable"
+    return 1.0, "assumed: the body's front 1.0 m ahead of its kingpin"
 
 
 def _check_range(value: float, low: float, high: float, path: str, what: str) -> None:
@@ -221,6 +224,8 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
         else:
             f, why = _front_estimate(u.kind)
             front = Parameter(f, "m", f"estimated: {why}")
+        # the body's front, behind the reference point (a full trailer's overhang is measured from its turntable)
+        front_x = -front.value + (u.groups[0].position_m if u.kind == "full-trailer" else 0.0)
         if ud.rear_extent_m is not None:
             rear = Parameter(ud.rear_extent_m, "m", "given")
         else:
@@ -230,7 +235,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             elif u.kind == "dolly":
                 r, why = max(max(xs_all) + 0.5, hitch), "0.5 m behind the last axle"
             else:
-                r = max(2.0 * u.cg_position_m + front.value, max(xs_all) + 0.5, hitch)
+                r = max(2.0 * u.cg_position_m - front_x, max(xs_all) + 0.5, hitch)
                 why = (
                     "uniform body centred on the sprung CG, rear = 2 x_cg + front, 0.5 m behind the last axle at least"
                 )
@@ -249,7 +254,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             width = Parameter(ud.width_m, "m", "given")
         else:
             width = Parameter(WIDTH_M, "m", "estimated: assumed 2.5 m, the common general width limit")
-        length = rear.value + front.value
+        length = rear.value - front_x
         m = u.sprung_mass_kg
         axle_mass = [(g.unsprung_mass_kg, x) for j, g in enumerate(u.groups) for x in groups[(i, j)].axle_positions_m]
         if ud.yaw_inertia_kgm2 is not None:

@@ -23,8 +23,9 @@ Estimates
   ``rear = 2 x_cg - x_front`` for a load carrier; a tractor's rear 1.0 m behind its last axle; every rear at least
   0.3 m behind a rear coupling;
 * width: 2.5 m (assumed: the common general width limit of heavy vehicles);
-* yaw inertia of the sprung mass about its CG: a uniform box, ``m (L^2 + w^2) / 12`` (Gillespie 1992, the
-  moments of inertia of a rectangular body); the axles' own yaw inertia is that of their masses as points;
+* yaw and roll inertias of the sprung mass: a preset's where its sources give them (:data:`PRESET_SPRUNG_INERTIAS`:
+  TruckSim's sprung masses and payloads); otherwise, about its CG, a uniform box ``m (L^2 + w^2) / 12`` (Gillespie
+  1992, the moments of inertia of a rectangular body); the axles' own yaw inertia is that of their masses as points;
 * roll inertia of the sprung mass about its CG: a uniform box ``m (w^2 + H^2) / 12`` with ``H = 2 (h_cg - h_rc)``
   (the box from its highest roll centre up, centred on the CG);
 * suspension roll damping per axle ``c = tau K_s`` with ``tau = 0.02 s`` (assumed: no readable source; it sets a
@@ -65,6 +66,69 @@ AXLE_SPACING_M = 1.27
 AXLE_SPACING_SOURCE = "TruckSim 2022.1 example database tandems and tridems: LX_AXLE 5000/6270/7540 and 5230/6500 mm"
 WIDTH_M = 2.5
 ROLL_DAMPING_TAU_S = 0.02
+
+
+_TS = "TruckSim 2022.1 example dataset, github.com/Steve-Krug/Axicle, 04-Trucksim/"
+
+
+def _combined(m1: float, h1: float, i1: tuple[float, float], m2: float, h2: float, i2: tuple[float, float]):
+    """(Ixx, Izz) of two bodies with their CGs on one vertical line, about the common CG [kg m^2]."""
+    hc = (m1 * h1 + m2 * h2) / (m1 + m2)
+    ixx = i1[0] + i2[0] + m1 * (h1 - hc) ** 2 + m2 * (h2 - hc) ** 2
+    return ixx, i1[1] + i2[1]
+
+
+_PUP = _combined(2116.0, 1.935, (5592.5, 40672.8), 9000.0, 2.3, (6000.0, 21750.0))
+_PUP_SOURCE = (
+    f"derived: {_TS}Vehicles/Trl_Sprung_Mass/TrlSprM_0d042329...par ('1A Van Trailer, 28-ft': IXX_SU 5592.5, "
+    "IZZ_SU 40672.8 at H_CG_SU 1935) and Payloads/Box/Box_aaf9bc17...par ('Double Trailers (9000 kg)': IXX_PL 6000, "
+    "IZZ_PL 21750 at Z_CG_PL 2300), both at LX 3500 mm, about their common CG"
+)
+_FULL = _combined(3000.0, 2.0, (5964.3, 27000.0), 4500.0, 2.3, (3000.0, 10875.0))
+_FULL_SOURCE = (
+    f"derived: {_TS}Vehicles/Trl_Sprung_Mass/TrlSprM_db68818b...par ('1A Trailer (Typical 28ft)': IXX_SU 5964.3, "
+    "IZZ_SU 27000 at H_CG_SU 2000) and Payloads/Box/Box_9009210f...par ('Trailer (4500 kg)': IXX_PL 3000, IZZ_PL "
+    "10875 at Z_CG_PL 2300), both at LX 3500 mm, about their common CG"
+)
+_CAB_OVER = (2283.9, 34802.6, f"{_TS}Vehicles/Sprung_Mass/SprMass_5f3ae270...par ('2A Cab-Over'): IXX_SU 2283.9, "
+             "IZZ_SU 34802.6 (the sprung mass the preset takes)")  # fmt: skip
+#: the sprung masses' roll and yaw inertias about their own CGs where the presets' sources give them: preset id ->
+#: unit id -> (Ixx, Izz, source); the thesis's trailers (Tables 15, 16) and the truck's van body give none
+PRESET_SPRUNG_INERTIAS: dict[str, dict[str, tuple[float, float, str]]] = {
+    "tractor-semitrailer-table15": {"tractor": _CAB_OVER},
+    "btrain-table16": {
+        "tractor": (
+            6879.0,
+            19665.0,
+            f"{_TS}Vehicles/Sprung_Mass/SprMass_93a3d6a8...par ('3A Sleeper Cab'): IXX_SU 6879, IZZ_SU 19665",
+        )
+    },
+    "adouble": {
+        "tractor": _CAB_OVER,
+        "trailer1": (*_PUP, _PUP_SOURCE),
+        "dolly": (
+            215.0,
+            290.0,
+            f"{_TS}Vehicles/Trl_Sprung_Mass/TrlSprM_1399a1df...par ('1A Dolly w/ Rigid "
+            "Towbar'): IXX_SU 215, IZZ_SU 290",
+        ),
+        "trailer2": (*_PUP, _PUP_SOURCE),
+    },
+    "truck-trailer": {"trailer": (*_FULL, _FULL_SOURCE)},
+}
+
+
+def preset_inertias(c: Combination) -> dict[str, tuple[float, float, str]]:
+    """The sourced sprung inertias of every unit of ``c`` that is, field for field, a preset's unit that has them."""
+    from engine.vehicle.combination_presets import COMBINATIONS
+
+    out = {}
+    for u in c.units:
+        for pid, pc in COMBINATIONS.items():
+            data = PRESET_SPRUNG_INERTIAS.get(pid, {})
+            if any(pu.id in data and pu == u for pu in pc.units):
+                out[u.id] = data[u.id]
+    return out
 
 
 @dataclass(frozen=True)
@@ -186,6 +250,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             raise InvalidVehicle(f"dynamics.groups: no group {key[1]!r} on unit {key[0]!r}",
                                  field=f"dynamics.groups[{key[0]}/{key[1]}]", value=key[1])  # fmt: skip
     st = static_loads(c)
+    inertias = preset_inertias(c)
     groups: dict[tuple[int, int], GroupParameters] = {}
     for i, u in enumerate(c.units):
         for j, g in enumerate(u.groups):
@@ -257,7 +322,10 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
         length = rear.value - front_x
         m = u.sprung_mass_kg
         axle_mass = [(g.unsprung_mass_kg, x) for j, g in enumerate(u.groups) for x in groups[(i, j)].axle_positions_m]
-        if ud.yaw_inertia_kgm2 is not None:
+        sourced = inertias.get(u.id)
+        if ud.yaw_inertia_kgm2 is None and sourced is not None:
+            iz = Parameter(sourced[1], "kg m^2", f"{sourced[2]} (the sprung mass about its CG)")
+        elif ud.yaw_inertia_kgm2 is not None:
             total = m + sum(ma for ma, _ in axle_mass)
             x_cg = (m * u.cg_position_m + sum(ma * x for ma, x in axle_mass)) / total
             bound = sum(ma * (x - x_cg) ** 2 for ma, x in axle_mass) + m * (u.cg_position_m - x_cg) ** 2
@@ -273,7 +341,9 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                            f"estimated: sprung mass as a uniform box m (L^2 + w^2)/12, L = {length:.2f} m, w = "
                            f"{width.value:g} m (Gillespie 1992)")  # fmt: skip
         hr = max(g.roll_centre_height_m for g in u.groups)
-        if ud.roll_inertia_kgm2 is not None:
+        if ud.roll_inertia_kgm2 is None and sourced is not None:
+            ix = Parameter(sourced[0], "kg m^2", sourced[2])
+        elif ud.roll_inertia_kgm2 is not None:
             _check_range(ud.roll_inertia_kgm2, 1.0, 1e6, f"{path}.roll_inertia_kgm2", f"unit {u.id!r}")
             ix = Parameter(ud.roll_inertia_kgm2, "kg m^2", "given")
         else:

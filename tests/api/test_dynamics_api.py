@@ -32,8 +32,9 @@ def test_every_answer_is_a_screening_with_validity_and_sourced_parameters(shared
     assert isinstance(body["validity"], list)
     p = body["parameters"]
     assert {u["unit"] for u in p["units"]} == {"tractor", "trailer1", "dolly", "trailer2"}
-    for u in p["units"]:
-        assert u["yaw_inertia_kgm2"]["source"].startswith("estimated")
+    for u in p["units"]:  # the A-double's sprung masses are TruckSim's: their inertias are sourced
+        assert "TruckSim" in u["yaw_inertia_kgm2"]["source"] and "estimated" not in u["yaw_inertia_kgm2"]["source"]
+        assert u["front_overhang_m"]["source"].startswith("estimated")
     assert all(g["cornering_coefficient_per_rad"]["source"] for g in p["groups"])
     assert r.headers["X-Cache"] == "miss" and r.headers["ETag"]
     again = shared_client.post(f"/v1/dynamics/{path}", json=_body(path))

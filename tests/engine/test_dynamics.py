@@ -229,7 +229,7 @@ def test_log_decrement_equals_the_eigenvalue_on_a_single_articulation():
     ps = pulse_steer(m, 120.0, duration_s=30.0, dt=0.005)
     w, _, _ = eigen(m.state_space(120 / 3.6))
     k = least_damped_oscillatory(w)
-    assert 0.05 < damping_ratio(w[k]) < 0.12  # a lightly damped sway, well apart from the real modes
+    assert 0.05 < damping_ratio(w[k]) < 0.2  # a lightly damped sway, well apart from the real modes
     assert ps.yaw_damping_ratio == pytest.approx(damping_ratio(w[k]), rel=0.01)
 
 
@@ -272,6 +272,25 @@ def test_low_speed_steady_turn_gives_the_equivalent_axle_its_sum_of_squares_radi
     expected = math.sqrt(r_king**2 - l_eq**2 + (l_eq - big_l) ** 2)
     got = next(a["path_radius_m"] for a in st.axles if a["unit"] == "trailer")
     assert r_king - got == pytest.approx(r_king - expected, rel=2e-3)
+
+
+def test_preset_inertias_are_sourced_and_a_changed_vehicle_is_estimated():
+    """The A-double's sprung inertias are TruckSim's (body and payload combined about their common CG, Izz adding
+    as both CGs lie at LX 3500 mm: 40672.8 + 21750); a unit changed in any field is estimated, the others keep
+    theirs."""
+    from engine.dynamics import resolve
+
+    c = COMBINATIONS["adouble"]
+    p = resolve(c)
+    assert p.units[1].yaw_inertia_kgm2.value == pytest.approx(40672.8 + 21750.0)
+    hc = (2116 * 1.935 + 9000 * 2.3) / 11116
+    ixx = 5592.5 + 6000 + 2116 * (1.935 - hc) ** 2 + 9000 * (2.3 - hc) ** 2
+    assert p.units[1].roll_inertia_kgm2.value == pytest.approx(ixx)
+    assert p.units[2].yaw_inertia_kgm2.value == 290.0 and "TrlSprM_1399a1df" in p.units[2].yaw_inertia_kgm2.source
+    changed = replace(c, units=(c.units[0], replace(c.units[1], sprung_mass_kg=8000.0), *c.units[2:]))
+    q = resolve(changed)
+    assert q.units[1].yaw_inertia_kgm2.source.startswith("estimated")
+    assert q.units[0].yaw_inertia_kgm2.value == 34802.6  # the unchanged tractor keeps its own
 
 
 def test_impossible_dynamics_data_is_refused_naming_unit_and_field():

@@ -54,7 +54,7 @@ from engine.dynamics.response import (
     simulate,
     steady_state,
 )
-from engine.errors import InvalidRoad, RolloverError
+from engine.errors import ConvergenceError, InvalidRoad, RolloverError
 from engine.vehicle.combination import G_M_PER_S2
 
 MAX_SPEED_KMH = 200.0
@@ -158,7 +158,12 @@ def lane_change(model: YawRollModel, speed_kmh: float, *, frequency_hz: float = 
     amp = amplitude_g * G_M_PER_S2
     target = np.where(t <= period, amp * np.sin(2 * np.pi * frequency_hz * t), 0.0)
     steer_acc = ss.acceleration(model.point_row(0, 0.0))
-    x, delta, _ = follow(ss, steer_acc, target, dt)
+    x, delta, poles = follow(ss, steer_acc, target, dt)
+    if np.max(poles.real) > 1e-6:  # the steer needed to hold the steer axle on the path would grow without bound
+        raise ConvergenceError(
+            f"at {speed_kmh:g} km/h the steer axle cannot follow the prescribed lateral acceleration: the inverse "
+            "system is unstable (a non-minimum-phase vehicle)"
+        )
     n = model.n
     q = x[:, :n]
     a_units = np.array([x @ cc + dd * delta for cc, dd in unit_cg_outputs(ss)])

@@ -40,7 +40,6 @@ References
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -376,7 +375,3 @@ def articulation_rows(model: YawRollModel) -> list[tuple[str, np.ndarray]]:
             prev = model.main_body[body.unit - 1]
         out.append((name, model.psi_rows[prev] - model.psi_rows[b]))
     return out
-
-
-def deg(x: float) -> float:
-    return math.degrees(x)

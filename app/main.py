@@ -18,6 +18,7 @@ from app.catalog import router as catalog_router
 from app.catalog.service import close_catalog, install_catalog_handlers, open_catalog
 from app.compute import solvers
 from app.compute.cache import make_cache
+from app.dynamics import router as dynamics_router
 from app.http.bodylimit import BodyLimitMiddleware, route_limits
 from app.http.fastpath import FastPathMiddleware, replay_table
 from app.http.netopts import set_nodelay_on_listening_sockets
@@ -96,6 +97,17 @@ TAGS = [
         "description": "Long batches as jobs (alignments of up to 1,000,000 rows, sweeps of up to 1,000,000 cases): "
         "submit, follow the progress, fetch the result (the synchronous answer, byte for byte), cancel.",
     },
+    {
+        "name": "dynamics",
+        "description": "The combination in motion, a linear yaw-roll model: lane change (rearward amplification, "
+        "high-speed transient offtracking), frequency response, pulse steer (yaw damping), stability against speed, "
+        "steady turn, low-speed 90 degree turn. Indicative screening, not a certification.",
+    },
+    {
+        "name": "pbs",
+        "description": "Performance-Based Standards screening of a combination: value, limits by level with their "
+        "sources (unverified where the rules could not be read), the standards not judged.",
+    },
     {"name": "models", "description": "The available models, their equations and references."},
     {"name": "health", "description": "Liveness and Prometheus metrics."},
 ]
@@ -113,6 +125,8 @@ ROUTERS = (
     standards_router.router,
     alignments_router.router,
     routes_router.router,
+    dynamics_router.router,
+    dynamics_router.pbs_router,
     plots_router.router,
     jobs_router.router,
     models_router,

@@ -29,6 +29,8 @@ Layout (each subpackage has its own ``__all__``; the names below are re-exported
 - :mod:`engine.road`: Eqs. 9.1-9.3, the design standards, superelevation, SRT targets, inverse limits, curve and
   alignment assessment;
 - :mod:`engine.route`: geodesy, the noise model, circle and line fits, curve detection of surveyed routes;
+- :mod:`engine.dynamics`: the combination in motion, a linear yaw-roll model, its manoeuvres and measures, the
+  low-speed turn and the PBS screening (indicative, not a certification);
 - :mod:`engine.case` (:class:`Case`, :class:`Road`, :class:`LoadCase`), :mod:`engine.results`,
   :mod:`engine.errors`, :mod:`engine.domain` (the bounds of every scalar input) and :mod:`engine.bracket`.
 

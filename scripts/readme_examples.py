@@ -491,6 +491,129 @@ EXAMPLES = [
         after=svg_series("min-radius.svg"),
     ),
     Example(
+        "Single lane change of the A-double (88 km/h, 0.4 Hz, 0.15 g): rearward amplification, HSTO, peak LTR",
+        "POST",
+        "/v1/dynamics/lane-change",
+        {"vehicle": "adouble", "speed_kmh": 88},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        'print(r["rearward_amplification"], r["high_speed_transient_offtracking_m"], '
+        'r["steer_axle_lateral_offset_m"]); '
+        '[print(u["units"], u["peak_load_transfer_ratio"]) for u in r["roll_coupled_units"]]; print(r["validity"])\'',
+        show=lambda r: "\n".join(
+            [
+                f"{r.json()['rearward_amplification']} {r.json()['high_speed_transient_offtracking_m']} "
+                f"{r.json()['steer_axle_lateral_offset_m']}",
+                *(f"{u['units']} {u['peak_load_transfer_ratio']}" for u in r.json()["roll_coupled_units"]),
+                str(r.json()["validity"]),
+            ]
+        ),
+        heading="The combination in motion: `POST /v1/dynamics/...` and `/v1/pbs` (indicative screening)",
+        note="Every dynamics answer carries `screening: true`, `validity` and the `parameters` used with their "
+        "sources (docs/dynamics.md).",
+    ),
+    Example(
+        "Rearward amplification against frequency, and its worst frequency",
+        "POST",
+        "/v1/dynamics/frequency-response",
+        {"vehicle": "adouble", "frequencies_hz": [0.2, 0.4, 0.8]},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        'print(r["frequencies_hz"], r["rearward_amplification"], r["worst_frequency_hz"])\'',
+        show=lambda r: (
+            f"{r.json()['frequencies_hz']} {r.json()['rearward_amplification']} {r.json()['worst_frequency_hz']}"
+        ),
+    ),
+    Example(
+        "Pulse steer: yaw damping of the rearmost articulation beside the least-damped mode",
+        "POST",
+        "/v1/dynamics/pulse-steer",
+        {"vehicle": "adouble", "speed_kmh": 100},
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); m = r["least_damped_mode"]; '
+        'print(r["yaw_damping_ratio"], r["articulation"], m["damping_ratio"], m["frequency_hz"])\'',
+        show=lambda r: (
+            f"{r.json()['yaw_damping_ratio']} {r.json()['articulation']} "
+            f"{r.json()['least_damped_mode']['damping_ratio']} {r.json()['least_damped_mode']['frequency_hz']}"
+        ),
+    ),
+    Example(
+        "Stability against speed (null: stable up to 200 km/h)",
+        "POST",
+        "/v1/dynamics/stability",
+        {"vehicle": "truck-trailer"},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        'print(r["sway_critical_speed_kmh"], r["divergence_speed_kmh"])\'',
+        show=lambda r: f"{r.json()['sway_critical_speed_kmh']} {r.json()['divergence_speed_kmh']}",
+    ),
+    Example(
+        "Steady turn: every group's path radius, every unit's articulation and roll",
+        "POST",
+        "/v1/dynamics/steady-turn",
+        {"vehicle": "btrain-table16", "radius_m": 200, "speed_kmh": 60},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        '[print(a["unit"], a["group"], round(a["path_radius_m"], 3)) for a in r["axles"]]; '
+        '[print(u["unit"], u["articulation_deg"], round(u["roll_angle_deg"], 3)) for u in r["units"]]\'',
+        show=lambda r: "\n".join(
+            [
+                *(f"{a['unit']} {a['group']} {round(a['path_radius_m'], 3)}" for a in r.json()["axles"]),
+                *(f"{u['unit']} {u['articulation_deg']} {round(u['roll_angle_deg'], 3)}" for u in r.json()["units"]),
+            ]
+        ),
+    ),
+    Example(
+        "Low-speed 90 degree turn (12.5 m at the outer steer tyre): swept path, tail swing, frontal swing",
+        "POST",
+        "/v1/dynamics/low-speed-turn",
+        {"vehicle": "adouble"},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        'print(r["swept_path_width_m"], r["tail_swing_m"], r["frontal_swing_m"], len(r["paths"]))\'',
+        show=lambda r: (
+            f"{r.json()['swept_path_width_m']} {r.json()['tail_swing_m']} {r.json()['frontal_swing_m']} "
+            f"{len(r.json()['paths'])}"
+        ),
+    ),
+    Example(
+        "PBS screening of the A-double: value, level from verified limits only (none could be read), the rules",
+        "POST",
+        "/v1/pbs",
+        {"vehicle": "adouble"},
+        pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
+        '[print(s["id"], round(s["value"], 3), s["unit"], s["level"], s["level_unverified"]) for s in r["standards"]]; '
+        'print(r["note"]); print(r["rules_version"])\'',
+        show=lambda r: "\n".join(
+            [
+                *(
+                    f"{s['id']} {round(s['value'], 3)} {s['unit']} {s['level']} {s['level_unverified']}"
+                    for s in r.json()["standards"]
+                ),
+                r.json()["note"],
+                r.json()["rules_version"],
+            ]
+        ),
+    ),
+    Example(
+        "Plot: lateral acceleration of every unit in the A-double's lane change, saved and checked",
+        "POST",
+        "/v1/dynamics/plots/lane-change",
+        {"vehicle": "adouble"},
+        output="lane-change.svg",
+        after=svg_series("lane-change.svg"),
+    ),
+    Example(
+        "Plot: rearward amplification against frequency, the worst marked",
+        "POST",
+        "/v1/dynamics/plots/frequency-response",
+        {"vehicle": "adouble"},
+        output="ra.svg",
+        after=svg_series("ra.svg"),
+    ),
+    Example(
+        "Plot: the low-speed turn's corner paths to scale, with the outer steer tyre's path",
+        "POST",
+        "/v1/dynamics/plots/low-speed-turn",
+        {"vehicle": "tractor-semitrailer-table15"},
+        output="swept-path.svg",
+        after=svg_series("swept-path.svg"),
+    ),
+    Example(
         "An error: unknown preset (RFC 9457 problem details)",
         "GET",
         "/v1/vehicles/table99",

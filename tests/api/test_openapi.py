@@ -66,6 +66,16 @@ OPERATIONS = {
     ("get", "/v1/fleets/{id}"): "catalog-get_fleet",
     ("put", "/v1/fleets/{id}"): "catalog-replace_fleet",
     ("delete", "/v1/fleets/{id}"): "catalog-delete_fleet",
+    ("post", "/v1/dynamics/lane-change"): "dynamics-lane_change",
+    ("post", "/v1/dynamics/frequency-response"): "dynamics-frequency_response",
+    ("post", "/v1/dynamics/pulse-steer"): "dynamics-pulse_steer",
+    ("post", "/v1/dynamics/stability"): "dynamics-stability",
+    ("post", "/v1/dynamics/steady-turn"): "dynamics-steady_turn",
+    ("post", "/v1/dynamics/low-speed-turn"): "dynamics-low_speed_turn",
+    ("post", "/v1/pbs"): "pbs-pbs",
+    ("post", "/v1/dynamics/plots/lane-change"): "dynamics-plot_lane_change",
+    ("post", "/v1/dynamics/plots/frequency-response"): "dynamics-plot_frequency_response",
+    ("post", "/v1/dynamics/plots/low-speed-turn"): "dynamics-plot_low_speed_turn",
 }
 
 
@@ -129,8 +139,21 @@ COMPUTED = {
     "/v1/plots/cg-path": "PlotRequest",
     "/v1/plots/min-radius": "MinRadiusPlotRequest",
 }
+#: the dynamics operations (they take a combination: their examples use the B-double of Table 16's trailer)
+DYNAMICS = {
+    "/v1/dynamics/lane-change": "LaneChangeRequest",
+    "/v1/dynamics/frequency-response": "FrequencyResponseRequest",
+    "/v1/dynamics/pulse-steer": "PulseSteerRequest",
+    "/v1/dynamics/stability": "StabilityRequest",
+    "/v1/dynamics/steady-turn": "SteadyTurnRequest",
+    "/v1/dynamics/low-speed-turn": "LowSpeedTurnRequest",
+    "/v1/pbs": "PbsRequest",
+    "/v1/dynamics/plots/lane-change": "LaneChangeRequest",
+    "/v1/dynamics/plots/frequency-response": "FrequencyResponseRequest",
+    "/v1/dynamics/plots/low-speed-turn": "LowSpeedTurnRequest",
+}
 #: the operations that answer an SVG image
-PLOTS = {p for p in COMPUTED if p.startswith("/v1/plots/")}
+PLOTS = {p for p in COMPUTED | DYNAMICS if "/plots/" in p}
 #: the operations that answer CSV on `Accept: text/csv` (and say `Vary: Accept`)
 TABLES = {
     "/v1/srt/sweep",
@@ -145,7 +168,7 @@ TABLES = {
 }
 
 
-@pytest.mark.parametrize("path", sorted(COMPUTED | ROAD_ONLY))
+@pytest.mark.parametrize("path", sorted(COMPUTED | ROAD_ONLY | DYNAMICS))
 def test_computed_operations_declare_etag_and_x_cache(path):
     headers = COMMITTED["paths"][path]["post"]["responses"]["200"]["headers"]
     assert set(headers) == ({"ETag", "X-Cache", "Vary"} if path in TABLES else {"ETag", "X-Cache"})
@@ -172,8 +195,14 @@ def test_every_request_model_has_a_btrain_example(name):
     assert any(e.get("vehicle") == "table16-btrain" for e in examples)
 
 
+@pytest.mark.parametrize("name", sorted(DYNAMICS.values()))
+def test_every_dynamics_request_model_has_a_btrain_combination_example(name):
+    examples = COMMITTED["components"]["schemas"][name]["examples"]
+    assert any(e.get("vehicle") == "btrain-table16" for e in examples)
+
+
 def test_examples_are_accepted_by_the_app(shared_client):
-    paths = {name: path for path, name in (COMPUTED | ROAD_ONLY).items()}
+    paths = {name: path for path, name in (COMPUTED | ROAD_ONLY | DYNAMICS).items()}
     for name, path in paths.items():
         for example in COMMITTED["components"]["schemas"][name]["examples"]:
             r = shared_client.post(path, json=example)

@@ -130,13 +130,16 @@ class RoadFile:
     """What a reader made of one road-design file: its alignments in SI units and the facts the answer's ``reading``
     summary reports (``format`` such as ``"LandXML 1.2"`` or ``"IFC4X3_ADD2"``; ``writer``: the application that
     wrote it, where the file says; ``linear_unit``: the file's length unit as the file names it; ``skipped``:
-    (what, why) for everything read but not used)."""
+    (what, why) for everything read but not used; ``elements``: how many of each of the file's element types were
+    read)."""
 
     format: str
     alignments: tuple[AlignmentGeometry, ...]
     linear_unit: str = "meter"
     writer: str | None = None
     skipped: tuple[tuple[str, str], ...] = ()
+    #: (the file's name for an element type, how many were read), e.g. ("Spiral", 4)
+    elements: tuple[tuple[str, int], ...] = ()
 
 
 # ---------------------------------------------------------------------------------------------- stations

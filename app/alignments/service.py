@@ -121,22 +121,27 @@ def read_curves(
             posted_speed_kmh=x.posted_speed_kmh,
             overrides=overrides,
             max_curves=max_curves,
+            profile=x.profile,
         )
     except AlignmentFormatError as exc:
         where = source_field or ("csv" if source == "csv" else "landxml.document")
-        location = exc.location
+        location, column = exc.location, exc.field
         if exc.location == "curve_overrides":
             where, location = "landxml.curve_overrides", None
+        elif exc.location == "profile":  # the query's (an upload) or the request's option
+            where, location, column = ("profile" if source_field else "landxml.profile"), None, None
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
         if max_curves == MAX_CURVES and reason.startswith("more than"):  # the synchronous request's limit
             reason = as_a_job(reason)
-        raise InvalidAlignment(reason, source=where, location=location, column=exc.field) from None
+        raise InvalidAlignment(reason, source=where, location=location, column=column) from None
 
 
 def _digest(t: CurveTable) -> str:
-    """SHA-256 of the curves (ids, then the float64 columns with -0.0 and every nan made one value)."""
+    """SHA-256 of the curves (ids, then the float64 columns with -0.0 and every nan made one value; a road file's
+    bend columns too)."""
     h = hashlib.sha256(orjson.dumps(t.ids))
-    for a in (t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh, t.station_m):
+    bends = () if t.bends is None else tuple(t.bends.columns.values())
+    for a in (t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh, t.station_m, *bends):
         h.update(np.where(np.isnan(a), np.nan, a + 0.0).astype("<f8").tobytes())
     return h.hexdigest()
 
@@ -201,6 +206,7 @@ def resolve_alignment(
         curves=CurvesDigest(len(table), _digest(table)),
         # the answer names it; the keys of curves and LandXML stay as they were (None: not in the key)
         csv_dialect=None if table.dialect is None else table.dialect.as_dict(),
+        reading=table.reading,
     )
     source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
     return AlignmentJob(resolved, vehicles, table, source)
@@ -269,11 +275,37 @@ def assess_table(case: Case, resolved: ResolvedAssessment, t: CurveTable, solve_
     )
 
 
+def _no_curves() -> AlignmentColumns:
+    """The assessment of no curve: a road file whose alignments have none (a straight road) answers with no rows."""
+    f, b, i = np.empty(0), np.empty(0, dtype=bool), np.empty(0, dtype=np.intp)
+    return AlignmentColumns(
+        radius_m=f,
+        superelevation_percent=f,
+        superelevation_derived=b,
+        grade_percent=f,
+        posted_speed_kmh=f,
+        srt_g=f,
+        rollover_speed_kmh=f,
+        side_friction_speed_kmh=f,
+        side_friction=f,
+        side_friction_clamped=b,
+        safe_speed_kmh=f,
+        governed_by=i,
+        margin_kmh=f,
+        flagged=b,
+        standard_min_radius_m=f,
+        meets_standard_min_radius=i,
+        error=i,
+        errors=[],
+        distinct_cases=0,
+    )
+
+
 def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
     r = job.resolved
     case = assessment_case(r, job.vehicles[index])
     try:
-        cols = assess_table(case, r, job.curves, solve_pairs)
+        cols = assess_table(case, r, job.curves, solve_pairs) if len(job.curves) else _no_curves()
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
     return vehicle_answer(r, index, cols, level_road_srt(case))

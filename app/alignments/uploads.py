@@ -44,7 +44,7 @@ OPTIONS = (
     "max_superelevation_percent",
 )
 LOAD = ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
-LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
+LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh", "profile")
 
 _PRESETS = Field(
     min_length=1,

@@ -36,8 +36,9 @@ from app.compute import solvers
 from app.compute.cache import ResultCache
 from app.compute.resolved import CurvesDigest, ResolvedAlignment, ResolvedAssessment
 from app.compute.results import Computed, cached
-from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv
 from app.formats.jsonpieces import loads_in_pieces
+from app.formats.road_file import ROAD_READERS, read_road_document
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import SOLVE_SECONDS
@@ -100,21 +101,24 @@ def validate_request_data(
 def read_curves(
     req: AlignmentRequest, curves: CurveTable | None, source_field: str | None, max_curves: int = MAX_CURVES
 ) -> CurveTable:
-    """The curves from whichever of ``curves`` (already read), ``csv``, ``landxml`` the request has.
+    """The curves from whichever of ``curves`` (already read), ``csv`` or a road file (``landxml``: a field named as
+    in :data:`app.formats.road_file.ROAD_READERS`) the request has.
 
     ``source_field`` names where a document came from for the error (``body`` for a raw upload)."""
     if curves is not None:
         return curves
-    source = "csv" if req.csv is not None else "landxml"
+    # a road file: the first of the readers' fields the request has (exactly one document is given)
+    source = "csv" if req.csv is not None else next(k for k in ROAD_READERS if getattr(req, k, None) is not None)
     try:
         if source == "csv":
             return read_csv(req.csv, max_curves=max_curves)
-        x = req.landxml
+        x = getattr(req, source)
         overrides = {
             k: CurveOverride(v.superelevation_percent, v.grade_percent, v.posted_speed_kmh)
             for k, v in (x.curve_overrides or {}).items()
         }
-        return read_landxml(
+        return read_road_document(
+            source,
             x.document,
             superelevation_percent=x.superelevation_percent,
             grade_percent=x.grade_percent,
@@ -124,12 +128,12 @@ def read_curves(
             profile=x.profile,
         )
     except AlignmentFormatError as exc:
-        where = source_field or ("csv" if source == "csv" else "landxml.document")
+        where = source_field or ("csv" if source == "csv" else f"{source}.document")
         location, column = exc.location, exc.field
         if exc.location == "curve_overrides":
-            where, location = "landxml.curve_overrides", None
+            where, location = f"{source}.curve_overrides", None
         elif exc.location == "profile":  # the query's (an upload) or the request's option
-            where, location, column = ("profile" if source_field else "landxml.profile"), None, None
+            where, location, column = ("profile" if source_field else f"{source}.profile"), None, None
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
         if max_curves == MAX_CURVES and reason.startswith("more than"):  # the synchronous request's limit
             reason = as_a_job(reason)
@@ -208,7 +212,8 @@ def resolve_alignment(
         csv_dialect=None if table.dialect is None else table.dialect.as_dict(),
         reading=table.reading,
     )
-    source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
+    road = next((k for k in ROAD_READERS if getattr(req, k, None) is not None), "landxml")
+    source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else f"{road}.document")
     return AlignmentJob(resolved, vehicles, table, source)
 
 

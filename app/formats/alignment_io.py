@@ -343,11 +343,11 @@ def read_landxml(
     :func:`app.formats.road_file.curves_from_road_file` makes them: the file's own grade and superelevation where it
     gives them, ``superelevation_percent`` / ``grade_percent`` / ``posted_speed_kmh`` (or ``overrides[curve id]``)
     where it does not. A curve left without a superelevation is derived from the design standard's distribution."""
-    from app.formats.landxml import read_road_file  # here: it imports this module
-    from app.formats.road_file import curves_from_road_file
+    from app.formats.road_file import read_road_document  # here: it imports this module
 
-    return curves_from_road_file(
-        read_road_file(text),
+    return read_road_document(
+        "landxml",
+        text,
         superelevation_percent=superelevation_percent,
         grade_percent=grade_percent,
         posted_speed_kmh=posted_speed_kmh,

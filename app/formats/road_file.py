@@ -16,10 +16,12 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections import Counter
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
+from app.formats import landxml
 from app.formats.alignment_io import (
     BEND_COLUMNS,
     MAX_CURVES,
@@ -47,6 +49,18 @@ from engine.road.geometry import (
 #: (the element is used); below it, rounding in the file
 DISAGREEMENT_PERCENT = 0.05
 SUPERELEVATION_FROM = ("file", "cross-sections", "request", "standard")
+
+
+#: the road-file readers by the request's field that holds their document: each takes the document's text and
+#: returns a :class:`~engine.road.geometry.RoadFile` in SI units (or raises
+#: :class:`~app.formats.alignment_io.AlignmentFormatError`); an IFC 4.3 reader is added here as ``"ifc"``
+ROAD_READERS: dict[str, Callable[[str | bytes], RoadFile]] = {"landxml": landxml.read_road_file}
+
+
+def read_road_document(kind: str, document: str | bytes, **options: Any) -> CurveTable:
+    """The curves of a road file of ``kind`` (a key of :data:`ROAD_READERS`): its reader, then
+    :func:`curves_from_road_file` with ``options``."""
+    return curves_from_road_file(ROAD_READERS[kind](document), **options)
 
 
 def _profile(a: AlignmentGeometry, name: str | None) -> Profile | None:

@@ -177,15 +177,30 @@ class _Reader:
             return "right"
         raise AlignmentFormatError(f"rot must be 'cw' or 'ccw', got {rot!r}", where, "rot")
 
-    def points(self, el: ET.Element, where: str) -> list[tuple[float, float]]:
+    def points(
+        self, el: ET.Element, where: str, names: tuple[str, ...] = ("Start", "End")
+    ) -> list[tuple[float, float]]:
+        """The element's child points in metres as (east, north): LandXML writes "northing easting", and reading
+        them in that order would mirror the plan (a ccw turn would read cw)."""
         out = []
-        for name in ("Start", "End"):
+        for name in names:
             p = _child(el, name)
-            if p is None or not (p.text or "").split():
+            xy = (p.text or "").split() if p is not None else []
+            if len(xy) < 2:
                 raise AlignmentFormatError(f"has no length attribute and no <{name}> point", where, "length")
-            xy = (p.text or "").split()
-            out.append((_float(xy[0], where, name) * self.m, _float(xy[1], where, name) * self.m))
+            out.append((_float(xy[1], where, name) * self.m, _float(xy[0], where, name) * self.m))
         return out
+
+    def arc_from_points(self, el: ET.Element, where: str, direction: str) -> tuple[float, float]:
+        """(radius, length) [m] of a Curve given by its Start, Center and End points (as Aplitop writes them): the
+        radius from the centre to the start, the length the radius times the angle swept in the turn's sense."""
+        (xs, ys), (xc, yc), (xe, ye) = self.points(el, where, ("Start", "Center", "End"))
+        r = math.hypot(xs - xc, ys - yc)
+        if r <= 0.0:
+            raise AlignmentFormatError("its Start and Center points coincide", where, "radius")
+        sweep = math.atan2(ys - yc, xs - xc), math.atan2(ye - yc, xe - xc)
+        angle = (sweep[1] - sweep[0]) if direction == "left" else (sweep[0] - sweep[1])
+        return r, r * (angle % (2 * math.pi))
 
     # ------------------------------------------------------------------------------ horizontal
 
@@ -198,16 +213,21 @@ class _Reader:
                 length = math.hypot(x1 - x0, y1 - y0)
             return HorizontalElement("line", length, station_m=sta, name=label, where=where)
         if name == "Curve":
-            r = self.radius(el, "radius", where)
+            direction = self.direction(el, where)
+            length = self.length(el, "length", where, required=False)
+            if el.get("radius") is None and _child(el, "Center") is not None:
+                r, swept = self.arc_from_points(el, where, direction)
+                length = swept if length is None else length
+            else:
+                r = self.radius(el, "radius", where)
             if math.isinf(r):
                 raise AlignmentFormatError("radius is INF: a Curve must have a finite radius", where, "radius")
-            length = self.length(el, "length", where, required=False)
             if length is None:
                 delta = el.get("delta")
                 if delta is None:
-                    raise AlignmentFormatError("has no length attribute (nor delta)", where, "length")
+                    raise AlignmentFormatError("has no length attribute (nor delta, nor points)", where, "length")
                 length = r * abs(self.units.angle_rad(delta, where, "delta"))
-            return HorizontalElement("arc", length, r, r, self.direction(el, where), sta, None, label, where)
+            return HorizontalElement("arc", length, r, r, direction, sta, None, label, where)
         if name == "Spiral":
             kind = el.get("spiType", "clothoid")
             if kind not in SPIRAL_TYPES:
@@ -316,9 +336,10 @@ class _Reader:
             elif tag == "UnsymParaCurve":
                 before, after = self.length(child, "lengthIn", where), self.length(child, "lengthOut", where)
             elif tag == "CircCurve":
-                radius = self.length(child, "radius", where)
-                if not radius or radius <= 0:
-                    raise AlignmentFormatError("radius must be positive", where, "radius")
+                # some writers (3D-Win) sign the radius: - on a crest; the grades say which it is
+                radius = abs(self.length(child, "radius", where) or 0.0)
+                if radius == 0.0:
+                    raise AlignmentFormatError("radius must not be 0", where, "radius")
             if pts and d <= pts[-1][0]:
                 raise AlignmentFormatError(
                     f"station {sta / self.m:g} is not after the previous point's", where, "station"
@@ -383,15 +404,23 @@ class _Reader:
         for k, cs in enumerate(_children(el, "CrossSect"), start=1):
             self.counts["CrossSect"] += 1
             where = f"{where_a} CrossSect {k}"
-            surf = _child(cs, "DesignCrossSectSurf")
-            if surf is None:
-                self.skipped.append((where, "no <DesignCrossSectSurf>: no design surface to take the slopes from"))
-                continue
             pts = []
-            for p in _children(surf, "CrossSectPnt"):
-                xy = (p.text or "").split()
-                if len(xy) >= 2:
-                    pts.append((_float(xy[0], where, "offset") * self.m, _float(xy[1], where, "elevation") * self.m))
+            surf = _child(cs, "DesignCrossSectSurf")
+            if surf is not None:  # LandXML 1.2: a design surface's points
+                for p in _children(surf, "CrossSectPnt"):
+                    xy = (p.text or "").split()
+                    if len(xy) >= 2:
+                        pts.append(
+                            (_float(xy[0], where, "offset") * self.m, _float(xy[1], where, "elevation") * self.m)
+                        )
+            else:  # as Aplitop writes it: a CrossSectSurf with a PntList2D of offset elevation pairs
+                surf = _child(cs, "CrossSectSurf")
+                plist = _child(surf, "PntList2D") if surf is not None else None
+                if plist is None:
+                    self.skipped.append((where, "no design surface (DesignCrossSectSurf) to take the slopes from"))
+                    continue
+                xs = [_float(t, where, "PntList2D") * self.m for t in (plist.text or "").split()]
+                pts = list(zip(xs[0::2], xs[1::2], strict=False))
             pts.sort()
             left = [p for p in pts if p[0] < 0]
             right = [p for p in pts if p[0] > 0]

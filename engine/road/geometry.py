@@ -188,6 +188,7 @@ class Bend:
     arc starts (a spiral-only bend: its apex), ``arc_length_m`` (0 for a spiral-only bend). ``radius_m``: the
     governing radius; ``deflection_deg``: the change of direction over the row's elements (Sum L/R over arcs,
     L (1/R1 + 1/R2)/2 over each spiral); ``compound``: the arc shares its bend with arcs of another radius;
+    (consecutive arcs of one radius, as a file splits an arc at a station, are one row);
     ``reverse``: the row joins, with no line between, a bend turning the other way; ``elements``: the indices of
     the alignment's elements in the row."""
 
@@ -213,6 +214,14 @@ class Bend:
     def arc_middle_m(self) -> float:
         """The middle of the arc [m] (a spiral-only bend: its apex): where its cross slope is read."""
         return self.arc_start_m + 0.5 * self.arc_length_m
+
+
+#: arcs whose radii differ by less than this (relative) are one arc split by the file (rounding in its digits)
+SAME_RADIUS_RELATIVE = 1e-9
+
+
+def _same_radius(a: float, b: float) -> bool:
+    return abs(a - b) <= SAME_RADIUS_RELATIVE * max(a, b)
 
 
 def _curvature(r: float) -> float:
@@ -272,22 +281,29 @@ def bends(alignment: AlignmentGeometry) -> list[Bend]:
         reverse_in = before is not None and before[-1] + 1 == run[0] and elements[before[-1]].direction != direction
         reverse_out = after is not None and run[-1] + 1 == after[0] and elements[after[0]].direction != direction
         reverse = reverse_in or reverse_out
-        arcs = [k for k in run if elements[k].kind == "arc"]
-        if not arcs:
+        if not any(elements[k].kind == "arc" for k in run):
             out.append(_spiral_bend(elements, starts, run, direction, reverse))
             continue
-        compound = len({elements[k].radius_start_m for k in arcs}) > 1
         groups: list[list[int]] = []
         for k in run:  # each arc takes the spirals before it (first arc only) and after it
-            new_arc = elements[k].kind == "arc" and bool(groups) and any(elements[j].kind == "arc" for j in groups[-1])
-            if not groups or new_arc:
+            last_arc = next((j for j in reversed(groups[-1]) if elements[j].kind == "arc"), None) if groups else None
+            if elements[k].kind == "arc" and last_arc is not None:
+                # an arc split in two by the file (at a station of its own) continues at the same radius
+                same = last_arc == k - 1 and _same_radius(elements[k].radius_start_m, elements[last_arc].radius_start_m)
+                if same:
+                    groups[-1].append(k)
+                else:
+                    groups.append([k])
+            elif not groups:
                 groups.append([k])
             else:
                 groups[-1].append(k)
+        compound = len(groups) > 1
         for g_index, group in enumerate(groups):
-            (arc,) = [k for k in group if elements[k].kind == "arc"]
+            arcs_of = [k for k in group if elements[k].kind == "arc"]
+            arc = arcs_of[0]
             spiral_in = sum(elements[k].length_m for k in group if k < arc)
-            spiral_out = sum(elements[k].length_m for k in group if k > arc)
+            spiral_out = sum(elements[k].length_m for k in group if k > arcs_of[-1])
             deflection = sum(element_deflection_rad(elements[k]) for k in group)
             out.append(
                 Bend(
@@ -296,7 +312,7 @@ def bends(alignment: AlignmentGeometry) -> list[Bend]:
                     start_m=float(starts[group[0]]),
                     end_m=float(starts[group[-1] + 1]),
                     arc_start_m=float(starts[arc]),
-                    arc_length_m=elements[arc].length_m,
+                    arc_length_m=sum(elements[k].length_m for k in arcs_of),
                     spiral_in_m=spiral_in,
                     spiral_out_m=spiral_out,
                     deflection_deg=math.degrees(deflection),

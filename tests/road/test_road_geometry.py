@@ -172,3 +172,11 @@ def test_a_banked_section_is_positive_on_either_hand_and_interpolated_at_the_mid
 def test_a_straight_road_has_no_bends():
     assert bends(alignment(line(100.0), line(50.0))) == []
     assert np.isclose(element_distances(alignment(line(100.0), line(50.0)))[-1], 150.0)
+
+
+def test_an_arc_split_in_two_by_the_file_is_one_row():
+    # Civil 3D writes one arc as two Curves of the same radius (to the 12th digit): one bend, not a compound curve
+    a = alignment(line(10.0), arc(40.0, 800.000000001404), arc(11.0, 799.999999999896), line(10.0))
+    (b,) = bends(a)
+    assert (b.arc_length_m, b.compound, b.elements) == (51.0, False, (1, 2))
+    assert b.deflection_deg == pytest.approx(math.degrees(51.0 / 800.0), rel=1e-11)

@@ -57,7 +57,13 @@ def _r(metres: float, unit: float) -> str:
     return "INF" if math.isinf(metres) else _n(metres, unit)
 
 
-def landxml(design: Design, unit_name: str = "meter", *, element_stations: bool = False) -> str:
+def landxml(
+    design: Design,
+    unit_name: str = "meter",
+    *,
+    element_stations: bool = False,
+    application: str = "tests/landxml_writer.py",
+) -> str:
     """The design as a LandXML 1.2 document in ``unit_name`` (``element_stations``: write every element's
     ``staStart``, as Aplitop and Novapoint do; else only the alignment's, as Civil 3D and OpenRoads do)."""
     u = UNITS[unit_name]
@@ -66,7 +72,7 @@ def landxml(design: Design, unit_name: str = "meter", *, element_stations: bool 
         '<?xml version="1.0" encoding="UTF-8"?>',
         '<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2">',
         f'<Units><{system} linearUnit="{unit_name}" angularUnit="decimal degrees"/></Units>',
-        '<Application name="tests/landxml_writer.py" version="1"/>',
+        f'<Application name="{application}" version="1"/>',
         "<Alignments>",
         f'<Alignment name="{design.name}" staStart="{_n(design.start_station_m, u)}"'
         f' length="{_n(sum(e.length_m for e in design.elements), u)}">',

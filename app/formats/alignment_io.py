@@ -225,14 +225,21 @@ class _Collector:
     def table(self, dialect: CsvDialect | None = None) -> CurveTable:
         a = np.array(self.values, dtype=float).reshape(-1, 5)
         t = CurveTable(self.ids, *(a[:, k].copy() for k in range(5)), where=self.where, dialect=dialect)
-        try:  # the bounds of the JSON form, on the columns
-            check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
-        except InvalidRoad as exc:
-            index, field = (exc.field or "").removeprefix("curves[").split("].", 1)
-            column = self.columns.get(field, field)
-            reason = str(exc).removeprefix(f"curves[{index}].").replace(field, column, 1)
-            raise AlignmentFormatError(reason, self.where[int(index)], column) from None
-        return t
+        return checked(t, self.columns)
+
+
+def checked(t: CurveTable, columns: dict[str, str] | None = None) -> CurveTable:
+    """``t`` if its columns are within the bounds of the JSON form; else the error at the curve's row or element
+    (``t.where``), the column named as the document names it (``columns``: engine field -> the document's name)."""
+    columns = columns or {}
+    try:
+        check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
+    except InvalidRoad as exc:
+        index, field = (exc.field or "").removeprefix("curves[").split("].", 1)
+        column = columns.get(field, field)
+        reason = str(exc).removeprefix(f"curves[{index}].").replace(field, column, 1)
+        raise AlignmentFormatError(reason, t.where[int(index)] if t.where else None, column) from None
+    return t
 
 
 def _header(reader) -> tuple[dict[str, int], dict[str, str]]:

@@ -37,6 +37,8 @@ import math
 import xml.etree.ElementTree as ET
 from collections import Counter
 
+import numpy as np
+
 from app.formats import xmlsafe
 from app.formats.alignment_io import AlignmentFormatError
 from engine.road.geometry import (
@@ -79,14 +81,29 @@ FORMAT = "LandXML"
 
 
 def _children(el: ET.Element, name: str) -> list[ET.Element]:
-    return [c for c in el if xmlsafe.local(c.tag) == name]
+    """``el``'s children named ``name`` in any namespace (a string test per child: there can be a million)."""
+    suffix = "}" + name
+    return [c for c in el if c.tag == name or c.tag.endswith(suffix)]
 
 
 def _child(el: ET.Element, name: str) -> ET.Element | None:
+    suffix = "}" + name
     for c in el:
-        if xmlsafe.local(c.tag) == name:
+        if c.tag == name or c.tag.endswith(suffix):
             return c
     return None
+
+
+def _numbers(texts: list[str], where: str, what: str) -> list[float]:
+    """The numbers of whitespace-separated texts; one not a number (or not finite) is refused naming ``what``."""
+    words = " ".join(texts).split()
+    try:
+        values = [float(w) for w in words]
+    except ValueError:
+        values = []
+    if len(values) != len(words) or not all(map(math.isfinite, values)):
+        values = [_float(w, where, what) for w in words]  # raises, naming the first bad one
+    return values
 
 
 class _Units:
@@ -130,14 +147,18 @@ class _Units:
         return v * ANGULAR_UNITS[self.angular_name]
 
 
+_ROT = {"ccw": "left", "cw": "right"}
+
+
 def _float(text: str | None, where: str, attribute: str) -> float:
-    t = (text or "").strip()
     try:
-        v = float(t)
+        v = float(text or "")  # float() takes surrounding white space itself
     except ValueError:
-        raise AlignmentFormatError(f"{attribute} is not a number: {t[:40]!r}", where, attribute) from None
+        raise AlignmentFormatError(
+            f"{attribute} is not a number: {(text or '').strip()[:40]!r}", where, attribute
+        ) from None
     if not math.isfinite(v):
-        raise AlignmentFormatError(f"{attribute} must be finite, got {t[:40]!r}", where, attribute)
+        raise AlignmentFormatError(f"{attribute} must be finite, got {(text or '').strip()[:40]!r}", where, attribute)
     return v
 
 
@@ -154,7 +175,10 @@ class _Reader:
             if required:
                 raise AlignmentFormatError(f"has no {attribute} attribute", where, attribute)
             return None
-        return _float(text, where, attribute) * self.m
+        v = _float(text, where, attribute) * self.m
+        if v < 0.0 and attribute in ("length", "lengthIn", "lengthOut"):
+            raise AlignmentFormatError(f"{attribute} must not be negative, got {text.strip()[:40]!r}", where, attribute)
+        return v
 
     def radius(self, el: ET.Element, attribute: str, where: str) -> float:
         text = el.get(attribute)
@@ -205,7 +229,18 @@ class _Reader:
     # ------------------------------------------------------------------------------ horizontal
 
     def element(self, el: ET.Element, name: str, where: str, label: str | None) -> HorizontalElement | None:
-        sta = self.length(el, "staStart", where, required=False)
+        get = el.get
+        sta_text = get("staStart")
+        sta = None if sta_text is None else _float(sta_text, where, "staStart") * self.m
+        if name == "Curve":  # the common case first: radius, length and rot given, as numbers (a million of them)
+            r_text, l_text, direction = get("radius"), get("length"), _ROT.get(get("rot") or "")
+            if r_text is not None and l_text is not None and direction is not None:
+                try:
+                    r, length = float(r_text) * self.m, float(l_text) * self.m
+                except ValueError:
+                    r = length = math.nan
+                if 0.0 < r < math.inf and 0.0 <= length < math.inf:
+                    return HorizontalElement("arc", length, r, r, direction, sta, None, label, where)
         if name == "Line":
             length = self.length(el, "length", where, required=False)
             if length is None:
@@ -213,13 +248,14 @@ class _Reader:
                 length = math.hypot(x1 - x0, y1 - y0)
             return HorizontalElement("line", length, station_m=sta, name=label, where=where)
         if name == "Curve":
-            direction = self.direction(el, where)
             length = self.length(el, "length", where, required=False)
             if el.get("radius") is None and _child(el, "Center") is not None:
+                direction = self.direction(el, where)
                 r, swept = self.arc_from_points(el, where, direction)
                 length = swept if length is None else length
             else:
                 r = self.radius(el, "radius", where)
+                direction = self.direction(el, where)
             if math.isinf(r):
                 raise AlignmentFormatError("radius is INF: a Curve must have a finite radius", where, "radius")
             if length is None:
@@ -258,22 +294,43 @@ class _Reader:
         where_a = f"Alignment {a_name[:100]!r}"
         start = self.length(el, "staStart", where_a, required=False) or 0.0
         elements: list[HorizontalElement] = []
-        ordinal: Counter[str] = Counter()
+        ordinal: dict[str, int] = {}
+        prefix, m, inf = f"{where_a} CoordGeom ", self.m, math.inf
+        append = elements.append
         for geom in _children(el, "CoordGeom"):
             for child in geom:
-                name = xmlsafe.local(child.tag)
+                tag = child.tag
+                name = tag[tag.rfind("}") + 1 :]  # xmlsafe.local, inline: once per element of a large file
                 if name == "Feature":
                     continue
-                self.counts[name] += 1
-                ordinal[name] += 1
-                n = ordinal[name]
-                label = child.get("name")
+                n = ordinal[name] = ordinal.get(name, 0) + 1
+                get = child.get
+                label = get("name")
                 if name == "Curve":  # the curve's id as the answer names it: its name, else <alignment>#<n>
                     label = label or f"{a_name}#{n}"
-                where = f"{where_a} CoordGeom {name} #{n}" + (f" ({label[:100]!r})" if label else "")
-                e = self.element(child, name, where, label)
+                    where = f"{prefix}Curve #{n} ({label[:100]!r})"
+                    # the common case inline (a million of them): radius, length, rot and staStart as plain numbers
+                    r_text, l_text, s_text, direction = (
+                        get("radius"),
+                        get("length"),
+                        get("staStart"),
+                        _ROT.get(get("rot")),
+                    )
+                    try:
+                        r, length = float(r_text) * m, float(l_text) * m
+                        sta = None if s_text is None else float(s_text) * m
+                    except (TypeError, ValueError):
+                        r = length = sta = math.nan
+                    if direction and 0.0 < r < inf and 0.0 <= length < inf and (sta is None or -inf < sta < inf):
+                        append(HorizontalElement("arc", length, r, r, direction, sta, None, label, where))
+                        continue
+                else:
+                    where = f"{prefix}{name} #{n}" + (f" ({label[:100]!r})" if label else "")
+                e = self.element(child, name, where, label)  # the careful path: every refusal named
                 if e is not None:
-                    elements.append(e)
+                    append(e)
+        for name, count in ordinal.items():
+            self.counts[name] += count
         a = AlignmentGeometry(a_name, start, tuple(elements), where=where_a)
         equations = self.equations(el, a, where_a)
         a = AlignmentGeometry(a_name, start, tuple(elements), equations, where=where_a)
@@ -283,6 +340,16 @@ class _Reader:
             for k, s in enumerate(_children(el, "Superelevation"), start=1)
         )
         slopes = tuple(s for cs in _children(el, "CrossSects") for s in self.cross_sections(cs, a, where_a))
+        # the ranges' and sections' stations as distances along, in one call each
+        if supers:
+            ends = distance_at(a, np.array([[r.start_distance_m, r.end_distance_m] for r in supers]))
+            supers = tuple(
+                SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
+                for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
+            )
+        if slopes:
+            at = distance_at(a, np.array([c.distance_m for c in slopes])).tolist()
+            slopes = tuple(CrossSlope(d, c.left_percent, c.right_percent) for d, c in zip(at, slopes, strict=True))
         return AlignmentGeometry(a_name, start, tuple(elements), equations, profiles, supers, slopes, where_a)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
@@ -328,7 +395,6 @@ class _Reader:
             if len(xy) < 2:
                 raise AlignmentFormatError("needs 'station elevation' as its text", where, tag)
             sta, z = _float(xy[0], where, "station") * self.m, _float(xy[1], where, "elevation") * self.m
-            d = float(distance_at(a, sta))
             before = after = 0.0
             radius = None
             if tag == "ParaCurve":
@@ -340,13 +406,16 @@ class _Reader:
                 radius = abs(self.length(child, "radius", where) or 0.0)
                 if radius == 0.0:
                     raise AlignmentFormatError("radius must not be 0", where, "radius")
-            if pts and d <= pts[-1][0]:
-                raise AlignmentFormatError(
-                    f"station {sta / self.m:g} is not after the previous point's", where, "station"
-                )
-            pts.append((d, z, before, after, radius, where))
+            pts.append((sta, z, before, after, radius, where))
         if len(pts) < 2:
             raise AlignmentFormatError("needs at least two points (PVI)", where_p, "PVI")
+        distances = distance_at(a, np.array([p[0] for p in pts])).tolist()  # one call for every point
+        for k in range(1, len(pts)):
+            if distances[k] <= distances[k - 1]:
+                raise AlignmentFormatError(
+                    f"station {pts[k][0] / self.m:g} is not after the previous point's", pts[k][5], "station"
+                )
+        pts = [(d, *p[1:]) for d, p in zip(distances, pts, strict=True)]
         n = len(pts)
         grades = [(pts[i + 1][1] - pts[i][1]) / (pts[i + 1][0] - pts[i][0]) for i in range(n - 1)]
         reach_in, reach_out = [0.0] * n, [0.0] * n  # each vertical curve's extent before and after its point
@@ -396,43 +465,44 @@ class _Reader:
         end = value("RunoffSta")
         start = start * self.m if start is not None else self.length(el, "staStart", where)
         end = end * self.m if end is not None else self.length(el, "staEnd", where)
-        d0, d1 = (float(x) for x in distance_at(a, [start, end]))
-        return SuperelevationRange(min(d0, d1), max(d0, d1), full, where)
+        return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
 
     def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> list[CrossSlope]:
         out = []
         for k, cs in enumerate(_children(el, "CrossSect"), start=1):
             self.counts["CrossSect"] += 1
             where = f"{where_a} CrossSect {k}"
-            pts = []
             surf = _child(cs, "DesignCrossSectSurf")
-            if surf is not None:  # LandXML 1.2: a design surface's points
-                for p in _children(surf, "CrossSectPnt"):
-                    xy = (p.text or "").split()
-                    if len(xy) >= 2:
-                        pts.append(
-                            (_float(xy[0], where, "offset") * self.m, _float(xy[1], where, "elevation") * self.m)
-                        )
+            if surf is not None:  # LandXML 1.2: a design surface's points, "offset elevation" each
+                texts = [" ".join((p.text or "").split()[:2]) for p in _children(surf, "CrossSectPnt")]
             else:  # as Aplitop writes it: a CrossSectSurf with a PntList2D of offset elevation pairs
                 surf = _child(cs, "CrossSectSurf")
                 plist = _child(surf, "PntList2D") if surf is not None else None
                 if plist is None:
                     self.skipped.append((where, "no design surface (DesignCrossSectSurf) to take the slopes from"))
                     continue
-                xs = [_float(t, where, "PntList2D") * self.m for t in (plist.text or "").split()]
-                pts = list(zip(xs[0::2], xs[1::2], strict=False))
-            pts.sort()
-            left = [p for p in pts if p[0] < 0]
-            right = [p for p in pts if p[0] > 0]
-            if not left or not right:
+                texts = [plist.text or ""]
+            xs = _numbers(texts, where, "CrossSectPnt")
+            left = right = None  # the points nearest the centreline on each side, and the centreline's own
+            zc = None
+            for x, z in zip(xs[0::2], xs[1::2], strict=False):
+                if x < 0 and (left is None or x > left[0]):
+                    left = (x, z)
+                elif x > 0 and (right is None or x < right[0]):
+                    right = (x, z)
+                elif x == 0:
+                    zc = z
+            if left is None or right is None:
                 self.skipped.append((where, "its design surface has no point on one side of the centreline"))
                 continue
-            (xl, zl), (xr, zr) = left[-1], right[0]
-            zc = next((z for x, z in pts if x == 0), zl + (zr - zl) * (0 - xl) / (xr - xl))
+            (xl, zl), (xr, zr) = left, right
+            if zc is None:
+                zc = zl + (zr - zl) * (0 - xl) / (xr - xl)
+            # slopes are ratios: the file's unit cancels
             sta = self.length(cs, "sta", where)
-            d = float(distance_at(a, sta))
-            # + rising from left to right (engine.road.geometry's convention)
-            out.append(CrossSlope(d, 100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr))
+            # + rising from left to right (engine.road.geometry's convention); the station made a distance by the
+            # caller, with every section's at once
+            out.append(CrossSlope(sta, 100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr))
         return out
 
 

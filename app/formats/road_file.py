@@ -29,20 +29,20 @@ from app.formats.alignment_io import (
     BendTable,
     CurveOverride,
     CurveTable,
-    _Collector,
     check_curve_id,
+    checked,
 )
 from engine.road.geometry import (
     AlignmentGeometry,
     Profile,
     RoadFile,
-    bend_superelevation,
-    bends,
-    covers,
+    bend_columns,
+    covers_many,
     element_distances,
-    grade_at,
-    grade_range,
+    grade_ranges,
+    grades_at,
     station_at,
+    superelevations,
 )
 
 #: cross sections that differ from a ``Superelevation`` element by more than this [percentage points] are reported
@@ -71,6 +71,16 @@ def _profile(a: AlignmentGeometry, name: str | None) -> Profile | None:
     return next((p for p in a.profiles if p.name == name), None)
 
 
+def _written_stations(a: AlignmentGeometry, starts: np.ndarray, distance_m: np.ndarray) -> np.ndarray:
+    """The station as the file writes it at each distance: an element's own ``staStart`` where the distance is that
+    element's start, else the alignment's start station plus the distance (station equations applied)."""
+    own = np.array([math.nan if e.station_m is None else e.station_m for e in a.elements] + [math.nan])
+    d = np.asarray(distance_m, dtype=float)
+    j = np.clip(np.searchsorted(starts, d), 0, len(starts) - 1)
+    written = np.where(starts[j] == d, own[j], math.nan)
+    return np.where(np.isnan(written), station_at(a, d), written)
+
+
 def curves_from_road_file(
     road: RoadFile,
     *,
@@ -84,10 +94,10 @@ def curves_from_road_file(
     """The file's bends as curves (with their :class:`~app.formats.alignment_io.BendTable` and the ``reading``
     summary), the request's values where the file gives none (see the module's docstring). ``profile``: the
     profile's name (default: each alignment's first). Raises :class:`~app.formats.alignment_io.AlignmentFormatError`
-    (an override or a profile that is not in the file, a curve out of the domain's bounds at its element)."""
+    (an override or a profile that is not in the file, a curve out of the domain's bounds at its element). Computed
+    on arrays per alignment (:func:`engine.road.geometry.bend_columns`): a million curves take seconds."""
+    nan = math.nan
     overrides = dict(overrides or {})
-    curves = _Collector({"radius_m": "radius"}, id_column="name", max_curves=max_curves)
-    extra: list[tuple[float, ...]] = []
     skipped = [{"what": what, "why": why} for what, why in road.skipped]
     profiles_used: list[str] = []
     sources: Counter[str] = Counter()
@@ -98,6 +108,9 @@ def curves_from_road_file(
             "profile",
             "profile",
         )
+    ids: list[str] = []
+    where: list[str] = []
+    parts: list[dict[str, np.ndarray]] = []
     for a in road.alignments:
         chosen = _profile(a, profile)
         if chosen is not None and chosen.name not in profiles_used:
@@ -106,85 +119,113 @@ def curves_from_road_file(
             if p is not chosen:
                 why = f"profile {chosen.name!r} used" if chosen is not None else f"no profile named {profile!r} here"
                 skipped.append({"what": f"{a.where} ProfAlign {p.name!r}", "why": f"{why} (choose one with `profile`)"})
+        b = bend_columns(a)
+        n = len(b)
+        if not n:
+            continue
         starts = element_distances(a)
-        written = {float(starts[k]): e.station_m for k, e in enumerate(a.elements) if e.station_m is not None}
-
-        def station(d: float, a: AlignmentGeometry = a, written: dict[float, float] = written) -> float:
-            w = written.get(d)
-            return w if w is not None else float(station_at(a, d))
-
-        no_ranges = dataclasses.replace(a, superelevation=()) if a.superelevation and a.cross_slopes else None
-        apexes = 0
-        for b in bends(a):
-            arc = next((a.elements[k] for k in b.elements if a.elements[k].kind == "arc"), None)
-            if arc is not None:
-                cid, where = arc.name or "", arc.where
+        apex = 0
+        for k, arc in enumerate(b.arc_element.tolist()):
+            if arc >= 0:
+                e = a.elements[arc]
+                ids.append(e.name or "")
+                where.append(e.where)
             else:
-                apexes += 1
-                cid = f"{a.name}#apex{apexes}"
-                first = a.elements[b.elements[0]]
-                where = f"{first.where}: the bend of spirals {cid!r}"
-            cid = check_curve_id(cid, where, "name")
-            ov = overrides.pop(cid, CurveOverride())
-            e_req = ov.superelevation_percent if ov.superelevation_percent is not None else superelevation_percent
-            g_req = ov.grade_percent if ov.grade_percent is not None else grade_percent
-            v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
-            if chosen is not None and covers(chosen, b.start_m, b.end_m):
-                g = 100.0 * grade_at(chosen, b.middle_m)
-                g_lo, g_hi = (100.0 * x for x in grade_range(chosen, b.start_m, b.end_m))
-                g_src = 1.0
-            else:
-                g, g_lo, g_hi, g_src = g_req, math.nan, math.nan, 0.0
-            from_file = bend_superelevation(a, b)
-            if from_file is not None:
-                e, how = from_file
-                e_src = float(("file", "cross-sections").index(how))
-                sources[how] += 1
-                if how == "file" and no_ranges is not None:
-                    sections = bend_superelevation(no_ranges, b)
-                    if sections is not None and abs(sections[0] - e) > DISAGREEMENT_PERCENT:
-                        skipped.append(
-                            {
-                                "what": f"{a.where} cross sections at curve {cid!r}",
-                                "why": f"they give {sections[0]:.2f} %, the <Superelevation> element {e:.2f} %: "
-                                "the element is used",
-                            }
-                        )
-            else:
-                e, e_src = e_req, math.nan
-                sources["request" if e_req is not None else "standard"] += 1
-            try:
-                curves.add(cid, where, b.radius_m, e, g, v, station(b.arc_start_m))
-            except AlignmentFormatError as exc:
-                if exc.field == "name":
-                    raise AlignmentFormatError(f"duplicate curve name {cid!r}", where, "name") from None
-                raise
-            extra.append(
-                (
-                    b.arc_start_m,
-                    station(b.start_m),
-                    station(b.end_m),
-                    0.0 if b.direction == "left" else 1.0,
-                    b.arc_length_m,
-                    b.deflection_deg,
-                    b.spiral_in_m,
-                    b.spiral_out_m,
-                    float(b.compound),
-                    float(b.reverse),
-                    g_src,
-                    g_lo,
-                    g_hi,
-                    e_src,
+                apex += 1
+                cid = f"{a.name}#apex{apex}"
+                ids.append(cid)
+                where.append(f"{a.elements[int(b.first_element[k])].where}: the bend of spirals {cid!r}")
+            if len(ids) > max_curves:
+                raise AlignmentFormatError(f"more than {max_curves} curves", where[-1])
+        middle = 0.5 * (b.start_m + b.end_m)
+        if chosen is not None:
+            covered = covers_many(chosen, b.start_m, b.end_m)
+            g_lo, g_hi = grade_ranges(chosen, b.start_m, b.end_m)
+            g_file = 100.0 * grades_at(chosen, middle)
+        else:
+            covered = np.zeros(n, dtype=bool)
+            g_lo = g_hi = g_file = np.full(n, nan)
+        e_file, e_from = superelevations(a, b)
+        if a.superelevation and a.cross_slopes:  # the element wins; cross sections that say otherwise are reported
+            e_sections, s_from = superelevations(dataclasses.replace(a, superelevation=()), b)
+            differ = (e_from == 0) & (s_from == 1) & (np.abs(e_sections - e_file) > DISAGREEMENT_PERCENT)
+            first = len(ids) - n
+            for k in np.flatnonzero(differ).tolist():
+                skipped.append(
+                    {
+                        "what": f"{a.where} cross sections at curve {ids[first + k]!r}",
+                        "why": f"they give {e_sections[k]:.2f} %, the <Superelevation> element {e_file[k]:.2f} %: "
+                        "the element is used",
+                    }
                 )
-            )
-    if overrides:
-        raise AlignmentFormatError(
-            f"overrides name curves that are not in the file: {', '.join(sorted(overrides))}", "curve_overrides"
+        parts.append(
+            {
+                "radius_m": b.radius_m,
+                "e_file": e_file,
+                "superelevation_from": e_from,
+                "g_file": np.where(covered, g_file, nan),
+                "grade_source": covered.astype(float),
+                "grade_min_percent": np.where(covered, 100.0 * g_lo, nan),
+                "grade_max_percent": np.where(covered, 100.0 * g_hi, nan),
+                "station_m": _written_stations(a, starts, b.arc_start_m),
+                "distance_m": b.arc_start_m,
+                "bend_start_m": _written_stations(a, starts, b.start_m),
+                "bend_end_m": _written_stations(a, starts, b.end_m),
+                "direction": b.direction.astype(float),
+                "arc_length_m": b.arc_length_m,
+                "deflection_deg": b.deflection_deg,
+                "spiral_in_m": b.spiral_in_m,
+                "spiral_out_m": b.spiral_out_m,
+                "compound": b.compound.astype(float),
+                "reverse": b.reverse.astype(float),
+            }
         )
-    if not sources:
+    seen: set[str] = set()
+    for cid, w in zip(ids, where, strict=True):
+        check_curve_id(cid, w, "name")
+        if cid in seen:
+            raise AlignmentFormatError(f"duplicate curve name {cid!r}", w, "name")
+        seen.add(cid)
+    n = len(ids)
+    col = {k: np.concatenate([p[k] for p in parts]) if parts else np.empty(0) for k in _PART_COLUMNS}
+    # the request's values, per curve where overridden: the fallbacks where the file gives nothing
+    e_req = np.full(n, nan if superelevation_percent is None else superelevation_percent)
+    g_req = np.full(n, float(grade_percent))
+    v_req = np.full(n, nan if posted_speed_kmh is None else posted_speed_kmh)
+    if overrides:
+        index = {cid: k for k, cid in enumerate(ids)}
+        unknown = sorted(set(overrides) - set(index))
+        if unknown:
+            raise AlignmentFormatError(
+                f"overrides name curves that are not in the file: {', '.join(unknown)}", "curve_overrides"
+            )
+        for cid, ov in overrides.items():
+            k = index[cid]
+            if ov.superelevation_percent is not None:
+                e_req[k] = ov.superelevation_percent
+            if ov.grade_percent is not None:
+                g_req[k] = ov.grade_percent
+            if ov.posted_speed_kmh is not None:
+                v_req[k] = ov.posted_speed_kmh
+    from_file = ~np.isnan(col["superelevation_from"])
+    sources["file"] += int((col["superelevation_from"] == 0).sum())
+    sources["cross-sections"] += int((col["superelevation_from"] == 1).sum())
+    sources["request"] += int((~from_file & ~np.isnan(e_req)).sum())
+    sources["standard"] += int((~from_file & np.isnan(e_req)).sum())
+    if not n:
         sources["request" if superelevation_percent is not None else "standard"] += 1
-    table = curves.table()
-    cols = np.array(extra, dtype=float).reshape(-1, len(BEND_COLUMNS))
+    table = checked(
+        CurveTable(
+            ids,
+            col["radius_m"],
+            np.where(from_file, col["e_file"], e_req),
+            np.where(col["grade_source"] == 1.0, col["g_file"], g_req),
+            v_req,
+            col["station_m"],
+            where=where,
+        ),
+        {"radius_m": "radius"},
+    )
     reading: dict[str, Any] = {
         "format": road.format,
         "writer": road.writer,
@@ -196,5 +237,9 @@ def curves_from_road_file(
         "superelevation_from": max(SUPERELEVATION_FROM, key=lambda s: (sources[s], -SUPERELEVATION_FROM.index(s))),
         "skipped": skipped,
     }
-    bend_table = BendTable({name: cols[:, k].copy() for k, name in enumerate(BEND_COLUMNS)})
+    bend_table = BendTable({name: np.ascontiguousarray(col[name], dtype=float) for name in BEND_COLUMNS})
     return dataclasses.replace(table, bends=bend_table, reading=reading)
+
+
+#: what each alignment contributes, concatenated over the alignments
+_PART_COLUMNS = ("radius_m", "e_file", "g_file", "station_m", *BEND_COLUMNS)

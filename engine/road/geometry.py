@@ -237,119 +237,157 @@ def element_deflection_rad(e: HorizontalElement) -> float:
     return e.length_m * 0.5 * (_curvature(e.radius_start_m) + _curvature(e.radius_end_m))
 
 
-def _runs(elements: tuple[HorizontalElement, ...]) -> list[list[int]]:
-    """The runs of consecutive curved elements that turn one way with no straight point between them: a run ends
-    at a line, where the direction changes, and where two spirals meet at an infinite radius."""
-    runs: list[list[int]] = []
-    current: list[int] = []
-    for k, e in enumerate(elements):
-        straight = e.kind == "line" or (math.isinf(e.radius_start_m) and math.isinf(e.radius_end_m))
-        if straight or e.length_m <= 0.0:
-            if current:
-                runs.append(current)
-            current = []
-            continue
-        if current:
-            prev = elements[current[-1]]
-            straight_between = math.isinf(prev.radius_end_m) and math.isinf(e.radius_start_m)
-            if prev.direction != e.direction or straight_between:
-                runs.append(current)
-                current = []
-        current.append(k)
-    if current:
-        runs.append(current)
-    return runs
+@dataclass(frozen=True)
+class BendColumns:
+    """The alignment's rows (:class:`Bend`) as arrays, one entry per row: what :func:`bend_columns` computes on the
+    elements' arrays (a million elements in a fraction of a second). ``direction``: 0 left, 1 right;
+    ``first_element``/``last_element``: the row's elements' indices; ``arc_element``: its first arc's (-1 for a bend
+    made only of spirals)."""
+
+    direction: np.ndarray
+    radius_m: np.ndarray
+    start_m: np.ndarray
+    end_m: np.ndarray
+    arc_start_m: np.ndarray
+    arc_length_m: np.ndarray
+    spiral_in_m: np.ndarray
+    spiral_out_m: np.ndarray
+    deflection_deg: np.ndarray
+    compound: np.ndarray
+    reverse: np.ndarray
+    first_element: np.ndarray
+    arc_element: np.ndarray
+    last_element: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.radius_m)
+
+    def bend(self, i: int) -> Bend:
+        """Row ``i`` as a :class:`Bend`."""
+        return Bend(
+            direction="left" if self.direction[i] == 0 else "right",
+            radius_m=float(self.radius_m[i]),
+            start_m=float(self.start_m[i]),
+            end_m=float(self.end_m[i]),
+            arc_start_m=float(self.arc_start_m[i]),
+            arc_length_m=float(self.arc_length_m[i]),
+            spiral_in_m=float(self.spiral_in_m[i]),
+            spiral_out_m=float(self.spiral_out_m[i]),
+            deflection_deg=float(self.deflection_deg[i]),
+            compound=bool(self.compound[i]),
+            reverse=bool(self.reverse[i]),
+            elements=tuple(range(int(self.first_element[i]), int(self.last_element[i]) + 1)),
+        )
+
+
+def _first_and_last(groups: np.ndarray, positions: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """For non-decreasing group numbers ``groups`` of the sorted ``positions``: each group's first and last
+    position (-1 for a group of none), ``n`` groups."""
+    first, last = np.full(n, -1), np.full(n, -1)
+    if len(groups):
+        head = np.r_[True, groups[1:] != groups[:-1]]
+        tail = np.r_[groups[1:] != groups[:-1], True]
+        first[groups[head]] = positions[head]
+        last[groups[tail]] = positions[tail]
+    return first, last
+
+
+def bend_columns(alignment: AlignmentGeometry) -> BendColumns:
+    """The alignment's rows, in order of distance (see :class:`Bend`), as arrays.
+
+    Runs of curved elements turning one way with no straight point between them (a line, a zero length, or two
+    spirals meeting at an infinite radius end a run; so does a change of direction) give one row per circular arc:
+    the spirals before the run's first arc are its ``spiral_in``, those after an arc (up to the next arc or the run's
+    end) its ``spiral_out``, so every element is in exactly one row and the rows' deflections add up to the run's;
+    consecutive arcs of one radius (a file's split) are one row. A run without an arc is one row at its smallest
+    radius. Rows of a run with several are ``compound``; a run that meets a run turning the other way with no
+    straight element between them is a reverse curve (its row at that end is ``reverse``).
+    """
+    el = alignment.elements
+    n = len(el)
+    kind = np.fromiter((0 if e.kind == "line" else 1 if e.kind == "arc" else 2 for e in el), np.int8, n)
+    length = np.fromiter((e.length_m for e in el), float, n)
+    r1 = np.fromiter((e.radius_start_m for e in el), float, n)
+    r2 = np.fromiter((e.radius_end_m for e in el), float, n)
+    dirn = np.fromiter((1 if e.direction == "right" else 0 if e.direction == "left" else -1 for e in el), np.int8, n)
+    starts = np.concatenate(([0.0], np.cumsum(length)))
+    is_arc = kind == 1
+    straight = (kind == 0) | (np.isinf(r1) & np.isinf(r2)) | (length <= 0.0)
+    curved = ~straight
+    brk = np.ones(n, dtype=bool)
+    brk[1:] = straight[:-1] | (dirn[1:] != dirn[:-1]) | (np.isinf(r2[:-1]) & np.isinf(r1[1:]))
+    run_start = curved & brk
+    positions = np.arange(n)
+    run_first = np.maximum.accumulate(np.where(run_start, positions, 0))
+    arcs_upto = np.cumsum(is_arc)
+    arcs_before = (arcs_upto - is_arc) - (arcs_upto[run_first] - is_arc[run_first])  # in the run, before this one
+    same_as_before = np.zeros(n, dtype=bool)
+    rel = SAME_RADIUS_RELATIVE * np.maximum(r1[1:], r1[:-1])
+    with np.errstate(invalid="ignore"):  # inf - inf where neither is an arc
+        same_radius = np.abs(r1[1:] - r1[:-1]) <= rel
+    same_as_before[1:] = is_arc[1:] & is_arc[:-1] & ~run_start[1:] & same_radius
+    group_start = curved & (run_start | (is_arc & (arcs_before > 0) & ~same_as_before))
+    idx = np.flatnonzero(curved)
+    g = (np.cumsum(group_start) - 1)[idx]
+    runs = (np.cumsum(run_start) - 1)[idx]
+    ng = int(g[-1]) + 1 if len(g) else 0
+    first, last = _first_and_last(g, idx, ng)
+    arc_mask = is_arc[idx]
+    first_arc, last_arc = _first_and_last(g[arc_mask], idx[arc_mask], ng)
+    with np.errstate(over="ignore", divide="ignore"):  # a radius too small to invert is refused by the bounds later
+        curvature = np.where(np.isinf(r1), 0.0, 1.0 / r1) + np.where(np.isinf(r2), 0.0, 1.0 / r2)
+    deflection = np.where(kind == 0, 0.0, length * 0.5 * curvature)  # L/R on an arc, L (1/R1 + 1/R2)/2 on a spiral
+    turn = np.bincount(g, weights=deflection[idx], minlength=ng)
+    arc_length = np.bincount(g, weights=np.where(is_arc, length, 0.0)[idx], minlength=ng)
+    has_arc = first_arc >= 0
+    fa, la = np.where(has_arc, first_arc, 0), np.where(has_arc, last_arc, 0)
+    radius = np.where(has_arc, r1[fa], np.inf)
+    arc_start = np.where(has_arc, starts[fa], np.nan)
+    spiral_in = np.where(has_arc, starts[fa] - starts[first], 0.0)
+    spiral_out = np.where(has_arc, starts[last + 1] - starts[la + 1], 0.0)
+    for k in np.flatnonzero(~has_arc).tolist():  # spirals only: the smallest radius, at an element's end
+        best, apex = math.inf, float(starts[first[k]])
+        for j in range(int(first[k]), int(last[k]) + 1):
+            for r, d in ((r1[j], starts[j]), (r2[j], starts[j + 1])):
+                if r < best:
+                    best, apex = float(r), float(d)
+        radius[k], arc_start[k] = best, apex
+        spiral_in[k], spiral_out[k] = apex - starts[first[k]], starts[last[k] + 1] - apex
+    # per run: its groups, its ends, and whether it meets a run turning the other way with nothing straight between
+    run_of_group = runs[np.r_[True, g[1:] != g[:-1]]] if len(g) else np.empty(0, dtype=int)
+    nr = int(runs[-1]) + 1 if len(runs) else 0
+    groups_in_run = np.bincount(run_of_group, minlength=nr)
+    run_first_el, run_last_el = _first_and_last(runs, idx, nr)
+    meets_next = np.zeros(nr, dtype=bool)
+    if nr > 1:
+        meets_next[:-1] = (run_last_el[:-1] + 1 == run_first_el[1:]) & (
+            dirn[run_last_el[:-1]] != dirn[run_first_el[1:]]
+        )
+    reverse_out, reverse_in = meets_next, np.r_[False, meets_next[:-1]] if nr else meets_next
+    first_of_run = np.r_[True, run_of_group[1:] != run_of_group[:-1]] if ng else np.empty(0, dtype=bool)
+    last_of_run = np.r_[run_of_group[1:] != run_of_group[:-1], True] if ng else np.empty(0, dtype=bool)
+    return BendColumns(
+        direction=dirn[first].astype(np.int8) if ng else np.empty(0, np.int8),
+        radius_m=radius,
+        start_m=starts[first] if ng else np.empty(0),
+        end_m=starts[last + 1] if ng else np.empty(0),
+        arc_start_m=arc_start,
+        arc_length_m=arc_length,
+        spiral_in_m=spiral_in,
+        spiral_out_m=spiral_out,
+        deflection_deg=np.degrees(turn),
+        compound=has_arc & (groups_in_run[run_of_group] > 1),
+        reverse=(first_of_run & reverse_in[run_of_group]) | (last_of_run & reverse_out[run_of_group]),
+        first_element=first,
+        arc_element=first_arc,
+        last_element=last,
+    )
 
 
 def bends(alignment: AlignmentGeometry) -> list[Bend]:
-    """The alignment's assessed rows, in order of distance (see :class:`Bend`).
-
-    Each run of curved elements between straight points (lines, or spirals meeting at an infinite radius) that
-    turns one way gives one row per circular arc; the spirals before the first arc are its ``spiral_in``, those
-    after an arc (up to the next arc or the run's end) its ``spiral_out``, so every element is in exactly one row and
-    the rows' deflections add up to the run's. A run without an arc is one row at its smallest radius. Runs that
-    meet with no straight element between them and turn opposite ways are reverse curves.
-    """
-    elements = alignment.elements
-    starts = element_distances(alignment)
-    runs = _runs(elements)
-    out: list[Bend] = []
-    for r_index, run in enumerate(runs):
-        direction = elements[run[0]].direction or "left"
-        before = runs[r_index - 1] if r_index > 0 else None
-        after = runs[r_index + 1] if r_index + 1 < len(runs) else None
-        reverse_in = before is not None and before[-1] + 1 == run[0] and elements[before[-1]].direction != direction
-        reverse_out = after is not None and run[-1] + 1 == after[0] and elements[after[0]].direction != direction
-        reverse = reverse_in or reverse_out
-        if not any(elements[k].kind == "arc" for k in run):
-            out.append(_spiral_bend(elements, starts, run, direction, reverse))
-            continue
-        groups: list[list[int]] = []
-        for k in run:  # each arc takes the spirals before it (first arc only) and after it
-            last_arc = next((j for j in reversed(groups[-1]) if elements[j].kind == "arc"), None) if groups else None
-            if elements[k].kind == "arc" and last_arc is not None:
-                # an arc split in two by the file (at a station of its own) continues at the same radius
-                same = last_arc == k - 1 and _same_radius(elements[k].radius_start_m, elements[last_arc].radius_start_m)
-                if same:
-                    groups[-1].append(k)
-                else:
-                    groups.append([k])
-            elif not groups:
-                groups.append([k])
-            else:
-                groups[-1].append(k)
-        compound = len(groups) > 1
-        for g_index, group in enumerate(groups):
-            arcs_of = [k for k in group if elements[k].kind == "arc"]
-            arc = arcs_of[0]
-            spiral_in = sum(elements[k].length_m for k in group if k < arc)
-            spiral_out = sum(elements[k].length_m for k in group if k > arcs_of[-1])
-            deflection = sum(element_deflection_rad(elements[k]) for k in group)
-            out.append(
-                Bend(
-                    direction=direction,
-                    radius_m=elements[arc].radius_start_m,
-                    start_m=float(starts[group[0]]),
-                    end_m=float(starts[group[-1] + 1]),
-                    arc_start_m=float(starts[arc]),
-                    arc_length_m=sum(elements[k].length_m for k in arcs_of),
-                    spiral_in_m=spiral_in,
-                    spiral_out_m=spiral_out,
-                    deflection_deg=math.degrees(deflection),
-                    compound=compound,
-                    # the row that meets the opposite bend
-                    reverse=(g_index == 0 and reverse_in) or (g_index == len(groups) - 1 and reverse_out),
-                    elements=tuple(group),
-                )
-            )
-    return out
-
-
-def _spiral_bend(
-    elements: tuple[HorizontalElement, ...], starts: np.ndarray, run: list[int], direction: Direction, reverse: bool
-) -> Bend:
-    """A run of spirals: assessed at its smallest radius, found at an element's end (a clothoid's radius is monotone
-    along it); the apex is the first point where it is reached."""
-    radius, apex = math.inf, float(starts[run[0]])
-    for k in run:
-        for r, d in ((elements[k].radius_start_m, starts[k]), (elements[k].radius_end_m, starts[k + 1])):
-            if r < radius:
-                radius, apex = r, float(d)
-    start, end = float(starts[run[0]]), float(starts[run[-1] + 1])
-    return Bend(
-        direction=direction,
-        radius_m=radius,
-        start_m=start,
-        end_m=end,
-        arc_start_m=apex,
-        arc_length_m=0.0,
-        spiral_in_m=apex - start,
-        spiral_out_m=end - apex,
-        deflection_deg=math.degrees(sum(element_deflection_rad(elements[k]) for k in run)),
-        compound=False,
-        reverse=reverse,
-        elements=tuple(run),
-    )
+    """The alignment's rows as :class:`Bend` records (:func:`bend_columns`)."""
+    cols = bend_columns(alignment)
+    return [cols.bend(i) for i in range(len(cols))]
 
 
 # ---------------------------------------------------------------------------------------------- profile
@@ -406,38 +444,129 @@ def covers(profile: Profile, start_m: float, end_m: float, tolerance_m: float = 
     return a - tolerance_m <= start_m and end_m <= b + tolerance_m
 
 
+def _segment_table(profile: Profile) -> tuple[np.ndarray, ...]:
+    """The profile's segments as arrays: start, length, kind (0 constant, 1 parabola, 2 circle), start and end
+    grade, the circle's radius, the sine of its start angle and its sense (+1 sag, -1 crest)."""
+    segs = profile.segments
+    start = np.array([x.start_distance_m for x in segs])
+    length = np.array([x.length_m for x in segs])
+    kind = np.array([0 if x.kind == "constant" or x.length_m <= 0 else 1 if x.kind == "parabolic" else 2 for x in segs])
+    g0 = np.array([x.start_grade for x in segs])
+    g1 = np.array([x.end_grade for x in segs])
+    sin0 = np.sin(np.arctan(g0))
+    radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs])
+    with np.errstate(divide="ignore"):  # R = L / |sin(theta1) - sin(theta0)| where the file gave none
+        from_grades = length / np.abs(np.sin(np.arctan(g1)) - sin0)
+    radius = np.where(np.isinf(radius) & (kind == 2), from_grades, radius)
+    sense = np.where(g1 >= g0, 1.0, -1.0)
+    return start, length, kind, g0, g1, radius, sin0, sense
+
+
+def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = False) -> np.ndarray:
+    """:func:`grade_at` at many distances (ratios); ``from_before``: at a segment's start, the grade at the end of
+    the segment before it (the left limit), as the end of a range takes it."""
+    start, length, kind, g0, g1, radius, sin0, sense = _segment_table(profile)
+    d = np.asarray(distance_m, dtype=float)
+    k = np.clip(np.searchsorted(start, d, side="left" if from_before else "right") - 1, 0, len(start) - 1)
+    u = np.clip(d - start[k], 0.0, length[k])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        parabola = g0[k] + (g1[k] - g0[k]) * u / length[k]
+        circle = np.tan(np.arcsin(np.clip(sin0[k] + sense[k] * u / radius[k], -1.0, 1.0)))
+    return np.where(kind[k] == 0, g0[k], np.where(kind[k] == 1, parabola, circle))
+
+
+def grade_ranges(profile: Profile, start_m: np.ndarray, end_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`grade_range` over many ranges: the grades at each range's ends and at both sides of every segment
+    boundary inside it (every segment's grade is monotone)."""
+    seg_start = _segment_table(profile)[0]
+    a, b = np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float)
+    ga, gb = grades_at(profile, a), grades_at(profile, b, from_before=True)
+    lo, hi = np.minimum(ga, gb), np.maximum(ga, gb)
+    bounds = seg_start[1:]
+    if not len(bounds):
+        return lo, hi
+    first = np.searchsorted(bounds, a, side="right")
+    stop = np.searchsorted(bounds, b, side="left")
+    for t in range(int((stop - first).max(initial=0))):
+        inside = first + t < stop
+        k = np.minimum(first + t, len(bounds) - 1)
+        for g in (grades_at(profile, bounds[k], from_before=True), grades_at(profile, bounds[k])):
+            lo = np.where(inside, np.minimum(lo, g), lo)
+            hi = np.where(inside, np.maximum(hi, g), hi)
+    return lo, hi
+
+
+def covers_many(profile: Profile, start_m: np.ndarray, end_m: np.ndarray, tolerance_m: float = 1e-6) -> np.ndarray:
+    """:func:`covers` for many ranges."""
+    a, b = profile_range_m(profile)
+    return (a - tolerance_m <= np.asarray(start_m)) & (np.asarray(end_m) <= b + tolerance_m)
+
+
 # ---------------------------------------------------------------------------------------------- superelevation
 
 SuperelevationFrom = Literal["file", "cross-sections"]
 
 
-def bend_superelevation(alignment: AlignmentGeometry, bend: Bend) -> tuple[float, SuperelevationFrom] | None:
-    """The bend's superelevation [%] and where it came from, or None when the file gives none over it.
+def superelevations(alignment: AlignmentGeometry, cols: BendColumns) -> tuple[np.ndarray, np.ndarray]:
+    """Each row's superelevation [%] from the file and where it came from (0: a ``SuperelevationRange``, 1: the
+    cross slopes; nan: none, and the value nan).
 
-    A ``SuperelevationRange`` (the file's own statement) wins: the one containing the arc's middle, else the one
-    overlapping the bend most. Else the cross slopes of the sections within the bend: the outside lane's slope,
-    signed toward the inside (see the module's conventions; a normal crown kept through the curve is negative),
-    linearly interpolated at the arc's middle (the apex of a spiral-only bend) between the sections around it
-    (the nearest section where the middle is outside them)."""
-    mid = bend.arc_middle_m
-    ranges = alignment.superelevation
-    if ranges:
-        containing = [r for r in ranges if r.start_distance_m <= mid <= r.end_distance_m]
-        if containing:
-            return containing[0].full_percent, "file"
-        overlap = [
-            (min(r.end_distance_m, bend.end_m) - max(r.start_distance_m, bend.start_m), r.full_percent) for r in ranges
-        ]
-        best = max(overlap)
-        if best[0] > 0.0:
-            return best[1], "file"
-    sections = [c for c in alignment.cross_slopes if bend.start_m <= c.distance_m <= bend.end_m]
-    if not sections:
+    A ``SuperelevationRange`` (the file's own statement) wins: the one containing the arc's middle (the apex of a
+    spiral-only bend), else of the ranges beside that point the one overlapping the bend most. Else the cross slopes
+    of the sections within the bend: the outside lane's slope, signed toward the inside (see the module's
+    conventions; a normal crown kept through the curve is negative), linearly interpolated at the arc's middle
+    between the sections around it (the nearest section where the middle is outside them)."""
+    n = len(cols)
+    mid = cols.arc_start_m + 0.5 * cols.arc_length_m
+    value, source = np.full(n, np.nan), np.full(n, np.nan)
+    ranges = sorted(alignment.superelevation, key=lambda r: r.start_distance_m)
+    if ranges and n:
+        rs = np.array([r.start_distance_m for r in ranges])
+        re = np.array([r.end_distance_m for r in ranges])
+        full = np.array([r.full_percent for r in ranges])
+        k = np.searchsorted(rs, mid, side="right") - 1
+        kc = np.clip(k, 0, len(rs) - 1)
+        contained = (k >= 0) & (mid <= re[kc])
+        best, best_overlap = np.full(n, -1), np.zeros(n)
+        for cand in (kc, np.clip(k + 1, 0, len(rs) - 1), np.clip(k - 1, 0, len(rs) - 1)):
+            overlap = np.minimum(re[cand], cols.end_m) - np.maximum(rs[cand], cols.start_m)
+            better = overlap > best_overlap
+            best, best_overlap = np.where(better, cand, best), np.where(better, overlap, best_overlap)
+        pick = np.where(contained, kc, best)
+        found = pick >= 0
+        value = np.where(found, full[np.maximum(pick, 0)], np.nan)
+        source = np.where(found, 0.0, np.nan)
+    slopes = sorted(alignment.cross_slopes, key=lambda c: c.distance_m)
+    if slopes and n:
+        d = np.array([c.distance_m for c in slopes])
+        lo = np.searchsorted(d, cols.start_m, side="left")
+        hi = np.searchsorted(d, cols.end_m, side="right")
+        within = (hi > lo) & np.isnan(source)
+        at = np.clip(mid, d[np.minimum(lo, len(d) - 1)], d[np.clip(hi - 1, 0, len(d) - 1)])
+        # a left-hand curve's outside lane is the right one: rising left to right is banked toward the inside
+        right = np.interp(at, d, np.array([c.right_percent for c in slopes]))
+        left = -np.interp(at, d, np.array([c.left_percent for c in slopes]))
+        value = np.where(within, np.where(cols.direction == 0, right, left), value)
+        source = np.where(within, 1.0, source)
+    return value, source
+
+
+def _one_row(b: Bend) -> BendColumns:
+    def a(x: float) -> np.ndarray:
+        return np.array([x], dtype=float)
+
+    return BendColumns(
+        np.array([0 if b.direction == "left" else 1], np.int8),
+        a(b.radius_m), a(b.start_m), a(b.end_m), a(b.arc_start_m), a(b.arc_length_m), a(b.spiral_in_m),
+        a(b.spiral_out_m), a(b.deflection_deg), np.array([b.compound]), np.array([b.reverse]),
+        np.array([b.elements[0]]), np.array([-1]), np.array([b.elements[-1]]),
+    )  # fmt: skip
+
+
+def bend_superelevation(alignment: AlignmentGeometry, bend: Bend) -> tuple[float, SuperelevationFrom] | None:
+    """One bend's superelevation [%] and where it came from (:func:`superelevations`), or None when the file gives
+    none over it."""
+    value, source = superelevations(alignment, _one_row(bend))
+    if np.isnan(source[0]):
         return None
-    sections.sort(key=lambda c: c.distance_m)
-    d = np.array([c.distance_m for c in sections])
-    if bend.direction == "left":  # outside: the right lane; rising left to right is banked toward the inside
-        e = np.array([c.right_percent for c in sections])
-    else:
-        e = -np.array([c.left_percent for c in sections])
-    return float(np.interp(mid, d, e)), "cross-sections"
+    return float(value[0]), ("file", "cross-sections")[int(source[0])]

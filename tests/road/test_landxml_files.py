@@ -392,3 +392,16 @@ def test_unknown_units_and_elements_are_refused_by_name(edit, where, field, mess
     with pytest.raises(AlignmentFormatError) as exc:
         read_road_file(doc)
     assert where in exc.value.location and exc.value.field == field and message in str(exc.value)
+
+
+@pytest.mark.parametrize("unit", ["foot", "USSurveyFoot", "millimeter"])
+def test_cross_sections_in_feet_give_the_slopes_in_metres(unit):
+    # a left-hand then a right-hand curve, banked 6 % and 4 % toward their insides by the sections through them
+    elements = [Element("Line", 100.0), Element("Curve", 100.0, 300.0, 300.0, "ccw", "L"), Element("Line", 100.0)]
+    elements += [Element("Curve", 100.0, 250.0, 250.0, "cw", "R"), Element("Line", 100.0)]
+    sections = [(150.0, 6.0, 6.0, 3.5), (350.0, -4.0, -4.0, 3.65)]
+    rows = [read_landxml(landxml(Design("X", 0.0, elements, cross_sections=sections), u), superelevation_percent=None)
+            for u in ("meter", unit)]  # fmt: skip
+    for t in rows:
+        np.testing.assert_allclose(t.superelevation_percent, [6.0, 4.0], rtol=1e-9)
+        assert list(t.bends["superelevation_from"]) == [1.0, 1.0]

@@ -26,6 +26,8 @@ from engine.road.geometry import (
     element_distances,
     grade_at,
     grade_range,
+    grade_ranges,
+    grades_at,
     station_at,
 )
 
@@ -180,3 +182,28 @@ def test_an_arc_split_in_two_by_the_file_is_one_row():
     (b,) = bends(a)
     assert (b.arc_length_m, b.compound, b.elements) == (51.0, False, (1, 2))
     assert b.deflection_deg == pytest.approx(math.degrees(51.0 / 800.0), rel=1e-11)
+
+
+def test_the_array_forms_agree_with_dense_sampling():
+    # a profile of every kind: a tangent, a parabola, a sag circle, a jump without a curve, a crest circle
+    t0 = math.atan(-0.03)
+    sag_end = math.tan(math.asin(math.sin(t0) + 120.0 / 4000.0))
+    crest_t0 = math.atan(0.05)
+    crest_end = math.tan(math.asin(math.sin(crest_t0) - 150.0 / 3000.0))
+    p = _profile(
+        VerticalSegment("constant", 0.0, 100.0, 0.0, 0.02, 0.02),
+        VerticalSegment("parabolic", 100.0, 80.0, 2.0, 0.02, -0.03),
+        VerticalSegment("circular", 180.0, 120.0, 1.0, -0.03, sag_end, 4000.0),
+        VerticalSegment("constant", 300.0, 50.0, 1.0, 0.05, 0.05),
+        VerticalSegment("circular", 350.0, 150.0, 3.0, 0.05, crest_end, 3000.0),
+    )
+    rng = np.random.default_rng(3)
+    a = rng.uniform(0, 480, 200)
+    b = np.minimum(a + rng.uniform(0, 200, 200), 500.0)
+    np.testing.assert_allclose(grades_at(p, a), [grade_at(p, x) for x in a], rtol=1e-12, atol=1e-15)
+    lo, hi = grade_ranges(p, a, b)
+    for k in range(len(a)):
+        assert (lo[k], hi[k]) == pytest.approx(grade_range(p, a[k], b[k]), rel=1e-12, abs=1e-15)
+        # every grade sampled inside the range lies between them
+        inner = grades_at(p, np.linspace(a[k], b[k], 101)[1:-1])
+        assert lo[k] - 1e-12 <= inner.min() and inner.max() <= hi[k] + 1e-12

@@ -118,7 +118,10 @@ class _Units:
             self.notes.append(("<Units>", "absent: lengths read as metres (assumed)"))
             return
         where = f"Units/{xmlsafe.local(system.tag)}"
-        self.linear_name = system.get("linearUnit", "meter" if xmlsafe.local(system.tag) == "Metric" else "foot")
+        linear = system.get("linearUnit")
+        if linear is None:  # the schema requires it; which foot or which metric unit is not guessed
+            raise AlignmentFormatError("has no linearUnit attribute (LandXML requires it)", where, "linearUnit")
+        self.linear_name = linear
         if self.linear_name not in LINEAR_UNITS:
             raise AlignmentFormatError(
                 f"linearUnit {self.linear_name!r} is not a LandXML 1.2 length unit (known: {', '.join(LINEAR_UNITS)})",
@@ -279,7 +282,8 @@ class _Reader:
         if name == "IrregularLine":
             length = self.length(el, "length", where, required=False)
             if length is None:
-                pts = _child(el, "PntList2D") or _child(el, "PntList3D")
+                pts = _child(el, "PntList2D")  # (an element without children is false: no `or` here)
+                pts = _child(el, "PntList3D") if pts is None else pts
                 step = 2 if pts is not None and xmlsafe.local(pts.tag) == "PntList2D" else 3
                 xs = [_float(t, where, "PntList") * self.m for t in (pts.text or "").split()] if pts is not None else []
                 coords = list(zip(xs[0::step], xs[1::step], strict=False))

@@ -373,6 +373,7 @@ def test_unsymmetric_parabola_grade_under_its_pvi():
     ("edit", "where", "field", "message"),
     [
         (('linearUnit="meter"', 'linearUnit="furlong"'), "Units/Metric", "linearUnit", "linearUnit 'furlong' is not"),
+        ((' linearUnit="meter"', ""), "Units/Metric", "linearUnit", "has no linearUnit attribute"),
         (('spiType="clothoid"', 'spiType="cubic"'), "CoordGeom Spiral #1", "spiType", "spiType 'cubic' is not read"),
         (('rot="cw"', 'rot="left"'), "CoordGeom Spiral #1", "rot", "rot must be 'cw' or 'ccw', got 'left'"),
         (('radiusEnd="300.0"', 'radiusEnd="-300"'), "CoordGeom Spiral #1", "radiusEnd", "radiusEnd must be positive"),
@@ -405,3 +406,14 @@ def test_cross_sections_in_feet_give_the_slopes_in_metres(unit):
     for t in rows:
         np.testing.assert_allclose(t.superelevation_percent, [6.0, 4.0], rtol=1e-9)
         assert list(t.bends["superelevation_from"]) == [1.0, 1.0]
+
+
+def test_an_irregular_line_counts_for_the_stations_and_is_listed():
+    design = Design("I", 0.0, [Element("Line", 100.0), Element("Curve", 50.0, 200.0, 200.0, "cw", "K")])
+    # a polyline of 3-4-5: 5 m long, before the line
+    doc = landxml(design).replace(
+        "<CoordGeom>", "<CoordGeom><IrregularLine><PntList2D>0 0 3 4</PntList2D></IrregularLine>"
+    )
+    t = read_landxml(doc, superelevation_percent=4.0)
+    assert t.station_m[0] == pytest.approx(105.0, rel=1e-12)
+    assert any("IrregularLine" in s["what"] for s in t.reading["skipped"])

@@ -178,6 +178,24 @@ def test_aplitop_arc_from_its_points_and_the_crown_kept_through_it():
     assert t.reading["format"] == "LandXML 1.0"
 
 
+def test_a_clothoid_bend_turns_as_the_file_says():
+    doc = _file("mac999-clothoid-sample-m.xml")
+    t = read_landxml(doc, superelevation_percent=None)
+    spirals, (curve,) = _elements(doc, "Spiral"), _elements(doc, "Curve")
+    lines = [float(e.get("length")) for e in _elements(doc, "Line")]
+    ls = [float(s.get("length")) for s in spirals]
+    # the row's turn: the file's delta of the arc plus each clothoid's own theta (both in decimal degrees)
+    expected = float(curve.get("delta")) + sum(float(s.get("theta")) for s in spirals)
+    assert _bend(t, "deflection_deg")[0] == pytest.approx(expected, rel=1e-11)
+    # theta is L/(2R) from a tangent: the closed form the reader's deflection uses
+    assert float(spirals[0].get("theta")) == pytest.approx(
+        math.degrees(ls[0] / (2 * float(curve.get("radius")))), rel=1e-11
+    )
+    assert (_bend(t, "spiral_in_m")[0], _bend(t, "spiral_out_m")[0]) == (ls[0], ls[1])
+    assert t.station_m[0] == lines[0] + ls[0] and _bend(t, "bend_start_m")[0] == lines[0]
+    assert _bend(t, "bend_end_m")[0] == pytest.approx(lines[0] + sum(ls) + float(curve.get("length")), rel=1e-12)
+
+
 # ------------------------------------------------------------------------------------ closed forms
 
 

@@ -124,19 +124,23 @@ def curves_from_road_file(
         if not n:
             continue
         starts = element_distances(a)
-        apex = 0
-        for k, arc in enumerate(b.arc_element.tolist()):
-            if arc >= 0:
-                e = a.elements[arc]
-                ids.append(e.name or "")
-                where.append(e.where)
-            else:
-                apex += 1
-                cid = f"{a.name}#apex{apex}"
-                ids.append(cid)
-                where.append(f"{a.elements[int(b.first_element[k])].where}: the bend of spirals {cid!r}")
-            if len(ids) > max_curves:
-                raise AlignmentFormatError(f"more than {max_curves} curves", where[-1])
+        els, arcs = a.elements, b.arc_element.tolist()
+        if min(arcs) >= 0:  # every row an arc (the common case): its element's name and place
+            ids += [els[i].name or "" for i in arcs]
+            where += [els[i].where for i in arcs]
+        else:
+            apex = 0
+            for k, arc in enumerate(arcs):
+                if arc >= 0:
+                    ids.append(els[arc].name or "")
+                    where.append(els[arc].where)
+                else:
+                    apex += 1
+                    cid = f"{a.name}#apex{apex}"
+                    ids.append(cid)
+                    where.append(f"{els[int(b.first_element[k])].where}: the bend of spirals {cid!r}")
+        if len(ids) > max_curves:
+            raise AlignmentFormatError(f"more than {max_curves} curves", where[max_curves])
         middle = 0.5 * (b.start_m + b.end_m)
         if chosen is not None:
             covered = covers_many(chosen, b.start_m, b.end_m)

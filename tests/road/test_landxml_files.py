@@ -435,3 +435,10 @@ def test_an_irregular_line_counts_for_the_stations_and_is_listed():
     t = read_landxml(doc, superelevation_percent=4.0)
     assert t.station_m[0] == pytest.approx(105.0, rel=1e-12)
     assert any("IrregularLine" in s["what"] for s in t.reading["skipped"])
+
+
+def test_more_curves_than_the_limit_are_refused_at_the_first_one_past_it():
+    arcs = [Element("Curve", 50.0, 100.0 + k, 100.0 + k, "cw", f"K{k}") for k in range(3)]
+    with pytest.raises(AlignmentFormatError, match="more than 2 curves") as exc:
+        read_landxml(landxml(Design("M", 0.0, arcs)), superelevation_percent=4.0, max_curves=2)
+    assert exc.value.location == "Alignment 'M' CoordGeom Curve #3 ('K2')"

@@ -14,9 +14,10 @@ route assessment should find are known:
   centreline; no GPS noise), near Curitiba (PR, Brazil): a made-up road, not a survey.
 
 The CSV files list the same two curves with a design superelevation, the grade and a posted speed; the LandXML
-alignment has the same elements (lines, spirals, curves with their stations and points); the IFC 4.3 file has them
-too, with the grade as its profile and the superelevation as its cant; the GPX track and the GeoJSON line carry the
-vertices with their elevations.
+alignment has the same elements (lines, spirals, curves with their stations and points); alignment-feet.xml is the
+same alignment in feet with its profile and superelevation, as a US design package exports it; the IFC 4.3 file has
+them too, with the grade as its profile and the superelevation as its cant; the GPX track and the GeoJSON line carry
+the vertices with their elevations.
 
 Two more show the road as devices and OSM exports write it (docs/routes.md, "Files as devices and OSM write them"):
 
@@ -40,6 +41,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
+from tests.landxml_writer import Design, Element, Pvi, landxml  # noqa: E402
 from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve, to_lonlat  # noqa: E402
 
 NAME = "Example road (synthetic): two curves"
@@ -191,6 +193,27 @@ def ifc_bytes() -> bytes:
     return write_ifc([road], application=("rollover examples/make_examples.py", "1"), stable=True)
 
 
+def landxml_feet_text() -> str:
+    """The same road as a design package in the US writes it: LandXML in international feet, stations only on the
+    alignment (the elements' from their lengths), the steady grade as a profile (two PVIs) and each curve's design
+    superelevation as a ``Superelevation`` element over its arc (tests/landxml_writer.py)."""
+    rot = {"right": "cw", "left": "ccw"}
+    items = [Element("Line", TANGENTS_M[0])]
+    supers, sta = [], TANGENTS_M[0]
+    for (cid, r, arc, spiral, direction, e, _), tangent in zip(CURVES, TANGENTS_M[1:], strict=True):
+        items += [
+            Element("Spiral", spiral, math.inf, r, rot[direction], f"{cid}-TS"),
+            Element("Curve", arc, r, r, rot[direction], cid),
+            Element("Spiral", spiral, r, math.inf, rot[direction], f"{cid}-ST"),
+            Element("Line", tangent),
+        ]
+        supers.append((sta + spiral, sta + spiral + arc, e))
+        sta += 2 * spiral + arc + tangent
+    profile = [Pvi(0.0, ELE0_M), Pvi(sta, ELE0_M + GRADE_PERCENT / 100 * sta)]
+    design = Design(NAME, 0.0, items, profile, supers)
+    return landxml(design, "foot", application="rollover examples/make_examples.py")
+
+
 def gpx_text() -> str:
     lon, lat, ele = vertices()
     points = "\n".join(
@@ -275,6 +298,7 @@ def files() -> dict[str, bytes]:
         "curves-tab.tsv": csv_text("\t", ".").encode(),
         "alignment.xml": landxml_text().encode(),
         "road.ifc": ifc_bytes(),
+        "alignment-feet.xml": landxml_feet_text().encode(),
         "road.gpx": gpx_text().encode(),
         "road.geojson": geojson_text().encode(),
         "drive.gpx": drive_text().encode(),

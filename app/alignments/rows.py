@@ -16,6 +16,7 @@ import numpy as np
 import orjson
 
 from app.alignments.answer import AlignmentAnswer, VehicleAnswer
+from app.formats.alignment_io import DIRECTIONS, FILE_SUPERELEVATION, GRADE_SOURCES, BendTable
 from app.formats.segments import Codes, Floats, Segment, Slices, write_rows
 from app.formats.tables import (
     FORMULA_PREFIXES,
@@ -42,10 +43,23 @@ ROWS_PER_CHUNK = 4_000
 ROW_COLUMNS = (
     "id",
     "station_m",
+    "distance_m",
+    "bend_start_m",
+    "bend_end_m",
+    "direction",
     "radius_m",
+    "arc_length_m",
+    "deflection_deg",
+    "spiral_in_m",
+    "spiral_out_m",
+    "compound",
+    "reverse",
     "superelevation_percent",
     "superelevation_source",
     "grade_percent",
+    "grade_source",
+    "grade_min_percent",
+    "grade_max_percent",
     "srt_g",
     "level_road_srt",
     "tilt_table_angle_deg",
@@ -87,13 +101,31 @@ def rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> li
 def _row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, list[Any]]:
     """Rows [start, stop) of one vehicle, column by column (CurveRow's fields in the schema's order)."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
+    b = t.bend_columns.sliced(start, stop)
+
+    def coded(codes: np.ndarray, values: Sequence[Any]) -> list[Any]:
+        return [values[k] for k in codes.tolist()]
+
     return {
         "id": t.ids[sl],
         "station_m": _opt(t.station_m[sl]),
+        "distance_m": _opt(b["distance_m"]),
+        "bend_start_m": _opt(b["bend_start_m"]),
+        "bend_end_m": _opt(b["bend_end_m"]),
+        "direction": coded(_nan_codes(b["direction"]), _DIRECTION),
         "radius_m": c.radius_m[sl].tolist(),
+        "arc_length_m": _opt(b["arc_length_m"]),
+        "deflection_deg": _opt(b["deflection_deg"]),
+        "spiral_in_m": _opt(b["spiral_in_m"]),
+        "spiral_out_m": _opt(b["spiral_out_m"]),
+        "compound": coded(_nan_codes(b["compound"]), _FLAG),
+        "reverse": coded(_nan_codes(b["reverse"]), _FLAG),
         "superelevation_percent": c.superelevation_percent[sl].tolist(),
-        "superelevation_source": ["derived" if d else "given" for d in c.superelevation_derived[sl].tolist()],
+        "superelevation_source": coded(_e_source(c.superelevation_derived[sl], b), _SOURCE),
         "grade_percent": c.grade_percent[sl].tolist(),
+        "grade_source": coded(b["grade_source"].astype(np.intp), GRADE_SOURCES),
+        "grade_min_percent": _opt(b["grade_min_percent"]),
+        "grade_max_percent": _opt(b["grade_max_percent"]),
         "srt_g": _opt(c.srt_g[sl]),
         "level_road_srt": [v.level] * (stop - start),
         "tilt_table_angle_deg": [v.tilt[p] for p in v.pair_of_row[sl].tolist()],
@@ -164,6 +196,7 @@ def json_head(resolved: ResolvedAlignment, curves: int) -> bytes:
         "max_superelevation_percent": r.max_superelevation_percent,
         "curves": curves,
         "csv_dialect": r.csv_dialect,  # in the key (resolve_alignment) only when the curves came as CSV
+        "reading": r.reading,  # in the key only when the curves came from a road file
     }
     return orjson.dumps(head)[:-1] + b',"vehicles":['
 
@@ -212,7 +245,23 @@ def _csv_ids(ids: Sequence[str]) -> tuple[Segment, ...]:
     return (csv_fields(ids),)
 
 
-_SOURCE = ("given", "derived")  # by superelevation_derived
+_SOURCE = ("given", "derived", *FILE_SUPERELEVATION)  # by :func:`_e_source`
+_DIRECTION = (None, *DIRECTIONS)  # by :func:`_nan_codes`
+_FLAG = (None, False, True)  # by :func:`_nan_codes`
+
+
+def _nan_codes(values: np.ndarray) -> np.ndarray:
+    """A code column kept as floats (nan: none) as indices into a table whose first text is null."""
+    return np.where(np.isnan(values), 0, np.nan_to_num(values) + 1).astype(np.intp)
+
+
+def _e_source(derived: np.ndarray, b: BendTable) -> np.ndarray:
+    """Each row's index into :data:`_SOURCE`: the file's (its superelevation or cross sections), else given or
+    derived."""
+    f = b["superelevation_from"]
+    return np.where(np.isnan(f), derived.astype(np.intp), 2 + np.nan_to_num(f)).astype(np.intp)
+
+
 _MEETS = (None, False, True)  # by meets_standard_min_radius + 1
 
 
@@ -242,16 +291,30 @@ def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, 
     a column at a time (:mod:`app.formats.segments`): the texts, flags and the target checks (every row with an SRT
     is judged on the one level-road SRT) written once and gathered by code."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
+    b = t.bend_columns.sliced(start, stop)
     pairs = v.pair_of_row[sl]
     judged = (v.srts[pairs] >= 0).astype(np.intp)
     f = _json_column
     fields: list[tuple[str, Segment | tuple[Segment, ...]]] = [
         ("id", _json_ids(t.ids[sl])),
         ("station_m", f(t.station_m[sl])),
+        ("distance_m", f(b["distance_m"])),
+        ("bend_start_m", f(b["bend_start_m"])),
+        ("bend_end_m", f(b["bend_end_m"])),
+        ("direction", _json_codes(_nan_codes(b["direction"]), _DIRECTION)),
         ("radius_m", f(c.radius_m[sl])),
+        ("arc_length_m", f(b["arc_length_m"])),
+        ("deflection_deg", f(b["deflection_deg"])),
+        ("spiral_in_m", f(b["spiral_in_m"])),
+        ("spiral_out_m", f(b["spiral_out_m"])),
+        ("compound", _json_codes(_nan_codes(b["compound"]), _FLAG)),
+        ("reverse", _json_codes(_nan_codes(b["reverse"]), _FLAG)),
         ("superelevation_percent", f(c.superelevation_percent[sl])),
-        ("superelevation_source", _json_codes(c.superelevation_derived[sl].astype(np.intp), _SOURCE)),
+        ("superelevation_source", _json_codes(_e_source(c.superelevation_derived[sl], b), _SOURCE)),
         ("grade_percent", f(c.grade_percent[sl])),
+        ("grade_source", _json_codes(b["grade_source"].astype(np.intp), GRADE_SOURCES)),
+        ("grade_min_percent", f(b["grade_min_percent"])),
+        ("grade_max_percent", f(b["grade_max_percent"])),
         ("srt_g", f(c.srt_g[sl])),
         ("level_road_srt", orjson.dumps(v.level)),
         ("tilt_table_angle_deg", f(v.tilt_deg[pairs])),
@@ -319,6 +382,7 @@ def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, c
     as :func:`app.formats.tables.csv_lines` writes them (tested), written a block of number columns at a time
     (:mod:`app.formats.segments`); the vehicle's fields, the level-road SRT and the target checks written once."""
     c, t, sl = v.columns, answer.curves, slice(start, stop)
+    b = t.bend_columns.sliced(start, stop)
     f = Floats
     pairs = v.pair_of_row[sl]
     names = target_names(answer.resolved)
@@ -328,11 +392,25 @@ def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, c
         b",".join(map(csv_field, vehicle)) + b",",
         *_csv_ids(t.ids[sl]),
         b",",
-        f([t.station_m[sl], c.radius_m[sl], c.superelevation_percent[sl]]),
+        f([t.station_m[sl], b["distance_m"], b["bend_start_m"], b["bend_end_m"]]),
         b",",
-        _csv_codes(c.superelevation_derived[sl].astype(np.intp), _SOURCE),
+        _csv_codes(_nan_codes(b["direction"]), _DIRECTION),
         b",",
-        f([c.grade_percent[sl], c.srt_g[sl]]),
+        f([c.radius_m[sl], b["arc_length_m"], b["deflection_deg"], b["spiral_in_m"], b["spiral_out_m"]]),
+        b",",
+        _csv_codes(_nan_codes(b["compound"]), _FLAG),
+        b",",
+        _csv_codes(_nan_codes(b["reverse"]), _FLAG),
+        b",",
+        f([c.superelevation_percent[sl]]),
+        b",",
+        _csv_codes(_e_source(c.superelevation_derived[sl], b), _SOURCE),
+        b",",
+        f([c.grade_percent[sl]]),
+        b",",
+        _csv_codes(b["grade_source"].astype(np.intp), GRADE_SOURCES),
+        b",",
+        f([b["grade_min_percent"], b["grade_max_percent"], c.srt_g[sl]]),
         b"," + csv_field(v.level) + b",",
         f([v.tilt_deg[pairs]]),
         Codes((v.srts[pairs] >= 0).astype(np.intp), [b"," * len(names) * 2, b"," + checks if names else b""]),

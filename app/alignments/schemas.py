@@ -101,10 +101,12 @@ def keys_match_the_id_pattern(schema: dict[str, Any]) -> None:
 
 
 class LandXmlIn(InputModel):
-    """A LandXML 1.2 document: every `CoordGeom/Curve` of every `Alignment` is a curve (its `radius`; its
-    `staStart` is reported as the station; its `name` is the id, else `<alignment name>#<n>`). LandXML keeps
-    superelevation and grade in elements whose use varies between design packages, so they are given here: as
-    defaults for every curve, and per curve id in `curve_overrides`."""
+    """A LandXML 1.2 document, read whole (docs/uploads.md): its `Units`, every `Alignment`'s horizontal elements
+    (`Line`, `Curve`, `Spiral`), station equations, profiles (`ProfAlign`), `Superelevation` and design cross
+    sections. Each bend is a row: a `Curve` with its spirals (id: its `name`, else `<alignment name>#<n>`), or a bend
+    made only of spirals (`<alignment name>#apex<m>`). The grade and superelevation the file gives are used; the
+    values here are the fallbacks where it gives none (as defaults for every curve, and per curve id in
+    `curve_overrides`); each row says where its values came from."""
 
     document: str = Field(
         min_length=1,
@@ -129,7 +131,18 @@ class LandXmlIn(InputModel):
         max_length=MAX_CURVES,
         json_schema_extra=keys_match_the_id_pattern,
         description=describe(
-            "Per-curve values by curve id; an id that is not in the document is an error.", unit="%, km/h"
+            "Per-curve values by curve id, where the file gives none; an id that is not in the document is an error.",
+            unit="%, km/h",
+        ),
+    )
+    profile: str | None = Field(
+        None,
+        min_length=1,
+        max_length=200,
+        description=describe(
+            "The vertical profile (`ProfAlign` name) whose grades the curves take; default: each alignment's first "
+            "(the answer's `reading.profile` names it). A name that is in no alignment is an error.",
+            unit="-",
         ),
     )
 
@@ -287,22 +300,97 @@ class CurveRow(OutputModel):
 
     id: str = Field(description=describe("Curve id.", unit="-"))
     station_m: float | None = Field(
-        description=describe("Start station of the curve (LandXML `staStart`; null otherwise).", unit="m")
-    )
-    radius_m: float = Field(description=describe("Curve radius.", unit="m", symbol="R"))
-    superelevation_percent: float = Field(
         description=describe(
-            "Superelevation used (given, or derived: see `superelevation_source`).", unit="%", symbol="e"
+            "A road file's curve: the station where its circular arc starts (a bend made only of spirals: its apex, "
+            "where its radius is smallest), as the file writes it (an element's own `staStart`, else computed from "
+            "the alignment's start station and the element lengths, station equations applied); null otherwise.",
+            unit="m",
         )
     )
-    superelevation_source: Literal["given", "derived"] = Field(
+    distance_m: float | None = Field(
         description=describe(
-            "`derived`: the curve gave none; it is the design standard's value for its posted speed and the "
-            "request's `max_superelevation_percent`.",
+            "A road file's curve: the distance along its alignment from the alignment's start to `station_m`'s "
+            "point (the sum of the element lengths before it); null otherwise.",
+            unit="m",
+        )
+    )
+    bend_start_m: float | None = Field(
+        description=describe("Station where the bend starts, its spiral in included (road files; else null).", unit="m")
+    )
+    bend_end_m: float | None = Field(
+        description=describe("Station where the bend ends, its spiral out included (road files; else null).", unit="m")
+    )
+    direction: Literal["left", "right"] | None = Field(
+        description=describe(
+            "The side the bend turns to, looking ahead (road files: `rot` ccw/cw; else null).", unit="-"
+        )
+    )
+    radius_m: float = Field(
+        description=describe(
+            "Curve radius: the arc's; a bend made only of spirals, its smallest.", unit="m", symbol="R"
+        )
+    )
+    arc_length_m: float | None = Field(
+        description=describe("Length of the circular arc (0 for a bend of spirals; road files, else null).", unit="m")
+    )
+    deflection_deg: float | None = Field(
+        description=describe(
+            "Change of direction over the row's arc and spirals: L/R over the arc, L (1/R1 + 1/R2)/2 over each "
+            "spiral (road files; else null).",
+            unit="deg",
+        )
+    )
+    spiral_in_m: float | None = Field(
+        description=describe("Length of the spirals before the arc (road files; else null).", unit="m")
+    )
+    spiral_out_m: float | None = Field(
+        description=describe(
+            "Length of the spirals after the arc, a spiral between two arcs included (road files; else null).",
+            unit="m",
+        )
+    )
+    compound: bool | None = Field(
+        description=describe(
+            "The arc is one of several arcs of different radii in one bend (road files; else null).", unit="-"
+        )
+    )
+    reverse: bool | None = Field(
+        description=describe(
+            "The bend meets a bend turning the other way with no line between (road files; else null).", unit="-"
+        )
+    )
+    superelevation_percent: float = Field(
+        description=describe(
+            "Superelevation used (see `superelevation_source`); negative: adverse (a normal crown through the curve).",
+            unit="%",
+            symbol="e",
+        )
+    )
+    superelevation_source: Literal["given", "derived", "file", "cross-sections"] = Field(
+        description=describe(
+            "`file`: the road file's `Superelevation`; `cross-sections`: the outside lane's slope in its design cross "
+            "sections; `given`: the request's (or the curve's own in JSON and CSV); `derived`: none given, the "
+            "design standard's value for the posted speed and the request's `max_superelevation_percent`.",
             unit="-",
         )
     )
-    grade_percent: float = Field(description=describe("Grade, + uphill.", unit="%", symbol="slope"))
+    grade_percent: float = Field(
+        description=describe(
+            "Grade, + uphill: a road file's profile at the bend's middle where it covers the bend, else the "
+            "request's (see `grade_source`).",
+            unit="%",
+            symbol="slope",
+        )
+    )
+    grade_source: Literal["profile", "request"] = Field(
+        description=describe("`profile`: the road file's vertical profile; `request`: the request's.", unit="-")
+    )
+    grade_min_percent: float | None = Field(
+        description=describe("Least grade over the bend (from the profile; else null).", unit="%")
+    )
+    grade_max_percent: float | None = Field(
+        description=describe("Greatest grade over the bend (from the profile; else null).", unit="%")
+    )
     srt_g: float | None = Field(
         description=describe(
             "SRT on this curve's bank and grade (it contains the bank): the curve's threshold, what its rollover "
@@ -433,6 +521,32 @@ class CsvDialectOut(OutputModel):
     line_ending: Literal["LF", "CRLF", "CR"] = Field(description=describe("Line ending of the header row.", unit="-"))
 
 
+class SkippedOut(OutputModel):
+    """Something in the file that was read but not used, and why."""
+
+    what: str = Field(description=describe("The element, as the file names it.", unit="-"))
+    why: str = Field(description=describe("Why it was not used.", unit="-"))
+
+
+class ReadingOut(OutputModel):
+    """What was read from a road file: nothing in it is left out silently."""
+
+    format: str = Field(description=describe("The file's format and version (`LandXML 1.2`).", unit="-"))
+    writer: str | None = Field(description=describe("The application that wrote it (`<Application>`).", unit="-"))
+    linear_unit: str = Field(
+        description=describe("The file's length unit as it names it (`meter`, `foot`, `USSurveyFoot`...).", unit="-")
+    )
+    alignments: list[str] = Field(description=describe("The alignments read, by name.", unit="-"))
+    elements: dict[str, int] = Field(description=describe("Elements read, by the file's type name.", unit="count"))
+    profile: str | None = Field(description=describe("The vertical profile used (null: none).", unit="-"))
+    superelevation_from: Literal["file", "cross-sections", "request", "standard"] = Field(
+        description=describe(
+            "Where most rows' superelevation came from (each row's `superelevation_source` says its own).", unit="-"
+        )
+    )
+    skipped: list[SkippedOut] = Field(description=describe("What was read but not used, and why.", unit="-"))
+
+
 class AlignmentResult(OutputModel):
     """Every curve assessed for every vehicle."""
 
@@ -457,6 +571,11 @@ class AlignmentResult(OutputModel):
             "The CSV dialect detected when the curves came as CSV (`csv`, or an upload to /assess/csv); null "
             "otherwise.",
             unit="see its fields",
+        )
+    )
+    reading: ReadingOut | None = Field(
+        description=describe(
+            "What was read from a road file (LandXML): null when the curves came as JSON or CSV.", unit="see its fields"
         )
     )
     vehicles: list[VehicleAssessment] = Field(description=describe("One entry per vehicle.", unit="see its fields"))

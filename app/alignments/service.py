@@ -36,8 +36,9 @@ from app.compute import solvers
 from app.compute.cache import ResultCache
 from app.compute.resolved import CurvesDigest, ResolvedAlignment, ResolvedAssessment
 from app.compute.results import Computed, cached
-from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv, read_landxml
+from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOverride, CurveTable, read_csv
 from app.formats.jsonpieces import loads_in_pieces
+from app.formats.road_file import ROAD_READERS, read_road_document
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
 from app.metrics import SOLVE_SECONDS
@@ -100,43 +101,51 @@ def validate_request_data(
 def read_curves(
     req: AlignmentRequest, curves: CurveTable | None, source_field: str | None, max_curves: int = MAX_CURVES
 ) -> CurveTable:
-    """The curves from whichever of ``curves`` (already read), ``csv``, ``landxml`` the request has.
+    """The curves from whichever of ``curves`` (already read), ``csv`` or a road file (``landxml``: a field named as
+    in :data:`app.formats.road_file.ROAD_READERS`) the request has.
 
     ``source_field`` names where a document came from for the error (``body`` for a raw upload)."""
     if curves is not None:
         return curves
-    source = "csv" if req.csv is not None else "landxml"
+    # a road file: the first of the readers' fields the request has (exactly one document is given)
+    source = "csv" if req.csv is not None else next(k for k in ROAD_READERS if getattr(req, k, None) is not None)
     try:
         if source == "csv":
             return read_csv(req.csv, max_curves=max_curves)
-        x = req.landxml
+        x = getattr(req, source)
         overrides = {
             k: CurveOverride(v.superelevation_percent, v.grade_percent, v.posted_speed_kmh)
             for k, v in (x.curve_overrides or {}).items()
         }
-        return read_landxml(
+        return read_road_document(
+            source,
             x.document,
             superelevation_percent=x.superelevation_percent,
             grade_percent=x.grade_percent,
             posted_speed_kmh=x.posted_speed_kmh,
             overrides=overrides,
             max_curves=max_curves,
+            profile=x.profile,
         )
     except AlignmentFormatError as exc:
-        where = source_field or ("csv" if source == "csv" else "landxml.document")
-        location = exc.location
+        where = source_field or ("csv" if source == "csv" else f"{source}.document")
+        location, column = exc.location, exc.field
         if exc.location == "curve_overrides":
-            where, location = "landxml.curve_overrides", None
+            where, location = f"{source}.curve_overrides", None
+        elif exc.location == "profile":  # the query's (an upload) or the request's option
+            where, location, column = ("profile" if source_field else f"{source}.profile"), None, None
         reason = str(exc).removeprefix(f"{exc.location}: ") if exc.location else str(exc)
         if max_curves == MAX_CURVES and reason.startswith("more than"):  # the synchronous request's limit
             reason = as_a_job(reason)
-        raise InvalidAlignment(reason, source=where, location=location, column=exc.field) from None
+        raise InvalidAlignment(reason, source=where, location=location, column=column) from None
 
 
 def _digest(t: CurveTable) -> str:
-    """SHA-256 of the curves (ids, then the float64 columns with -0.0 and every nan made one value)."""
+    """SHA-256 of the curves (ids, then the float64 columns with -0.0 and every nan made one value; a road file's
+    bend columns too)."""
     h = hashlib.sha256(orjson.dumps(t.ids))
-    for a in (t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh, t.station_m):
+    bends = () if t.bends is None else tuple(t.bends.columns.values())
+    for a in (t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh, t.station_m, *bends):
         h.update(np.where(np.isnan(a), np.nan, a + 0.0).astype("<f8").tobytes())
     return h.hexdigest()
 
@@ -201,8 +210,10 @@ def resolve_alignment(
         curves=CurvesDigest(len(table), _digest(table)),
         # the answer names it; the keys of curves and LandXML stay as they were (None: not in the key)
         csv_dialect=None if table.dialect is None else table.dialect.as_dict(),
+        reading=table.reading,
     )
-    source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else "landxml.document")
+    road = next((k for k in ROAD_READERS if getattr(req, k, None) is not None), "landxml")
+    source = source_field or ("curves" if curves is not None else "csv" if req.csv is not None else f"{road}.document")
     return AlignmentJob(resolved, vehicles, table, source)
 
 
@@ -269,11 +280,37 @@ def assess_table(case: Case, resolved: ResolvedAssessment, t: CurveTable, solve_
     )
 
 
+def _no_curves() -> AlignmentColumns:
+    """The assessment of no curve: a road file whose alignments have none (a straight road) answers with no rows."""
+    f, b, i = np.empty(0), np.empty(0, dtype=bool), np.empty(0, dtype=np.intp)
+    return AlignmentColumns(
+        radius_m=f,
+        superelevation_percent=f,
+        superelevation_derived=b,
+        grade_percent=f,
+        posted_speed_kmh=f,
+        srt_g=f,
+        rollover_speed_kmh=f,
+        side_friction_speed_kmh=f,
+        side_friction=f,
+        side_friction_clamped=b,
+        safe_speed_kmh=f,
+        governed_by=i,
+        margin_kmh=f,
+        flagged=b,
+        standard_min_radius_m=f,
+        meets_standard_min_radius=i,
+        error=i,
+        errors=[],
+        distinct_cases=0,
+    )
+
+
 def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
     r = job.resolved
     case = assessment_case(r, job.vehicles[index])
     try:
-        cols = assess_table(case, r, job.curves, solve_pairs)
+        cols = assess_table(case, r, job.curves, solve_pairs) if len(job.curves) else _no_curves()
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
     return vehicle_answer(r, index, cols, level_road_srt(case))

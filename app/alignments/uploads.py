@@ -18,6 +18,7 @@ part) and the row or element.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Annotated, Any
 
 from fastapi import Request
@@ -44,7 +45,7 @@ OPTIONS = (
     "max_superelevation_percent",
 )
 LOAD = ("lateral_offset_m", "longitudinal_offset_m", "vertical_offset_m", "overweight_percent")
-LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
+LANDXML_DEFAULTS = ("superelevation_percent", "grade_percent", "posted_speed_kmh", "profile")
 
 _PRESETS = Field(
     min_length=1,
@@ -112,13 +113,28 @@ async def csv_upload(request: Request, query, limit: int) -> tuple[AlignmentRequ
     return upload_request(query, upload.field, csv=text), upload.field
 
 
-async def landxml_upload(request: Request, query, limit: int) -> tuple[AlignmentRequest, str]:
-    """The JSON request equivalent to a LandXML upload, and the field that holds the file (``body`` or ``file``)."""
+async def road_file_upload(
+    request: Request,
+    query,
+    limit: int,
+    kind: str = "landxml",
+    label: str = "LandXML",
+    decode: Callable[[bytes, str], str] = decode_xml,
+) -> tuple[AlignmentRequest, str]:
+    """The JSON request equivalent to a road file's upload (the request's field ``kind``: a key of
+    :data:`app.formats.road_file.ROAD_READERS`; ``label`` names the format in a message; ``decode``: the body's bytes
+    to text, refusing what is not the format's, with the field), and the field that holds the file (``body`` or
+    ``file``). The query's defaults (:data:`LANDXML_DEFAULTS`) go with the document."""
     upload = await read_upload(request, limit)
-    text = decode_xml(upload.data, upload.field)
+    text = decode(upload.data, upload.field)
     if not text.strip():
         raise InvalidAlignment(
-            f"the {upload.field} is empty: send the LandXML file", source=upload.field, location=None, column=None
+            f"the {upload.field} is empty: send the {label} file", source=upload.field, location=None, column=None
         )
     defaults = {n: getattr(query, n) for n in LANDXML_DEFAULTS}
-    return upload_request(query, upload.field, landxml={"document": text, **defaults}), upload.field
+    return upload_request(query, upload.field, **{kind: {"document": text, **defaults}}), upload.field
+
+
+async def landxml_upload(request: Request, query, limit: int) -> tuple[AlignmentRequest, str]:
+    """The JSON request equivalent to a LandXML upload, and the field that holds the file (``body`` or ``file``)."""
+    return await road_file_upload(request, query, limit, "landxml", "LandXML", decode_xml)

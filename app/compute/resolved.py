@@ -155,12 +155,14 @@ class CurvesDigest:
 @dataclass(frozen=True, kw_only=True)
 class ResolvedAlignment(ResolvedAssessment):
     """An alignment's assessment: its curves' digest and, when they came as CSV, the dialect they were read in (the
-    answer names it; None, and then absent from the key, for curves given as JSON or LandXML)."""
+    answer names it; None, and then absent from the key, for curves given as JSON or LandXML), and when they came
+    from a road file the reading summary (likewise)."""
 
-    _omitted_when_none = ("csv_dialect",)
+    _omitted_when_none = ("csv_dialect", "reading")
 
     curves: CurvesDigest
     csv_dialect: dict[str, str | bool] | None = None
+    reading: dict[str, Any] | None = None  # a road file's reading summary (the answer names it)
 
 
 @dataclass(frozen=True)

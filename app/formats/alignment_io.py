@@ -13,10 +13,10 @@ tab between the fields, a decimal comma with ``;`` or tab, a UTF-8 byte-order ma
 from the header and the first rows (:mod:`app.formats.csv_dialect`) and returned with the curves; errors name the
 column as the header spells it.
 
-LandXML 1.2: every ``CoordGeom/Curve`` of every ``Alignment`` is a horizontal curve; its ``radius`` is required,
-``staStart`` (station) and ``name`` are reported. LandXML keeps superelevation and grade in other elements whose
-use varies between design packages, so they are supplied per curve (keyed by the curve id) or as defaults. The curve
-id is the Curve's ``name`` when present, else ``<alignment name>#<n>`` (n counts the alignment's curves from 1).
+LandXML 1.2 (:func:`read_landxml`): read whole by :mod:`app.formats.landxml` into the neutral records of
+:mod:`engine.road.geometry`, each bend a row (:mod:`app.formats.road_file`): an arc's id is the Curve's ``name``
+when present, else ``<alignment name>#<n>`` (n counts the alignment's Curves from 1); a bend made only of spirals
+is ``<alignment name>#apex<m>``. The rows carry the bend's facts (:class:`BendTable`) and the answer the reading.
 Parsing refuses what defusedxml refuses (no external entities, no entity expansion bombs; :mod:`app.formats.xmlsafe`).
 
 Curve ids are 1-100 characters without control characters in every form (JSON, CSV, LandXML).
@@ -34,7 +34,6 @@ from typing import Any
 
 import numpy as np
 
-from app.formats import xmlsafe
 from app.formats.csv_dialect import CsvDialect, CsvDialectError, detect
 from engine.errors import InvalidRoad
 from engine.road import check_columns
@@ -51,6 +50,50 @@ CSV_REQUIRED = ("id", "radius_m")
 CSV_OPTIONAL = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
 
 
+#: a road file's facts per row, beside the curve (:class:`BendTable`); codes as floats, nan for none
+BEND_COLUMNS = (
+    "distance_m",
+    "bend_start_m",
+    "bend_end_m",
+    "direction",  # 0 left, 1 right
+    "arc_length_m",
+    "deflection_deg",
+    "spiral_in_m",
+    "spiral_out_m",
+    "compound",  # 0/1
+    "reverse",  # 0/1
+    "grade_source",  # 0 request, 1 profile
+    "grade_min_percent",
+    "grade_max_percent",
+    "superelevation_from",  # 0 the file's Superelevation, 1 its cross sections; nan: not from the file
+)
+DIRECTIONS = ("left", "right")
+GRADE_SOURCES = ("request", "profile")
+FILE_SUPERELEVATION = ("file", "cross-sections")
+
+
+@dataclass(frozen=True)
+class BendTable:
+    """What a road file says of each row's bend (:data:`BEND_COLUMNS`, each an array of floats: distances and
+    stations [m], deflection [deg], grades [%], codes; nan where none), from
+    :func:`app.formats.road_file.curves_from_road_file`."""
+
+    columns: dict[str, np.ndarray]
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.columns[name]
+
+    def sliced(self, start: int, stop: int) -> BendTable:
+        return BendTable({k: v[start:stop] for k, v in self.columns.items()})
+
+    @staticmethod
+    def empty(n: int) -> BendTable:
+        """No file's facts (curves given as JSON or CSV): every column nan, the grade's source the request."""
+        cols = {k: np.full(n, math.nan) for k in BEND_COLUMNS}
+        cols["grade_source"] = np.zeros(n)
+        return BendTable(cols)
+
+
 @dataclass(frozen=True)
 class CurveTable:
     """Curves as columns: ids, radius [m], superelevation [%] (nan: derive it), grade [%], posted speed [km/h]
@@ -65,9 +108,16 @@ class CurveTable:
     station_m: np.ndarray
     where: list[str] | None = None  # each curve's row or element in the document it came from (None: JSON)
     dialect: CsvDialect | None = None  # how a CSV document was written (None: not CSV)
+    bends: BendTable | None = None  # a road file's facts of each curve's bend (None: not from a road file)
+    reading: dict[str, Any] | None = None  # a road file's reading summary (the answer's ``reading``)
 
     def __len__(self) -> int:
         return len(self.ids)
+
+    @property
+    def bend_columns(self) -> BendTable:
+        """:attr:`bends`, or the columns of no file's facts."""
+        return self.bends if self.bends is not None else BendTable.empty(len(self))
 
     def sliced(self, start: int, stop: int) -> CurveTable:
         """Curves [start, stop) (a job's part)."""
@@ -81,6 +131,8 @@ class CurveTable:
             self.station_m[sl],
             None if self.where is None else self.where[sl],
             self.dialect,
+            None if self.bends is None else self.bends.sliced(start, stop),
+            self.reading,
         )
 
     def key_rows(self) -> list[list[Any]]:
@@ -173,14 +225,21 @@ class _Collector:
     def table(self, dialect: CsvDialect | None = None) -> CurveTable:
         a = np.array(self.values, dtype=float).reshape(-1, 5)
         t = CurveTable(self.ids, *(a[:, k].copy() for k in range(5)), where=self.where, dialect=dialect)
-        try:  # the bounds of the JSON form, on the columns
-            check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
-        except InvalidRoad as exc:
-            index, field = (exc.field or "").removeprefix("curves[").split("].", 1)
-            column = self.columns.get(field, field)
-            reason = str(exc).removeprefix(f"curves[{index}].").replace(field, column, 1)
-            raise AlignmentFormatError(reason, self.where[int(index)], column) from None
-        return t
+        return checked(t, self.columns)
+
+
+def checked(t: CurveTable, columns: dict[str, str] | None = None) -> CurveTable:
+    """``t`` if its columns are within the bounds of the JSON form; else the error at the curve's row or element
+    (``t.where``), the column named as the document names it (``columns``: engine field -> the document's name)."""
+    columns = columns or {}
+    try:
+        check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
+    except InvalidRoad as exc:
+        index, field = (exc.field or "").removeprefix("curves[").split("].", 1)
+        column = columns.get(field, field)
+        reason = str(exc).removeprefix(f"curves[{index}].").replace(field, column, 1)
+        raise AlignmentFormatError(reason, t.where[int(index)] if t.where else None, column) from None
+    return t
 
 
 def _header(reader) -> tuple[dict[str, int], dict[str, str]]:
@@ -277,22 +336,6 @@ class CurveOverride:
     posted_speed_kmh: float | None = None
 
 
-def _landxml_curves(root):
-    """(alignment name, curve number, element) of every CoordGeom/Curve of every Alignment."""
-    # endswith first: a C call on every element of the document (a million and more), local() only on the few that pass
-    alignments = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
-    if not alignments:
-        raise AlignmentFormatError("no <Alignment> element", "LandXML")
-    for a_index, alignment in enumerate(alignments, start=1):
-        a_name = alignment.get("name") or f"alignment {a_index}"
-        n = 0
-        for geom in (e for e in alignment if xmlsafe.local(e.tag) == "CoordGeom"):
-            for el in geom:
-                if el.tag.endswith("Curve") and xmlsafe.local(el.tag) == "Curve":
-                    n += 1
-                    yield a_name, n, el
-
-
 def read_landxml(
     text: str | bytes,
     *,
@@ -301,38 +344,21 @@ def read_landxml(
     posted_speed_kmh: float | None = None,
     overrides: dict[str, CurveOverride] | None = None,
     max_curves: int = MAX_CURVES,
+    profile: str | None = None,
 ) -> CurveTable:
-    """Curves (with their start station [m]) from a LandXML 1.2 document.
+    """The curves of a LandXML 1.2 document (:func:`app.formats.landxml.read_road_file`), assessed rows as
+    :func:`app.formats.road_file.curves_from_road_file` makes them: the file's own grade and superelevation where it
+    gives them, ``superelevation_percent`` / ``grade_percent`` / ``posted_speed_kmh`` (or ``overrides[curve id]``)
+    where it does not. A curve left without a superelevation is derived from the design standard's distribution."""
+    from app.formats.road_file import read_road_document  # here: it imports this module
 
-    ``superelevation_percent`` / ``grade_percent`` / ``posted_speed_kmh`` apply to every curve unless
-    ``overrides[curve id]`` gives its own. A curve left without a superelevation is derived from the design
-    standard's distribution (the assessment refuses it, naming the curve, without ``max_superelevation_percent``).
-    """
-    overrides = dict(overrides or {})
-    curves = _Collector({"radius_m": "radius"}, id_column="name", max_curves=max_curves)
-    for a_name, n, el in _landxml_curves(xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)):
-        where = f"Alignment {a_name[:CURVE_ID_MAX_CHARS]!r} CoordGeom Curve #{n}"
-        cid = check_curve_id(el.get("name") or f"{a_name}#{n}", where, "name")
-        where = f"{where} ({cid!r})"
-        r_text = el.get("radius")
-        if r_text is None:
-            raise AlignmentFormatError("has no radius attribute", where, "radius")
-        sta = el.get("staStart")
-        ov = overrides.pop(cid, CurveOverride())
-        e = ov.superelevation_percent if ov.superelevation_percent is not None else superelevation_percent
-        g = ov.grade_percent if ov.grade_percent is not None else grade_percent
-        v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
-        station = _number(sta, "staStart", where) if sta is not None else None
-        try:
-            curves.add(cid, where, _number(r_text, "radius", where), e, g, v, station)
-        except AlignmentFormatError as exc:
-            if exc.field == "name":
-                raise AlignmentFormatError(f"duplicate curve name {cid!r}", where, "name") from None
-            raise
-    if not curves.ids:
-        raise AlignmentFormatError("no CoordGeom/Curve element in any alignment", "LandXML")
-    if overrides:
-        raise AlignmentFormatError(
-            f"overrides name curves that are not in the file: {', '.join(sorted(overrides))}", "curve_overrides"
-        )
-    return curves.table()
+    return read_road_document(
+        "landxml",
+        text,
+        superelevation_percent=superelevation_percent,
+        grade_percent=grade_percent,
+        posted_speed_kmh=posted_speed_kmh,
+        overrides=overrides,
+        max_curves=max_curves,
+        profile=profile,
+    )

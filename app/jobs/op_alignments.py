@@ -63,7 +63,7 @@ from app.alignments.service import (
 )
 from app.compute import solvers
 from app.compute.resolved import ResolvedAlignment
-from app.formats.alignment_io import CurveTable
+from app.formats.alignment_io import BEND_COLUMNS, BendTable, CurveTable
 from app.formats.texts import Texts, TextsError
 from app.http.schemas import ABSENT, describe
 from app.jobs.base import FragmentHeads, Fragments, Operation, PartContext, Prepared, ResolveContext
@@ -94,6 +94,9 @@ MAX_JOB_LANDXML_CHARS = 200_000_000
 PART_ROWS = 50_000
 CHUNK_ROWS = 10_000
 _COLUMNS = ("radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh", "station_m")
+#: a road file's bend columns (:class:`~app.formats.alignment_io.BendTable`), in a part's inputs and results: each
+#: of the part's length, or all empty for curves that came as JSON or CSV
+_BEND_SCHEMA = {name: "<f8" for name in BEND_COLUMNS}
 
 
 class LandXmlJobIn(LandXmlIn):
@@ -183,6 +186,7 @@ INPUT_SCHEMA = {
     "grade_percent": "<f8",
     "posted_speed_kmh": "<f8",
     "station_m": "<f8",
+    **_BEND_SCHEMA,
     "pair_superelevation_percent": "<f8",
     "pair_grade_percent": "<f8",
     "pair_srt": "<f8",
@@ -202,7 +206,7 @@ class PartInput:
 
 def pack_input(t: CurveTable, pairs: np.ndarray, srt: np.ndarray, error: np.ndarray, errors: list[str]) -> bytes:
     """A part's inputs as columns (:data:`INPUT_SCHEMA`; ``pairs``: (m, 2); ``srt``, ``error``: (nv, m))."""
-    columns = {c: getattr(t, c) for c in _COLUMNS}
+    columns = {c: getattr(t, c) for c in _COLUMNS} | _bend_columns(t)
     columns |= {
         "pair_superelevation_percent": pairs[:, 0],
         "pair_grade_percent": pairs[:, 1],
@@ -211,6 +215,21 @@ def pack_input(t: CurveTable, pairs: np.ndarray, srt: np.ndarray, error: np.ndar
         **_id_columns(t),
     }
     return pack_columns(columns, INPUT_SCHEMA, {"errors": errors, "vehicles": int(srt.shape[0])})
+
+
+def _bend_columns(t: CurveTable) -> dict[str, np.ndarray]:
+    """The curves' bend columns to store (empty ones when they came from no road file)."""
+    if t.bends is None:
+        return {name: np.empty(0) for name in BEND_COLUMNS}
+    return {name: t.bends[name] for name in BEND_COLUMNS}
+
+
+def _bends(cols: dict[str, np.ndarray], n: int) -> BendTable | None:
+    """The stored bend columns read back: all of the part's length, or all empty (none)."""
+    if all(cols[name].size == 0 for name in BEND_COLUMNS):
+        return None
+    require(cols, BEND_COLUMNS, n)
+    return BendTable({name: cols[name] for name in BEND_COLUMNS})
 
 
 def _id_columns(t: CurveTable) -> dict[str, np.ndarray]:
@@ -241,7 +260,7 @@ def unpack_input(data: bytes) -> PartInput:
     pairs = cols["pair_superelevation_percent"] + 1j * cols["pair_grade_percent"]
     if m > 1 and not np.all(pairs[1:] > pairs[:-1]):  # complex numbers compare by real, then imaginary part
         raise ColumnsError("the part's pairs are not sorted and distinct")
-    t = CurveTable(ids, *(cols[c] for c in _COLUMNS))
+    t = CurveTable(ids, *(cols[c] for c in _COLUMNS), bends=_bends(cols, n))
     return PartInput(t, pairs, cols["pair_srt"].reshape(nv, m), cols["pair_error"].reshape(nv, m), errors)
 
 
@@ -311,6 +330,7 @@ def split(job: AlignmentJob, part_rows: int) -> Prepared:
 #: :class:`~engine.road.AlignmentColumns` (the reasons ``error`` indexes in the meta) and the curves' ids
 RESULT_SCHEMA = {
     "station_m": "<f8",
+    **_BEND_SCHEMA,
     "radius_m": "<f8",
     "superelevation_percent": "<f8",
     "superelevation_derived": "|b1",
@@ -330,7 +350,9 @@ RESULT_SCHEMA = {
     "error": "<i4",
     **_ID_SCHEMA,
 }
-_ENGINE_COLUMNS = [name for name in RESULT_SCHEMA if name != "station_m" and name not in _ID_SCHEMA]
+_ENGINE_COLUMNS = [
+    name for name in RESULT_SCHEMA if name != "station_m" and name not in _ID_SCHEMA and name not in _BEND_SCHEMA
+]
 
 
 def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
@@ -346,7 +368,8 @@ def _joined(chunks: list[AlignmentColumns]) -> AlignmentColumns:
 
 def pack_result(curves: CurveTable, cols: AlignmentColumns) -> bytes:
     """One vehicle's result over a part's curves as columns (:data:`RESULT_SCHEMA`)."""
-    arrays = {"station_m": curves.station_m, **{name: getattr(cols, name) for name in _ENGINE_COLUMNS}}
+    arrays = {"station_m": curves.station_m, **_bend_columns(curves)}
+    arrays |= {name: getattr(cols, name) for name in _ENGINE_COLUMNS}
     return pack_columns(arrays | _id_columns(curves), RESULT_SCHEMA, {"errors": cols.errors})
 
 
@@ -355,14 +378,22 @@ def unpack_result(data: bytes) -> tuple[CurveTable, AlignmentColumns]:
     :class:`~app.jobs.columns.ColumnsError`, a ValueError)."""
     cols, meta = unpack_columns(data, RESULT_SCHEMA)
     n = cols["radius_m"].size
-    require(cols, [name for name in RESULT_SCHEMA if name not in _ID_SCHEMA], n)
+    require(cols, [name for name in RESULT_SCHEMA if name not in _ID_SCHEMA and name not in _BEND_SCHEMA], n)
     ids = _ids(cols, n)
     errors = strings(meta.get("errors"), len(meta.get("errors") or []), "the part's reasons")
     codes_within(cols["governed_by"], 0, len(GOVERNED_BY) - 1, "governed_by")
     codes_within(cols["meets_standard_min_radius"], -1, 1, "meets_standard_min_radius")
     codes_within(cols["error"], -1, len(errors) - 1, "error")
     nan = np.full(n, np.nan)
-    curves = CurveTable(ids, cols["radius_m"], nan, cols["grade_percent"], cols["posted_speed_kmh"], cols["station_m"])
+    curves = CurveTable(
+        ids,
+        cols["radius_m"],
+        nan,
+        cols["grade_percent"],
+        cols["posted_speed_kmh"],
+        cols["station_m"],
+        bends=_bends(cols, n),
+    )
     engine_cols = {name: cols[name] for name in _ENGINE_COLUMNS}
     engine_cols["governed_by"] = engine_cols["governed_by"].astype(np.intp)
     engine_cols["meets_standard_min_radius"] = engine_cols["meets_standard_min_radius"].astype(np.intp)

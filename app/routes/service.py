@@ -453,7 +453,8 @@ def route_csv(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byte
     """One row per vehicle and curve: the vehicle, the curve's geometry, then the alignment's columns; as in the JSON
     answer's curves, ``radius_m`` is the fitted radius and ``radius_lower_m`` the one the row was assessed with."""
     n = len(geo.curves)
-    base = alignment_rows.csv_columns(answer.resolved)
+    # the route's geometry states the bend's facts a road file's row carries (direction, deflection, spirals...)
+    base = [c for c in alignment_rows.csv_columns(answer.resolved) if c not in GEOMETRY_COLUMNS]
     columns = [*base[:3], *GEOMETRY_COLUMNS, *base[3:]]
     rows = []
     outside = _outside_mask(geo)
@@ -465,8 +466,8 @@ def route_csv(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byte
             fields = {k: x for k, x in geometry.items() if k in GEOMETRY_COLUMNS}
             fields["part"] = Text(fields["part"])
             fields["grade_source"] = Text(fields["grade_source"])
-            rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved, **fields,
-                         **flatten_targets(row), "radius_m": geometry["radius_m"]})  # fmt: skip
+            rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved,
+                         **flatten_targets(row), **fields, "radius_m": geometry["radius_m"]})  # fmt: skip
     return to_csv(columns, rows)
 
 

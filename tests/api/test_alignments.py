@@ -187,9 +187,15 @@ def test_csv_and_landxml_give_the_same_rows_as_json(shared_client, assessed):
     }
     landxml = {"document": to_landxml(CURVES), "curve_overrides": overrides}
     by_xml = post(shared_client, {"vehicle": BTRAIN, "rear_llt_limit": 0.6, "landxml": landxml, **table21}).json()
+    # a road file's rows add the bend's facts (each curve here an arc of 50 m turning right, one after another)
+    bend = ("station_m", "distance_m", "bend_start_m", "bend_end_m", "direction", "arc_length_m", "deflection_deg")
+    bend += ("spiral_in_m", "spiral_out_m", "compound", "reverse", "grade_min_percent", "grade_max_percent")
     for x, j, k in zip(rows_of(by_xml), rows_of(assessed), range(5), strict=True):
-        assert x["station_m"] == 100.0 * k and j["station_m"] is None
-        assert {**x, "station_m": None} == j
+        assert x["station_m"] == 100.0 * k and all(j[name] is None for name in bend)
+        assert (x["distance_m"], x["arc_length_m"], x["direction"]) == (50.0 * k, 50.0, "right")
+        assert x["deflection_deg"] == pytest.approx(math.degrees(50.0 / x["radius_m"]), rel=1e-12)
+        assert x["grade_source"] == j["grade_source"] == "request"
+        assert {**x, **dict.fromkeys(bend)} == j
 
 
 def test_landxml_defaults_apply_to_every_curve(shared_client):

@@ -235,6 +235,25 @@ def test_the_landxml_sample_has_the_csv_curves(shared_client, by_dialect):
     assert form.content == raw(shared_client, q, sample("alignment.xml"), "application/xml").content
 
 
+def test_the_landxml_sample_in_feet_is_the_same_road(shared_client, by_dialect):
+    """alignment-feet.xml: the road in feet, its grade a profile and its superelevation Superelevation elements; the
+    rows are the CSV's curves (examples/README.md), read from the file alone (no superelevation or grade asked)."""
+    q = f"{LANDXML_PATH}?vehicle={BTRAIN}"
+    out = ok(raw(shared_client, q, sample("alignment-feet.xml"), "application/xml")).json()
+    got = rows(out)
+    for row, (cid, r, e, grade, _), arc_start, spiral in zip(got, KNOWN, (360.0, 880.0), (60.0, 50.0), strict=True):
+        assert row["id"] == cid and row["radius_m"] == pytest.approx(r, rel=1e-12)
+        assert row["station_m"] == pytest.approx(arc_start, rel=1e-12)
+        assert (row["spiral_in_m"], row["spiral_out_m"]) == (pytest.approx(spiral), pytest.approx(spiral))
+        assert (row["superelevation_percent"], row["superelevation_source"]) == (e, "file")
+        assert (row["grade_percent"], row["grade_source"]) == (pytest.approx(grade, rel=1e-9), "profile")
+    assert [r["direction"] for r in got] == ["right", "left"]
+    assert out["reading"]["linear_unit"] == "foot" and out["reading"]["superelevation_from"] == "file"
+    csv_k1 = rows(by_dialect["curves-comma.csv"].json())[0]
+    for k in ("srt_g", "rollover_speed_kmh", "safe_speed_kmh"):
+        assert got[0][k] == pytest.approx(csv_k1[k], rel=1e-9)
+
+
 # ------------------------------------------------------------------------------------------ multipart
 
 

@@ -102,7 +102,7 @@ LANDXML = """<?xml version="1.0"?>
       <CoordGeom>
         <Line staStart="0" length="200"><Start>0 0</Start><End>0 200</End></Line>
         <Curve rot="cw" radius="250" length="120" staStart="200" name="K1"><Start>0 200</Start></Curve>
-        <Spiral length="60" radiusStart="INF" radiusEnd="400" staStart="320"/>
+        <Spiral rot="ccw" length="60" radiusStart="INF" radiusEnd="400.5" staStart="320"/>
         <Curve rot="ccw" radius="400.5" length="90" staStart="380"/>
       </CoordGeom>
     </Alignment>
@@ -140,7 +140,7 @@ def test_landxml_curves_with_defaults_and_overrides():
             "<LandXML><Alignments><Alignment name='A'><CoordGeom><Curve radius='-5'/></CoordGeom></Alignment>"
             "</Alignments></LandXML>",
             {"superelevation_percent": 4},
-            r"radius = -5.0 is outside \[5, 100000\] m",
+            r"Curve #1 \('A#1'\): radius must be positive \(or INF\), got '-5'",
         ),
         ("<LandXML><Alignments><Alignment", {"superelevation_percent": 4}, "malformed XML"),
         ("<Foo/>", {"superelevation_percent": 4}, "not <LandXML>"),

@@ -1,0 +1,543 @@
+"""LandXML 1.2 road-design files read into the neutral records of :mod:`engine.road.geometry` (a
+:class:`~engine.road.geometry.RoadFile`, every length in metres).
+
+What is read, per ``Alignment``:
+
+- ``<Units>``: ``Metric`` or ``Imperial`` with ``linearUnit`` (:data:`LINEAR_UNITS`: meter, kilometer, centimeter,
+  millimeter, foot = 0.3048 m, USSurveyFoot = 1200/3937 m, inch, mile), applied to every length read (radii, lengths,
+  stations, PVI stations and elevations, cross-section offsets and elevations); ``angularUnit``
+  (:data:`ANGULAR_UNITS`) where an angle is read (a ``Curve`` given by ``delta`` without ``length``). A unit not
+  known is refused naming the attribute and the value; a file without ``<Units>`` is read in metres, and the
+  reading says so.
+- ``CoordGeom``: ``Line`` (``length``, else from its ``Start``/``End``), ``Curve`` (``rot``, ``radius``,
+  ``length``), ``Spiral`` (``rot``, ``radiusStart``/``radiusEnd`` with ``INF``, ``length``, ``spiType``: the
+  transitions in :data:`SPIRAL_TYPES`, others refused by name), each with its optional ``staStart``. An
+  ``IrregularLine`` (a polyline) counts its length for the stations but is not assessed; a ``Chain`` (references to
+  elements elsewhere) is skipped; both are listed in the reading.
+- ``StaEquation`` (``staBack``, ``staAhead``, ``staInternal``).
+- ``Profile/ProfAlign`` (every one, by name): ``PVI``, ``ParaCurve``, ``UnsymParaCurve``, ``CircCurve``. A
+  ``ProfSurf`` (a surface's ground line) is listed as skipped.
+- ``Superelevation`` (``staStart``/``staEnd``; ``FullSuperSta``, ``FullSuperelev``, ``RunoffSta``): the full
+  superelevation between ``FullSuperSta`` and ``RunoffSta`` (the element's ``staStart``/``staEnd`` where they are
+  missing). ``FullSuperelev`` is read in percent, + banked toward the inside of the curve: assumed (the schema's text
+  on its unit and sign was not read; docs/uploads.md says so).
+- ``CrossSects/CrossSect`` (``sta``) > ``DesignCrossSectSurf`` > ``CrossSectPnt`` ("offset elevation"): each lane's
+  slope from the surface's points, between the centreline (offset 0, interpolated) and the first point on each side;
+  a negative offset is left of the centreline (assumed: the convention of Civil 3D's exports).
+- ``<Application>`` names the writer.
+
+Errors are :class:`~app.formats.alignment_io.AlignmentFormatError` naming the element (``Alignment 'A' CoordGeom
+element 3 (Spiral)``) and the attribute.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import xml.etree.ElementTree as ET
+from collections import Counter
+
+import numpy as np
+
+from app.formats import xmlsafe
+from app.formats.alignment_io import AlignmentFormatError
+from engine.road.geometry import (
+    AlignmentGeometry,
+    CrossSlope,
+    HorizontalElement,
+    Profile,
+    RoadFile,
+    StationEquation,
+    SuperelevationRange,
+    VerticalSegment,
+    distance_at,
+)
+
+#: metres per unit of LandXML 1.2's ``linearUnit`` values; the foot (international, 1959) and the mile exactly; the
+#: US survey foot 1200/3937 m exactly (its definition, 1893 Mendenhall order)
+LINEAR_UNITS: dict[str, float] = {
+    "meter": 1.0,
+    "kilometer": 1000.0,
+    "centimeter": 0.01,
+    "millimeter": 0.001,
+    "foot": 0.3048,
+    "USSurveyFoot": 1200.0 / 3937.0,
+    "inch": 0.0254,
+    "mile": 1609.344,
+}
+#: radians per unit of ``angularUnit`` (``decimal dd.mm.ss`` is converted from its digits)
+ANGULAR_UNITS: dict[str, float] = {
+    "radians": 1.0,
+    "grads": math.pi / 200.0,
+    "decimal degrees": math.pi / 180.0,
+    "decimal dd.mm.ss": math.pi / 180.0,
+}
+#: transitions whose curvature ramps point-symmetrically about their middle (clothoid: linear; bloss: 3t^2 - 2t^3;
+#: sinusoid: t - sin(2 pi t)/(2 pi); cosinusoid: (1 - cos(pi t))/2; biquadratic: two quadratics): each turns the mean
+#: of its end curvatures times its length and is sharpest at its end, all the assessment uses. Other ``spiType``
+#: values (cubic parabolas, radioids, ...) are refused by name.
+SPIRAL_TYPES = ("clothoid", "bloss", "sinusoid", "cosinusoid", "biquadratic")
+FORMAT = "LandXML"
+
+
+def _children(el: ET.Element, name: str) -> list[ET.Element]:
+    """``el``'s children named ``name`` in any namespace (a string test per child: there can be a million)."""
+    suffix = "}" + name
+    return [c for c in el if c.tag == name or c.tag.endswith(suffix)]
+
+
+def _child(el: ET.Element, name: str) -> ET.Element | None:
+    suffix = "}" + name
+    for c in el:
+        if c.tag == name or c.tag.endswith(suffix):
+            return c
+    return None
+
+
+def _numbers(texts: list[str], where: str, what: str) -> list[float]:
+    """The numbers of whitespace-separated texts; one not a number (or not finite) is refused naming ``what``."""
+    words = " ".join(texts).split()
+    try:
+        values = [float(w) for w in words]
+    except ValueError:
+        values = []
+    if len(values) != len(words) or not all(map(math.isfinite, values)):
+        values = [_float(w, where, what) for w in words]  # raises, naming the first bad one
+    return values
+
+
+class _Units:
+    def __init__(self, root: ET.Element) -> None:
+        self.notes: list[tuple[str, str]] = []
+        units = _child(root, "Units")
+        system = None
+        if units is not None:
+            system = next((c for c in units if xmlsafe.local(c.tag) in ("Metric", "Imperial")), None)
+        if system is None:
+            self.linear_name, self.metres, self.angular_name = "meter", 1.0, "decimal degrees"
+            self.notes.append(("<Units>", "absent: lengths read as metres (assumed)"))
+            return
+        where = f"Units/{xmlsafe.local(system.tag)}"
+        linear = system.get("linearUnit")
+        if linear is None:  # the schema requires it; which foot or which metric unit is not guessed
+            raise AlignmentFormatError("has no linearUnit attribute (LandXML requires it)", where, "linearUnit")
+        self.linear_name = linear
+        if self.linear_name not in LINEAR_UNITS:
+            raise AlignmentFormatError(
+                f"linearUnit {self.linear_name!r} is not a LandXML 1.2 length unit (known: {', '.join(LINEAR_UNITS)})",
+                where,
+                "linearUnit",
+            )
+        self.metres = LINEAR_UNITS[self.linear_name]
+        self.angular_name = system.get("angularUnit", "decimal degrees")
+        self.where = where
+
+    def angle_rad(self, text: str, where: str, attribute: str) -> float:
+        if self.angular_name not in ANGULAR_UNITS:
+            raise AlignmentFormatError(
+                f"angularUnit {self.angular_name!r} is not a LandXML 1.2 angle unit "
+                f"(known: {', '.join(ANGULAR_UNITS)})",
+                getattr(self, "where", "Units"),
+                "angularUnit",
+            )
+        v = _float(text, where, attribute)
+        if self.angular_name == "decimal dd.mm.ss":  # 45.3025 is 45 deg 30 min 25 s
+            sign, v = math.copysign(1.0, v), abs(v)
+            deg = math.floor(v)
+            mm = math.floor(round((v - deg) * 100, 9))
+            ss = round((v - deg) * 100 - mm, 9) * 100
+            v = sign * (deg + mm / 60 + ss / 3600)
+        return v * ANGULAR_UNITS[self.angular_name]
+
+
+_ROT = {"ccw": "left", "cw": "right"}
+
+
+def _float(text: str | None, where: str, attribute: str) -> float:
+    try:
+        v = float(text or "")  # float() takes surrounding white space itself
+    except ValueError:
+        raise AlignmentFormatError(
+            f"{attribute} is not a number: {(text or '').strip()[:40]!r}", where, attribute
+        ) from None
+    if not math.isfinite(v):
+        raise AlignmentFormatError(f"{attribute} must be finite, got {(text or '').strip()[:40]!r}", where, attribute)
+    return v
+
+
+class _Reader:
+    def __init__(self, root: ET.Element) -> None:
+        self.units = _Units(root)
+        self.m = self.units.metres
+        self.counts: Counter[str] = Counter()
+        self.skipped: list[tuple[str, str]] = list(self.units.notes)
+
+    def length(self, el: ET.Element, attribute: str, where: str, *, required: bool = True) -> float | None:
+        text = el.get(attribute)
+        if text is None:
+            if required:
+                raise AlignmentFormatError(f"has no {attribute} attribute", where, attribute)
+            return None
+        v = _float(text, where, attribute) * self.m
+        if v < 0.0 and attribute in ("length", "lengthIn", "lengthOut"):
+            raise AlignmentFormatError(f"{attribute} must not be negative, got {text.strip()[:40]!r}", where, attribute)
+        return v
+
+    def radius(self, el: ET.Element, attribute: str, where: str) -> float:
+        text = el.get(attribute)
+        if text is None:
+            raise AlignmentFormatError(f"has no {attribute} attribute", where, attribute)
+        if text.strip().upper() == "INF":
+            return math.inf
+        r = _float(text, where, attribute) * self.m
+        if r <= 0.0:  # the turn is rot's; a radius is positive
+            raise AlignmentFormatError(
+                f"{attribute} must be positive (or INF), got {text.strip()[:40]!r}", where, attribute
+            )
+        return r
+
+    def direction(self, el: ET.Element, where: str) -> str:
+        rot = el.get("rot")
+        if rot == "ccw":
+            return "left"
+        if rot == "cw":
+            return "right"
+        raise AlignmentFormatError(f"rot must be 'cw' or 'ccw', got {rot!r}", where, "rot")
+
+    def points(
+        self, el: ET.Element, where: str, names: tuple[str, ...] = ("Start", "End")
+    ) -> list[tuple[float, float]]:
+        """The element's child points in metres as (east, north): LandXML writes "northing easting", and reading
+        them in that order would mirror the plan (a ccw turn would read cw)."""
+        out = []
+        for name in names:
+            p = _child(el, name)
+            xy = (p.text or "").split() if p is not None else []
+            if len(xy) < 2:
+                raise AlignmentFormatError(f"has no length attribute and no <{name}> point", where, "length")
+            out.append((_float(xy[1], where, name) * self.m, _float(xy[0], where, name) * self.m))
+        return out
+
+    def arc_from_points(self, el: ET.Element, where: str, direction: str) -> tuple[float, float]:
+        """(radius, length) [m] of a Curve given by its Start, Center and End points (as Aplitop writes them): the
+        radius from the centre to the start, the length the radius times the angle swept in the turn's sense."""
+        (xs, ys), (xc, yc), (xe, ye) = self.points(el, where, ("Start", "Center", "End"))
+        r = math.hypot(xs - xc, ys - yc)
+        if r <= 0.0:
+            raise AlignmentFormatError("its Start and Center points coincide", where, "radius")
+        sweep = math.atan2(ys - yc, xs - xc), math.atan2(ye - yc, xe - xc)
+        angle = (sweep[1] - sweep[0]) if direction == "left" else (sweep[0] - sweep[1])
+        return r, r * (angle % (2 * math.pi))
+
+    # ------------------------------------------------------------------------------ horizontal
+
+    def element(self, el: ET.Element, name: str, where: str, label: str | None) -> HorizontalElement | None:
+        get = el.get
+        sta_text = get("staStart")
+        sta = None if sta_text is None else _float(sta_text, where, "staStart") * self.m
+        if name == "Curve":  # the common case first: radius, length and rot given, as numbers (a million of them)
+            r_text, l_text, direction = get("radius"), get("length"), _ROT.get(get("rot") or "")
+            if r_text is not None and l_text is not None and direction is not None:
+                try:
+                    r, length = float(r_text) * self.m, float(l_text) * self.m
+                except ValueError:
+                    r = length = math.nan
+                if 0.0 < r < math.inf and 0.0 <= length < math.inf:
+                    return HorizontalElement("arc", length, r, r, direction, sta, None, label, where)
+        if name == "Line":
+            length = self.length(el, "length", where, required=False)
+            if length is None:
+                (x0, y0), (x1, y1) = self.points(el, where)
+                length = math.hypot(x1 - x0, y1 - y0)
+            return HorizontalElement("line", length, station_m=sta, name=label, where=where)
+        if name == "Curve":
+            length = self.length(el, "length", where, required=False)
+            if el.get("radius") is None and _child(el, "Center") is not None:
+                direction = self.direction(el, where)
+                r, swept = self.arc_from_points(el, where, direction)
+                length = swept if length is None else length
+            else:
+                r = self.radius(el, "radius", where)
+                direction = self.direction(el, where)
+            if math.isinf(r):
+                raise AlignmentFormatError("radius is INF: a Curve must have a finite radius", where, "radius")
+            if length is None:
+                delta = el.get("delta")
+                if delta is None:
+                    raise AlignmentFormatError("has no length attribute (nor delta, nor points)", where, "length")
+                length = r * abs(self.units.angle_rad(delta, where, "delta"))
+            return HorizontalElement("arc", length, r, r, direction, sta, None, label, where)
+        if name == "Spiral":
+            kind = el.get("spiType", "clothoid")
+            if kind not in SPIRAL_TYPES:
+                raise AlignmentFormatError(
+                    f"spiType {kind!r} is not read (read: {', '.join(SPIRAL_TYPES)}): its curvature along its "
+                    "length is not the symmetric ramp the assessment uses",
+                    where,
+                    "spiType",
+                )
+            r1, r2 = self.radius(el, "radiusStart", where), self.radius(el, "radiusEnd", where)
+            length = self.length(el, "length", where)
+            return HorizontalElement("spiral", length, r1, r2, self.direction(el, where), sta, kind, label, where)
+        if name == "IrregularLine":
+            length = self.length(el, "length", where, required=False)
+            if length is None:
+                pts = _child(el, "PntList2D")  # (an element without children is false: no `or` here)
+                pts = _child(el, "PntList3D") if pts is None else pts
+                step = 2 if pts is not None and xmlsafe.local(pts.tag) == "PntList2D" else 3
+                xs = [_float(t, where, "PntList") * self.m for t in (pts.text or "").split()] if pts is not None else []
+                coords = list(zip(xs[0::step], xs[1::step], strict=False))
+                length = sum(math.dist(a, b) for a, b in itertools.pairwise(coords))
+            self.skipped.append((where, "a polyline: its length counts for the stations, its curvature is not given"))
+            return HorizontalElement("line", length, station_m=sta, name=label, where=where)
+        self.skipped.append((where, f"<{name}> is not a horizontal element read"))
+        return None
+
+    def alignment(self, el: ET.Element, index: int) -> AlignmentGeometry:
+        a_name = el.get("name") or f"alignment {index}"
+        where_a = f"Alignment {a_name[:100]!r}"
+        start = self.length(el, "staStart", where_a, required=False) or 0.0
+        elements: list[HorizontalElement] = []
+        ordinal: dict[str, int] = {}
+        prefix, m, inf = f"{where_a} CoordGeom ", self.m, math.inf
+        append = elements.append
+        for geom in _children(el, "CoordGeom"):
+            for child in geom:
+                tag = child.tag
+                name = tag[tag.rfind("}") + 1 :]  # xmlsafe.local, inline: once per element of a large file
+                if name == "Feature":
+                    continue
+                n = ordinal[name] = ordinal.get(name, 0) + 1
+                get = child.get
+                label = get("name")
+                if name == "Curve":  # the curve's id as the answer names it: its name, else <alignment>#<n>
+                    label = label or f"{a_name}#{n}"
+                    where = f"{prefix}Curve #{n} ({label[:100]!r})"
+                    # the common case inline (a million of them): radius, length, rot and staStart as plain numbers
+                    r_text, l_text, s_text, direction = (
+                        get("radius"),
+                        get("length"),
+                        get("staStart"),
+                        _ROT.get(get("rot")),
+                    )
+                    try:
+                        r, length = float(r_text) * m, float(l_text) * m
+                        sta = None if s_text is None else float(s_text) * m
+                    except (TypeError, ValueError):
+                        r = length = sta = math.nan
+                    if direction and 0.0 < r < inf and 0.0 <= length < inf and (sta is None or -inf < sta < inf):
+                        append(HorizontalElement("arc", length, r, r, direction, sta, None, label, where))
+                        continue
+                else:
+                    where = f"{prefix}{name} #{n}" + (f" ({label[:100]!r})" if label else "")
+                e = self.element(child, name, where, label)  # the careful path: every refusal named
+                if e is not None:
+                    append(e)
+        for name, count in ordinal.items():
+            self.counts[name] += count
+        a = AlignmentGeometry(a_name, start, tuple(elements), where=where_a)
+        equations = self.equations(el, a, where_a)
+        a = AlignmentGeometry(a_name, start, tuple(elements), equations, where=where_a)
+        profiles = tuple(p for prof in _children(el, "Profile") for p in self.profiles(prof, a, where_a))
+        supers = tuple(
+            self.superelevation(s, a, f"{where_a} Superelevation {k}")
+            for k, s in enumerate(_children(el, "Superelevation"), start=1)
+        )
+        slopes = tuple(s for cs in _children(el, "CrossSects") for s in self.cross_sections(cs, a, where_a))
+        # the ranges' and sections' stations as distances along, in one call each
+        if supers:
+            ends = distance_at(a, np.array([[r.start_distance_m, r.end_distance_m] for r in supers]))
+            supers = tuple(
+                SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
+                for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
+            )
+        if slopes:
+            at = distance_at(a, np.array([c.distance_m for c in slopes])).tolist()
+            slopes = tuple(CrossSlope(d, c.left_percent, c.right_percent) for d, c in zip(at, slopes, strict=True))
+        return AlignmentGeometry(a_name, start, tuple(elements), equations, profiles, supers, slopes, where_a)
+
+    def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
+        out: list[StationEquation] = []
+        for k, eq in enumerate(_children(el, "StaEquation"), start=1):
+            self.counts["StaEquation"] += 1
+            where = f"{where_a} StaEquation {k}"
+            back = self.length(eq, "staBack", where)
+            ahead = self.length(eq, "staAhead", where)
+            internal = self.length(eq, "staInternal", where, required=False)
+            if internal is not None:  # the continuous station: the start station plus the distance
+                distance = internal - a.start_station_m
+            else:
+                so_far = AlignmentGeometry(a.name, a.start_station_m, (), tuple(out))
+                distance = float(distance_at(so_far, back))
+            out.append(StationEquation(distance, back, ahead))
+        return tuple(out)
+
+    # ------------------------------------------------------------------------------ vertical
+
+    def profiles(self, prof: ET.Element, a: AlignmentGeometry, where_a: str) -> list[Profile]:
+        out = []
+        for k, child in enumerate(prof, start=1):
+            name = xmlsafe.local(child.tag)
+            if name == "ProfAlign":
+                self.counts["ProfAlign"] += 1
+                p_name = child.get("name") or f"profile {k}"
+                out.append(self.profile(child, p_name, a, f"{where_a} ProfAlign {p_name[:100]!r}"))
+            elif name == "ProfSurf":
+                self.skipped.append((f"{where_a} ProfSurf {child.get('name') or k!r}", "a surface's ground line"))
+        return out
+
+    def profile(self, el: ET.Element, name: str, a: AlignmentGeometry, where_p: str) -> Profile:
+        # (distance, elevation, length before, length after, radius) of each vertical point in order
+        pts: list[tuple[float, float, float, float, float | None, str]] = []
+        for k, child in enumerate(el, start=1):
+            tag = xmlsafe.local(child.tag)
+            if tag not in ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve"):
+                continue
+            self.counts[tag] += 1
+            where = f"{where_p} element {k} ({tag})"
+            xy = (child.text or "").split()
+            if len(xy) < 2:
+                raise AlignmentFormatError("needs 'station elevation' as its text", where, tag)
+            sta, z = _float(xy[0], where, "station") * self.m, _float(xy[1], where, "elevation") * self.m
+            before = after = 0.0
+            radius = None
+            if tag == "ParaCurve":
+                before = after = 0.5 * (self.length(child, "length", where) or 0.0)
+            elif tag == "UnsymParaCurve":
+                before, after = self.length(child, "lengthIn", where), self.length(child, "lengthOut", where)
+            elif tag == "CircCurve":
+                # some writers (3D-Win) sign the radius: - on a crest; the grades say which it is
+                radius = abs(self.length(child, "radius", where) or 0.0)
+                if radius == 0.0:
+                    raise AlignmentFormatError("radius must not be 0", where, "radius")
+            pts.append((sta, z, before, after, radius, where))
+        if len(pts) < 2:
+            raise AlignmentFormatError("needs at least two points (PVI)", where_p, "PVI")
+        distances = distance_at(a, np.array([p[0] for p in pts])).tolist()  # one call for every point
+        for k in range(1, len(pts)):
+            if distances[k] <= distances[k - 1]:
+                raise AlignmentFormatError(
+                    f"station {pts[k][0] / self.m:g} is not after the previous point's", pts[k][5], "station"
+                )
+        pts = [(d, *p[1:]) for d, p in zip(distances, pts, strict=True)]
+        n = len(pts)
+        grades = [(pts[i + 1][1] - pts[i][1]) / (pts[i + 1][0] - pts[i][0]) for i in range(n - 1)]
+        reach_in, reach_out = [0.0] * n, [0.0] * n  # each vertical curve's extent before and after its point
+        pieces: list[list[tuple[float, float, str, float, float, float | None]]] = [[] for _ in range(n)]
+        for i in range(1, n - 1):
+            d, _, before, after, radius, where = pts[i]
+            g1, g2 = grades[i - 1], grades[i]
+            if radius is not None:  # tangent length R tan(dtheta/2) along each tangent, projected
+                t1, t2 = math.atan(g1), math.atan(g2)
+                tangent = radius * math.tan(abs(t2 - t1) / 2)
+                before, after = tangent * math.cos(t1), tangent * math.cos(t2)
+                pieces[i].append((d - before, d + after, "circular", g1, g2, radius))
+            elif before > 0 or after > 0:
+                # an unsymmetric parabola: two parabolas sharing the grade under the PVI, g1 + Lo (g2 - g1)/(Li + Lo)
+                g_mid = g1 + after * (g2 - g1) / (before + after)
+                if before > 0:
+                    pieces[i].append((d - before, d, "parabolic", g1, g_mid, None))
+                if after > 0:
+                    pieces[i].append((d, d + after, "parabolic", g_mid, g2, None))
+            reach_in[i], reach_out[i] = before, after
+        segments: list[VerticalSegment] = []
+        for i in range(n - 1):
+            d, z = pts[i][0], pts[i][1]
+            a, b = d + reach_out[i], pts[i + 1][0] - reach_in[i + 1]
+            if b < a - 1e-9:
+                raise AlignmentFormatError("its vertical curve overlaps the previous point's", pts[i + 1][5], "length")
+            if b > a:
+                segments.append(VerticalSegment("constant", a, b - a, z + grades[i] * (a - d), grades[i], grades[i]))
+            for start, end, kind, g_in, g_out, radius in pieces[i + 1]:
+                z_start = z + grades[i] * (start - d) if start < pts[i + 1][0] else pts[i + 1][1]
+                segments.append(VerticalSegment(kind, start, end - start, z_start, g_in, g_out, radius))
+        return Profile(name, tuple(segments))
+
+    # ------------------------------------------------------------------------------ crossfall
+
+    def superelevation(self, el: ET.Element, a: AlignmentGeometry, where: str) -> SuperelevationRange:
+        self.counts["Superelevation"] += 1
+
+        def value(name: str) -> float | None:
+            c = _child(el, name)
+            return None if c is None or not (c.text or "").strip() else _float(c.text, where, name)
+
+        full = value("FullSuperelev")
+        if full is None:
+            raise AlignmentFormatError("has no <FullSuperelev>", where, "FullSuperelev")
+        start = value("FullSuperSta")
+        end = value("RunoffSta")
+        start = start * self.m if start is not None else self.length(el, "staStart", where)
+        end = end * self.m if end is not None else self.length(el, "staEnd", where)
+        return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
+
+    def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> list[CrossSlope]:
+        out = []
+        for k, cs in enumerate(_children(el, "CrossSect"), start=1):
+            self.counts["CrossSect"] += 1
+            where = f"{where_a} CrossSect {k}"
+            surf = _child(cs, "DesignCrossSectSurf")
+            if surf is not None:  # LandXML 1.2: a design surface's points, "offset elevation" each
+                texts = [" ".join((p.text or "").split()[:2]) for p in _children(surf, "CrossSectPnt")]
+            else:  # as Aplitop writes it: a CrossSectSurf with a PntList2D of offset elevation pairs
+                surf = _child(cs, "CrossSectSurf")
+                plist = _child(surf, "PntList2D") if surf is not None else None
+                if plist is None:
+                    self.skipped.append((where, "no design surface (DesignCrossSectSurf) to take the slopes from"))
+                    continue
+                texts = [plist.text or ""]
+            xs = _numbers(texts, where, "CrossSectPnt")
+            left = right = None  # the points nearest the centreline on each side, and the centreline's own
+            zc = None
+            for x, z in zip(xs[0::2], xs[1::2], strict=False):
+                if x < 0 and (left is None or x > left[0]):
+                    left = (x, z)
+                elif x > 0 and (right is None or x < right[0]):
+                    right = (x, z)
+                elif x == 0:
+                    zc = z
+            if left is None or right is None:
+                self.skipped.append((where, "its design surface has no point on one side of the centreline"))
+                continue
+            (xl, zl), (xr, zr) = left, right
+            if zc is None:
+                zc = zl + (zr - zl) * (0 - xl) / (xr - xl)
+            # slopes are ratios: the file's unit cancels
+            sta = self.length(cs, "sta", where)
+            # + rising from left to right (engine.road.geometry's convention); the station made a distance by the
+            # caller, with every section's at once
+            out.append(CrossSlope(sta, 100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr))
+        return out
+
+
+def writer_of(root: ET.Element) -> str | None:
+    """The application that wrote the file (``<Application name= version= manufacturer=>``), or None."""
+    app = _child(root, "Application")
+    if app is None:
+        return None
+    parts = [app.get("name"), app.get("version")]
+    text = " ".join(p for p in parts if p)
+    maker = app.get("manufacturer")
+    if maker:
+        text = f"{text} ({maker})" if text else maker
+    return text[:200] or None
+
+
+def read_road_file(text: str | bytes) -> RoadFile:
+    """A LandXML 1.2 document as a :class:`~engine.road.geometry.RoadFile` (every alignment, in metres); raises
+    :class:`~app.formats.alignment_io.AlignmentFormatError`."""
+    root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)
+    alignments_el = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
+    if not alignments_el:
+        raise AlignmentFormatError("no <Alignment> element", "LandXML")
+    reader = _Reader(root)
+    alignments = tuple(reader.alignment(el, k) for k, el in enumerate(alignments_el, start=1))
+    version = root.get("version")
+    return RoadFile(
+        format=f"{FORMAT} {version}" if version else FORMAT,
+        alignments=alignments,
+        linear_unit=reader.units.linear_name,
+        writer=writer_of(root),
+        skipped=tuple(reader.skipped),
+        elements=tuple(sorted(reader.counts.items())),
+    )

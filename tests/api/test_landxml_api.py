@@ -1,0 +1,86 @@
+"""The LandXML endpoints answer a road-design file whole (issue 39): its units applied, its bends as rows with their
+facts, `reading` in every answer, a straight road answered with no rows, the profile chosen by name, and the file's
+faults refused by name.
+
+Independent numbers: a curve of 200 ft is a curve of 60.96 m (0.3048 m the foot, by definition): the same request
+with the curve given as JSON at 60.96 m must answer the same assessment.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from tests.landxml_writer import Design, Element, Pvi, landxml
+
+BTRAIN = "table16-btrain"
+PATH = "/v1/alignments/assess/landxml"
+FEET = Design(
+    "F",
+    0.0,
+    [
+        Element("Line", 100 * 0.3048),
+        Element("Curve", 150 * 0.3048, 200 * 0.3048, 200 * 0.3048, "cw", "K1"),
+        Element("Line", 100 * 0.3048),
+    ],
+)
+
+
+def upload(client, doc: str, query: str, status: int = 200, **headers):
+    r = client.post(f"{PATH}?{query}", content=doc.encode(), headers={"Content-Type": "application/xml", **headers})
+    assert r.status_code == status, r.text
+    return r
+
+
+def test_a_curve_in_feet_is_assessed_at_its_radius_in_metres(shared_client):
+    out = upload(shared_client, landxml(FEET, "foot"), f"vehicle={BTRAIN}&superelevation_percent=6").json()
+    (row,) = out["vehicles"][0]["rows"]
+    assert row["radius_m"] == pytest.approx(60.96, rel=1e-12) and row["station_m"] == pytest.approx(30.48, rel=1e-12)
+    assert out["reading"]["linear_unit"] == "foot" and out["reading"]["superelevation_from"] == "request"
+    body = {"vehicle": BTRAIN, "curves": [{"id": "K1", "radius_m": 60.96, "superelevation_percent": 6.0}]}
+    (json_row,) = shared_client.post("/v1/alignments/assess", json=body).json()["vehicles"][0]["rows"]
+    for name in ("srt_g", "rollover_speed_kmh", "side_friction_speed_kmh", "safe_speed_kmh"):
+        assert row[name] == pytest.approx(json_row[name], rel=1e-9), name
+    assert row["governed_by"] == json_row["governed_by"]
+    assert row["deflection_deg"] == pytest.approx(math.degrees(150 / 200), rel=1e-12)
+    assert (row["direction"], row["superelevation_source"], row["grade_source"]) == ("right", "given", "request")
+
+
+def test_a_straight_road_answers_with_no_curves(shared_client):
+    doc = landxml(Design("S", 0.0, [Element("Line", 800.0)]))
+    out = upload(shared_client, doc, f"vehicle={BTRAIN}").json()
+    assert out["curves"] == 0 and out["vehicles"][0]["rows"] == [] and out["reading"]["elements"] == {"Line": 1}
+    csv = upload(shared_client, doc, f"vehicle={BTRAIN}", accept="text/csv").text
+    assert csv.count("\r\n") == 1 and csv.startswith("vehicle_index,")  # the header alone
+
+
+def test_the_profile_is_chosen_by_name_and_a_name_not_in_the_file_is_refused(shared_client):
+    design = Design("P", 0.0, [Element("Line", 100.0), Element("Curve", 100.0, 300.0, 300.0, "cw", "K")],
+                    pvis=[Pvi(0.0, 0.0), Pvi(200.0, 4.0)])  # fmt: skip
+    doc = landxml(design).replace(
+        '<ProfAlign name="Design">',
+        '<ProfAlign name="Ground"><PVI>0 0</PVI><PVI>200 -10</PVI></ProfAlign><ProfAlign name="Design">',
+    )
+    q = f"vehicle={BTRAIN}&superelevation_percent=4"
+    first = upload(shared_client, doc, q).json()
+    assert first["vehicles"][0]["rows"][0]["grade_percent"] == pytest.approx(-5.0)
+    chosen = upload(shared_client, doc, q + "&profile=Design").json()
+    assert chosen["vehicles"][0]["rows"][0]["grade_percent"] == pytest.approx(2.0)
+    assert chosen["reading"]["profile"] == "Design"
+    p = upload(shared_client, doc, q + "&profile=Final", status=422).json()
+    assert p["errors"][0]["field"] == "profile" and "'Final'" in p["errors"][0]["message"]
+
+
+@pytest.mark.parametrize(
+    ("edit", "field", "text"),
+    [
+        (('linearUnit="meter"', 'linearUnit="furlong"'), "body.linearUnit", "'furlong'"),
+        (('rot="cw"', 'rot="clockwise"'), "body.rot", "'clockwise'"),
+    ],
+)
+def test_a_unit_or_value_the_reader_does_not_know_is_a_422_naming_it(shared_client, edit, field, text):
+    doc = landxml(FEET).replace(*edit)
+    p = upload(shared_client, doc, f"vehicle={BTRAIN}", status=422).json()
+    (error,) = p["errors"]
+    assert error["field"] == field and text in error["message"]

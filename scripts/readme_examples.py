@@ -571,21 +571,24 @@ EXAMPLES = [
         ),
     ),
     Example(
-        "PBS screening of the A-double: value, level from verified limits only (none could be read), the rules",
+        "PBS screening of the A-double: value, limits by level (null: not read in the rules), level from verified "
+        "limits only, the manoeuvre defaults unverified",
         "POST",
         "/v1/pbs",
         {"vehicle": "adouble"},
         pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
-        '[print(s["id"], round(s["value"], 3), s["unit"], s["level"], s["level_unverified"]) for s in r["standards"]]; '
-        'print(r["note"]); print(r["rules_version"])\'',
+        '[print(s["id"], round(s["value"], 3), s["unit"], [lim["limit"] for lim in s["limits"]], s["level"]) '
+        'for s in r["standards"]]; print(r["standards"][0]["limits"][0]["source"]); '
+        'c = r["conditions"]; print(c["verified"], c["unverified_defaults_used"]); print(r["note"])\'',
         show=lambda r: "\n".join(
             [
                 *(
-                    f"{s['id']} {round(s['value'], 3)} {s['unit']} {s['level']} {s['level_unverified']}"
+                    f"{s['id']} {round(s['value'], 3)} {s['unit']} {[lim['limit'] for lim in s['limits']]} {s['level']}"
                     for s in r.json()["standards"]
                 ),
+                r.json()["standards"][0]["limits"][0]["source"],
+                f"{r.json()['conditions']['verified']} {r.json()['conditions']['unverified_defaults_used']}",
                 r.json()["note"],
-                r.json()["rules_version"],
             ]
         ),
     ),

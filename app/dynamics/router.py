@@ -81,8 +81,10 @@ async def low_speed_turn(body: s.LowSpeedTurnRequest, request: Request, cache: C
 @replayable("pbs")
 async def pbs(body: s.PbsRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Performance-Based Standards screening: every standard this model can judge with its value, the limits per
-    level with their sources (unverified where the rules could not be read), the level met by verified limits
-    only, the rules' version, the length's network level and the standards not judged. Indicative screening, not a
+    level with their sources (a null limit, `verified: false`, where the rules' text could not be read: no number
+    is given for it), the level met by verified limits only (null without one), the rules' version, the length's
+    network level and the standards not judged. The manoeuvres' default speeds and amplitude are unverified: set
+    them to the rules' values (`conditions` names those left at default). Indicative screening, not a
     certification."""
     body = await resolve_vehicle_refs(request, body, settings)
     return json_response(await service.compute_pbs(cache, body))

@@ -14,6 +14,7 @@ from pydantic import ConfigDict, Field, create_model
 from app.http.schemas import InputModel, OutputModel, describe
 from app.srt.schemas import VEHICLE_DESCRIPTION, VehicleRef
 from engine.dynamics.parameters import GROUP_DATA_DOCS, UNIT_DATA_DOCS
+from engine.dynamics.pbs import LANE_CHANGE_AMPLITUDE_G, LANE_CHANGE_SPEED_KMH, PULSE_STEER_SPEED_KMH
 
 RaDefinition = Literal["cg", "axle"]
 
@@ -79,11 +80,11 @@ RA_TEXT = (
 
 
 class LaneChangeRequest(DynamicsInputs):
-    speed_kmh: float = _speed(88.0, "Forward speed (the PBS value is unverified).")
+    speed_kmh: float = _speed(88.0, "Forward speed (default unverified: not read in the PBS rules).")
     frequency_hz: float = f(0.4, "Frequency of the one sine period of the steer axle's lateral acceleration.", "Hz",
                             ge=0.05, le=3.0)  # fmt: skip
-    amplitude_g: float = f(0.15, "Amplitude of the steer axle's lateral acceleration (the PBS value is unverified).",
-                           "g", ge=0.01, le=0.6)  # fmt: skip
+    amplitude_g: float = f(0.15, "Amplitude of the steer axle's lateral acceleration (default unverified: not read "
+                           "in the PBS rules).", "g", ge=0.01, le=0.6)  # fmt: skip
     ra_definition: RaDefinition = f("cg", RA_TEXT)
     include_history: bool = f(False, "Time histories (every 0.02 s) in the answer.")
 
@@ -102,7 +103,7 @@ class FrequencyResponseRequest(DynamicsInputs):
 
 
 class PulseSteerRequest(DynamicsInputs):
-    speed_kmh: float = _speed(100.0, "Forward speed (the PBS value is unverified).")
+    speed_kmh: float = _speed(100.0, "Forward speed (default unverified: not read in the PBS rules).")
 
     model_config = ConfigDict(json_schema_extra={"examples": [{"vehicle": "btrain-table16", "speed_kmh": 100.0}]})
 
@@ -127,8 +128,15 @@ class LowSpeedTurnRequest(DynamicsInputs):
     model_config = ConfigDict(json_schema_extra={"examples": [{"vehicle": "btrain-table16"}]})
 
 
+PBS_DEFAULT = " The default is unverified (a value as commonly cited, not read in the rules): set the rules' value."
+
+
 class PbsRequest(DynamicsInputs):
     ra_definition: RaDefinition = f("cg", RA_TEXT)
+    lane_change_speed_kmh: float = _speed(LANE_CHANGE_SPEED_KMH, "The lane change's forward speed." + PBS_DEFAULT)
+    lane_change_amplitude_g: float = f(LANE_CHANGE_AMPLITUDE_G, "The lane change's amplitude of the steer axle's "
+                                       "lateral acceleration." + PBS_DEFAULT, "g", ge=0.01, le=0.6)  # fmt: skip
+    pulse_steer_speed_kmh: float = _speed(PULSE_STEER_SPEED_KMH, "The pulse steer's forward speed." + PBS_DEFAULT)
 
     model_config = ConfigDict(json_schema_extra={"examples": [{"vehicle": "btrain-table16"}]})
 
@@ -265,10 +273,11 @@ class LowSpeedTurnResult(ScreeningOut):
 
 class PbsLimitOut(OutputModel):
     level: int = f(..., "PBS level (1-4).")
-    limit: float = f(..., "The limit, in the standard's unit.")
+    limit: float | None = f(..., "The limit, in the standard's unit; null: the limit could not be read in the rules' "
+                               "text, so none is given.")  # fmt: skip
     sense: Literal["min", "max"] = f(..., "`min`: the value must be at least the limit; `max`: at most.")
-    source: str = f(..., "Where the limit comes from, or `unverified`.")
-    verified: bool = f(..., "Whether the limit was read in its source.")
+    source: str = f(..., "The text the limit was read in; or, where `verified` is false, that it could not be read.")
+    verified: bool = f(..., "Whether the limit was read in a primary text (false: `limit` is null).")
 
 
 class PbsStandardOut(OutputModel):
@@ -276,8 +285,7 @@ class PbsStandardOut(OutputModel):
     value: float | None = f(..., "The vehicle's value (null: unstable or not measurable).")
     unit: str = f(..., "The value's unit.")
     limits: list[PbsLimitOut] = f(..., "Per level.")
-    level: int | None = f(..., "Best level met by verified limits only (null: none verified, or none met).")
-    level_unverified: int | None = f(..., "Best level the limits would give, unverified ones included.")
+    level: int | None = f(..., "Best level met, from verified limits only (null: no verified limit, or none met).")
     source: str = f(..., "The rules and what the standard applies to.")
     note: str = f(..., "Why a value is missing, if it is.")
 
@@ -290,4 +298,6 @@ class PbsResult(ScreeningOut):
     network_level_by_length: dict[str, Any] = f(..., "The lowest level whose length limit (Class A, Class B) admits "
                                                 "the vehicle, the limits and their source.")  # fmt: skip
     other_limits: list[dict[str, Any]] = f(..., "Other schemes' limits, with their sources.")
-    conditions: dict[str, Any] = f(..., "The manoeuvres' speeds, frequency and amplitude used, and their status.")
+    conditions: dict[str, Any] = f(..., "The manoeuvres' speeds, frequency and amplitude used; `verified` (false: the "
+                                   "rules' values could not be read), `unverified_defaults_used` (the request's "
+                                   "options left at their unverified defaults) and `source`.")  # fmt: skip

@@ -258,10 +258,10 @@ async def compute_low_speed_turn(cache: ResultCache, req: s.LowSpeedTurnRequest)
 
 
 async def compute_pbs(cache: ResultCache, req: s.PbsRequest) -> Computed:
-    opts = {"ra_definition": req.ra_definition}
+    opts = req.model_dump(exclude={"vehicle", "dynamics"})
 
     def compute(model: YawRollModel) -> s.PbsResult:
-        sc = screen(model, ra_definition=req.ra_definition)
+        sc = screen(model, **opts)
         stable = not any(x.note.startswith("unstable") for x in sc.standards)
         return s.PbsResult(
             **_common(model, sc.validity, stable=stable), standards=[asdict(x) for x in sc.standards],

@@ -1,13 +1,15 @@
 """Performance-Based Standards: the standards this model can judge, with the limits' sources, as indicative screening.
 
 Rules: NTC, *Performance Based Standards Scheme - The Standards and Vehicle Assessment Rules*, as at 10 November
-2008 (made 30 July 2007, approved 3 October 2007, amendments consented to on 7 November 2008; the title page was
-read, the body text - the manoeuvres' speeds and amplitudes and the limits by level - could not be read here).
-Every limit below is therefore marked ``verified: False`` with the note "unverified", and the level a vehicle meets
-is computed from verified limits only, so it stays null; ``level_unverified`` says which level the unverified
-limits would give. The length check by network level uses NHVR's road-access levels (recorded in the project's
-source notes from NHVR's page): Level 1 up to 20 m; Level 2 up to 26 m (Class A) / 30 m (Class B); Level 3 up to
-36.5 / 42 m; Level 4 up to 53.5 / 60 m.
+2008 (made 30 July 2007, approved 3 October 2007, amendments consented to on 7 November 2008; the title page and
+contents were read, the body text - the manoeuvres' speeds and amplitudes and the limits by level - could not be
+read here). No limit by level is therefore given: every one is ``limit: None``, ``verified: False``, with a source
+saying the rules' text could not be read (:data:`NOT_READ`). A limit read in a primary text goes in
+:data:`VERIFIED_LIMITS` with that text named; the level a vehicle meets is computed from verified limits only
+(:func:`best_level`), so it stays null while none is. The manoeuvres' default speeds and amplitude are unverified
+too: the answer's ``conditions`` say so, and the caller sets them to the rules' values. The length check by network
+level uses NHVR's road-access levels (recorded in the project's source notes from NHVR's page): Level 1 up to 20 m;
+Level 2 up to 26 m (Class A) / 30 m (Class B); Level 3 up to 36.5 / 42 m; Level 4 up to 53.5 / 60 m.
 
 Judged here: SRT (the static combination model's lowest roll-coupled unit), rearward amplification and high-speed
 transient offtracking (single lane change), yaw damping (pulse steer), low-speed swept path, tail swing and frontal
@@ -32,7 +34,7 @@ RULES_VERSION = (
     "(made 30 July 2007; amendments consented to 7 November 2008)"
 )
 SCREENING_NOTE = "indicative screening, not a certification"
-UNVERIFIED = "unverified: the rules' text could not be read; value as commonly cited, not checked against the rules"
+NOT_READ = "unverified: the rules' text (the limits by level) could not be read, so no limit is given"
 NOT_JUDGED = (
     "startability",
     "gradeability",
@@ -45,22 +47,35 @@ NOT_JUDGED = (
     "tyre contact pressure distribution",
     "bridge loading",
 )
-#: the manoeuvres' conditions (PBS values unverified; 0.4 Hz confirmed only second-hand)
+#: the manoeuvres' default conditions: values as commonly cited, NOT read in the rules (module docstring); the
+#: caller sets them to the rules' values. 0.4 Hz is confirmed only second-hand (an open PBS implementation citing
+#: NTC 2008) and is fixed.
 LANE_CHANGE_SPEED_KMH = 88.0
 LANE_CHANGE_AMPLITUDE_G = 0.15
 LANE_CHANGE_FREQUENCY_HZ = 0.4
 PULSE_STEER_SPEED_KMH = 100.0
+CONDITIONS_SOURCE = (
+    "unverified: the rules' manoeuvre conditions could not be read. The default lane-change speed (88 km/h) and "
+    "amplitude (0.15 g) and pulse-steer speed (100 km/h) are values as commonly cited, not read in the rules: set "
+    "lane_change_speed_kmh, lane_change_amplitude_g and pulse_steer_speed_kmh to the rules' values. The lane "
+    "change's 0.4 Hz is confirmed only second-hand (an open PBS implementation citing NTC 2008)."
+)
 
-#: (standard id, unit, sense, {level: limit}, what the limit applies to); every one unverified
-_LIMITS: dict[str, tuple[str, str, dict[int, float], str]] = {
-    "srt": ("g", "min", {1: 0.35, 2: 0.35, 3: 0.35, 4: 0.35}, "the lowest roll-coupled unit's SRT"),
-    "rearward_amplification": ("-", "max", {}, "5.7 x the rearmost roll-coupled unit's SRT (all levels)"),
-    "high_speed_transient_offtracking": ("m", "max", {1: 0.6, 2: 0.8, 3: 1.0, 4: 1.2}, "the rearmost axle"),
-    "yaw_damping": ("-", "min", {1: 0.15, 2: 0.15, 3: 0.15, 4: 0.15}, "the rearmost articulation"),
-    "low_speed_swept_path": ("m", "max", {1: 7.4, 2: 8.7, 3: 10.6, 4: 13.7}, "the 90 degree turn"),
-    "tail_swing": ("m", "max", {1: 0.30, 2: 0.35, 3: 0.35, 4: 0.35}, "every unit's outside rear corner"),
-    "frontal_swing": ("m", "max", {1: 0.7, 2: 0.7, 3: 0.7, 4: 0.7}, "the prime mover's outside front corner"),
+#: standard id -> (unit, sense, what the standard applies to)
+STANDARDS: dict[str, tuple[str, str, str]] = {
+    "srt": ("g", "min", "the lowest roll-coupled unit's SRT"),
+    "rearward_amplification": ("-", "max", "the rearmost unit over the steer axle (`ra_definition`)"),
+    "high_speed_transient_offtracking": ("m", "max", "the rearmost axle"),
+    "yaw_damping": ("-", "min", "the rearmost articulation"),
+    "low_speed_swept_path": ("m", "max", "the 90 degree turn"),
+    "tail_swing": ("m", "max", "every unit's outside rear corner"),
+    "frontal_swing": ("m", "max", "the prime mover's outside front corner"),
 }
+LEVELS = (1, 2, 3, 4)
+#: limits read in a primary text: standard id -> {level: (limit in the standard's unit, the text it was read in)}.
+#: Empty: no primary text of the limits could be read (searched 2026-12-07: the rules' copies found show only their
+#: title page and contents; NHVR's vehicle-standards page defines the standards without limits).
+VERIFIED_LIMITS: dict[str, dict[int, tuple[float, str]]] = {}
 #: NHVR network levels by length [m]: level -> (Class A, Class B)
 LENGTH_LEVELS = {1: (20.0, 20.0), 2: (26.0, 30.0), 3: (36.5, 42.0), 4: (53.5, 60.0)}
 LENGTH_SOURCE = "NHVR, PBS road access: network levels by length (recorded in the project's source notes, 2026-12-07)"
@@ -73,7 +88,6 @@ class Standard:
     unit: str
     limits: list[dict]
     level: int | None
-    level_unverified: int | None
     source: str
     note: str = ""
 
@@ -92,11 +106,26 @@ class Screening:
     other_limits: list[dict] = field(default_factory=list)
 
 
-def _levels(value: float | None, sense: str, limits: dict[int, float]) -> int | None:
+def limit_rows(sid: str, sense: str) -> list[dict]:
+    """Per level: the verified limit and its source where one was read (:data:`VERIFIED_LIMITS`), else a null limit
+    with :data:`NOT_READ` as its source; never a number that was not read."""
+    read = VERIFIED_LIMITS.get(sid, {})
+    return [{"level": lv, "limit": read[lv][0], "sense": sense, "source": read[lv][1], "verified": True} if lv in read
+            else {"level": lv, "limit": None, "sense": sense, "source": NOT_READ, "verified": False}
+            for lv in LEVELS]  # fmt: skip
+
+
+def best_level(value: float | None, rows: list[dict], *, settles: bool = False) -> int | None:
+    """The best (highest) level whose limit the value meets, from verified limits only; None without a verified
+    limit, without a value, or where none is met. ``settles``: a response that settles without sway meets any
+    minimum damping."""
+    verified = [r for r in rows if r["verified"] and r["limit"] is not None]
+    if settles:
+        return max((r["level"] for r in verified if r["sense"] == "min"), default=None)
     if value is None:
         return None
-    ok = [lv for lv, lim in limits.items() if (value <= lim if sense == "max" else value >= lim)]
-    return max(ok) if ok else None
+    ok = [r["level"] for r in verified if (value <= r["limit"] if r["sense"] == "max" else value >= r["limit"])]
+    return max(ok, default=None)
 
 
 def vehicle_length_m(model: YawRollModel) -> float:
@@ -109,9 +138,18 @@ def vehicle_length_m(model: YawRollModel) -> float:
 
 
 def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SPEED_KMH,
-           amplitude_g: float = LANE_CHANGE_AMPLITUDE_G, pulse_speed_kmh: float = PULSE_STEER_SPEED_KMH,
-           ra_definition: str = "cg") -> Screening:  # fmt: skip
-    """Every standard this model judges (module docstring), with limits per level and their sources."""
+           lane_change_amplitude_g: float = LANE_CHANGE_AMPLITUDE_G,
+           pulse_steer_speed_kmh: float = PULSE_STEER_SPEED_KMH, ra_definition: str = "cg") -> Screening:  # fmt: skip
+    """Every standard this model judges (module docstring), with limits per level and their sources.
+
+    Parameters
+    ----------
+    lane_change_speed_kmh, lane_change_amplitude_g, pulse_steer_speed_kmh
+        The manoeuvres' conditions [km/h, g, km/h]. The defaults are unverified (values as commonly cited, not read
+        in the rules): set them to the rules' values; ``conditions`` names those left at their default.
+    ra_definition
+        ``cg`` or ``axle`` (:func:`engine.dynamics.manoeuvres.lane_change`).
+    """
     c = model.combination
     detail = solve_combination(c)
     srts = [r.srt for r in detail.roll_coupled_units]
@@ -119,8 +157,8 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
     notes: dict[str, str] = {}
     validity: list[str] = []
     try:
-        lc = lane_change(model, lane_change_speed_kmh, frequency_hz=LANE_CHANGE_FREQUENCY_HZ, amplitude_g=amplitude_g,
-                         ra_definition=ra_definition, srt_g=srts)  # fmt: skip
+        lc = lane_change(model, lane_change_speed_kmh, frequency_hz=LANE_CHANGE_FREQUENCY_HZ,
+                         amplitude_g=lane_change_amplitude_g, ra_definition=ra_definition, srt_g=srts)  # fmt: skip
         values["rearward_amplification"] = lc.rearward_amplification
         values["high_speed_transient_offtracking"] = lc.high_speed_transient_offtracking_m
         validity += lc.validity
@@ -128,7 +166,7 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
         values["rearward_amplification"] = values["high_speed_transient_offtracking"] = None
         notes["rearward_amplification"] = notes["high_speed_transient_offtracking"] = f"unstable: {exc}"
     try:
-        ps = pulse_steer(model, pulse_speed_kmh)
+        ps = pulse_steer(model, pulse_steer_speed_kmh)
         values["yaw_damping"] = ps.yaw_damping_ratio
         if ps.yaw_damping_ratio is None and ps.articulation != "none":
             # no two same-sign peaks: the articulation settles without swaying, more than any minimum damping
@@ -141,19 +179,11 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
     values["low_speed_swept_path"] = ls.swept_path_width_m
     values["tail_swing"] = ls.tail_swing_m
     values["frontal_swing"] = ls.frontal_swing_m
-    rrcu = srts[-1]  # the rearmost roll-coupled unit
     standards = []
-    for sid, (unit, sense, limits, what) in _LIMITS.items():
-        if sid == "rearward_amplification":
-            limits = {lv: 5.7 * rrcu for lv in (1, 2, 3, 4)}
-        rows = [{"level": lv, "limit": lim, "sense": sense, "source": UNVERIFIED, "verified": False}
-                for lv, lim in limits.items()]  # fmt: skip
-        verified = {r["level"]: r["limit"] for r in rows if r["verified"]}
-        if notes.get(sid, "").startswith("no sway"):  # meets any minimum damping
-            level, level_unverified = max(verified, default=None), max(limits)
-        else:
-            level, level_unverified = _levels(values[sid], sense, verified), _levels(values[sid], sense, limits)
-        standards.append(Standard(sid, values[sid], unit, rows, level, level_unverified, f"{RULES_VERSION}: {what}",
+    for sid, (unit, sense, what) in STANDARDS.items():
+        rows = limit_rows(sid, sense)
+        level = best_level(values[sid], rows, settles=notes.get(sid, "").startswith("no sway"))
+        standards.append(Standard(sid, values[sid], unit, rows, level, f"{RULES_VERSION}: {what}",
                                   notes.get(sid, "")))  # fmt: skip
     length = vehicle_length_m(model)
     by_length = {
@@ -168,12 +198,15 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
         "limit": 7.0, "unit": "m", "source": "recorded in the project's source notes, not re-read here: unverified",
         "verified": False,
     }]  # fmt: skip
+    given = {"lane_change_speed_kmh": (lane_change_speed_kmh, LANE_CHANGE_SPEED_KMH),
+             "lane_change_amplitude_g": (lane_change_amplitude_g, LANE_CHANGE_AMPLITUDE_G),
+             "pulse_steer_speed_kmh": (pulse_steer_speed_kmh, PULSE_STEER_SPEED_KMH)}  # fmt: skip
     conditions = {
         "lane_change_speed_kmh": lane_change_speed_kmh, "lane_change_frequency_hz": LANE_CHANGE_FREQUENCY_HZ,
-        "lane_change_amplitude_g": amplitude_g, "pulse_steer_speed_kmh": pulse_speed_kmh,
-        "ra_definition": ra_definition,
-        "source": "PBS manoeuvre conditions unverified (0.4 Hz confirmed only second-hand; speed and amplitude "
-                  "as commonly cited)",
+        "lane_change_amplitude_g": lane_change_amplitude_g, "pulse_steer_speed_kmh": pulse_steer_speed_kmh,
+        "ra_definition": ra_definition, "verified": False,
+        "unverified_defaults_used": [name for name, (v, default) in given.items() if v == default],
+        "source": CONDITIONS_SOURCE,
     }  # fmt: skip
     return Screening(standards, RULES_VERSION, list(NOT_JUDGED), length, by_length, validity, conditions,
                      other_limits=other)  # fmt: skip

@@ -233,8 +233,10 @@ class JobStore:
         except ValidationError as exc:
             raise ValueError(f"{key} does not parse as a {cls.__name__}: {exc.errors()[0]['msg']}") from None
 
-    def _reject(self, job_id: str, reason: str) -> None:
-        _log.warning("job_entry_rejected", job=job_id, reason=reason)
+    def _reject(self, job_id: str, reason: str, part: int | None = None) -> None:
+        """A stored value refused (its seal or its parse): a handled integrity failure, logged with the job and, for
+        a part's value, the part; never a traceback."""
+        _log.warning("job_entry_rejected", job=job_id, part=part, reason=reason)
 
     # ------------------------------------------------------------------------------------- submit
     def create(
@@ -303,7 +305,7 @@ class JobStore:
                     raise ValueError(f"{keys[k]} is missing")
             except ValueError as exc:
                 state, invalid = None, invalid or f"part {k}'s stored state cannot be used: {exc}"
-                self._reject(job_id, str(exc))
+                self._reject(job_id, str(exc), k)
             parts.append(state)
         try:
             stop = self._model(Stop, keys[-1], STOP_TYPE, raws[-1])
@@ -387,7 +389,7 @@ class JobStore:
             if data is None:
                 raise ValueError(f"{in_key} is missing")
         except ValueError as exc:
-            self._reject(job_id, str(exc))
+            self._reject(job_id, str(exc), k)
             self.fail(job_id, record, problem("job-state-invalid", "Invalid job state", f"part {k}: {exc}"))
             return None
         now = time.time()

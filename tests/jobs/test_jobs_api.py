@@ -9,6 +9,7 @@ import time
 import numpy as np
 import orjson
 import pytest
+from structlog.testing import capture_logs
 
 from app.jobs import op_alignments
 from app.jobs.columns import ColumnsError, pack_columns, unpack_columns
@@ -673,6 +674,31 @@ def test_a_later_part_that_fails_as_it_is_streamed_ends_the_answer_and_fails_the
         assert body["status"] == "failed" and body["error"]["type"] == "urn:rollover:problem:job-state-invalid"
         assert reason in body["error"]["detail"]
         assert c.get(location + "/result").status_code == 409
+
+
+@pytest.mark.parametrize(("part", "streamed"), [(0, False), (2, True)], ids=["checked-first", "streamed"])
+def test_a_tampered_part_is_logged_as_a_handled_integrity_failure_with_the_job_and_part(part, streamed):
+    """A part whose MAC does not verify (altered in the store; issue 40 item 6): refused, and logged once as
+    ``job_part_integrity_failure`` naming the job, the part and its key, at warning, without a traceback; never as
+    ``unhandled_exception`` (before: the streamed case propagated out of the response, logged with a traceback).
+    The first part is checked whole before the answer (409); a later one is found as it is streamed."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["parts"]["total"] == 3
+        job_id = location.rsplit("/", 1)[1]
+        _corrupt(c, location, _good(c, location, part), part=part, sealed=False)
+        with capture_logs() as logs:
+            r = c.get(location + "/result", headers={"accept": "text/csv"})
+        assert r.status_code == (200 if streamed else 409)
+    events = [e["event"] for e in logs]
+    assert "unhandled_exception" not in events, events
+    failures = [e for e in logs if e["event"] == "job_part_integrity_failure"]
+    assert len(failures) == 1, logs
+    f = failures[0]
+    assert f["log_level"] == "warning" and f["job"] == job_id and f["part"] == part
+    assert f["key"].startswith(f"{PREFIX}{job_id}:out:{part}:") and "not sealed by this deployment" in f["reason"]
+    assert not any("exc_info" in e or "exception" in e for e in logs)
 
 
 def test_a_part_with_codes_outside_their_tables_is_refused():

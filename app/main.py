@@ -23,6 +23,7 @@ from app.http.netopts import set_nodelay_on_listening_sockets
 from app.http.openapi import operation_id, problem_openapi
 from app.http.problems import install_problem_handlers, problem_bytes
 from app.http.request_metrics import HttpMetricsMiddleware
+from app.http.strictjson import StrictJsonMiddleware, json_routes
 from app.jobs import router as jobs_router
 from app.jobs.service import open_jobs
 from app.logs import configure_logging, get_logger
@@ -182,6 +183,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for router in ROUTERS:
         app.include_router(router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
+    # innermost: JSON bodies read strictly (content type, encoding, nesting, keys), counted by the metrics
+    app.add_middleware(StrictJsonMiddleware, routes=lambda: json_routes(app.routes))
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app

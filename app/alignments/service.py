@@ -40,6 +40,7 @@ from app.formats.alignment_io import MAX_CURVES, AlignmentFormatError, CurveOver
 from app.formats.jsonpieces import loads_in_pieces
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
+from app.http.strictjson import refuse_duplicate_keys
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_targets
@@ -72,6 +73,7 @@ def parse_json_request(body: bytes) -> tuple[AlignmentRequest, CurveTable | None
         data = loads_in_pieces(body, ("curves",))
     except orjson.JSONDecodeError as exc:
         raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    refuse_duplicate_keys(body, data)
     return validate_request_data(data)
 
 

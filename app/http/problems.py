@@ -5,7 +5,8 @@ Mapping:
 ==========================================  ======  ===================================================
 cause                                       status  type
 ==========================================  ======  ===================================================
-body is not JSON                            400     ``urn:rollover:problem:malformed-request``
+body is not JSON (or names a key twice)     400     ``urn:rollover:problem:malformed-request``
+JSON body sent as another content type      415     ``urn:rollover:problem:unsupported-media-type``
 request fails the schema                    422     ``urn:rollover:problem:validation-error``
 unknown vehicle preset                      404     ``urn:rollover:problem:unknown-preset``
 engine InvalidVehicle / MissingParameter    422     ``...:invalid-vehicle`` / ``...:missing-parameter``

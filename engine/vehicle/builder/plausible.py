@@ -81,10 +81,32 @@ def check_spec_plausible(spec: VehicleSpec) -> None:
     if d is not None and hasattr(d, "length_m"):
         _check("position_m", d.front_from_kingpin_m, "spec.deck.front_from_kingpin_m", "the deck")
         _check("length_m", d.length_m, "spec.deck.length_m", "the deck")
-    for i, p in enumerate(spec.payloads or ()):
+    check_payloads_plausible(spec.payloads, "spec")
+    f = spec.front_unit
+    if f is not None:
+        rate = getattr(f, "fifth_wheel_stiffness_kn_per_m", None)
+        _check("fifth_wheel_rate_kn_per_m", rate, "spec.front_unit.fifth_wheel_stiffness_kn_per_m", "the fifth wheel")
+        height = getattr(f, "fifth_wheel_height_m", None)
+        _check("height_m", height, "spec.front_unit.fifth_wheel_height_m", "the fifth wheel")
+        width = getattr(f, "fifth_wheel_width_m", None)
+        _check("spring_spacing_m", width, "spec.front_unit.fifth_wheel_width_m", "the fifth wheel")
+
+
+def check_payloads_plausible(payloads: object, where: str) -> None:
+    """Refuse a payload (:class:`~engine.vehicle.builder.spec.PayloadSpec`) with a measurable input outside its
+    plausible range, named under ``where`` (``spec``, ``combination_spec.units[1]``): the single-unit spec's and every
+    unit of a combination spec's, one rule (a 22 kg payload is 22 t typed in kg, in either).
+
+    Raises
+    ------
+    InvalidVehicle : ``field`` is the offending input's path (``spec.payloads[0].mass_kg``).
+    """
+    if not isinstance(payloads, list | tuple):
+        return
+    for i, p in enumerate(payloads):
         if not hasattr(p, "mass_kg"):
             continue
-        path, what = f"spec.payloads[{i}]", f"payload {i}"
+        path, what = f"{where}.payloads[{i}]", f"payload {i}"
         _check("payload_mass_kg", p.mass_kg, f"{path}.mass_kg", f"a payload ({what})")
         for name in ("deck_height_m", "load_height_m", "deck_height_rear_m", "load_height_rear_m", "cg_height_m"):
             _check("height_m", getattr(p, name), f"{path}.{name}", f"a height of {what}")
@@ -96,11 +118,3 @@ def check_spec_plausible(spec: VehicleSpec) -> None:
             tp = f"{path}.tank"
             for name in ("height_m", "bottom_height_m", "fill_height_m"):
                 _check("height_m", getattr(tank, name, None), f"{tp}.{name}", f"the tank of {what}")
-    f = spec.front_unit
-    if f is not None:
-        rate = getattr(f, "fifth_wheel_stiffness_kn_per_m", None)
-        _check("fifth_wheel_rate_kn_per_m", rate, "spec.front_unit.fifth_wheel_stiffness_kn_per_m", "the fifth wheel")
-        height = getattr(f, "fifth_wheel_height_m", None)
-        _check("height_m", height, "spec.front_unit.fifth_wheel_height_m", "the fifth wheel")
-        width = getattr(f, "fifth_wheel_width_m", None)
-        _check("spring_spacing_m", width, "spec.front_unit.fifth_wheel_width_m", "the fifth wheel")

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Annotated, Any, Literal
 
 from pydantic import AfterValidator, ConfigDict, Field, model_validator
+from pydantic_core import PydanticCustomError
 
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES, curve_id_problem
@@ -59,7 +60,7 @@ ALIGNMENT_JSON_LIMIT = 128 * 2**20
 def _curve_id(value: str) -> str:
     problem = curve_id_problem(value)
     if problem is not None:
-        raise ValueError(problem)
+        raise PydanticCustomError("curve_id", "{reason}", {"reason": problem})
     return value
 
 

@@ -171,6 +171,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         summary="Static rollover threshold of heavy vehicles, maximum curve speed and minimum curve radius.",
         description=DESCRIPTION,
         openapi_tags=TAGS,
+        # pyproject.toml's license; an SPDX expression for a license not on the SPDX list is LicenseRef-<name>
+        license_info={"name": "Proprietary", "identifier": "LicenseRef-Proprietary"},
         generate_unique_id_function=operation_id,
         swagger_ui_parameters={"validatorUrl": None},  # Swagger UI's validator badge is an image from another host
         lifespan=lifespan,

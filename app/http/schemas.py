@@ -90,7 +90,10 @@ def exactly_one_schema(*names: str) -> dict[str, Any]:
 
 
 def not_together_schema(first: str, others: tuple[str, ...] | list[str]) -> dict[str, Any]:
-    """JSON Schema: ``first`` excludes every one of ``others``."""
+    """JSON Schema: ``first`` excludes every one of ``others`` (one other: both never together, without an
+    ``anyOf`` of one schema)."""
+    if len(others) == 1:
+        return {"not": {"required": [first, *others]}}
     return {"not": {"required": [first], "anyOf": [{"required": [o]} for o in others]}}
 
 

@@ -20,6 +20,8 @@ from pydantic import ConfigDict, Field, create_model
 from app.http.schemas import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
 from engine.vehicle import builder as eb
+from engine.vehicle.builder.plausible import SPEC_RANGES
+from engine.vehicle.plausibility import RANGES
 
 #: thesis symbols a spec field's description may start with ("kLs, vertical rate ...")
 _SYMBOLS = {d.symbol for d in FIELD_DOCS.values()} | {"kLs", "kT", "lr", "ls", "b", "kf", "lf", "b1", "k_theta"}
@@ -98,6 +100,19 @@ def _python_type(owner: str, name: str, tp: Any) -> tuple[Any, bool]:
     raise TypeError(f"{owner}.{name}: no schema type for {tp!r}")
 
 
+def _bounds(cls: type, name: str) -> dict[str, Any]:
+    """The schema's bounds of a spec field: its plausible range (``engine.vehicle.builder.plausible.SPEC_RANGES``),
+    which the engine enforces (422 naming the likely unit slip); a count (axles, tyres) is at least 1. Published
+    only: the engine's check says more than a schema error would (the slip)."""
+    key = SPEC_RANGES.get((cls.__name__, name))
+    if key is not None:
+        r = RANGES[key]
+        return {"json_schema_extra": {"minimum": r.minimum, "maximum": r.maximum}}
+    if name in ("axles", "tyres_per_axle"):
+        return {"json_schema_extra": {"minimum": 1}}
+    return {}
+
+
 def spec_model(cls: type) -> type[InputModel]:
     """The pydantic model of one builder dataclass (its nested dataclasses must be generated first)."""
     docs = field_docs(cls)
@@ -116,7 +131,10 @@ def spec_model(cls: type) -> type[InputModel]:
             tp = tp | None
         if isinstance(default, tuple):
             default = list(default)
-        fields[f.name] = (tp, Field(default, description=describe(text, unit=unit, symbol=symbol)))
+        fields[f.name] = (
+            tp,
+            Field(default, description=describe(text, unit=unit, symbol=symbol), **_bounds(cls, f.name)),
+        )
     summary = (cls.__doc__ or cls.__name__).strip().split("\n\n")[0].replace("\n", " ")
     return create_model(cls.__name__, __base__=InputModel, __doc__=summary, **fields)
 

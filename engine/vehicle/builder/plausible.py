@@ -118,3 +118,59 @@ def check_payloads_plausible(payloads: object, where: str) -> None:
             tp = f"{path}.tank"
             for name in ("height_m", "bottom_height_m", "fill_height_m"):
                 _check("height_m", getattr(tank, name, None), f"{tp}.{name}", f"the tank of {what}")
+
+
+#: (builder dataclass, field) -> the key of :data:`engine.vehicle.plausibility.RANGES` the builders judge it by: what
+#: :func:`check_spec_plausible`, :func:`check_payloads_plausible` and the combination builder check, as data, for the
+#: published schema's bounds (``app.vehicles.builder_schemas``: a value outside is refused, so the bounds are true).
+#: Left out where the server takes a value outside the range: a tank's fill height of 0 (empty), a pintle's roll
+#: stiffness of 0 (none)
+SPEC_RANGES: dict[tuple[str, str], str] = {
+    ("AxleGroupSpec", "track_m"): "track_m",
+    ("AxleGroupSpec", "centre_from_kingpin_m"): "position_m",
+    ("AxleGroupSpec", "axle_spacing_m"): "axle_spacing_m",
+    ("AxleGroupSpec", "rated_load_kg"): "group_load_kg",
+    ("TyreSpec", "loaded_radius_m"): "tyre_radius_m",
+    ("TyreSpec", "stiffness_kn_per_m"): "tyre_stiffness_kn_per_m",
+    ("TyreSpec", "section_width_m"): "tyre_width_m",
+    ("TyreSpec", "rated_load_kg"): "tyre_load_kg",
+    ("SuspensionSpec", "stiffness_kn_per_m"): "spring_rate_kn_per_m",
+    ("SuspensionSpec", "roll_stiffness_knm_per_rad"): "suspension_roll_stiffness_knm_per_rad",
+    ("SuspensionSpec", "height_m"): "height_m",
+    ("SuspensionSpec", "spring_separation_m"): "spring_spacing_m",
+    ("TareSpec", "mass_kg"): "unit_mass_kg",
+    ("TareSpec", "cg_height_m"): "height_m",
+    ("TareSpec", "cg_from_kingpin_m"): "position_m",
+    ("TareSpec", "rear_group_load_kg"): "group_load_kg",
+    ("DeckSpec", "front_from_kingpin_m"): "position_m",
+    ("DeckSpec", "length_m"): "length_m",
+    ("PayloadSpec", "mass_kg"): "payload_mass_kg",
+    ("PayloadSpec", "deck_height_m"): "height_m",
+    ("PayloadSpec", "load_height_m"): "height_m",
+    ("PayloadSpec", "deck_height_rear_m"): "height_m",
+    ("PayloadSpec", "load_height_rear_m"): "height_m",
+    ("PayloadSpec", "cg_height_m"): "height_m",
+    ("PayloadSpec", "front_from_kingpin_m"): "position_m",
+    ("PayloadSpec", "cg_from_kingpin_m"): "position_m",
+    ("PayloadSpec", "length_m"): "length_m",
+    ("TankSpec", "height_m"): "height_m",
+    ("TankSpec", "bottom_height_m"): "height_m",
+    ("FrontUnitSpec", "fifth_wheel_stiffness_kn_per_m"): "fifth_wheel_rate_kn_per_m",
+    ("FrontUnitSpec", "fifth_wheel_height_m"): "height_m",
+    ("FrontUnitSpec", "fifth_wheel_width_m"): "spring_spacing_m",
+    # the combination spec (engine.vehicle.builder.combination)
+    ("RollTyreSpec", "stiffness_kn_per_m"): "tyre_stiffness_kn_per_m",
+    ("RollTyreSpec", "loaded_radius_m"): "tyre_radius_m",
+    ("RollSuspensionSpec", "roll_stiffness_knm_per_rad"): "suspension_roll_stiffness_knm_per_rad",
+    ("RollSuspensionSpec", "roll_centre_height_m"): "height_m",
+    ("RollSuspensionSpec", "spring_spacing_m"): "spring_spacing_m",
+    ("RollSuspensionSpec", "lash_deg"): "lash_deg",
+    ("RollSuspensionSpec", "unsprung_mass_kg"): "unsprung_mass_kg",
+    ("RollSuspensionSpec", "unsprung_cg_height_m"): "height_m",
+    ("UnitGroupSpec", "track_m"): "track_m",
+    ("UnitGroupSpec", "position_m"): "position_m",
+    ("UnitGroupSpec", "axle_spacing_m"): "axle_spacing_m",
+    ("CouplingSpec", "position_m"): "position_m",
+    ("CouplingSpec", "height_m"): "height_m",
+    ("CouplingSpec", "lash_deg"): "lash_deg",
+}

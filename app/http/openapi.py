@@ -89,6 +89,15 @@ def build_document(app: FastAPI) -> dict[str, Any]:
                         "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
                     },
                 )
+            if list(operation.get("requestBody", {}).get("content", {})) == ["application/json"]:
+                # app.http.strictjson: another content type is a 415 (FastAPI's own body parameter or not)
+                operation["responses"].setdefault(
+                    "415",
+                    {
+                        "description": error_responses(415)[415]["description"],
+                        "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
+                    },
+                )
             if "401" in operation.get("responses", {}) and "security" not in operation:
                 # accepts saved vehicles by id: the bearer key is optional (presets and records need none)
                 operation["security"] = [{}, {"bearerAuth": []}]

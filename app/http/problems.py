@@ -421,7 +421,8 @@ def install_problem_handlers(app: FastAPI) -> None:
 #: OpenAPI ``responses`` entries; :func:`app.http.openapi.problem_openapi` moves their schema to problem+json
 def error_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
     text = {
-        400: "Malformed request body (not JSON).",
+        400: "Malformed request body (not JSON, or an object naming a key twice; the `detail` says where).",
+        415: "A JSON body sent with another `Content-Type`, or none (the `detail` names it).",
         404: "Unknown vehicle preset (the problem lists the known ids).",
         422: "Validation error (the problem's `errors` name each field and the reason), or the engine refused "
         "the input as physically invalid, found the mechanism singular or did not converge.",

@@ -149,3 +149,20 @@ def test_the_committed_document_passes_redocly_and_spectral():
         ["bash", str(ROOT / "scripts" / "lint_openapi.sh")], capture_output=True, text=True, timeout=600, check=False
     )
     assert run.returncode == 0, run.stdout[-4000:] + run.stderr[-4000:]
+
+
+def test_every_json_operation_declares_the_415_it_answers(spec, shared_client):
+    """app.http.strictjson answers 415 to a JSON operation's body of another content type: every such operation
+    declares it, and answers it (before any key or body is read)."""
+    json_ops = [
+        (method, path)
+        for path, item in spec["paths"].items()
+        for method, op in item.items()
+        if list(op.get("requestBody", {}).get("content", {})) == ["application/json"]
+    ]
+    assert len(json_ops) >= 20
+    for method, path in json_ops:
+        assert "415" in spec["paths"][path][method]["responses"], (method, path)
+        url = path.replace("{id}", "flt_" + "A" * 22 if "fleets" in path else "veh_" + "A" * 22)
+        r = shared_client.request(method.upper(), url, content=b"{}", headers={"content-type": "text/plain"})
+        assert r.status_code == 415, (method, path, r.text)

@@ -32,7 +32,7 @@ class PartTimeout(Exception):
 
 
 class PartRun:
-    """The :class:`~app.jobs.operations.PartContext` of one attempt of one part."""
+    """The :class:`~app.jobs.base.PartContext` of one attempt of one part."""
 
     def __init__(
         self,

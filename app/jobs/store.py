@@ -6,18 +6,18 @@ Keys (``rollover:job:<id>`` + suffix), each value sealed with the deployment's H
 (:func:`app.compute.cache.unseal`), then parsed with a pydantic model: a value that does not verify or parse is never
 used, the job it belongs to is reported ``failed`` with the reason, and the event is logged (``job_entry_rejected``).
 
-=====================  ======================================================================================
-suffix                 value
-=====================  ======================================================================================
-(none)                 :class:`JobRecord`: operation, owner, created_at, the self-contained shared inputs, the
-                       parts' sizes (written once, at submission)
-``:in:<k>``            part k's own inputs (bytes the operation packed; e.g. its curves)
-``:part:<k>``          :class:`PartState`: status, attempt, units done, lease (``heartbeat_at``), its metadata
-                       when done (written only through :meth:`KV.update`, fenced by the attempt)
-``:stop``              :class:`Stop`: the job was cancelled, or failed (with the problem)
+==========================  ====================================================================================
+suffix                      value
+==========================  ====================================================================================
+(none)                      :class:`JobRecord`: operation, owner, created_at, the self-contained shared inputs, the
+                            parts' sizes (written once, at submission)
+``:in:<k>``                 part k's own inputs (bytes the operation packed; e.g. its curves)
+``:part:<k>``               :class:`PartState`: status, attempt, units done, lease (``heartbeat_at``), its metadata
+                            when done (written only through :meth:`KV.update`, fenced by the attempt)
+``:stop``                   :class:`Stop`: the job was cancelled, or failed (with the problem)
 ``:out:<k>:<a>:<fmt>:<s>``  result fragment of part k, attempt a, format, section (e.g. vehicle): zlib-compressed
-                       rendered bytes, or the part's result columns (format ``columns``, kept raw)
-=====================  ======================================================================================
+                            rendered bytes, or the part's result columns (format ``columns``, kept raw)
+==========================  ====================================================================================
 
 **Leases.** A running part reports at every chunk (``heartbeat_at``, ``done_units``). :meth:`JobStore.reap` finds
 running parts that have not reported for ``lease_s`` (their worker died: SIGKILL, OOM, a lost machine) and queues

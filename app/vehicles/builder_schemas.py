@@ -1,6 +1,6 @@
 """The vehicle builder's spec, its result, the component library and the payload table, as HTTP schemas.
 
-The spec's models are generated from the engine's dataclasses (:mod:`engine.builder`): their fields, types and
+The spec's models are generated from the engine's dataclasses (:mod:`engine.vehicle.builder`): their fields, types and
 defaults, and each field's description and unit from the dataclass's docstring (``name : text [unit]``), so the
 published schema and the engine cannot drift. The engine checks what a schema cannot say (a load height below its
 deck, a CG outside the track, a payload over a rated load, an unknown component) and answers 422 naming the spec

@@ -30,7 +30,6 @@ from collections.abc import Awaitable, Callable, Iterable, MutableMapping
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
 import orjson
 from fastapi.exceptions import RequestValidationError
 
@@ -131,38 +130,18 @@ def too_deep(body: bytes, limit: int) -> str | None:
     return None
 
 
-def _count_keys(value: Any) -> int:
-    """The number of keys of every object in a parsed JSON value."""
-    count, stack = 0, [value]
-    while stack:
-        v = stack.pop()
-        if isinstance(v, dict):
-            count += len(v)
-            stack.extend(v.values())
-        elif isinstance(v, list):
-            stack.extend(v)
-    return count
-
-
-def _colons_outside_strings(body: bytes) -> int | None:
-    """The number of ``:`` outside strings of a JSON text without backslashes (each is one member of an object);
-    None when the text has a backslash (a quote may be escaped: the quotes no longer pair)."""
-    a = np.frombuffer(body, dtype=np.uint8)
-    if (a == 0x5C).any():
-        return None
-    quotes = np.flatnonzero(a == 0x22)
-    colons = np.flatnonzero(a == 0x3A)
-    return int(((np.searchsorted(quotes, colons) & 1) == 0).sum())
-
-
 def refuse_duplicate_keys(body: bytes, data: Any) -> None:
     """Raise a 400 ``malformed-request`` (a ``json_invalid`` validation error) naming the key when an object of the
-    JSON ``body`` names a key twice; ``data`` is what the body parsed to (``orjson.loads``: the last of two wins,
-    so it holds fewer keys than the text has members). The count of members is taken from the text's bytes where it
-    has no backslash (numpy, about a millisecond a megabyte); the key itself is found by a second parse only when
-    the counts differ, or when the text has escapes."""
-    members = _colons_outside_strings(body)
-    if members is not None and members == _count_keys(data):
+    JSON ``body`` names a key twice; ``data`` is what the body parsed to (``orjson.loads``, where the last of two
+    wins).
+
+    Without a backslash in the body (no escapes: the common case, a plain list of curves), the colons are counted:
+    every member of an object has one, and a string holds the rest; ``orjson.dumps(data)`` writes the same strings
+    (a colon is never escaped) less those of any member a duplicate dropped, and one colon per member left. So the
+    two counts are equal exactly when nothing was dropped: two ``bytes.count`` and a ``dumps``, about 1.5 ms for a
+    megabyte of curves, where walking the parsed objects took 15-20 ms. With escapes, the body is parsed again to
+    find the key (:func:`duplicate_key`)."""
+    if b"\\" not in body and body.count(b":") == orjson.dumps(data).count(b":"):
         return
     key = duplicate_key(body)
     if key is not None:

@@ -10,7 +10,13 @@ parses; " " and "A\u200b" were curve ids in JSON.
 
 from __future__ import annotations
 
+import json
+
+import orjson
 import pytest
+from fastapi.exceptions import RequestValidationError
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from app.http.strictjson import duplicate_key, refuse_duplicate_keys, too_deep
 
@@ -119,3 +125,35 @@ def test_a_blank_or_invisible_curve_id_is_refused_in_json_as_in_csv(shared_clien
     assert r.status_code == 422, r.text
     detail = r.json()["detail"]
     assert ("is empty" if not cid.strip() else words) in detail, detail
+
+
+_KEYS = st.sampled_from(["a", "b", "c:d", 'q"', "id"])
+_JSON = st.recursive(
+    st.none() | st.integers(-5, 5) | st.sampled_from(["x", "y:z", "\\", "é"]),
+    lambda inner: st.lists(inner, max_size=3) | st.lists(st.tuples(_KEYS, inner), max_size=4),
+    max_leaves=12,
+)
+
+
+def _text(value) -> str:
+    """JSON text of a generated value; a list of (key, value) pairs is an object written with the keys as given
+    (possibly repeated)."""
+    if isinstance(value, list) and value and all(isinstance(p, tuple) for p in value):
+        return "{" + ", ".join(f"{json.dumps(k)}: {_text(v)}" for k, v in value) + "}"
+    if isinstance(value, list):
+        return "[" + ", ".join(_text(v) for v in value) + "]"
+    return json.dumps(value, ensure_ascii=False)
+
+
+@settings(max_examples=400, deadline=None)
+@given(_JSON)
+def test_the_fast_duplicate_check_agrees_with_a_second_parse(value):
+    """refuse_duplicate_keys (colons counted in the body and in orjson's re-serialisation) refuses exactly the
+    documents in which Python's parser, with a hook on every object, finds a key twice."""
+    body = _text(value).encode()
+    expected = duplicate_key(body)
+    try:
+        refuse_duplicate_keys(body, orjson.loads(body))
+        assert expected is None, body
+    except RequestValidationError as exc:
+        assert expected is not None and repr(expected) in exc.errors()[0]["msg"], body

@@ -180,3 +180,13 @@ def test_the_ambiguous_band_is_where_both_readings_are_in_range():
     for v, expected in ((lo - 1e-9, False), (lo, True), (hi - 1e-9, True), (hi + 1e-9, False)):
         assert (ambiguous_reading("weight_kn", v, "w", "x") is not None) is expected, v
     assert ambiguous_reading("unit_mass_kg", 500.0, "m", "x") is None  # a range without an either-way slip
+
+
+@pytest.mark.parametrize(("path", "extra"), [("/v1/curve-speed", {"radius_m": 200.0}),
+                                             ("/v1/min-radius", {"design_speed_kmh": 80.0,
+                                                                 "superelevation_percent": 6.0})])  # fmt: skip
+def test_the_road_answers_carry_the_warnings_in_their_srt_result(shared_client, path, extra):
+    record = shared_client.get("/v1/vehicles/table23-semitrailer").json()
+    r = shared_client.post(path, json={"vehicle": {**record, "weight_kn": 50.0}, **extra})
+    assert r.status_code == 200, r.text
+    assert [w["field"] for w in r.json()["srt_result"]["warnings"]] == ["vehicle.weight_kn"]

@@ -785,3 +785,28 @@ def test_a_request_past_a_synchronous_limit_is_told_to_send_a_job_and_that_job_i
         many = [{"id": f"K{i}", "radius_m": 300.0, "superelevation_percent": 4.0} for i in range(10_001)]
         r = c.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "curves": many})
         assert r.status_code == 422 and "POST /v1/jobs" in r.json()["errors"][0]["message"]
+
+
+def test_a_tampered_part_input_is_refused_by_the_worker_and_logged_with_the_job_and_part():
+    """A part's stored input whose MAC does not verify when a worker claims it (issue 40 item 6): the part never
+    runs, the job fails with job-state-invalid naming the part, and ``job_entry_rejected`` is logged at warning
+    with the job and the part, without a traceback."""
+    from app.jobs.kv import MemoryKV
+    from app.jobs.runner import run_part
+    from app.jobs.store import JobStore
+
+    store = JobStore(MemoryKV(2**20), b"s" * 32, lease_s=60.0, max_attempts=3)
+    record = store.create(operation="srt.sweep", owner=None, unit="cases", shared={}, parts=[(1, b"in0"), (1, b"in1")],
+                          formats=["json"], etag={"json": "x"}, ttl_s=60)  # fmt: skip
+    key = store.key(record.id, ":in:1")
+    sealed = store.kv.get(key)
+    store.kv.set(key, sealed[:9] + bytes(32) + sealed[41:], 60)  # ROLLOVER1, then a MAC of zeros
+    with capture_logs() as logs:
+        run_part(store, record.id, 1, 1, timeout_s=10.0)
+    rejected = [e for e in logs if e["event"] == "job_entry_rejected"]
+    assert len(rejected) == 1 and rejected[0]["job"] == record.id and rejected[0]["part"] == 1, logs
+    assert rejected[0]["log_level"] == "warning" and "not sealed by this deployment" in rejected[0]["reason"]
+    assert not any("exc_info" in e or e["event"] in ("job_part_error", "unhandled_exception") for e in logs)
+    view = store.view(record.id)
+    assert view.status == "failed" and view.stop.error["type"] == "urn:rollover:problem:job-state-invalid"
+    assert view.stop.error["detail"].startswith("part 1: ")

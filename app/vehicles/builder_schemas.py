@@ -20,7 +20,7 @@ from pydantic import ConfigDict, Field, create_model
 from app.http.schemas import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
 from engine.vehicle import builder as eb
-from engine.vehicle.builder.plausible import SPEC_RANGES
+from engine.vehicle.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
 from engine.vehicle.plausibility import RANGES
 
 #: thesis symbols a spec field's description may start with ("kLs, vertical rate ...")
@@ -107,7 +107,8 @@ def _bounds(cls: type, name: str) -> dict[str, Any]:
     key = SPEC_RANGES.get((cls.__name__, name))
     if key is not None:
         r = RANGES[key]
-        return {"json_schema_extra": {"minimum": r.minimum, "maximum": r.maximum}}
+        low = 0.0 if (cls.__name__, name) in SPEC_ZERO_ALLOWED else r.minimum  # 0: none (a payload of 0 kg)
+        return {"json_schema_extra": {"minimum": low, "maximum": r.maximum}}
     if name in ("axles", "tyres_per_axle"):
         return {"json_schema_extra": {"minimum": 1}}
     return {}

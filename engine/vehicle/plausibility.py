@@ -240,7 +240,7 @@ def check_plausible(quantity: str, value: object, field: str, what: str) -> floa
     if r.contains(v):
         return v
     expected = f"expected {r.minimum:g} to {r.maximum:g} {r.unit} ({r.why})"
-    slip = unit_slip(v, r.minimum, r.maximum, r.slips)
+    slip = unit_slip(v, r.minimum, r.maximum, r.slips) if v > 0 else None  # a slip never makes a value negative
     if slip is not None:
         typed, meant = slip
         raise InvalidVehicle(

@@ -20,7 +20,7 @@ import pytest
 
 from app.catalog.service import encode_cursor
 from app.main import create_app
-from engine.vehicle.builder.plausible import SPEC_RANGES
+from engine.vehicle.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
 from engine.vehicle.plausibility import RANGES
 
 from .conftest import ROOT
@@ -56,7 +56,8 @@ def test_the_builders_fields_are_bounded_by_the_ranges_the_engine_enforces(spec)
     schemas = spec["components"]["schemas"]
     for (model, field), quantity in SPEC_RANGES.items():
         prop = schemas[model]["properties"][field]
-        assert (prop["minimum"], prop["maximum"]) == (RANGES[quantity].minimum, RANGES[quantity].maximum), field
+        low = 0.0 if (model, field) in SPEC_ZERO_ALLOWED else RANGES[quantity].minimum  # a payload of 0 kg: none
+        assert (prop["minimum"], prop["maximum"]) == (low, RANGES[quantity].maximum), field
     for model in ("AxleGroupSpec", "UnitGroupSpec"):
         for field in ("axles", "tyres_per_axle"):
             assert schemas[model]["properties"][field]["minimum"] == 1

@@ -7,8 +7,9 @@ spec path the user typed (``spec.tare.mass_kg``, ``spec.payloads[0].load_height_
 millimetres is blamed on itself, not on the derived CG height of another input that was right.
 
 Only given values are checked: a field left out takes its documented default. Values the builder's own checks
-refuse with a more specific reason (zero or negative values, positions ahead of the kingpin, non-numbers) are left
-to them: a unit slip makes a positive value too large or too small, never negative.
+refuse with a more specific reason (zero or negative values, non-numbers) are left to them: a unit slip makes a
+positive value too large or too small, never negative. Positions are the exception: a deck or a load may begin
+ahead of the kingpin, so a negative position is judged by its range too (the published schema's bound).
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ def _check_group(g: object, path: str, name: str) -> None:
     if not isinstance(g, AxleGroupSpec):
         return
     _check("track_m", g.track_m, f"{path}.track_m", f"the track of the {name}")
-    _check("position_m", g.centre_from_kingpin_m, f"{path}.centre_from_kingpin_m", f"the {name}")
+    _check("position_m", g.centre_from_kingpin_m, f"{path}.centre_from_kingpin_m", f"the {name}", positive=False)
     _check("axle_spacing_m", g.axle_spacing_m, f"{path}.axle_spacing_m", f"the axle spacing of the {name}")
     _check("group_load_kg", g.rated_load_kg, f"{path}.rated_load_kg", f"the rated load of the {name}")
     t = g.tyre
@@ -75,11 +76,13 @@ def check_spec_plausible(spec: VehicleSpec) -> None:
     if t is not None and hasattr(t, "mass_kg"):
         _check("unit_mass_kg", t.mass_kg, "spec.tare.mass_kg", f"the tare of {unit}")
         _check("height_m", t.cg_height_m, "spec.tare.cg_height_m", f"the tare CG height of {unit}")
-        _check("position_m", t.cg_from_kingpin_m, "spec.tare.cg_from_kingpin_m", f"the tare CG of {unit}")
+        _check(
+            "position_m", t.cg_from_kingpin_m, "spec.tare.cg_from_kingpin_m", f"the tare CG of {unit}", positive=False
+        )
         _check("group_load_kg", t.rear_group_load_kg, "spec.tare.rear_group_load_kg", f"the tare rear load of {unit}")
     d = spec.deck
     if d is not None and hasattr(d, "length_m"):
-        _check("position_m", d.front_from_kingpin_m, "spec.deck.front_from_kingpin_m", "the deck")
+        _check("position_m", d.front_from_kingpin_m, "spec.deck.front_from_kingpin_m", "the deck", positive=False)
         _check("length_m", d.length_m, "spec.deck.length_m", "the deck")
     check_payloads_plausible(spec.payloads, "spec")
     f = spec.front_unit
@@ -110,8 +113,8 @@ def check_payloads_plausible(payloads: object, where: str) -> None:
         _check("payload_mass_kg", p.mass_kg, f"{path}.mass_kg", f"a payload ({what})")
         for name in ("deck_height_m", "load_height_m", "deck_height_rear_m", "load_height_rear_m", "cg_height_m"):
             _check("height_m", getattr(p, name), f"{path}.{name}", f"a height of {what}")
-        _check("position_m", p.front_from_kingpin_m, f"{path}.front_from_kingpin_m", what)
-        _check("position_m", p.cg_from_kingpin_m, f"{path}.cg_from_kingpin_m", what)
+        _check("position_m", p.front_from_kingpin_m, f"{path}.front_from_kingpin_m", what, positive=False)
+        _check("position_m", p.cg_from_kingpin_m, f"{path}.cg_from_kingpin_m", what, positive=False)
         _check("length_m", p.length_m, f"{path}.length_m", f"the length of {what}")
         tank = p.tank
         if tank is not None:
@@ -174,3 +177,7 @@ SPEC_RANGES: dict[tuple[str, str], str] = {
     ("CouplingSpec", "height_m"): "height_m",
     ("CouplingSpec", "lash_deg"): "lash_deg",
 }
+
+#: spec fields whose 0 is taken (and means none) although the rest of the range starts above it: a payload of 0 kg
+#: is no payload (what the payload table's first row builds); any other mass under the range is refused
+SPEC_ZERO_ALLOWED = frozenset({("PayloadSpec", "mass_kg")})

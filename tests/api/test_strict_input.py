@@ -157,3 +157,18 @@ def test_the_fast_duplicate_check_agrees_with_a_second_parse(value):
         assert expected is None, body
     except RequestValidationError as exc:
         assert expected is not None and repr(expected) in exc.errors()[0]["msg"], body
+
+
+@pytest.mark.parametrize(
+    ("path", "content_type", "body", "where"),
+    [
+        ("/v1/alignments/assess/csv", "text/csv", b"id,radius_m\nA\xff,200\n", "byte 13, 0xFF"),
+        ("/v1/alignments/assess/landxml", "application/xml", b"<?xml version='1.0'?><x>\xff</x>", "byte 24"),
+        ("/v1/routes/assess/gpx", "application/gpx+xml", b"<gpx>\xff</gpx>", "byte 5, 0xFF"),
+        ("/v1/routes/assess/geojson", "application/geo+json", b'{"type": "\xff"}', "line 1 column 1 (char 0)"),
+    ],
+)
+def test_an_upload_that_is_not_utf8_says_where(shared_client, path, content_type, body, where):
+    """Uploads name the position of a byte that is not UTF-8 too (the XML ones said only 'neither UTF-8 nor ...')."""
+    r = shared_client.post(f"{path}?vehicle=table16-btrain", content=body, headers={"content-type": content_type})
+    assert r.status_code == 422 and where in r.json()["detail"], r.text

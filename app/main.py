@@ -25,6 +25,7 @@ from app.http.netopts import set_nodelay_on_listening_sockets
 from app.http.openapi import operation_id, problem_openapi
 from app.http.problems import install_problem_handlers, problem_bytes
 from app.http.request_metrics import HttpMetricsMiddleware
+from app.http.strictjson import StrictJsonMiddleware, json_routes
 from app.jobs import router as jobs_router
 from app.jobs.service import open_jobs
 from app.logs import configure_logging, get_logger
@@ -186,6 +187,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         summary="Static rollover threshold of heavy vehicles, maximum curve speed and minimum curve radius.",
         description=DESCRIPTION,
         openapi_tags=TAGS,
+        # pyproject.toml's license; an SPDX expression for a license not on the SPDX list is LicenseRef-<name>
+        license_info={"name": "Proprietary", "identifier": "LicenseRef-Proprietary"},
         generate_unique_id_function=operation_id,
         swagger_ui_parameters={"validatorUrl": None},  # Swagger UI's validator badge is an image from another host
         lifespan=lifespan,
@@ -198,6 +201,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for router in ROUTERS:
         app.include_router(router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
+    # innermost: JSON bodies read strictly (content type, encoding, nesting, keys), counted by the metrics
+    app.add_middleware(StrictJsonMiddleware, routes=lambda: json_routes(app.routes))
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app

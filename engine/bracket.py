@@ -8,7 +8,7 @@ good one until a solvable point misses the target, and calls Brent's method on t
 ``found`` (the margin is zero at ``value`` to the tolerance, and never negative: ``value`` meets the target),
 ``always-met`` (the whole solvable range meets the target:
 ``value`` is its bad end) or ``never-met`` (``value`` is None). The builder's payload limits and
-``engine.assessment.parameter_limit`` (the record's own parameters) both use it.
+:func:`engine.road.limits.parameter_limit` (the record's own parameters) both use it.
 
 References
 ----------

@@ -2,7 +2,7 @@
 
 Each :class:`Bound` is checked by the engine (:func:`check`) and published by the HTTP layer's schemas (which build
 their fields from the same table), so the spec, the service and the library refuse exactly the same values. The
-vehicle record's fields have their own table, :data:`engine.vehicles.FIELD_DOCS`, with the same structure.
+vehicle record's fields have their own table, :data:`engine.vehicle.FIELD_DOCS`, with the same structure.
 
 Sources of the bounds: the thesis's small-slope road geometry and the design practice of its Table 21 for
 superelevation and grade (at most 20 %); the widest and tallest legal heavy vehicles (2.60 m, 4.40 m: CONTRAN

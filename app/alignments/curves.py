@@ -11,7 +11,6 @@ on acceptance too.
 from __future__ import annotations
 
 import math
-import re
 from functools import lru_cache
 from operator import itemgetter, methodcaller
 from typing import Annotated, Any
@@ -21,10 +20,9 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import Field, TypeAdapter, ValidationError
 
 from app.alignments.schemas import CurveIn, as_a_job
-from app.formats.alignment_io import CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
+from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_REFUSED, MAX_CURVES, CurveTable
 from engine.domain import BOUNDS
 
-_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
 _REQUIRED = frozenset(("id", "radius_m"))  # the superelevation may be left out: it is then derived
 _FIELDS = frozenset(("id", "radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh"))
 _CURVE = TypeAdapter(CurveIn)
@@ -102,7 +100,8 @@ def plainly_valid(
         not lengths
         or min(lengths) < 1
         or max(lengths) > CURVE_ID_MAX_CHARS
-        or _CONTROL.search(" ".join(ids))
+        or CURVE_ID_REFUSED.search(" ".join(ids))
+        or not all(map(str.strip, ids))
         or len(set(ids)) < len(ids)
     ):
         return None
@@ -141,7 +140,8 @@ def curves_from_json(items: Any, max_curves: int = MAX_CURVES) -> CurveTable:
         if (
             type(cid) is not str
             or not 1 <= len(cid) <= CURVE_ID_MAX_CHARS
-            or _CONTROL.search(cid)
+            or CURVE_ID_REFUSED.search(cid)
+            or not cid.strip()
             or not _is_number(r)
             or not _is_number(g)
             or not (ev is None or _is_number(ev))

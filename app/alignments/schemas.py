@@ -5,10 +5,11 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Field, model_validator
+from pydantic import AfterValidator, ConfigDict, Field, model_validator
+from pydantic_core import PydanticCustomError
 
 from app.catalog.schemas import FLEET_ID_PATTERN
-from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES
+from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES, curve_id_problem
 from app.http import problems
 from app.http.schemas import (
     ABSENT,
@@ -55,7 +56,20 @@ CSV_UPLOAD_LIMIT = 16 * 2**20
 LANDXML_UPLOAD_LIMIT = 64 * 2**20
 ALIGNMENT_JSON_LIMIT = 128 * 2**20
 
-CurveId = Annotated[str, Field(min_length=1, max_length=CURVE_ID_MAX_CHARS, pattern=CURVE_ID_PATTERN)]
+
+def _curve_id(value: str) -> str:
+    problem = curve_id_problem(value)
+    if problem is not None:
+        raise PydanticCustomError("curve_id", "{reason}", {"reason": problem})
+    return value
+
+
+#: the pattern is published; the rule is checked in words (curve_id_problem: which character, where)
+CurveId = Annotated[
+    str,
+    Field(min_length=1, max_length=CURVE_ID_MAX_CHARS, json_schema_extra={"pattern": CURVE_ID_PATTERN}),
+    AfterValidator(_curve_id),
+]
 _E = "Superelevation of the curve: the bank of its SRT and the e of the side-friction speed."
 _E_SYMBOL = "e (Eqs. 9.2, 6.18)"
 _GRADE = "Longitudinal grade in the direction of travel, + uphill, - downhill: the slope of the curve's SRT."
@@ -68,7 +82,9 @@ class CurveIn(InputModel):
 
     id: CurveId = Field(
         description=describe(
-            f"Curve id, unique in the request: 1-{CURVE_ID_MAX_CHARS} characters, no control characters.", unit="-"
+            f"Curve id, unique in the request: 1-{CURVE_ID_MAX_CHARS} characters, not blank, no control or invisible "
+            "(zero-width, direction mark) characters.",
+            unit="-",
         )
     )
     radius_m: float = bounded("radius_m", text="Curve radius.", symbol="R (Eq. 9.1)")

@@ -3,7 +3,7 @@
 The curves come from a JSON list (read into columns by :mod:`app.alignments.curves`), a CSV text or a LandXML document
 (:mod:`app.formats.alignment_io`); all three become one :class:`~app.formats.alignment_io.CurveTable`, so the same
 curves share one cache entry whatever form they came in. The engine assesses each vehicle on arrays
-(:func:`engine.assessment.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the answer
+(:func:`engine.road.curves.assess_alignment`: one batched solve of the distinct superelevation/grade pairs); the answer
 is kept as those arrays (:class:`AlignmentAnswer`) and rendered to JSON or CSV by :mod:`app.alignments.rows` (the
 renderers a job's result uses too). The answer (at most 10,000 rows) is rendered whole and cached as bytes, and served
 by the fast path on a repeat; larger work goes to a job.
@@ -41,6 +41,7 @@ from app.formats.jsonpieces import loads_in_pieces
 from app.formats.road_file import ROAD_READERS, read_road_document
 from app.http.negotiation import CSV_TYPE, JSON_TYPE
 from app.http.problems import InvalidAlignment, request_error
+from app.http.strictjson import refuse_duplicate_keys
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_targets
@@ -73,6 +74,7 @@ def parse_json_request(body: bytes) -> tuple[AlignmentRequest, CurveTable | None
         data = loads_in_pieces(body, ("curves",))
     except orjson.JSONDecodeError as exc:
         raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    refuse_duplicate_keys(body, data)
     return validate_request_data(data)
 
 
@@ -327,7 +329,7 @@ def level_road_srt(case: Case) -> float:
 
 def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     """Every curve for every vehicle (blocking: called in a worker thread); ``solve_pairs``: see
-    :func:`engine.assessment.assess_alignment` (a job's parts remember the pairs they solved); the blocks of the
+    :func:`engine.road.curves.assess_alignment` (a job's parts remember the pairs they solved); the blocks of the
     pairs' solve and of the side-friction speeds run on the solver threads (:mod:`app.compute.solvers`)."""
     started = time.perf_counter()
     vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]

@@ -29,6 +29,7 @@ from app.catalog.schemas import (
     VehicleWrite,
 )
 from app.deps import SettingsDep
+from app.http.openapi import required_headers
 from app.http.problems import Problem
 from app.http.route_table import documented_paths
 
@@ -197,6 +198,7 @@ async def list_saved_vehicles(owner: OwnerDep, request: Request, page: PageDep) 
     name="replace_vehicle",
     response_model=SavedVehicle,
     responses={**success(200, "Replaced; `ETag` is the new version.", _ETAG), **VEHICLE_WRITE},
+    openapi_extra=required_headers("If-Match"),  # the handler answers its absence: 428, not FastAPI's 422
 )
 async def replace_vehicle(
     id: VehicleIdPath,
@@ -279,6 +281,7 @@ async def get_fleet(id: FleetIdPath, owner: OwnerDep, request: Request) -> Respo
     response_model=Fleet,
     responses={**success(200, "Replaced; `ETag` is the new version.", _ETAG),
                **problem_responses(400, 401, 403, 404, 412, 422, 428, 500, 503)},
+    openapi_extra=required_headers("If-Match"),
 )  # fmt: skip
 async def replace_fleet(
     id: FleetIdPath,

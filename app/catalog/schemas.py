@@ -25,6 +25,8 @@ EXAMPLE_FLEET_ID = "flt_Vd9xk2LmQ0a-7TzPp1bRcw"
 TITLE_MAX_LENGTH = 200
 #: schema bound of a fleet's members; the deployment's ROLLOVER_CATALOG_MAX_FLEET_MEMBERS is usually lower
 FLEET_MEMBERS_HARD_MAX = 1000
+#: a listing's cursor: base64url without padding (app.catalog.service.encode_cursor)
+CURSOR_PATTERN = "^[A-Za-z0-9_-]+$"
 
 _TITLE = describe("A name for it, shown back as given (1-200 characters).", unit="-")
 _VERSION = describe(
@@ -50,6 +52,9 @@ class PageQuery(BaseModel):
     cursor: str | None = Field(
         None,
         max_length=400,
+        # what encode_cursor writes (base64url, unpadded); published only: anything else is refused by
+        # decode_cursor with its own message (422 naming `cursor`)
+        json_schema_extra={"minLength": 1, "pattern": CURSOR_PATTERN},
         description=describe("`next_cursor` of the previous page; omit it for the first page.", unit="-"),
     )
 
@@ -209,7 +214,11 @@ class Fleet(OutputModel):
         examples=[EXAMPLE_FLEET_ID],
     )
     title: str = Field(description=_TITLE)
-    vehicles: list[str] = Field(description=describe("The member ids (saved vehicle or preset), in order.", unit="-"))
+    vehicles: list[str] = Field(
+        # what FleetWrite accepted when it was saved (published only: a stored row is validated as it is read)
+        json_schema_extra={"minItems": 1, "maxItems": FLEET_MEMBERS_HARD_MAX, "uniqueItems": True},
+        description=describe("The member ids (saved vehicle or preset), in order.", unit="-"),
+    )
     version: int = Field(ge=1, description=_VERSION)
     created_at: datetime = Field(description=_CREATED)
     updated_at: datetime = Field(description=_UPDATED)

@@ -28,6 +28,7 @@ import csv
 import io
 import math
 import re
+import unicodedata
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -42,10 +43,15 @@ from engine.road import check_columns
 #: of a second); larger work goes to a job (``app.alignments.schemas.MAX_JOB_CURVES``)
 MAX_CURVES = 10_000
 #: one limit for a curve id in every form (JSON, CSV, LandXML): 1-100 characters, none of them a control character
-#: (C0, DEL, C1: NUL, ESC, CR, tab... would corrupt a CSV answer or a terminal)
+#: (C0, DEL, C1: NUL, ESC, CR, tab... would corrupt a CSV answer or a terminal) or an invisible format character
+#: (Unicode category Cf: soft hyphen, zero-width space and joiners, direction marks, word joiner, BOM: "A" and
+#: "A" + U+200B look the same and would be two curves), and at least one character that is not whitespace (a blank
+#: id names nothing; the CSV reader strips its cells, so a blank cell there is empty)
 CURVE_ID_MAX_CHARS = 100
-CURVE_ID_PATTERN = r"^[^\x00-\x1f\x7f-\x9f]+$"
-_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
+_REFUSED_ID_CHARS = r"\x00-\x1f\x7f-\x9f\u00ad\u061c\u180e\u200b-\u200f\u202a-\u202e\u2060-\u2064\u2066-\u206f\ufeff"
+#: the same rule as a pattern (JSON Schema / ECMA-262, Rust's regex and Python's re read it alike)
+CURVE_ID_PATTERN = rf"^[^{_REFUSED_ID_CHARS}]*[^\s{_REFUSED_ID_CHARS}][^{_REFUSED_ID_CHARS}]*$"
+CURVE_ID_REFUSED = re.compile(rf"[{_REFUSED_ID_CHARS}]")
 CSV_REQUIRED = ("id", "radius_m")
 CSV_OPTIONAL = ("superelevation_percent", "grade_percent", "posted_speed_kmh")
 
@@ -180,19 +186,29 @@ def _number(text: str | None, column: str, where: str, *, optional: bool = False
 
 
 def check_curve_id(cid: str, where: str, column: str) -> str:
-    """The id, if it is 1-100 characters without control characters; else the error at this row / element."""
-    if not cid:
-        raise AlignmentFormatError(f"{column} is empty", where, column)
-    if len(cid) > CURVE_ID_MAX_CHARS:
-        raise AlignmentFormatError(f"{column} has {len(cid)} characters; at most {CURVE_ID_MAX_CHARS}", where, column)
-    bad = _CONTROL.search(cid)
-    if bad:
-        raise AlignmentFormatError(
-            f"{column} contains the control character U+{ord(bad.group()):04X} at position {bad.start() + 1}",
-            where,
-            column,
-        )
+    """The id, if it is 1-100 characters without control or invisible characters and not blank; else the error at
+    this row / element."""
+    problem = curve_id_problem(cid, column)
+    if problem is not None:
+        raise AlignmentFormatError(problem, where, column)
     return cid
+
+
+def curve_id_problem(cid: str, column: str = "id") -> str | None:
+    """Why ``cid`` is not a curve id (:data:`CURVE_ID_PATTERN`, said in words), or None: the one rule of every form
+    (JSON, CSV, LandXML)."""
+    if not cid:
+        return f"{column} is empty"
+    if len(cid) > CURVE_ID_MAX_CHARS:
+        return f"{column} has {len(cid)} characters; at most {CURVE_ID_MAX_CHARS}"
+    bad = CURVE_ID_REFUSED.search(cid)
+    if bad:
+        c = bad.group()
+        kind = "an invisible format character" if unicodedata.category(c) == "Cf" else "the control character"
+        return f"{column} contains {kind} U+{ord(c):04X} at position {bad.start() + 1}"
+    if not cid.strip():
+        return f"{column} is blank (only whitespace): it names no curve"
+    return None
 
 
 class _Collector:

@@ -32,7 +32,7 @@ Limits (module constants, refused beyond them with the part named):
 * ``MIN_VERTICES`` distinct vertices per part (2: a part with one point has no direction);
 * ``MAX_SEGMENT_M`` between consecutive vertices (10 km): longer jumps are what swapped or corrupted
   coordinates produce, and they also bound the error of the engine's plane frame
-  (:mod:`engine.geodesy`: below 1e-7 relative);
+  (:mod:`engine.route.geodesy`: below 1e-7 relative);
 * ``MAX_VERTICES`` vertices (100,000: a job's; a reader's caller may set fewer, ``max_vertices``, as the
   synchronous request does) and ``MAX_PARTS`` parts (1,000) in one document, and ``MAX_LENGTH_M`` of route in all
   (1,000 km): they bound the work of one request (a 500 km route at 10 m spacing is 50,000 vertices). Beyond the
@@ -56,7 +56,7 @@ MAX_SEGMENT_M = 10_000.0
 MAX_VERTICES = 100_000
 MAX_PARTS = 1_000
 MAX_LENGTH_M = 1_000_000.0
-#: property bounds (those of :func:`engine.assessment.check_curve`)
+#: property bounds (those of :func:`engine.road.curves.check_curve`)
 SUPERELEVATION_LIMIT_PERCENT = 20.0
 POSTED_SPEED_LIMIT_KMH = 200.0
 _CRS84 = ("urn:ogc:def:crs:OGC:1.3:CRS84", "urn:ogc:def:crs:OGC::CRS84", "urn:ogc:def:crs:EPSG::4326", "EPSG:4326")

@@ -120,7 +120,7 @@ def csv_lines(columns: Sequence[str], rows: Iterable[dict[str, Any]]) -> bytes:
 def csv_lines_of_columns(columns: Sequence[Sequence[Any]]) -> bytes:
     """CSV lines of a table given column by column (equal lengths; no header): the same text as :func:`csv_lines`
     of its rows, each column written at once (:func:`_csv_column`), the lines put together by slice assignment
-    (as :func:`app.formats.json_rows.json_template` puts JSON rows together): no Python work per row."""
+    (as :func:`app.formats.segments.write_rows` puts JSON rows together): no Python work per row."""
     n = len(columns[0]) if columns else 0
     if not n:
         return b""

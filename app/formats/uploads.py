@@ -101,8 +101,8 @@ def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: t
     (an :class:`~app.http.problems.InvalidAlignment` or its route form) naming ``field`` and the ``root`` element."""
     try:
         return data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        pass
+    except UnicodeDecodeError as exc:  # where, for the message: a position to look at, as the CSV's says
+        bad = f"byte {exc.start}, 0x{data[exc.start]:02X}"
     declared = re.match(rb"""\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""", data)
     if declared:
         try:
@@ -110,7 +110,7 @@ def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: t
         except (LookupError, UnicodeDecodeError):
             pass
     raise error(
-        "the document is neither UTF-8 nor in the encoding its XML declaration names",
+        f"the document is neither UTF-8 (not at {bad}) nor in the encoding its XML declaration names",
         source=field,
         location=root,
         column=None,

@@ -89,11 +89,45 @@ def build_document(app: FastAPI) -> dict[str, Any]:
                         "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
                     },
                 )
+            if list(operation.get("requestBody", {}).get("content", {})) == ["application/json"]:
+                # app.http.strictjson: another content type is a 415 (FastAPI's own body parameter or not)
+                operation["responses"].setdefault(
+                    "415",
+                    {
+                        "description": error_responses(415)[415]["description"],
+                        "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Problem"}}},
+                    },
+                )
             if "401" in operation.get("responses", {}) and "security" not in operation:
                 # accepts saved vehicles by id: the bearer key is optional (presets and records need none)
                 operation["security"] = [{}, {"bearerAuth": []}]
+            operation.setdefault("security", [])  # public: no key is read (said, not left to a default)
+            _require_headers(operation)
             for code, response in operation.get("responses", {}).items():
                 content = response.get("content", {})
                 if code.isdigit() and int(code) >= 400 and "application/json" in content:
                     response["content"] = {PROBLEM_MEDIA_TYPE: content["application/json"]}
+    schema["servers"] = SERVERS
     return schema
+
+
+#: the document's servers: the service itself, wherever it is deployed (a relative URL: the paths are relative to
+#: where the document is served; OpenAPI 3.1, section 4.8.5)
+SERVERS = [{"url": "/", "description": "This service: the paths are relative to the host that serves this document."}]
+#: ``openapi_extra`` of a route whose header parameters the server requires although the handler reads them itself
+#: (to answer 428, not FastAPI's 422): ``{REQUIRED_HEADERS: ["If-Match"]}``
+REQUIRED_HEADERS = "x-required-headers"
+
+
+def required_headers(*names: str) -> dict[str, list[str]]:
+    """``openapi_extra`` declaring ``names`` as required header parameters in the document (the handler answers
+    their absence itself: ``If-Match`` missing on a change is a 428)."""
+    return {REQUIRED_HEADERS: list(names)}
+
+
+def _require_headers(operation: dict[str, Any]) -> None:
+    names = {n.lower() for n in operation.pop(REQUIRED_HEADERS, ())}
+    for parameter in operation.get("parameters", ()):
+        if parameter.get("in") == "header" and parameter.get("name", "").lower() in names:
+            parameter["required"] = True
+            parameter["schema"] = {"type": "string", "minLength": 1, "title": parameter["name"]}

@@ -2,21 +2,22 @@
 
 Mapping:
 
-==========================================  ======  ===================================================
-cause                                       status  type
-==========================================  ======  ===================================================
-body is not JSON                            400     ``urn:rollover:problem:malformed-request``
-request fails the schema                    422     ``urn:rollover:problem:validation-error``
-unknown vehicle preset                      404     ``urn:rollover:problem:unknown-preset``
-engine InvalidVehicle / MissingParameter    422     ``...:invalid-vehicle`` / ``...:missing-parameter``
-engine InvalidRoad / InvalidLoad            422     ``...:invalid-road`` / ``...:invalid-load``
-CSV / LandXML curves that cannot be read    422     ``urn:rollover:problem:invalid-alignment``
-request body over the operation's limit     413     ``urn:rollover:problem:body-too-large``
-engine MechanismSingular                    422     ``...:mechanism-singular``
-engine ConvergenceError                     422     ``...:no-convergence``
-no route / method (Starlette)               404/405 ``about:blank``
-anything else (a bug)                       500     ``urn:rollover:problem:internal-error`` (logged)
-==========================================  ======  ===================================================
+==========================================  =======  ===================================================
+cause                                       status   type
+==========================================  =======  ===================================================
+body is not JSON (or names a key twice)     400      ``urn:rollover:problem:malformed-request``
+JSON body sent as another content type      415      ``urn:rollover:problem:unsupported-media-type``
+request fails the schema                    422      ``urn:rollover:problem:validation-error``
+unknown vehicle preset                      404      ``urn:rollover:problem:unknown-preset``
+engine InvalidVehicle / MissingParameter    422      ``...:invalid-vehicle`` / ``...:missing-parameter``
+engine InvalidRoad / InvalidLoad            422      ``...:invalid-road`` / ``...:invalid-load``
+CSV / LandXML curves that cannot be read    422      ``urn:rollover:problem:invalid-alignment``
+request body over the operation's limit     413      ``urn:rollover:problem:body-too-large``
+engine MechanismSingular                    422      ``...:mechanism-singular``
+engine ConvergenceError                     422      ``...:no-convergence``
+no route / method (Starlette)               404/405  ``about:blank``
+anything else (a bug)                       500      ``urn:rollover:problem:internal-error`` (logged)
+==========================================  =======  ===================================================
 
 Validation errors and engine input errors carry ``errors``: one entry per offending field with its
 dotted name as the user typed it (``road.bank_percent``, ``vehicle.weight_kn``), the reason and the error type (an
@@ -420,7 +421,8 @@ def install_problem_handlers(app: FastAPI) -> None:
 #: OpenAPI ``responses`` entries; :func:`app.http.openapi.problem_openapi` moves their schema to problem+json
 def error_responses(*codes: int) -> dict[int | str, dict[str, Any]]:
     text = {
-        400: "Malformed request body (not JSON).",
+        400: "Malformed request body (not JSON, or an object naming a key twice; the `detail` says where).",
+        415: "A JSON body sent with another `Content-Type`, or none (the `detail` names it).",
         404: "Unknown vehicle preset (the problem lists the known ids).",
         422: "Validation error (the problem's `errors` name each field and the reason), or the engine refused "
         "the input as physically invalid, found the mechanism singular or did not converge.",

@@ -90,5 +90,29 @@ def exactly_one_schema(*names: str) -> dict[str, Any]:
 
 
 def not_together_schema(first: str, others: tuple[str, ...] | list[str]) -> dict[str, Any]:
-    """JSON Schema: ``first`` excludes every one of ``others``."""
+    """JSON Schema: ``first`` excludes every one of ``others`` (one other: both never together, without an
+    ``anyOf`` of one schema)."""
+    if len(others) == 1:
+        return {"not": {"required": [first, *others]}}
     return {"not": {"required": [first], "anyOf": [{"required": [o]} for o in others]}}
+
+
+class InputWarningOut(OutputModel):
+    """A value answered as given that reads plausibly in another unit too (a light trailer's 50 kN, or 50 t typed
+    as kN): the field as typed and both readings (engine.vehicle.plausibility.ambiguous_reading)."""
+
+    field: str = Field(description=describe("The input as the request names it (`vehicle.weight_kn`).", unit="-"))
+    value: float = Field(description=describe("The value as given, in the field's unit.", unit="the field's"))
+    unit: str = Field(description=describe("The field's unit: the reading the answer used.", unit="-"))
+    other_unit: str = Field(description=describe("The unit the same number may have been typed in.", unit="-"))
+    other_reading: float = Field(
+        description=describe("The value in the field's unit if it was typed in `other_unit`.", unit="the field's")
+    )
+    message: str = Field(description=describe("Both readings, in words.", unit="-"))
+
+
+WARNINGS_DESCRIPTION = describe(
+    "Inputs answered as given that read plausibly in another unit too (empty when none): check them. A value "
+    "implausible in its unit is refused instead (422 naming the likely slip).",
+    unit="see its fields",
+)

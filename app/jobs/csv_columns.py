@@ -31,7 +31,14 @@ from typing import overload
 
 import numpy as np
 
-from app.formats.alignment_io import CSV_OPTIONAL, CSV_REQUIRED, CURVE_ID_MAX_CHARS, MAX_CURVES, CurveTable
+from app.formats.alignment_io import (
+    CSV_OPTIONAL,
+    CSV_REQUIRED,
+    CURVE_ID_MAX_CHARS,
+    CURVE_ID_REFUSED,
+    MAX_CURVES,
+    CurveTable,
+)
 from app.formats.csv_dialect import CsvDialect
 from app.formats.decimals import decimals
 from engine.errors import InvalidRoad
@@ -170,6 +177,8 @@ def read_csv_columns(text: str, *, max_curves: int = MAX_CURVES) -> CurveTable |
 
     ids = list(map(str.strip, _fields(buf, *field("id"))))
     if not all(ids) or max(map(len, ids)) > CURVE_ID_MAX_CHARS or len(set(ids)) != n:
+        return None
+    if CURVE_ID_REFUSED.search(" ".join(ids)):  # a control or invisible character: read_csv says which
         return None
     nan = math.nan
     columns: dict[str, np.ndarray] = {}

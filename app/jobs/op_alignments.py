@@ -7,7 +7,7 @@ vehicle the engine's result as typed columns (:data:`RESULT_SCHEMA`, :mod:`app.j
 curves; nothing is rendered then. ``GET /v1/jobs/{id}/result`` reads the columns back (checked: they come from the
 store) and renders JSON or CSV from them with the synchronous endpoint's own renderers (:mod:`app.alignments.rows`),
 streamed part by part: the same bytes. The answer opens each vehicle with the summary over ALL curves:
-:func:`~app.alignments.service.merge_summaries` adds the parts' counts and takes the smallest of their minimums, and
+:func:`~app.alignments.rows.merge_summaries` adds the parts' counts and takes the smallest of their minimums, and
 the distinct SRT solves are counted over the whole alignment at submission
 (:func:`~app.alignments.service.check_alignment`), not summed over the parts (two parts may share a pair).
 """

@@ -220,22 +220,42 @@ async def prefetched(chunks: Iterator[bytes]) -> AsyncIterator[bytes]:
                 await asyncio.shield(pending)
 
 
-def _fragments(jobs: Backend, view: JobView, op: Operation, fmt: str):
-    """(part, section) -> the stored fragment's pieces, for ``assemble`` (the op's stored format, if it has one)."""
-    store, compressed = jobs.store, op.stored is None
-    keys = store.fragment_keys(view, op.stored or fmt)
-    return lambda k, s: store.read_fragment(view.id, keys[k][s], compressed=compressed)
+class _Reading:
+    """The stored fragment last asked for while a result is checked or assembled: the part a failure belongs to."""
+
+    def __init__(self, jobs: Backend, view: JobView, op: Operation, fmt: str) -> None:
+        self.store, self.compressed = jobs.store, op.stored is None
+        self.keys = self.store.fragment_keys(view, op.stored or fmt)
+        self.job_id = view.id
+        self.part: int | None = None
+        self.key: str | None = None
+
+    def _at(self, k: int, s: int) -> str:
+        self.part, self.key = k, self.keys[k][s]
+        return self.key
+
+    def fragment(self, k: int, s: int) -> Iterator[bytes]:
+        """(part, section) -> the stored fragment's pieces, for ``assemble`` (the op's stored format, if it has
+        one)."""
+        return self.store.read_fragment(self.job_id, self._at(k, s), compressed=self.compressed)
+
+    def head(self, k: int, s: int, length: int) -> bytes:
+        """(part, section, length) -> the first bytes of the stored fragment (its layout, unverified), for
+        ``check``."""
+        return self.store.fragment_head(self._at(k, s), length)
 
 
-def _fragment_heads(jobs: Backend, view: JobView, op: Operation, fmt: str):
-    """(part, section, length) -> the first bytes of the stored fragment (its layout, unverified), for ``check``."""
-    keys = jobs.store.fragment_keys(view, op.stored or fmt)
-    return lambda k, s, length: jobs.store.fragment_head(keys[k][s], length)
+class _PartRefused(Exception):
+    """A stored part failed its integrity checks while the answer was streamed (handled: logged and the job failed
+    by :func:`_invalid`); the response ends without its end."""
 
 
-def _invalid(jobs: Backend, view: JobView, exc: Exception) -> None:
-    _log.error("job_result_invalid", job=view.id, error=f"{type(exc).__name__}: {exc}")
-    detail = f"{type(exc).__name__}: {exc}"
+def _invalid(jobs: Backend, view: JobView, exc: Exception, reading: _Reading) -> None:
+    """A stored part that does not verify (its seal) or read (its layout): a handled integrity failure, logged with
+    the job and the part, never a traceback; the job is failed with the reason."""
+    reason = f"{type(exc).__name__}: {exc}"
+    _log.warning("job_part_integrity_failure", job=view.id, part=reading.part, key=reading.key, reason=reason)
+    detail = reason if reading.part is None else f"part {reading.part}: {reason}"
     jobs.store.fail(
         view.id, view.record, problem("job-state-invalid", "The job's stored result cannot be used", detail)
     )
@@ -245,22 +265,40 @@ def _check_result(jobs: Backend, view: JobView, op: Operation, fmt: str) -> bool
     """The op's check of every stored fragment before the answer starts (True: usable; False: the job is failed)."""
     if op.check is None:
         return True
+    reading = _Reading(jobs, view, op, fmt)
     try:
         metas = [p.meta or {} for p in view.parts]
-        op.check(view.record.shared, metas, _fragments(jobs, view, op, fmt), _fragment_heads(jobs, view, op, fmt))
+        op.check(view.record.shared, metas, reading.fragment, reading.head)
     except (ValueError, KeyError, TypeError, IndexError) as exc:
-        _invalid(jobs, view, exc)
+        _invalid(jobs, view, exc, reading)
         return False
     return True
 
 
 def _result_chunks(jobs: Backend, view: JobView, op: Operation, fmt: str) -> Iterator[bytes]:
+    reading = _Reading(jobs, view, op, fmt)
     try:
         metas = [p.meta or {} for p in view.parts]
-        yield from op.assemble(view.record.shared, metas, fmt, _fragments(jobs, view, op, fmt))
+        yield from op.assemble(view.record.shared, metas, fmt, reading.fragment)
     except (ValueError, KeyError, TypeError, IndexError) as exc:  # a stored fragment or metadata that cannot be used
-        _invalid(jobs, view, exc)
-        raise
+        _invalid(jobs, view, exc, reading)
+        raise _PartRefused from None
+
+
+class _StoredResult(StreamingResponse):
+    """A result streamed from its stored parts. A part refused on the way (:class:`_PartRefused`, already logged)
+    ends the answer without the chunked body's end: the server closes the connection, so no client takes the rows
+    before it for the whole answer, and nothing propagates as an unhandled error with a traceback (uvicorn says
+    once that the response was not completed)."""
+
+    async def stream_response(self, send) -> None:
+        await send({"type": "http.response.start", "status": self.status_code, "headers": self.raw_headers})
+        try:
+            async for chunk in self.body_iterator:
+                await send({"type": "http.response.body", "body": chunk, "more_body": True})
+        except _PartRefused:
+            return
+        await send({"type": "http.response.body", "body": b"", "more_body": False})
 
 
 @router.get(
@@ -314,7 +352,7 @@ async def result(request: Request, job_id: str, owner: OwnerDep, jobs: JobsDep) 
     headers = {"ETag": f'"{view.record.etag[fmt]}"', "Vary": "Accept"}
     chunks = _coalesce(_result_chunks(jobs, view, op, fmt))
     media_type = CSV_TYPE if fmt == "csv" else JSON_TYPE
-    return StreamingResponse(prefetched(chunks), media_type=media_type, headers=headers)
+    return _StoredResult(prefetched(chunks), media_type=media_type, headers=headers)
 
 
 @router.delete(

@@ -14,6 +14,7 @@ import zlib
 from collections.abc import Callable
 from typing import Any
 
+from app.jobs.columns import ColumnsError
 from app.jobs.kv import StorageFull
 from app.jobs.operations import OPERATIONS
 from app.jobs.store import JobRecord, JobStore, Stopped, problem
@@ -31,7 +32,7 @@ class PartTimeout(Exception):
 
 
 class PartRun:
-    """The :class:`~app.jobs.operations.PartContext` of one attempt of one part."""
+    """The :class:`~app.jobs.base.PartContext` of one attempt of one part."""
 
     def __init__(
         self,
@@ -110,6 +111,11 @@ def run_part(
         return
     except StorageFull as exc:
         store.fail(job_id, record, problem("jobs-storage-full", "The job store is full", str(exc), 507))
+        return
+    except ColumnsError as exc:  # a stored input that verified but does not read: an integrity failure, handled
+        log.warning("job_part_integrity_failure", reason=f"{type(exc).__name__}: {exc}")
+        detail = f"part {k}: its stored input cannot be used: {exc}"
+        store.fail(job_id, record, problem("job-state-invalid", "Invalid job state", detail))
         return
     except RolloverError as exc:  # refused for the whole request at submission: this is a part-level surprise
         detail = f"part {k}: {exc}"

@@ -13,6 +13,7 @@ from pydantic import ValidationError
 
 from app.formats.jsonpieces import loads_in_pieces
 from app.http.problems import InvalidAlignment, engine_field
+from app.http.strictjson import refuse_duplicate_keys
 from app.jobs.backends import Backend
 from app.jobs.base import Operation, ResolveContext
 from app.jobs.operations import OPERATIONS
@@ -90,6 +91,7 @@ def parse_submission(body: bytes) -> tuple[Operation, Any]:
         except orjson.JSONDecodeError as exc:
             msg = f"JSON: {exc}"
             raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": msg}]) from None
+        refuse_duplicate_keys(body, data)
     if not isinstance(data, dict):
         raise RequestValidationError([{"type": "dict_type", "loc": ("body",), "msg": "Input should be an object"}])
     known = ", ".join(OPERATIONS)

@@ -6,18 +6,18 @@ Keys (``rollover:job:<id>`` + suffix), each value sealed with the deployment's H
 (:func:`app.compute.cache.unseal`), then parsed with a pydantic model: a value that does not verify or parse is never
 used, the job it belongs to is reported ``failed`` with the reason, and the event is logged (``job_entry_rejected``).
 
-=====================  ======================================================================================
-suffix                 value
-=====================  ======================================================================================
-(none)                 :class:`JobRecord`: operation, owner, created_at, the self-contained shared inputs, the
-                       parts' sizes (written once, at submission)
-``:in:<k>``            part k's own inputs (bytes the operation packed; e.g. its curves)
-``:part:<k>``          :class:`PartState`: status, attempt, units done, lease (``heartbeat_at``), its metadata
-                       when done (written only through :meth:`KV.update`, fenced by the attempt)
-``:stop``              :class:`Stop`: the job was cancelled, or failed (with the problem)
+==========================  ====================================================================================
+suffix                      value
+==========================  ====================================================================================
+(none)                      :class:`JobRecord`: operation, owner, created_at, the self-contained shared inputs, the
+                            parts' sizes (written once, at submission)
+``:in:<k>``                 part k's own inputs (bytes the operation packed; e.g. its curves)
+``:part:<k>``               :class:`PartState`: status, attempt, units done, lease (``heartbeat_at``), its metadata
+                            when done (written only through :meth:`KV.update`, fenced by the attempt)
+``:stop``                   :class:`Stop`: the job was cancelled, or failed (with the problem)
 ``:out:<k>:<a>:<fmt>:<s>``  result fragment of part k, attempt a, format, section (e.g. vehicle): zlib-compressed
-                       rendered bytes, or the part's result columns (format ``columns``, kept raw)
-=====================  ======================================================================================
+                            rendered bytes, or the part's result columns (format ``columns``, kept raw)
+==========================  ====================================================================================
 
 **Leases.** A running part reports at every chunk (``heartbeat_at``, ``done_units``). :meth:`JobStore.reap` finds
 running parts that have not reported for ``lease_s`` (their worker died: SIGKILL, OOM, a lost machine) and queues
@@ -233,8 +233,10 @@ class JobStore:
         except ValidationError as exc:
             raise ValueError(f"{key} does not parse as a {cls.__name__}: {exc.errors()[0]['msg']}") from None
 
-    def _reject(self, job_id: str, reason: str) -> None:
-        _log.warning("job_entry_rejected", job=job_id, reason=reason)
+    def _reject(self, job_id: str, reason: str, part: int | None = None) -> None:
+        """A stored value refused (its seal or its parse): a handled integrity failure, logged with the job and, for
+        a part's value, the part; never a traceback."""
+        _log.warning("job_entry_rejected", job=job_id, part=part, reason=reason)
 
     # ------------------------------------------------------------------------------------- submit
     def create(
@@ -303,7 +305,7 @@ class JobStore:
                     raise ValueError(f"{keys[k]} is missing")
             except ValueError as exc:
                 state, invalid = None, invalid or f"part {k}'s stored state cannot be used: {exc}"
-                self._reject(job_id, str(exc))
+                self._reject(job_id, str(exc), k)
             parts.append(state)
         try:
             stop = self._model(Stop, keys[-1], STOP_TYPE, raws[-1])
@@ -387,7 +389,7 @@ class JobStore:
             if data is None:
                 raise ValueError(f"{in_key} is missing")
         except ValueError as exc:
-            self._reject(job_id, str(exc))
+            self._reject(job_id, str(exc), k)
             self.fail(job_id, record, problem("job-state-invalid", "Invalid job state", f"part {k}: {exc}"))
             return None
         now = time.time()

@@ -1,4 +1,4 @@
-"""POST /v1/plots/*: the thesis's figures for one case, as SVG."""
+"""``POST /v1/plots/*``: the thesis's figures for one case, as SVG."""
 
 from __future__ import annotations
 

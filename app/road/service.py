@@ -13,7 +13,14 @@ from app.compute.results import Computed, cached
 from app.road.schemas import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.settings import Settings
 from app.srt.schemas import SrtResult
-from app.srt.service import resolve_case, resolve_srt, resolve_targets, solve_with_level, srt_result
+from app.srt.service import (
+    input_warnings,
+    resolve_case,
+    resolve_srt,
+    resolve_targets,
+    solve_with_level,
+    srt_result,
+)
 from engine import ENGINE_VERSION
 from engine.case import Case, Road
 from engine.road import max_curve_speed_kmh, min_radius, side_friction_factor
@@ -22,11 +29,12 @@ from engine.road import max_curve_speed_kmh, min_radius, side_friction_factor
 async def _srt_for(
     cache: ResultCache, req: CurveSpeedRequest | MinRadiusRequest, case: Case | None, targets: dict[str, float]
 ) -> tuple[float, str, SrtResult | None]:
-    """(srt, source, the SRT result or None) for a curve-speed/min-radius request."""
+    """(srt, source, the SRT result or None) for a curve-speed/min-radius request; the SRT result carries the
+    request's input warnings (a record's weight plausible in kN and in tonnes)."""
     if case is None:
         return req.srt, "given", None
     engine_result, level = await solve_with_level(cache, case)
-    result = srt_result(engine_result, targets, level)
+    result = srt_result(engine_result, targets, level, input_warnings(req.vehicle, case.vehicle))
     return result.srt, "computed", result
 
 

@@ -1,5 +1,5 @@
 """Design standards: their list (GET /v1/design-standards) and the superelevation distribution
-(POST /v1/superelevation, POST /v1/superelevation/table), over :mod:`engine.standards`."""
+(POST /v1/superelevation, POST /v1/superelevation/table), over :mod:`engine.road.standards`."""
 
 from __future__ import annotations
 

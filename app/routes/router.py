@@ -18,6 +18,7 @@ from app.http.fastpath import replayable
 from app.http.negotiation import GEOJSON_MEDIA_TYPE, WITH_GEOJSON, negotiate
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import ANSWER_MODELS, computed_response, table_responses
+from app.http.strictjson import refuse_duplicate_keys
 from app.routes.schemas import EXAMPLE_GEOJSON, EXAMPLE_GPX, ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
 from app.routes.service import assess_route
 from app.routes.uploads import RouteUploadQuery, geojson_upload, gpx_upload
@@ -31,6 +32,7 @@ def parse_route_request(body: bytes) -> RouteRequest:
         data = orjson.loads(body)
     except orjson.JSONDecodeError as exc:
         raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
+    refuse_duplicate_keys(body, data)
     try:
         return RouteRequest.model_validate(data)
     except ValidationError as exc:

@@ -2,12 +2,12 @@
 
 The document is read by :mod:`app.formats.route_io` (GeoJSON or GPX: parts of WGS84 lon/lat/elevation, errors naming the
 feature and the vertex), each part is developed into a plane frame that keeps its lengths and turning angles
-(:func:`engine.route.geodesy.local_frame`), and :func:`engine.geometry.find_curves` finds its tangents and curves. The
-curves then go through the same assessment as an alignment's (:func:`app.alignments.service.solve_alignment`:
-superelevation given, from a feature property, or derived from the standard; grade from the elevations) with the
-curve's conservative radius ``radius_lower_m`` (the one-sided 95 % lower bound of the fitted ``radius_m``), so a curve
-gets the same answer as a table row of that radius. The answer is a GeoJSON FeatureCollection of the
-curves (a GIS reads it as it is), or CSV: one row per curve and vehicle.
+(:func:`engine.route.geodesy.local_frame`), and :func:`engine.route.detect.find_curves` finds its tangents and curves.
+The curves then go through the same assessment as an alignment's (:func:`app.alignments.service.solve_alignment`:
+superelevation given, from a feature property, or derived from the standard; grade from the elevations) with the curve's
+conservative radius ``radius_lower_m`` (the one-sided 95 % lower bound of the fitted ``radius_m``), so a curve gets the
+same answer as a table row of that radius. The answer is a GeoJSON FeatureCollection of the curves (a GIS reads it as it
+is), or CSV: one row per curve and vehicle.
 
 Real tracks hold what no road has: a curve outside the model's domain (a radius of a few metres: a car park's or a
 junction's manoeuvre) is a row with its ``error`` and no speeds (:func:`assess_route_curves`), never a refusal of the

@@ -6,7 +6,16 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, WithJsonSchema
 
-from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, json_int
+from app.http.schemas import (
+    EXAMPLE_PRESET,
+    WARNINGS_DESCRIPTION,
+    InputModel,
+    InputWarningOut,
+    OutputModel,
+    bounded,
+    describe,
+    json_int,
+)
 from app.vehicles.builder_schemas import SpecRef
 from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_schemas import CombinationRef, LiftEventOut, RollCoupledUnitOut
@@ -386,6 +395,7 @@ class SrtResult(OutputModel):
             symbol="Ch. 2 symbols",
         )
     )
+    warnings: list[InputWarningOut] = Field(default_factory=list, description=WARNINGS_DESCRIPTION)
     notes: list[str] = Field(description=describe("Caveats the engine attached to this result.", unit="-"))
     curves: CurvesOut | None = Field(
         None,

@@ -16,6 +16,7 @@ the targets are judged on) and :func:`srt_result`.
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import time
 from typing import Any
 
@@ -30,12 +31,14 @@ from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
 from app.vehicles.refs import resolve_vehicle
+from app.vehicles.schemas import VehicleRecord
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase, Road
 from engine.models import rollover_threshold
 from engine.results import RolloverResult
 from engine.road import check_targets, tilt_table_angle_deg
 from engine.vehicle import Vehicle
+from engine.vehicle.plausibility import InputWarning, record_warnings
 
 # ------------------------------------------------------------------------------------- resolution
 
@@ -155,9 +158,15 @@ async def solve_with_level(
     return result, (result if level is case else await solve(cache, level))
 
 
-def srt_result(result: RolloverResult, targets: dict[str, float], level: RolloverResult | None = None) -> SrtResult:
+def srt_result(
+    result: RolloverResult,
+    targets: dict[str, float],
+    level: RolloverResult | None = None,
+    warnings: list[InputWarning] | None = None,
+) -> SrtResult:
     """The published SRT result of an engine result and of its level-road case's (:func:`level_case`; None: the case
-    is level), validated against the schema (a contract break is loud). The targets are judged on the level SRT."""
+    is level), validated against the schema (a contract break is loud). The targets are judged on the level SRT;
+    ``warnings``: the inputs that read plausibly in another unit too (:func:`input_warnings`)."""
     level_srt = result.srt if level is None else level.srt
     data = result.to_dict()
     detail = data.pop("combination", None)
@@ -171,7 +180,18 @@ def srt_result(result: RolloverResult, targets: dict[str, float], level: Rollove
     data["level_road_srt"] = level_srt
     data["targets"] = target_checks(level_srt, targets)
     data["engine_version"] = ENGINE_VERSION
+    data["warnings"] = [dataclasses.asdict(w) for w in warnings or ()]
     return SrtResult.model_validate(data)
+
+
+def input_warnings(ref: Any, vehicle: Vehicle | Any) -> list[InputWarning]:
+    """The warnings of a request's ``vehicle``: a record typed in the request whose weight or stiffness reads
+    plausibly in another unit too (``vehicle.weight_kn`` = 50: a light trailer, or 50 t typed as kN). Presets,
+    specs and combinations carry none (their weights are derived from masses in kg). A property of the record, so
+    of the cache key: a cached answer carries the same warnings."""
+    if isinstance(ref, VehicleRecord) and isinstance(vehicle, Vehicle):
+        return record_warnings(vehicle, "vehicle.")
+    return []
 
 
 async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -> Computed:
@@ -180,8 +200,10 @@ async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -
     resolved = resolve_srt(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
     points = resolved.curve_points  # None without curves (ResolvedSrt): what the key holds is what is solved
 
+    warnings = input_warnings(req.vehicle, case.vehicle)
+
     async def produce() -> bytes:
         result, level = await solve_with_level(cache, case, curve_points=points)
-        return srt_result(result, targets, level).model_dump_json().encode()
+        return srt_result(result, targets, level, warnings).model_dump_json().encode()
 
     return await cached(cache, "srt", resolved, produce)

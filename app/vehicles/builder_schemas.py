@@ -1,6 +1,6 @@
 """The vehicle builder's spec, its result, the component library and the payload table, as HTTP schemas.
 
-The spec's models are generated from the engine's dataclasses (:mod:`engine.builder`): their fields, types and
+The spec's models are generated from the engine's dataclasses (:mod:`engine.vehicle.builder`): their fields, types and
 defaults, and each field's description and unit from the dataclass's docstring (``name : text [unit]``), so the
 published schema and the engine cannot drift. The engine checks what a schema cannot say (a load height below its
 deck, a CG outside the track, a payload over a rated load, an unknown component) and answers 422 naming the spec
@@ -20,6 +20,8 @@ from pydantic import ConfigDict, Field, create_model
 from app.http.schemas import InputModel, OutputModel, describe, json_int
 from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
 from engine.vehicle import builder as eb
+from engine.vehicle.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
+from engine.vehicle.plausibility import RANGES
 
 #: thesis symbols a spec field's description may start with ("kLs, vertical rate ...")
 _SYMBOLS = {d.symbol for d in FIELD_DOCS.values()} | {"kLs", "kT", "lr", "ls", "b", "kf", "lf", "b1", "k_theta"}
@@ -98,6 +100,20 @@ def _python_type(owner: str, name: str, tp: Any) -> tuple[Any, bool]:
     raise TypeError(f"{owner}.{name}: no schema type for {tp!r}")
 
 
+def _bounds(cls: type, name: str) -> dict[str, Any]:
+    """The schema's bounds of a spec field: its plausible range (``engine.vehicle.builder.plausible.SPEC_RANGES``),
+    which the engine enforces (422 naming the likely unit slip); a count (axles, tyres) is at least 1. Published
+    only: the engine's check says more than a schema error would (the slip)."""
+    key = SPEC_RANGES.get((cls.__name__, name))
+    if key is not None:
+        r = RANGES[key]
+        low = 0.0 if (cls.__name__, name) in SPEC_ZERO_ALLOWED else r.minimum  # 0: none (a payload of 0 kg)
+        return {"json_schema_extra": {"minimum": low, "maximum": r.maximum}}
+    if name in ("axles", "tyres_per_axle"):
+        return {"json_schema_extra": {"minimum": 1}}
+    return {}
+
+
 def spec_model(cls: type) -> type[InputModel]:
     """The pydantic model of one builder dataclass (its nested dataclasses must be generated first)."""
     docs = field_docs(cls)
@@ -116,7 +132,10 @@ def spec_model(cls: type) -> type[InputModel]:
             tp = tp | None
         if isinstance(default, tuple):
             default = list(default)
-        fields[f.name] = (tp, Field(default, description=describe(text, unit=unit, symbol=symbol)))
+        fields[f.name] = (
+            tp,
+            Field(default, description=describe(text, unit=unit, symbol=symbol), **_bounds(cls, f.name)),
+        )
     summary = (cls.__doc__ or cls.__name__).strip().split("\n\n")[0].replace("\n", " ")
     return create_model(cls.__name__, __base__=InputModel, __doc__=summary, **fields)
 

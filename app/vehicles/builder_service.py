@@ -1,6 +1,6 @@
 """The vehicle builder over HTTP: POST /v1/vehicles/build, GET /v1/components, POST /v1/vehicles/payload-table.
 
-A spec is turned into the engine's record by :func:`engine.builder.build_vehicle`; :func:`build_spec` is the one
+A spec is turned into the engine's record by :func:`engine.vehicle.builder.build_vehicle`; :func:`build_spec` is the one
 place that does it for the service (the build endpoint, a ``{"spec": ...}`` vehicle in any computation, a saved
 spec), re-pointing the engine's ``spec.<field>`` errors at where the spec sits in the request.
 """

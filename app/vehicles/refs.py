@@ -4,14 +4,14 @@ A computation's ``vehicle`` (and the alignment's ``vehicles`` or ``fleet``) may 
 
 * a preset id (``table16-btrain``): public; the service expands it itself;
 * a full record: used as it is;
-* ``{"spec": {...}}``: built into a record by :func:`engine.builder.build_vehicle`;
+* ``{"spec": {...}}``: built into a record by :func:`engine.vehicle.builder.build_vehicle`;
 * ``{"combination": {...}}``: a combination record, validated;
 * ``{"combination_spec": {...}}``: built into a combination by :func:`engine.vehicle.builder.build_combination`;
 * a saved vehicle's id (``veh_...``) or, in a batch, a fleet's id (``flt_...``): read from the catalog with the
   caller's bearer key (another key's or a deleted id is a 404 naming it), then as above.
 
 :func:`resolve_vehicle_refs` replaces every saved id, fleet, spec and combination spec of a validated request by
-the engine's :class:`~engine.vehicles.Vehicle` (or :class:`~engine.vehicle.Combination`) before the service sees it,
+the engine's :class:`~engine.vehicle.Vehicle` (or :class:`~engine.vehicle.Combination`) before the service sees it,
 so the cache key is derived from the resolved record: editing a saved vehicle changes its key and never serves a
 stale answer. Reading one needs the caller's bearer key,
 so the raw-body fast path (:mod:`app.http.fastpath`), which never replays a request with credentials, never answers

@@ -1,6 +1,6 @@
 """The vehicle record, in and out, generated from the engine's one definition of its fields.
 
-Each field's type, bounds, unit, thesis symbol and description come from :data:`engine.vehicles.FIELD_DOCS`, so
+Each field's type, bounds, unit, thesis symbol and description come from :data:`engine.vehicle.FIELD_DOCS`, so
 the published schema states exactly the ranges the engine checks (the engine also checks what a schema cannot say:
 track = axle width, springs inside the track, the CG below the tallest legal vehicle, no spring compressed to
 nothing, roll stiffness above W l12, ... and answers 422 naming the field).

@@ -2,19 +2,19 @@
 
 Steps, as numbered in Sec. 3.2:
 
-1-2. the mechanism's links are the vertices and its joints and external actions the edges of the direct
-     coupling graph G_A, each edge oriented from the minor to the major vertex (:mod:`engine.mechanism`);
-3.   incidence matrix [I]_{n, j+f} (:func:`incidence_matrix`);
-4.   cut-set matrix [Q]_{k, j+f} by Gauss-Jordan elimination, k = n - 1 cuts; the pivot columns are the
-     branches of a spanning tree, the others the chords (:func:`cutset_matrix`);
-5.   expanded cut-set matrix [Q]_{k, c}: every edge's column repeated once per constraint it carries
-     (:func:`expanded_cutset`);
-6-7. unit action matrix [A_n]_{lambda k, c}: each entry of the expanded cut-set matrix multiplied by the
-     constraint's unit wrench (Eq. 3.4), i.e. the Kirchhoff-Davies cut-set law "the wrenches crossing
-     each cut sum to zero" written for unit magnitudes (:func:`unit_action_matrix`, Eqs. 5.9/6.10);
-8.   split the magnitudes into primary (given) and secondary (unknown) ones and solve
-     [A_ns] [Psi_s] = -[A_np] [Psi_p] (Eqs. 5.11/6.12), together with any closure equations the caller
-     adds (the thesis closes the 3D trailer with Eqs. 4.27, 4.21, 4.22, Eq. 6.19) (:func:`solve_statics`).
+- 1-2: the mechanism's links are the vertices and its joints and external actions the edges of the direct
+  coupling graph G_A, each edge oriented from the minor to the major vertex (:mod:`engine.mechanics.mechanism`);
+- 3: incidence matrix [I]_{n, j+f} (:func:`incidence_matrix`);
+- 4: cut-set matrix [Q]_{k, j+f} by Gauss-Jordan elimination, k = n - 1 cuts; the pivot columns are the
+  branches of a spanning tree, the others the chords (:func:`cutset_matrix`);
+- 5: expanded cut-set matrix [Q]_{k, c}: every edge's column repeated once per constraint it carries
+  (:func:`expanded_cutset`);
+- 6-7: unit action matrix [A_n]_{lambda k, c}: each entry of the expanded cut-set matrix multiplied by the
+  constraint's unit wrench (Eq. 3.4), i.e. the Kirchhoff-Davies cut-set law "the wrenches crossing
+  each cut sum to zero" written for unit magnitudes (:func:`unit_action_matrix`, Eqs. 5.9/6.10);
+- 8: split the magnitudes into primary (given) and secondary (unknown) ones and solve
+  [A_ns] [Psi_s] = -[A_np] [Psi_p] (Eqs. 5.11/6.12), together with any closure equations the caller
+  adds (the thesis closes the 3D trailer with Eqs. 4.27, 4.21, 4.22, Eq. 6.19) (:func:`solve_statics`).
 
 The solve is by singular value decomposition. The rank tells whether the equations determine the
 secondary variables; when they do not (the 3D trailer has 132 cut-set equations for 147 unknowns), the

@@ -85,7 +85,7 @@ class FifthWheelParams:
 
 @dataclass(frozen=True)
 class GroupParams:
-    """One axle group: per-side equivalent stiffnesses (see :mod:`engine.vehicles`) and geometry."""
+    """One axle group: per-side equivalent stiffnesses (see :mod:`engine.vehicle`) and geometry."""
 
     axle_width: float  # t2 / t4 [m]
     spring_separation: float  # b [m]
@@ -108,7 +108,7 @@ class GroupParams:
 def group_params(
     vehicle, which: str, static_load_kn: float, fifth_wheel: FifthWheelParams | None = None
 ) -> GroupParams:
-    """The ``"front"`` or ``"rear"`` group of a vehicle record (per-side sums of :mod:`engine.vehicles`).
+    """The ``"front"`` or ``"rear"`` group of a vehicle record (per-side sums of :mod:`engine.vehicle`).
 
     ``static_load_kn`` is the group's nominal static load: the lengths lr and ls hold at half of it per side.
     """

@@ -4,7 +4,7 @@ Every law works elementwise on floats or numpy arrays. Forces in kN, stiffnesses
 kN m/rad (torsion), lengths in m, angles in rad.
 
 Unspecified parameters (the thesis gives no value; chosen once, for every vehicle)
---------------------------------------------------------------------------------
+----------------------------------------------------------------------------------
 * **Leaf-spring torsion coefficient kst** (joints 5, 21; joint 6 in 2D; Eq. 4.6). Sec. 3.1 models the
   small shear deformation of a flexible member by a torsion spring at its base with k2 >> k1 (Popov,
   1998): the spring's lateral (shear) stiffness is much larger than its vertical rate. We take the

@@ -9,7 +9,7 @@ tires at y = 0, z normal to the road. Twenty-three links:
 * the **front group** (front tires at x = -l13, fifth wheel at x = 0), yawed by the trailer/trailer angle
   psi about the vertical through the kingpin (point 29, Table 8): outer and inner tire columns, axle, two
   leaf-spring legs of two links each, bolster, two fifth-wheel legs of two links each, fifth-wheel plate
-  (joints 1-16, :mod:`engine.groups`);
+  (joints 1-16, :mod:`engine.models.groups`);
 * the **rear group** at x = -L: tire columns, axle, two leaf-spring legs, bolster (joints 17-26);
 * the **chassis** carrying the CG at (-a + d2, h1, h2), joined to the rear bolster by joint 27 and to the
   fifth-wheel plate by joint 28.
@@ -167,7 +167,7 @@ class TrailerModel:
 
 @functools.lru_cache(maxsize=256)
 def build_model(vehicle: Vehicle, stage: str = "full", closure: str = "chassis-constant", forces=None) -> TrailerModel:
-    """Map a (validated) vehicle record onto the 3D mechanism (see :mod:`engine.vehicles` for the sums).
+    """Map a (validated) vehicle record onto the 3D mechanism (see :mod:`engine.vehicle` for the sums).
 
     Memoised (bounded LRU): the model of a vehicle and stage, with its calibrated chassis constant (two solves), is
     a pure function of frozen inputs and is immutable, so a vehicle solved again (another road, load or curve of an

@@ -191,7 +191,7 @@ def superelevation_used(
     radius_m : curve radii [m]
     superelevation_percent : superelevations, nan = derive [%]
     posted_speed_kmh : posted speeds, nan = none [km/h]
-    design_standard : id of :data:`engine.standards.STANDARDS` [-]
+    design_standard : id of :data:`engine.road.standards.STANDARDS` [-]
     side_friction_bound : Table 21 bound, ``thesis-table21`` only [-]
     max_superelevation_percent : the road's e_max [%]
 
@@ -240,7 +240,7 @@ def solve_bank_grade_pairs(
 
 
 def _side_friction_in_blocks(std, radius: np.ndarray, e: np.ndarray, block_map: BlockMap):
-    """:func:`engine.standards.side_friction_speed` of the curves, in blocks run by ``block_map``
+    """:func:`engine.road.standards.side_friction_speed` of the curves, in blocks run by ``block_map``
     (:func:`engine.models.map_blocks`)."""
 
     def block(rows: range) -> standards.SideFrictionSpeed:
@@ -272,7 +272,7 @@ def assess_alignment(
     For each curve: the SRT on its superelevation and grade (``case`` gives the vehicle and the other SRT inputs;
     curves sharing bank and grade share one solve, and every distinct pair is solved in one batch), the rollover
     speed sqrt(127 SRT R) (Eq. 9.1), the side-friction speed sqrt(127 R (0.01 e + f(V))) with the design standard's
-    f_max (:func:`engine.standards.side_friction_speed`), the safe (smaller) speed, what governs it, the margin
+    f_max (:func:`engine.road.standards.side_friction_speed`), the safe (smaller) speed, what governs it, the margin
     against the posted speed (flagged when negative, or when no SRT exists for the curve), and the standard's
     minimum radius at the posted speed (with ``max_superelevation_percent`` as e_max, else the curve's own e).
 
@@ -284,7 +284,7 @@ def assess_alignment(
         ``max_superelevation_percent`` and the curve's posted speed)
     grade_percent : grades in the direction of travel, + uphill [%]
     posted_speed_kmh : posted speeds [km/h]; nan = none
-    design_standard : id of :data:`engine.standards.STANDARDS` [-]
+    design_standard : id of :data:`engine.road.standards.STANDARDS` [-]
     side_friction_bound : Table 21 bound, ``thesis-table21`` only [-]
     max_superelevation_percent : the road's e_max [%]
     solve_pairs : replaces :func:`solve_bank_grade_pairs` (e.g. one that remembers the pairs it solved for a

@@ -6,7 +6,7 @@ is 3.6^2 * g = 12.96 * 9.81 (km/h to m/s, and g).
 Side friction
 -------------
 Eq. 9.2 needs a design side-friction factor f. :func:`min_radius` reads it from a named design standard
-(:mod:`engine.standards`: ``aashto-2018``, the default, ``dnit-1999`` or ``thesis-table21``). The thesis's
+(:mod:`engine.road.standards`: ``aashto-2018``, the default, ``dnit-1999`` or ``thesis-table21``). The thesis's
 Table 21 (AASHTO 2003, DNER 1999, DNIT 2009) gives a *range* of f per design speed; :func:`side_friction_factor`
 here reads that range at a bound (``low`` by default, the conservative choice: smaller f, larger radius).
 Neither bound is any one standard: the current Green Book (2018, Table 3-7) gives 0.19/0.17/0.15 at
@@ -16,7 +16,7 @@ linearly in speed; outside a table's range nothing is extrapolated (:class:`Inva
 References
 ----------
 Thesis Eqs. 9.1-9.3 and Table 21; AASHTO (2018), *A Policy on Geometric Design of Highways and Streets*, 7th
-ed., Eq. 3-8 and Table 3-7; DNER (1999), IPR-706, Sec. 5.4 (see :mod:`engine.standards`).
+ed., Eq. 3-8 and Table 3-7; DNER (1999), IPR-706, Sec. 5.4 (see :mod:`engine.road.standards`).
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ def side_friction_min_radius_m(speed_kmh, superelevation_percent, side_friction)
     """Minimum radius by the simplified curve formula R = V^2 / (127 (0.01 e + f)) [m] (Eq. 9.2).
 
     The point-mass curve formula of AASHTO (Green Book Eq. 3-8) and DNIT (IPR-706 Sec. 5.4); with a standard's
-    f_max and e_max it gives that standard's minimum radius (:func:`engine.standards.min_radius_m`).
+    f_max and e_max it gives that standard's minimum radius (:func:`engine.road.min_radius.min_radius_m`).
     """
     v = np.asarray(speed_kmh, dtype=float)
     demand = 0.01 * np.asarray(superelevation_percent, dtype=float) + np.asarray(side_friction, dtype=float)

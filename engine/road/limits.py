@@ -48,7 +48,7 @@ def with_parameter(case: Case, parameter: str, value: float) -> Case:
 
 
 def parameter_range(case: Case, parameter: str) -> tuple[float, float]:
-    """Admissible range of the parameter: inside the bounds :func:`engine.vehicles.validate_vehicle` enforces.
+    """Admissible range of the parameter: inside the bounds :func:`engine.vehicle.validate_vehicle` enforces.
 
     For l12 and b that is Rill's condition k_theta > W_group l12 (Eq. 2.17) for every group the model uses
     (both groups in 3D), with the groups' nominal static loads, as the validation applies it.

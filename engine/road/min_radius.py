@@ -71,8 +71,8 @@ def min_radius(
     superelevation_percent : superelevation e of the curve [%]
     srt_g : the vehicle's SRT on that bank and slope [g]
     side_friction : design side friction f; default: the standard's f_max at V [-]
-    design_standard : id of :data:`engine.standards.STANDARDS`; default
-        :data:`engine.standards.DEFAULT_DESIGN_STANDARD` [-]
+    design_standard : id of :data:`engine.road.standards.STANDARDS`; default
+        :data:`engine.road.standards.DEFAULT_DESIGN_STANDARD` [-]
     bound : Table 21 bound (``low``/``mid``/``high``), ``thesis-table21`` only [-]
 
     Raises

@@ -184,7 +184,7 @@ class HorizontalCurve:
         return self.end_m - self.start_m
 
     def as_curve(self, curve_id: str, superelevation_percent: float, posted_speed_kmh: float | None = None) -> Curve:
-        """The :class:`engine.assessment.Curve` record of this curve (grade 0 when unknown), with the conservative
+        """The :class:`engine.road.curves.Curve` record of this curve (grade 0 when unknown), with the conservative
         radius ``radius_lower_m``: the safe speed (Eq. 9.1) is then that of the sharpest curve the track allows at
         95 % confidence, so GPS noise lowers it rather than raising it."""
         return Curve(
@@ -1499,11 +1499,11 @@ def find_curves(
     kt = 1.0 / max_radius_m
     seg = np.hypot(np.diff(xv), np.diff(yv))
     h_v = float(np.median(seg))  # vertex spacing
-    # step 1: the noise. First from the variogram of the vertices' differences (:func:`engine.route.noise.
-    # estimate_noise`: white noise unless correlation is significant); the curves found with it leave tangents,
-    # whose residuals identify sigma and the correlation length far better (restricted likelihood,
-    # :func:`engine.route.noise.residual_noise`); when they show correlated noise, the curves are found again with
-    # it. A given noise_m is sigma; the correlation is estimated all the same (a property of the track's shape).
+    # step 1: the noise. First from the variogram of the vertices' differences
+    # (:func:`engine.route.noise.estimate_noise`: white noise unless correlation is significant); the curves found with
+    # it leave tangents, whose residuals identify sigma and the correlation length far better (restricted likelihood,
+    # :func:`engine.route.noise.residual_noise`); when they show correlated noise, the curves are found again with it. A
+    # given noise_m is sigma; the correlation is estimated all the same (a property of the track's shape).
     first = estimate_noise(xv, yv)
     sigma = first.sigma_m if noise_m is None else float(noise_m)
     corr = first.corr_m if sigma >= SURVEY_NOISE_M else 0.0

@@ -23,7 +23,7 @@ likelihood counts it. The Ornstein-Uhlenbeck sequence is Markov, so its innovati
 z_i = (y_i - phi_i y_{i-1}) / sqrt(1 - phi_i^2), phi_i = exp(-(s_i - s_{i-1}) / L), whiten it exactly (P^-1/2, with
 log|P| = sum log(1 - phi_i^2)) and the likelihood costs O(n). On the tangents the geometry is known at every lag up
 to their length, so sigma and L are both identified once they are a few L long. White noise is kept unless the
-correlation lowers the deviance by more than :data:`CORRELATION_SIGNIFICANCE`^2 (a likelihood-ratio test of one
+correlation lowers the deviance by more than :data:`CORRELATION_SIGNIFICANCE` squared (a likelihood-ratio test of one
 parameter at 3 standard deviations).
 
 *From the differences* (:func:`estimate_noise`: the first pass, and the fallback when no tangent is long enough).
@@ -44,7 +44,7 @@ geometry, not noise), and (sigma^2, rho) are fitted to Eq. 4 by weighted least s
 inverse sampling variances of log V_m under white noise, 4.62 / N_m (2 sum_k c_k^2 / N_m for a Gaussian sequence,
 sum_k c_k^2 = 2.31 the autocorrelation of the differences, N_m the number of differences). Correlation is accepted
 only when the fit lowers the weighted sum of squares of white noise (rho = 0) by more than
-:data:`CORRELATION_SIGNIFICANCE`^2 (it ignores the positive correlation between lags, which makes it conservative
+:data:`CORRELATION_SIGNIFICANCE` squared (it ignores the positive correlation between lags, which makes it conservative
 toward whiteness); otherwise the noise is white and sigma is the lag-one median absolute deviation, robust to
 tangent points (:func:`vertex_noise_m`, the estimate the method always used).
 
@@ -73,13 +73,13 @@ Using the model
 
 References
 ----------
-[4] G. E. P. Box, G. M. Jenkins, G. C. Reinsel (2008), Time Series Analysis, 4th ed., Wiley: the AR(1) process,
-    its spectrum and the variance of a mean under autocorrelation.
-[5] H. White (1980), A heteroskedasticity-consistent covariance matrix estimator, Econometrica 48; the sandwich
-    covariance (J^T J)^-1 J^T Sigma J (J^T J)^-1 of least squares under a known error covariance.
-[6] N. Cressie (1993), Statistics for Spatial Data, Wiley, ch. 2: variograms of increments and their fit.
-[7] H. D. Patterson, R. Thompson (1971), Recovery of inter-block information when block sizes are unequal,
-    Biometrika 58: restricted (residual) maximum likelihood.
+.. [4] G. E. P. Box, G. M. Jenkins, G. C. Reinsel (2008), Time Series Analysis, 4th ed., Wiley: the AR(1) process,
+   its spectrum and the variance of a mean under autocorrelation.
+.. [5] H. White (1980), A heteroskedasticity-consistent covariance matrix estimator, Econometrica 48; the sandwich
+   covariance (J^T J)^-1 J^T Sigma J (J^T J)^-1 of least squares under a known error covariance.
+.. [6] N. Cressie (1993), Statistics for Spatial Data, Wiley, ch. 2: variograms of increments and their fit.
+.. [7] H. D. Patterson, R. Thompson (1971), Recovery of inter-block information when block sizes are unequal,
+   Biometrika 58: restricted (residual) maximum likelihood.
 """
 
 from __future__ import annotations
@@ -426,7 +426,7 @@ def _reml_deviance(stretches, corr_m: float, sigma_m: float | None) -> tuple[flo
 
 def rejects(stretches, model: NoiseModel, significance: float = 4.0) -> bool:
     """Whether the tangents' offsets reject ``model`` (sigma and L both fixed) against their own restricted
-    likelihood maximum (:func:`residual_noise`), by more than :data:`CORRELATION_SIGNIFICANCE`^2 in deviance: a
+    likelihood maximum (:func:`residual_noise`), by more than :data:`CORRELATION_SIGNIFICANCE` squared in deviance: a
     likelihood-ratio test of two parameters' worth at 3 standard deviations (conservative: the test of one
     parameter's threshold). Used to keep a first estimate that the tangents cannot contradict (too few of them)
     rather than fall back to white noise. Stretches as in :func:`residual_noise` (the same outlier rule)."""
@@ -441,7 +441,7 @@ def rejects(stretches, model: NoiseModel, significance: float = 4.0) -> bool:
 
 def _straight(stretches, significance: float):
     """The stretches of at least 8 vertices whose residual variance about their own line is at most
-    ``significance``^2 times the median stretch's (:func:`residual_noise`)."""
+    ``significance`` squared times the median stretch's (:func:`residual_noise`)."""
     stretches = [(np.asarray(t, dtype=float), np.asarray(y, dtype=float)) for t, y in stretches if len(t) >= 8]
     if not stretches:
         return []
@@ -460,10 +460,10 @@ def residual_noise(
     absorbs the low-frequency part of correlated noise, and a plain variance of the residuals would understate
     sigma). The likelihood is O(n) per evaluation (the innovations form, :func:`_reml_terms`), maximised over L
     on a logarithmic grid from a fifth of the spacing to the longest stretch, then by golden sections. White noise
-    (L = 0) is kept unless L lowers the deviance by more than :data:`CORRELATION_SIGNIFICANCE`^2 (a likelihood-ratio
-    test of one parameter at 3 standard deviations). Unlike the differences of :func:`estimate_noise`, the tangents
-    see the noise at every lag up to their length, where the geometry is known (a line): sigma and L are both
-    identified once the tangents are a few L long. ``sigma_m`` fixes sigma (given by the user); None when no
+    (L = 0) is kept unless L lowers the deviance by more than :data:`CORRELATION_SIGNIFICANCE` squared (a
+    likelihood-ratio test of one parameter at 3 standard deviations). Unlike the differences of :func:`estimate_noise`,
+    the tangents see the noise at every lag up to their length, where the geometry is known (a line): sigma and L are
+    both identified once the tangents are a few L long. ``sigma_m`` fixes sigma (given by the user); None when no
     stretch was given.
 
     A stretch that is not straight (a curve the first pass missed, or a phantom's remnant) would carry its geometry

@@ -17,7 +17,7 @@ semitrailer's or B-train lead trailer's kingpin; a dolly's or full trailer's dra
 is therefore at its own position 0.
 
 Static loads (Eq. 4.27 generalised to the chain)
------------------------------------------------
+------------------------------------------------
 Each unit rests on exactly two vertical supports: its two axle groups (tractor, rigid truck, full trailer), or its
 coupling and its one group (semitrailer, B-train lead trailer, and a dolly, whose drawbar is rigid in pitch). A
 full trailer's drawbar is hinged at both ends and carries no vertical load. From the last unit forward, the normal
@@ -556,8 +556,8 @@ def loaded_units(c: Combination, load: UnitLoad | None = None) -> list[LoadedUni
 class StaticLoads:
     """Normal loads of the groups and couplings: ``normal factor * normal_kn + sin(grade) * grade_kn``.
 
-    normal_kn : ``(unit, group) -> `` ground normal load per unit normal weight factor (level road) [kN]
-    grade_kn : ``(unit, group) -> `` the change per unit sin(grade), positive uphill (load moves rearward) [kN]
+    normal_kn : ``(unit, group) ->`` the ground normal load per unit normal weight factor (level road) [kN]
+    grade_kn : ``(unit, group) ->`` the change per unit sin(grade), positive uphill (load moves rearward) [kN]
     coupling_kn / coupling_grade_kn : the same for the vertical load each coupling passes to the towing unit [kN]
     """
 

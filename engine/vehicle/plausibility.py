@@ -39,6 +39,9 @@ class Range:
     why: str
     #: the unit slips worth suggesting: (factor that brings the value into range, what the user likely typed in)
     slips: tuple[tuple[float, str], ...] = ()
+    #: a slip whose reading is plausible too, for the values where both are (factor, the unit it was typed in): such
+    #: a value is answered, with a warning that names both readings (:func:`ambiguous_reading`)
+    either_way: tuple[float, str] | None = None
 
     def contains(self, value: float) -> bool:
         return self.minimum <= value <= self.maximum
@@ -205,6 +208,9 @@ RANGES: dict[str, Range] = {
         "a heavy vehicle or trailer is over 3.5 t (categories N2/N3, O3/O4 [5]): 34.3 kN; at most the record's own "
         "bound, 1000 kN",
         _WEIGHT_SLIPS,
+        # 34.3-102 kN is a light trailer's weight (3.5-10.4 t) and the same number in tonnes is a heavy unit's
+        # (336-1000 kN): both plausible, so neither can be refused
+        either_way=(G, "tonnes"),
     ),
     "lash_deg": Range(
         0.0,
@@ -234,7 +240,7 @@ def check_plausible(quantity: str, value: object, field: str, what: str) -> floa
     if r.contains(v):
         return v
     expected = f"expected {r.minimum:g} to {r.maximum:g} {r.unit} ({r.why})"
-    slip = unit_slip(v, r.minimum, r.maximum, r.slips)
+    slip = unit_slip(v, r.minimum, r.maximum, r.slips) if v > 0 else None  # a slip never makes a value negative
     if slip is not None:
         typed, meant = slip
         raise InvalidVehicle(
@@ -244,6 +250,59 @@ def check_plausible(quantity: str, value: object, field: str, what: str) -> floa
             value=value,
         )
     raise InvalidVehicle(f"{field} = {v:g} {r.unit} is not plausible for {what}: {expected}", field=field, value=value)
+
+
+@dataclass(frozen=True)
+class InputWarning:
+    """A value answered as given that reads plausibly in another unit too: the field as typed, the value, and both
+    readings in the range's unit."""
+
+    field: str
+    value: float
+    unit: str
+    other_unit: str
+    other_reading: float
+    message: str
+
+
+def ambiguous_reading(quantity: str, value: object, field: str, what: str) -> InputWarning | None:
+    """An :class:`InputWarning` when ``value`` lies where :data:`RANGES` ``[quantity]`` is plausible read either way
+    (its ``either_way`` slip also lands inside the range); None otherwise (or when the value is not a plausible
+    number at all: :func:`check_plausible` refuses those).
+
+    Parameters
+    ----------
+    quantity : key of :data:`RANGES` [-]
+    value : the value as given [the range's unit]
+    field : the field's path as the user typed it (``vehicle.weight_kn``) [-]
+    what : the thing it belongs to, for the message [-]
+    """
+    r = RANGES[quantity]
+    if r.either_way is None or isinstance(value, bool) or not isinstance(value, int | float):
+        return None
+    v = float(value)
+    factor, typed = r.either_way
+    if not (math.isfinite(v) and r.contains(v) and r.contains(v * factor)):
+        return None
+    unit = r.unit.split(" ")[0]
+    other = v * factor
+    message = (
+        f"{field} = {v:g} {unit} is plausible for {what} read either way: {v:g} {unit} as given (the answer's "
+        f"reading), or {v:g} {typed} typed as {unit}, which would be {other:.4g} {unit}; if you meant {typed}, send "
+        f"{other:.4g}"
+    )
+    return InputWarning(field, v, unit, typed, other, message)
+
+
+def record_warnings(vehicle, where: str = "") -> list[InputWarning]:
+    """The :class:`InputWarning` of every field of a vehicle record (typed by a user) that reads plausibly in
+    another unit too (:data:`RECORD_RANGES`), named ``where`` + the record field (``vehicle.weight_kn``)."""
+    out = []
+    for name, quantity in RECORD_RANGES.items():
+        w = ambiguous_reading(quantity, getattr(vehicle, name, None), f"{where}{name}", "the vehicle record")
+        if w is not None:
+            out.append(w)
+    return out
 
 
 def unit_slip(

@@ -7,6 +7,9 @@ does not exist): the engine answers it with its own problem types (404 unknown-p
 invalid-load / ...), which that check allows; schemathesis' own ``positive_data_acceptance`` would count those too,
 so it is replaced by this one.
 
+**428 refuses a missing ``If-Match``.** The spec requires the header on both PUTs; the server answers its absence
+with 428 (RFC 6585), which schemathesis' ``missing_required_header`` is told to take.
+
 **413 is a rejection.** A negative case (schema-violating) may be refused before it is read because its body is
 over the operation's declared limit (413 problem ``body-too-large``): schemathesis' ``negative_data_rejection``
 lists the 4xx it takes for a rejection and 413 is not among them by default, so it is added here.
@@ -19,7 +22,7 @@ from typing import Any
 from hypothesis import HealthCheck
 from schemathesis.checks import positive_data_acceptance
 from schemathesis.config import SchemathesisConfig
-from schemathesis.config._checks import NegativeDataRejectionConfig
+from schemathesis.config._checks import MissingRequiredHeaderConfig, NegativeDataRejectionConfig
 
 SHAPE_PROBLEMS = ("urn:rollover:problem:validation-error", "urn:rollover:problem:malformed-request")
 _TABLE21 = "`side_friction_bound` only with `design_standard` `thesis-table21`"
@@ -47,9 +50,19 @@ FUZZ = {"deadline": None, "suppress_health_check": list(HealthCheck), "derandomi
 
 
 def config() -> SchemathesisConfig:
-    """Schemathesis' configuration with 413 among the statuses that reject negative data."""
+    """Schemathesis' configuration with 413 among the statuses that reject negative data, and 428 among those that
+    refuse a request without a required header (the spec requires ``If-Match`` on both PUTs; RFC 6585 section 3:
+    428 Precondition Required is the answer to a change that names no version)."""
     statuses = [*NegativeDataRejectionConfig._DEFAULT_EXPECTED_STATUSES, "413"]
-    return SchemathesisConfig.from_dict({"checks": {"negative_data_rejection": {"expected-statuses": statuses}}})
+    missing = [*MissingRequiredHeaderConfig._DEFAULT_EXPECTED_STATUSES, "428"]
+    return SchemathesisConfig.from_dict(
+        {
+            "checks": {
+                "negative_data_rejection": {"expected-statuses": statuses},
+                "missing_required_header": {"expected-statuses": missing},
+            }
+        }
+    )
 
 
 def schema_valid_requests_are_not_refused_for_their_shape(ctx: Any, response: Any, case: Any) -> None:

@@ -130,3 +130,44 @@ def test_the_payload_table_takes_a_combination_spec_and_refuses_both_or_neither(
     assert single.status_code == 200 and single.json()["unit_index"] is None
     wrong = shared_client.post("/v1/vehicles/payload-table", json={**body, "unit_index": 5})
     assert wrong.status_code == 422 and wrong.json()["errors"][0]["field"] == "unit_index"
+
+
+@pytest.mark.parametrize("mass", [22, 5, 0.5])
+def test_a_payload_typed_in_tonnes_is_refused_as_in_a_single_unit_spec(shared_client, mass):
+    """Issue 40 item 5: a combination spec's payload of 22 (or 5, or 0.5) kg was accepted and lifted the example's
+    SRT from 0.503 to 0.846 g, while the single-unit spec refused it "in tonnes?". The same range now judges both
+    (RANGES["payload_mass_kg"], 100-60,000 kg, its reason in engine.vehicle.plausibility)."""
+    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+
+    spec = copy.deepcopy(EXAMPLE_COMBINATION_SPEC)
+    spec["units"][1]["payloads"][0]["mass_kg"] = mass
+    for path, body in (("/v1/combinations/build", {"combination_spec": spec}),
+                       ("/v1/srt", {"vehicle": {"combination_spec": spec}})):  # fmt: skip
+        p = post(shared_client, path, body, 422).json()
+        field = "combination_spec.units.1.payloads.0.mass_kg"
+        assert p["errors"][0]["field"] == (field if path.endswith("build") else f"vehicle.{field}")
+        assert f"= {mass:g} kg for a payload (payload 0): in tonnes? ({mass:g} tonnes would be" in p["detail"]
+
+
+@pytest.mark.parametrize(
+    ("where", "value", "slip"),
+    [
+        (["units", 1, "axle_groups", 0, "axle_spacing_m"], 1310, "millimetres"),
+        (["units", 1, "axle_groups", 0, "tyre", "loaded_radius_m"], 490, "millimetres"),
+        (["units", 1, "deck", "length_m"], 13600, "millimetres"),
+        (["units", 1, "payloads", 0, "length_m"], 13600, "millimetres"),
+    ],
+)
+def test_every_measurable_input_of_a_combination_spec_is_judged_by_its_range(shared_client, where, value, slip):
+    """Inputs the combination builder took unchecked (an axle spacing, a load's length) or judged by another
+    quantity's range (a tyre radius as any height, a deck length as a position up to 30 m)."""
+    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+
+    spec = copy.deepcopy(EXAMPLE_COMBINATION_SPEC)
+    d = spec
+    for key in where[:-1]:
+        d = d[key]
+    d[where[-1]] = value
+    p = post(shared_client, "/v1/combinations/build", {"combination_spec": spec}, 422).json()
+    assert p["errors"][0]["field"] == "combination_spec." + ".".join(map(str, where))
+    assert f"in {slip}?" in p["detail"], p["detail"]

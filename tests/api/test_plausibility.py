@@ -145,3 +145,48 @@ def test_every_range_says_where_it_comes_from():
         assert r.minimum < r.maximum, name
         cited = any(ref in r.why for ref in ("[1]", "[2]", "[3]", "[4]", "[5]", "Table", "CONTRAN", "Dir."))
         assert cited or r.why.startswith("assumed"), (name, r.why)
+
+
+@pytest.mark.parametrize("weight", [35.0, 50.0, 100.0])
+def test_a_weight_plausible_in_kn_and_in_tonnes_is_answered_with_a_warning_naming_both(shared_client, weight):
+    """Issue 40 item 5: 35-100 typed in tonnes passed silently as kN (a light trailer's weight) and flipped the
+    verdict. Both readings are plausible (a trailer over 3.5 t is over 34.32 kN, Dir. 2007/46/EC categories O3/O4;
+    weight x 9.80665 is at most the record's 1000 kN up to 101.97), so neither can be refused: the answer says so."""
+    record = shared_client.get("/v1/vehicles/table23-semitrailer").json()
+    r = shared_client.post("/v1/srt", json={"vehicle": {**record, "weight_kn": weight}})
+    assert r.status_code == 200, r.text
+    (w,) = r.json()["warnings"]
+    assert w["field"] == "vehicle.weight_kn" and w["value"] == weight and w["unit"] == "kN"
+    assert w["other_unit"] == "tonnes" and w["other_reading"] == pytest.approx(weight * 9.80665, rel=1e-12)
+    assert f"{weight:g} kN as given" in w["message"] and f"{weight:g} tonnes typed as kN" in w["message"]
+
+
+@pytest.mark.parametrize("weight", [392.13, 102.5])
+def test_a_weight_plausible_only_in_kn_has_no_warning(shared_client, weight):
+    # 392.13 kN: the thesis's Table 23 semitrailer; 102.5 t would be 1005 kN, over the record's 1000 kN
+    record = shared_client.get("/v1/vehicles/table23-semitrailer").json()
+    r = shared_client.post("/v1/srt", json={"vehicle": {**record, "weight_kn": weight}})
+    assert r.status_code == 200 and r.json()["warnings"] == [], r.text
+
+
+def test_presets_carry_no_warnings(shared_client):
+    assert shared_client.post("/v1/srt", json={"vehicle": "table16-btrain"}).json()["warnings"] == []
+
+
+def test_the_ambiguous_band_is_where_both_readings_are_in_range():
+    from engine.vehicle.plausibility import ambiguous_reading
+
+    lo, hi = 3.5 * 9.80665, 1000.0 / 9.80665  # 34.32 kN (3.5 t) and 101.97 (t, read as kN: 1000 kN)
+    for v, expected in ((lo - 1e-9, False), (lo, True), (hi - 1e-9, True), (hi + 1e-9, False)):
+        assert (ambiguous_reading("weight_kn", v, "w", "x") is not None) is expected, v
+    assert ambiguous_reading("unit_mass_kg", 500.0, "m", "x") is None  # a range without an either-way slip
+
+
+@pytest.mark.parametrize(("path", "extra"), [("/v1/curve-speed", {"radius_m": 200.0}),
+                                             ("/v1/min-radius", {"design_speed_kmh": 80.0,
+                                                                 "superelevation_percent": 6.0})])  # fmt: skip
+def test_the_road_answers_carry_the_warnings_in_their_srt_result(shared_client, path, extra):
+    record = shared_client.get("/v1/vehicles/table23-semitrailer").json()
+    r = shared_client.post(path, json={"vehicle": {**record, "weight_kn": 50.0}, **extra})
+    assert r.status_code == 200, r.text
+    assert [w["field"] for w in r.json()["srt_result"]["warnings"]] == ["vehicle.weight_kn"]

@@ -485,7 +485,13 @@ def test_refuses_a_payload_above_the_rated_group_load():
 def test_refuses_a_cg_outside_the_wheelbase_or_below_the_chassis():
     refused(semitrailer(cg_from_kingpin_m=12.5, length_m=None), "spec.payloads[0]", "outside (0, L = 8.7 m)")
     spec = semitrailer()
-    refused(replace(spec, tare=replace(spec.tare, cg_from_kingpin_m=-30.0)), "spec.tare.cg_from_kingpin_m", "outside")
+    ahead = replace(spec, payloads=(), tare=replace(spec.tare, cg_from_kingpin_m=-3.0))  # inside the range, ahead
+    refused(ahead, "spec.tare.cg_from_kingpin_m", "outside (0, L")
+    # 30 m ahead is outside the plausible positions (RANGES["position_m"], -5 to 30 m), as the published schema
+    # says; no unit slip is suggested for a negative value (a slip never makes a value negative)
+    e = refused(replace(spec, tare=replace(spec.tare, cg_from_kingpin_m=-30.0)), "spec.tare.cg_from_kingpin_m",
+                "is not plausible", "expected -5 to 30 m")  # fmt: skip
+    assert "in millimetres?" not in str(e)
     low = replace(spec, payloads=(), tare=replace(spec.tare, cg_height_m=0.6))
     refused(low, "spec.tare.cg_height_m", "lr + ls")
 

@@ -10,6 +10,7 @@ import time
 import numpy as np
 import orjson
 import pytest
+from structlog.testing import capture_logs
 
 from app.jobs import op_alignments
 from app.jobs.columns import ColumnsError, pack_columns, unpack_columns
@@ -719,6 +720,31 @@ def test_a_later_part_that_fails_as_it_is_streamed_ends_the_answer_and_fails_the
         assert c.get(location + "/result").status_code == 409
 
 
+@pytest.mark.parametrize(("part", "streamed"), [(0, False), (2, True)], ids=["checked-first", "streamed"])
+def test_a_tampered_part_is_logged_as_a_handled_integrity_failure_with_the_job_and_part(part, streamed):
+    """A part whose MAC does not verify (altered in the store; issue 40 item 6): refused, and logged once as
+    ``job_part_integrity_failure`` naming the job, the part and its key, at warning, without a traceback; never as
+    ``unhandled_exception`` (before: the streamed case propagated out of the response, logged with a traceback).
+    The first part is checked whole before the answer (409); a later one is found as it is streamed."""
+    req = {"vehicle": "table16-btrain", "curves": random_curves(300, seed=12)}
+    with make_client(Settings(jobs_part_size=100)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["parts"]["total"] == 3
+        job_id = location.rsplit("/", 1)[1]
+        _corrupt(c, location, _good(c, location, part), part=part, sealed=False)
+        with capture_logs() as logs:
+            r = c.get(location + "/result", headers={"accept": "text/csv"})
+        assert r.status_code == (200 if streamed else 409)
+    events = [e["event"] for e in logs]
+    assert "unhandled_exception" not in events, events
+    failures = [e for e in logs if e["event"] == "job_part_integrity_failure"]
+    assert len(failures) == 1, logs
+    f = failures[0]
+    assert f["log_level"] == "warning" and f["job"] == job_id and f["part"] == part
+    assert f["key"].startswith(f"{PREFIX}{job_id}:out:{part}:") and "not sealed by this deployment" in f["reason"]
+    assert not any("exc_info" in e or "exception" in e for e in logs)
+
+
 def test_a_part_with_codes_outside_their_tables_is_refused():
     """Columns that read but hold a code that would index outside its table (governed_by 7): refused the same way."""
     req = {"vehicle": "table16-btrain", "curves": random_curves(50, seed=13)}
@@ -803,3 +829,28 @@ def test_a_request_past_a_synchronous_limit_is_told_to_send_a_job_and_that_job_i
         many = [{"id": f"K{i}", "radius_m": 300.0, "superelevation_percent": 4.0} for i in range(10_001)]
         r = c.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "curves": many})
         assert r.status_code == 422 and "POST /v1/jobs" in r.json()["errors"][0]["message"]
+
+
+def test_a_tampered_part_input_is_refused_by_the_worker_and_logged_with_the_job_and_part():
+    """A part's stored input whose MAC does not verify when a worker claims it (issue 40 item 6): the part never
+    runs, the job fails with job-state-invalid naming the part, and ``job_entry_rejected`` is logged at warning
+    with the job and the part, without a traceback."""
+    from app.jobs.kv import MemoryKV
+    from app.jobs.runner import run_part
+    from app.jobs.store import JobStore
+
+    store = JobStore(MemoryKV(2**20), b"s" * 32, lease_s=60.0, max_attempts=3)
+    record = store.create(operation="srt.sweep", owner=None, unit="cases", shared={}, parts=[(1, b"in0"), (1, b"in1")],
+                          formats=["json"], etag={"json": "x"}, ttl_s=60)  # fmt: skip
+    key = store.key(record.id, ":in:1")
+    sealed = store.kv.get(key)
+    store.kv.set(key, sealed[:9] + bytes(32) + sealed[41:], 60)  # ROLLOVER1, then a MAC of zeros
+    with capture_logs() as logs:
+        run_part(store, record.id, 1, 1, timeout_s=10.0)
+    rejected = [e for e in logs if e["event"] == "job_entry_rejected"]
+    assert len(rejected) == 1 and rejected[0]["job"] == record.id and rejected[0]["part"] == 1, logs
+    assert rejected[0]["log_level"] == "warning" and "not sealed by this deployment" in rejected[0]["reason"]
+    assert not any("exc_info" in e or e["event"] in ("job_part_error", "unhandled_exception") for e in logs)
+    view = store.view(record.id)
+    assert view.status == "failed" and view.stop.error["type"] == "urn:rollover:problem:job-state-invalid"
+    assert view.stop.error["detail"].startswith("part 1: ")

@@ -3,7 +3,7 @@
 Certifiers and operators know a vehicle by its unit type, axle groups, tyres, suspension type, masses and deck and
 load heights (the inputs of the TERNZ / NZTA SRT calculator), not by the thesis's 23 record fields. A
 :class:`VehicleSpec` holds those measurable inputs; :func:`build_vehicle` turns it into the
-:class:`engine.vehicles.Vehicle` record and says, for every record field, how its value was obtained
+:class:`engine.vehicle.Vehicle` record and says, for every record field, how its value was obtained
 (``given``, ``computed``, ``library`` or ``default``), by what formula, and from which source.
 
 Mapping (details and limits in ``docs/vehicles.md``)
@@ -12,7 +12,7 @@ Mapping (details and limits in ``docs/vehicles.md``)
 * Composite CG: h = sum(m_i z_i) / sum(m_i) above the ground, x = sum(m_i x_i) / sum(m_i) behind the kingpin
   (the front axle group of a rigid truck).
 * l12 = h - (lr + ls): the record measures the CG from the chassis reference lr + ls
-  (:func:`engine.vehicles.cg_height_m`); a = x; L = the rear group centre's distance; l13 = the front group
+  (:func:`engine.vehicle.record.cg_height_m`); a = x; L = the rear group centre's distance; l13 = the front group
   centre's distance (0 for a truck).
 * A payload's CG: uniform density between deck and load top: mid-height (TERNZ "uniform density"); "mixed
   freight", 70 % of the mass in the bottom half of the load space: 0.4 of the load height above the deck (TERNZ);

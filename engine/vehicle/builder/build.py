@@ -197,7 +197,7 @@ def _mass_fields(
             "m",
             "computed",
             f"l12 = h - (lr + ls) = {z:.4f} - ({lr:g} + {ls:g}), h = sum(m z)/sum(m)",
-            "engine.vehicles.cg_height_m: h = lr + ls + l12",
+            "engine.vehicle.record.cg_height_m: h = lr + ls + l12",
             "spec.tare.cg_height_m",
         ),
         "front_axle_to_cg_m": FieldDerivation(
@@ -250,7 +250,7 @@ def build_vehicle(spec: VehicleSpec) -> BuiltVehicle:
 
     Returns
     -------
-    BuiltVehicle with ``vehicle`` (validated by :func:`engine.vehicles.validate_vehicle` for the 3D model),
+    BuiltVehicle with ``vehicle`` (validated by :func:`engine.vehicle.validate_vehicle` for the 3D model),
     ``derivation`` (every record field), ``masses``, the composite CG and the static group loads [kg].
 
     Raises
@@ -292,7 +292,7 @@ def build_vehicle(spec: VehicleSpec) -> BuiltVehicle:
 
 
 def _validate_record(vehicle: Vehicle, derivation: dict[str, FieldDerivation]) -> None:
-    """engine.vehicles.validate_vehicle on the record; its errors re-pointed at the spec input behind the field."""
+    """engine.vehicle.validate_vehicle on the record; its errors re-pointed at the spec input behind the field."""
     try:
         get_model("3d").validate(vehicle)
     except InvalidVehicle as exc:

@@ -61,6 +61,7 @@ from engine.vehicle.builder.combination_spec import (
 )
 from engine.vehicle.builder.last_unit import last_unit_record
 from engine.vehicle.builder.payloads import payload_item, tare_item
+from engine.vehicle.builder.plausible import check_payloads_plausible
 from engine.vehicle.builder.spec import (
     DeckSpec,
     FieldDerivation,
@@ -82,7 +83,7 @@ from engine.vehicle.combination import (
     static_loads,
     validate_combination,
 )
-from engine.vehicle.plausibility import RANGES, check_plausible
+from engine.vehicle.plausibility import check_plausible
 from engine.vehicle.roll_components import (
     FIFTH_WHEELS,
     SUSPENSIONS_IN_ROLL,
@@ -197,7 +198,7 @@ def _group(book: _Book, g: UnitGroupSpec, gid: str, steer: bool, rec: str, path:
     pos = check_plausible("position_m", g.position_m, f"{path}.position_m", what)
     book.put(f"{rec}.position_m", pos, "m", "given", "position as given", f"{path}.position_m", f"{path}.position_m")
     if g.axle_spacing_m is not None:
-        check_number(g.axle_spacing_m, f"{path}.axle_spacing_m")
+        check_plausible("axle_spacing_m", g.axle_spacing_m, f"{path}.axle_spacing_m", f"the axle spacing of {what}")
     # tyre
     ts, tp = g.tyre, f"{path}.tyre"
     if not isinstance(ts, RollTyreSpec):
@@ -214,7 +215,7 @@ def _group(book: _Book, g: UnitGroupSpec, gid: str, steer: bool, rec: str, path:
                    f"{tp}.stiffness_kn_per_m", f"{tp}.size", "kT", "tyre_stiffness_kn_per_m")  # fmt: skip
     _need(kt, f"{tp}.size", f"the tyre's vertical rate of {what} (or give {tp}.stiffness_kn_per_m)")
     lr = book.pick(f"{rec}.tyre_loaded_radius_m", ts.loaded_radius_m, lib_lr, "m", f"{tp}.loaded_radius_m",
-                   f"{tp}.size", "lr", "height_m")  # fmt: skip
+                   f"{tp}.size", "lr", "tyre_radius_m")  # fmt: skip
     # suspension
     ss, sp = g.suspension, f"{path}.suspension"
     if not isinstance(ss, RollSuspensionSpec):
@@ -266,6 +267,11 @@ def _tare(t: TareSpec, deck_heights: list[float], groups: tuple[AxleGroup, ...],
         check_plausible("unit_mass_kg", t.mass_kg, f"{path}.mass_kg", f"the tare of {what}")
         if t.cg_height_m is not None:
             check_plausible("height_m", t.cg_height_m, f"{path}.cg_height_m", f"the tare CG of {what}")
+        if t.cg_from_kingpin_m is not None:
+            check_plausible("position_m", t.cg_from_kingpin_m, f"{path}.cg_from_kingpin_m", f"the tare CG of {what}")
+        if t.rear_group_load_kg is not None:
+            load = t.rear_group_load_kg
+            check_plausible("group_load_kg", load, f"{path}.rear_group_load_kg", f"the tare rear load of {what}")
     x0 = groups[0].position_m if len(groups) == 2 and groups[0].position_m != 0 else 0.0
     span = groups[-1].position_m - x0
     try:
@@ -284,20 +290,16 @@ def _payloads(u: UnitSpec, path: str, what: str) -> tuple[list[MassItem], list[f
             raise InvalidVehicle(f"{path}.deck must be a deck", field=f"{path}.deck", value=deck)
         deck = DeckSpec(
             check_plausible("position_m", deck.front_from_kingpin_m, f"{path}.deck.front_from_kingpin_m", what),
-            check_plausible("position_m", deck.length_m, f"{path}.deck.length_m", what),
+            check_plausible("length_m", deck.length_m, f"{path}.deck.length_m", what),
         )
+    # the single-unit spec's rule: a payload of 22 (or 5, or 0.5) kg is tonnes typed as kg; it lifted a tractor-
+    # semitrailer's SRT from 0.503 to 0.846 g here while the same spec payload was refused
+    check_payloads_plausible(u.payloads, path)
     items, decks = [], []
     for k, p in enumerate(u.payloads or ()):
         pp = f"{path}.payloads[{k}]"
-        if isinstance(p, PayloadSpec):
-            m = p.mass_kg  # a small payload is plausible (a few boxes): only a mass above any unit's is refused
-            if isinstance(m, int | float) and not isinstance(m, bool) and m > RANGES["unit_mass_kg"].maximum:
-                check_plausible("unit_mass_kg", m, f"{pp}.mass_kg", f"a payload of {what}")
-            for name in ("deck_height_m", "load_height_m", "deck_height_rear_m", "load_height_rear_m", "cg_height_m"):
-                if getattr(p, name) is not None:
-                    check_plausible("height_m", getattr(p, name), f"{pp}.{name}", f"a payload of {what}")
-            if p.deck_height_m is not None:
-                decks.append(p.deck_height_m)
+        if isinstance(p, PayloadSpec) and p.deck_height_m is not None:
+            decks.append(p.deck_height_m)
         item = payload_item(p, deck, pp)
         items.append(dataclasses.replace(item, name=f"payloads[{k}]"))
     return items, decks

@@ -285,7 +285,7 @@ def test_road_design_tables_follow_eqs_9_1_to_9_3_and_table21(page, api):
         assert abs(r93 - exact) <= 0.5 + exact * DISPLAY_G / srt_bank
         assert governing == max(r92, r93)
         if r93 != r92:
-            assert cells[2] == ("rollover" if r93 > r92 else "side-friction")
+            assert cells[2] == ("rollover" if r93 > r92 else "side friction")  # the label, not the API id
     assert page.find_all("#road-results svg g.series")
     # Eq. 9.1: V = sqrt(127 SRT R); Table 18: the B-train's 0.3364 g at R = 80 m is 58.5 km/h (1 %: half the
     # SRT's 2 %, V going with its square root)
@@ -327,7 +327,8 @@ def test_an_uploaded_csv_shows_the_flagged_curves(page, api, tmp_path):
     page.find("#alignment-file").send_keys(str(path))
     page.run("assessments", lambda: page.find("#alignment-assess").click())
     rows = page.find_all("#curves-table tbody tr")
-    flagged = {r.find_element("css selector", "td").text for r in rows if "flagged" in (r.get_attribute("class") or "")}
+    # each row carries the file's id (the first column names the curve C1, C2, ... in road order)
+    flagged = {r.get_attribute("data-id") for r in rows if "flagged" in (r.get_attribute("class") or "")}
     assert flagged == {"TIGHT", "HAIRPIN"}
     assert page.text("#alignment-summary").startswith("4 curves, 2 flagged")
     # the table is the API's answer for the same request
@@ -336,11 +337,11 @@ def test_an_uploaded_csv_shows_the_flagged_curves(page, api, tmp_path):
     margins = {r["id"]: r["margin_kmh"] for r in answer["vehicles"][0]["rows"]}
     # sorting by the margin (a button in the column heading): ascending, the worst curve first
     page.find('#curves-table button[data-key="margin_kmh"]').click()
-    order = [r.find_element("css selector", "td").text for r in page.find_all("#curves-table tbody tr")]
+    order = [r.get_attribute("data-id") for r in page.find_all("#curves-table tbody tr")]
     assert order == sorted(margins, key=margins.get)
     assert page.find('#curves-table th[aria-sort="ascending"] button[data-key="margin_kmh"]')
     page.find('#curves-table button[data-key="margin_kmh"]').click()
-    order = [r.find_element("css selector", "td").text for r in page.find_all("#curves-table tbody tr")]
+    order = [r.get_attribute("data-id") for r in page.find_all("#curves-table tbody tr")]
     assert order == sorted(margins, key=margins.get, reverse=True)
 
 
@@ -363,7 +364,7 @@ def test_an_uploaded_landxml_alignment_takes_the_defaults_typed_on_the_page(page
     page.type("#al-posted", "80")
     page.type("#al-e", "4")
     page.run("assessments", lambda: page.find("#alignment-assess").click())
-    rows = {r.find_element("css selector", "td").text: r for r in page.find_all("#curves-table tbody tr")}
+    rows = {r.get_attribute("data-id"): r for r in page.find_all("#curves-table tbody tr")}
     assert set(rows) == {"K1", "K2"}
     assert "flagged" in rows["K1"].get_attribute("class") and "flagged" not in (rows["K2"].get_attribute("class") or "")
     assert page.text("#alignment-summary").startswith("2 curves, 1 flagged")

@@ -33,6 +33,12 @@ export function fmt(value, digits = 3) {
   return Number(value).toFixed(digits);
 }
 
+/** A number with `digits` decimals and thousands separators ("12,345.6"; "-" for null). */
+export function grouped(value, digits = 0) {
+  if (value === null || value === undefined || value === "" || !Number.isFinite(Number(value))) return value === null || value === undefined || value === "" ? "-" : String(value);
+  return Number(value).toLocaleString("en-US", { minimumFractionDigits: digits, maximumFractionDigits: digits });
+}
+
 /** A number for prose, at most `digits` decimals and at least `least` ("0.35", "0.40", "0.355", "3.15"): never a
  * float's tail such as 0.9999999999999994. Text that is not a number is returned as it is. */
 export function num(value, digits = 3, least = 0) {
@@ -111,7 +117,20 @@ export function table(columns, rows, { caption, rowClass } = {}) {
   return el("table", {}, caption ? el("caption", { class: "hint" }, caption) : null, el("thead", {}, head), el("tbody", {}, body));
 }
 
-/** A horizontally scrollable, keyboard-focusable region around a wide table. */
+/** Wide boxes are watched for overflow: each shows its scroll cue only while its table is wider than it. */
+const overflowWatch = typeof ResizeObserver === "undefined" ? null : new ResizeObserver((entries) => {
+  for (const { target } of entries) {
+    const cue = target.previousElementSibling;
+    if (cue?.classList.contains("scroll-cue")) cue.hidden = target.scrollWidth <= target.clientWidth + 1;
+  }
+});
+
+/** A horizontally scrollable, keyboard-focusable region around a wide table, with a cue in words shown when the
+ * table is wider than the region (no column is hidden without saying so). */
 export function scroller(label, child, tall = false) {
-  return el("div", { class: tall ? "table-wrap tall" : "table-wrap", tabindex: "0", role: "region", "aria-label": label }, child);
+  const box = el("div", { class: tall ? "table-wrap tall" : "table-wrap", tabindex: "0", role: "region", "aria-label": label }, child);
+  const cue = el("p", { class: "scroll-cue", hidden: true, "aria-hidden": "true" }, "\u2194 More columns: scroll the table sideways.");
+  overflowWatch?.observe(box);
+  if (child instanceof Element) overflowWatch?.observe(child);
+  return el("div", { class: "scroll-box" }, cue, box);
 }

@@ -164,15 +164,19 @@ function showJob(job) {
 /** The bearer key when one is typed (a job is the key's own), else none: the service says if it needs one. */
 const typedKey = () => $("#api-key").value.trim() || undefined;
 
-/** A job; when the service wants a bearer key for jobs and none is typed, the same request synchronously. */
+/**
+ * A job: {job: {url, key}} for an alignment (its result is read by the curves' worker), {result} for a route; when
+ * the service wants a bearer key for jobs and none is typed, the same request synchronously: {result}.
+ */
 async function jobOrRequest(path, request, key, signal, operation) {
   try {
-    return await alignment.runJob(request, { operation, key, onStatus: showJob, signal });
+    const url = await alignment.runJob(request, { operation, key, onStatus: showJob, signal, read: false });
+    return operation === "alignments.assess" ? { job: { url, key } } : { result: await api.get(url, { key }) };
   } catch (err) {
     if (!(err instanceof api.ApiError) || err.problem.status !== 401 || key) throw err;
     $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";
     $("#alignment-cancel").hidden = true;
-    return api.post(path, request);
+    return { result: await api.post(path, request) };
   }
 }
 
@@ -202,9 +206,9 @@ async function assessFile() {
     $("#alignment-progress-text").textContent = job ? "submitting the job" : "one request";
     cancel.hidden = !job;
     cancel.addEventListener("click", onCancel, { once: true });
-    let result;
+    let answer;
     try {
-      result = job ? await jobOrRequest(path, request, key, aborter.signal, job) : await api.post(path, request, { key });
+      answer = job ? await jobOrRequest(path, request, key, aborter.signal, job) : { result: await api.post(path, request, { key }) };
     } finally {
       cancel.hidden = true;
       cancel.removeEventListener("click", onCancel);
@@ -212,8 +216,8 @@ async function assessFile() {
     }
     Object.assign(alignment.state, { path, request, key });
     const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
-    alignment.render(result, kind, lines);
-    summary.extra("alignment", lines ? "Route" : "Alignment", alignment.printable());
+    const vehicleText = fleet ? `saved fleet ${fleet}` : v.label;
+    await alignment.render({ ...answer, kind, lines, fileName: file.name, vehicleText });
     return true;
   });
   if (assessed) stale.fresh(["alignment"]);
@@ -290,6 +294,8 @@ function wire() {
     $("#limits-form").requestSubmit();
     $("#limits-result").scrollIntoView({ block: "start" });
   });
+  // the road's part of the printout, built by alignment.js each time the curves shown change (a fleet's vehicle)
+  document.addEventListener("curves-printout", (ev) => summary.extra("alignment", ev.detail.title, ev.detail.nodes, { lead: ev.detail.nodes[0] }));
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     assessFile();

@@ -4,7 +4,7 @@
 import { COUPLINGS, governingText, KINDS, liftTable, unitsTable } from "./combination.js";
 import { $, clear, el, fmt, num, table } from "./dom.js";
 import { factList, facts, plainVerdicts, showsLevelRoad, srtText, targetsTable } from "./results.js";
-import { radiusCaption, radiusTable } from "./road.js";
+import { bankWords, radiusCaption, radiusTable } from "./road.js";
 
 /** The record's fields in words, with the thesis symbol and the unit (the weight W as a mass in kg). */
 const RECORD_FIELDS = [
@@ -135,7 +135,10 @@ export function update({ vehicle, request, result, figures, design, speed, link 
     box.append(el("h3", {}, "Curves against ay/g"), el("div", { class: "plots" }, figures.map((f) => f.cloneNode(true))));
   }
   if (speed) {
-    box.append(el("h3", {}, "Curve speed"), el("p", {}, `Radius ${fmt(speed.radius_m, 0)} m: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`));
+    box.append(
+      el("h3", { class: "with-next" }, "Curve speed"),
+      el("p", {}, `Radius ${fmt(speed.radius_m, 0)} m ${bankWords(request)}: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`),
+    );
   }
   if (design) {
     const fig = $("#road-results figure");
@@ -150,14 +153,21 @@ export function update({ vehicle, request, result, figures, design, speed, link 
 
 /**
  * A part of the page printed after the summary when it is shown (the superelevation table, the payload table, the
- * route or alignment): `nodes` are copied; null removes the part.
+ * route or alignment): `nodes` are copied; null removes the part. `lead`: a node printed at the top of the summary
+ * too (a road's counts and worst curve, so the first page says what the road's part holds).
  */
-export function extra(name, title, nodes) {
+export function extra(name, title, nodes, { lead = null } = {}) {
   const box = $("#summary-extras");
   box.querySelector(`[data-extra="${name}"]`)?.remove();
+  $(`#summary-lead [data-extra="${name}"]`)?.remove();
   if (!nodes) return;
-  const part = el("section", { "data-extra": name, class: "summary-extra" }, el("h3", {}, title));
+  const part = el("section", { "data-extra": name, class: `summary-extra extra-${name}` }, el("h3", { class: "with-next" }, title));
   for (const node of nodes.filter(Boolean)) part.append(node.cloneNode(true));
   for (const id of part.querySelectorAll("[id]")) id.removeAttribute("id");
   box.append(part);
+  if (lead) {
+    const top = el("section", { "data-extra": name, class: "summary-lead-part" }, el("h3", {}, `${title} assessed (its curves follow)`), lead.cloneNode(true));
+    for (const id of top.querySelectorAll("[id]")) id.removeAttribute("id");
+    $("#summary-lead").append(top);
+  }
 }

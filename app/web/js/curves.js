@@ -25,6 +25,17 @@ function startWorker() {
   return w;
 }
 
+/** Start the worker (and the number formats) while the page is idle, so the first result does not pay for them. */
+export function warm() {
+  const start = () => {
+    worker ??= startWorker();
+    grouped(1234.5, 0);
+    grouped(1234.5, 1);
+  };
+  if ("requestIdleCallback" in window) requestIdleCallback(start, { timeout: 5000 });
+  else setTimeout(start, 1000);
+}
+
 /** One question to the worker: `load` {rows}, `fetch` {url, key} (a job's CSV result), `view`, `slice`, `print`. */
 export function ask(op, message = {}) {
   worker ??= startWorker();
@@ -46,28 +57,30 @@ const GOVERNED = { "side-friction": "side friction", rollover: "rollover" };
  * The curves' columns: the curve (its name in road order, C1, C2, ...), what a reader acts on (flag, margin, safe and
  * posted speed, what governs), where it is (station, direction, the file's own id), then the inputs and the speeds
  * behind the verdict. A field the service adds later is shown after these, its label made from its name and unit.
+ * `width` [ch]: the column's width on screen (a fixed layout: a page of rows is laid out without measuring every cell,
+ * and the columns keep their widths from page to page).
  */
 export const COLUMNS = [
-  { key: "name", label: "Curve", text: true },
-  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), nowrap: true },
-  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => signed(v, 1) },
-  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
-  { key: "governed_by", label: "Governed by", format: (v) => GOVERNED[v] || v, text: true },
-  { key: "vehicle", label: "Vehicle", text: true },
-  { key: "station_m", label: "Station [m]", format: (v) => grouped(v, 0) },
-  { key: "direction", label: "Turns", text: true },
-  { key: "id", label: "Id in the file", text: true, wrap: true },
-  { key: "radius_m", label: "Radius R [m]", format: (v) => grouped(v, 0) },
-  { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1) },
-  { key: "superelevation_percent", label: "Superelevation e [%]", format: (v) => fmt(v, 2) },
-  { key: "grade_percent", label: "Grade [%]", format: (v) => fmt(v, 1) },
-  { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3) },
-  { key: "rollover_speed_kmh", label: "Rollover speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "standard_min_radius_m", label: "Standard's Rmin [m]", format: (v) => grouped(v, 0) },
-  { key: "meets_standard_min_radius", label: "Meets Rmin", format: yesNo, text: true },
-  { key: "error", label: "Error", text: true, wrap: true },
+  { key: "name", label: "Curve", text: true, width: 7 },
+  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), nowrap: true, width: 10 },
+  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => signed(v, 1), width: 9 },
+  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1), width: 9 },
+  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0), width: 8 },
+  { key: "governed_by", label: "Governed by", format: (v) => GOVERNED[v] || v, text: true, width: 10 },
+  { key: "vehicle", label: "Vehicle", text: true, wrap: true, width: 14 },
+  { key: "station_m", label: "Station [m]", format: (v) => grouped(v, 0), width: 10 },
+  { key: "direction", label: "Turns", text: true, width: 7 },
+  { key: "id", label: "Id in the file", text: true, wrap: true, width: 14 },
+  { key: "radius_m", label: "Radius R [m]", format: (v) => grouped(v, 0), width: 9 },
+  { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1), width: 9 },
+  { key: "superelevation_percent", label: "Superelevation e [%]", format: (v) => fmt(v, 2), width: 14 },
+  { key: "grade_percent", label: "Grade [%]", format: (v) => fmt(v, 1), width: 7 },
+  { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3), width: 7 },
+  { key: "rollover_speed_kmh", label: "Rollover speed [km/h]", format: (v) => fmt(v, 1), width: 10 },
+  { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1), width: 10 },
+  { key: "standard_min_radius_m", label: "Standard's Rmin [m]", format: (v) => grouped(v, 0), width: 10 },
+  { key: "meets_standard_min_radius", label: "Meets Rmin", format: yesNo, text: true, width: 7 },
+  { key: "error", label: "Error", text: true, wrap: true, width: 24 },
 ];
 
 /** Fields not shown as columns: the vehicle's place in a fleet's CSV, the targets (the SRT section has them), the
@@ -105,7 +118,7 @@ export function columnsOf(keys) {
   const knownKeys = new Set(COLUMNS.map((c) => c.key));
   const extra = keys
     .filter((k) => !knownKeys.has(k) && !HIDDEN.has(k) && !HIDDEN_PATTERN.test(k))
-    .map((k) => ({ key: k, label: labelOf(k), format: generic, text: false }));
+    .map((k) => ({ key: k, label: labelOf(k), format: generic, text: false, width: 10 }));
   return [...known, ...extra];
 }
 
@@ -139,7 +152,7 @@ export function curveName(r) {
 // ------------------------------------------------------------------------------------------ the table on screen
 
 /** Rows a page of the table shows; a setting of the module (a test may change it). */
-export const settings = { pageRows: 100, printRows: 500 };
+export const settings = { pageRows: 25, printRows: 500 };
 
 const view = { token: 0, columns: [], sort: null, filter: { flagged: false, text: "" }, vehicle: null, first: 0, count: 0, box: null };
 
@@ -204,9 +217,17 @@ async function drawPage(token = view.token) {
   );
   const body = rows.map((r) => el("tr", { class: r.flagged ? "flagged" : null, "data-id": r.id }, cells(view.columns, r)));
   const caption = view.sort ? "Sorted by the column marked; select a heading to sort." : "Flagged curves first, worst margin first, then the others in road order; select a heading to sort.";
-  const t = el("table", { id: "curves-table" }, el("caption", { class: "hint" }, caption), el("thead", {}, head), el("tbody", {}, body));
+  // widths through the CSSOM (the page's Content-Security-Policy refuses style attributes)
+  const cols = view.columns.map((c) => {
+    const col = el("col");
+    col.style.width = `${c.width + 2}ch`;
+    return col;
+  });
+  const t = el("table", { id: "curves-table", class: "fixed" }, el("caption", { class: "hint" }, caption), el("colgroup", {}, cols), el("thead", {}, head), el("tbody", {}, body));
   const tableBox = clear($("#curves-table-box", view.box));
   tableBox.append(scroller("Assessed curves (scrolls sideways)", t, true));
+  // a full page (more rows than the box shows) gets a box of a fixed height, laid out apart from the page
+  tableBox.querySelector(".table-wrap").classList.toggle("full", rows.length > 12);
   head.addEventListener("click", (ev) => {
     const button = ev.target.closest("button.sort");
     if (!button) return;
@@ -276,8 +297,8 @@ export async function printout({ stats, fileName, vehicleText, lengthM, governin
   const head = el("thead", {}, el("tr", {}, columns.map((c) => el("th", { scope: "col", class: cellClass(c) }, c.label))));
   const body = el("tbody");
   const t = el("table", { class: "curves-print" }, head, body);
-  for (let i = 0; i < rows.length; i += 200) {
-    body.append(...rows.slice(i, i + 200).map((r) => el("tr", { class: r.flagged ? "flagged" : null }, cells(columns, r))));
+  for (let i = 0; i < rows.length; i += 25) {
+    body.append(...rows.slice(i, i + 25).map((r) => el("tr", { class: r.flagged ? "flagged" : null }, cells(columns, r))));
     await pause();
   }
   const figure = outline ? el("figure", { class: "outline keep" }, outline.cloneNode(true), el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")) : null;

@@ -33,10 +33,15 @@ export function fmt(value, digits = 3) {
   return Number(value).toFixed(digits);
 }
 
+const GROUPED = new Map(); // one formatter per number of decimals (making one per call is slow)
+
 /** A number with `digits` decimals and thousands separators ("12,345.6"; "-" for null). */
 export function grouped(value, digits = 0) {
-  if (value === null || value === undefined || value === "" || !Number.isFinite(Number(value))) return value === null || value === undefined || value === "" ? "-" : String(value);
-  return Number(value).toLocaleString("en-US", { minimumFractionDigits: digits, maximumFractionDigits: digits });
+  if (value === null || value === undefined || value === "") return "-";
+  const n = Number(value);
+  if (!Number.isFinite(n)) return String(value);
+  if (!GROUPED.has(digits)) GROUPED.set(digits, new Intl.NumberFormat("en-US", { minimumFractionDigits: digits, maximumFractionDigits: digits }));
+  return GROUPED.get(digits).format(n);
 }
 
 /** A number for prose, at most `digits` decimals and at least `least` ("0.35", "0.40", "0.355", "3.15"): never a

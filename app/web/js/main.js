@@ -5,6 +5,7 @@ import * as alignment from "./alignment.js";
 import * as api from "./api.js";
 import * as combination from "./combination.js";
 import * as combo from "./combobuilder.js";
+import * as curves from "./curves.js";
 import { $, $$, clear, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
@@ -295,7 +296,7 @@ function wire() {
     $("#limits-result").scrollIntoView({ block: "start" });
   });
   // the road's part of the printout, built by alignment.js each time the curves shown change (a fleet's vehicle)
-  document.addEventListener("curves-printout", (ev) => summary.extra("alignment", ev.detail.title, ev.detail.nodes, { lead: ev.detail.nodes[0] }));
+  document.addEventListener("curves-printout", (ev) => summary.extra("alignment", ev.detail.title, ev.detail.nodes, { lead: ev.detail.nodes[0], owned: true }));
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     assessFile();
@@ -402,6 +403,7 @@ async function init() {
   if (wanted) await compute();
   else if (params.get("vehicle")?.startsWith("veh_")) status("Enter the bearer key of the saved vehicle, then compute.");
   document.body.dataset.computed = "true";
+  curves.warm();
 }
 
 init().catch((err) => status(`The page could not start: ${err.message}`));

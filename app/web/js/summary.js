@@ -153,16 +153,17 @@ export function update({ vehicle, request, result, figures, design, speed, link 
 
 /**
  * A part of the page printed after the summary when it is shown (the superelevation table, the payload table, the
- * route or alignment): `nodes` are copied; null removes the part. `lead`: a node printed at the top of the summary
- * too (a road's counts and worst curve, so the first page says what the road's part holds).
+ * route or alignment): `nodes` are copied (moved when `owned`); null removes the part. `lead`: a node printed at
+ * the top of the summary too (a road's counts and worst curve, so the first page says what the road's part holds).
  */
-export function extra(name, title, nodes, { lead = null } = {}) {
+export function extra(name, title, nodes, { lead = null, owned = false } = {}) {
   const box = $("#summary-extras");
   box.querySelector(`[data-extra="${name}"]`)?.remove();
   $(`#summary-lead [data-extra="${name}"]`)?.remove();
   if (!nodes) return;
   const part = el("section", { "data-extra": name, class: `summary-extra extra-${name}` }, el("h3", { class: "with-next" }, title));
-  for (const node of nodes.filter(Boolean)) part.append(node.cloneNode(true));
+  // `owned`: nodes built for the printout only are moved, not copied (a road's table can hold 500 rows)
+  for (const node of nodes.filter(Boolean)) part.append(owned ? node : node.cloneNode(true));
   for (const id of part.querySelectorAll("[id]")) id.removeAttribute("id");
   box.append(part);
   if (lead) {

@@ -85,8 +85,9 @@ async function compute() {
   const section = $("#vehicle-section").parentElement;
   const done = await guarded($("#compute"), section, $("#case-error"), async () => {
     $("#results").setAttribute("aria-busy", "true");
-    const request = caseFields();
     const v = await vehicle.current();
+    syncModel(); // a saved vehicle read just now: its kind's model (a combination's) before the case is read
+    const request = caseFields();
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
     combination.show(v.combination || null, result);
@@ -200,6 +201,7 @@ async function assessFile() {
     const fleet = alignment.fleetId();
     const key = fleet ? vehicle.apiKey() : typedKey();
     const v = fleet ? null : await vehicle.current();
+    syncModel();
     const [path, request] = await alignment.buildRequest(kind, text, v?.ref, caseFields());
     const job = await alignment.wantsJob(path, alignment.rowCount(kind, text));
     box.hidden = false;
@@ -265,6 +267,7 @@ function wire() {
     ev.preventDefault();
     const out = await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
+      syncModel();
       const out = await road.limits(v.ref, caseFields(), { combination: Boolean(v.combination) });
       if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
       summary.extra("limits", `Acceptable load for SRT ${$("#limit-target").value.trim()} g`, [$("#limits-result")]);
@@ -333,11 +336,13 @@ function wire() {
   $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));
   $("#saved-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    guarded($("#saved-load"), savedBox, $("#saved-error"), vehicle.loadSaved);
+    guarded($("#saved-load"), savedBox, $("#saved-error"), vehicle.loadSaved).then(syncModel);
   });
   $("#saved-choice").addEventListener("change", () => {
     if ($("#saved-choice").value) $("#saved-id").value = $("#saved-choice").value;
+    syncModel();
   });
+  $("#saved-id").addEventListener("change", syncModel);
   $("#key-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     guarded($("#save-vehicle"), $("#catalog-box"), $("#save-error"), async () => {

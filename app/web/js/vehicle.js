@@ -152,10 +152,18 @@ export function defaultModel() {
   return choosesCombination() ? "combination" : null;
 }
 
+/** Whether the saved vehicle loaded for the id typed is a combination (its kind, or its body `{"combination": ...}`). */
+function savedCombination() {
+  const saved = state.saved;
+  if (!saved || saved.id !== $("#saved-id").value.trim()) return false;
+  return saved.kind === "combination" || Boolean(saved.vehicle?.combination || saved.vehicle?.combination_spec);
+}
+
 /** Whether the vehicle now chosen is a combination (a combination preset, or a pasted {"combination": ...}). */
 export function choosesCombination() {
   if (source() === "preset") return isCombination(preset());
   if (source() === "combo") return true;
+  if (source() === "saved") return savedCombination(); // a saved combination keeps the combination model
   if (source() === "record") return /^\s*\{\s*"combination"/.test($("#record-json").value);
   return false;
 }
@@ -381,7 +389,12 @@ export async function current() {
     const id = $("#saved-id").value.trim();
     if (!state.saved || state.saved.id !== id) await loadSaved();
     const saved = state.saved;
-    const resolved = await resolveBody(saved.vehicle, `${saved.title} (${saved.id})`);
+    const label = `${saved.title} (${saved.id})`;
+    if (saved.vehicle?.combination) {
+      // its body is sent as it was read (no key needed for each computation); the combination is drawn and printed
+      return { ref: saved.vehicle, label, record: null, body: saved.vehicle, combination: saved.vehicle.combination, params: { vehicle: saved.id } };
+    }
+    const resolved = await resolveBody(saved.vehicle, label);
     return { ...resolved, record: resolved.ref, params: { vehicle: saved.id } };
   }
   if (which === "combo") {

@@ -297,7 +297,7 @@ def test_an_uploaded_gpx_route_shows_its_curve_radius_within_its_uncertainty_and
     assert len(page.find_all("#alignment-results svg polyline.curve.flagged")) == 1
     # the row is the API's answer to the same request
     body = {"vehicle": "table16-btrain", "gpx": text, "posted_speed_kmh": 80, "superelevation_percent": 6}
-    answer = ok(api.post("/v1/routes/assess", json={**body, "max_superelevation_percent": 8}))
+    answer = ok(api.post("/v1/routes/assess", json=body))  # the page sends only what was typed
     props = answer["curves"][0]
     assert row["radius_m"] == f"{props['radius_m']:.0f}" and row["radius_std_m"] == f"{props['radius_std_m']:.1f}"
     assert row["safe_speed_kmh"] == f"{props['assessment']['safe_speed_kmh']:.1f}"
@@ -350,8 +350,7 @@ def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page
     assert "/v1/jobs" in paths and "/v1/alignments/assess" not in paths
     # (the result is read by the page's curves worker, whose requests this log does not list)
     # the same table as the synchronous answer
-    answer = ok(api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "csv": text,
-                                                        "max_superelevation_percent": 8}))  # fmt: skip
+    answer = ok(api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "csv": text}))
     expected = answer["vehicles"][0]
     assert page.text("#alignment-summary").startswith(
         f"{JOB_ROWS + 10} curves, {expected['summary']['flagged']} flagged"
@@ -360,6 +359,9 @@ def test_a_large_alignment_runs_as_a_job_with_a_progress_bar_to_100_percent(page
     # the flagged curves first, smallest margin first, then the others in the file's order
     flagged = sorted((r for r in expected["rows"] if r["flagged"]), key=lambda r: r["margin_kmh"])
     order = flagged + [r for r in expected["rows"] if not r["flagged"]]
+    # one page of 25 rows on screen (app/web/js/curves.js `settings.pageRows`), the count of all beside it
+    assert page.text("#curves-shown") == f"Rows 1\u201325 of {JOB_ROWS + 10}"
+    order = order[:25]
     assert [r["id"] for r in rows] == [r["id"] for r in order]
     assert [("flagged" in r["row_class"]) for r in rows] == [r["flagged"] for r in order]
     assert [r["safe_speed_kmh"] for r in rows] == [f"{r['safe_speed_kmh']:.1f}" for r in order]
@@ -398,7 +400,7 @@ def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet
     picker.select_by_value(fleet_id)
     assert page.find("#al-fleet").get_attribute("value") == fleet_id
     page.run("assessments", lambda: page.find("#alignment-assess").click())
-    body = {"fleet": fleet_id, "csv": FLEET_CSV, "max_superelevation_percent": 8}
+    body = {"fleet": fleet_id, "csv": FLEET_CSV}
     answer = ok(api.post("/v1/alignments/assess", json=body, headers=key))
     choice = Select(page.find("#al-vehicle-shown"))
     assert [o.text for o in choice.options] == vehicles
@@ -409,11 +411,18 @@ def test_an_alignment_and_a_route_are_assessed_for_each_vehicle_of_a_saved_fleet
         assert [r["safe_speed_kmh"] for r in rows] == [f"{r['safe_speed_kmh']:.1f}" for r in expected]
         assert [("flagged" in r["row_class"]) for r in rows] == [r["flagged"] for r in expected]
         assert f"for {name}" in page.text("#alignment-summary")
-    # a route: without a superelevation or a posted speed the service names the speed (of its curve 0), which
-    # the page shows at the posted speed's box
+    # a route: a GPX track gives no superelevation and no posted speed. The page says so beside the boxes that
+    # supply them, before any request: first the superelevation (or a maximum to derive it from), then, with a
+    # maximum typed, the posted speed the derivation needs
     page.find("#alignment-file").send_keys(str(gpx_path))
+    WebDriverWait(page.driver, 10).until(lambda _: "gives no superelevation" in page.field_error("#al-e"))
+    page.network()
     page.run("assessments", lambda: page.find("#alignment-assess").click())
-    assert "has neither superelevation_percent nor posted_speed_kmh" in page.field_error("#al-posted")
+    assert not [u for u in page.network()[0].values() if urlsplit(u).path.endswith("/assess")]
+    page.type("#al-emax", "8")
+    page.find("#al-posted").click()  # the maximum's change is read when its box is left
+    WebDriverWait(page.driver, 10).until(lambda _: "no posted speed" in page.field_error("#al-posted"))
+    assert "gives no superelevation" not in page.field_error("#al-e")
     # each curve by its governing vehicle (the lowest safe speed), named in the Vehicle column. 60 km/h: with a
     # superelevation from the distribution a curve below the standard's R_min for its speed refuses the whole
     # route (AASHTO 2018 Table 3-7, e_max 8 %: 229 m at 80 km/h, 113 m at 60 km/h; the arc is 150 m)
@@ -510,6 +519,6 @@ def test_a_route_above_the_synchronous_size_runs_as_a_job(page, api, live_server
     assert page.text("#alignment-progress-text").endswith("vertices; job done)")
     # the same curve as the synchronous answer (test_an_uploaded_gpx_route_shows_its_curve_radius_...)
     body = {"vehicle": "table16-btrain", "gpx": text, "posted_speed_kmh": 80, "superelevation_percent": 6}
-    answer = ok(api.post("/v1/routes/assess", json={**body, "max_superelevation_percent": 8}))
+    answer = ok(api.post("/v1/routes/assess", json=body))  # the page sends only what was typed
     (row,) = curve_rows(page)
     assert row["safe_speed_kmh"] == f"{answer['curves'][0]['assessment']['safe_speed_kmh']:.1f}"

@@ -50,7 +50,7 @@ def job_csv(api, key: str, text: str) -> list[dict]:
     headers = {"Authorization": f"Bearer {key}"}
     body = {
         "operation": "alignments.assess",
-        "request": {"vehicle": "table16-btrain", "csv": text, "max_superelevation_percent": 8},
+        "request": {"vehicle": "table16-btrain", "csv": text},
     }
     submitted = api.post("/v1/jobs", json=body, headers=headers)
     assert submitted.status_code == 202, submitted.text

@@ -66,8 +66,8 @@ def assess(page, tmp_path, text: str, name: str = "road.csv") -> None:
 
 
 def request_of(text: str) -> dict:
-    """The request the page sends for a CSV with its defaults (the maximum superelevation box says 8)."""
-    return {"vehicle": "table16-btrain", "csv": text, "max_superelevation_percent": 8}
+    """The request the page sends for a CSV with its defaults (nothing typed in the alignment's boxes)."""
+    return {"vehicle": "table16-btrain", "csv": text}
 
 
 def expected_order(rows: list[dict]) -> list[str]:
@@ -84,7 +84,7 @@ def test_the_printout_holds_every_verdict_column_and_the_worst_curve_first(page,
     page.driver.set_window_size(width, 900)
     page.open("?vehicle=table16-btrain")
     assess(page, tmp_path, text)
-    # the API's answer to the request the page sends (its max_superelevation_percent box says 8)
+    # the API's answer to the request the page sends
     answer = api.post("/v1/alignments/assess", json=request_of(text))
     assert answer.status_code == 200, answer.text
     rows = answer.json()["vehicles"][0]["rows"]

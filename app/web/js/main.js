@@ -6,6 +6,7 @@ import * as api from "./api.js";
 import * as combination from "./combination.js";
 import * as combo from "./combobuilder.js";
 import * as curves from "./curves.js";
+import * as filecheck from "./filecheck.js";
 import { $, $$, clear, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
@@ -182,6 +183,35 @@ async function jobOrRequest(path, request, key, signal, operation) {
   }
 }
 
+/**
+ * What the chosen file carries and still needs, shown beside the boxes before any request; returns the note that
+ * blocks the request (a file that is not text, a superelevation nobody gave), or null.
+ */
+async function checkFile() {
+  const file = $("#alignment-file").files[0];
+  const info = $("#alignment-file-info");
+  if (!file) {
+    filecheck.showNotes([]);
+    info.textContent = "";
+    return null;
+  }
+  const bytes = new Uint8Array(await file.slice(0, 65536).arrayBuffer());
+  if (!filecheck.isText(bytes)) {
+    const note = { box: "#alignment-file", blocks: true, text: `${file.name} is not a text file (it holds binary data: an image, a spreadsheet's workbook, ...): choose a CSV table, or a LandXML, GPX or GeoJSON file.` };
+    info.textContent = "";
+    filecheck.showNotes([note]);
+    return note;
+  }
+  const text = await file.slice(0, 4_000_000).text();
+  const kind = alignment.formatOf(file.name, text);
+  const has = filecheck.carries(kind, text);
+  const whole = file.size <= 4_000_000;
+  info.textContent = filecheck.describe(kind, file.name, text, has, whole ? alignment.rowCount(kind, text) : null);
+  const notes = filecheck.needs(kind, file.name, has);
+  filecheck.showNotes(notes);
+  return notes.find((n) => n.blocks) || null;
+}
+
 async function assessFile() {
   const section = $("#alignment-section");
   const box = $("#alignment-progress-box");
@@ -195,6 +225,12 @@ async function assessFile() {
   const assessed = await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
     const file = $("#alignment-file").files[0];
     if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
+    // what the file still needs is said beside its box before any request: nothing is sent without it
+    const blocker = await checkFile();
+    if (blocker) {
+      $(blocker.box).focus();
+      return false;
+    }
     const text = await file.text();
     const kind = alignment.formatOf(file.name, text);
     // a saved fleet is its key's own: the key goes with every request (else the key typed, if any, for a job)
@@ -300,6 +336,9 @@ function wire() {
   });
   // the road's part of the printout, built by alignment.js each time the curves shown change (a fleet's vehicle)
   document.addEventListener("curves-printout", (ev) => summary.extra("alignment", ev.detail.title, ev.detail.nodes, { lead: ev.detail.nodes[0], owned: true }));
+  for (const id of ["#alignment-file", "#al-e", "#al-emax", "#al-posted", "#al-grade"]) {
+    $(id).addEventListener("change", () => checkFile().catch(() => undefined));
+  }
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     assessFile();

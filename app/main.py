@@ -28,7 +28,7 @@ from app.jobs.service import open_jobs
 from app.logs import configure_logging, get_logger
 from app.meta.router import health_router, models_router
 from app.metrics import JOBS_ACTIVE
-from app.page import install_page
+from app.page import install_page, install_redoc
 from app.plots import router as plots_router
 from app.road import router as road_router
 from app.road import standards_router
@@ -172,6 +172,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         openapi_tags=TAGS,
         generate_unique_id_function=operation_id,
         swagger_ui_parameters={"validatorUrl": None},  # Swagger UI's validator badge is an image from another host
+        redoc_url=None,  # served by install_redoc: fastapi-offline's, with a policy that keeps ReDoc's logo offline
         lifespan=lifespan,
     )
     app.state.settings = settings if settings is not None else get_settings()
@@ -182,6 +183,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for router in ROUTERS:
         app.include_router(router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
+    install_redoc(app)
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)
         app.add_middleware(HttpMetricsMiddleware)
     # outermost first: the body limit, then the cache-hit fast path, then the metrics and the app

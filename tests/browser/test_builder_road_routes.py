@@ -90,12 +90,13 @@ def test_the_builder_form_with_library_components_gives_the_srt_of_its_spec(page
     expected = ok(api.post("/v1/srt", json={"vehicle": {"spec": spec}}))["srt"]
     assert page.srt_g() == pytest.approx(expected, abs=DISPLAY_G)
     # the derivation table: the record's lr and kT are the library tyre's, kLs the suspension's, method "library"
+    # (each record field by its label: rolling_radius_m is "Rolling radius [m]")
     derivation = {cells[0]: cells for cells in table_rows(page, "#build-result table tbody tr")}
-    assert float(derivation["rolling_radius_m"][1]) == pytest.approx(tyre["loaded_radius_m"]["value"], rel=1e-5)
-    assert float(derivation["tire_stiffness_kn_per_m"][1]) == pytest.approx(tyre["stiffness_kn_per_m"]["value"])
-    assert float(derivation["suspension_stiffness_kn_per_m"][1]) == suspension["stiffness_kn_per_m"]["value"]
-    assert derivation["rolling_radius_m"][3] == "library"
-    assert derivation["rolling_radius_m"][5] == tyre["loaded_radius_m"]["source"]
+    assert float(derivation["Rolling radius [m]"][1]) == pytest.approx(tyre["loaded_radius_m"]["value"], rel=1e-5)
+    assert float(derivation["Tire stiffness [kN/m]"][1]) == pytest.approx(tyre["stiffness_kn_per_m"]["value"])
+    assert float(derivation["Suspension stiffness [kN/m]"][1]) == suspension["stiffness_kn_per_m"]["value"]
+    assert derivation["Rolling radius [m]"][3] == "library"
+    assert derivation["Rolling radius [m]"][5] == tyre["loaded_radius_m"]["source"]
 
 
 def test_builder_errors_are_shown_at_the_builder_boxes(page):

@@ -4,7 +4,7 @@
 // others -- saying how many more the CSV download holds.
 
 import { ApiError } from "./api.js";
-import { $, clear, el, fmt, grouped, num, scroller, signed } from "./dom.js";
+import { $, clear, el, fieldLabel, fmt, grouped, num, scroller, signed } from "./dom.js";
 
 // ------------------------------------------------------------------------------------------ the worker
 
@@ -92,22 +92,8 @@ const HIDDEN = new Set([
 ]); // prettier-ignore
 const HIDDEN_PATTERN = /^(meets_.+|margin_.+_g)$/; // a CSV's target columns (meets_general, margin_general_g)
 
-const UNITS = [
-  ["_kmh", "km/h"],
-  ["_percent", "%"],
-  ["_deg", "deg"],
-  ["_m", "m"],
-  ["_g", "g"],
-  ["_s", "s"],
-];
-
 /** A label from a field's name: `deflection_deg` -> "Deflection [deg]", `bend_start_m` -> "Bend start [m]". */
-export function labelOf(key) {
-  const unit = UNITS.find(([suffix]) => key.endsWith(suffix));
-  const words = (unit ? key.slice(0, -unit[0].length) : key).replaceAll("_", " ");
-  const text = words.charAt(0).toUpperCase() + words.slice(1);
-  return unit ? `${text} [${unit[1]}]` : text;
-}
+export const labelOf = (key) => fieldLabel(key);
 
 const generic = (v) => (typeof v === "boolean" ? yesNo(v) : typeof v === "number" ? num(v, 3) : blank(v) ? "-" : String(v));
 

@@ -7,7 +7,7 @@ import * as combination from "./combination.js";
 import * as combo from "./combobuilder.js";
 import * as curves from "./curves.js";
 import * as filecheck from "./filecheck.js";
-import { $, $$, clear, el, num } from "./dom.js";
+import { $, $$, clear, cueStaticTables, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
 import * as results from "./results.js";
@@ -42,7 +42,7 @@ async function guarded(button, scope, box, task) {
 function fillModels(models) {
   page.models = models;
   const select = $("#model");
-  for (const m of models) select.append(el("option", { value: m.id }, `${m.name} (${m.id})`));
+  for (const m of models) select.append(el("option", { value: m.id }, m.name)); // the name on screen, the id in links
   const initial = models.find((m) => m.default)?.id || models[0]?.id;
   select.value = select.dataset.pending && models.some((m) => m.id === select.dataset.pending) ? select.dataset.pending : initial;
   select.dataset.initial = initial;
@@ -278,6 +278,7 @@ function watchInputs() {
 }
 
 function wire() {
+  cueStaticTables();
   watchInputs();
   $("#case-form").addEventListener("submit", (ev) => {
     ev.preventDefault();

@@ -2,7 +2,7 @@
 // and the thesis citation, laid out for A4 or Letter by print.css. Rebuilt after every computation.
 
 import { COUPLINGS, governingText, KINDS, liftTable, unitsTable } from "./combination.js";
-import { $, clear, el, fmt, num, table } from "./dom.js";
+import { $, clear, el, fmt, grouped, num, table, thousands } from "./dom.js";
 import { factList, facts, plainVerdicts, showsLevelRoad, srtText, targetsTable } from "./results.js";
 import { bankWords, radiusCaption, radiusTable } from "./road.js";
 
@@ -32,7 +32,11 @@ const RECORD_FIELDS = [
   ["front_llt_ratio", "Front LLT ratio at the limit (LLTf/LLTr)", ""],
 ];
 
-const withUnit = (value, unit, digits = 3) => `${num(value, digits)}${unit ? ` ${unit}` : ""}`;
+const withUnit = (value, unit, digits = 3) => `${thousands(num(value, digits))}${unit ? ` ${unit}` : ""}`;
+
+/** A model by its name (the model picker's words), not its id. */
+const modelName = (id) => Array.from($("#model")?.options || []).find((o) => o.value === id)?.textContent || id;
+const STAGES = { full: "full system", "tires-suspension": "tyres and suspension only" };
 
 function caseRows(request) {
   const road = request.road || {};
@@ -48,7 +52,7 @@ function caseRows(request) {
     ["Rear LLT limit (1 = wheel lift-off)", request.rear_llt_limit, ""],
   ];
   return [
-    ["Model", `${request.model}${request.stage ? ` (stage ${request.stage})` : ""}`],
+    ["Model", `${modelName(request.model)}${request.stage ? ` (${STAGES[request.stage] || request.stage})` : ""}`],
     ...rows.filter(([, v]) => v !== undefined).map(([k, v, unit]) => [k, typeof v === "number" ? withUnit(v, unit, 4) : String(v)]),
   ];
 }
@@ -68,7 +72,7 @@ function combinationList(combination) {
     [
       { key: "id", label: "Unit", text: true },
       { key: "kind", label: "Kind", text: true, format: (v) => KINDS[v] || v },
-      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => fmt(v, 0) },
+      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => grouped(v, 0) },
       { key: "cg_height_m", label: "CG height [m]", format: (v) => fmt(v, 2) },
       { key: "groups", label: "Axle groups", text: true, format: (g) => g.map((x) => `${x.id}: ${x.axles} axle${x.axles > 1 ? "s" : ""}, ${x.tyres_per_axle} tyres each`).join("; ") },
     ],

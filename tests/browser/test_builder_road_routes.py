@@ -523,3 +523,18 @@ def test_a_route_above_the_synchronous_size_runs_as_a_job(page, api, live_server
     answer = ok(api.post("/v1/routes/assess", json=body))  # the page sends only what was typed
     (row,) = curve_rows(page)
     assert row["safe_speed_kmh"] == f"{answer['curves'][0]['assessment']['safe_speed_kmh']:.1f}"
+    # the downloads of a job read what the job keeps: its CSV from the service, its curves as the service's GeoJSON
+    downloads = tmp_path / "downloads"
+    downloads.mkdir()
+    page.driver.execute_cdp_cmd("Browser.setDownloadBehavior", {"behavior": "allow", "downloadPath": str(downloads)})
+    page.network()
+    page.find("#download-json").click()
+    page.find("#download-csv").click()
+    WebDriverWait(page.driver, 30).until(
+        lambda _: {p.name for p in downloads.iterdir()} >= {"route-curves.geojson", "route-curves.csv"}
+    )
+    sent, _ = page.network()
+    assert "/v1/routes/assess" not in {urlsplit(u).path for u in sent.values()}  # not the synchronous request
+    geojson = ok(api.post("/v1/routes/assess", json=body, headers={"Accept": "application/geo+json"}))
+    assert json.loads((downloads / "route-curves.geojson").read_text()) == geojson
+    assert (downloads / "route-curves.csv").read_text().count("\n") == 1 + len(answer["curves"])

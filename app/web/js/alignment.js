@@ -312,13 +312,15 @@ const csvVehicles = (stats) => stats.vehicles || [];
 
 /**
  * Show an assessment: `result` (the JSON answer) or, for an alignment job, `job` {url, key} (its result is read as
- * CSV by the worker, never parsed on the page). `kind`: csv, landxml, geojson or gpx; `lines`: a route's polylines;
+ * CSV by the worker, never parsed on the page); `stored` {url, key}: where a route job's result is kept (for the
+ * downloads). `kind`: csv, landxml, geojson or gpx; `lines`: a route's polylines;
  * `fileName` and `vehicleText` name the file and the vehicle on paper. Resolves once the first page of rows is drawn
  * and the printout is built.
  */
-export async function render({ result = null, job = null, kind, lines = null, fileName = "", vehicleText = "" }) {
+export async function render({ result = null, job = null, stored = null, kind, lines = null, fileName = "", vehicleText = "" }) {
   const route = kind === "geojson" || kind === "gpx";
-  Object.assign(state, { result, kind, file: fileName, vehicleText, jobResult: job });
+  // a job's result stays at the service: the downloads read it from there (a job is above the synchronous size)
+  Object.assign(state, { result, kind, file: fileName, vehicleText, jobResult: job || stored });
   const box = clear($("#alignment-results"));
   const summary = el("p", { id: "alignment-summary" });
   const tableBox = el("div", { id: "curves-box" });
@@ -380,7 +382,12 @@ async function downloadCsv() {
  * (a job's: its result as stored, never parsed here). */
 async function save() {
   const { path, request, key, result, jobResult } = state;
-  if (jobResult) {
+  if (jobResult && result && isRoute(result)) {
+    // a route job's answer is in hand: its curves as the service's GeoJSON writes them (each curve's fields as the
+    // properties, its coordinates as the LineString), since the synchronous request is above its size
+    const features = routeCurves(result).map(({ coordinates, ...properties }) => ({ type: "Feature", geometry: { type: "LineString", coordinates }, properties }));
+    download(downloadName("curves.geojson"), new Blob([JSON.stringify({ type: "FeatureCollection", features })], { type: "application/geo+json" }));
+  } else if (jobResult) {
     const { data } = await api.call("GET", jobResult.url, { accept: "application/json", as: "blob", key: jobResult.key });
     download(downloadName("assessment.json"), data);
   } else if (isRoute(result)) {

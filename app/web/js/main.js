@@ -174,7 +174,7 @@ const typedKey = () => $("#api-key").value.trim() || undefined;
 async function jobOrRequest(path, request, key, signal, operation) {
   try {
     const url = await alignment.runJob(request, { operation, key, onStatus: showJob, signal, read: false });
-    return operation === "alignments.assess" ? { job: { url, key } } : { result: await api.get(url, { key }) };
+    return operation === "alignments.assess" ? { job: { url, key } } : { result: await api.get(url, { key }), stored: { url, key } };
   } catch (err) {
     if (!(err instanceof api.ApiError) || err.problem.status !== 401 || key) throw err;
     $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";

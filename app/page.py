@@ -59,11 +59,14 @@ def calculator_page() -> FileResponse:
 
 
 class WebAssets(StaticFiles):
-    """The page's static files, with :data:`ASSET_HEADERS`."""
+    """The page's static files, with :data:`ASSET_HEADERS`; a worker script (``*-worker.js``) with the page's
+    Content-Security-Policy too (a worker's policy is its own script's: it fetches from this origin only)."""
 
-    def file_response(self, *args: Any, **kwargs: Any) -> Response:
-        response = super().file_response(*args, **kwargs)
+    def file_response(self, full_path: Any, *args: Any, **kwargs: Any) -> Response:
+        response = super().file_response(full_path, *args, **kwargs)
         response.headers.update(ASSET_HEADERS)
+        if str(full_path).endswith("-worker.js"):
+            response.headers["Content-Security-Policy"] = CONTENT_SECURITY_POLICY
         return response
 
 

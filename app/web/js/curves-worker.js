@@ -101,6 +101,7 @@ function nameCurves(rows) {
 /** Counts over the rows of one vehicle (all of them, whatever the view shows). */
 function stats(vehicle) {
   const out = { curves: 0, flagged: 0, refused: 0, below_standard_min_radius: 0, min_margin_kmh: null, min_safe_speed_kmh: null, worst: null, keys: [] };
+  const unseen = new Set(store.rows.slice(0, 100).flatMap((r) => Object.keys(r))); // fields with no value yet
   const keys = new Set();
   for (const r of store.rows) {
     if (vehicle !== null && vehicle !== undefined && (r.vehicle_index ?? 0) !== vehicle) continue;
@@ -115,9 +116,16 @@ function stats(vehicle) {
     if (typeof r.safe_speed_kmh === "number" && (out.min_safe_speed_kmh === null || r.safe_speed_kmh < out.min_safe_speed_kmh)) {
       out.min_safe_speed_kmh = r.safe_speed_kmh;
     }
-    if (out.curves <= 2000) for (const [k, v] of Object.entries(r)) if (!isBlank(v)) keys.add(k);
+    if (unseen.size) {
+      for (const k of unseen) {
+        if (!isBlank(r[k])) {
+          keys.add(k);
+          unseen.delete(k);
+        }
+      }
+    }
   }
-  // the columns that carry a value: a sample of the first rows is enough to know them (every row has the same fields)
+  // the columns that carry a value in any row (an error far down the file shows its column)
   out.keys = [...keys];
   return out;
 }

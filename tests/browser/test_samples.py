@@ -84,6 +84,11 @@ def test_a_sample_table_is_assessed_with_the_page_defaults(page, api, width, nam
         ("C1", "K1"),
         ("C2", "K2"),
     ]
+    # found by its name or the file's id
+    page.type("#curves-find", "K2")
+    WebDriverWait(page.driver, 10).until(lambda _: [r["id"] for r in curve_rows(page)] == ["K2"])
+    page.type("#curves-find", "c1")
+    WebDriverWait(page.driver, 10).until(lambda _: [r["id"] for r in curve_rows(page)] == ["K1"])
 
 
 @pytest.mark.parametrize("name", ["alignment.xml", "road.gpx", "road.geojson"])

@@ -187,6 +187,8 @@ async function jobOrRequest(path, request, key, signal, operation) {
  * What the chosen file carries and still needs, shown beside the boxes before any request; returns the note that
  * blocks the request (a file that is not text, a superelevation nobody gave), or null.
  */
+const lastCheck = { file: null, inputs: "", blocker: null };
+
 async function checkFile() {
   const file = $("#alignment-file").files[0];
   const info = $("#alignment-file-info");
@@ -195,6 +197,16 @@ async function checkFile() {
     info.textContent = "";
     return null;
   }
+  // the same file with the same boxes was read when it was chosen: not again at Assess (a file can be large)
+  const inputs = ["#al-e", "#al-emax", "#al-posted", "#al-grade"].map((id) => $(id).value).join("|");
+  if (lastCheck.file === file && lastCheck.inputs === inputs) return lastCheck.blocker;
+  const blocker = await readFile(file, info);
+  Object.assign(lastCheck, { file, inputs, blocker });
+  return blocker;
+}
+
+/** Read the file's head: whether it is text, what it carries, what it needs (shown beside the boxes). */
+async function readFile(file, info) {
   const bytes = new Uint8Array(await file.slice(0, 65536).arrayBuffer());
   if (!filecheck.isText(bytes)) {
     const note = { box: "#alignment-file", blocks: true, text: `${file.name} is not a text file (it holds binary data: an image, a spreadsheet's workbook, ...): choose a CSV table, or a LandXML, GPX or GeoJSON file.` };

@@ -1,7 +1,9 @@
 """Results of any size without a frozen tab (issue 41, point 2): an alignment of 20,000 and 200,000 curves assessed
 as a job, its table shown a page at a time (flagged curves first), sorted, filtered and paged, and the printout
 built -- while a PerformanceObserver for 'longtask' records every main-thread task over 50 ms. No task may last
-100 ms or more. The figures are printed (``-s``) for the note.
+100 ms or more. The figures are printed (``-s``) for the note. A long task's duration is wall-clock time: on a
+machine whose cores are shared far beyond their number, the page's tasks (a few milliseconds to a few tens of CPU)
+stretch with the wait for a core.
 
 The expected counts and order come from the rows' own closed forms where the file decides them, and from the API's
 job result otherwise, never from the page.

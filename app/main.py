@@ -31,7 +31,7 @@ from app.jobs.service import open_jobs
 from app.logs import configure_logging, get_logger
 from app.meta.router import health_router, models_router
 from app.metrics import JOBS_ACTIVE
-from app.page import install_page
+from app.page import install_page, install_redoc
 from app.plots import router as plots_router
 from app.road import router as road_router
 from app.road import standards_router
@@ -191,6 +191,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         license_info={"name": "Proprietary", "identifier": "LicenseRef-Proprietary"},
         generate_unique_id_function=operation_id,
         swagger_ui_parameters={"validatorUrl": None},  # Swagger UI's validator badge is an image from another host
+        redoc_url=None,  # served by install_redoc: fastapi-offline's, with a policy that keeps ReDoc's logo offline
         lifespan=lifespan,
     )
     app.state.settings = settings if settings is not None else get_settings()
@@ -201,6 +202,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for router in ROUTERS:
         app.include_router(router)
     install_page(app)  # GET / (the calculator page) and /web/ (its assets); not in the OpenAPI document
+    install_redoc(app)
     # innermost: JSON bodies read strictly (content type, encoding, nesting, keys), counted by the metrics
     app.add_middleware(StrictJsonMiddleware, routes=lambda: json_routes(app.routes))
     if app.state.settings.metrics:  # ROLLOVER_METRICS=false: no per-request HTTP metrics (bench/bench_service.py)

@@ -135,7 +135,7 @@ def test_a_tractor_semitrailer_built_from_scratch_shows_the_apis_governing_srt(p
     # the drawing is of the built units; the build's gross mass is shown
     drawn = [g.get_attribute("data-unit") for g in page.find_all("#combination-result g.unit")]
     assert drawn == [u["id"] for u in built["combination"]["units"]]
-    assert page.text("#cb-gross") == f"Built: gross mass {built['gross_mass_kg']:.0f} kg in 2 units."
+    assert page.text("#cb-gross") == f"Built: gross mass {built['gross_mass_kg']:,.0f} kg in 2 units."
     rows = page.find_all("#units-table tbody tr")
     assert len(rows) == len(expected["roll_coupled_units"])
     # the link reopens the editor with that spec and computes it again

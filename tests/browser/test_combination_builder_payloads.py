@@ -123,7 +123,7 @@ def test_a_payload_kind_or_rear_group_load_typed_in_the_editor_has_the_apis_srt(
     assert abs(expected_srt(api, TYPED) - srt) > 2 * DISPLAY_G
     # the build's masses (shown) are the API's for the spec
     built = api_ok(api, "/v1/combinations/build", {"combination_spec": spec})
-    assert page.text("#cb-gross") == f"Built: gross mass {built['gross_mass_kg']:.0f} kg in 2 units."
+    assert page.text("#cb-gross") == f"Built: gross mass {built['gross_mass_kg']:,.0f} kg in 2 units."
 
 
 # ------------------------------------------------------------------------------------------- a link

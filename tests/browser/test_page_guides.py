@@ -260,11 +260,11 @@ def check_layout(page, width: int) -> None:
         assert readable(page, f"#road-results thead th:nth-child({i})"), (width, i)
     # the alignment table: the flag and the margin next to the curve's name
     keys = [b.get_attribute("data-key") for b in page.find_all("#curves-table thead button.sort")]
-    assert keys[:3] == ["id", "flagged", "margin_kmh"]
+    assert keys[:3] == ["name", "flagged", "margin_kmh"]
     for i in (1, 2, 3):
         assert readable(page, f"#curves-table thead th:nth-child({i})"), (width, i)
-    assert readable(page, "#curves-table tbody tr:nth-child(2) td:nth-child(2)")  # TIGHT: flagged
-    assert page.find("#curves-table tbody tr:nth-child(2) td:nth-child(2)").text == "\u26a0 flagged"
+    assert readable(page, "#curves-table tbody tr:nth-child(1) td:nth-child(2)")  # TIGHT: flagged, so first
+    assert page.find("#curves-table tbody tr:nth-child(1) td:nth-child(2)").text == "\u26a0 flagged"
 
 
 def test_compute_stays_in_view_the_result_is_one_tap_away_and_key_columns_are_readable(page, tmp_path):
@@ -336,7 +336,7 @@ def test_a_vehicle_below_a_target_is_offered_its_payload_table_and_the_printout_
         page.run("limits", lambda: page.find("#payload-offer-button").click())
         assert page.find("#payload-tables").is_displayed()
         expected = ok(api.post("/v1/vehicles/payload-table", json={"spec": spec, "target_srt_g": 0.35}))
-        first = cells(page, "#payload-tables .table-wrap:first-child tbody tr")
+        first = cells(page, "#payload-tables .scroll-box:first-child tbody tr")
         assert [c[0] for c in first] == [f"{r['load_height_m']:.2f}" for r in expected["by_load_height"]]
         page.run("superelevations", lambda: page.find("#super-compute").click())
         path = tmp_path / "curves.csv"

@@ -59,6 +59,14 @@ def test_the_page_is_served_at_the_root_with_a_self_only_policy(client):
     assert client.head("/").status_code == 200
 
 
+def test_the_curves_worker_runs_under_the_pages_policy(client):
+    """A worker's policy is its own script's response: the curves' worker fetches from this origin only."""
+    r = client.get("/web/js/curves-worker.js")
+    assert r.status_code == 200
+    assert r.headers["content-security-policy"] == client.get("/").headers["content-security-policy"]
+    assert "content-security-policy" not in client.get("/web/js/curves.js").headers  # a module runs under the page's
+
+
 def test_the_page_is_not_part_of_the_api_document(client):
     paths = client.get("/openapi.json").json()["paths"]
     assert "/" not in paths and not [p for p in paths if p.startswith("/web")]

@@ -5,7 +5,8 @@
 // deployment has it, otherwise an indeterminate bar while the request runs) and downloads.
 
 import * as api from "./api.js";
-import { $, clear, download, el, fmt, scroller, signed, svgEl } from "./dom.js";
+import * as curves from "./curves.js";
+import { $, clear, download, el, fmt, svgEl } from "./dom.js";
 import { value } from "./form.js";
 import { designFields, srtOptions } from "./road.js";
 
@@ -76,10 +77,29 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
  */
 export const settings = { jobRows: 5000, jobVertices: 20000 };
 
+/** The lines of a text that hold more than blanks (counted without splitting it: a file can hold a million). */
+function csvLines(text) {
+  let count = 0;
+  let start = 0;
+  while (start < text.length) {
+    let end = text.indexOf("\n", start);
+    if (end < 0) end = text.length;
+    for (let i = start; i < end; i += 1) {
+      const c = text.charCodeAt(i);
+      if (c !== 32 && c !== 9 && c !== 13) {
+        count += 1;
+        break;
+      }
+    }
+    start = end + 1;
+  }
+  return count;
+}
+
 /** The curves of an alignment file (CSV data rows, LandXML <Curve> elements); a route's vertices (GPX points,
  * GeoJSON positions). */
 export function rowCount(kind, text) {
-  if (kind === "csv") return text.split(/\r?\n/).filter((line) => line.trim()).length - 1;
+  if (kind === "csv") return csvLines(text) - 1;
   if (kind === "landxml") return (text.match(/<(\w+:)?Curve[\s>/]/g) || []).length;
   if (kind === "gpx") return (text.match(/<(trkpt|rtept)[\s>/]/g) || []).length;
   if (kind === "geojson") {
@@ -111,10 +131,13 @@ export async function wantsJob(path, rows) {
 /**
  * An assessment as a job (`operation`: `alignments.assess` or `routes.assess`): submit, poll GET /v1/jobs/{id} (status,
  * progress, done/total) reporting each status to `onStatus`, then read its result. `key`: the bearer key (needed
- * when the deployment has keys). `signal` aborts the polling after the job was cancelled.
+ * when the deployment has keys). `signal` aborts the polling after the job was cancelled. `read`: false answers the
+ * result's URL instead of the result (a large result is read by the curves' worker, not on the page).
  */
-export async function runJob(body, { operation = "alignments.assess", key, onStatus, signal }) {
-  const submitted = await api.call("POST", "/v1/jobs", { json: { operation, request: body }, key });
+export async function runJob(body, { operation = "alignments.assess", key, onStatus, signal, read = true }) {
+  // the body (a file of a million curves is a hundred megabytes of JSON) is written by the curves' worker, not here
+  const { blob } = await curves.ask("encode", { value: { operation, request: body } });
+  const submitted = await api.call("POST", "/v1/jobs", { json: blob, key });
   const location = submitted.response.headers.get("Location") || `/v1/jobs/${submitted.data.id}`;
   let job = submitted.data;
   const handle = { location, key, deleted: false };
@@ -137,7 +160,8 @@ export async function runJob(body, { operation = "alignments.assess", key, onSta
       if (signal?.aborted) throw await cancelled();
       job = await api.get(location, { key });
     }
-    return await api.get(job.result || `${location}/result`, { key });
+    const url = job.result || `${location}/result`;
+    return read ? await api.get(url, { key }) : url;
   } finally {
     state.job = null;
   }
@@ -151,30 +175,7 @@ export async function cancelJob() {
   await api.call("DELETE", job.location, { key: job.key });
 }
 
-// ------------------------------------------------------------------------------------------ the table
-
-/** The curves' columns: the curve, then what a reader acts on (flag, margin, safe and posted speed, what governs),
- * then the geometry and the speeds behind them. The first column stays in view when the table scrolls sideways. */
-const COLUMNS = [
-  { key: "id", label: "Curve", text: true },
-  { key: "flagged", label: "Flag", format: (v) => (v ? "\u26a0 flagged" : "ok"), text: true },
-  { key: "margin_kmh", label: "Margin [km/h]", format: (v) => (v === null || v === undefined ? "-" : signed(v, 1)) },
-  { key: "safe_speed_kmh", label: "Safe speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "posted_speed_kmh", label: "Posted [km/h]", format: (v) => fmt(v, 0) },
-  { key: "governed_by", label: "Governed by", text: true },
-  { key: "vehicle", label: "Vehicle", text: true },
-  { key: "station_m", label: "Station [m]", format: (v) => fmt(v, 0) },
-  { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 0) },
-  { key: "radius_std_m", label: "\u00b1 R [m] (1 s.e.)", format: (v) => fmt(v, 1) },
-  { key: "direction", label: "Turns", text: true },
-  { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
-  { key: "grade_percent", label: "Grade [%]", format: (v) => fmt(v, 1) },
-  { key: "srt_g", label: "SRT [g]", format: (v) => fmt(v, 3) },
-  { key: "rollover_speed_kmh", label: "Rollover speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1) },
-  { key: "meets_standard_min_radius", label: "Meets Rmin", format: (v) => (v === null || v === undefined ? "-" : v ? "yes" : "no"), text: true },
-  { key: "error", label: "Error", text: true },
-];
+// ------------------------------------------------------------------------------------------ the rows
 
 /** A vehicle of a multi-vehicle answer by name: its preset id, saved id, or its place. */
 export function vehicleLabel(entry, i) {
@@ -206,47 +207,6 @@ export function rowsOf(result, index = null) {
     });
   }
   return result.vehicles[index ?? 0].rows;
-}
-
-function compare(key, direction) {
-  return (a, b) => {
-    const x = a[key];
-    const y = b[key];
-    if (x === y) return 0;
-    if (x === null || x === undefined) return 1; // blanks last either way
-    if (y === null || y === undefined) return -1;
-    const order = typeof x === "number" && typeof y === "number" ? x - y : String(x).localeCompare(String(y), undefined, { numeric: true });
-    return direction === "ascending" ? order : -order;
-  };
-}
-
-function renderTable(box, rows, sort) {
-  const used = COLUMNS.filter((c) => rows.some((r) => r[c.key] !== undefined && r[c.key] !== null) || c.key === "flagged");
-  const sorted = sort ? [...rows].sort(compare(sort.key, sort.direction)) : rows;
-  const head = el(
-    "tr",
-    {},
-    used.map((c) =>
-      el(
-        "th",
-        { scope: "col", class: c.text ? "text" : null, "aria-sort": sort?.key === c.key ? sort.direction : "none" },
-        el("button", { type: "button", class: "sort", "data-key": c.key, title: `Sort by ${c.label}` }, c.label),
-      ),
-    ),
-  );
-  const body = sorted.map((r) =>
-    el("tr", { class: r.flagged ? "flagged" : null }, used.map((c) => el("td", { class: c.text ? "text" : null }, c.format ? c.format(r[c.key], r) : r[c.key] ?? "-"))),
-  );
-  const t = el("table", { id: "curves-table" }, el("caption", { class: "hint" }, "Select a column heading to sort."), el("thead", {}, head), el("tbody", {}, body));
-  clear(box).append(scroller("Assessed curves", t, true));
-  head.addEventListener("click", (ev) => {
-    const button = ev.target.closest("button.sort");
-    if (!button) return;
-    const key = button.dataset.key;
-    const direction = sort?.key === key && sort.direction === "ascending" ? "descending" : "ascending";
-    renderTable(box, rows, { key, direction });
-    box.querySelector(`button.sort[data-key="${key}"]`).focus();
-  });
 }
 
 // ------------------------------------------------------------------------------------------ the outline
@@ -338,87 +298,102 @@ export function outline(lines, result) {
 
 // ------------------------------------------------------------------------------------------ render
 
-function summaryLine(result, index) {
-  const several = result.vehicles.length > 1;
-  if (index === null && several) {
-    // a fleet's route, each curve by its governing vehicle
-    const flagged = state.rows.filter((r) => r.flagged).length;
-    return `${state.rows.length} curves, ${flagged} flagged for their governing vehicle; ${result.vehicles.length} vehicles, route ${fmt(result.length_m / 1000, 2)} km`;
-  }
-  const s = result.vehicles[index ?? 0].summary;
-  const parts = [`${s.curves} curves`, `${s.flagged} flagged`];
-  if (several) parts.push(`for ${vehicleLabel(result.vehicles[index], index)}`);
-  if (typeof result.length_m === "number") parts.push(`route ${fmt(result.length_m / 1000, 2)} km`);
-  if (s.below_standard_min_radius) parts.push(`${s.below_standard_min_radius} below the standard's minimum radius`);
-  if (s.refused) parts.push(`${s.refused} refused`);
-  if (s.min_margin_kmh !== undefined && s.min_margin_kmh !== null) parts.push(`smallest margin ${signed(s.min_margin_kmh, 1)} km/h`);
-  if (s.min_safe_speed_kmh !== undefined && s.min_safe_speed_kmh !== null) parts.push(`lowest safe speed ${fmt(s.min_safe_speed_kmh, 1)} km/h`);
-  return parts.join(", ");
-}
-
-/** The vehicle choice of a multi-vehicle answer (a fleet): a route adds "the governing vehicle of each curve". */
-function vehicleChoice(result, route, onChange) {
-  const options = result.vehicles.map((v, i) => el("option", { value: String(i) }, vehicleLabel(v, i)));
+/** A fleet's vehicle choice: each vehicle, and for a route "the governing vehicle of each curve". */
+function vehicleChoice(names, route, onChange) {
+  const options = names.map((name, i) => el("option", { value: String(i) }, name));
   if (route) options.unshift(el("option", { value: "" }, "the governing vehicle of each curve (lowest safe speed)"));
   const select = el("select", { id: "al-vehicle-shown" }, options);
   select.addEventListener("change", () => onChange(select.value === "" ? null : Number(select.value)));
   return el("div", { class: "field" }, el("label", { for: "al-vehicle-shown" }, "Vehicle shown"), select);
 }
 
-export function render(result, kind, lines) {
+/** The vehicles of a job's CSV rows (their index, preset or saved id), from the worker's counts. */
+const csvVehicles = (stats) => stats.vehicles || [];
+
+/**
+ * Show an assessment: `result` (the JSON answer) or, for an alignment job, `job` {url, key} (its result is read as
+ * CSV by the worker, never parsed on the page); `stored` {url, key}: where a route job's result is kept (for the
+ * downloads). `kind`: csv, landxml, geojson or gpx; `lines`: a route's polylines;
+ * `fileName` and `vehicleText` name the file and the vehicle on paper. Resolves once the first page of rows is drawn
+ * and the printout is built.
+ */
+export async function render({ result = null, job = null, stored = null, kind, lines = null, fileName = "", vehicleText = "" }) {
   const route = kind === "geojson" || kind === "gpx";
-  state.result = result;
-  state.kind = kind;
+  // a job's result stays at the service: the downloads read it from there (a job is above the synchronous size)
+  Object.assign(state, { result, kind, file: fileName, vehicleText, jobResult: job || stored });
   const box = clear($("#alignment-results"));
   const summary = el("p", { id: "alignment-summary" });
-  const tableBox = el("div");
-  const show = (index) => {
-    state.rows = rowsOf(result, index);
-    summary.textContent = `${summaryLine(result, index)}.`;
-    renderTable(tableBox, state.rows, null);
+  const tableBox = el("div", { id: "curves-box" });
+  let names;
+  let loaded = null;
+  if (job) {
+    loaded = await curves.ask("fetch", { url: job.url, key: job.key, vehicle: 0 });
+    names = csvVehicles(loaded.stats).map((v, i) => vehicleLabel(v, i));
+  } else {
+    names = result.vehicles.map((v, i) => vehicleLabel(v, i));
+  }
+  const several = names.length > 1;
+  const show = async (index) => {
+    let stats;
+    if (job) stats = (await curves.ask("stats", { vehicle: index })).stats;
+    else stats = (await curves.ask("load", { rows: rowsOf(result, index), vehicle: null })).stats;
+    const vehicleText = several ? (index === null ? `${names.length} vehicles` : `for ${names[index]}`) : "";
+    const lengthM = result?.length_m;
+    const governing = several && index === null;
+    summary.textContent = curves.summaryText(stats, { vehicleText, lengthM, governing });
+    await curves.showTable(tableBox, { keys: stats.keys, vehicle: job ? index : null });
+    const printed = await curves.printout({
+      stats,
+      fileName,
+      vehicleText: several ? (index === null ? `the governing vehicle of each curve, of ${names.join(", ")}` : names[index]) : state.vehicleText,
+      lengthM,
+      governing,
+      outline: state.outline,
+      downloadName: state.file ? `${state.file.replace(/\.[^.]*$/, "")}-curves.csv` : "curves.csv",
+    });
+    document.dispatchEvent(new CustomEvent("curves-printout", { detail: { title: route ? "Route" : "Alignment", nodes: printed } }));
   };
-  if (result.vehicles.length > 1) box.append(vehicleChoice(result, route, show));
+  if (several) box.append(vehicleChoice(names, route, show));
   box.append(summary);
-  state.outline = lines ? outline(lines, result) : null;
+  state.outline = lines && result ? outline(lines, result) : null;
   if (state.outline) box.append(el("figure", { class: "outline" }, state.outline, el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")));
   const downloads = el("div", { class: "actions" });
   downloads.append(
-    el("button", { type: "button", id: "download-csv", onclick: downloadCsv }, "Download CSV"),
-    el("button", { type: "button", id: "download-json", onclick: () => save("json") }, route ? "Download GeoJSON" : "Download JSON"),
+    el("button", { type: "button", id: "download-csv", onclick: downloadCsv }, "Download CSV (every curve)"),
+    el("button", { type: "button", id: "download-json", onclick: save }, route ? "Download GeoJSON (every curve)" : "Download JSON (every curve)"),
   );
   box.append(downloads, tableBox);
-  show(route ? null : 0);
+  await show(route ? null : 0);
 }
 
+/** The file name of a download: the assessed file's with what it holds. */
+const downloadName = (suffix) => `${(state.file || "curves").replace(/\.[^.]*$/, "")}-${suffix}`;
+
+/** The whole result as CSV: a job's result again (Accept: text/csv), else the same request with Accept: text/csv. */
 async function downloadCsv() {
-  const { path, request, key } = state;
-  const { data } = await api.call("POST", path, { json: request, accept: "text/csv", as: "blob", key });
-  download("curves.csv", data);
+  const { path, request, key, jobResult } = state;
+  const { data } = jobResult
+    ? await api.call("GET", jobResult.url, { accept: "text/csv", as: "blob", key: jobResult.key })
+    : await api.call("POST", path, { json: request, accept: "text/csv", as: "blob", key });
+  download(downloadName("curves.csv"), data);
 }
 
-/** The JSON answer; a route's curves as GeoJSON (the same request with Accept: application/geo+json). */
+/** A route's curves as GeoJSON (the same request with Accept: application/geo+json); an alignment's JSON answer
+ * (a job's: its result as stored, never parsed here). */
 async function save() {
-  const { path, request, key, result } = state;
-  if (isRoute(result)) {
+  const { path, request, key, result, jobResult } = state;
+  if (jobResult && result && isRoute(result)) {
+    // a route job's answer is in hand: its curves as the service's GeoJSON writes them (each curve's fields as the
+    // properties, its coordinates as the LineString), since the synchronous request is above its size
+    const features = routeCurves(result).map(({ coordinates, ...properties }) => ({ type: "Feature", geometry: { type: "LineString", coordinates }, properties }));
+    download(downloadName("curves.geojson"), new Blob([JSON.stringify({ type: "FeatureCollection", features })], { type: "application/geo+json" }));
+  } else if (jobResult) {
+    const { data } = await api.call("GET", jobResult.url, { accept: "application/json", as: "blob", key: jobResult.key });
+    download(downloadName("assessment.json"), data);
+  } else if (isRoute(result)) {
     const { data } = await api.call("POST", path, { json: request, accept: "application/geo+json", as: "blob", key });
-    download("curves.geojson", data);
+    download(downloadName("curves.geojson"), data);
   } else {
-    download("assessment.json", new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
+    download(downloadName("assessment.json"), new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   }
-}
-
-/** The curves for the printout: the summary line, the outline and the table, at most `max` rows (flagged first). */
-export function printable(max = 60) {
-  const t = $("#curves-table")?.cloneNode(true);
-  if (!t) return null;
-  const rows = Array.from(t.tBodies[0].rows);
-  let note = null;
-  if (rows.length > max) {
-    const keep = [...rows.filter((r) => r.classList.contains("flagged")), ...rows.filter((r) => !r.classList.contains("flagged"))].slice(0, max);
-    for (const r of rows) if (!keep.includes(r)) r.remove();
-    note = el("p", { class: "hint" }, `${max} of ${rows.length} curves printed (the flagged ones first); the CSV download has them all.`);
-  }
-  t.querySelector("caption")?.remove();
-  for (const b of t.querySelectorAll("button.sort")) b.replaceWith(document.createTextNode(b.textContent));
-  return [$("#alignment-summary"), $("#alignment-results figure.outline"), note, t];
 }

@@ -47,7 +47,7 @@ async function problemOf(response) {
 }
 
 /**
- * One request. `json` is sent as the JSON body; `accept` is the wanted media type; `key` a bearer key.
+ * One request. `json` is sent as the JSON body (a Blob: as it is, JSON already); `accept` is the wanted media type; `key` a bearer key.
  * Returns {response, data}: data is parsed JSON, text (SVG, CSV) or a Blob (`as: "blob"`).
  */
 export async function call(method, path, { json, accept = "application/json", key, as, signal } = {}) {
@@ -59,7 +59,7 @@ export async function call(method, path, { json, accept = "application/json", ke
     response = await fetch(path, {
       method,
       headers,
-      body: json === undefined ? undefined : JSON.stringify(json),
+      body: json === undefined ? undefined : json instanceof Blob ? json : JSON.stringify(json),
       signal,
       credentials: "omit",
     });

@@ -9,7 +9,7 @@
 
 import * as api from "./api.js";
 import { COUPLINGS, KINDS } from "./combination.js";
-import { $, $$, clear, el, fmt, num, scroller, table } from "./dom.js";
+import { $, $$, clear, el, fieldLabel, fmt, grouped, num, scroller, table } from "./dom.js";
 import { value } from "./form.js";
 import * as stale from "./stale.js";
 
@@ -613,9 +613,9 @@ function builtView(built) {
     [
       { key: "id", label: "Unit", text: true },
       { key: "kind", label: "Kind", text: true, format: (v) => KINDS[v] || v },
-      { key: "mass_kg", label: "Mass [kg]", format: (v) => fmt(v, 0) },
+      { key: "mass_kg", label: "Mass [kg]", format: (v) => grouped(v, 0) },
       { key: "cg_height_m", label: "CG height [m]", format: (v) => fmt(v, 3) },
-      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => fmt(v, 0) },
+      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => grouped(v, 0) },
       { key: "sprung_cg_height_m", label: "Sprung CG height [m]", format: (v) => fmt(v, 3) },
     ],
     built.units,
@@ -624,15 +624,15 @@ function builtView(built) {
     [
       { key: "unit", label: "Unit", text: true },
       { key: "group", label: "Axle group", text: true },
-      { key: "load_kg", label: "Static load [kg]", format: (v) => fmt(v, 0) },
-      { key: "per_axle_kg", label: "Per axle [kg]", format: (v) => fmt(v, 0) },
+      { key: "load_kg", label: "Static load [kg]", format: (v) => grouped(v, 0) },
+      { key: "per_axle_kg", label: "Per axle [kg]", format: (v) => grouped(v, 0) },
     ],
     built.axle_loads,
   );
   const rows = Object.entries(built.derivation || {}).map(([field, d]) => ({ field, ...d }));
   const derivation = table(
     [
-      { key: "field", label: "Record field", text: true },
+      { key: "field", label: "Record field", text: true, format: (v) => fieldLabel(v) },
       { key: "value", label: "Value", format: (v) => (typeof v === "number" ? num(v, 6) : v ?? "-") },
       { key: "unit", label: "Unit", text: true },
       { key: "method", label: "Method", text: true },
@@ -641,7 +641,7 @@ function builtView(built) {
     rows,
   );
   return [
-    el("p", { id: "cb-gross" }, `Built: gross mass ${fmt(built.gross_mass_kg, 0)} kg in ${built.units.length} units.`),
+    el("p", { id: "cb-gross" }, `Built: gross mass ${grouped(built.gross_mass_kg, 0)} kg in ${built.units.length} units.`),
     scroller("Each unit's mass and CG", units),
     scroller("Static axle-group loads", loads),
     el("details", { class: "details" }, el("summary", {}, "Where each value of the model comes from"), scroller("How each record field was obtained", derivation, true)),

@@ -33,6 +33,17 @@ export function fmt(value, digits = 3) {
   return Number(value).toFixed(digits);
 }
 
+const GROUPED = new Map(); // one formatter per number of decimals (making one per call is slow)
+
+/** A number with `digits` decimals and thousands separators ("12,345.6"; "-" for null). */
+export function grouped(value, digits = 0) {
+  if (value === null || value === undefined || value === "") return "-";
+  const n = Number(value);
+  if (!Number.isFinite(n)) return String(value);
+  if (!GROUPED.has(digits)) GROUPED.set(digits, new Intl.NumberFormat("en-US", { minimumFractionDigits: digits, maximumFractionDigits: digits }));
+  return GROUPED.get(digits).format(n);
+}
+
 /** A number for prose, at most `digits` decimals and at least `least` ("0.35", "0.40", "0.355", "3.15"): never a
  * float's tail such as 0.9999999999999994. Text that is not a number is returned as it is. */
 export function num(value, digits = 3, least = 0) {
@@ -111,7 +122,67 @@ export function table(columns, rows, { caption, rowClass } = {}) {
   return el("table", {}, caption ? el("caption", { class: "hint" }, caption) : null, el("thead", {}, head), el("tbody", {}, body));
 }
 
-/** A horizontally scrollable, keyboard-focusable region around a wide table. */
+/** Wide boxes are watched for overflow: each shows its scroll cue only while its table is wider than it. */
+const overflowWatch = typeof ResizeObserver === "undefined" ? null : new ResizeObserver((entries) => {
+  for (const { target } of entries) {
+    const box = target.closest(".table-wrap");
+    const cue = box?.previousElementSibling;
+    if (cue?.classList.contains("scroll-cue")) cue.hidden = box.scrollWidth <= box.clientWidth + 1;
+  }
+});
+
+/** A cue in words put before a scrolling box, shown while its content is wider than it. */
+export function scrollCue(box) {
+  const cue = el("p", { class: "scroll-cue", hidden: true, "aria-hidden": "true" }, "\u2194 More columns: scroll the table sideways.");
+  overflowWatch?.observe(box);
+  if (box.firstElementChild) overflowWatch?.observe(box.firstElementChild);
+  return cue;
+}
+
+/** A horizontally scrollable, keyboard-focusable region around a wide table, with a cue in words shown when the
+ * table is wider than the region (no column is hidden without saying so). */
 export function scroller(label, child, tall = false) {
-  return el("div", { class: tall ? "table-wrap tall" : "table-wrap", tabindex: "0", role: "region", "aria-label": label }, child);
+  const box = el("div", { class: tall ? "table-wrap tall" : "table-wrap", tabindex: "0", role: "region", "aria-label": label }, child);
+  return el("div", { class: "scroll-box" }, scrollCue(box), box);
+}
+
+/** The page's own wide regions (written in its HTML) get their cue too. */
+export function cueStaticTables(root = document) {
+  for (const box of $$(".table-wrap", root)) {
+    if (box.parentElement.classList.contains("scroll-box")) continue;
+    box.before(scrollCue(box));
+  }
+}
+
+const UNITS = [
+  ["_kmh", "km/h"],
+  ["_kn_per_m", "kN/m"],
+  ["_kn", "kN"],
+  ["_kg", "kg"],
+  ["_percent", "%"],
+  ["_deg", "deg"],
+  ["_m", "m"],
+  ["_g", "g"],
+  ["_s", "s"],
+];
+
+/** A label from an API field's name: `deflection_deg` -> "Deflection [deg]", `front_llt_ratio` -> "Front llt ratio";
+ * `lower`: in lower case, for prose ("posted speed [km/h]"). */
+export function fieldLabel(key, lower = false) {
+  const name = String(key);
+  const unit = UNITS.find(([suffix]) => name.endsWith(suffix) && name.length > suffix.length);
+  const words = (unit ? name.slice(0, -unit[0].length) : name).replaceAll("_", " ");
+  const text = lower ? words : words.charAt(0).toUpperCase() + words.slice(1);
+  return unit ? `${text} [${unit[1]}]` : text;
+}
+
+/** A message with the API's field names in words: "has no superelevation_percent" -> "has no superelevation [%]"
+ * (lower-case names joined by underscores; ids such as veh_... and flt_... are kept). */
+export function plainWords(text) {
+  return String(text).replace(/\b(?!(?:veh|flt|job)_)[a-z]+(?:_[a-z]+)+\b/g, (token) => fieldLabel(token, true));
+}
+
+/** Thousands separators in a number's text: "36210" -> "36,210", "-1250.5" -> "-1,250.5" (other text as it is). */
+export function thousands(text) {
+  return String(text).replace(/^([-\u2212+]?)(\d{4,})/, (_, sign, digits) => sign + digits.replace(/\B(?=(\d{3})+$)/g, ","));
 }

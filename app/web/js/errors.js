@@ -4,7 +4,7 @@
 // without a matching control in the section's form-level message.
 
 import { ApiError } from "./api.js";
-import { $$, el } from "./dom.js";
+import { $, $$, el } from "./dom.js";
 
 /** The API fields a control answers for: its `data-field`, a space-separated list of dotted names. */
 const fieldsOf = (control) => control.dataset.field.split(" ");
@@ -24,6 +24,59 @@ export function controlFor(dotted, scope = document) {
     if (exact.length) return exact[0];
   }
   return null;
+}
+
+/** A control's name and unit from its label: "Radius [m]" -> ["Radius", "m"], "Posted speed [km/h] (where ...)" ->
+ * ["Posted speed", "km/h"]. */
+function nameOf(control) {
+  const label = control.id ? $(`label[for="${control.id}"]`) : null;
+  const text = (label?.textContent || control.getAttribute("aria-label") || "").trim();
+  if (!text) return null;
+  const m = text.match(/^(.*?)\s*\[([^\]]+)\]/); // the name before the unit, the unit in brackets
+  return m ? [m[1].trim(), m[2]] : [text.replace(/\s*\(.*$/, "").trim(), ""];
+}
+
+/** The number in a framework message ("Input should be greater than or equal to 5" -> "5"). */
+const numberIn = (message) => (String(message).match(/-?\d+(?:\.\d+)?/) || [null])[0];
+
+/**
+ * A field error in plain words with its unit and the value typed ("Radius must be at least 5 m; you typed -50"),
+ * from the problem's `type` (the framework's error types, whose own words name neither) when the error is the
+ * control's own; otherwise the service's message as it is (the engine's messages are in words already).
+ */
+export function plainMessage(item, control) {
+  const named = control && nameOf(control);
+  const own = control && fieldsOf(control).includes(item.field);
+  if (!named || !own) return item.message;
+  const [name, unit] = named;
+  const typed = control.type === "file" ? "" : control.value.trim();
+  const you = typed === "" ? "" : `; you typed ${typed}`;
+  const n = numberIn(item.message);
+  const u = unit ? ` ${unit}` : "";
+  switch (item.type) {
+    case "greater_than_equal":
+      return `${name} must be at least ${n}${u}${you}`;
+    case "greater_than":
+      return `${name} must be more than ${n}${u}${you}`;
+    case "less_than_equal":
+      return `${name} must be at most ${n}${u}${you}`;
+    case "less_than":
+      return `${name} must be less than ${n}${u}${you}`;
+    case "float_type":
+    case "float_parsing":
+    case "int_type":
+    case "int_parsing":
+    case "finite_number":
+      return `${name} must be a number${unit ? ` (in ${unit})` : ""}${you}`;
+    case "string_too_short":
+      return typed === "" ? `${name} is needed: it cannot be empty` : `${name} is too short${you}`;
+    case "string_too_long":
+      return `${name} can be at most ${n} characters long; you typed ${typed.length}`;
+    case "missing":
+      return `${name} is needed`;
+    default:
+      return item.message;
+  }
 }
 
 let counter = 0;
@@ -75,7 +128,7 @@ export function showError(err, scope, formBox) {
     const control = controlFor(item.field, scope) || controlFor(item.field, document);
     if (control) {
       const suffix = fieldsOf(control).includes(item.field) ? "" : ` [${item.field}]`;
-      markField(control, `${item.message}${where}${suffix}`);
+      markField(control, `${plainMessage(item, control)}${where}${suffix}`);
       first ??= control;
       placed += 1;
     } else {

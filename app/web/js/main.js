@@ -5,7 +5,9 @@ import * as alignment from "./alignment.js";
 import * as api from "./api.js";
 import * as combination from "./combination.js";
 import * as combo from "./combobuilder.js";
-import { $, $$, clear, el, num } from "./dom.js";
+import * as curves from "./curves.js";
+import * as filecheck from "./filecheck.js";
+import { $, $$, clear, cueStaticTables, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
 import { applyParams, caseFields, rememberDefaults, stateParams, writeUrl } from "./form.js";
 import * as results from "./results.js";
@@ -40,7 +42,7 @@ async function guarded(button, scope, box, task) {
 function fillModels(models) {
   page.models = models;
   const select = $("#model");
-  for (const m of models) select.append(el("option", { value: m.id }, `${m.name} (${m.id})`));
+  for (const m of models) select.append(el("option", { value: m.id }, m.name)); // the name on screen, the id in links
   const initial = models.find((m) => m.default)?.id || models[0]?.id;
   select.value = select.dataset.pending && models.some((m) => m.id === select.dataset.pending) ? select.dataset.pending : initial;
   select.dataset.initial = initial;
@@ -84,8 +86,9 @@ async function compute() {
   const section = $("#vehicle-section").parentElement;
   const done = await guarded($("#compute"), section, $("#case-error"), async () => {
     $("#results").setAttribute("aria-busy", "true");
-    const request = caseFields();
     const v = await vehicle.current();
+    syncModel(); // a saved vehicle read just now: its kind's model (a combination's) before the case is read
+    const request = caseFields();
     const result = await api.post("/v1/srt", { vehicle: v.ref, ...request });
     results.showResult(result, modelInfo());
     combination.show(v.combination || null, result);
@@ -164,16 +167,61 @@ function showJob(job) {
 /** The bearer key when one is typed (a job is the key's own), else none: the service says if it needs one. */
 const typedKey = () => $("#api-key").value.trim() || undefined;
 
-/** A job; when the service wants a bearer key for jobs and none is typed, the same request synchronously. */
+/**
+ * A job: {job: {url, key}} for an alignment (its result is read by the curves' worker), {result} for a route; when
+ * the service wants a bearer key for jobs and none is typed, the same request synchronously: {result}.
+ */
 async function jobOrRequest(path, request, key, signal, operation) {
   try {
-    return await alignment.runJob(request, { operation, key, onStatus: showJob, signal });
+    const url = await alignment.runJob(request, { operation, key, onStatus: showJob, signal, read: false });
+    return operation === "alignments.assess" ? { job: { url, key } } : { result: await api.get(url, { key }), stored: { url, key } };
   } catch (err) {
     if (!(err instanceof api.ApiError) || err.problem.status !== 401 || key) throw err;
     $("#alignment-progress-text").textContent = "one request (a job needs the bearer key under \u201cSaved vehicles\u201d)";
     $("#alignment-cancel").hidden = true;
-    return api.post(path, request);
+    return { result: await api.post(path, request) };
   }
+}
+
+/**
+ * What the chosen file carries and still needs, shown beside the boxes before any request; returns the note that
+ * blocks the request (a file that is not text, a superelevation nobody gave), or null.
+ */
+const lastCheck = { file: null, inputs: "", blocker: null };
+
+async function checkFile() {
+  const file = $("#alignment-file").files[0];
+  const info = $("#alignment-file-info");
+  if (!file) {
+    filecheck.showNotes([]);
+    info.textContent = "";
+    return null;
+  }
+  // the same file with the same boxes was read when it was chosen: not again at Assess (a file can be large)
+  const inputs = ["#al-e", "#al-emax", "#al-posted", "#al-grade"].map((id) => $(id).value).join("|");
+  if (lastCheck.file === file && lastCheck.inputs === inputs) return lastCheck.blocker;
+  const blocker = await readFile(file, info);
+  Object.assign(lastCheck, { file, inputs, blocker });
+  return blocker;
+}
+
+/** Read the file's head: whether it is text, what it carries, what it needs (shown beside the boxes). */
+async function readFile(file, info) {
+  const bytes = new Uint8Array(await file.slice(0, 65536).arrayBuffer());
+  if (!filecheck.isText(bytes)) {
+    const note = { box: "#alignment-file", blocks: true, text: `${file.name} is not a text file (it holds binary data: an image, a spreadsheet's workbook, ...): choose a CSV table, or a LandXML, GPX or GeoJSON file.` };
+    info.textContent = "";
+    filecheck.showNotes([note]);
+    return note;
+  }
+  const text = await file.slice(0, 4_000_000).text();
+  const kind = alignment.formatOf(file.name, text);
+  const has = filecheck.carries(kind, text);
+  const whole = file.size <= 4_000_000;
+  info.textContent = filecheck.describe(kind, file.name, text, has, whole ? alignment.rowCount(kind, text) : null);
+  const notes = filecheck.needs(kind, file.name, has);
+  filecheck.showNotes(notes);
+  return notes.find((n) => n.blocks) || null;
 }
 
 async function assessFile() {
@@ -189,12 +237,19 @@ async function assessFile() {
   const assessed = await guarded($("#alignment-assess"), section, $("#alignment-error"), async () => {
     const file = $("#alignment-file").files[0];
     if (!file) throw Object.assign(new Error("choose a file"), { control: $("#alignment-file") });
+    // what the file still needs is said beside its box before any request: nothing is sent without it
+    const blocker = await checkFile();
+    if (blocker) {
+      $(blocker.box).focus();
+      return false;
+    }
     const text = await file.text();
     const kind = alignment.formatOf(file.name, text);
     // a saved fleet is its key's own: the key goes with every request (else the key typed, if any, for a job)
     const fleet = alignment.fleetId();
     const key = fleet ? vehicle.apiKey() : typedKey();
     const v = fleet ? null : await vehicle.current();
+    syncModel();
     const [path, request] = await alignment.buildRequest(kind, text, v?.ref, caseFields());
     const job = await alignment.wantsJob(path, alignment.rowCount(kind, text));
     box.hidden = false;
@@ -202,9 +257,9 @@ async function assessFile() {
     $("#alignment-progress-text").textContent = job ? "submitting the job" : "one request";
     cancel.hidden = !job;
     cancel.addEventListener("click", onCancel, { once: true });
-    let result;
+    let answer;
     try {
-      result = job ? await jobOrRequest(path, request, key, aborter.signal, job) : await api.post(path, request, { key });
+      answer = job ? await jobOrRequest(path, request, key, aborter.signal, job) : { result: await api.post(path, request, { key }) };
     } finally {
       cancel.hidden = true;
       cancel.removeEventListener("click", onCancel);
@@ -212,8 +267,8 @@ async function assessFile() {
     }
     Object.assign(alignment.state, { path, request, key });
     const lines = kind === "geojson" || kind === "gpx" ? alignment.routeLines(kind, text) : null;
-    alignment.render(result, kind, lines);
-    summary.extra("alignment", lines ? "Route" : "Alignment", alignment.printable());
+    const vehicleText = fleet ? `saved fleet ${fleet}` : v.label;
+    await alignment.render({ ...answer, kind, lines, fileName: file.name, vehicleText });
     return true;
   });
   if (assessed) stale.fresh(["alignment"]);
@@ -235,6 +290,7 @@ function watchInputs() {
 }
 
 function wire() {
+  cueStaticTables();
   watchInputs();
   $("#case-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
@@ -260,6 +316,7 @@ function wire() {
     ev.preventDefault();
     const out = await guarded($("#limits-compute"), $("#limits-form").parentElement, $("#limits-error"), async () => {
       const v = await vehicle.current();
+      syncModel();
       const out = await road.limits(v.ref, caseFields(), { combination: Boolean(v.combination) });
       if (v.built && (await api.has("post", "/v1/vehicles/payload-table"))) await road.payloadTable(v.built.spec);
       summary.extra("limits", `Acceptable load for SRT ${$("#limit-target").value.trim()} g`, [$("#limits-result")]);
@@ -290,6 +347,11 @@ function wire() {
     $("#limits-form").requestSubmit();
     $("#limits-result").scrollIntoView({ block: "start" });
   });
+  // the road's part of the printout, built by alignment.js each time the curves shown change (a fleet's vehicle)
+  document.addEventListener("curves-printout", (ev) => summary.extra("alignment", ev.detail.title, ev.detail.nodes, { lead: ev.detail.nodes[0], owned: true }));
+  for (const id of ["#alignment-file", "#al-e", "#al-emax", "#al-posted", "#al-grade"]) {
+    $(id).addEventListener("change", () => checkFile().catch(() => undefined));
+  }
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     assessFile();
@@ -326,11 +388,13 @@ function wire() {
   $("#saved-list").addEventListener("click", () => guarded($("#saved-list"), savedBox, $("#saved-error"), vehicle.listSaved));
   $("#saved-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    guarded($("#saved-load"), savedBox, $("#saved-error"), vehicle.loadSaved);
+    guarded($("#saved-load"), savedBox, $("#saved-error"), vehicle.loadSaved).then(syncModel);
   });
   $("#saved-choice").addEventListener("change", () => {
     if ($("#saved-choice").value) $("#saved-id").value = $("#saved-choice").value;
+    syncModel();
   });
+  $("#saved-id").addEventListener("change", syncModel);
   $("#key-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     guarded($("#save-vehicle"), $("#catalog-box"), $("#save-error"), async () => {
@@ -396,6 +460,7 @@ async function init() {
   if (wanted) await compute();
   else if (params.get("vehicle")?.startsWith("veh_")) status("Enter the bearer key of the saved vehicle, then compute.");
   document.body.dataset.computed = "true";
+  curves.warm();
 }
 
 init().catch((err) => status(`The page could not start: ${err.message}`));

@@ -1,7 +1,7 @@
 // Section 3: the SRT result (POST /v1/srt) and the curves against ay/g (POST /v1/plots/*, the service's SVGs).
 
 import * as api from "./api.js";
-import { $, clear, el, fmt, num, signed, svgNode } from "./dom.js";
+import { $, clear, el, fieldLabel, fmt, num, signed, svgNode } from "./dom.js";
 
 export const PLOTS = [
   { path: "/v1/plots/tire-loads", caption: "Tire loads Fz1, Fz3, Fz17, Fz19 against ay/g (thesis Figs. 85-87, 92)" },
@@ -66,7 +66,7 @@ export function facts(result) {
       ["Fz17", tl.rear_outer_kn],
       ["Fz19", tl.rear_inner_kn],
     ].filter(([, v]) => v !== null);
-    rows.push(["Tire loads [kN]", parts.map(([k, v]) => `${k} ${fmt(v, 1)}`).join(", ")]);
+    rows.push(["Tire loads [kN]", parts.map(([k, v]) => `${fieldLabel(k, true).replace(" [kN]", "")} ${fmt(v, 1)}`).join(", ")]);
   }
   rows.push(["Limit", `${result.limit} (rear LLT limit ${num(result.rear_llt_limit, 3)})`]);
   return rows;

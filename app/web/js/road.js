@@ -4,7 +4,7 @@
 // load height by overweight (POST /v1/srt/limits).
 
 import * as api from "./api.js";
-import { $, clear, download, el, fmt, scroller, svgNode, table } from "./dom.js";
+import { $, clear, download, el, fmt, grouped, num, scroller, svgNode, table } from "./dom.js";
 import { value } from "./form.js";
 import { srtText } from "./results.js";
 
@@ -96,10 +96,10 @@ export function radiusTable(rows) {
     [
       { key: "design_speed_kmh", label: "V [km/h]", format: (v) => fmt(v, 0) },
       { key: "governing_min_radius_m", label: "Governing R [m]", format: (v) => fmt(v, 0) },
-      { key: "governed_by", label: "Governed by", nowrap: true },
+      { key: "governed_by", label: "Governed by", nowrap: true, format: (v) => (v === "side-friction" ? "side friction" : v) },
       { key: "side_friction_min_radius_m", label: "Eq. 9.2 R [m]", format: (v) => fmt(v, 0) },
       { key: "rollover_min_radius_m", label: "Eq. 9.3 R [m]", format: (v) => fmt(v, 0) },
-      { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },
+      { key: "side_friction", label: "Side friction f", format: (v) => fmt(v, 3) },
     ],
     rows,
     { caption: "Minimum radius by design speed: the governing one, Eq. 9.2 (side friction, f of the standard) and Eq. 9.3 (rollover)." },
@@ -121,6 +121,13 @@ function render(design) {
   );
 }
 
+/** "with bank 4 % and grade 0 %": the case's road, as a computed line names it. */
+export function bankWords(caseRequest) {
+  const bank = caseRequest.road?.bank_percent ?? 0;
+  const grade = caseRequest.road?.slope_percent ?? 0;
+  return `with bank (superelevation) ${num(bank, 2)} % and grade ${num(grade, 2)} %`;
+}
+
 export async function curveSpeed(vehicleRef, caseRequest) {
   const radius = value($("#radius"));
   if (radius === undefined) {
@@ -130,7 +137,7 @@ export async function curveSpeed(vehicleRef, caseRequest) {
   }
   const out = await api.post("/v1/curve-speed", { vehicle: vehicleRef, ...caseRequest, radius_m: radius });
   state.speed = out;
-  $("#speed-result").textContent = `On a curve of radius ${fmt(out.radius_m, 0)} m (the case's bank and grade): at most ${fmt(out.max_speed_kmh, 1)} km/h before rollover (SRT ${srtText(out.srt)}, V = sqrt(127 SRT R)).`;
+  $("#speed-result").textContent = `On a curve of radius ${grouped(out.radius_m, 0)} m ${bankWords(caseRequest)}: at most ${fmt(out.max_speed_kmh, 1)} km/h before rollover (SRT ${srtText(out.srt)}, V = sqrt(127 SRT R), Eq. 9.1).`;
   return out;
 }
 
@@ -141,7 +148,12 @@ export async function curveSpeed(vehicleRef, caseRequest) {
 export async function superelevation() {
   const common = drop({ ...designFields(), design_speed_kmh: value($("#se-speed")), max_superelevation_percent: value($("#se-emax")) });
   const out = await api.post("/v1/superelevation", { ...common, radius_m: value($("#se-radius")) });
-  $("#super-result").textContent = `Superelevation ${fmt(out.superelevation_percent, 2)} %, leaving side friction ${fmt(out.side_friction, 3)} (f_max ${fmt(out.f_max, 3)}); Rmin for e_max: ${fmt(out.min_radius_m, 0)} m. ${out.method}`;
+  // the line names every input it was computed from: the radius, the design speed and the maximum superelevation
+  $("#super-result").textContent =
+    `A curve of radius ${grouped(out.radius_m, 0)} m at ${fmt(out.design_speed_kmh, 0)} km/h (maximum superelevation ${num(out.max_superelevation_percent, 2)} %): ` +
+    `superelevation ${fmt(out.superelevation_percent, 2)} %, leaving side friction ${fmt(out.side_friction, 3)} ` +
+    `(the standard's maximum side friction at ${fmt(out.design_speed_kmh, 0)} km/h: ${fmt(out.f_max, 3)}); ` +
+    `minimum radius at ${fmt(out.design_speed_kmh, 0)} km/h with ${num(out.max_superelevation_percent, 2)} %: ${grouped(out.min_radius_m, 0)} m. ${out.method}.`;
   const box = clear($("#super-table"));
   if (await api.has("post", "/v1/superelevation/table")) {
     const t = await api.post("/v1/superelevation/table", common);
@@ -152,7 +164,7 @@ export async function superelevation() {
           [
             { key: "radius_m", label: "R [m]", format: (v) => fmt(v, 0) },
             { key: "superelevation_percent", label: "e [%]", format: (v) => fmt(v, 2) },
-            { key: "side_friction", label: "f", format: (v) => fmt(v, 3) },
+            { key: "side_friction", label: "Side friction f", format: (v) => fmt(v, 3) },
           ],
           t.rows,
           { caption: `Superelevation by radius at ${fmt(t.design_speed_kmh, 0)} km/h, e_max ${fmt(t.max_superelevation_percent, 0)} % (${t.method}).` },

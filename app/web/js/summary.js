@@ -2,9 +2,9 @@
 // and the thesis citation, laid out for A4 or Letter by print.css. Rebuilt after every computation.
 
 import { COUPLINGS, governingText, KINDS, liftTable, unitsTable } from "./combination.js";
-import { $, clear, el, fmt, num, table } from "./dom.js";
+import { $, clear, el, fmt, grouped, num, table, thousands } from "./dom.js";
 import { factList, facts, plainVerdicts, showsLevelRoad, srtText, targetsTable } from "./results.js";
-import { radiusCaption, radiusTable } from "./road.js";
+import { bankWords, radiusCaption, radiusTable } from "./road.js";
 
 /** The record's fields in words, with the thesis symbol and the unit (the weight W as a mass in kg). */
 const RECORD_FIELDS = [
@@ -32,7 +32,11 @@ const RECORD_FIELDS = [
   ["front_llt_ratio", "Front LLT ratio at the limit (LLTf/LLTr)", ""],
 ];
 
-const withUnit = (value, unit, digits = 3) => `${num(value, digits)}${unit ? ` ${unit}` : ""}`;
+const withUnit = (value, unit, digits = 3) => `${thousands(num(value, digits))}${unit ? ` ${unit}` : ""}`;
+
+/** A model by its name (the model picker's words), not its id. */
+const modelName = (id) => Array.from($("#model")?.options || []).find((o) => o.value === id)?.textContent || id;
+const STAGES = { full: "full system", "tires-suspension": "tyres and suspension only" };
 
 function caseRows(request) {
   const road = request.road || {};
@@ -48,7 +52,7 @@ function caseRows(request) {
     ["Rear LLT limit (1 = wheel lift-off)", request.rear_llt_limit, ""],
   ];
   return [
-    ["Model", `${request.model}${request.stage ? ` (stage ${request.stage})` : ""}`],
+    ["Model", `${modelName(request.model)}${request.stage ? ` (${STAGES[request.stage] || request.stage})` : ""}`],
     ...rows.filter(([, v]) => v !== undefined).map(([k, v, unit]) => [k, typeof v === "number" ? withUnit(v, unit, 4) : String(v)]),
   ];
 }
@@ -68,7 +72,7 @@ function combinationList(combination) {
     [
       { key: "id", label: "Unit", text: true },
       { key: "kind", label: "Kind", text: true, format: (v) => KINDS[v] || v },
-      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => fmt(v, 0) },
+      { key: "sprung_mass_kg", label: "Sprung mass [kg]", format: (v) => grouped(v, 0) },
       { key: "cg_height_m", label: "CG height [m]", format: (v) => fmt(v, 2) },
       { key: "groups", label: "Axle groups", text: true, format: (g) => g.map((x) => `${x.id}: ${x.axles} axle${x.axles > 1 ? "s" : ""}, ${x.tyres_per_axle} tyres each`).join("; ") },
     ],
@@ -135,7 +139,10 @@ export function update({ vehicle, request, result, figures, design, speed, link 
     box.append(el("h3", {}, "Curves against ay/g"), el("div", { class: "plots" }, figures.map((f) => f.cloneNode(true))));
   }
   if (speed) {
-    box.append(el("h3", {}, "Curve speed"), el("p", {}, `Radius ${fmt(speed.radius_m, 0)} m: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`));
+    box.append(
+      el("h3", { class: "with-next" }, "Curve speed"),
+      el("p", {}, `Radius ${fmt(speed.radius_m, 0)} m ${bankWords(request)}: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`),
+    );
   }
   if (design) {
     const fig = $("#road-results figure");
@@ -150,14 +157,22 @@ export function update({ vehicle, request, result, figures, design, speed, link 
 
 /**
  * A part of the page printed after the summary when it is shown (the superelevation table, the payload table, the
- * route or alignment): `nodes` are copied; null removes the part.
+ * route or alignment): `nodes` are copied (moved when `owned`); null removes the part. `lead`: a node printed at
+ * the top of the summary too (a road's counts and worst curve, so the first page says what the road's part holds).
  */
-export function extra(name, title, nodes) {
+export function extra(name, title, nodes, { lead = null, owned = false } = {}) {
   const box = $("#summary-extras");
   box.querySelector(`[data-extra="${name}"]`)?.remove();
+  $(`#summary-lead [data-extra="${name}"]`)?.remove();
   if (!nodes) return;
-  const part = el("section", { "data-extra": name, class: "summary-extra" }, el("h3", {}, title));
-  for (const node of nodes.filter(Boolean)) part.append(node.cloneNode(true));
+  const part = el("section", { "data-extra": name, class: `summary-extra extra-${name}` }, el("h3", { class: "with-next" }, title));
+  // `owned`: nodes built for the printout only are moved, not copied (a road's table can hold 500 rows)
+  for (const node of nodes.filter(Boolean)) part.append(owned ? node : node.cloneNode(true));
   for (const id of part.querySelectorAll("[id]")) id.removeAttribute("id");
   box.append(part);
+  if (lead) {
+    const top = el("section", { "data-extra": name, class: "summary-lead-part" }, el("h3", {}, `${title} assessed (its curves follow)`), lead.cloneNode(true));
+    for (const id of top.querySelectorAll("[id]")) id.removeAttribute("id");
+    $("#summary-lead").append(top);
+  }
 }

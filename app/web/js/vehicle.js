@@ -4,7 +4,7 @@
 import * as api from "./api.js";
 import { sideView } from "./combination.js";
 import * as combo from "./combobuilder.js";
-import { $, $$, clear, el, fmt, scroller, table } from "./dom.js";
+import { $, $$, clear, el, fieldLabel, fmt, grouped, scroller, table } from "./dom.js";
 import { value } from "./form.js";
 
 export const state = {
@@ -152,10 +152,18 @@ export function defaultModel() {
   return choosesCombination() ? "combination" : null;
 }
 
+/** Whether the saved vehicle loaded for the id typed is a combination (its kind, or its body `{"combination": ...}`). */
+function savedCombination() {
+  const saved = state.saved;
+  if (!saved || saved.id !== $("#saved-id").value.trim()) return false;
+  return saved.kind === "combination" || Boolean(saved.vehicle?.combination || saved.vehicle?.combination_spec);
+}
+
 /** Whether the vehicle now chosen is a combination (a combination preset, or a pasted {"combination": ...}). */
 export function choosesCombination() {
   if (source() === "preset") return isCombination(preset());
   if (source() === "combo") return true;
+  if (source() === "saved") return savedCombination(); // a saved combination keeps the combination model
   if (source() === "record") return /^\s*\{\s*"combination"/.test($("#record-json").value);
   return false;
 }
@@ -262,7 +270,7 @@ export function describeComponents() {
       "div",
       { class: "hint component-values", id: noteId },
       keys.map((k) => `${$(`label[for="${boxes[k].slice(1)}"]`).textContent.replace(/ \[.*\]$/, "")} ${entry[k].value} ${entry[k].unit}`).join(", "),
-      el("details", {}, el("summary", {}, "Sources"), el("ul", {}, keys.map((k) => el("li", {}, `${k}: ${entry[k].source}`)))),
+      el("details", {}, el("summary", {}, "Sources"), el("ul", {}, keys.map((k) => el("li", {}, `${fieldLabel(k)}: ${entry[k].source}`)))),
     );
     $(id).closest(".field").append(note);
   }
@@ -274,7 +282,7 @@ function derivationTable(built) {
     "How each record field was obtained",
     table(
       [
-        { key: "field", label: "Record field" },
+        { key: "field", label: "Record field", format: (v) => fieldLabel(v) },
         { key: "value", label: "Value", format: (v) => (typeof v === "number" ? String(Number(v.toPrecision(6))) : v ?? "-") },
         { key: "unit", label: "Unit", text: true },
         { key: "method", label: "Method", text: true },
@@ -294,8 +302,8 @@ export function showBuilt(built) {
       "p",
       {},
       `Built: W = ${fmt(built.vehicle.weight_kn, 2)} kN`,
-      built.gross_mass_kg !== undefined ? ` (gross ${fmt(built.gross_mass_kg, 0)} kg)` : "",
-      built.group_loads_kg ? `; static group loads ${Object.entries(built.group_loads_kg).map(([k, v]) => `${k} ${fmt(v, 0)} kg`).join(", ")}` : "",
+      built.gross_mass_kg !== undefined ? ` (gross ${grouped(built.gross_mass_kg, 0)} kg)` : "",
+      built.group_loads_kg ? `; static group loads ${Object.entries(built.group_loads_kg).map(([k, v]) => `${k} ${grouped(v, 0)} kg`).join(", ")}` : "",
       ".",
     ),
     el("div", { class: "derivation" }, derivationTable(built)),
@@ -381,7 +389,12 @@ export async function current() {
     const id = $("#saved-id").value.trim();
     if (!state.saved || state.saved.id !== id) await loadSaved();
     const saved = state.saved;
-    const resolved = await resolveBody(saved.vehicle, `${saved.title} (${saved.id})`);
+    const label = `${saved.title} (${saved.id})`;
+    if (saved.vehicle?.combination) {
+      // its body is sent as it was read (no key needed for each computation); the combination is drawn and printed
+      return { ref: saved.vehicle, label, record: null, body: saved.vehicle, combination: saved.vehicle.combination, params: { vehicle: saved.id } };
+    }
+    const resolved = await resolveBody(saved.vehicle, label);
     return { ...resolved, record: resolved.ref, params: { vehicle: saved.id } };
   }
   if (which === "combo") {

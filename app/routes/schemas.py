@@ -444,7 +444,9 @@ class RoutePartOut(OutputModel):
     )
 
 
-class SkippedOut(OutputModel):
+class RouteSkippedOut(OutputModel):
+    """Something in the document that was read but not used, and why."""
+
     what: str = Field(description=describe("What was not used: the part, feature or tag as in the document.", unit="-"))
     why: str = Field(description=describe("Why it was not used.", unit="-"))
 
@@ -488,7 +490,7 @@ class RouteReading(OutputModel):
             unit="-",
         )
     )
-    skipped: list[SkippedOut] = Field(
+    skipped: list[RouteSkippedOut] = Field(
         description=describe(
             "What was read but not used, and why: empty track segments, a router's `<rte>` beside its `<trk>`, "
             "features that are not lines, `maxspeed` values that are not a speed.",

@@ -130,3 +130,36 @@ def test_bad_options_are_422_naming_the_field(client, option, value):
     r = _post(client, {**_road(), option: value}, status=422)
     problem = r.json()
     assert option in r.text and problem["status"] == 422
+
+
+def _series(svg: str, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """A series' plotted values, read back from its data-x / data-y (app/formats/svg.py)."""
+    import re
+
+    m = re.search(r'data-name="' + re.escape(name) + r'">.*?data-x="([^"]*)" data-y="([^"]*)"', svg, re.S)
+    assert m, name
+    return np.array(m.group(1).split(), dtype=float), np.array(m.group(2).split(), dtype=float)
+
+
+def test_the_speed_profile_plot_draws_the_answers_profile_and_speeds(client):
+    from app.plots.service import SERIES_ADVISORY, SERIES_POSTED, SERIES_PROFILE, SERIES_SAFE
+
+    body = _road(seed=5, n_bends=6)
+    out = _post(client, body).json()["vehicles"][0]
+    r = _post(client, body, path="/v1/plots/speed-profile")
+    assert r.headers["content-type"] == "image/svg+xml"
+    svg = r.text
+    x, y = _series(svg, SERIES_PROFILE)
+    assert x == pytest.approx([p["station_m"] for p in out["speed_profile"]], rel=1e-5)
+    assert y == pytest.approx([p["speed_kmh"] for p in out["speed_profile"]], rel=1e-5)
+    for name, field in ((SERIES_SAFE, "safe_speed_kmh"), (SERIES_ADVISORY, "advisory_speed_kmh")):
+        xs, ys = _series(svg, name)  # start, end, gap per curve
+        assert xs[0::3] == pytest.approx([row["bend_start_m"] for row in out["rows"]], rel=1e-5)
+        assert ys[0::3] == pytest.approx([row[field] for row in out["rows"]], rel=1e-5)
+        assert np.isnan(ys[2::3]).all()
+    _, posted = _series(svg, SERIES_POSTED)
+    assert posted[0::3] == pytest.approx([POSTED] * len(out["rows"]))
+    # curves without stations have no profile: a 422 naming the curves, with the reason
+    curves = {"vehicle": BTRAIN, "curves": [{"id": "A", "radius_m": 150.0, "superelevation_percent": 6.0}]}
+    problem = _post(client, curves, status=422, path="/v1/plots/speed-profile").json()
+    assert problem["errors"][0]["field"] == "curves" and "no speed profile" in problem["detail"]

@@ -95,8 +95,8 @@ ADVICE_COLUMNS = (
 
 #: a row's ``treatment.source`` and ``truck_rollover_warning.rule``: short, the full texts once in the answer's
 #: ``advisory`` (per row they would double a large answer)
-TREATMENT_ROW_SOURCE = "MUTCD 11th ed. (2023) Table 2C-4, as transcribed: unverified (see advisory.treatment_source)"
-W1_13_ROW_RULE = "this service's rule, not a manual's (see advisory.truck_rollover_warning_rule)"
+TREATMENT_ROW_SOURCE = "MUTCD 11e Table 2C-4, unverified (advisory.treatment_source)"
+W1_13_ROW_RULE = "this service's, not a manual's (advisory.truck_rollover_warning_rule)"
 
 
 def _opt(values: np.ndarray) -> list[float | None]:

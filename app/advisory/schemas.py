@@ -6,7 +6,7 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.http.schemas import ABSENT, EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
+from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, shape_error
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, VehicleRef
 from engine.road.advisory import (
@@ -223,3 +223,34 @@ class AdvisorySpeedResult(OutputModel):
     )
     notes: list[str] = Field(description=describe("What the answer could not verify or apply.", unit="-"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))
+
+
+class AdvisoryOptions(InputModel):
+    """The advisory-speed and speed-profile options of an assessment of curves (alignments and routes): each assessed
+    curve carries its advisory speed, treatment, W1-13 rule and the truck's profile figures."""
+
+    units: Literal["us", "metric"] = Field(
+        "us",
+        description=describe(
+            "The plaques' units: `us` shows multiples of 5 mph (TxDOT: +1 mph, rounded down to 5 mph); `metric` "
+            "multiples of 10 km/h (rounded down: assumed).",
+            unit="-",
+        ),
+    )
+    desired_speed_kmh: float = _speed(
+        "The truck's speed on the tangents where a curve has no posted speed (a curve's posted speed is its "
+        "tangent's otherwise). Without it, an alignment with a curve without posted speed has no profile (each row "
+        "says why).",
+        "V_d",
+    )
+    deceleration_mps2: float = Field(
+        DECELERATION_MPS2,
+        gt=0,
+        description=describe(
+            "The truck's braking rate into a curve in the speed profile: default 10 ft/s^2 (MUTCD 11e Table 2C-3's "
+            f"basis, as transcribed: unverified); at most {MAX_TRUCK_DECELERATION_MPS2:.3f} (15 ft/s^2, NCHRP Report "
+            "774's emergency braking for trucks in curves).",
+            unit="m/s^2",
+            symbol="d",
+        ),
+    )

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from app.alignments.advice import VehicleAdvice
 from app.compute.resolved import ResolvedAssessment
 from app.formats.alignment_io import CurveTable
 from app.srt.service import target_checks_many
@@ -31,6 +32,7 @@ class VehicleAnswer:
     srts: np.ndarray  # the distinct SRTs [g]; -1 for the rows without one
     tilt_deg: np.ndarray  # per distinct SRT [deg]; nan without an SRT
     targets: dict[str, float]
+    advice: VehicleAdvice  # the advisory speed, treatment and speed profile of each row
     level_srt: float = math.nan  # the vehicle's level-road SRT (bank and grade zero) [g]; nan when refused
 
     @cached_property
@@ -61,11 +63,13 @@ class AlignmentAnswer:
     vehicles: list[VehicleAnswer]
 
 
-def vehicle_answer(r: ResolvedAssessment, index: int, cols: AlignmentColumns, level: float) -> VehicleAnswer:
-    """Vehicle ``index``'s rows as the renderers take them, from its assessed columns and level-road SRT (a job's
-    part builds it from its stored columns the same way)."""
+def vehicle_answer(
+    r: ResolvedAssessment, index: int, cols: AlignmentColumns, level: float, advice: VehicleAdvice
+) -> VehicleAnswer:
+    """Vehicle ``index``'s rows as the renderers take them, from its assessed columns, level-road SRT and advice
+    (:mod:`app.alignments.advice`; a job's part builds it from its stored columns and its slice of the advice)."""
     srts, pair_of_row = np.unique(np.where(np.isnan(cols.srt_g), -1.0, cols.srt_g), return_inverse=True)
     # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
     preset, saved = r.presets[index], r.saved_ids[index]
-    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r.targets, level)
+    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r.targets, advice, level)

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import orjson
 
+from app.alignments.advice import VehicleAdvice, advisory_head, treatment_devices
 from app.alignments.answer import AlignmentAnswer, VehicleAnswer
 from app.formats.alignment_io import DIRECTIONS, FILE_SUPERELEVATION, GRADE_SOURCES, BendTable
 from app.formats.segments import Codes, Floats, Segment, Slices, write_rows
@@ -30,6 +31,7 @@ from app.formats.tables import (
 from app.formats.texts import Texts
 from engine import ENGINE_VERSION
 from engine.road import GOVERNED_BY, AlignmentColumns
+from engine.road.advisory import TREATMENTS
 
 if TYPE_CHECKING:
     from app.compute.resolved import ResolvedAlignment, ResolvedAssessment
@@ -81,6 +83,21 @@ SPEED_COLUMNS = (
     "error",
 )
 
+#: the advisory speed, treatment, W1-13 rule and speed profile figures of each row (:mod:`app.alignments.advice`)
+ADVICE_COLUMNS = (
+    "advisory_speed_kmh",
+    "treatment_devices",
+    "truck_rollover_warning",
+    "approach_speed_kmh",
+    "required_deceleration_mps2",
+    "profile_reason",
+)
+
+#: a row's ``treatment.source`` and ``truck_rollover_warning.rule``: short, the full texts once in the answer's
+#: ``advisory`` (per row they would double a large answer)
+TREATMENT_ROW_SOURCE = "MUTCD 11e Table 2C-4, unverified (advisory.treatment_source)"
+W1_13_ROW_RULE = "this service's, not a manual's (advisory.truck_rollover_warning_rule)"
+
 
 def _opt(values: np.ndarray) -> list[float | None]:
     """The column as a list, None where it is nan (only those cells are looked at again: most columns have none)."""
@@ -100,7 +117,7 @@ def rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> li
 
 def _row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int) -> dict[str, list[Any]]:
     """Rows [start, stop) of one vehicle, column by column (CurveRow's fields in the schema's order)."""
-    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    c, t, sl, a = v.columns, answer.curves, slice(start, stop), v.advice
     b = t.bend_columns.sliced(start, stop)
 
     def coded(codes: np.ndarray, values: Sequence[Any]) -> list[Any]:
@@ -142,7 +159,22 @@ def _row_columns(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: in
         "standard_min_radius_m": _opt(c.standard_min_radius_m[sl]),
         "meets_standard_min_radius": [None if m < 0 else bool(m) for m in c.meets_standard_min_radius[sl].tolist()],
         "error": [None if k < 0 else c.errors[k] for k in c.error[sl].tolist()],
+        "advisory_speed_kmh": _opt(a.advisory_speed_kmh[sl]),
+        "treatment": [_TREATMENT_OUT[k + 1] for k in a.treatment[sl].tolist()],
+        "truck_rollover_warning": [_WARNING_OUT[int(w)] for w in a.truck_rollover_warning[sl].tolist()],
+        "approach_speed_kmh": _opt(a.approach_speed_kmh[sl]),
+        "required_deceleration_mps2": _opt(a.required_deceleration_mps2[sl]),
+        "profile_reason": [None if k < 0 else a.reasons[k] for k in a.reason[sl].tolist()],
     }
+
+
+def flatten_advice(row: dict[str, Any]) -> dict[str, Any]:
+    """A row of :func:`rows` with its advice as the CSV's cells (:data:`ADVICE_COLUMNS`): the treatment's devices
+    joined by ``;`` (empty: none), the W1-13 recommendation as a boolean."""
+    out = {k: v for k, v in row.items() if k not in ("treatment", "truck_rollover_warning")}
+    out["treatment_devices"] = ";".join(row["treatment"]["devices"]) or None
+    out["truck_rollover_warning"] = row["truck_rollover_warning"]["recommended"]
+    return out
 
 
 def summary(c: AlignmentColumns) -> dict[str, Any]:
@@ -197,6 +229,7 @@ def json_head(resolved: ResolvedAlignment, curves: int) -> bytes:
         "curves": curves,
         "csv_dialect": r.csv_dialect,  # in the key (resolve_alignment) only when the curves came as CSV
         "reading": r.reading,  # in the key only when the curves came from a road file
+        "advisory": advisory_head(r),
     }
     return orjson.dumps(head)[:-1] + b',"vehicles":['
 
@@ -204,12 +237,21 @@ def json_head(resolved: ResolvedAlignment, curves: int) -> bytes:
 def json_vehicle_head(
     index: int, preset: str | None, saved_id: str | None, summary: dict[str, Any], *, first: bool
 ) -> bytes:
-    """One vehicle's entry up to its ``rows`` list (opened); closed by :data:`JSON_VEHICLE_END`."""
+    """One vehicle's entry up to its ``rows`` list (opened); closed by :func:`json_vehicle_end`."""
     vehicle = {"index": index, "preset": preset, "saved_vehicle_id": saved_id, "summary": summary}
     return (b"" if first else b",") + orjson.dumps(vehicle)[:-1] + b',"rows":['
 
 
-JSON_VEHICLE_END = b"]}"
+def json_vehicle_end(a: VehicleAdvice) -> bytes:
+    """Closes a vehicle's ``rows`` and entry with its ``speed_profile`` (a point per station, written a column at a
+    time) and the profile's notes."""
+    n = len(a.station_m)
+    points = b""
+    if n:
+        f = _json_column
+        layout = _json_layout([("station_m", f(a.station_m)), ("speed_kmh", f(a.speed_kmh))])
+        points = write_rows(layout, n, drop=1)
+    return b'],"speed_profile":[' + points + b'],"speed_profile_notes":' + orjson.dumps(a.notes) + b"}"
 
 
 def _json_ids(ids: Sequence[str]) -> Segment | tuple[Segment, ...]:
@@ -263,6 +305,10 @@ def _e_source(derived: np.ndarray, b: BendTable) -> np.ndarray:
 
 
 _MEETS = (None, False, True)  # by meets_standard_min_radius + 1
+#: a row's ``treatment`` by its code + 1 (code -1: no posted speed, no devices) and ``truck_rollover_warning``
+_TREATMENT_OUT = [{"devices": treatment_devices(k), "source": TREATMENT_ROW_SOURCE} for k in range(-1, len(TREATMENTS))]
+_WARNING_OUT = [{"recommended": w, "rule": W1_13_ROW_RULE} for w in (False, True)]
+_TREATMENT_CSV = [";".join(treatment_devices(k)) or None for k in range(-1, len(TREATMENTS))]
 
 
 def _json_layout(fields: list[tuple[str, Segment | tuple[Segment, ...]]]) -> list[Segment]:
@@ -290,7 +336,7 @@ def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, 
     first too, for a chunk that follows another): ``orjson.dumps`` of :func:`rows`, byte for byte (tested), written
     a column at a time (:mod:`app.formats.segments`): the texts, flags and the target checks (every row with an SRT
     is judged on the one level-road SRT) written once and gathered by code."""
-    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    c, t, sl, a = v.columns, answer.curves, slice(start, stop), v.advice
     b = t.bend_columns.sliced(start, stop)
     pairs = v.pair_of_row[sl]
     judged = (v.srts[pairs] >= 0).astype(np.intp)
@@ -331,6 +377,12 @@ def json_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, 
         ("standard_min_radius_m", f(c.standard_min_radius_m[sl])),
         ("meets_standard_min_radius", _json_codes(c.meets_standard_min_radius[sl] + 1, _MEETS)),
         ("error", _json_codes(c.error[sl] + 1, [None, *c.errors])),
+        ("advisory_speed_kmh", f(a.advisory_speed_kmh[sl])),
+        ("treatment", _json_codes(a.treatment[sl] + 1, _TREATMENT_OUT)),
+        ("truck_rollover_warning", _json_codes(a.truck_rollover_warning[sl].astype(np.intp), _WARNING_OUT)),
+        ("approach_speed_kmh", f(a.approach_speed_kmh[sl])),
+        ("required_deceleration_mps2", f(a.required_deceleration_mps2[sl])),
+        ("profile_reason", _json_codes(a.reason[sl] + 1, [None, *a.reasons])),
     ]
     return write_rows(_json_layout(fields), stop - start, drop=0 if comma else 1)
 
@@ -347,7 +399,7 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
         yield json_vehicle_head(v.index, v.preset, v.saved_id, summary(v.columns), first=k == 0)
         for start in range(0, n, ROWS_PER_CHUNK):
             yield json_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), comma=start > 0)
-        yield JSON_VEHICLE_END
+        yield json_vehicle_end(v.advice)
     yield json_tail()
 
 
@@ -358,7 +410,15 @@ def target_names(resolved: ResolvedAssessment) -> list[str]:
 
 def csv_columns(resolved: ResolvedAssessment) -> list[str]:
     names = target_names(resolved)
-    return ["vehicle_index", "vehicle_preset", "vehicle_saved_id", *ROW_COLUMNS, *target_columns(names), *SPEED_COLUMNS]
+    return [
+        "vehicle_index",
+        "vehicle_preset",
+        "vehicle_saved_id",
+        *ROW_COLUMNS,
+        *target_columns(names),
+        *SPEED_COLUMNS,
+        *ADVICE_COLUMNS,
+    ]
 
 
 def csv_header(resolved: ResolvedAssessment) -> bytes:
@@ -381,7 +441,7 @@ def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, c
     """CSV lines of rows [start, stop) of one vehicle (``columns``: :func:`csv_columns`): the cells of :func:`rows`
     as :func:`app.formats.tables.csv_lines` writes them (tested), written a block of number columns at a time
     (:mod:`app.formats.segments`); the vehicle's fields, the level-road SRT and the target checks written once."""
-    c, t, sl = v.columns, answer.curves, slice(start, stop)
+    c, t, sl, a = v.columns, answer.curves, slice(start, stop), v.advice
     b = t.bend_columns.sliced(start, stop)
     f = Floats
     pairs = v.pair_of_row[sl]
@@ -432,6 +492,16 @@ def csv_rows(answer: AlignmentAnswer, v: VehicleAnswer, start: int, stop: int, c
         _csv_codes(c.meets_standard_min_radius[sl] + 1, _MEETS),
         b",",
         _csv_codes(c.error[sl] + 1, [None, *c.errors]),
+        b",",
+        f([a.advisory_speed_kmh[sl]]),
+        b",",
+        _csv_codes(a.treatment[sl] + 1, _TREATMENT_CSV),
+        b",",
+        _csv_codes(a.truck_rollover_warning[sl].astype(np.intp), (False, True)),
+        b",",
+        f([a.approach_speed_kmh[sl], a.required_deceleration_mps2[sl]]),
+        b",",
+        _csv_codes(a.reason[sl] + 1, [None, *a.reasons]),
         b"\r\n",
     ]
     return write_rows(segments, stop - start)

@@ -8,6 +8,7 @@ from typing import Annotated, Any, Literal
 from pydantic import AfterValidator, ConfigDict, Field, model_validator
 from pydantic_core import PydanticCustomError
 
+from app.advisory.schemas import AdvisoryOptions
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES, curve_id_problem
 from app.http import problems
@@ -177,7 +178,7 @@ ALIGNMENT_LANDXML_EXAMPLE = (
 )
 
 
-class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
+class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions, AdvisoryOptions):
     """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve
     has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 10,000 curves and
     10,000 rows (curves x vehicles) per request; larger work goes to a job (`POST /v1/jobs`, `alignments.assess`).
@@ -309,6 +310,42 @@ class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
 
 
 # ------------------------------------------------------------------------------------------- output
+
+
+class TreatmentRowOut(OutputModel):
+    devices: list[str] = Field(
+        description=describe(
+            "The devices by the posted-advisory difference (empty: none called for, or no posted speed).", unit="-"
+        )
+    )
+    source: str = Field(description=describe("The table (its full text: the answer's `advisory`).", unit="-"))
+
+
+class RolloverWarningRowOut(OutputModel):
+    recommended: bool = Field(
+        description=describe(
+            "The vehicle's rollover speed less the margin falls below the advisory speed shown.", unit="-"
+        )
+    )
+    rule: str = Field(description=describe("Whose rule (its full text: the answer's `advisory`).", unit="-"))
+
+
+class SpeedPointOut(OutputModel):
+    station_m: float = Field(description=describe("Station along the alignment.", unit="m"))
+    speed_kmh: float = Field(description=describe("The truck's speed there.", unit="km/h"))
+
+
+class AdvisoryOut(OutputModel):
+    """The options and sources of the rows' advisory speeds, treatments, warnings and speed profiles."""
+
+    units: Literal["us", "metric"] = Field(description=describe("The plaques' units.", unit="-"))
+    increment: float = Field(description=describe("The plaques' increment.", unit="mph or km/h (by `units`)"))
+    desired_speed_kmh: float | None = Field(
+        description=describe("The request's tangent speed where a curve has no posted speed.", unit="km/h")
+    )
+    deceleration_mps2: float = Field(description=describe("The profile's braking rate.", unit="m/s^2"))
+    treatment_source: str = Field(description=describe("The treatment table and its status.", unit="-"))
+    truck_rollover_warning_rule: str = Field(description=describe("The W1-13 rule (this service's).", unit="-"))
 
 
 class CurveRow(OutputModel):
@@ -478,6 +515,38 @@ class CurveRow(OutputModel):
     error: str | None = Field(
         description=describe("Why the engine refused this curve's case (null otherwise).", unit="-")
     )
+    advisory_speed_kmh: float | None = Field(
+        description=describe(
+            "The advisory speed shown on the plaque, a multiple of the answer's `advisory.increment` (FHWA-SA-11-22 "
+            "and TxDOT's Design Method; curves within 600 ft share one sign, its lowest speed: see docs/advisory.md); "
+            "null where it cannot be computed.",
+            unit="km/h",
+        )
+    )
+    treatment: TreatmentRowOut = Field(
+        description=describe("The signs the posted-advisory difference calls for.", unit="see its fields")
+    )
+    truck_rollover_warning: RolloverWarningRowOut = Field(
+        description=describe("Whether a truck rollover warning (W1-13) is recommended.", unit="see its fields")
+    )
+    approach_speed_kmh: float | None = Field(
+        description=describe(
+            "The truck's speed in the profile where it starts to slow for this curve (the profile's speed at the "
+            "curve's start, before braking); null without a profile (`profile_reason`).",
+            unit="km/h",
+        )
+    )
+    required_deceleration_mps2: float | None = Field(
+        description=describe(
+            "The deceleration the truck needs from the approach speed to the curve's speed after the reaction "
+            "distance (0: no slowing); null without a profile, with no room to brake, or where the tangent before "
+            "the curve has no known length (`profile_reason` says which).",
+            unit="m/s^2",
+        )
+    )
+    profile_reason: str | None = Field(
+        description=describe("Why a profile figure of this row is null (null: none is).", unit="-")
+    )
 
 
 class AlignmentSummary(OutputModel):
@@ -518,6 +587,15 @@ class VehicleAssessment(OutputModel):
     )
     summary: AlignmentSummary = Field(description=describe("Counts over the curves.", unit="see its fields"))
     rows: list[CurveRow] = Field(description=describe("One row per curve, in the request's order.", unit="per field"))
+    speed_profile: list[SpeedPointOut] = Field(
+        description=describe(
+            "The truck's speed profile along the curves (engine/road/profile.py; docs/advisory.md): its speed at "
+            "each station, linear in speed squared between them; empty where the curves' stations cannot carry one "
+            "(the rows' `profile_reason`, `speed_profile_notes`).",
+            unit="per field",
+        )
+    )
+    speed_profile_notes: list[str] = Field(description=describe("Why there is no profile, if none.", unit="-"))
 
 
 class CsvDialectOut(OutputModel):
@@ -593,6 +671,9 @@ class AlignmentResult(OutputModel):
         description=describe(
             "What was read from a road file (LandXML): null when the curves came as JSON or CSV.", unit="see its fields"
         )
+    )
+    advisory: AdvisoryOut = Field(
+        description=describe("The options and sources of the rows' advisory figures.", unit="see its fields")
     )
     vehicles: list[VehicleAssessment] = Field(description=describe("One entry per vehicle.", unit="see its fields"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -28,6 +28,7 @@ from fastapi.exceptions import RequestValidationError
 from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
+from app.alignments.advice import advise, curve_places
 from app.alignments.answer import AlignmentAnswer, VehicleAnswer, vehicle_answer
 from app.alignments.curves import curves_from_json
 from app.alignments.rows import render
@@ -55,6 +56,7 @@ from engine.road import (
     bank_grade_pairs,
     superelevation_used,
 )
+from engine.road.profile import check_deceleration
 from engine.vehicle import Vehicle
 
 _PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curves while the rest is validated
@@ -161,16 +163,23 @@ class AlignmentJob:
     vehicles: list[Any]
     curves: CurveTable
     source: str  # the request field the curves came from, for an error in a document (``csv``, ``body``, ...)
+    # each curve's start station and length [m] and deflection [deg] for the advice (None: a road file's,
+    # :func:`app.alignments.advice.curve_places`; a route gives its found curves')
+    places: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
 
     @property
     def rows(self) -> int:
         return len(self.curves) * len(self.vehicles)
+
+    def curve_places(self) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        return curve_places(self.curves) if self.places is None else self.places
 
 
 def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], settings: Settings) -> ResolvedAssessment:
     """What an assessment's answer depends on besides its curves (part of its cache key): the vehicles' records
     (and preset ids, saved ids), the SRT options, the design standard, e_max and the targets. ``req`` is an
     alignment or a route request (they share these fields)."""
+    check_deceleration(req.deceleration_mps2)  # a truck's braking limit: a 422 naming the field
     return ResolvedAssessment(
         vehicles=tuple(v.to_dict() for v in vehicles),
         presets=tuple(r if isinstance(r, str) else None for r in refs),
@@ -184,6 +193,9 @@ def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], sett
         side_friction_bound=req.bound,
         max_superelevation_percent=req.max_superelevation_percent,
         targets=resolve_targets(req.targets, settings),
+        units=req.units,
+        desired_speed_kmh=req.desired_speed_kmh,
+        deceleration_mps2=req.deceleration_mps2,
     )
 
 
@@ -315,7 +327,7 @@ def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleA
         cols = assess_table(case, r, job.curves, solve_pairs) if len(job.curves) else _no_curves()
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
-    return vehicle_answer(r, index, cols, level_road_srt(case))
+    return vehicle_answer(r, index, cols, level_road_srt(case), advise(r, cols, *job.curve_places()))
 
 
 def level_road_srt(case: Case) -> float:

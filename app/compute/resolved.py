@@ -130,6 +130,10 @@ class ResolvedAssessment(Resolved):
     side_friction_bound: str | None
     max_superelevation_percent: float | None
     targets: dict[str, float]
+    # the advisory speeds' and the speed profile's options (app.advisory.schemas.AdvisoryOptions)
+    units: str
+    desired_speed_kmh: float | None
+    deceleration_mps2: float
 
     def __post_init__(self) -> None:
         if not len(self.vehicles) == len(self.presets) == len(self.saved_ids):

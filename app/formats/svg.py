@@ -3,8 +3,8 @@
 Charts carry what a designer needs to read them without the thesis at hand: a title, labelled axes with
 units, ticks at round values, a legend, optional vertical markers (e.g. SRT_ts and SRT_3D) and a caption in
 the thesis's notation. Every series is a ``<g class="series" data-name="...">`` holding one ``<polyline>``
-(with ``data-x``/``data-y`` attributes listing the plotted values), so tests and scripts can read the data
-back from the document.
+(a ``<path>`` for a series with gaps) with ``data-x``/``data-y`` attributes listing the plotted values, so tests
+and scripts can read the data back from the document.
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ class Series:
     x: Sequence[float]
     y: Sequence[float]
     dashed: bool = False
+    gaps: bool = False  # a non-finite y breaks the line (drawn as a <path>); else such points are left out
 
 
 @dataclass(frozen=True)
@@ -147,15 +148,25 @@ def line_chart(
             c = PALETTE[color % len(PALETTE)]
             dash = DASHES[(j // len(PALETTE)) % len(DASHES)] if not s.dashed else "6 4"
             color += 1
-            pts = " ".join(f"{sx(a):.2f},{sy(b):.2f}" for a, b in zip(s.x, s.y, strict=True) if math.isfinite(b))
             data_x = " ".join(f"{a:.6g}" for a in s.x)
             data_y = " ".join(f"{b:.6g}" for b in s.y)
             dash_attr = f' stroke-dasharray="{dash}"' if dash else ""
+            if s.gaps:  # a path whose pieces a non-finite value separates (each curve's speed on its own span)
+                pieces, pen = [], "M"
+                for a, b in zip(s.x, s.y, strict=True):
+                    if math.isfinite(b):
+                        pieces.append(f"{pen}{sx(a):.2f},{sy(b):.2f}")
+                        pen = "L"
+                    else:
+                        pen = "M"
+                shape = f'<path fill="none" stroke="{c}" stroke-width="2"{dash_attr} d="{" ".join(pieces)}" '
+            else:
+                pts = " ".join(f"{sx(a):.2f},{sy(b):.2f}" for a, b in zip(s.x, s.y, strict=True) if math.isfinite(b))
+                shape = f'<polyline fill="none" stroke="{c}" stroke-width="2"{dash_attr} points="{pts}" '
             out.append(
                 f'<g class="series" data-name={quoteattr(s.name)}>'
                 f"<title>{escape(s.name)}</title>"
-                f'<polyline fill="none" stroke="{c}" stroke-width="2"{dash_attr} points="{pts}" '
-                f'data-x="{data_x}" data-y="{data_y}"/></g>'
+                f'{shape}data-x="{data_x}" data-y="{data_y}"/></g>'
             )
             ly = legend_y + 18 * j
             lx = left + plot_w + 14

@@ -20,16 +20,17 @@ import math
 from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 from pydantic import Field
 from starlette.requests import Request
 
+from app.alignments.advice import ADVICE_INPUTS, VehicleAdvice, advise, curve_places
 from app.alignments.answer import AlignmentAnswer, VehicleAnswer, vehicle_answer
 from app.alignments.json_curves import read_json_curves
 from app.alignments.rows import (
-    JSON_VEHICLE_END,
     ROWS_PER_CHUNK,
     csv_columns,
     csv_header,
@@ -37,6 +38,7 @@ from app.alignments.rows import (
     json_head,
     json_rows,
     json_tail,
+    json_vehicle_end,
     json_vehicle_head,
     merge_summaries,
     summary,
@@ -419,13 +421,34 @@ def _level(shared: dict[str, Any], v: int) -> float:
 
 
 def _part_answer(
-    resolved: ResolvedAlignment, v: int, data: bytes, level: float
+    resolved: ResolvedAlignment, v: int, data: bytes, level: float, advice: VehicleAdvice, start: int
 ) -> tuple[AlignmentAnswer, VehicleAnswer]:
     """A part's stored result of vehicle ``v`` as the answer the renderers take (what
-    :func:`app.alignments.service.solve_alignment` builds for those curves)."""
+    :func:`app.alignments.service.solve_alignment` builds for those curves), with its slice of the vehicle's advice
+    (its curves start at curve ``start`` of the alignment)."""
     curves, cols = unpack_result(data)
-    answer = vehicle_answer(resolved, v, cols, level)
+    answer = vehicle_answer(resolved, v, cols, level, advice.sliced(start, start + len(curves)))
     return AlignmentAnswer(resolved, curves, [answer]), answer
+
+
+def _advice(resolved: ResolvedAlignment, datas: Iterator[bytes]) -> VehicleAdvice:
+    """A vehicle's advice over the whole alignment (the profile and the shared signs run across the parts) from its
+    parts' stored results, in order: what :func:`app.alignments.service.solve_alignment` computes from the whole
+    columns, so the rows are the synchronous answer's."""
+    gathered: dict[str, list[np.ndarray]] = {name: [] for name in (*ADVICE_INPUTS, "start", "length", "deflection")}
+    for data in datas:
+        curves, cols = unpack_result(data)
+        for name in ADVICE_INPUTS:
+            gathered[name].append(getattr(cols, name))
+        start, length, deflection = curve_places(curves)
+        gathered["start"].append(start)
+        gathered["length"].append(length)
+        gathered["deflection"].append(np.full(len(curves), np.nan) if deflection is None else deflection)
+    joined = {name: np.concatenate(arrays) for name, arrays in gathered.items()}
+    deflection = joined.pop("deflection")
+    start, length = joined.pop("start"), joined.pop("length")
+    columns = SimpleNamespace(**joined)
+    return advise(resolved, columns, start, length, None if np.isnan(deflection).all() else deflection)
 
 
 def run_part(shared: dict[str, Any], data: bytes, ctx: PartContext) -> dict[str, Any]:
@@ -468,10 +491,13 @@ def _rendered(
     columns: list[str],
     level: float,
     rows: Callable[[int], None],
+    advice: VehicleAdvice,
+    first: int,
 ) -> Iterator[bytes]:
     """A part's rows of vehicle ``v`` rendered (JSON objects separated by commas, or CSV lines), in chunks, once its
-    columns have read back checked (``rows``: checks their number)."""
-    answer, va = _part_answer(resolved, v, data, level)
+    columns have read back checked (``rows``: checks their number; ``first``: the alignment's index of its first
+    curve, ``advice``: the vehicle's over the whole alignment)."""
+    answer, va = _part_answer(resolved, v, data, level, advice, first)
     n = len(answer.curves)
     rows(n)
     for start in range(0, n, ROWS_PER_CHUNK):
@@ -535,28 +561,39 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
     nv = len(resolved.vehicles)
     columns = csv_columns(resolved)
 
-    order = [(k, v) for v in range(nv) for k in range(len(metas))]
+    # each vehicle's parts read twice: once for its advice over the whole alignment, once to render them
+    nk = len(metas)
+    order = [(k, v) for v in range(nv) for _ in range(2) for k in range(nk)]
     read = _read_ahead(fragments, order)
+    firsts = np.concatenate(([0], np.cumsum([m["summaries"][0]["curves"] for m in metas]))).tolist() if nv else []
 
-    def part(k: int, v: int) -> Iterator[bytes]:  # called in ``order``
-        data = next(read)
-        return _rendered(resolved, v, data, fmt, columns, _level(shared, v), functools.partial(_rows, metas, k, v))
+    def vehicle(v: int) -> tuple[VehicleAdvice, Callable[[int], Iterator[bytes]]]:  # called in ``order``
+        advice = _advice(resolved, (next(read) for _ in range(nk)))
+
+        def part(k: int) -> Iterator[bytes]:
+            data = next(read)
+            rows = functools.partial(_rows, metas, k, v)
+            return _rendered(resolved, v, data, fmt, columns, _level(shared, v), rows, advice, firsts[k])
+
+        return advice, part
 
     if fmt == "csv":
         yield csv_header(resolved)
         for v in range(nv):
-            for k in range(len(metas)):
-                yield from part(k, v)
+            _, part = vehicle(v)
+            for k in range(nk):
+                yield from part(k)
         return
     yield json_head(resolved, shared["curves"])
     for v in range(nv):
         total = merge_summaries([m["summaries"][v] for m in metas], shared["distinct_srt_solves"])
+        advice, part = vehicle(v)
         yield json_vehicle_head(v, resolved.presets[v], resolved.saved_ids[v], total, first=v == 0)
-        for k in range(len(metas)):
+        for k in range(nk):
             if k:
                 yield b","
-            yield from part(k, v)
-        yield JSON_VEHICLE_END
+            yield from part(k)
+        yield json_vehicle_end(advice)
     yield json_tail()
 
 

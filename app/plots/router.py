@@ -10,8 +10,8 @@ from app.deps import CacheDep, SettingsDep
 from app.http.fastpath import replayable
 from app.http.problems import VEHICLE_REF_CODES, error_responses
 from app.http.responses import CACHE_HEADERS, computed_response
-from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
-from app.plots.service import SVG_MEDIA_TYPE, plot_curves, plot_min_radius
+from app.plots.schemas import MinRadiusPlotRequest, PlotRequest, SpeedProfilePlotRequest
+from app.plots.service import SVG_MEDIA_TYPE, plot_curves, plot_min_radius, plot_speed_profile
 from app.vehicles.refs import resolve_vehicle_refs
 
 router = APIRouter(prefix="/v1/plots", tags=["plots"])
@@ -75,3 +75,17 @@ async def min_radius(body: MinRadiusPlotRequest, request: Request, cache: CacheD
     JSON Schema cannot state: a request breaking one is a 422 naming the field and the range)."""
     body = await resolve_vehicle_refs(request, body, settings)
     return computed_response(await plot_min_radius(cache, body, settings))
+
+
+@router.post("/speed-profile", name="speed_profile", response_class=Response,
+             responses=svg_responses("the truck's speed against station, with each curve's safe, advisory and "
+                                     "posted speed"))  # fmt: skip
+@replayable("plot-speed-profile")
+async def speed_profile(
+    body: SpeedProfilePlotRequest, request: Request, cache: CacheDep, settings: SettingsDep
+) -> Response:
+    """The speed profile of `POST /v1/alignments/assess` (the same body: curves as JSON, CSV or LandXML) as a plot:
+    per vehicle, its speed against station (engine/road/profile.py), each curve's safe and advisory speed over the
+    curve, and the posted speed (docs/advisory.md). Curves without stations (a JSON or CSV list) have no profile: a
+    422 naming the curves' field and the reason."""
+    return computed_response(await plot_speed_profile(cache, request, body, settings))

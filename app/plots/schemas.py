@@ -6,6 +6,7 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
+from app.alignments.schemas import ALIGNMENT_LANDXML_EXAMPLE, AlignmentRequest
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, bounded, describe, json_int, shape_error
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
@@ -122,3 +123,25 @@ class MinRadiusPlotRequest(SrtOptions, DesignOptions):
         v1 = hi if self.speed_max_kmh is None else self.speed_max_kmh
         n = self.points if self.points is not None else max(2, round((v1 - v0) / SPEED_STEP_KMH) + 1)
         return v0, v1, min(n, MAX_SPEED_POINTS)
+
+
+class SpeedProfilePlotRequest(AlignmentRequest):
+    """The alignment assessment's request (`POST /v1/alignments/assess`): the curves need stations (a road file)
+    for a speed profile; a JSON or CSV list has none (a 422 saying so)."""
+
+    model_config = ConfigDict(
+        json_schema_extra={
+            **AlignmentRequest.model_config["json_schema_extra"],
+            "examples": [
+                {
+                    "vehicle": EXAMPLE_PRESET,
+                    "landxml": {
+                        "document": ALIGNMENT_LANDXML_EXAMPLE,
+                        "superelevation_percent": 6.0,
+                        "posted_speed_kmh": 80.0,
+                    },
+                    "units": "metric",
+                }
+            ],
+        }
+    )

@@ -11,11 +11,18 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from fastapi import Request
+from starlette.concurrency import run_in_threadpool
 
+from app.alignments.answer import AlignmentAnswer
+from app.alignments.curves import curves_from_json
+from app.alignments.schemas import MAX_CURVES, AlignmentRequest
+from app.alignments.service import resolve_alignment, resolve_alignment_refs, solve_alignment
 from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedCurvesPlot, ResolvedMinRadiusPlot
 from app.compute.results import Computed, cached
 from app.formats.svg import Marker, Panel, Series, line_chart
+from app.http.problems import request_error
 from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
 from app.settings import Settings
 from app.srt.service import resolve_case, resolve_srt, solve
@@ -31,6 +38,7 @@ from engine.road import (
     side_friction_factor,
     side_friction_min_radius_m,
 )
+from engine.road.advisory import SIGN_INCREMENTS
 from engine.vehicle import Vehicle
 
 SVG_MEDIA_TYPE = "image/svg+xml"
@@ -252,3 +260,74 @@ async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, setting
         return render_min_radius(req, await solve(cache, case), case, label).encode()
 
     return await cached(cache, "plot-min-radius", resolved, produce, SVG_MEDIA_TYPE)
+
+
+# ------------------------------------------------------------------------------------------ the speed profile
+
+SERIES_PROFILE = "truck's speed profile"
+SERIES_SAFE = "safe speed (Eq. 9.1 / side friction)"
+SERIES_ADVISORY = "advisory speed shown"
+SERIES_POSTED = "posted speed"
+
+
+def _spans(start: np.ndarray, end: np.ndarray, values: np.ndarray) -> tuple[list[float], list[float]]:
+    """Each curve's value over its span, the spans separated by a gap (nan): a step per curve, no line across the
+    tangents between them."""
+    x = np.column_stack((start, end, end)).ravel()
+    y = np.column_stack((values, values, np.full(len(values), np.nan))).ravel()
+    return x.tolist(), y.tolist()
+
+
+def render_speed_profile(answer: AlignmentAnswer, starts: np.ndarray, lengths: np.ndarray, source: str) -> str:
+    """Speed against station, a panel per vehicle: its profile (engine/road/profile.py), each curve's safe and
+    advisory speed over the curve's span, and the posted speed. A vehicle without a profile is a 422 naming the
+    curves' field with the first row's reason."""
+    ends = starts + lengths
+    panels = []
+    for v in answer.vehicles:
+        a = v.advice
+        if not len(a.station_m):
+            why = next((a.reasons[k] for k in a.reason.tolist() if k >= 0), None) or "; ".join(a.notes)
+            raise request_error(source, f"no speed profile to plot (vehicle {v.index}): {why}")
+        c = v.columns
+        label = v.preset or v.saved_id or f"vehicle {v.index}"
+        panels.append(
+            Panel(
+                f"speed [km/h]: {label}",
+                [
+                    Series(SERIES_PROFILE, a.station_m.tolist(), a.speed_kmh.tolist()),
+                    Series(SERIES_SAFE, *_spans(starts, ends, c.safe_speed_kmh), gaps=True),
+                    Series(SERIES_ADVISORY, *_spans(starts, ends, a.advisory_speed_kmh), dashed=True, gaps=True),
+                    Series(SERIES_POSTED, *_spans(starts, ends, c.posted_speed_kmh), gaps=True),
+                ],
+            )
+        )
+    r = answer.resolved
+    increment = f"{SIGN_INCREMENTS[r.units]:g} {'mph' if r.units == 'us' else 'km/h'}"
+    caption = (
+        "The truck's speed along the road: the desired (posted) speed on the tangents, braking into each curve at "
+        f"{r.deceleration_mps2:g} m/s^2 and accelerating out of it within its power on the grade, never above a "
+        "curve's safe speed (the lower of rollover, thesis Eq. 9.1, and side friction) or its advisory speed "
+        f"(shown in {increment} steps; FHWA-SA-11-22 / TxDOT Design Method). docs/advisory.md."
+    )
+    return line_chart("Truck speed profile against station", "station [m]", panels, caption)
+
+
+async def plot_speed_profile(
+    cache: ResultCache, request: Request, req: AlignmentRequest, settings: Settings
+) -> Computed:
+    """The speed-profile plot of an alignment request (the body of ``POST /v1/alignments/assess``), cached under the
+    alignment's resolved key (which holds the engine version, not :data:`SVG_VERSION`: a change of this drawing
+    alone needs the operation renamed)."""
+    req = await resolve_alignment_refs(request, req, settings)
+    curves = None if req.curves is None else curves_from_json([c.model_dump() for c in req.curves], MAX_CURVES)
+    job = await run_in_threadpool(resolve_alignment, req, curves, settings)
+
+    async def produce() -> bytes:
+        def draw() -> bytes:
+            starts, lengths, _ = job.curve_places()
+            return render_speed_profile(solve_alignment(job), starts, lengths, job.source).encode()
+
+        return await run_in_threadpool(draw)
+
+    return await cached(cache, "plot-speed-profile", job.resolved, produce, SVG_MEDIA_TYPE)

@@ -7,7 +7,8 @@ from typing import Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.alignments.schemas import MAX_VEHICLES, CurveRow, VehicleAssessment
+from app.advisory.schemas import AdvisoryOptions
+from app.alignments.schemas import MAX_VEHICLES, AdvisoryOut, CurveRow, VehicleAssessment
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
 from app.http.schemas import (
@@ -99,7 +100,7 @@ class Detection(InputModel):
     )
 
 
-class RouteRequest(SrtOptions, SrtTargets, DesignOptions):
+class RouteRequest(SrtOptions, SrtTargets, DesignOptions, AdvisoryOptions):
     """The vehicle(s), the SRT options, the design standard, and the route as `geojson` (a GeoJSON object:
     `FeatureCollection`/`Feature` of `LineString`/`MultiLineString`, WGS84 lon/lat, optional elevation [m] as the
     third coordinate) or `gpx` (GPX 1.1 text: tracks and routes, with `<ele>`). Limits: {vertices} vertices,
@@ -383,6 +384,23 @@ class RouteCurveProperties(OutputModel):
     vehicles: list[RouteCurveRow] | None = Field(
         description=describe("Every vehicle's assessment, in the request's order (only with several).", unit="-")
     )
+    advisory_speed_kmh: float | None = Field(
+        description=describe(
+            "The lowest advisory speed shown over the vehicles (`assessment.advisory_speed_kmh` per vehicle): flat, "
+            "for a GIS to label or colour by.",
+            unit="km/h",
+        )
+    )
+    treatment_devices: str | None = Field(
+        description=describe(
+            "The devices the curve's treatment calls for (the lowest advisory speed's), joined by `;`; null: none or "
+            "no posted speed. Flat, for a GIS to colour by.",
+            unit="-",
+        )
+    )
+    truck_rollover_warning: bool = Field(
+        description=describe("A W1-13 is recommended for any vehicle (this service's rule; see `advisory`).", unit="-")
+    )
 
 
 class RouteCurve(RouteCurveProperties):
@@ -411,6 +429,12 @@ class RouteCurves(OutputModel):
     features: list[RouteFeature] = Field(description=describe("One feature per curve, in route order.", unit="-"))
     reading: RouteReading = Field(
         description=describe("What was read from the file (a foreign member, RFC 7946 section 6.1).", unit="-")
+    )
+    advisory: AdvisoryOut = Field(
+        description=describe(
+            "The options and sources of the advisory figures (a foreign member, RFC 7946 section 6.1).",
+            unit="see its fields",
+        )
     )
 
 
@@ -523,4 +547,7 @@ class RouteResult(OutputModel):
         description=describe("The curves, in route order (none on a road without a curve).", unit="-")
     )
     reading: RouteReading = Field(description=describe("What was read from the file and what was not.", unit="-"))
+    advisory: AdvisoryOut = Field(
+        description=describe("The options and sources of the rows' advisory figures.", unit="see its fields")
+    )
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -31,6 +31,7 @@ from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
 from app.alignments import rows as alignment_rows
+from app.alignments.advice import advise, advisory_head
 from app.alignments.answer import AlignmentAnswer, vehicle_answer
 from app.alignments.schemas import MAX_ROWS
 from app.alignments.service import (
@@ -259,6 +260,14 @@ def curve_table(req: RouteRequest, geo: Geometry) -> CurveTable:
     )
 
 
+def curve_places(geo: Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each found curve's start station [m], length [m] and deflection [deg] along its line part (the advice's
+    profile; curves of several parts restart their stations, and then have no profile, each row saying why)."""
+    cs = [c.curve for c in geo.curves]
+    start = np.array([h.start_m for h in cs], dtype=float)
+    return start, np.array([h.end_m - h.start_m for h in cs], dtype=float), np.array([h.deflection_deg for h in cs])
+
+
 def _document_digest(req: RouteRequest) -> str:
     doc = orjson.dumps(req.geojson, option=orjson.OPT_SORT_KEYS) if req.geojson is not None else req.gpx.encode()
     return hashlib.sha256(doc).hexdigest()
@@ -355,6 +364,8 @@ def _curves(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> list[d
     for i, c in enumerate(geo.curves):
         rows = [pv[i] for pv in per_vehicle]
         g = _governing(rows)
+        shown = [r["advisory_speed_kmh"] for r in rows]
+        lowest = min(range(len(rows)), key=lambda k: math.inf if shown[k] is None else shown[k])
         out.append(
             {
                 "id": c.id,
@@ -362,6 +373,9 @@ def _curves(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> list[d
                 "governing_vehicle": g,
                 "assessment": rows[g],
                 "vehicles": rows if len(rows) > 1 else None,
+                "advisory_speed_kmh": shown[lowest],
+                "treatment_devices": ";".join(rows[lowest]["treatment"]["devices"]) or None,
+                "truck_rollover_warning": any(r["truck_rollover_warning"]["recommended"] for r in rows),
             }
         )
     return out
@@ -428,11 +442,17 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
                 "saved_vehicle_id": v.saved_id,
                 "summary": alignment_rows.summary(v.columns),
                 "rows": [],
+                "speed_profile": [
+                    {"station_m": x, "speed_kmh": y}
+                    for x, y in zip(v.advice.station_m.tolist(), v.advice.speed_kmh.tolist(), strict=True)
+                ],
+                "speed_profile_notes": v.advice.notes,
             }
             for v in answer.vehicles
         ],
         "curves": curves,
         "reading": reading(req, geo),
+        "advisory": advisory_head(r),
         "engine_version": ENGINE_VERSION,
     }
     return RouteResult.model_validate(out).model_dump_json().encode()  # the contract checked on the way out
@@ -445,7 +465,12 @@ def route_geojson(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> 
         {"type": "Feature", "geometry": {"type": "LineString", "coordinates": _coordinates(c)}, "properties": props}
         for props, c in zip(_curves(req, geo, answer), geo.curves, strict=True)
     ]
-    doc = {"type": "FeatureCollection", "features": features, "reading": reading(req, geo)}
+    doc = {
+        "type": "FeatureCollection",
+        "features": features,
+        "reading": reading(req, geo),
+        "advisory": advisory_head(answer.resolved),
+    }
     return RouteCurves.model_validate(doc).model_dump_json().encode()
 
 
@@ -467,7 +492,8 @@ def route_csv(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byte
             fields["part"] = Text(fields["part"])
             fields["grade_source"] = Text(fields["grade_source"])
             rows.append({"vehicle_index": v.index, "vehicle_preset": preset, "vehicle_saved_id": saved,
-                         **flatten_targets(row), **fields, "radius_m": geometry["radius_m"]})  # fmt: skip
+                         **flatten_targets(alignment_rows.flatten_advice(row)), **fields,
+                         "radius_m": geometry["radius_m"]})  # fmt: skip
     return to_csv(columns, rows)
 
 
@@ -502,15 +528,17 @@ def _no_curves(job: AlignmentJob) -> AlignmentAnswer:
     """The answer of a road without a curve: every vehicle with no rows (nothing is solved)."""
     empty = {f.name: np.empty(0) for f in dataclasses.fields(AlignmentColumns)}
     cols = AlignmentColumns(**{**empty, "errors": [], "distinct_cases": 0})
-    vehicles = [vehicle_answer(job.resolved, k, cols, math.nan) for k in range(len(job.vehicles))]
+    none = advise(job.resolved, cols, np.empty(0), np.empty(0), None)
+    vehicles = [vehicle_answer(job.resolved, k, cols, math.nan, none) for k in range(len(job.vehicles))]
     return AlignmentAnswer(job.resolved, job.curves, vehicles)
 
 
-def _with_domain_errors(answer: AlignmentAnswer, table: CurveTable, reasons: list[str | None]) -> AlignmentAnswer:
+def _with_domain_errors(answer: AlignmentAnswer, job: AlignmentJob, reasons: list[str | None]) -> AlignmentAnswer:
     """The answer with the curves outside the model's domain as refused rows: their ``error``, ``flagged``, their own
     radius, and no SRT, speeds, side friction or derived superelevation (they were solved at a stand-in radius so that
-    the rest of the document is assessed; those numbers are dropped here). Whether they meet the standard's minimum
-    radius is judged on their own radius."""
+    the rest of the document is assessed; those numbers are dropped here, and the advice is made again without
+    them). Whether they meet the standard's minimum radius is judged on their own radius."""
+    table = job.curves
     outside = np.array([r is not None for r in reasons], dtype=bool)
     vehicles = []
     for v in answer.vehicles:
@@ -542,7 +570,8 @@ def _with_domain_errors(answer: AlignmentAnswer, table: CurveTable, reasons: lis
             error=error,
             errors=errors,
         )
-        vehicles.append(vehicle_answer(answer.resolved, v.index, cols, v.level_srt))
+        advice = advise(answer.resolved, cols, *job.curve_places())
+        vehicles.append(vehicle_answer(answer.resolved, v.index, cols, v.level_srt, advice))
     return AlignmentAnswer(answer.resolved, table, vehicles)
 
 
@@ -562,7 +591,7 @@ def assess_route_curves(job: AlignmentJob, geo: Geometry) -> AlignmentAnswer:
         answer = solve_alignment(solved)
     except InvalidInput as exc:
         raise _named_after_the_route(exc, table) from None
-    return _with_domain_errors(answer, table, reasons) if solved is not job else answer
+    return _with_domain_errors(answer, job, reasons) if solved is not job else answer
 
 
 def render_route(
@@ -590,7 +619,8 @@ def render_route(
             message = _to_a_job(message, f"{MAX_JOB_ROWS:,} rows")
         raise request_error("vehicles", message)
     table = curve_table(req, geo)
-    answer = assess_route_curves(AlignmentJob(resolved, vehicles, table, _source(req, source_field)), geo)
+    job = AlignmentJob(resolved, vehicles, table, _source(req, source_field), places=curve_places(geo))
+    answer = assess_route_curves(job, geo)
     renderers = {
         "json": lambda: route_json(req, geo, answer),
         "csv": lambda: route_csv(req, geo, answer),

@@ -103,6 +103,8 @@ NOT_IN_EXAMPLES = {
     ("GET", "/v1/components/suspensions"): "the /v1/components example (its suspensions)",
     ("GET", "/v1/design-standards/{id}"): "the /v1/design-standards example (one of its standards)",
     ("POST", "/v1/superelevation/table"): "docs/api.md: Design standards",
+    # the alignment assessment's body (a road file's stations): docs/api.md, docs/advisory.md section 4
+    ("POST", "/v1/plots/speed-profile"): "docs/api.md: Road-design tools (the alignment assessment's body)",
 }
 
 

@@ -54,6 +54,7 @@ OPERATIONS = {
     ("post", "/v1/plots/roll"): "plots-roll",
     ("post", "/v1/plots/cg-path"): "plots-cg_path",
     ("post", "/v1/plots/min-radius"): "plots-min_radius",
+    ("post", "/v1/plots/speed-profile"): "plots-speed_profile",
     ("get", "/v1/models"): "models-list_models",
     ("get", "/healthz"): "health-healthz",
     ("get", "/metrics"): "health-metrics",

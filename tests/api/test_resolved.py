@@ -28,6 +28,7 @@ from app.srt.service import resolve_case
 from app.srt.sweep_schemas import SweepRequest
 from app.srt.sweep_service import resolve_sweep
 from app.vehicles.refs import vehicle_preset
+from engine.road.profile import DECELERATION_MPS2
 
 BTRAIN = "table16-btrain"
 SEMI = "table23-semitrailer"
@@ -67,6 +68,10 @@ def _assessment_dict(presets: list[str], **options) -> dict:
         "side_friction_bound": None,
         "max_superelevation_percent": None,
         "targets": Settings().default_targets(),
+        # in the key since every row carries its advisory speed and the truck's profile (issue 43)
+        "units": "us",
+        "desired_speed_kmh": None,
+        "deceleration_mps2": DECELERATION_MPS2,
         **options,
     }
 

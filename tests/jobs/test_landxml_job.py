@@ -31,3 +31,32 @@ def test_a_landxml_job_is_the_synchronous_answer(accept):
     assert job.content == sync.content
     if accept is None:
         assert b'"reading":{"format":"LandXML 1.2"' in job.content and b'"grade_source":"profile"' in job.content
+
+
+@pytest.mark.parametrize("accept", [None, "text/csv"])
+def test_the_advice_of_a_job_split_in_parts_is_the_synchronous_answers(accept):
+    """The speed profile and the shared signs run across the parts (app/alignments/advice.py): a job computes each
+    vehicle's advice over the whole alignment from its parts, so its rows and profile are the synchronous answer's
+    byte for byte; two vehicles, a posted speed (a profile exists) and the metric plaque."""
+    design = _design(random.Random(7), n_bends=9)
+    document = landxml(design)
+    req = {
+        "vehicles": ["table16-btrain", "table23-semitrailer"],
+        "landxml": {"document": document, "superelevation_percent": 5.0, "posted_speed_kmh": 90.0},
+        "units": "metric",
+        "deceleration_mps2": 2.5,
+    }
+    headers = {"Accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=4)) as c:
+        r = c.post("/v1/jobs", json={"operation": "alignments.assess", "request": req})
+        assert r.status_code == 202, r.text
+        status = wait_for(c, r.headers["location"])
+        assert status["status"] == "done" and status["parts"]["total"] > 1
+        job = c.get(r.headers["location"] + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    assert job.content == sync.content
+    if accept is None:
+        vehicles = sync.json()["vehicles"]
+        assert all(len(v["speed_profile"]) > 2 for v in vehicles)
+        assert any(r["approach_speed_kmh"] is not None for r in vehicles[0]["rows"])

@@ -44,6 +44,7 @@ from app.formats.alignment_io import AlignmentFormatError
 from engine.road.geometry import (
     AlignmentGeometry,
     CrossSlope,
+    ElementColumns,
     HorizontalElement,
     Profile,
     RoadFile,
@@ -151,6 +152,9 @@ class _Units:
 
 
 _ROT = {"ccw": "left", "cw": "right"}
+_ROT_CODE = {"ccw": 0, "cw": 1}  # ElementColumns.direction
+_KIND_CODE = {"line": 0, "arc": 1, "spiral": 2}
+_DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
 
 
 def _float(text: str | None, where: str, attribute: str) -> float:
@@ -297,10 +301,12 @@ class _Reader:
         a_name = el.get("name") or f"alignment {index}"
         where_a = f"Alignment {a_name[:100]!r}"
         start = self.length(el, "staStart", where_a, required=False) or 0.0
-        elements: list[HorizontalElement] = []
+        # each element a row of ElementColumns: (kind, length, radius start, radius end, direction, station, spiral
+        # type, name, where); a tuple per element, not a record (a million records take seconds to make and to free)
+        rows: list[tuple] = []
         ordinal: dict[str, int] = {}
-        prefix, m, inf = f"{where_a} CoordGeom ", self.m, math.inf
-        append = elements.append
+        prefix, m, inf, nan = f"{where_a} CoordGeom ", self.m, math.inf, math.nan
+        append = rows.append
         for geom in _children(el, "CoordGeom"):
             for child in geom:
                 tag = child.tag
@@ -318,26 +324,30 @@ class _Reader:
                         get("radius"),
                         get("length"),
                         get("staStart"),
-                        _ROT.get(get("rot")),
+                        _ROT_CODE.get(get("rot")),
                     )
                     try:
                         r, length = float(r_text) * m, float(l_text) * m
-                        sta = None if s_text is None else float(s_text) * m
+                        sta = nan if s_text is None else float(s_text) * m
                     except (TypeError, ValueError):
-                        r = length = sta = math.nan
-                    if direction and 0.0 < r < inf and 0.0 <= length < inf and (sta is None or -inf < sta < inf):
-                        append(HorizontalElement("arc", length, r, r, direction, sta, None, label, where))
+                        r = length = sta = inf
+                    finite_sta = s_text is None or -inf < sta < inf
+                    if direction is not None and 0.0 < r < inf and 0.0 <= length < inf and finite_sta:
+                        append((1, length, r, r, direction, sta, None, label, where))  # nan: no staStart
                         continue
                 else:
                     where = f"{prefix}{name} #{n}" + (f" ({label[:100]!r})" if label else "")
                 e = self.element(child, name, where, label)  # the careful path: every refusal named
                 if e is not None:
-                    append(e)
+                    append((_KIND_CODE[e.kind], e.length_m, e.radius_start_m, e.radius_end_m,
+                            _DIRECTION_CODE[e.direction], nan if e.station_m is None else e.station_m,
+                            e.spiral_type, e.name, e.where))  # fmt: skip
         for name, count in ordinal.items():
             self.counts[name] += count
-        a = AlignmentGeometry(a_name, start, tuple(elements), where=where_a)
+        elements = ElementColumns(*(zip(*rows, strict=True) if rows else [()] * 9))
+        a = AlignmentGeometry(a_name, start, elements, where=where_a)
         equations = self.equations(el, a, where_a)
-        a = AlignmentGeometry(a_name, start, tuple(elements), equations, where=where_a)
+        a = AlignmentGeometry(a_name, start, elements, equations, where=where_a)
         profiles = tuple(p for prof in _children(el, "Profile") for p in self.profiles(prof, a, where_a))
         supers = tuple(
             self.superelevation(s, a, f"{where_a} Superelevation {k}")
@@ -354,7 +364,7 @@ class _Reader:
         if slopes:
             at = distance_at(a, np.array([c.distance_m for c in slopes])).tolist()
             slopes = tuple(CrossSlope(d, c.left_percent, c.right_percent) for d, c in zip(at, slopes, strict=True))
-        return AlignmentGeometry(a_name, start, tuple(elements), equations, profiles, supers, slopes, where_a)
+        return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
         out: list[StationEquation] = []

@@ -34,10 +34,12 @@ from app.formats.alignment_io import (
 )
 from engine.road.geometry import (
     AlignmentGeometry,
+    ElementColumns,
     Profile,
     RoadFile,
     bend_columns,
     covers_many,
+    element_columns,
     element_distances,
     grade_ranges,
     grades_at,
@@ -71,10 +73,12 @@ def _profile(a: AlignmentGeometry, name: str | None) -> Profile | None:
     return next((p for p in a.profiles if p.name == name), None)
 
 
-def _written_stations(a: AlignmentGeometry, starts: np.ndarray, distance_m: np.ndarray) -> np.ndarray:
+def _written_stations(
+    a: AlignmentGeometry, els: ElementColumns, starts: np.ndarray, distance_m: np.ndarray
+) -> np.ndarray:
     """The station as the file writes it at each distance: an element's own ``staStart`` where the distance is that
     element's start, else the alignment's start station plus the distance (station equations applied)."""
-    own = np.array([math.nan if e.station_m is None else e.station_m for e in a.elements] + [math.nan])
+    own = np.append(els.station_m, math.nan)
     d = np.asarray(distance_m, dtype=float)
     j = np.clip(np.searchsorted(starts, d), 0, len(starts) - 1)
     written = np.where(starts[j] == d, own[j], math.nan)
@@ -124,21 +128,22 @@ def curves_from_road_file(
         if not n:
             continue
         starts = element_distances(a)
-        els, arcs = a.elements, b.arc_element.tolist()
+        els, arcs = element_columns(a), b.arc_element.tolist()
+        names, places = els.name, els.where
         if min(arcs) >= 0:  # every row an arc (the common case): its element's name and place
-            ids += [els[i].name or "" for i in arcs]
-            where += [els[i].where for i in arcs]
+            ids += [names[i] or "" for i in arcs]
+            where += [places[i] for i in arcs]
         else:
             apex = 0
             for k, arc in enumerate(arcs):
                 if arc >= 0:
-                    ids.append(els[arc].name or "")
-                    where.append(els[arc].where)
+                    ids.append(names[arc] or "")
+                    where.append(places[arc])
                 else:
                     apex += 1
                     cid = f"{a.name}#apex{apex}"
                     ids.append(cid)
-                    where.append(f"{els[int(b.first_element[k])].where}: the bend of spirals {cid!r}")
+                    where.append(f"{places[int(b.first_element[k])]}: the bend of spirals {cid!r}")
         if len(ids) > max_curves:
             raise AlignmentFormatError(f"more than {max_curves} curves", where[max_curves])
         middle = 0.5 * (b.start_m + b.end_m)
@@ -171,10 +176,10 @@ def curves_from_road_file(
                 "grade_source": covered.astype(float),
                 "grade_min_percent": np.where(covered, 100.0 * g_lo, nan),
                 "grade_max_percent": np.where(covered, 100.0 * g_hi, nan),
-                "station_m": _written_stations(a, starts, b.arc_start_m),
+                "station_m": _written_stations(a, els, starts, b.arc_start_m),
                 "distance_m": b.arc_start_m,
-                "bend_start_m": _written_stations(a, starts, b.start_m),
-                "bend_end_m": _written_stations(a, starts, b.end_m),
+                "bend_start_m": _written_stations(a, els, starts, b.start_m),
+                "bend_end_m": _written_stations(a, els, starts, b.end_m),
                 "direction": b.direction.astype(float),
                 "arc_length_m": b.arc_length_m,
                 "deflection_deg": b.deflection_deg,

@@ -35,6 +35,7 @@ from __future__ import annotations
 import itertools
 import math
 import xml.etree.ElementTree as ET
+from array import array
 from collections import Counter
 
 import numpy as np
@@ -301,12 +302,15 @@ class _Reader:
         a_name = el.get("name") or f"alignment {index}"
         where_a = f"Alignment {a_name[:100]!r}"
         start = self.length(el, "staStart", where_a, required=False) or 0.0
-        # each element a row of ElementColumns: (kind, length, radius start, radius end, direction, station, spiral
-        # type, name, where); a tuple per element, not a record (a million records take seconds to make and to free)
-        rows: list[tuple] = []
+        # the elements as the columns of ElementColumns, appended to one by one (a million records would take
+        # seconds to make and to free; a row tuple per element, a long C call to transpose)
+        kinds, dirs = array("b"), array("b")
+        lengths, r1s, r2s, stas = array("d"), array("d"), array("d"), array("d")
+        types: list[str | None] = []
+        names: list[str | None] = []
+        wheres: list[str] = []
         ordinal: dict[str, int] = {}
         prefix, m, inf, nan = f"{where_a} CoordGeom ", self.m, math.inf, math.nan
-        append = rows.append
         for geom in _children(el, "CoordGeom"):
             for child in geom:
                 tag = child.tag
@@ -333,18 +337,32 @@ class _Reader:
                         r = length = sta = inf
                     finite_sta = s_text is None or -inf < sta < inf
                     if direction is not None and 0.0 < r < inf and 0.0 <= length < inf and finite_sta:
-                        append((1, length, r, r, direction, sta, None, label, where))  # nan: no staStart
+                        kinds.append(1)
+                        lengths.append(length)
+                        r1s.append(r)
+                        r2s.append(r)
+                        dirs.append(direction)
+                        stas.append(sta)  # nan: no staStart
+                        types.append(None)
+                        names.append(label)
+                        wheres.append(where)
                         continue
                 else:
                     where = f"{prefix}{name} #{n}" + (f" ({label[:100]!r})" if label else "")
                 e = self.element(child, name, where, label)  # the careful path: every refusal named
                 if e is not None:
-                    append((_KIND_CODE[e.kind], e.length_m, e.radius_start_m, e.radius_end_m,
-                            _DIRECTION_CODE[e.direction], nan if e.station_m is None else e.station_m,
-                            e.spiral_type, e.name, e.where))  # fmt: skip
+                    kinds.append(_KIND_CODE[e.kind])
+                    lengths.append(e.length_m)
+                    r1s.append(e.radius_start_m)
+                    r2s.append(e.radius_end_m)
+                    dirs.append(_DIRECTION_CODE[e.direction])
+                    stas.append(nan if e.station_m is None else e.station_m)
+                    types.append(e.spiral_type)
+                    names.append(e.name)
+                    wheres.append(e.where)
         for name, count in ordinal.items():
             self.counts[name] += count
-        elements = ElementColumns(*(zip(*rows, strict=True) if rows else [()] * 9))
+        elements = ElementColumns(kinds, lengths, r1s, r2s, dirs, stas, types, names, wheres)
         a = AlignmentGeometry(a_name, start, elements, where=where_a)
         equations = self.equations(el, a, where_a)
         a = AlignmentGeometry(a_name, start, elements, equations, where=where_a)
@@ -536,7 +554,15 @@ def writer_of(root: ET.Element) -> str | None:
 def read_road_file(text: str | bytes) -> RoadFile:
     """A LandXML 1.2 document as a :class:`~engine.road.geometry.RoadFile` (every alignment, in metres); raises
     :class:`~app.formats.alignment_io.AlignmentFormatError`."""
-    root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)
+    with xmlsafe.collection_paused():  # the tree's million elements: no collector passes, freed in slices
+        root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)
+        try:
+            return _road_file(root)
+        finally:
+            xmlsafe.free(root)
+
+
+def _road_file(root: ET.Element) -> RoadFile:
     alignments_el = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
     if not alignments_el:
         raise AlignmentFormatError("no <Alignment> element", "LandXML")

@@ -62,7 +62,26 @@ ROAD_READERS: dict[str, Callable[[str | bytes], RoadFile]] = {"landxml": landxml
 def read_road_document(kind: str, document: str | bytes, **options: Any) -> CurveTable:
     """The curves of a road file of ``kind`` (a key of :data:`ROAD_READERS`): its reader, then
     :func:`curves_from_road_file` with ``options``."""
-    return curves_from_road_file(ROAD_READERS[kind](document), **options)
+    road = ROAD_READERS[kind](document)
+    try:
+        return curves_from_road_file(road, **options)
+    finally:
+        _release(road)
+
+
+#: list entries freed per call (a few milliseconds)
+_RELEASE_SLICE = 4096
+
+
+def _release(road: RoadFile) -> None:
+    """Empty the large lists of the file's columns a slice at a time, so a million names and places are not freed
+    in one C call that holds the interpreter's lock (when the last reference goes, possibly in the event loop's
+    thread: a refusal's traceback holds this frame)."""
+    for a in road.alignments:
+        if isinstance(a.elements, ElementColumns):
+            for items in (a.elements.name, a.elements.where, a.elements.spiral_type):
+                while items:
+                    del items[-_RELEASE_SLICE:]
 
 
 def _profile(a: AlignmentGeometry, name: str | None) -> Profile | None:
@@ -130,6 +149,14 @@ def curves_from_road_file(
         starts = element_distances(a)
         els, arcs = element_columns(a), b.arc_element.tolist()
         names, places = els.name, els.where
+        if len(ids) + n > max_curves:  # refused before a list of every row's id is made (and freed again)
+            k = max_curves - len(ids)  # the first row past the limit, in this alignment
+            if arcs[k] >= 0:
+                past = places[arcs[k]]
+            else:  # named as the rows name it: <alignment>#apex<m>, m counting the bends of spirals
+                cid = f"{a.name}#apex{sum(1 for x in arcs[: k + 1] if x < 0)}"
+                past = f"{places[int(b.first_element[k])]}: the bend of spirals {cid!r}"
+            raise AlignmentFormatError(f"more than {max_curves} curves", past)
         if min(arcs) >= 0:  # every row an arc (the common case): its element's name and place
             ids += [names[i] or "" for i in arcs]
             where += [places[i] for i in arcs]
@@ -144,8 +171,6 @@ def curves_from_road_file(
                     cid = f"{a.name}#apex{apex}"
                     ids.append(cid)
                     where.append(f"{places[int(b.first_element[k])]}: the bend of spirals {cid!r}")
-        if len(ids) > max_curves:
-            raise AlignmentFormatError(f"more than {max_curves} curves", where[max_curves])
         middle = 0.5 * (b.start_m + b.end_m)
         if chosen is not None:
             covered = covers_many(chosen, b.start_m, b.end_m)

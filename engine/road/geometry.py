@@ -91,7 +91,10 @@ class ElementColumns(Sequence[HorizontalElement]):
         self.radius_end_m = np.asarray(radius_end_m, dtype=float)
         self.direction = np.asarray(direction, dtype=np.int8)
         self.station_m = np.asarray(station_m, dtype=float)
-        self.spiral_type, self.name, self.where = list(spiral_type), list(name), list(where)
+        # (a list given is kept, not copied)
+        self.spiral_type, self.name, self.where = (
+            x if isinstance(x, list) else list(x) for x in (spiral_type, name, where)
+        )
         n = len(self.kind)
         sizes = {len(getattr(self, k)) for k in self.__slots__}
         if sizes != {n}:

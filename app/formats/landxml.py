@@ -500,10 +500,13 @@ class _Reader:
         return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
 
     def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> list[CrossSlope]:
-        out = []
+        # each section's numbers read here, one by one; the slopes computed below for every section at once
+        words: list[str] = []
+        counts: list[int] = []  # how many numbers each section has
+        stations: list[float] = []
+        numbered: list[int] = []  # the section's number in the file (from 1), for messages
         for k, cs in enumerate(_children(el, "CrossSect"), start=1):
             self.counts["CrossSect"] += 1
-            where = f"{where_a} CrossSect {k}"
             surf = _child(cs, "DesignCrossSectSurf")
             if surf is not None:  # LandXML 1.2: a design surface's points, "offset elevation" each
                 texts = [" ".join((p.text or "").split()[:2]) for p in _children(surf, "CrossSectPnt")]
@@ -511,31 +514,76 @@ class _Reader:
                 surf = _child(cs, "CrossSectSurf")
                 plist = _child(surf, "PntList2D") if surf is not None else None
                 if plist is None:
-                    self.skipped.append((where, "no design surface (DesignCrossSectSurf) to take the slopes from"))
+                    self.skipped.append(
+                        (f"{where_a} CrossSect {k}", "no design surface (DesignCrossSectSurf) to take the slopes from")
+                    )
                     continue
                 texts = [plist.text or ""]
-            xs = _numbers(texts, where, "CrossSectPnt")
-            left = right = None  # the points nearest the centreline on each side, and the centreline's own
-            zc = None
-            for x, z in zip(xs[0::2], xs[1::2], strict=False):
-                if x < 0 and (left is None or x > left[0]):
-                    left = (x, z)
-                elif x > 0 and (right is None or x < right[0]):
-                    right = (x, z)
-                elif x == 0:
-                    zc = z
-            if left is None or right is None:
-                self.skipped.append((where, "its design surface has no point on one side of the centreline"))
-                continue
-            (xl, zl), (xr, zr) = left, right
-            if zc is None:
-                zc = zl + (zr - zl) * (0 - xl) / (xr - xl)
-            # slopes are ratios: the file's unit cancels
-            sta = self.length(cs, "sta", where)
-            # + rising from left to right (engine.road.geometry's convention); the station made a distance by the
-            # caller, with every section's at once
-            out.append(CrossSlope(sta, 100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr))
+            mine = " ".join(texts).split()
+            words += mine
+            counts.append(len(mine))
+            stations.append(self.length(cs, "sta", f"{where_a} CrossSect {k}"))  # a distance made by the caller
+            numbered.append(k)
+        if not counts:
+            return []
+        try:
+            values = np.array(words, dtype=float)
+            bad = not np.isfinite(values).all()
+        except ValueError:
+            bad = True
+        if bad:  # the first section with a word that is not a finite number, named
+            first = 0
+            for k, c in zip(numbered, counts, strict=True):
+                _numbers(words[first : first + c], f"{where_a} CrossSect {k}", "CrossSectPnt")
+                first += c
+        slopes = _slopes(values, np.array(counts))
+        out = []
+        for k, sta, (left, right) in zip(numbered, stations, slopes.tolist(), strict=True):
+            if math.isnan(left):
+                self.skipped.append(
+                    (f"{where_a} CrossSect {k}", "its design surface has no point on one side of the centreline")
+                )
+            else:
+                out.append(CrossSlope(sta, left, right))
         return out
+
+
+def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Each section's (left, right) lane slopes [%] from its numbers, "offset elevation" pairs (``counts``: how many
+    numbers each section has; an odd one at a section's end is not a pair): between the point nearest the centreline
+    on each side (the first of equals) and the centreline's elevation (the last point at offset 0, else interpolated
+    between those two); + rising from left to right (engine.road.geometry's convention), a negative offset left of
+    the centreline; nan where a side has no point. Slopes are ratios: the file's unit cancels."""
+    n = len(counts)
+    pairs = counts // 2
+    first = np.cumsum(counts) - counts
+    sec = np.repeat(np.arange(n), pairs)
+    j = np.arange(len(sec)) - np.repeat(np.cumsum(pairs) - pairs, pairs)
+    at = np.repeat(first, pairs) + 2 * j
+    x, z = values[at], values[at + 1]
+    order = np.arange(len(x))
+    out = np.full((n, 2), np.nan)
+    left, right, zero = x < 0, x > 0, x == 0
+    # left: the greatest negative offset (the first of equals): the last of each section's (offset, -order) sort
+    i = np.flatnonzero(left)[np.lexsort((-order[left], x[left], sec[left]))]
+    last = np.r_[sec[i][1:] != sec[i][:-1], True] if len(i) else np.zeros(0, bool)
+    xl, zl = np.full(n, np.nan), np.full(n, np.nan)
+    xl[sec[i][last]], zl[sec[i][last]] = x[i][last], z[i][last]
+    # right: the least positive offset (the first of equals): the first of each section's (offset, order) sort
+    i = np.flatnonzero(right)[np.lexsort((order[right], x[right], sec[right]))]
+    head = np.r_[True, sec[i][1:] != sec[i][:-1]] if len(i) else np.zeros(0, bool)
+    xr, zr = np.full(n, np.nan), np.full(n, np.nan)
+    xr[sec[i][head]], zr[sec[i][head]] = x[i][head], z[i][head]
+    # the centreline: the last point at offset 0 (in each section's order)
+    i = np.flatnonzero(zero)
+    last = np.r_[sec[i][1:] != sec[i][:-1], True] if len(i) else np.zeros(0, bool)
+    zc = np.full(n, np.nan)
+    zc[sec[i][last]] = z[i][last]
+    zc = np.where(np.isnan(zc), zl + (zr - zl) * (0 - xl) / (xr - xl), zc)
+    out[:, 0] = 100.0 * (zc - zl) / (0 - xl)
+    out[:, 1] = 100.0 * (zr - zc) / xr
+    out[np.isnan(xl) | np.isnan(xr)] = np.nan
+    return out
 
 
 def writer_of(root: ET.Element) -> str | None:

@@ -349,6 +349,24 @@ class _Reader:
                         continue
                 else:
                     where = f"{prefix}{name} #{n}" + (f" ({label[:100]!r})" if label else "")
+                    l_text, s_text = get("length"), get("staStart")
+                    if name == "Line" and l_text is not None:  # a line's common case inline too: its length
+                        try:
+                            length = float(l_text) * m
+                            sta = nan if s_text is None else float(s_text) * m
+                        except ValueError:
+                            length = sta = inf
+                        if 0.0 <= length < inf and (s_text is None or -inf < sta < inf):
+                            kinds.append(0)
+                            lengths.append(length)
+                            r1s.append(inf)
+                            r2s.append(inf)
+                            dirs.append(-1)
+                            stas.append(sta)
+                            types.append(None)
+                            names.append(label)
+                            wheres.append(where)
+                            continue
                 e = self.element(child, name, where, label)  # the careful path: every refusal named
                 if e is not None:
                     kinds.append(_KIND_CODE[e.kind])

@@ -1,24 +1,122 @@
 """Reading a large LandXML alignment (app/formats/landxml.py + app/formats/road_file.py): the time to go from the
 document's bytes to the curves' columns, for the shape of file the service always read (Curves only, metric) and
 the same alignment with what a design package adds (lines between the curves, a profile of parabolic vertical
-curves, a Superelevation element per curve and design cross sections). Prints figures only.
+curves, a Superelevation element per curve and design cross sections).
 
-    python bench/bench_landxml.py [--curves 200000] [--repeat 3]
+The ceiling is the reader the service had before LandXML was read whole (``git show 09731d0~1:app/formats/
+alignment_io.py``: Curves only, no profile, no stations computed), copied below as :func:`old_read_landxml` and
+timed in the same run, interleaved with the reader of today on the same document (the machine is shared: a figure is
+read against the ceiling beside it, not against another run's).
+
+    python bench/bench_landxml.py [--curves 200000] [--repeat 3] [--write]
+
+``--write`` puts the figures into docs/uploads.md between the ``bench_landxml`` markers.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+import platform
 import statistics
 import sys
 import time
+from datetime import UTC, datetime
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from app.formats.alignment_io import read_landxml  # noqa: E402
+from app.formats import xmlsafe  # noqa: E402
+from app.formats.alignment_io import (  # noqa: E402
+    MAX_CURVES,
+    AlignmentFormatError,
+    CurveOverride,
+    CurveTable,
+    _number,
+    check_curve_id,
+    read_landxml,
+)
 from bench.bench_alignments import as_landxml, make_curves  # noqa: E402
+from engine.errors import InvalidRoad  # noqa: E402
+from engine.road import check_columns  # noqa: E402
+from scripts.docblock import markers, write_block  # noqa: E402
+
+DOCS = ROOT / "docs" / "uploads.md"
+BEGIN, END = markers("bench_landxml")
+
+
+# ---------------------------------------------------------------------------------------------- the ceiling
+# The reader of 09731d0~1 (app/formats/alignment_io.py: _Collector, _landxml_curves, read_landxml), unchanged but for
+# its names; _number, check_curve_id and xmlsafe are the same code today.
+
+
+class _OldCollector:
+    def __init__(self, columns, id_column="id", max_curves=MAX_CURVES):
+        self.max_curves = max_curves
+        self.ids, self.values, self.where, self.seen = [], [], [], set()
+        self.columns = columns or {}
+        self.id_column = id_column
+
+    def add(self, cid, where, radius, e, grade, posted, station):
+        if cid in self.seen:
+            raise AlignmentFormatError(f"duplicate id {cid!r}", where, self.id_column)
+        self.seen.add(cid)
+        nan = float("nan")
+        opt = (nan if e is None else e, grade, nan if posted is None else posted, nan if station is None else station)
+        self.ids.append(cid)
+        self.values.append((radius, *opt))
+        self.where.append(where)
+        if len(self.ids) > self.max_curves:
+            raise AlignmentFormatError(f"more than {self.max_curves} curves", where)
+
+    def table(self):
+        import numpy as np
+
+        a = np.array(self.values, dtype=float).reshape(-1, 5)
+        t = CurveTable(self.ids, *(a[:, k].copy() for k in range(5)), where=self.where)
+        try:
+            check_columns(t.radius_m, t.superelevation_percent, t.grade_percent, t.posted_speed_kmh)
+        except InvalidRoad as exc:
+            raise AlignmentFormatError(str(exc)) from None
+        return t
+
+
+def _old_curves(root):
+    alignments = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
+    if not alignments:
+        raise AlignmentFormatError("no <Alignment> element", "LandXML")
+    for a_index, alignment in enumerate(alignments, start=1):
+        a_name = alignment.get("name") or f"alignment {a_index}"
+        n = 0
+        for geom in (e for e in alignment if xmlsafe.local(e.tag) == "CoordGeom"):
+            for el in geom:
+                if el.tag.endswith("Curve") and xmlsafe.local(el.tag) == "Curve":
+                    n += 1
+                    yield a_name, n, el
+
+
+def old_read_landxml(text, *, superelevation_percent, grade_percent=0.0, posted_speed_kmh=None, max_curves=MAX_CURVES):
+    overrides: dict[str, CurveOverride] = {}
+    curves = _OldCollector({"radius_m": "radius"}, id_column="name", max_curves=max_curves)
+    for a_name, n, el in _old_curves(xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)):
+        where = f"Alignment {a_name[:100]!r} CoordGeom Curve #{n}"
+        cid = check_curve_id(el.get("name") or f"{a_name}#{n}", where, "name")
+        where = f"{where} ({cid!r})"
+        r_text = el.get("radius")
+        if r_text is None:
+            raise AlignmentFormatError("has no radius attribute", where, "radius")
+        sta = el.get("staStart")
+        ov = overrides.pop(cid, CurveOverride())
+        e = ov.superelevation_percent if ov.superelevation_percent is not None else superelevation_percent
+        g = ov.grade_percent if ov.grade_percent is not None else grade_percent
+        v = ov.posted_speed_kmh if ov.posted_speed_kmh is not None else posted_speed_kmh
+        station = _number(sta, "staStart", where) if sta is not None else None
+        curves.add(cid, where, _number(r_text, "radius", where), e, g, v, station)
+    return curves.table()
+
+
+# ---------------------------------------------------------------------------------------------- documents
 
 
 def designed(curves: list[dict], *, profile: bool, superelevation: bool, sections: bool) -> str:
@@ -57,37 +155,73 @@ def designed(curves: list[dict], *, profile: bool, superelevation: bool, section
     )
 
 
-def timed(doc: bytes, repeat: int) -> tuple[float, float]:
-    samples = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        read_landxml(doc, superelevation_percent=6.0, max_curves=10**7)
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples), min(samples)
+def _once(fn, doc: bytes) -> float:
+    t0 = time.perf_counter()
+    fn(doc, superelevation_percent=6.0, max_curves=10**7)
+    return time.perf_counter() - t0
+
+
+def machine() -> str:
+    """The CPU model, its cores and the load average when the run started (the machine may be shared)."""
+    model = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{model}, {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}"
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--curves", type=int, default=200_000)
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--write", action="store_true", help="write the figures into docs/uploads.md")
     args = parser.parse_args()
+    when = f"{datetime.now(UTC):%Y-%m-%d %H:%M} UTC; {machine()}"
     curves = make_curves(args.curves)
+    rows: list[list[str]] = []
+    today = as_landxml(curves).encode()
+    old, new = [], []
+    for _ in range(args.repeat):  # interleaved: the machine's load falls on both alike
+        old.append(_once(old_read_landxml, today))
+        new.append(_once(read_landxml, today))
+    size = f"{len(today) / 2**20:.1f}"
+    ceiling = min(old)
+    rows.append(["Curves only: the reader before issue 39 (the ceiling)", size, f"{min(old):.2f}",
+                 f"{statistics.median(old):.2f}", ""])  # fmt: skip
+    rows.append(["Curves only: today's reader", size, f"{min(new):.2f}", f"{statistics.median(new):.2f}",
+                 f"{100 * (min(new) / ceiling - 1):+.0f} % on the ceiling"])  # fmt: skip
     base = None
-    for name, doc in (
-        ("Curves only (the shape read before issue 39)", as_landxml(curves)),
-        ("lines and curves, every staStart", designed(curves, profile=False, superelevation=False, sections=False)),
-        ("  + a profile", designed(curves, profile=True, superelevation=False, sections=False)),
-        ("  + a profile and cross sections", designed(curves, profile=True, superelevation=False, sections=True)),
-        (
-            "  + a profile, Superelevation, cross sections",
-            designed(curves, profile=True, superelevation=True, sections=True),
-        ),
+    for name, kw in (
+        ("lines and curves, every staStart", {"profile": False, "superelevation": False, "sections": False}),
+        ("  + a profile", {"profile": True, "superelevation": False, "sections": False}),
+        ("  + a profile and cross sections", {"profile": True, "superelevation": False, "sections": True}),
+        ("  + a profile, Superelevation, cross sections", {"profile": True, "superelevation": True, "sections": True}),
     ):
-        data = doc.encode()
-        median, best = timed(data, args.repeat)
-        base = best if name.startswith("lines") else base
-        more = f"  {100 * (best / base - 1):+.0f} %" if base and name.startswith("  ") else ""
-        print(f"{name:48s} {len(data) / 2**20:7.1f} MiB  median {median:6.2f} s  best {best:6.2f} s{more}")
+        data = designed(curves, **kw).encode()
+        samples = [_once(read_landxml, data) for _ in range(args.repeat)]
+        best = min(samples)
+        base = best if base is None else base
+        more = f"{100 * (best / base - 1):+.0f} % on lines and curves" if best is not base else ""
+        rows.append([name.strip(), f"{len(data) / 2**20:.1f}", f"{best:.2f}", f"{statistics.median(samples):.2f}",
+                     more])  # fmt: skip
+    columns = ["document (200,000 curves)" if args.curves == 200_000 else f"document ({args.curves} curves)",
+               "MiB", "best [s]", "median [s]", "compared"]  # fmt: skip
+    for r in rows:
+        print(f"{r[0]:55s} {r[1]:>6s} MiB  best {r[2]:>6s} s  median {r[3]:>6s} s  {r[4]}")
+    print(when)
+    if args.write:
+        lines = [
+            f"`python bench/bench_landxml.py --curves {args.curves} --repeat {args.repeat} --write`, {when}.",
+            "",
+            "| " + " | ".join(columns) + " |",
+            "| " + " | ".join("---" for _ in columns) + " |",
+            *("| " + " | ".join(r) + " |" for r in rows),
+        ]
+        write_block(DOCS, BEGIN, END, "\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -35,6 +35,7 @@ from __future__ import annotations
 import itertools
 import math
 import xml.etree.ElementTree as ET
+from array import array
 from collections import Counter
 
 import numpy as np
@@ -44,6 +45,7 @@ from app.formats.alignment_io import AlignmentFormatError
 from engine.road.geometry import (
     AlignmentGeometry,
     CrossSlope,
+    ElementColumns,
     HorizontalElement,
     Profile,
     RoadFile,
@@ -151,6 +153,9 @@ class _Units:
 
 
 _ROT = {"ccw": "left", "cw": "right"}
+_ROT_CODE = {"ccw": 0, "cw": 1}  # ElementColumns.direction
+_KIND_CODE = {"line": 0, "arc": 1, "spiral": 2}
+_DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
 
 
 def _float(text: str | None, where: str, attribute: str) -> float:
@@ -297,10 +302,15 @@ class _Reader:
         a_name = el.get("name") or f"alignment {index}"
         where_a = f"Alignment {a_name[:100]!r}"
         start = self.length(el, "staStart", where_a, required=False) or 0.0
-        elements: list[HorizontalElement] = []
+        # the elements as the columns of ElementColumns, appended to one by one (a million records would take
+        # seconds to make and to free; a row tuple per element, a long C call to transpose)
+        kinds, dirs = array("b"), array("b")
+        lengths, r1s, r2s, stas = array("d"), array("d"), array("d"), array("d")
+        types: list[str | None] = []
+        names: list[str | None] = []
+        wheres: list[str] = []
         ordinal: dict[str, int] = {}
-        prefix, m, inf = f"{where_a} CoordGeom ", self.m, math.inf
-        append = elements.append
+        prefix, m, inf, nan = f"{where_a} CoordGeom ", self.m, math.inf, math.nan
         for geom in _children(el, "CoordGeom"):
             for child in geom:
                 tag = child.tag
@@ -318,26 +328,62 @@ class _Reader:
                         get("radius"),
                         get("length"),
                         get("staStart"),
-                        _ROT.get(get("rot")),
+                        _ROT_CODE.get(get("rot")),
                     )
                     try:
                         r, length = float(r_text) * m, float(l_text) * m
-                        sta = None if s_text is None else float(s_text) * m
+                        sta = nan if s_text is None else float(s_text) * m
                     except (TypeError, ValueError):
-                        r = length = sta = math.nan
-                    if direction and 0.0 < r < inf and 0.0 <= length < inf and (sta is None or -inf < sta < inf):
-                        append(HorizontalElement("arc", length, r, r, direction, sta, None, label, where))
+                        r = length = sta = inf
+                    finite_sta = s_text is None or -inf < sta < inf
+                    if direction is not None and 0.0 < r < inf and 0.0 <= length < inf and finite_sta:
+                        kinds.append(1)
+                        lengths.append(length)
+                        r1s.append(r)
+                        r2s.append(r)
+                        dirs.append(direction)
+                        stas.append(sta)  # nan: no staStart
+                        types.append(None)
+                        names.append(label)
+                        wheres.append(where)
                         continue
                 else:
                     where = f"{prefix}{name} #{n}" + (f" ({label[:100]!r})" if label else "")
+                    l_text, s_text = get("length"), get("staStart")
+                    if name == "Line" and l_text is not None:  # a line's common case inline too: its length
+                        try:
+                            length = float(l_text) * m
+                            sta = nan if s_text is None else float(s_text) * m
+                        except ValueError:
+                            length = sta = inf
+                        if 0.0 <= length < inf and (s_text is None or -inf < sta < inf):
+                            kinds.append(0)
+                            lengths.append(length)
+                            r1s.append(inf)
+                            r2s.append(inf)
+                            dirs.append(-1)
+                            stas.append(sta)
+                            types.append(None)
+                            names.append(label)
+                            wheres.append(where)
+                            continue
                 e = self.element(child, name, where, label)  # the careful path: every refusal named
                 if e is not None:
-                    append(e)
+                    kinds.append(_KIND_CODE[e.kind])
+                    lengths.append(e.length_m)
+                    r1s.append(e.radius_start_m)
+                    r2s.append(e.radius_end_m)
+                    dirs.append(_DIRECTION_CODE[e.direction])
+                    stas.append(nan if e.station_m is None else e.station_m)
+                    types.append(e.spiral_type)
+                    names.append(e.name)
+                    wheres.append(e.where)
         for name, count in ordinal.items():
             self.counts[name] += count
-        a = AlignmentGeometry(a_name, start, tuple(elements), where=where_a)
+        elements = ElementColumns(kinds, lengths, r1s, r2s, dirs, stas, types, names, wheres)
+        a = AlignmentGeometry(a_name, start, elements, where=where_a)
         equations = self.equations(el, a, where_a)
-        a = AlignmentGeometry(a_name, start, tuple(elements), equations, where=where_a)
+        a = AlignmentGeometry(a_name, start, elements, equations, where=where_a)
         profiles = tuple(p for prof in _children(el, "Profile") for p in self.profiles(prof, a, where_a))
         supers = tuple(
             self.superelevation(s, a, f"{where_a} Superelevation {k}")
@@ -354,7 +400,7 @@ class _Reader:
         if slopes:
             at = distance_at(a, np.array([c.distance_m for c in slopes])).tolist()
             slopes = tuple(CrossSlope(d, c.left_percent, c.right_percent) for d, c in zip(at, slopes, strict=True))
-        return AlignmentGeometry(a_name, start, tuple(elements), equations, profiles, supers, slopes, where_a)
+        return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
         out: list[StationEquation] = []
@@ -472,10 +518,13 @@ class _Reader:
         return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
 
     def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> list[CrossSlope]:
-        out = []
+        # each section's numbers read here, one by one; the slopes computed below for every section at once
+        words: list[str] = []
+        counts: list[int] = []  # how many numbers each section has
+        stations: list[float] = []
+        numbered: list[int] = []  # the section's number in the file (from 1), for messages
         for k, cs in enumerate(_children(el, "CrossSect"), start=1):
             self.counts["CrossSect"] += 1
-            where = f"{where_a} CrossSect {k}"
             surf = _child(cs, "DesignCrossSectSurf")
             if surf is not None:  # LandXML 1.2: a design surface's points, "offset elevation" each
                 texts = [" ".join((p.text or "").split()[:2]) for p in _children(surf, "CrossSectPnt")]
@@ -483,31 +532,76 @@ class _Reader:
                 surf = _child(cs, "CrossSectSurf")
                 plist = _child(surf, "PntList2D") if surf is not None else None
                 if plist is None:
-                    self.skipped.append((where, "no design surface (DesignCrossSectSurf) to take the slopes from"))
+                    self.skipped.append(
+                        (f"{where_a} CrossSect {k}", "no design surface (DesignCrossSectSurf) to take the slopes from")
+                    )
                     continue
                 texts = [plist.text or ""]
-            xs = _numbers(texts, where, "CrossSectPnt")
-            left = right = None  # the points nearest the centreline on each side, and the centreline's own
-            zc = None
-            for x, z in zip(xs[0::2], xs[1::2], strict=False):
-                if x < 0 and (left is None or x > left[0]):
-                    left = (x, z)
-                elif x > 0 and (right is None or x < right[0]):
-                    right = (x, z)
-                elif x == 0:
-                    zc = z
-            if left is None or right is None:
-                self.skipped.append((where, "its design surface has no point on one side of the centreline"))
-                continue
-            (xl, zl), (xr, zr) = left, right
-            if zc is None:
-                zc = zl + (zr - zl) * (0 - xl) / (xr - xl)
-            # slopes are ratios: the file's unit cancels
-            sta = self.length(cs, "sta", where)
-            # + rising from left to right (engine.road.geometry's convention); the station made a distance by the
-            # caller, with every section's at once
-            out.append(CrossSlope(sta, 100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr))
+            mine = " ".join(texts).split()
+            words += mine
+            counts.append(len(mine))
+            stations.append(self.length(cs, "sta", f"{where_a} CrossSect {k}"))  # a distance made by the caller
+            numbered.append(k)
+        if not counts:
+            return []
+        try:
+            values = np.array(words, dtype=float)
+            bad = not np.isfinite(values).all()
+        except ValueError:
+            bad = True
+        if bad:  # the first section with a word that is not a finite number, named
+            first = 0
+            for k, c in zip(numbered, counts, strict=True):
+                _numbers(words[first : first + c], f"{where_a} CrossSect {k}", "CrossSectPnt")
+                first += c
+        slopes = _slopes(values, np.array(counts))
+        out = []
+        for k, sta, (left, right) in zip(numbered, stations, slopes.tolist(), strict=True):
+            if math.isnan(left):
+                self.skipped.append(
+                    (f"{where_a} CrossSect {k}", "its design surface has no point on one side of the centreline")
+                )
+            else:
+                out.append(CrossSlope(sta, left, right))
         return out
+
+
+def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Each section's (left, right) lane slopes [%] from its numbers, "offset elevation" pairs (``counts``: how many
+    numbers each section has; an odd one at a section's end is not a pair): between the point nearest the centreline
+    on each side (the first of equals) and the centreline's elevation (the last point at offset 0, else interpolated
+    between those two); + rising from left to right (engine.road.geometry's convention), a negative offset left of
+    the centreline; nan where a side has no point. Slopes are ratios: the file's unit cancels."""
+    n = len(counts)
+    pairs = counts // 2
+    first = np.cumsum(counts) - counts
+    sec = np.repeat(np.arange(n), pairs)
+    j = np.arange(len(sec)) - np.repeat(np.cumsum(pairs) - pairs, pairs)
+    at = np.repeat(first, pairs) + 2 * j
+    x, z = values[at], values[at + 1]
+    order = np.arange(len(x))
+    out = np.full((n, 2), np.nan)
+    left, right, zero = x < 0, x > 0, x == 0
+    # left: the greatest negative offset (the first of equals): the last of each section's (offset, -order) sort
+    i = np.flatnonzero(left)[np.lexsort((-order[left], x[left], sec[left]))]
+    last = np.r_[sec[i][1:] != sec[i][:-1], True] if len(i) else np.zeros(0, bool)
+    xl, zl = np.full(n, np.nan), np.full(n, np.nan)
+    xl[sec[i][last]], zl[sec[i][last]] = x[i][last], z[i][last]
+    # right: the least positive offset (the first of equals): the first of each section's (offset, order) sort
+    i = np.flatnonzero(right)[np.lexsort((order[right], x[right], sec[right]))]
+    head = np.r_[True, sec[i][1:] != sec[i][:-1]] if len(i) else np.zeros(0, bool)
+    xr, zr = np.full(n, np.nan), np.full(n, np.nan)
+    xr[sec[i][head]], zr[sec[i][head]] = x[i][head], z[i][head]
+    # the centreline: the last point at offset 0 (in each section's order)
+    i = np.flatnonzero(zero)
+    last = np.r_[sec[i][1:] != sec[i][:-1], True] if len(i) else np.zeros(0, bool)
+    zc = np.full(n, np.nan)
+    zc[sec[i][last]] = z[i][last]
+    zc = np.where(np.isnan(zc), zl + (zr - zl) * (0 - xl) / (xr - xl), zc)
+    out[:, 0] = 100.0 * (zc - zl) / (0 - xl)
+    out[:, 1] = 100.0 * (zr - zc) / xr
+    out[np.isnan(xl) | np.isnan(xr)] = np.nan
+    return out
 
 
 def writer_of(root: ET.Element) -> str | None:
@@ -526,7 +620,15 @@ def writer_of(root: ET.Element) -> str | None:
 def read_road_file(text: str | bytes) -> RoadFile:
     """A LandXML 1.2 document as a :class:`~engine.road.geometry.RoadFile` (every alignment, in metres); raises
     :class:`~app.formats.alignment_io.AlignmentFormatError`."""
-    root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)
+    with xmlsafe.collection_paused():  # the tree's million elements: no collector passes, freed in slices
+        root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)
+        try:
+            return _road_file(root)
+        finally:
+            xmlsafe.free(root)
+
+
+def _road_file(root: ET.Element) -> RoadFile:
     alignments_el = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
     if not alignments_el:
         raise AlignmentFormatError("no <Alignment> element", "LandXML")

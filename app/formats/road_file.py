@@ -34,10 +34,12 @@ from app.formats.alignment_io import (
 )
 from engine.road.geometry import (
     AlignmentGeometry,
+    ElementColumns,
     Profile,
     RoadFile,
     bend_columns,
     covers_many,
+    element_columns,
     element_distances,
     grade_ranges,
     grades_at,
@@ -60,7 +62,26 @@ ROAD_READERS: dict[str, Callable[[str | bytes], RoadFile]] = {"landxml": landxml
 def read_road_document(kind: str, document: str | bytes, **options: Any) -> CurveTable:
     """The curves of a road file of ``kind`` (a key of :data:`ROAD_READERS`): its reader, then
     :func:`curves_from_road_file` with ``options``."""
-    return curves_from_road_file(ROAD_READERS[kind](document), **options)
+    road = ROAD_READERS[kind](document)
+    try:
+        return curves_from_road_file(road, **options)
+    finally:
+        _release(road)
+
+
+#: list entries freed per call (a few milliseconds)
+_RELEASE_SLICE = 4096
+
+
+def _release(road: RoadFile) -> None:
+    """Empty the large lists of the file's columns a slice at a time, so a million names and places are not freed
+    in one C call that holds the interpreter's lock (when the last reference goes, possibly in the event loop's
+    thread: a refusal's traceback holds this frame)."""
+    for a in road.alignments:
+        if isinstance(a.elements, ElementColumns):
+            for items in (a.elements.name, a.elements.where, a.elements.spiral_type):
+                while items:
+                    del items[-_RELEASE_SLICE:]
 
 
 def _profile(a: AlignmentGeometry, name: str | None) -> Profile | None:
@@ -71,10 +92,12 @@ def _profile(a: AlignmentGeometry, name: str | None) -> Profile | None:
     return next((p for p in a.profiles if p.name == name), None)
 
 
-def _written_stations(a: AlignmentGeometry, starts: np.ndarray, distance_m: np.ndarray) -> np.ndarray:
+def _written_stations(
+    a: AlignmentGeometry, els: ElementColumns, starts: np.ndarray, distance_m: np.ndarray
+) -> np.ndarray:
     """The station as the file writes it at each distance: an element's own ``staStart`` where the distance is that
     element's start, else the alignment's start station plus the distance (station equations applied)."""
-    own = np.array([math.nan if e.station_m is None else e.station_m for e in a.elements] + [math.nan])
+    own = np.append(els.station_m, math.nan)
     d = np.asarray(distance_m, dtype=float)
     j = np.clip(np.searchsorted(starts, d), 0, len(starts) - 1)
     written = np.where(starts[j] == d, own[j], math.nan)
@@ -124,23 +147,30 @@ def curves_from_road_file(
         if not n:
             continue
         starts = element_distances(a)
-        els, arcs = a.elements, b.arc_element.tolist()
+        els, arcs = element_columns(a), b.arc_element.tolist()
+        names, places = els.name, els.where
+        if len(ids) + n > max_curves:  # refused before a list of every row's id is made (and freed again)
+            k = max_curves - len(ids)  # the first row past the limit, in this alignment
+            if arcs[k] >= 0:
+                past = places[arcs[k]]
+            else:  # named as the rows name it: <alignment>#apex<m>, m counting the bends of spirals
+                cid = f"{a.name}#apex{sum(1 for x in arcs[: k + 1] if x < 0)}"
+                past = f"{places[int(b.first_element[k])]}: the bend of spirals {cid!r}"
+            raise AlignmentFormatError(f"more than {max_curves} curves", past)
         if min(arcs) >= 0:  # every row an arc (the common case): its element's name and place
-            ids += [els[i].name or "" for i in arcs]
-            where += [els[i].where for i in arcs]
+            ids += [names[i] or "" for i in arcs]
+            where += [places[i] for i in arcs]
         else:
             apex = 0
             for k, arc in enumerate(arcs):
                 if arc >= 0:
-                    ids.append(els[arc].name or "")
-                    where.append(els[arc].where)
+                    ids.append(names[arc] or "")
+                    where.append(places[arc])
                 else:
                     apex += 1
                     cid = f"{a.name}#apex{apex}"
                     ids.append(cid)
-                    where.append(f"{els[int(b.first_element[k])].where}: the bend of spirals {cid!r}")
-        if len(ids) > max_curves:
-            raise AlignmentFormatError(f"more than {max_curves} curves", where[max_curves])
+                    where.append(f"{places[int(b.first_element[k])]}: the bend of spirals {cid!r}")
         middle = 0.5 * (b.start_m + b.end_m)
         if chosen is not None:
             covered = covers_many(chosen, b.start_m, b.end_m)
@@ -171,10 +201,10 @@ def curves_from_road_file(
                 "grade_source": covered.astype(float),
                 "grade_min_percent": np.where(covered, 100.0 * g_lo, nan),
                 "grade_max_percent": np.where(covered, 100.0 * g_hi, nan),
-                "station_m": _written_stations(a, starts, b.arc_start_m),
+                "station_m": _written_stations(a, els, starts, b.arc_start_m),
                 "distance_m": b.arc_start_m,
-                "bend_start_m": _written_stations(a, starts, b.start_m),
-                "bend_end_m": _written_stations(a, starts, b.end_m),
+                "bend_start_m": _written_stations(a, els, starts, b.start_m),
+                "bend_end_m": _written_stations(a, els, starts, b.end_m),
                 "direction": b.direction.astype(float),
                 "arc_length_m": b.arc_length_m,
                 "deflection_deg": b.deflection_deg,

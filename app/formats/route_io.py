@@ -594,7 +594,15 @@ def read_gpx_document(text: str | bytes, *, parts: str | None = None, max_vertic
     """
     if parts is not None and parts not in PARTS:
         raise RouteFormatError(f"parts must be one of {', '.join(PARTS)}, got {parts!r}", "parts", "parts")
-    root = xmlsafe.document(text, "gpx", "GPX", RouteFormatError)
+    with xmlsafe.collection_paused():  # the tree's million elements: no collector passes, freed in slices
+        root = xmlsafe.document(text, "gpx", "GPX", RouteFormatError)
+        try:
+            return _gpx_read(root, parts, max_vertices)
+        finally:
+            xmlsafe.free(root)
+
+
+def _gpx_read(root, parts: str | None, max_vertices: int) -> RouteRead:
     version = (root.get("version") or "").strip()
     fmt = f"GPX {version}" if version in ("1.0", "1.1") else "GPX"
     creator = (root.get("creator") or "").strip()

@@ -96,17 +96,36 @@ def decode_csv(data: bytes, field: str = "body") -> str:
         ) from None
 
 
+#: bytes decoded per call: one call over a 64 MiB upload holds the interpreter's lock (and the event loop, where
+#: uploads are decoded) for tens of milliseconds
+DECODE_CHUNK = 2**20
+
+
+def _decoded(data: bytes, encoding: str) -> str:
+    """``data`` decoded :data:`DECODE_CHUNK` bytes at a time (an incremental decoder: a character split between two
+    chunks is decoded whole); raises :class:`UnicodeDecodeError` as ``bytes.decode`` does."""
+    decoder = codecs.getincrementaldecoder(encoding)()
+    view = memoryview(data)
+    parts = [decoder.decode(view[k : k + DECODE_CHUNK]) for k in range(0, len(view), DECODE_CHUNK)]
+    parts.append(decoder.decode(b"", final=True))
+    return "".join(parts)
+
+
 def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: type = InvalidAlignment) -> str:
     """XML bytes as text: UTF-8 (with or without BOM), or the encoding its XML declaration names; else ``error``
     (an :class:`~app.http.problems.InvalidAlignment` or its route form) naming ``field`` and the ``root`` element."""
     try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:  # where, for the message: a position to look at, as the CSV's says
-        bad = f"byte {exc.start}, 0x{data[exc.start]:02X}"
+        return _decoded(data, "utf-8-sig")
+    except UnicodeDecodeError:  # where, for the message: a position to look at, as the CSV's says (found again on the
+        try:  # whole bytes, since the incremental decoder counts from its chunk; only a refused upload pays for it)
+            data.decode("utf-8-sig")
+            bad = "a byte that no chunk decodes"
+        except UnicodeDecodeError as exc:
+            bad = f"byte {exc.start}, 0x{data[exc.start]:02X}"
     declared = re.match(rb"""\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""", data)
     if declared:
         try:
-            return data.decode(codecs.lookup(declared.group(1).decode()).name)
+            return _decoded(data, codecs.lookup(declared.group(1).decode()).name)
         except (LookupError, UnicodeDecodeError):
             pass
     raise error(

@@ -13,18 +13,36 @@ aside, an undefined entity is a well-formedness error in both passes), so the se
 are ``defusedxml``'s own classes and ``xml.etree.ElementTree.ParseError`` with expat's message and position, as
 ``defusedxml.ElementTree.fromstring`` raises them (tests/road/test_xmlsafe.py compares both on bombs and malformed
 documents).
+
+Both passes are fed :data:`CHUNK` characters (or bytes) at a time. A parser's one call over a whole document is one C
+call that holds the interpreter's lock throughout: a 56 MiB LandXML held it for 4 s, and every other request of the
+process (the event loop's own) waited that long. Between chunks the reading thread gives the lock up
+(``time.sleep(0)``), so another thread waits at most one chunk's parse (a few milliseconds) for it; the chunks are
+views, not copies, and expat keeps its state (and its error positions) across them.
+
+Two more waits of the same kind come from the tree itself, and the readers avoid both
+(:func:`collection_paused`, :func:`free`): the cyclic garbage collector's full passes, each a C call over every
+object alive (the tree's million elements: up to a second each, several while the tree grows), and the freeing of
+the tree, one C call that frees every element when the root's last reference goes.
 """
 
 from __future__ import annotations
 
+import gc
+import threading
+import time
 import xml.etree.ElementTree as ET
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import NoReturn
 from xml.parsers import expat
 
 from defusedxml.common import DefusedXmlException, EntitiesForbidden, ExternalReferenceForbidden
 
 ParseError = ET.ParseError
+#: characters (or bytes) per parser call: about 2 ms of parsing on the 2-core development machine (a few MB/s under
+#: load to 30 MB/s), the longest another thread waits for the interpreter's lock while a document is read
+CHUNK = 64 * 2**10
 
 
 def _entity(name, is_parameter_entity, value, base, sysid, pubid, notation_name) -> NoReturn:
@@ -47,12 +65,67 @@ def fromstring(text: str | bytes) -> ET.Element:
     guard.UnparsedEntityDeclHandler = _unparsed_entity
     guard.ExternalEntityRefHandler = _external_reference
     try:
-        guard.Parse(text, True)
+        for chunk in _chunks(text):
+            guard.Parse(chunk, False)
+        guard.Parse(b"", True)
     except expat.ExpatError as exc:
         err = ParseError(expat.ErrorString(exc.code) + f": line {exc.lineno}, column {exc.offset}")
         err.code, err.position = exc.code, (exc.lineno, exc.offset)
         raise err from None
-    return ET.fromstring(text)
+    parser = ET.XMLParser()
+    for chunk in _chunks(text):
+        parser.feed(chunk)
+    return parser.close()
+
+
+def _chunks(text: str | bytes):
+    """``text`` in pieces of :data:`CHUNK` (views of bytes; slices of a str), the lock given up after each."""
+    data = memoryview(text) if isinstance(text, bytes | bytearray) else text
+    for start in range(0, len(data), CHUNK):
+        yield data[start : start + CHUNK]
+        time.sleep(0)  # let a waiting thread (the event loop) run between two C calls that hold the lock
+
+
+#: elements freed per call of :func:`free` (a few milliseconds)
+FREE_SLICE = 4096
+_pause_lock = threading.Lock()
+_pauses = 0
+_was_enabled = False
+
+
+@contextmanager
+def collection_paused() -> Iterator[None]:
+    """The cyclic garbage collector off while a document is read (process-wide: counted, so overlapping readings
+    turn it back on when the last one ends, and only if it was on). A reading makes millions of objects and frees
+    them itself (:func:`free`); the collector's passes over them would hold the interpreter's lock for up to a
+    second each and make no garbage of them. Cycles other threads make meanwhile are collected afterwards."""
+    global _pauses, _was_enabled
+    with _pause_lock:
+        if _pauses == 0:
+            _was_enabled = gc.isenabled()
+            gc.disable()
+        _pauses += 1
+    try:
+        yield
+    finally:
+        with _pause_lock:
+            _pauses -= 1
+            if _pauses == 0 and _was_enabled:
+                gc.enable()
+
+
+def free(root: ET.Element) -> None:
+    """Free a tree :data:`FREE_SLICE` elements at a time (each a short C call; the interpreter switches threads
+    between them) instead of in one C call when the root's last reference goes. The tree is emptied (``root`` is
+    left with no children)."""
+    stack = [root]
+    while stack:
+        el = stack.pop()
+        while len(el):
+            part = el[-FREE_SLICE:]
+            del el[-FREE_SLICE:]
+            stack.extend(c for c in part if len(c))  # those with children are emptied in turn
+            del part  # the leaves go here
 
 
 def local(tag: str) -> str:

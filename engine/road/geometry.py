@@ -23,6 +23,7 @@ Conventions
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -54,6 +55,112 @@ class HorizontalElement:
     spiral_type: str | None = None
     name: str | None = None
     where: str = ""
+
+
+_KINDS: tuple[ElementKind, ...] = ("line", "arc", "spiral")
+_DIRECTIONS: tuple[Direction | None, ...] = ("left", "right", None)  # by code 0, 1, -1
+
+
+class ElementColumns(Sequence[HorizontalElement]):
+    """An alignment's horizontal elements held as columns, one entry per element: a sequence of
+    :class:`HorizontalElement` (each made when it is asked for) that the numerics read as arrays
+    (:func:`element_columns`). A reader of a large file gives an alignment its elements in this form: a million
+    records would take seconds to make and hold the interpreter's lock while they are freed.
+
+    ``kind``: 0 line, 1 arc, 2 spiral; ``direction``: 0 left, 1 right, -1 none; ``station_m``: nan where the file
+    gives none; ``length_m``, ``radius_start_m``, ``radius_end_m`` [m] as in :class:`HorizontalElement`;
+    ``spiral_type``, ``name``, ``where``: lists (None where there is none).
+    """
+
+    __slots__ = (
+        "direction",
+        "kind",
+        "length_m",
+        "name",
+        "radius_end_m",
+        "radius_start_m",
+        "spiral_type",
+        "station_m",
+        "where",
+    )  # fmt: skip
+
+    def __init__(self, kind, length_m, radius_start_m, radius_end_m, direction, station_m, spiral_type, name, where):
+        self.kind = np.asarray(kind, dtype=np.int8)
+        self.length_m = np.asarray(length_m, dtype=float)
+        self.radius_start_m = np.asarray(radius_start_m, dtype=float)
+        self.radius_end_m = np.asarray(radius_end_m, dtype=float)
+        self.direction = np.asarray(direction, dtype=np.int8)
+        self.station_m = np.asarray(station_m, dtype=float)
+        # (a list given is kept, not copied)
+        self.spiral_type, self.name, self.where = (
+            x if isinstance(x, list) else list(x) for x in (spiral_type, name, where)
+        )
+        n = len(self.kind)
+        sizes = {len(getattr(self, k)) for k in self.__slots__}
+        if sizes != {n}:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+
+    @classmethod
+    def of(cls, elements: Sequence[HorizontalElement]) -> ElementColumns:
+        """Records as columns."""
+        if isinstance(elements, ElementColumns):
+            return elements
+        el = elements
+        return cls(
+            [_KINDS.index(e.kind) for e in el],
+            [e.length_m for e in el],
+            [e.radius_start_m for e in el],
+            [e.radius_end_m for e in el],
+            [1 if e.direction == "right" else 0 if e.direction == "left" else -1 for e in el],
+            [math.nan if e.station_m is None else e.station_m for e in el],
+            [e.spiral_type for e in el],
+            [e.name for e in el],
+            [e.where for e in el],
+        )
+
+    def __len__(self) -> int:
+        return len(self.kind)
+
+    def _one(self, i: int) -> HorizontalElement:
+        sta = float(self.station_m[i])
+        return HorizontalElement(
+            _KINDS[self.kind[i]],
+            float(self.length_m[i]),
+            float(self.radius_start_m[i]),
+            float(self.radius_end_m[i]),
+            _DIRECTIONS[self.direction[i]],
+            None if math.isnan(sta) else sta,
+            self.spiral_type[i],
+            self.name[i],
+            self.where[i],
+        )
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return tuple(self._one(k) for k in range(*i.indices(len(self))))
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError("element index out of range")
+        return self._one(i % n)
+
+    def __iter__(self) -> Iterator[HorizontalElement]:
+        return (self._one(k) for k in range(len(self)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __repr__(self) -> str:
+        return f"ElementColumns({len(self)} elements)"
+
+
+def element_columns(alignment: AlignmentGeometry) -> ElementColumns:
+    """The alignment's elements as columns (:class:`ElementColumns`), whichever form it holds them in."""
+    return ElementColumns.of(alignment.elements)
 
 
 @dataclass(frozen=True)
@@ -116,7 +223,8 @@ class AlignmentGeometry:
 
     name: str
     start_station_m: float
-    elements: tuple[HorizontalElement, ...]
+    #: a tuple of records, or (a reader of a large file) the same as :class:`ElementColumns`
+    elements: Sequence[HorizontalElement]
     station_equations: tuple[StationEquation, ...] = ()
     profiles: tuple[Profile, ...] = ()
     superelevation: tuple[SuperelevationRange, ...] = ()
@@ -148,8 +256,7 @@ class RoadFile:
 def element_distances(alignment: AlignmentGeometry) -> np.ndarray:
     """The distance along the alignment [m] at the start of each element and at the end of the last (``n + 1``
     values): the cumulative sum of the element lengths, from 0 at the alignment's start."""
-    lengths = np.array([e.length_m for e in alignment.elements], dtype=float)
-    return np.concatenate(([0.0], np.cumsum(lengths)))
+    return np.concatenate(([0.0], np.cumsum(element_columns(alignment).length_m)))
 
 
 def station_at(alignment: AlignmentGeometry, distance_m: np.ndarray | float) -> np.ndarray:
@@ -303,13 +410,9 @@ def bend_columns(alignment: AlignmentGeometry) -> BendColumns:
     radius. Rows of a run with several are ``compound``; a run that meets a run turning the other way with no
     straight element between them is a reverse curve (its row at that end is ``reverse``).
     """
-    el = alignment.elements
+    el = element_columns(alignment)
     n = len(el)
-    kind = np.fromiter((0 if e.kind == "line" else 1 if e.kind == "arc" else 2 for e in el), np.int8, n)
-    length = np.fromiter((e.length_m for e in el), float, n)
-    r1 = np.fromiter((e.radius_start_m for e in el), float, n)
-    r2 = np.fromiter((e.radius_end_m for e in el), float, n)
-    dirn = np.fromiter((1 if e.direction == "right" else 0 if e.direction == "left" else -1 for e in el), np.int8, n)
+    kind, length, r1, r2, dirn = el.kind, el.length_m, el.radius_start_m, el.radius_end_m, el.direction
     starts = np.concatenate(([0.0], np.cumsum(length)))
     is_arc = kind == 1
     straight = (kind == 0) | (np.isinf(r1) & np.isinf(r2)) | (length <= 0.0)

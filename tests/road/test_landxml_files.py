@@ -442,3 +442,42 @@ def test_more_curves_than_the_limit_are_refused_at_the_first_one_past_it():
     with pytest.raises(AlignmentFormatError, match="more than 2 curves") as exc:
         read_landxml(landxml(Design("M", 0.0, arcs)), superelevation_percent=4.0, max_curves=2)
     assert exc.value.location == "Alignment 'M' CoordGeom Curve #3 ('K2')"
+
+
+def _slopes_one_by_one(xs: list[float]) -> tuple[float, float] | None:
+    """A section's lane slopes [%] point by point, as the reader computed them one section at a time before they
+    were computed on arrays: the nearest point on each side (the first of equals), the centreline's elevation the
+    last point at offset 0, else interpolated; None when a side has no point."""
+    left = right = zc = None
+    for x, z in zip(xs[0::2], xs[1::2], strict=False):
+        if x < 0 and (left is None or x > left[0]):
+            left = (x, z)
+        elif x > 0 and (right is None or x < right[0]):
+            right = (x, z)
+        elif x == 0:
+            zc = z
+    if left is None or right is None:
+        return None
+    (xl, zl), (xr, zr) = left, right
+    if zc is None:
+        zc = zl + (zr - zl) * (0 - xl) / (xr - xl)
+    return 100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr
+
+
+def test_the_sections_slopes_on_arrays_are_those_of_each_section_read_alone():
+    from app.formats.landxml import _slopes
+
+    rng = np.random.default_rng(39)
+    sections = []
+    for _ in range(400):  # ties, several points at 0, one-sided sections, an odd number at the end
+        k = int(rng.integers(0, 9))
+        xs = [float(v) for p in zip(rng.choice([-7.0, -3.5, -3.5, 0.0, 0.0, 3.5, 3.5, 7.0], k),
+                                    rng.normal(100.0, 0.2, k), strict=True) for v in p]  # fmt: skip
+        sections.append(xs + ([5.0] if rng.random() < 0.2 else []))
+    got = _slopes(np.array([v for xs in sections for v in xs]), np.array([len(xs) for xs in sections]))
+    for xs, (left, right) in zip(sections, got.tolist(), strict=True):
+        expected = _slopes_one_by_one(xs)
+        if expected is None:
+            assert math.isnan(left) and math.isnan(right)
+        else:
+            assert (left, right) == pytest.approx(expected, rel=1e-12, abs=1e-12)

@@ -14,6 +14,7 @@ import pytest
 from engine.road.geometry import (
     AlignmentGeometry,
     CrossSlope,
+    ElementColumns,
     HorizontalElement,
     Profile,
     StationEquation,
@@ -103,6 +104,27 @@ def test_spirals_meeting_at_a_straight_point_are_two_bends():
     b = bends(a)
     assert [x.radius_m for x in b] == [200.0, 300.0]
     assert b[0].reverse and b[1].reverse
+
+
+def test_elements_held_as_columns_are_the_same_records_and_the_same_bends():
+    # the form a reader of a large file gives: every field of every record comes back, and the numerics agree
+    els = (
+        HorizontalElement("line", 200.0, station_m=1000.0, name="L1", where="e1"),
+        HorizontalElement("spiral", 60.0, INF, 400.0, "left", 1200.0, "clothoid", None, "e2"),
+        HorizontalElement("arc", 100.0, 400.0, 400.0, "left", None, None, "C1", "e3"),
+        HorizontalElement("spiral", 60.0, 400.0, INF, "left", None, "bloss", None, "e4"),
+        HorizontalElement("arc", 30.0, 250.0, 250.0, "right", 1460.0, None, "C2", "e5"),
+    )
+    cols = ElementColumns.of(els)
+    assert len(cols) == 5 and tuple(cols) == els and cols == els and cols[2] == els[2] and cols[-1] == els[-1]
+    assert cols[1:3] == els[1:3] and ElementColumns.of(cols) is cols
+    with pytest.raises(IndexError):
+        cols[5]
+    as_records, as_columns = alignment(*els, start=1000.0), AlignmentGeometry("A", 1000.0, cols)
+    assert bends(as_columns) == bends(as_records) and len(bends(as_records)) == 2
+    assert element_distances(as_columns).tolist() == element_distances(as_records).tolist() == [
+        0.0, 200.0, 260.0, 360.0, 420.0, 450.0,
+    ]  # fmt: skip
 
 
 def _profile(*segments):

@@ -71,3 +71,44 @@ def test_a_refusal_is_raised_before_the_tree_is_built(monkeypatch):
     for text in REFUSED:
         with pytest.raises(DefusedXmlException):
             xmlsafe.fromstring(text)
+
+
+def test_a_document_read_in_chunks_is_the_same_tree_and_an_error_past_a_chunk_has_its_own_position(monkeypatch):
+    # many chunks (of 7 characters): the tree and a malformed document's line and column as parsed whole
+    doc = '<?xml version="1.0"?>\n<r a="1">' + "".join(f'<c n="{k}">é{k}</c>\n' for k in range(50)) + "</r>"
+    whole = ET.fromstring(doc)
+    monkeypatch.setattr(xmlsafe, "CHUNK", 7)
+    for text in (doc, doc.encode()):
+        got = xmlsafe.fromstring(text)
+        assert ET.tostring(got) == ET.tostring(whole)
+    bad = doc.replace('<c n="40">', '<c n="40"', 1)
+    with pytest.raises(ET.ParseError) as expected:
+        DefusedET.fromstring(bad)
+    with pytest.raises(ET.ParseError) as got_error:
+        xmlsafe.fromstring(bad)
+    assert got_error.value.position == expected.value.position
+    with pytest.raises(DefusedXmlException):  # the guards hold in chunks
+        xmlsafe.fromstring('<!DOCTYPE r [<!ENTITY e "x">]><r>&e;</r>')
+
+
+def test_free_empties_the_tree_and_the_collector_is_paused_until_the_last_reading_ends():
+    import gc
+
+    root = ET.fromstring("<r>" + "<a><b/><c><d/></c></a>" * 10_000 + "<e/></r>")
+    kept = root[0]
+    xmlsafe.free(root)
+    assert len(root) == 0 and len(kept) == 0
+    assert gc.isenabled()
+    with xmlsafe.collection_paused():
+        assert not gc.isenabled()
+        with xmlsafe.collection_paused():
+            assert not gc.isenabled()
+        assert not gc.isenabled()  # the outer reading is still on
+    assert gc.isenabled()
+    gc.disable()
+    try:  # a collector that was off stays off
+        with xmlsafe.collection_paused():
+            pass
+        assert not gc.isenabled()
+    finally:
+        gc.enable()

@@ -42,12 +42,14 @@ from app.alignments.rows import (
     summary,
 )
 from app.alignments.schemas import (
+    MAX_IFC_CHARS,
     MAX_JOB_CURVES,
     MAX_JOB_ROWS,
     AlignmentRequest,
     CurveId,
     CurveIn,
     CurveOverrideIn,
+    IfcIn,
     LandXmlIn,
     keys_match_the_id_pattern,
 )
@@ -90,6 +92,10 @@ from engine.road import (
 #: curves and rows in app.alignments.schemas, whose limit errors name them
 MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000
+#: an IFC file's bound stays the synchronous request's (a job lifts its curve and row limits): IfcOpenShell holds the
+#: parsed file whole in memory, entity objects for every line, where the LandXML reader streams (assumed: not
+#: measured beyond the test files)
+MAX_JOB_IFC_CHARS = MAX_IFC_CHARS
 #: rows (curves x vehicles) per part, and per chunk of a part (a progress report, a cancellation point)
 PART_ROWS = 50_000
 CHUNK_ROWS = 10_000
@@ -117,10 +123,26 @@ class LandXmlJobIn(LandXmlIn):
     )
 
 
+class IfcJobIn(IfcIn):
+    """An IFC 4.3 file, as in the synchronous request (the same bound on its size), with overrides for up to
+    1,000,000 curves."""
+
+    document: str = Field(
+        min_length=1, max_length=MAX_JOB_IFC_CHARS, description=IfcIn.model_fields["document"].description
+    )
+    curve_overrides: dict[CurveId, CurveOverrideIn] | None = Field(
+        None,
+        max_length=MAX_JOB_CURVES,
+        description=IfcIn.model_fields["curve_overrides"].description,
+        json_schema_extra=keys_match_the_id_pattern,
+    )
+
+
 class AlignmentJobRequest(AlignmentRequest):
     """The alignment assessment's request (`POST /v1/alignments/assess`) at a job's size: at most 1,000,000 curves
     and 1,000,000 rows (curves x vehicles), CSV text of up to 160,000,000 characters, a LandXML document of up to
-    200,000,000. Everything else is validated as the synchronous request is."""
+    200,000,000, an IFC file of up to 64,000,000 (as synchronously). Everything else is validated as the
+    synchronous request is."""
 
     curves: list[CurveIn] = Field(
         None,
@@ -139,6 +161,7 @@ class AlignmentJobRequest(AlignmentRequest):
     landxml: LandXmlJobIn = Field(
         None, json_schema_extra=ABSENT, description=AlignmentRequest.model_fields["landxml"].description
     )
+    ifc: IfcJobIn = Field(None, json_schema_extra=ABSENT, description=AlignmentRequest.model_fields["ifc"].description)
 
 
 # ----------------------------------------------------------------------------------------- the hooks

@@ -33,6 +33,7 @@ BATCHES = [
     "/v1/alignments/assess",
     "/v1/alignments/assess/csv",
     "/v1/alignments/assess/landxml",
+    "/v1/alignments/assess/ifc",
     "/v1/routes/assess",
     "/v1/routes/assess/gpx",
     "/v1/routes/assess/geojson",

@@ -10,7 +10,7 @@ request fails the schema                    422     ``urn:rollover:problem:valid
 unknown vehicle preset                      404     ``urn:rollover:problem:unknown-preset``
 engine InvalidVehicle / MissingParameter    422     ``...:invalid-vehicle`` / ``...:missing-parameter``
 engine InvalidRoad / InvalidLoad            422     ``...:invalid-road`` / ``...:invalid-load``
-CSV / LandXML / IFC curves unreadable      422     ``urn:rollover:problem:invalid-alignment``
+CSV / LandXML / IFC curves unreadable        422     ``urn:rollover:problem:invalid-alignment``
 request body over the operation's limit     413     ``urn:rollover:problem:body-too-large``
 engine MechanismSingular                    422     ``...:mechanism-singular``
 engine ConvergenceError                     422     ``...:no-convergence``

@@ -218,3 +218,22 @@ def test_random_alignments_written_both_ways_give_the_same_rows(shared_client, s
     for k in ("alignments", "profile", "superelevation_from"):
         assert a["reading"][k] == b["reading"][k], k
     assert a["reading"]["alignments"] == [name]
+
+
+def test_an_escaped_name_is_read_whole(shared_client):
+    """ISO 10303-21 is 7-bit text; another character is written as its code in ``\\X2\\ ... \\X0\\`` (hex UTF-16)."""
+    escaped = "Rodovia S\\X2\\00E3\\X0\\o Jos\\X2\\00E9\\X0\\"
+    text = ROAD_IFC.decode().replace("Example road (synthetic): two curves", escaped)
+    out = _post(shared_client, PATH, text.encode()).json()
+    assert out["reading"]["alignments"] == ["Rodovia São José"] and out["curves"] == 2
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "utf-8-sig", "latin-1"])
+def test_raw_utf_8_or_latin_1_and_a_byte_order_mark_are_read(shared_client, encoding):
+    """Some writers put UTF-8 or Latin-1 in strings anyway, and an editor may add a byte-order mark: the upload is
+    read (app/formats/uploads.py ``decode_step``), its rows those of the plain file."""
+    plain = _post(shared_client, PATH, ROAD_IFC).json()
+    text = ROAD_IFC.decode().replace("Example road (synthetic): two curves", "Rodovia São José")
+    out = _post(shared_client, PATH, text.encode(encoding)).json()
+    assert out["curves"] == 2
+    _same_rows(out["vehicles"][0]["rows"], plain["vehicles"][0]["rows"])

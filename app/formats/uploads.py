@@ -120,7 +120,8 @@ def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: t
 def decode_step(data: bytes, field: str = "body") -> str:
     """ISO 10303-21 (STEP, an IFC file) bytes as text: UTF-8 (a byte-order mark dropped), else Latin-1. The format is
     7-bit text with other characters escaped (``\\X2\\...``); some writers put Latin-1 in strings, which only names
-    carry, so nothing is refused here (the reader refuses what is not ISO 10303-21, naming ``field``)."""
+    carry, so nothing is refused here (the reader refuses what is not ISO 10303-21; ``field``, the signature shared
+    with :func:`decode_csv` and :func:`decode_xml`, names the upload there)."""
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError:

@@ -93,8 +93,8 @@ from engine.road import (
 MAX_JOB_CSV_CHARS = 160_000_000
 MAX_JOB_LANDXML_CHARS = 200_000_000
 #: an IFC file's bound stays the synchronous request's (a job lifts its curve and row limits): IfcOpenShell holds the
-#: parsed file whole in memory, entity objects for every line, where the LandXML reader streams (assumed: not
-#: measured beyond the test files)
+#: parsed file whole, an entity object for every line, 9-14 bytes of memory per byte of the file (peak RSS growth
+#: parsing 10 MB and 34 MB files, measured): about 0.9 GB at 64 MB, some 2-3 GB at LandXML's 200 M
 MAX_JOB_IFC_CHARS = MAX_IFC_CHARS
 #: rows (curves x vehicles) per part, and per chunk of a part (a progress report, a cancellation point)
 PART_ROWS = 50_000

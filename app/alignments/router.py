@@ -9,6 +9,7 @@ from starlette.concurrency import run_in_threadpool
 
 from app.alignments.schemas import (
     ALIGNMENT_CSV_EXAMPLE,
+    ALIGNMENT_IFC_EXAMPLE,
     ALIGNMENT_JSON_LIMIT,
     ALIGNMENT_LANDXML_EXAMPLE,
     CSV_UPLOAD_LIMIT,
@@ -125,7 +126,7 @@ async def assess_landxml(
     name="assess_ifc",
     response_model=AlignmentResult,
     responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
-    openapi_extra=upload_body("application/x-step", IFC_UPLOAD_LIMIT, None, "IFC 4.3 file"),
+    openapi_extra=upload_body("application/x-step", IFC_UPLOAD_LIMIT, ALIGNMENT_IFC_EXAMPLE, "IFC 4.3 file"),
     description=ASSESSMENT
     + """
 

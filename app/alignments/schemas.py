@@ -199,6 +199,41 @@ ALIGNMENT_LANDXML_EXAMPLE = (
     "</CoordGeom></Alignment></Alignments></LandXML>"
 )
 
+#: the LandXML example's road as IFC 4.3, the business logic alone (what the reader reads): a line, K1 and K2 (radii
+#: signed + left, - right; start points and directions [rad] where the previous segment ends) and the closing
+#: zero-length segment IFC 4.3 asks for
+ALIGNMENT_IFC_EXAMPLE = """ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION(('ViewDefinition[Alignment-basedView]'),'2;1');
+FILE_NAME('br-101.ifc','2026-01-01T00:00:00',(''),(''),'','rollover example','');
+FILE_SCHEMA(('IFC4X3_ADD2'));
+ENDSEC;
+DATA;
+#1=IFCPROJECT('0Project00000000000001',$,'BR-101',$,$,$,$,$,#4);
+#2=IFCSIUNIT(*,.LENGTHUNIT.,$,.METRE.);
+#3=IFCSIUNIT(*,.PLANEANGLEUNIT.,$,.RADIAN.);
+#4=IFCUNITASSIGNMENT((#2,#3));
+#10=IFCALIGNMENT('1Alignment000000000001',$,'BR-101',$,$,$,$,$);
+#11=IFCRELAGGREGATES('2Aggregates00000000001',$,$,$,#1,(#10));
+#12=IFCALIGNMENTHORIZONTAL('1Horizontal00000000001',$,$,$,$,$,$);
+#13=IFCRELNESTS('2Nests0000000000000001',$,$,$,#10,(#12));
+#20=IFCCARTESIANPOINT((0.0,0.0));
+#21=IFCALIGNMENTHORIZONTALSEGMENT($,$,#20,0.0,0.0,0.0,200.0,$,.LINE.);
+#22=IFCALIGNMENTSEGMENT('1Segment00000000000000',$,$,$,$,$,$,#21);
+#23=IFCCARTESIANPOINT((200.0,0.0));
+#24=IFCALIGNMENTHORIZONTALSEGMENT($,$,#23,0.0,-250.0,-250.0,120.0,$,.CIRCULARARC.);
+#25=IFCALIGNMENTSEGMENT('1Segment00000000000001',$,'K1',$,$,$,$,#24);
+#26=IFCCARTESIANPOINT((315.4447938853707,-28.251269305178965));
+#27=IFCALIGNMENTHORIZONTALSEGMENT($,$,#26,-0.48,400.0,400.0,90.0,$,.CIRCULARARC.);
+#28=IFCALIGNMENTSEGMENT('1Segment00000000000002',$,'K2',$,$,$,$,#27);
+#29=IFCCARTESIANPOINT((399.2583006482126,-60.51861846889557));
+#30=IFCALIGNMENTHORIZONTALSEGMENT($,$,#29,-0.255,0.0,0.0,0.0,$,.LINE.);
+#31=IFCALIGNMENTSEGMENT('1Segment00000000000003',$,$,$,$,$,$,#30);
+#32=IFCRELNESTS('2Nests0000000000000002',$,$,$,#12,(#22,#25,#28,#31));
+ENDSEC;
+END-ISO-10303-21;
+"""
+
 
 class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions):
     """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve

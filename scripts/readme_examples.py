@@ -299,7 +299,7 @@ EXAMPLES = [
                 {"id": "C2", "radius_m": 350, "superelevation_percent": 6, "posted_speed_kmh": 90},
             ],
         },
-        heading="Alignment assessment: `POST /v1/alignments/assess` (and `/csv`, `/landxml`)",
+        heading="Alignment assessment: `POST /v1/alignments/assess` (and `/csv`, `/landxml`, `/ifc`)",
     ),
     Example(
         "Alignment assessment of a CSV file for two vehicles, answered as CSV (some of its columns)",
@@ -343,6 +343,18 @@ EXAMPLES = [
         headers={"Content-Type": "application/xml"},
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); [print(x["id"], x["station_m"], '
         'x["radius_m"], x["safe_speed_kmh"], x["governed_by"]) for x in r["vehicles"][0]["rows"]]\'',
+    ),
+    Example(
+        "The same road as an IFC 4.3 file, uploaded as a form file: its grade (profile) and superelevation (cant) "
+        "come from the file",
+        "POST",
+        "/v1/alignments/assess/ifc?vehicle=table16-btrain",
+        upload="road.ifc",
+        form=True,
+        pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); print(r["reading"]["format"], '
+        'r["reading"]["superelevation_from"]); [print(x["id"], x["station_m"], x["radius_m"], '
+        'x["superelevation_percent"], x["grade_percent"], x["safe_speed_kmh"], x["governed_by"]) '
+        'for x in r["vehicles"][0]["rows"]]\'',
     ),
     Example(
         "An error in an uploaded CSV names the row and the column",

@@ -1,4 +1,4 @@
-"""POST /v1/alignments/assess (JSON) and its raw-file forms /assess/csv and /assess/landxml."""
+"""POST /v1/alignments/assess (JSON) and its raw-file forms /assess/csv, /assess/landxml and /assess/ifc."""
 
 from __future__ import annotations
 
@@ -9,15 +9,24 @@ from starlette.concurrency import run_in_threadpool
 
 from app.alignments.schemas import (
     ALIGNMENT_CSV_EXAMPLE,
+    ALIGNMENT_IFC_EXAMPLE,
     ALIGNMENT_JSON_LIMIT,
     ALIGNMENT_LANDXML_EXAMPLE,
     CSV_UPLOAD_LIMIT,
+    IFC_UPLOAD_LIMIT,
     LANDXML_UPLOAD_LIMIT,
     AlignmentRequest,
     AlignmentResult,
 )
 from app.alignments.service import compute_alignment, parse_json_request
-from app.alignments.uploads import CsvUploadQuery, LandXmlUploadQuery, csv_upload, landxml_upload
+from app.alignments.uploads import (
+    CsvUploadQuery,
+    IfcUploadQuery,
+    LandXmlUploadQuery,
+    csv_upload,
+    ifc_upload,
+    landxml_upload,
+)
 from app.deps import CacheDep, SettingsDep
 from app.http.bodies import json_body, upload_body
 from app.http.bodylimit import body_limit
@@ -49,8 +58,9 @@ distinct pair is solved in one batch. JSON, or CSV with `Accept: text/csv` (one 
     description=ASSESSMENT
     + """
 
-The curves are a JSON list (`curves`), CSV text (`csv`) or a LandXML 1.2 document (`landxml`); the same files can
-also be sent as they are to `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`.""",
+The curves are a JSON list (`curves`), CSV text (`csv`), a LandXML 1.2 document (`landxml`) or an IFC 4.3 file
+(`ifc`); the same files can also be sent as they are to `/v1/alignments/assess/csv`, `/v1/alignments/assess/landxml`
+and `/v1/alignments/assess/ifc`.""",
 )
 @replayable("alignments", offers=TABLE_FORMS)
 async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
@@ -107,5 +117,32 @@ async def assess_landxml(
     request: Request, query: Annotated[LandXmlUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
     body, field = await landxml_upload(request, query, LANDXML_UPLOAD_LIMIT)
+    csv = wants_csv(request.headers.get("accept"))
+    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))
+
+
+@router.post(
+    "/assess/ifc",
+    name="assess_ifc",
+    response_model=AlignmentResult,
+    responses=table_responses(400, 404, 422, 500, *VEHICLE_REF_CODES),
+    openapi_extra=upload_body("application/x-step", IFC_UPLOAD_LIMIT, ALIGNMENT_IFC_EXAMPLE, "IFC 4.3 file"),
+    description=ASSESSMENT
+    + """
+
+The body is the IFC 4.3 file itself (ISO 10303-21 text, schema `IFC4X3_ADD2`: every top-level `IfcAlignment`'s
+horizontal segments, its vertical layouts and cant, its `STATION` referents), with any content type
+(`application/x-step`, `application/octet-stream`, `text/plain`), or the part `file` of a `multipart/form-data` body
+(`-F file=@road.ifc`); the options and the superelevation / grade / posted-speed defaults for every curve are query
+parameters (per-curve values need the JSON form's `curve_overrides`). A file of another schema (IFC2X3, IFC4, an
+IFC4X3 release candidate, IFC4X3_ADD1) is refused naming it. The same request as `POST /v1/alignments/assess` with
+`ifc`, and the same answer as the alignment's LandXML export gives. A rule the query's schema cannot state:
+`side_friction_bound` only with `design_standard` `thesis-table21` (or alone).""",
+)
+@replayable("alignments", offers=TABLE_FORMS)
+async def assess_ifc(
+    request: Request, query: Annotated[IfcUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
+) -> Response:
+    body, field = await ifc_upload(request, query, IFC_UPLOAD_LIMIT)
     csv = wants_csv(request.headers.get("accept"))
     return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))

@@ -46,15 +46,22 @@ MAX_JOB_ROWS = 1_000_000
 def as_a_job(message: str) -> str:
     """A synchronous size limit's message, with how to send the work instead (an ``alignments.assess`` job)."""
     limits = f"{MAX_JOB_CURVES:,} curves and {MAX_JOB_ROWS:,} rows"
-    return problems.as_a_job(message, "alignments.assess", 'a file as its "csv" or "landxml" text', limits)
+    document = 'a file as its "csv" text, or its "landxml" or "ifc" document'
+    return problems.as_a_job(message, "alignments.assess", document, limits)
 
 
 MAX_CSV_CHARS = 16_000_000
 MAX_LANDXML_CHARS = 64_000_000
-#: body limits [bytes]: the raw CSV and LandXML uploads as their documents' bounds (UTF-8 text of that many
-#: characters); the JSON request may carry a LandXML document, JSON-escaped (every quote doubled in the worst case)
+#: an IFC 4.3 file (ISO 10303-21 text) bounded as a LandXML document is; it holds more per curve (the geometric
+#: representation, the cant and the referents besides the design parameters: examples/road.ifc is 15 kB where
+#: examples/alignment.xml is 1.9 kB for the same two curves), so fewer curves fit
+MAX_IFC_CHARS = 64_000_000
+#: body limits [bytes]: the raw CSV, LandXML and IFC uploads as their documents' bounds (UTF-8 text of that many
+#: characters); the JSON request may carry a LandXML or IFC document, JSON-escaped (every quote doubled in the worst
+#: case)
 CSV_UPLOAD_LIMIT = 16 * 2**20
 LANDXML_UPLOAD_LIMIT = 64 * 2**20
+IFC_UPLOAD_LIMIT = 64 * 2**20
 ALIGNMENT_JSON_LIMIT = 128 * 2**20
 
 
@@ -164,6 +171,38 @@ class LandXmlIn(InputModel):
     )
 
 
+class IfcIn(LandXmlIn):
+    """An IFC 4.3 file (ISO 16739-1:2024, schema `IFC4X3_ADD2`), read as its alignments' business logic
+    (docs/uploads.md, "IFC 4.3"): the length unit, every top-level `IfcAlignment`'s horizontal segments (lines, arcs
+    and transitions), its vertical layouts (one profile each) and cant (cross slopes), and its `STATION` referents.
+    Each bend is a row: an arc with its transitions (id: its segment's `Name`, else `<alignment name>#<n>`), or a
+    bend made only of transitions (`<alignment name>#apex<m>`). The grade and superelevation the file gives are
+    used; the values here are the fallbacks where it gives none (as defaults for every curve, and per curve id in
+    `curve_overrides`); each row says where its values came from."""
+
+    document: str = Field(
+        min_length=1,
+        max_length=MAX_IFC_CHARS,
+        description=describe(
+            "The IFC 4.3 file (ISO 10303-21 text beginning `ISO-10303-21;`, `FILE_SCHEMA(('IFC4X3_ADD2'))`; another "
+            "schema is refused naming it).",
+            unit="-",
+            symbol="-",
+        ),
+    )
+    profile: str | None = Field(
+        None,
+        min_length=1,
+        max_length=200,
+        description=describe(
+            "The vertical profile (the `IfcAlignmentVertical`'s `Name`, else its alignment's) whose grades the "
+            "curves take; default: each alignment's first (the answer's `reading.profile` names it). A name that "
+            "is in no alignment is an error.",
+            unit="-",
+        ),
+    )
+
+
 ALIGNMENT_CSV_EXAMPLE = (
     "id,radius_m,superelevation_percent,grade_percent,posted_speed_kmh\nC1,120,8,-4,70\nC2,350,6,0,90\nC3,90,8,2,60\n"
 )
@@ -177,20 +216,55 @@ ALIGNMENT_LANDXML_EXAMPLE = (
     "</CoordGeom></Alignment></Alignments></LandXML>"
 )
 
+#: the LandXML example's road as IFC 4.3, the business logic alone (what the reader reads): a line, K1 and K2 (radii
+#: signed + left, - right; start points and directions [rad] where the previous segment ends) and the closing
+#: zero-length segment IFC 4.3 asks for
+ALIGNMENT_IFC_EXAMPLE = """ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION(('ViewDefinition[Alignment-basedView]'),'2;1');
+FILE_NAME('br-101.ifc','2026-01-01T00:00:00',(''),(''),'','rollover example','');
+FILE_SCHEMA(('IFC4X3_ADD2'));
+ENDSEC;
+DATA;
+#1=IFCPROJECT('0Project00000000000001',$,'BR-101',$,$,$,$,$,#4);
+#2=IFCSIUNIT(*,.LENGTHUNIT.,$,.METRE.);
+#3=IFCSIUNIT(*,.PLANEANGLEUNIT.,$,.RADIAN.);
+#4=IFCUNITASSIGNMENT((#2,#3));
+#10=IFCALIGNMENT('1Alignment000000000001',$,'BR-101',$,$,$,$,$);
+#11=IFCRELAGGREGATES('2Aggregates00000000001',$,$,$,#1,(#10));
+#12=IFCALIGNMENTHORIZONTAL('1Horizontal00000000001',$,$,$,$,$,$);
+#13=IFCRELNESTS('2Nests0000000000000001',$,$,$,#10,(#12));
+#20=IFCCARTESIANPOINT((0.0,0.0));
+#21=IFCALIGNMENTHORIZONTALSEGMENT($,$,#20,0.0,0.0,0.0,200.0,$,.LINE.);
+#22=IFCALIGNMENTSEGMENT('1Segment00000000000000',$,$,$,$,$,$,#21);
+#23=IFCCARTESIANPOINT((200.0,0.0));
+#24=IFCALIGNMENTHORIZONTALSEGMENT($,$,#23,0.0,-250.0,-250.0,120.0,$,.CIRCULARARC.);
+#25=IFCALIGNMENTSEGMENT('1Segment00000000000001',$,'K1',$,$,$,$,#24);
+#26=IFCCARTESIANPOINT((315.4447938853707,-28.251269305178965));
+#27=IFCALIGNMENTHORIZONTALSEGMENT($,$,#26,-0.48,400.0,400.0,90.0,$,.CIRCULARARC.);
+#28=IFCALIGNMENTSEGMENT('1Segment00000000000002',$,'K2',$,$,$,$,#27);
+#29=IFCCARTESIANPOINT((399.2583006482126,-60.51861846889557));
+#30=IFCALIGNMENTHORIZONTALSEGMENT($,$,#29,-0.255,0.0,0.0,0.0,$,.LINE.);
+#31=IFCALIGNMENTSEGMENT('1Segment00000000000003',$,$,$,$,$,$,#30);
+#32=IFCRELNESTS('2Nests0000000000000002',$,$,$,#12,(#22,#25,#28,#31));
+ENDSEC;
+END-ISO-10303-21;
+"""
+
 
 class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions, AdvisoryOptions):
     """The vehicle(s), the SRT options (model, stage, trailer angle, load, rear LLT limit; no `road`: each curve
-    has its own bank and grade) and exactly one of `curves`, `csv` or `landxml`. At most 10,000 curves and
+    has its own bank and grade) and exactly one of `curves`, `csv`, `landxml` or `ifc`. At most 10,000 curves and
     10,000 rows (curves x vehicles) per request; larger work goes to a job (`POST /v1/jobs`, `alignments.assess`).
 
-    The CSV or LandXML file can also be sent as it is, with the options as query parameters (presets only), to
-    `/v1/alignments/assess/csv` and `/v1/alignments/assess/landxml`."""
+    The CSV, LandXML or IFC file can also be sent as it is, with the options as query parameters (presets only),
+    to `/v1/alignments/assess/csv`, `/v1/alignments/assess/landxml` and `/v1/alignments/assess/ifc`."""
 
     model_config = ConfigDict(
         json_schema_extra={
             "allOf": [
                 exactly_one_schema("vehicle", "vehicles", "fleet"),
-                exactly_one_schema("curves", "csv", "landxml"),
+                exactly_one_schema("curves", "csv", "landxml", "ifc"),
                 BOUND_ONLY_WITH_TABLE21,
             ],
             "examples": [
@@ -284,10 +358,20 @@ class AlignmentRequest(SrtOptions, SrtTargets, DesignOptions, AdvisoryOptions):
             symbol="R, e, slope",
         ),
     )
+    ifc: IfcIn = Field(
+        None,
+        json_schema_extra=ABSENT,
+        description=describe(
+            "The curves of an IFC 4.3 alignment (`IfcAlignment`), with the superelevation and grade to use where "
+            "the file gives none.",
+            unit="see its fields",
+            symbol="R, e, slope",
+        ),
+    )
 
     @model_validator(mode="after")
     def _one_source_each(self) -> AlignmentRequest:
-        for names in (("vehicle", "vehicles", "fleet"), ("curves", "csv", "landxml")):
+        for names in (("vehicle", "vehicles", "fleet"), ("curves", "csv", "landxml", "ifc")):
             present = [n for n in names if getattr(self, n) is not None]
             if len(present) != 1:
                 what = "both " + " and ".join(present) if present else "none"
@@ -625,13 +709,26 @@ class SkippedOut(OutputModel):
 class ReadingOut(OutputModel):
     """What was read from a road file: nothing in it is left out silently."""
 
-    format: str = Field(description=describe("The file's format and version (`LandXML 1.2`).", unit="-"))
-    writer: str | None = Field(description=describe("The application that wrote it (`<Application>`).", unit="-"))
+    format: str = Field(
+        description=describe("The file's format and version (`LandXML 1.2`, `IFC 4.3 (IFC4X3_ADD2)`).", unit="-")
+    )
+    writer: str | None = Field(
+        description=describe(
+            "The application that wrote it (LandXML `<Application>`, IFC `IfcApplication`), where the file says.",
+            unit="-",
+        )
+    )
     linear_unit: str = Field(
         description=describe("The file's length unit as it names it (`meter`, `foot`, `USSurveyFoot`...).", unit="-")
     )
     alignments: list[str] = Field(description=describe("The alignments read, by name.", unit="-"))
-    elements: dict[str, int] = Field(description=describe("Elements read, by the file's type name.", unit="count"))
+    elements: dict[str, int] = Field(
+        description=describe(
+            "Elements read, by the file's type name (LandXML `Curve`, `Spiral`...; IFC segments as "
+            "`IfcAlignmentHorizontalSegment.CLOTHOID`, zero-length ones skipped).",
+            unit="count",
+        )
+    )
     profile: str | None = Field(description=describe("The vertical profile used (null: none).", unit="-"))
     superelevation_from: Literal["file", "cross-sections", "request", "standard"] = Field(
         description=describe(
@@ -669,7 +766,8 @@ class AlignmentResult(OutputModel):
     )
     reading: ReadingOut | None = Field(
         description=describe(
-            "What was read from a road file (LandXML): null when the curves came as JSON or CSV.", unit="see its fields"
+            "What was read from a road file (LandXML, IFC): null when the curves came as JSON or CSV.",
+            unit="see its fields",
         )
     )
     advisory: AdvisoryOut = Field(

@@ -1,4 +1,4 @@
-"""Raw CSV and LandXML uploads: POST /v1/alignments/assess/csv and /v1/alignments/assess/landxml.
+"""Raw CSV, LandXML and IFC uploads: POST /v1/alignments/assess/csv, /assess/landxml and /assess/ifc.
 
 A road-design package exports a file; the natural request is the file itself as the body, or as the part ``file``
 of a ``multipart/form-data`` body (a browser form, ``curl -F``), the options in the query::
@@ -8,7 +8,8 @@ of a ``multipart/form-data`` body (a browser form, ``curl -F``), the options in 
     curl -F file=@examples/curves-semicolon.csv \\
       'http://127.0.0.1:8000/v1/alignments/assess/csv?vehicle=table16-btrain&rear_llt_limit=0.6'
 
-The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` (fields and bounds
+The query is validated by FastAPI against :data:`CsvUploadQuery` / :data:`LandXmlUploadQuery` /
+:data:`IfcUploadQuery` (fields and bounds
 taken from the JSON request's own, so the two forms cannot drift); the body (bounded by the route's body limit,
 :mod:`app.http.bodylimit`) is decoded,
 and the equivalent JSON request (``{"vehicle": ..., "csv": "<the file>"}``) goes through the same service and
@@ -28,9 +29,10 @@ from pydantic import ConfigDict, Field, ValidationError, create_model
 from app.alignments.schemas import (
     MAX_VEHICLES,
     AlignmentRequest,
+    IfcIn,
     LandXmlIn,
 )
-from app.formats.uploads import decode_csv, decode_xml, read_upload
+from app.formats.uploads import decode_csv, decode_step, decode_xml, read_upload
 from app.http.problems import InvalidAlignment
 from app.http.schemas import describe
 from app.srt.schemas import LoadIn
@@ -80,6 +82,14 @@ LandXmlUploadQuery = create_model(
     **{n: _field(LoadIn, n) for n in LOAD},
     **{n: _field(LandXmlIn, n) for n in LANDXML_DEFAULTS},
 )
+IfcUploadQuery = create_model(
+    "IfcUploadQuery",
+    __config__=_QUERY_CONFIG,
+    vehicle=(list[Annotated[str, Field(min_length=1, max_length=100)]], _PRESETS),
+    **{n: _field(AlignmentRequest, n) for n in OPTIONS},
+    **{n: _field(LoadIn, n) for n in LOAD},
+    **{n: _field(IfcIn, n) for n in LANDXML_DEFAULTS},
+)
 
 
 def upload_request(query, field: str = "body", **document: Any) -> AlignmentRequest:
@@ -95,7 +105,7 @@ def upload_request(query, field: str = "body", **document: Any) -> AlignmentRequ
         raise RequestValidationError(
             [
                 {**e, "loc": ("body",) if field == "body" else ("body", field)}
-                if e["loc"][0] in ("csv", "landxml")
+                if e["loc"][0] in ("csv", "landxml", "ifc")
                 else {**e, "loc": ("query", *e["loc"])}
                 for e in exc.errors()
             ]
@@ -138,3 +148,8 @@ async def road_file_upload(
 async def landxml_upload(request: Request, query, limit: int) -> tuple[AlignmentRequest, str]:
     """The JSON request equivalent to a LandXML upload, and the field that holds the file (``body`` or ``file``)."""
     return await road_file_upload(request, query, limit, "landxml", "LandXML", decode_xml)
+
+
+async def ifc_upload(request: Request, query, limit: int) -> tuple[AlignmentRequest, str]:
+    """The JSON request equivalent to an IFC 4.3 upload, and the field that holds the file (``body`` or ``file``)."""
+    return await road_file_upload(request, query, limit, "ifc", "IFC", decode_step)

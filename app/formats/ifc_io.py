@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections import Counter
 from collections.abc import Iterable
 from typing import Any
 
@@ -380,7 +381,9 @@ def _curvature(radius_m: float) -> float:
     return 0.0 if radius_m == 0 else 1.0 / radius_m
 
 
-def _horizontal(layout: Any, unit: float, label: str, skipped: list[tuple[str, str]]) -> list[HorizontalElement]:
+def _horizontal(
+    layout: Any, unit: float, label: str, skipped: list[tuple[str, str]], counts: Counter[str]
+) -> list[HorizontalElement]:
     elements: list[HorizontalElement] = []
     segments = _segments(layout, "IfcAlignmentHorizontalSegment")
     for i, (seg, dp) in enumerate(segments, start=1):
@@ -393,6 +396,7 @@ def _horizontal(layout: Any, unit: float, label: str, skipped: list[tuple[str, s
         if length == 0:
             skipped.append((where, _zero_length(i, segments)))
             continue
+        counts[f"IfcAlignmentHorizontalSegment.{kind}"] += 1
         if kind == "LINE":
             if r0 != 0 or r1 != 0:
                 raise AlignmentFormatError(
@@ -473,9 +477,12 @@ def _spiral(
 # -- vertical ---------------------------------------------------------------------------------------------------
 
 
-def _profile(layout: Any, unit: float, label: str, default_name: str, skipped: list[tuple[str, str]]) -> Profile | None:
+def _profile(
+    layout: Any, unit: float, label: str, default_name: str, skipped: list[tuple[str, str]], counts: Counter[str]
+) -> Profile | None:
     name = _text(layout.Name) or default_name
     segments: list[VerticalSegment] = []
+    kinds: Counter[str] = Counter()  # counted only if the profile is read
     segments_read = _segments(layout, "IfcAlignmentVerticalSegment")
     for i, (seg, dp) in enumerate(segments_read, start=1):
         where = f"{label} vertical segment {i} ({_ref(seg)}, {_ref(dp)})"
@@ -492,6 +499,7 @@ def _profile(layout: Any, unit: float, label: str, default_name: str, skipped: l
         if length == 0:
             skipped.append((where, _zero_length(i, segments_read)))
             continue
+        kinds[f"IfcAlignmentVerticalSegment.{kind}"] += 1
         radius = None
         if kind == "CONSTANTGRADIENT":
             if g0 != g1 and abs(g1 - g0) > 1e-12 * max(1.0, abs(g0)):
@@ -525,13 +533,16 @@ def _profile(layout: Any, unit: float, label: str, default_name: str, skipped: l
     if not segments:
         skipped.append((f"{label} profile {name!r} ({_ref(layout)})", "it has no segment of non-zero length"))
         return None
+    counts.update(kinds)
     return Profile(name, tuple(segments))
 
 
 # -- cant -------------------------------------------------------------------------------------------------------
 
 
-def _cross_slopes(layout: Any, unit: float, label: str, skipped: list[tuple[str, str]]) -> list[CrossSlope]:
+def _cross_slopes(
+    layout: Any, unit: float, label: str, skipped: list[tuple[str, str]], counts: Counter[str]
+) -> list[CrossSlope]:
     lw = f"{label} ({_ref(layout)})"
     rhd = _length(layout, "RailHeadDistance", lw, unit)
     if rhd <= 0:
@@ -551,7 +562,7 @@ def _cross_slopes(layout: Any, unit: float, label: str, skipped: list[tuple[str,
     segments = _segments(layout, "IfcAlignmentCantSegment")
     for i, (seg, dp) in enumerate(segments, start=1):
         where = f"{label} cant segment {i} ({_ref(seg)}, {_ref(dp)})"
-        _enum(dp, "PredefinedType", where, _CANT_TYPES)
+        kind = _enum(dp, "PredefinedType", where, _CANT_TYPES)
         start = _length(dp, "StartDistAlong", where, unit, nonnegative=True)
         length = _length(dp, "HorizontalLength", where, unit, nonnegative=True)
         sl = _length(dp, "StartCantLeft", where, unit)
@@ -565,6 +576,7 @@ def _cross_slopes(layout: Any, unit: float, label: str, skipped: list[tuple[str,
         if length == 0:
             skipped.append((where, _zero_length(i, segments)))
             continue
+        counts[f"IfcAlignmentCantSegment.{kind}"] += 1
         for d, s in ((start, s0), (start + length, s1)):
             # a segment's start repeats the previous one's end (to rounding: start + length of the one before)
             if out and out[-1].left_percent == s and abs(out[-1].distance_m - d) <= 1e-9 * max(1.0, d):
@@ -673,7 +685,7 @@ def _distance_along(referent: Any, unit: float, where: str) -> float | None:
 # -- the reader -------------------------------------------------------------------------------------------------
 
 
-def _alignment(alignment: Any, unit: float, skipped: list[tuple[str, str]]) -> AlignmentGeometry:
+def _alignment(alignment: Any, unit: float, skipped: list[tuple[str, str]], counts: Counter[str]) -> AlignmentGeometry:
     name = _text(alignment.Name) or f"#{alignment.id()}"
     label = f"IfcAlignment {name[:100]!r} (#{alignment.id()})"
     notes: list[str] = []
@@ -690,7 +702,7 @@ def _alignment(alignment: Any, unit: float, skipped: list[tuple[str, str]]) -> A
         raise AlignmentFormatError(
             f"nests {len(horizontals)} IfcAlignmentHorizontal; an alignment has exactly one", label, "IsNestedBy"
         )
-    elements = _horizontal(horizontals[0], unit, label, skipped)
+    elements = _horizontal(horizontals[0], unit, label, skipped, counts)
     profiles: list[Profile] = []
     # several profiles over one horizontal: each in a child alignment (IfcRelAggregates), with its cant
     verticals = [(lay, label, name) for lay in layouts if lay.is_a("IfcAlignmentVertical")]
@@ -706,13 +718,13 @@ def _alignment(alignment: Any, unit: float, skipped: list[tuple[str, str]]) -> A
             elif lay.is_a("IfcAlignmentHorizontal"):
                 skipped.append((f"{child_label} {_ref(lay)}", "a child alignment's horizontal (the parent's is read)"))
     for lay, lab, default_name in verticals:
-        p = _profile(lay, unit, lab, default_name, skipped)
+        p = _profile(lay, unit, lab, default_name, skipped, counts)
         if p is not None:
             profiles.append(p)
     slopes: list[CrossSlope] = []
     for i, (lay, lab) in enumerate(cants):
         if i == 0:
-            slopes = _cross_slopes(lay, unit, lab, skipped)
+            slopes = _cross_slopes(lay, unit, lab, skipped, counts)
         else:
             skipped.append((f"{lab} {_ref(lay)}", "a further IfcAlignmentCant (the first one is read)"))
     start_station, equations = _stations(alignment, unit, label, notes, skipped)
@@ -743,7 +755,8 @@ def read_ifc(data: bytes) -> RoadFile:
     RoadFile
         ``format`` ``"IFC 4.3 (IFC4X3_ADD2)"``, one :class:`~engine.road.geometry.AlignmentGeometry` per top-level
         ``IfcAlignment`` (child alignments give their profiles to their parent), ``linear_unit`` as the file names
-        it, ``writer`` and ``skipped``.
+        it, ``writer``, ``skipped`` and ``elements``: how many segments of each type were read (zero-length ones
+        are skipped), named ``<entity>.<PredefinedType>`` such as ``IfcAlignmentHorizontalSegment.CLOTHOID``.
 
     Raises
     ------
@@ -755,16 +768,30 @@ def read_ifc(data: bytes) -> RoadFile:
         raise TypeError("read_ifc takes the file's bytes")
     f = _open(bytes(data))
     skipped: list[tuple[str, str]] = []
+    counts: Counter[str] = Counter()
     try:
         unit, unit_name = _length_unit(f)
         alignments = [a for a in f.by_type("IfcAlignment") if not _is_child(a)]
         if not alignments:
             raise AlignmentFormatError("the file has no IfcAlignment", None, "IfcAlignment")
-        read = tuple(_alignment(a, unit, skipped) for a in sorted(alignments, key=lambda a: a.id()))
+        read = tuple(_alignment(a, unit, skipped, counts) for a in sorted(alignments, key=lambda a: a.id()))
         writer = _writer(f)
     except AlignmentFormatError:
         raise
     except (AttributeError, TypeError, ValueError, RuntimeError, IndexError) as exc:
         # the last guard: an entity where the schema puts another kind (IfcOpenShell keeps what the file wrote)
         raise AlignmentFormatError(f"the file's alignment structure cannot be read: {exc}"[:300]) from None
-    return RoadFile(FORMAT, read, linear_unit=unit_name, writer=writer, skipped=tuple(skipped))
+    return RoadFile(
+        FORMAT,
+        read,
+        linear_unit=unit_name,
+        writer=writer,
+        skipped=tuple(skipped),
+        elements=tuple(sorted(counts.items())),
+    )
+
+
+def read_road_file(document: str | bytes) -> RoadFile:
+    """:func:`read_ifc` of a document given as text (the JSON request's ``ifc``: ISO 10303-21 is 7-bit text, so
+    its UTF-8 bytes are the file's) or as the uploaded bytes."""
+    return read_ifc(document.encode("utf-8") if isinstance(document, str) else document)

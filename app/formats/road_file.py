@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from app.formats import landxml
+from app.formats import ifc_io, landxml
 from app.formats.alignment_io import (
     BEND_COLUMNS,
     MAX_CURVES,
@@ -53,10 +53,15 @@ DISAGREEMENT_PERCENT = 0.05
 SUPERELEVATION_FROM = ("file", "cross-sections", "request", "standard")
 
 
-#: the road-file readers by the request's field that holds their document: each takes the document's text and
-#: returns a :class:`~engine.road.geometry.RoadFile` in SI units (or raises
-#: :class:`~app.formats.alignment_io.AlignmentFormatError`); an IFC 4.3 reader is added here as ``"ifc"``
-ROAD_READERS: dict[str, Callable[[str | bytes], RoadFile]] = {"landxml": landxml.read_road_file}
+#: a road-file reader: the document's text (or bytes) -> a :class:`~engine.road.geometry.RoadFile` in SI units (or
+#: :class:`~app.formats.alignment_io.AlignmentFormatError`)
+RoadReader = Callable[[str | bytes], RoadFile]
+
+#: the road-file readers by the request's field that holds their document
+ROAD_READERS: dict[str, RoadReader] = {
+    "landxml": landxml.read_road_file,
+    "ifc": ifc_io.read_road_file,
+}
 
 
 def read_road_document(kind: str, document: str | bytes, **options: Any) -> CurveTable:

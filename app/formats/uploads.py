@@ -5,7 +5,7 @@
 :func:`read_upload` returns the file's bytes and the request field that names it in errors: ``body`` for a raw
 body, ``file`` for the multipart part. A multipart body without a ``file`` part, with several, or with other parts
 (the options go in the query, as for a raw body) is a 422 naming the part. Text that cannot be decoded
-(:func:`decode_csv`, :func:`decode_xml`, :func:`decode_json_object`) is an
+(:func:`decode_csv`, :func:`decode_xml`, :func:`decode_json_object`; :func:`decode_step` takes any bytes) is an
 :class:`~app.http.problems.InvalidAlignment` (or the route's :class:`~app.http.problems.InvalidRoute`) naming the
 field.
 """
@@ -134,6 +134,17 @@ def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: t
         location=root,
         column=None,
     )
+
+
+def decode_step(data: bytes, field: str = "body") -> str:
+    """ISO 10303-21 (STEP, an IFC file) bytes as text: UTF-8 (a byte-order mark dropped), else Latin-1. The format is
+    7-bit text with other characters escaped (``\\X2\\...``); some writers put Latin-1 in strings, which only names
+    carry, so nothing is refused here (the reader refuses what is not ISO 10303-21; ``field``, the signature shared
+    with :func:`decode_csv` and :func:`decode_xml`, names the upload there)."""
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
 
 
 _JSON_TYPES = {list: "array", str: "string", int: "number", float: "number", bool: "boolean", type(None): "null"}

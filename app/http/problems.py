@@ -11,7 +11,7 @@ request fails the schema                    422      ``urn:rollover:problem:vali
 unknown vehicle preset                      404      ``urn:rollover:problem:unknown-preset``
 engine InvalidVehicle / MissingParameter    422      ``...:invalid-vehicle`` / ``...:missing-parameter``
 engine InvalidRoad / InvalidLoad            422      ``...:invalid-road`` / ``...:invalid-load``
-CSV / LandXML curves that cannot be read    422      ``urn:rollover:problem:invalid-alignment``
+CSV / LandXML / IFC curves unreadable       422      ``urn:rollover:problem:invalid-alignment``
 request body over the operation's limit     413      ``urn:rollover:problem:body-too-large``
 engine MechanismSingular                    422      ``...:mechanism-singular``
 engine ConvergenceError                     422      ``...:no-convergence``
@@ -77,8 +77,9 @@ class FieldError(BaseModel):
     loc: list[str | int] = Field(description="Location of the input in the request (`body`, `path`, ...).")
     location: str | None = Field(
         None,
-        description="For an uploaded CSV or LandXML document: where in it (`row 7`, `row 1 (header)`, "
-        "`Alignment 'A' CoordGeom Curve #3 ('K1')`, `LandXML line 4, column 2`).",
+        description="For an uploaded CSV, LandXML or IFC document: where in it (`row 7`, `row 1 (header)`, "
+        "`Alignment 'A' CoordGeom Curve #3 ('K1')`, `LandXML line 4, column 2`, `IfcAlignment 'A' (#14) horizontal "
+        "segment 2 (#32 IfcAlignmentSegment, #31 IfcAlignmentHorizontalSegment)`, `HEADER`).",
     )
 
 
@@ -97,8 +98,9 @@ class Problem(BaseModel):
 
 
 class InvalidAlignment(ValueError):
-    """Curves in a CSV or LandXML document that cannot be read: the request field holding the document
-    (``csv``, ``landxml.document``; ``body`` for a raw upload), the column or attribute, and where in the file."""
+    """Curves in a CSV, LandXML or IFC document that cannot be read: the request field holding the document
+    (``csv``, ``landxml.document``, ``ifc.document``; ``body`` for a raw upload), the column or attribute, and where in
+    the file."""
 
     def __init__(self, message: str, *, source: str, location: str | None, column: str | None) -> None:
         super().__init__(f"{source} {location}: {message}" if location else f"{source}: {message}")

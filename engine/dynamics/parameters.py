@@ -92,9 +92,12 @@ _FULL_SOURCE = (
 )
 _CAB_OVER = (2283.9, 34802.6, f"{_TS}Vehicles/Sprung_Mass/SprMass_5f3ae270...par ('2A Cab-Over'): IXX_SU 2283.9, "
              "IZZ_SU 34802.6 (the sprung mass the preset takes)")  # fmt: skip
+#: one preset's units: unit id -> (Ixx, Izz, source)
+UnitInertias = dict[str, tuple[float, float, str]]
+
 #: the sprung masses' roll and yaw inertias about their own CGs where the presets' sources give them: preset id ->
 #: unit id -> (Ixx, Izz, source); the thesis's trailers (Tables 15, 16) and the truck's van body give none
-PRESET_SPRUNG_INERTIAS: dict[str, dict[str, tuple[float, float, str]]] = {
+PRESET_SPRUNG_INERTIAS: dict[str, UnitInertias] = {
     "tractor-semitrailer-table15": {"tractor": _CAB_OVER},
     "btrain-table16": {
         "tractor": (

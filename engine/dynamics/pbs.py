@@ -61,6 +61,9 @@ CONDITIONS_SOURCE = (
     "change's 0.4 Hz is confirmed only second-hand (an open PBS implementation citing NTC 2008)."
 )
 
+#: level -> (limit, the text it was read in) of one standard
+LevelLimits = dict[int, tuple[float, str]]
+
 #: standard id -> (unit, sense, what the standard applies to)
 STANDARDS: dict[str, tuple[str, str, str]] = {
     "srt": ("g", "min", "the lowest roll-coupled unit's SRT"),
@@ -75,7 +78,7 @@ LEVELS = (1, 2, 3, 4)
 #: limits read in a primary text: standard id -> {level: (limit in the standard's unit, the text it was read in)}.
 #: Empty: no primary text of the limits could be read (searched 2026-12-07: the rules' copies found show only their
 #: title page and contents; NHVR's vehicle-standards page defines the standards without limits).
-VERIFIED_LIMITS: dict[str, dict[int, tuple[float, str]]] = {}
+VERIFIED_LIMITS: dict[str, LevelLimits] = {}
 #: NHVR network levels by length [m]: level -> (Class A, Class B)
 LENGTH_LEVELS = {1: (20.0, 20.0), 2: (26.0, 30.0), 3: (36.5, 42.0), 4: (53.5, 60.0)}
 LENGTH_SOURCE = "NHVR, PBS road access: network levels by length (recorded in the project's source notes, 2026-12-07)"

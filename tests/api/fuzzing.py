@@ -39,6 +39,7 @@ UNSTATABLE = {
     # query parameters cannot state a rule between two of them
     ("/v1/alignments/assess/csv", "side_friction_bound"): _TABLE21,
     ("/v1/alignments/assess/landxml", "side_friction_bound"): _TABLE21,
+    ("/v1/alignments/assess/ifc", "side_friction_bound"): _TABLE21,
     ("/v1/routes/assess/gpx", "side_friction_bound"): _TABLE21,
     ("/v1/routes/assess/geojson", "side_friction_bound"): _TABLE21,
     # a cursor is what the previous page said, nothing a pattern can describe

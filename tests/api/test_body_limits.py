@@ -7,7 +7,7 @@ import asyncio
 import orjson
 import pytest
 
-from app.alignments.schemas import ALIGNMENT_JSON_LIMIT, CSV_UPLOAD_LIMIT, LANDXML_UPLOAD_LIMIT
+from app.alignments.schemas import ALIGNMENT_JSON_LIMIT, CSV_UPLOAD_LIMIT, IFC_UPLOAD_LIMIT, LANDXML_UPLOAD_LIMIT
 from app.http.bodylimit import DEFAULT_LIMIT, BodyLimitMiddleware, spec_limits
 from app.http.problems import problem_bytes
 from app.main import create_app
@@ -81,6 +81,7 @@ def test_a_garbled_content_length_is_refused():
         ("/v1/alignments/assess", ALIGNMENT_JSON_LIMIT),
         ("/v1/alignments/assess/csv", CSV_UPLOAD_LIMIT),
         ("/v1/alignments/assess/landxml", LANDXML_UPLOAD_LIMIT),
+        ("/v1/alignments/assess/ifc", IFC_UPLOAD_LIMIT),
     ],
 )
 def test_each_route_has_the_limit_it_declares_in_the_spec(path, limit):

@@ -39,7 +39,7 @@ def example_request(path: str) -> tuple[str, bytes, str]:
     content = SPEC["paths"][path]["post"]["requestBody"]["content"]
     media, body = next(iter(content.items()))
     if "example" in body:  # a raw upload: the file, the preset (and a document's superelevation) in the query
-        documents = ("application/xml", "application/gpx+xml", "application/geo+json")
+        documents = ("application/xml", "application/x-step", "application/gpx+xml", "application/geo+json")
         query = "vehicle=table16-btrain" + ("&superelevation_percent=6" if media in documents else "")
         return f"{path}?{query}", body["example"].encode(), media
     name = body["schema"]["$ref"].rsplit("/", 1)[1]

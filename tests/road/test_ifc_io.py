@@ -192,6 +192,22 @@ def test_random_alignments_round_trip(seed: int, unit: str) -> None:
     # each layout's closing zero-length segment is listed, nothing else
     assert len(road.skipped) == 3 * 2
     assert all("zero-length segment (the closing segment" in why for _, why in road.skipped)
+    # the segments read, by type: the records' own elements (every spiral a clothoid) and profile segments, and one
+    # cant segment between each two cross slopes (the writer's CONSTANTCANT where both are equal)
+    counts = dict(road.elements)
+    kinds = {"line": "LINE", "arc": "CIRCULARARC", "spiral": "CLOTHOID"}
+    vkinds = {"constant": "CONSTANTGRADIENT", "parabolic": "PARABOLICARC", "circular": "CIRCULARARC"}
+    for kind, name in kinds.items():
+        n = sum(e.kind == kind for a in written for e in a.elements)
+        assert counts.get(f"IfcAlignmentHorizontalSegment.{name}", 0) == n, kind
+    for kind, name in vkinds.items():
+        n = sum(s.kind == kind for a in written for p in a.profiles for s in p.segments)
+        assert counts.get(f"IfcAlignmentVerticalSegment.{name}", 0) == n, kind
+    cant = sum(len(a.cross_slopes) - 1 for a in written)
+    assert (
+        counts.get("IfcAlignmentCantSegment.CONSTANTCANT", 0) + counts["IfcAlignmentCantSegment.LINEARTRANSITION"]
+        == cant
+    )
 
 
 def test_several_profiles_each_in_a_child_alignment() -> None:
@@ -468,6 +484,8 @@ def test_vertical_clothoid_skips_the_profile_and_says_so() -> None:
     road = _read(text)
     assert road.alignments[0].profiles == ()
     assert any("vertical CLOTHOID" in why for _, why in road.skipped)
+    # the skipped profile's segments are not counted as read; the line is
+    assert dict(road.elements) == {"IfcAlignmentHorizontalSegment.LINE": 1}
 
 
 def test_vertical_arc_radius_checked_against_its_grades() -> None:

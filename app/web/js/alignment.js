@@ -296,6 +296,64 @@ export function outline(lines, result) {
   return svg;
 }
 
+// ------------------------------------------------------------------------------------------ what was read
+
+/** A file's length unit in words (docs/uploads.md, Units: the names LandXML `linearUnit` takes; every length is
+ * converted to metres before it is assessed). */
+const UNIT_WORDS = {
+  meter: "metres",
+  kilometer: "kilometres",
+  centimeter: "centimetres",
+  millimeter: "millimetres",
+  foot: "feet (international foot, 0.3048 m): every length converted to metres",
+  USSurveyFoot: "US survey feet (1200/3937 m): every length converted to metres",
+  inch: "inches (0.0254 m): every length converted to metres",
+  mile: "miles (1609.344 m): every length converted to metres",
+};
+
+/** `reading.superelevation_from` in words (docs/uploads.md and docs/routes.md, `superelevation_from`). */
+const SUPERELEVATION_WORDS = {
+  file: "the file (its superelevation elements or properties)",
+  "cross-sections": "the file's cross sections (their cross slopes)",
+  request: "the superelevation typed in this form",
+  standard: "the standard's design rule, from the maximum superelevation typed in this form",
+};
+
+/** Above this many skipped items the list is folded (a click opens it); on paper it is always open. */
+const SKIPPED_OPEN = 5;
+
+/**
+ * The "Read from the file" panel of an answer's `reading` (format, writer, unit, alignments, elements, profile,
+ * superelevation's source, skipped parts with why). `print`: the printout's copy (the skipped list never folded).
+ */
+export function readingPanel(reading, { print = false } = {}) {
+  const unit = UNIT_WORDS[reading.linear_unit] || reading.linear_unit;
+  const elements = Object.entries(reading.elements || {}).map(([type, n]) => `${type} ${fmt(n, 0)}`).join(", ");
+  const from = reading.superelevation_from;
+  const facts = [
+    ["Format", reading.format],
+    ["Written by", reading.writer || "not named in the file"],
+    ["Length unit", unit],
+    [reading.alignments.length === 1 ? "Alignment read" : `Alignments read (${reading.alignments.length})`, reading.alignments.join("; ") || "none"],
+    ["Elements read", elements || "none"],
+    ["Profile used", reading.profile || "none (no grades read from the file)"],
+    ["Superelevation from", from ? SUPERELEVATION_WORDS[from] || from : "none (no curves)"],
+  ];
+  const skipped = reading.skipped || [];
+  const items = el("ul", { class: "skipped" }, skipped.map((s) => el("li", {}, el("strong", {}, s.what), `: ${s.why}`)));
+  let rest;
+  if (!skipped.length) rest = el("p", { class: "skipped-none" }, "Nothing in the file was skipped.");
+  else if (print || skipped.length <= SKIPPED_OPEN) rest = [el("p", { class: "skipped-head" }, `Skipped (${skipped.length}), and why:`), items];
+  else rest = el("details", {}, el("summary", {}, `Skipped (${skipped.length}), and why`), items);
+  return el(
+    "section",
+    { class: `reading${print ? " keep" : ""}`, "aria-label": "Read from the file" },
+    el(print ? "h4" : "h3", { class: "reading-title" }, "Read from the file"),
+    el("dl", { class: "facts" }, facts.flatMap(([k, v]) => [el("dt", {}, k), el("dd", {}, v)])),
+    rest,
+  );
+}
+
 // ------------------------------------------------------------------------------------------ render
 
 /** A fleet's vehicle choice: each vehicle, and for a route "the governing vehicle of each curve". */
@@ -351,8 +409,11 @@ export async function render({ result = null, job = null, stored = null, kind, l
       outline: state.outline,
       downloadName: state.file ? `${state.file.replace(/\.[^.]*$/, "")}-curves.csv` : "curves.csv",
     });
+    // what was read, on the road's first printed page right after its summary
+    if (result?.reading) printed.splice(1, 0, readingPanel(result.reading, { print: true }));
     document.dispatchEvent(new CustomEvent("curves-printout", { detail: { title: route ? "Route" : "Alignment", nodes: printed } }));
   };
+  if (result?.reading) box.append(readingPanel(result.reading));
   if (several) box.append(vehicleChoice(names, route, show));
   box.append(summary);
   state.outline = lines && result ? outline(lines, result) : null;

@@ -104,3 +104,32 @@ def test_a_gpx_shows_and_prints_its_skipped_parts_with_why(page, api, width):
     assert squeeze("Read from the file") in printed and squeeze("metres") in printed
     for item in reading["skipped"]:
         assert squeeze(item["what"]) in printed
+
+
+@pytest.mark.parametrize("width", [1366, 390])
+def test_an_ifc_file_is_accepted_and_shows_what_was_read(page, api, width):
+    page.driver.set_window_size(width, 900)
+    page.open("?vehicle=table16-btrain")
+    assert ".ifc" in page.find("#alignment-file").get_attribute("accept").split(",")
+    panel = upload(page, "road.ifc")
+    # the page's line under the file box: two circular arcs, K1 and K2 (examples/README.md, road.ifc)
+    assert page.text("#alignment-file-info").startswith(
+        "road.ifc: an IFC 4.3 alignment, 2 curves, with superelevations"
+    )
+    document = (EXAMPLES / "road.ifc").read_text()
+    answer = api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "ifc": {"document": document}})
+    assert answer.status_code == 200, answer.text
+    result = answer.json()
+    reading = result["reading"]
+    # its cant read as the cross slope (docs/uploads.md, IFC 4.3), the zero-length closing segments skipped
+    assert reading["superelevation_from"] == "cross-sections" and reading["skipped"]
+
+    assert panel.startswith("Read from the file") and reading["format"] in panel
+    assert "Length unit\nmetres" in panel or "Length unit metres" in panel
+    assert "the file's cross sections (their cross slopes)" in panel
+    for kind, n in reading["elements"].items():
+        assert f"{kind} {n}" in panel
+    texts = [n.get_attribute("textContent") for n in page.find_all("#alignment-results section.reading .skipped li")]
+    assert texts == [f"{s['what']}: {s['why']}" for s in reading["skipped"]]
+    # the page's curves are the API's
+    assert page.text("#alignment-summary").startswith(f"{len(result['vehicles'][0]['rows'])} curves")

@@ -466,7 +466,10 @@ async function save() {
     // a route job's answer is in hand: its curves as the service's GeoJSON writes them (each curve's fields as the
     // properties, its coordinates as the LineString), since the synchronous request is above its size
     const features = routeCurves(result).map(({ coordinates, ...properties }) => ({ type: "Feature", geometry: { type: "LineString", coordinates }, properties }));
-    download(downloadName("curves.geojson"), new Blob([JSON.stringify({ type: "FeatureCollection", features })], { type: "application/geo+json" }));
+    // with the foreign members the service's GeoJSON carries (RFC 7946 section 6.1: `reading`, `advisory`)
+    const members = Object.fromEntries(["reading", "advisory"].filter((k) => result[k] !== undefined).map((k) => [k, result[k]]));
+    const collection = { type: "FeatureCollection", features, ...members };
+    download(downloadName("curves.geojson"), new Blob([JSON.stringify(collection)], { type: "application/geo+json" }));
   } else if (jobResult) {
     const { data } = await api.call("GET", jobResult.url, { accept: "application/json", as: "blob", key: jobResult.key });
     download(downloadName("assessment.json"), data);

@@ -14,14 +14,16 @@ export const state = { result: null, request: null, path: null, key: undefined, 
 
 const drop = (obj) => Object.fromEntries(Object.entries(obj).filter(([, v]) => v !== undefined));
 
-/** csv | landxml | geojson | gpx, from the file's name and, failing that, its first characters. */
+/** csv | landxml | ifc | geojson | gpx, from the file's name and, failing that, its first characters. */
 export function formatOf(name, text) {
   const ext = (name.split(".").pop() || "").toLowerCase();
   if (ext === "csv") return "csv";
+  if (ext === "ifc") return "ifc";
   if (ext === "gpx") return "gpx";
   if (ext === "geojson" || ext === "json") return "geojson";
   if (ext === "xml" || ext === "landxml") return /<gpx[\s>]/.test(text.slice(0, 2000)) ? "gpx" : "landxml";
   const head = text.trimStart();
+  if (head.startsWith("ISO-10303-21")) return "ifc"; // an IFC file's STEP header (ISO 10303-21)
   if (head.startsWith("{")) return "geojson";
   if (head.startsWith("<")) return /<gpx[\s>]/.test(head.slice(0, 2000)) ? "gpx" : "landxml";
   return "csv";
@@ -42,14 +44,15 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
     max_superelevation_percent: value($("#al-emax")),
   });
   if (kind === "csv") return ["/v1/alignments/assess", { ...common, csv: text }];
-  if (kind === "landxml") {
-    const landxml = drop({
+  if (kind === "landxml" || kind === "ifc") {
+    // an IFC 4.3 file takes the same fields as a LandXML one (`ifc`, docs/uploads.md "IFC 4.3")
+    const file = drop({
       document: text,
       superelevation_percent: value($("#al-e")),
       grade_percent: value($("#al-grade")),
       posted_speed_kmh: value($("#al-posted")),
     });
-    return ["/v1/alignments/assess", { ...common, landxml }];
+    return ["/v1/alignments/assess", { ...common, [kind]: file }];
   }
   if (!(await api.has("post", "/v1/routes/assess"))) {
     throw Object.assign(new Error("this deployment cannot assess routes (GeoJSON, GPX): upload CSV or LandXML"), {
@@ -96,11 +99,12 @@ function csvLines(text) {
   return count;
 }
 
-/** The curves of an alignment file (CSV data rows, LandXML <Curve> elements); a route's vertices (GPX points,
+/** The curves of an alignment file (CSV data rows, LandXML <Curve> elements, IFC circular-arc segments); a route's vertices (GPX points,
  * GeoJSON positions). */
 export function rowCount(kind, text) {
   if (kind === "csv") return csvLines(text) - 1;
   if (kind === "landxml") return (text.match(/<(\w+:)?Curve[\s>/]/g) || []).length;
+  if (kind === "ifc") return (text.match(/IFCALIGNMENTHORIZONTALSEGMENT\([^;]*\.CIRCULARARC\./gi) || []).length;
   if (kind === "gpx") return (text.match(/<(trkpt|rtept)[\s>/]/g) || []).length;
   if (kind === "geojson") {
     try {
@@ -296,6 +300,79 @@ export function outline(lines, result) {
   return svg;
 }
 
+// ------------------------------------------------------------------------------------------ what was read
+
+/** A file's length unit in words, by its name with case, spaces, '-', '_' and '.' removed (the names LandXML
+ * `linearUnit` takes, docs/uploads.md Units, and those IFC names, app/formats/ifc_io.py `_NAMED_LENGTH`, SI metres
+ * with a prefix); every length is converted to metres before it is assessed. */
+const CONVERTED = "every length converted to metres";
+const UNIT_WORDS = {
+  meter: "metres",
+  metre: "metres",
+  kilometer: "kilometres",
+  kilometre: "kilometres",
+  centimeter: "centimetres",
+  centimetre: "centimetres",
+  millimeter: "millimetres",
+  millimetre: "millimetres",
+  foot: `feet (international foot, 0.3048 m): ${CONVERTED}`,
+  feet: `feet (international foot, 0.3048 m): ${CONVERTED}`,
+  ft: `feet (international foot, 0.3048 m): ${CONVERTED}`,
+  internationalfoot: `feet (international foot, 0.3048 m): ${CONVERTED}`,
+  ussurveyfoot: `US survey feet (1200/3937 m): ${CONVERTED}`,
+  ussurveyfeet: `US survey feet (1200/3937 m): ${CONVERTED}`,
+  surveyfoot: `US survey feet (1200/3937 m): ${CONVERTED}`,
+  usfoot: `US survey feet (1200/3937 m): ${CONVERTED}`,
+  inch: `inches (0.0254 m): ${CONVERTED}`,
+  inches: `inches (0.0254 m): ${CONVERTED}`,
+  yard: `yards (0.9144 m): ${CONVERTED}`,
+  mile: `miles (1609.344 m): ${CONVERTED}`,
+};
+const unitWords = (name) => UNIT_WORDS[String(name).toLowerCase().replace(/[\s\-_.]/g, "")] || `${name} (as the file names it): ${CONVERTED}`;
+
+/** `reading.superelevation_from` in words (docs/uploads.md and docs/routes.md, `superelevation_from`). */
+const SUPERELEVATION_WORDS = {
+  file: "the file (its superelevation elements or properties)",
+  "cross-sections": "the file's cross sections (their cross slopes)",
+  request: "the superelevation typed in this form",
+  standard: "the standard's design rule, from the maximum superelevation typed in this form",
+};
+
+/** Above this many skipped items the list is folded (a click opens it); on paper it is always open. */
+const SKIPPED_OPEN = 5;
+
+/**
+ * The "Read from the file" panel of an answer's `reading` (format, writer, unit, alignments, elements, profile,
+ * superelevation's source, skipped parts with why). `print`: the printout's copy (the skipped list never folded).
+ */
+export function readingPanel(reading, { print = false } = {}) {
+  const unit = unitWords(reading.linear_unit);
+  const elements = Object.entries(reading.elements || {}).map(([type, n]) => `${type} ${fmt(n, 0)}`).join(", ");
+  const from = reading.superelevation_from;
+  const facts = [
+    ["Format", reading.format],
+    ["Written by", reading.writer || "not named in the file"],
+    ["Length unit", unit],
+    [reading.alignments.length === 1 ? "Alignment read" : `Alignments read (${reading.alignments.length})`, reading.alignments.join("; ") || "none"],
+    ["Elements read", elements || "none"],
+    ["Profile used", reading.profile || "none (no grades read from the file)"],
+    ["Superelevation from", from ? SUPERELEVATION_WORDS[from] || from : "none (no curves)"],
+  ];
+  const skipped = reading.skipped || [];
+  const items = el("ul", { class: "skipped" }, skipped.map((s) => el("li", {}, el("strong", {}, s.what), `: ${s.why}`)));
+  let rest;
+  if (!skipped.length) rest = el("p", { class: "skipped-none" }, "Nothing in the file was skipped.");
+  else if (print || skipped.length <= SKIPPED_OPEN) rest = [el("p", { class: "skipped-head" }, `Skipped (${skipped.length}), and why:`), items];
+  else rest = el("details", {}, el("summary", {}, `Skipped (${skipped.length}), and why`), items);
+  return el(
+    "section",
+    { class: `reading${print ? " keep" : ""}`, "aria-label": "Read from the file" },
+    el(print ? "h4" : "h3", { class: "reading-title" }, "Read from the file"),
+    el("dl", { class: "facts" }, facts.flatMap(([k, v]) => [el("dt", {}, k), el("dd", {}, v)])),
+    rest,
+  );
+}
+
 // ------------------------------------------------------------------------------------------ render
 
 /** A fleet's vehicle choice: each vehicle, and for a route "the governing vehicle of each curve". */
@@ -313,7 +390,7 @@ const csvVehicles = (stats) => stats.vehicles || [];
 /**
  * Show an assessment: `result` (the JSON answer) or, for an alignment job, `job` {url, key} (its result is read as
  * CSV by the worker, never parsed on the page); `stored` {url, key}: where a route job's result is kept (for the
- * downloads). `kind`: csv, landxml, geojson or gpx; `lines`: a route's polylines;
+ * downloads). `kind`: csv, landxml, ifc, geojson or gpx; `lines`: a route's polylines;
  * `fileName` and `vehicleText` name the file and the vehicle on paper. Resolves once the first page of rows is drawn
  * and the printout is built.
  */
@@ -351,8 +428,11 @@ export async function render({ result = null, job = null, stored = null, kind, l
       outline: state.outline,
       downloadName: state.file ? `${state.file.replace(/\.[^.]*$/, "")}-curves.csv` : "curves.csv",
     });
+    // what was read, on the road's first printed page right after its summary
+    if (result?.reading) printed.splice(1, 0, readingPanel(result.reading, { print: true }));
     document.dispatchEvent(new CustomEvent("curves-printout", { detail: { title: route ? "Route" : "Alignment", nodes: printed } }));
   };
+  if (result?.reading) box.append(readingPanel(result.reading));
   if (several) box.append(vehicleChoice(names, route, show));
   box.append(summary);
   state.outline = lines && result ? outline(lines, result) : null;
@@ -386,7 +466,10 @@ async function save() {
     // a route job's answer is in hand: its curves as the service's GeoJSON writes them (each curve's fields as the
     // properties, its coordinates as the LineString), since the synchronous request is above its size
     const features = routeCurves(result).map(({ coordinates, ...properties }) => ({ type: "Feature", geometry: { type: "LineString", coordinates }, properties }));
-    download(downloadName("curves.geojson"), new Blob([JSON.stringify({ type: "FeatureCollection", features })], { type: "application/geo+json" }));
+    // with the foreign members the service's GeoJSON carries (RFC 7946 section 6.1: `reading`, `advisory`)
+    const members = Object.fromEntries(["reading", "advisory"].filter((k) => result[k] !== undefined).map((k) => [k, result[k]]));
+    const collection = { type: "FeatureCollection", features, ...members };
+    download(downloadName("curves.geojson"), new Blob([JSON.stringify(collection)], { type: "application/geo+json" }));
   } else if (jobResult) {
     const { data } = await api.call("GET", jobResult.url, { accept: "application/json", as: "blob", key: jobResult.key });
     download(downloadName("assessment.json"), data);

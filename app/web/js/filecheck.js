@@ -18,12 +18,12 @@ export function isText(bytes) {
   }
 }
 
-const FILE_KINDS = { csv: "a CSV table", landxml: "a LandXML alignment", gpx: "a GPX track", geojson: "a GeoJSON route" };
+const FILE_KINDS = { csv: "a CSV table", landxml: "a LandXML alignment", ifc: "an IFC 4.3 alignment", gpx: "a GPX track", geojson: "a GeoJSON route" };
 
 /**
  * What a file carries, by its format: {superelevation, posted, grade} each true or false, and `what` in words.
  * CSV: the header's columns (any of the dialects the service reads: `,` `;` or tab). LandXML: superelevation or
- * cross-section data, design speeds, a vertical profile. GeoJSON: the features' `superelevation_percent` and
+ * cross-section data, design speeds, a vertical profile. IFC: a cant, a vertical layout. GeoJSON: the features' `superelevation_percent` and
  * `posted_speed_kmh` properties, elevations (a third coordinate). GPX: elevations (`<ele>`); it has no field for the
  * others.
  */
@@ -44,6 +44,11 @@ export function carries(kind, text) {
       posted: /<(\w+:)?(DesignSpeed|DesignSpeed85th|Speeds)[\s>/]/.test(text),
       grade: /<(\w+:)?(ProfAlign|PVI|ParaCurve|CircCurve)[\s>/]/.test(text),
     };
+  }
+  if (kind === "ifc") {
+    // its cant is read as superelevation, its vertical layout as the profile; the service reads no posted speed
+    // from an IFC file (docs/uploads.md "IFC 4.3", what it reads)
+    return { superelevation: /IFCALIGNMENTCANT\(/i.test(text), posted: false, grade: /IFCALIGNMENTVERTICAL\(/i.test(text) };
   }
   if (kind === "geojson") {
     return {
@@ -81,7 +86,7 @@ export function needs(kind, name, has) {
       text: `${name} gives no posted speed: its curves get a safe speed but none can be flagged; type the posted speed [km/h] to flag them.`,
     });
   }
-  if (kind === "landxml" && !has.grade && !typed("#al-grade")) {
+  if ((kind === "landxml" || kind === "ifc") && !has.grade && !typed("#al-grade")) {
     out.push({ box: "#al-grade", blocks: false, text: `${name} has no vertical profile: its curves are assessed as level unless a grade [%] is typed here.` });
   }
   return out;
@@ -109,7 +114,7 @@ export function showNotes(notes) {
 /** One line on what the file is and carries, under the file box. */
 export function describe(kind, name, text, has, rows) {
   const parts = [`${name}: ${FILE_KINDS[kind]}`];
-  if (typeof rows === "number") parts.push(`${grouped(rows, 0)} ${kind === "csv" || kind === "landxml" ? "curves" : "points"}`);
+  if (typeof rows === "number") parts.push(`${grouped(rows, 0)} ${["csv", "landxml", "ifc"].includes(kind) ? "curves" : "points"}`);
   const listed = [
     has.superelevation ? "superelevations" : null,
     has.posted ? "posted speeds" : null,

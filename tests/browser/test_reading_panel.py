@@ -1,0 +1,135 @@
+"""What was read from a road file (issue 39 item 8): after an upload the page shows a "Read from the file" panel above
+the results, and the printout carries it on the road's first page, at window widths 1366 and 390.
+
+The expected unit, profile and skipped parts come from the public API answering the same request (its `reading`),
+and from the files themselves: examples/alignment-feet.xml declares `<Imperial linearUnit="foot">` with a `Design`
+profile and `Superelevation` elements (examples/make_examples.py); examples/drive.gpx holds GPSBabel's empty
+`ACTIVE LOG` track and a router's `<rte>` beside the track (docs/routes.md, Empty parts and Routers' `<rte>`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from .test_road_printout import print_pdf, squeeze
+
+pytestmark = [pytest.mark.browser, pytest.mark.slow]
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def upload(page, name: str, superelevation: str | None = None) -> str:
+    page.find("#alignment-file").send_keys(str(EXAMPLES / name))
+    if superelevation is not None:
+        page.type("#al-e", superelevation)
+    page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=120)
+    return page.text("#alignment-results section.reading")
+
+
+def first_road_page(page) -> str:
+    """The text of the printout's first A4 landscape page (the road's first page), squeezed."""
+    pages = list(print_pdf(page).pages)
+    road = [p for p in pages if float(p.mediabox.width) > float(p.mediabox.height)]
+    assert road
+    return squeeze(road[0].extract_text())
+
+
+@pytest.mark.parametrize("width", [1366, 390])
+def test_a_landxml_in_feet_shows_and_prints_what_was_read(page, api, width):
+    page.driver.set_window_size(width, 900)
+    page.open("?vehicle=table16-btrain")
+    panel = upload(page, "alignment-feet.xml")
+    document = (EXAMPLES / "alignment-feet.xml").read_text()
+    answer = api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "landxml": {"document": document}})
+    assert answer.status_code == 200, answer.text
+    reading = answer.json()["reading"]
+    assert reading["linear_unit"] == "foot" and reading["profile"] == "Design"  # what the file declares
+    assert reading["superelevation_from"] == "file"
+
+    assert panel.startswith("Read from the file")
+    assert "feet (international foot, 0.3048 m)" in panel
+    assert reading["format"] in panel and reading["writer"] in panel
+    assert f"Profile used\n{reading['profile']}" in panel or f"Profile used {reading['profile']}" in panel
+    assert "the file (its superelevation elements" in panel  # in words, not `file`
+    for name in reading["alignments"]:
+        assert name in panel
+    for kind, n in reading["elements"].items():
+        assert f"{kind} {n}" in panel
+    assert "Nothing in the file was skipped." in panel and not reading["skipped"]
+    # labels in words, not the answer's snake_case field names
+    labels = [n.text for n in page.find_all("#alignment-results section.reading dt")]
+    assert labels == [
+        "Format", "Written by", "Length unit", "Alignment read", "Elements read", "Profile used", "Superelevation from",
+    ]  # fmt: skip
+    # above the results
+    order = page.driver.execute_script(
+        "const box = document.querySelector('#alignment-results');"
+        "return [box.querySelector('section.reading'), box.querySelector('#alignment-summary')]"
+        ".map((n) => Array.from(box.querySelectorAll('*')).indexOf(n));"
+    )
+    assert 0 <= order[0] < order[1]
+    # the panel fits the window (no sideways scrolling of the page at 390 px)
+    assert page.driver.execute_script("return document.documentElement.scrollWidth <= window.innerWidth")
+
+    printed = first_road_page(page)
+    assert squeeze("Read from the file") in printed
+    assert squeeze("feet (international foot, 0.3048 m)") in printed and squeeze("Design") in printed
+
+
+@pytest.mark.parametrize("width", [1366, 390])
+def test_a_gpx_shows_and_prints_its_skipped_parts_with_why(page, api, width):
+    page.driver.set_window_size(width, 900)
+    page.open("?vehicle=table16-btrain")
+    panel = upload(page, "drive.gpx", superelevation="4")
+    document = (EXAMPLES / "drive.gpx").read_text()
+    body = {"vehicle": "table16-btrain", "gpx": document, "superelevation_percent": 4}
+    answer = api.post("/v1/routes/assess", json=body)
+    assert answer.status_code == 200, answer.text
+    reading = answer.json()["reading"]
+    whats = [s["what"] for s in reading["skipped"]]
+    # the file's empty GPSBabel track and its router's turn points (docs/routes.md)
+    assert any("ACTIVE LOG" in w for w in whats) and any(w.startswith("rte[") for w in whats)
+
+    assert panel.startswith("Read from the file")
+    assert "Length unit\nmetres" in panel or "Length unit metres" in panel
+    assert f"Profile used\n{reading['profile']}" in panel or f"Profile used {reading['profile']}" in panel
+    assert "the superelevation typed in this form" in panel
+    assert f"Skipped ({len(whats)}), and why:" in panel
+    for item in reading["skipped"]:
+        assert f"{item['what']}: {item['why']}" in panel
+
+    printed = first_road_page(page)
+    assert squeeze("Read from the file") in printed and squeeze("metres") in printed
+    for item in reading["skipped"]:
+        assert squeeze(item["what"]) in printed
+
+
+@pytest.mark.parametrize("width", [1366, 390])
+def test_an_ifc_file_is_accepted_and_shows_what_was_read(page, api, width):
+    page.driver.set_window_size(width, 900)
+    page.open("?vehicle=table16-btrain")
+    assert ".ifc" in page.find("#alignment-file").get_attribute("accept").split(",")
+    panel = upload(page, "road.ifc")
+    # the page's line under the file box: two circular arcs, K1 and K2 (examples/README.md, road.ifc)
+    assert page.text("#alignment-file-info").startswith(
+        "road.ifc: an IFC 4.3 alignment, 2 curves, with superelevations"
+    )
+    document = (EXAMPLES / "road.ifc").read_text()
+    answer = api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "ifc": {"document": document}})
+    assert answer.status_code == 200, answer.text
+    result = answer.json()
+    reading = result["reading"]
+    # its cant read as the cross slope (docs/uploads.md, IFC 4.3), the zero-length closing segments skipped
+    assert reading["superelevation_from"] == "cross-sections" and reading["skipped"]
+
+    assert panel.startswith("Read from the file") and reading["format"] in panel
+    assert "Length unit\nmetres" in panel or "Length unit metres" in panel
+    assert "the file's cross sections (their cross slopes)" in panel
+    for kind, n in reading["elements"].items():
+        assert f"{kind} {n}" in panel
+    texts = [n.get_attribute("textContent") for n in page.find_all("#alignment-results section.reading .skipped li")]
+    assert texts == [f"{s['what']}: {s['why']}" for s in reading["skipped"]]
+    # the page's curves are the API's
+    assert page.text("#alignment-summary").startswith(f"{len(result['vehicles'][0]['rows'])} curves")

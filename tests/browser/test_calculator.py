@@ -337,12 +337,25 @@ def test_an_uploaded_csv_shows_the_flagged_curves(page, api, tmp_path):
     margins = {r["id"]: r["margin_kmh"] for r in answer["vehicles"][0]["rows"]}
     # sorting by the margin (a button in the column heading): ascending, the worst curve first
     page.find('#curves-table button[data-key="margin_kmh"]').click()
-    order = [r.get_attribute("data-id") for r in page.find_all("#curves-table tbody tr")]
-    assert order == sorted(margins, key=margins.get)
+    assert _rows_in_order(page, sorted(margins, key=margins.get))
     assert page.find('#curves-table th[aria-sort="ascending"] button[data-key="margin_kmh"]')
     page.find('#curves-table button[data-key="margin_kmh"]').click()
-    order = [r.get_attribute("data-id") for r in page.find_all("#curves-table tbody tr")]
-    assert order == sorted(margins, key=margins.get, reverse=True)
+    assert _rows_in_order(page, sorted(margins, key=margins.get, reverse=True))
+
+
+def _rows_in_order(page, expected: list[str], timeout_s: float = 30.0) -> bool:
+    """Whether the table's rows come to be in ``expected``'s order: the worker sorts and the page redraws the rows
+    after the click, so a row read while it is being replaced is read again (a timeout fails the test)."""
+    from selenium.common.exceptions import StaleElementReferenceException
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    def in_order(_) -> bool:
+        try:
+            return [r.get_attribute("data-id") for r in page.find_all("#curves-table tbody tr")] == expected
+        except StaleElementReferenceException:
+            return False
+
+    return WebDriverWait(page.driver, timeout_s).until(in_order)
 
 
 LANDXML = """<?xml version="1.0"?>

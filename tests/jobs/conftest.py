@@ -6,6 +6,7 @@ import time
 
 import numpy as np
 
+from app.settings import Settings
 from tests.api.conftest import make_client, redis_server  # noqa: F401  (fixture)
 
 TERMINAL = ("done", "failed", "cancelled")
@@ -41,3 +42,33 @@ def random_curves(n: int, seed: int = 1, pairs: int | None = None) -> list[dict]
         }
         for i in range(n)
     ]
+
+
+def submit(client, operation: str, request: dict, headers=None):
+    return client.post("/v1/jobs", json={"operation": operation, "request": request}, headers=headers)
+
+
+def run(client, operation: str, request: dict, headers=None) -> tuple[str, dict]:
+    r = submit(client, operation, request, headers)
+    assert r.status_code == 202, r.text
+    location = r.headers["location"]
+    assert location == f"/v1/jobs/{r.json()['id']}"
+    return location, wait_for(client, location, headers=headers)
+
+
+def job_and_sync(req: dict, accept: str | None, part_size: int, parts: int | None = None):
+    """(the job's status, its result, the synchronous answer) of an alignment request run as a job in parts of
+    ``part_size`` rows (``parts`` of them, checked; None: more than one) and sent to POST /v1/alignments/assess,
+    both with ``accept``."""
+    headers = {"accept": accept} if accept else None
+    with make_client(Settings(jobs_part_size=part_size)) as c:
+        location, status = run(c, "alignments.assess", req)
+        assert status["status"] == "done"
+        if parts is None:
+            assert status["parts"]["total"] > 1
+        else:
+            assert status["parts"]["total"] == parts
+        job = c.get(location + "/result", headers=headers)
+        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
+    assert job.status_code == sync.status_code == 200
+    return status, job, sync

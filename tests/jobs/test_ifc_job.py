@@ -5,25 +5,16 @@ from __future__ import annotations
 
 import pytest
 
-from app.settings import Settings
 from tests.api.test_ifc_api import random_pair
 
-from .conftest import make_client, wait_for
+from .conftest import job_and_sync, make_client
 
 
 @pytest.mark.parametrize("accept", [None, "text/csv"])
 def test_an_ifc_job_is_the_synchronous_answer(accept):
     _, ifc, _ = random_pair(11, n_bends=7)
     req = {"vehicle": "table16-btrain", "ifc": {"document": ifc, "posted_speed_kmh": 80.0}}
-    headers = {"Accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=3)) as c:
-        r = c.post("/v1/jobs", json={"operation": "alignments.assess", "request": req})
-        assert r.status_code == 202, r.text
-        status = wait_for(c, r.headers["location"])
-        assert status["status"] == "done" and status["parts"]["total"] > 1
-        job = c.get(r.headers["location"] + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
+    _, job, sync = job_and_sync(req, accept, 3)
     assert job.content == sync.content
     if accept is None:
         assert b'"reading":{"format":"IFC 4.3 (IFC4X3_ADD2)"' in job.content

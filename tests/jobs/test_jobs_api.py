@@ -18,7 +18,7 @@ from app.jobs.op_alignments import RESULT_SCHEMA, unpack_result
 from app.jobs.store import PREFIX, RAW_FRAGMENT_TYPE
 from app.settings import Settings
 
-from .conftest import make_client, random_curves, wait_for
+from .conftest import job_and_sync, make_client, random_curves, run, submit, wait_for
 
 KEY_A = "key-a-0123456789abcdef"
 KEY_B = "key-b-0123456789abcdef"
@@ -29,32 +29,7 @@ SWEEP = {
 }
 
 
-def submit(client, operation: str, request: dict, headers=None):
-    return client.post("/v1/jobs", json={"operation": operation, "request": request}, headers=headers)
-
-
-def run(client, operation: str, request: dict, headers=None) -> tuple[str, dict]:
-    r = submit(client, operation, request, headers)
-    assert r.status_code == 202, r.text
-    location = r.headers["location"]
-    assert location == f"/v1/jobs/{r.json()['id']}"
-    return location, wait_for(client, location, headers=headers)
-
-
 # ------------------------------------------------------------------------------- byte-identical results
-
-
-def job_and_sync(req: dict, accept: str | None, part_size: int, parts: int):
-    """(the job's status, its result, the synchronous answer) of an alignment request run as a job in parts of
-    ``part_size`` rows (``parts`` of them, checked) and sent to POST /v1/alignments/assess, both with ``accept``."""
-    headers = {"accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=part_size)) as c:
-        location, status = run(c, "alignments.assess", req)
-        assert status["status"] == "done" and status["parts"]["total"] == parts
-        job = c.get(location + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
-    return status, job, sync
 
 
 @pytest.mark.parametrize("accept", [None, "text/csv"])

@@ -8,26 +8,17 @@ import random
 
 import pytest
 
-from app.settings import Settings
 from tests.landxml_writer import landxml
 from tests.road.test_landxml_files import _design
 
-from .conftest import make_client, wait_for
+from .conftest import job_and_sync
 
 
 @pytest.mark.parametrize("accept", [None, "text/csv"])
 def test_a_landxml_job_is_the_synchronous_answer(accept):
     design = _design(random.Random(11), n_bends=7)
     req = {"vehicle": "table16-btrain", "landxml": {"document": landxml(design, "foot"), "superelevation_percent": 5.0}}
-    headers = {"Accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=3)) as c:
-        r = c.post("/v1/jobs", json={"operation": "alignments.assess", "request": req})
-        assert r.status_code == 202, r.text
-        status = wait_for(c, r.headers["location"])
-        assert status["status"] == "done" and status["parts"]["total"] > 1
-        job = c.get(r.headers["location"] + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
+    _, job, sync = job_and_sync(req, accept, 3)
     assert job.content == sync.content
     if accept is None:
         assert b'"reading":{"format":"LandXML 1.2"' in job.content and b'"grade_source":"profile"' in job.content
@@ -46,15 +37,7 @@ def test_the_advice_of_a_job_split_in_parts_is_the_synchronous_answers(accept):
         "units": "metric",
         "deceleration_mps2": 2.5,
     }
-    headers = {"Accept": accept} if accept else None
-    with make_client(Settings(jobs_part_size=4)) as c:
-        r = c.post("/v1/jobs", json={"operation": "alignments.assess", "request": req})
-        assert r.status_code == 202, r.text
-        status = wait_for(c, r.headers["location"])
-        assert status["status"] == "done" and status["parts"]["total"] > 1
-        job = c.get(r.headers["location"] + "/result", headers=headers)
-        sync = c.post("/v1/alignments/assess", json=req, headers=headers)
-    assert job.status_code == sync.status_code == 200
+    _, job, sync = job_and_sync(req, accept, 4)
     assert job.content == sync.content
     if accept is None:
         vehicles = sync.json()["vehicles"]

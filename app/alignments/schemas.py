@@ -209,10 +209,10 @@ ALIGNMENT_CSV_EXAMPLE = (
 ALIGNMENT_LANDXML_EXAMPLE = (
     '<?xml version="1.0"?>\n'
     '<LandXML xmlns="http://www.landxml.org/schema/LandXML-1.2" version="1.2"><Alignments>'
-    '<Alignment name="BR-101" length="1500" staStart="0"><CoordGeom>'
+    '<Alignment name="BR-101" length="410" staStart="0"><CoordGeom>'
     '<Line staStart="0" length="200"><Start>0 0</Start><End>0 200</End></Line>'
     '<Curve rot="cw" radius="250" length="120" staStart="200" name="K1"/>'
-    '<Curve rot="ccw" radius="400" length="90" staStart="380" name="K2"/>'
+    '<Curve rot="ccw" radius="400" length="90" staStart="320" name="K2"/>'
     "</CoordGeom></Alignment></Alignments></LandXML>"
 )
 

@@ -197,7 +197,7 @@ def crossing_speed(speeds: np.ndarray, e: float, srt: float, std: DesignStandard
 def _friction_text(std: DesignStandard) -> str:
     if std.bound:
         return f"f from the thesis's Table 21 ({std.bound} bound)"
-    return f"f = f_max of {std.title}, {std.table}"
+    return f"f = the maximum side friction of {std.title}, {std.table}"
 
 
 def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, label: str) -> str:

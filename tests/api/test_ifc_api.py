@@ -241,14 +241,14 @@ def test_raw_utf_8_or_latin_1_and_a_byte_order_mark_are_read(shared_client, enco
 
 def test_the_published_example_is_the_landxml_examples_road(shared_client):
     """The OpenAPI example (app/alignments/schemas.py) is the LandXML example's road: the same radii, sides and
-    deflections (120 / 250 and 90 / 400 rad). Its stations follow the lengths (K2 at 200 + 120 = 320 m), where the
-    LandXML example writes K2's own staStart, 380."""
+    deflections (120 / 250 and 90 / 400 rad) and the same stations: K2 starts where K1 ends, 200 + 120 = 320 m (the
+    LandXML example once wrote K2's staStart as 380, a station its lengths contradict)."""
     from app.alignments.schemas import ALIGNMENT_IFC_EXAMPLE, ALIGNMENT_LANDXML_EXAMPLE
 
     q = f"vehicle={BTRAIN}&superelevation_percent=6"
     a = _post(shared_client, PATH, ALIGNMENT_IFC_EXAMPLE.encode(), q).json()["vehicles"][0]["rows"]
     b = _post(shared_client, "/v1/alignments/assess/landxml", ALIGNMENT_LANDXML_EXAMPLE.encode(), q).json()
-    _same_rows(a, b["vehicles"][0]["rows"], differ=frozenset({"station_m", "bend_start_m", "bend_end_m"}))
+    _same_rows(a, b["vehicles"][0]["rows"])
     assert [(r["id"], r["direction"], r["radius_m"]) for r in a] == [("K1", "right", 250.0), ("K2", "left", 400.0)]
     assert [r["deflection_deg"] for r in a] == pytest.approx([math.degrees(120 / 250), math.degrees(90 / 400)])
     assert [r["station_m"] for r in a] == pytest.approx([200.0, 320.0], rel=1e-12)

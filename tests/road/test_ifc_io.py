@@ -7,10 +7,12 @@ units' definitions (1 ft = 0.3048 m, 1 US survey foot = 1200/3937 m: NIST SP 811
 
 from __future__ import annotations
 
+import itertools
 import math
 import random
 import re
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -53,8 +55,8 @@ def _split(args: str) -> list[str]:
     return out
 
 
-def _step(path: Path) -> dict[int, tuple[str, list[str]]]:
-    text = path.read_text()
+def _step(source: Path | str) -> dict[int, tuple[str, list[str]]]:
+    text = source.read_text() if isinstance(source, Path) else source
     return {int(m[1]): (m[2], _split(m[3])) for m in _ENTITY.finditer(text)}
 
 
@@ -230,6 +232,399 @@ def test_feet_and_metres_give_the_same_records() -> None:
     metric = read_ifc(write_ifc(written, unit="metre")).alignments[0]
     feet = read_ifc(write_ifc(written, unit="foot")).alignments[0]
     _same(feet, metric)
+
+
+# -- files IfcOpenShell's authoring API writes ------------------------------------------------------------------
+#
+# ifcopenshell.api.alignment and ifcopenshell.api.unit write these files when the tests run: a writer other than
+# the project's (tests/ifc_writer.py) and than the reader. The expected values are read from the written STEP text
+# (the entity lines, with the regular expressions above), and where the input has a closed form, from that too.
+
+
+def _ifcopenshell_file(unit: str) -> Any:
+    """An IFC 4.3 file with a project, made with IfcOpenShell's API: lengths in metres, or in a conversion-based
+    foot with plane angles in a conversion-based degree (``ifcopenshell.api.unit.add_conversion_based_unit``)."""
+    import ifcopenshell.api.project
+    import ifcopenshell.api.root
+    import ifcopenshell.api.unit
+
+    f = ifcopenshell.api.project.create_file(version="IFC4X3")
+    ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="rollover tests")
+    if unit == "metre":
+        units = [ifcopenshell.api.unit.add_si_unit(f, unit_type="LENGTHUNIT")]
+    else:
+        units = [ifcopenshell.api.unit.add_conversion_based_unit(f, name=name) for name in ("foot", "degree")]
+    ifcopenshell.api.unit.assign_unit(f, units=units)
+    return f
+
+
+def _plan(f: Any, alignment: Any, segments: tuple[tuple[str, float, float, float], ...]) -> None:
+    """Appends horizontal segments (PredefinedType, start radius, end radius, length) with create_layout_segment,
+    each starting where IfcOpenShell's geometry ends the one before (the placement matrix it returns)."""
+    import ifcopenshell.api.alignment as al
+
+    layout = al.get_horizontal_layout(alignment)
+    point, direction = (0.0, 0.0), 0.0
+    for kind, r0, r1, length in segments:
+        end = al.create_layout_segment(
+            f,
+            layout,
+            f.createIfcAlignmentHorizontalSegment(
+                StartPoint=f.createIfcCartesianPoint(point),
+                StartDirection=direction,
+                StartRadiusOfCurvature=r0,
+                EndRadiusOfCurvature=r1,
+                SegmentLength=length,
+                PredefinedType=kind,
+            ),
+        )
+        point, direction = (float(end[0][3]), float(end[1][3])), math.atan2(float(end[1][0]), float(end[0][0]))
+
+
+def _circle_length(radius: float, g0: float, g1: float) -> float:
+    """The horizontal length of a vertical circular arc of signed radius (+ sag) between grades g0 and g1."""
+    return radius * (math.sin(math.atan(g1)) - math.sin(math.atan(g0)))
+
+
+def _profile(f: Any, alignment: Any, height: float, segments: tuple) -> None:
+    """Appends vertical segments (PredefinedType, horizontal length, start grade, end grade, radius or None), each
+    starting at the distance and height where IfcOpenShell's geometry ends the one before."""
+    import ifcopenshell.api.alignment as al
+
+    layout = al.get_vertical_layout(alignment)
+    distance = 0.0
+    for kind, length, g0, g1, radius in segments:
+        end = al.create_layout_segment(
+            f,
+            layout,
+            f.createIfcAlignmentVerticalSegment(
+                StartDistAlong=distance,
+                HorizontalLength=length,
+                StartHeight=height,
+                StartGradient=g0,
+                EndGradient=g1,
+                RadiusOfCurvature=radius,
+                PredefinedType=kind,
+            ),
+        )
+        distance, height = float(end[0][3]), float(end[1][3])
+
+
+def _turn(a: AlignmentGeometry) -> float:
+    """The change of direction along the alignment as read [rad, + left]: curvature is linear in length along a
+    line, an arc and a clothoid, and a cosine transition's is symmetric about its middle, so each turns its length
+    times the mean of its end curvatures."""
+
+    def k(r: float) -> float:
+        return 0.0 if math.isinf(r) else 1.0 / r
+
+    return sum(
+        e.length_m * (k(e.radius_start_m) + k(e.radius_end_m)) / 2 * (1 if e.direction == "left" else -1)
+        for e in a.elements
+    )
+
+
+def _plane_angle(step) -> float:
+    """Radians per plane angle unit: 1, or the conversion factor of the file's conversion-based PLANEANGLEUNIT."""
+    for t, a in step.values():
+        if t == "IFCCONVERSIONBASEDUNIT" and a[1] == ".PLANEANGLEUNIT.":
+            factor, si = step[_ref(a[3])][1]
+            assert step[_ref(si)] == ("IFCSIUNIT", ["*", ".PLANEANGLEUNIT.", "$", ".RADIAN."])
+            return _num(factor)
+    return 1.0
+
+
+def _station_referents(step) -> list[tuple[float, dict[str, float]]]:
+    """(DistanceAlong, Pset_Stationing's lengths) of each STATION IfcReferent, by distance: IfcReferent >
+    IfcLinearPlacement > IfcAxis2PlacementLinear > IfcPointByDistanceExpression, and IfcRelDefinesByProperties >
+    IfcPropertySet 'Pset_Stationing' > IfcPropertySingleValue."""
+    psets: dict[int, dict[str, float]] = {}
+    for t, a in step.values():
+        if t == "IFCRELDEFINESBYPROPERTIES" and step[_ref(a[5])][1][2] == "'Pset_Stationing'":
+            props = [step[int(r)][1] for r in re.findall(r"#(\d+)", step[_ref(a[5])][1][4])]
+            values = {p[0].strip("'"): _num(p[2]) for p in props if p[2].startswith("IFCLENGTHMEASURE(")}
+            psets.update((int(r), values) for r in re.findall(r"#(\d+)", a[4]))
+    out = []
+    for i, (t, a) in step.items():
+        if t == "IFCREFERENT" and a[7] == ".STATION.":
+            placement = step[_ref(a[5])]
+            assert placement[0] == "IFCLINEARPLACEMENT"
+            axis = step[_ref(placement[1][1])][1]
+            point = step[_ref(axis[0])]
+            assert point[0] == "IFCPOINTBYDISTANCEEXPRESSION"
+            out.append((_num(point[1][0]), psets[i]))
+    return sorted(out, key=lambda x: x[0])
+
+
+def _written_by_ifcopenshell(text: str) -> str:
+    """The header's originating system (FILE_NAME's sixth argument), after checking the schema the reader needs."""
+    assert "FILE_SCHEMA(('IFC4X3_ADD2'));" in text
+    m = re.search(r"FILE_NAME\('[^']*','[^']*',\([^)]*\),\([^)]*\),'[^']*','([^']*)','[^']*'\);", text)
+    assert m is not None and m[1].startswith("IfcOpenShell ")
+    return m[1]
+
+
+#: a road: 200 m straight, a clothoid into a right-hand arc of 250 m (IFC: radius -250), the clothoid out, 340 m
+ROAD_PLAN = (
+    ("LINE", 0.0, 0.0, 200.0),
+    ("CLOTHOID", 0.0, -250.0, 60.0),
+    ("CIRCULARARC", -250.0, -250.0, 140.0),
+    ("CLOTHOID", -250.0, 0.0, 60.0),
+    ("LINE", 0.0, 0.0, 340.0),
+)
+#: its profile: -2 %, a circular sag (R +8000 m) to +1.5 %, a circular crest (R -6000 m) to -1 %, 800 m in all
+_SAG, _CREST = _circle_length(8000.0, -0.02, 0.015), _circle_length(-6000.0, 0.015, -0.01)
+ROAD_PROFILE = (
+    ("CONSTANTGRADIENT", 150.0, -0.02, -0.02, None),
+    ("CIRCULARARC", _SAG, -0.02, 0.015, 8000.0),
+    ("CONSTANTGRADIENT", 450.0 - _SAG, 0.015, 0.015, None),
+    ("CIRCULARARC", _CREST, 0.015, -0.01, -6000.0),
+    ("CONSTANTGRADIENT", 200.0 - _CREST, -0.01, -0.01, None),
+)
+
+
+@pytest.fixture(scope="module")
+def ifcopenshell_road() -> str:
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("metre")
+    a = al.create(f, "IfcOpenShell road", include_vertical=True)
+    _plan(f, a, ROAD_PLAN)
+    _profile(f, a, 50.0, ROAD_PROFILE)
+    return f.to_string()
+
+
+def test_ifcopenshell_road_clothoid_and_arc_to_the_right_circular_sag_and_crest(ifcopenshell_road: str) -> None:
+    """An alignment IfcOpenShell's API writes segment by segment (its PI method writes no transition curves): a
+    line, a clothoid and an arc turning right (negative radii), and a profile with a circular sag and crest."""
+    text = ifcopenshell_road
+    writer = _written_by_ifcopenshell(text)
+    step = _step(text)
+    road = read_ifc(text.encode())
+    assert road.format == "IFC 4.3 (IFC4X3_ADD2)" and road.writer == writer
+    assert "IFCSIUNIT(*,.LENGTHUNIT.,$,.METRE.)" in text and road.linear_unit == "metre"
+    (a,) = road.alignments
+    assert a.name == "IfcOpenShell road"
+    written = _nested_segments(step, "IFCALIGNMENTHORIZONTAL")
+    h = [x for x in written if _num(x[6]) > 0]
+    assert [e.kind for e in a.elements] == ["line", "spiral", "arc", "spiral", "line"]
+    for e, x in zip(a.elements, h, strict=True):
+        r0, r1 = _num(x[4]), _num(x[5])
+        assert e.length_m == _num(x[6])
+        assert (e.radius_start_m, e.radius_end_m) == (abs(r0) or math.inf, abs(r1) or math.inf)
+        assert e.direction == (None if r0 == r1 == 0 else "left" if r0 + r1 > 0 else "right")
+        assert e.spiral_type == ("clothoid" if x[8] == ".CLOTHOID." else None)
+    assert [e.direction for e in a.elements if e.kind != "line"] == ["right"] * 3
+    # a second route: the turn of the elements read is the change of direction IfcOpenShell's geometry computed,
+    # from the first segment's StartDirection to the closing (zero-length) segment's
+    assert _num(written[-1][6]) == 0 and len(written) == len(h) + 1
+    turn = (_num(written[-1][3]) - _num(h[0][3])) * _plane_angle(step)
+    assert math.isclose(_turn(a), turn, rel_tol=1e-9) and turn == pytest.approx(-(60 / 250 + 140 / 250), rel=1e-12)
+    v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
+    (p,) = a.profiles
+    assert [s.kind for s in p.segments] == ["constant", "circular", "constant", "circular", "constant"]
+    for s, x in zip(p.segments, v, strict=True):
+        assert (s.start_distance_m, s.length_m, s.start_elevation_m) == (_num(x[2]), _num(x[3]), _num(x[4]))
+        assert (s.start_grade, s.end_grade) == (_num(x[5]), _num(x[6]))
+        assert s.radius_m == (None if x[7] == "$" else abs(_num(x[7])))
+    assert _num(v[1][7]) > 0 > _num(v[3][7])  # IFC's signs: + a sag, - a crest
+    # each layout's closing segment listed, nothing else; no STATION referent: start station 0, said
+    assert len(road.skipped) == 2 and all("closing segment" in why for _, why in road.skipped)
+    assert "IFCREFERENT(" not in text and a.start_station_m == 0.0 and a.notes
+
+
+#: a railway: a left-hand bend of R 1000 m between clothoids and a right-hand one of R 800 m between cosine
+#: transitions (IFC's COSINECURVE), 1040 m in all
+RAIL_PLAN = (
+    ("LINE", 0.0, 0.0, 100.0),
+    ("CLOTHOID", 0.0, 1000.0, 80.0),
+    ("CIRCULARARC", 1000.0, 1000.0, 200.0),
+    ("CLOTHOID", 1000.0, 0.0, 80.0),
+    ("LINE", 0.0, 0.0, 150.0),
+    ("COSINECURVE", 0.0, -800.0, 90.0),
+    ("CIRCULARARC", -800.0, -800.0, 150.0),
+    ("COSINECURVE", -800.0, 0.0, 90.0),
+    ("LINE", 0.0, 0.0, 100.0),
+)
+#: its cant (kind, length, start left, start right, end left, end right) [m]: the outer rail raised 0.06 m on the
+#: left-hand bend and 0.09 m on the right-hand one, the inner rail on the profile, in linear transitions along the
+#: clothoids and cosine ones along the cosine transitions. (A cant turning about the axis, the rails at -x and +x,
+#: makes IfcOpenShell 0.9's geometry for a LINEARTRANSITION cant divide by zero: its mean height does not change.)
+RAIL_CANT = (
+    ("CONSTANTCANT", 100.0, 0.0, 0.0, 0.0, 0.0),
+    ("LINEARTRANSITION", 80.0, 0.0, 0.0, 0.0, 0.06),
+    ("CONSTANTCANT", 200.0, 0.0, 0.06, 0.0, 0.06),
+    ("LINEARTRANSITION", 80.0, 0.0, 0.06, 0.0, 0.0),
+    ("CONSTANTCANT", 150.0, 0.0, 0.0, 0.0, 0.0),
+    ("COSINECURVE", 90.0, 0.0, 0.0, 0.09, 0.0),
+    ("CONSTANTCANT", 150.0, 0.09, 0.0, 0.09, 0.0),
+    ("COSINECURVE", 90.0, 0.09, 0.0, 0.0, 0.0),
+    ("CONSTANTCANT", 100.0, 0.0, 0.0, 0.0, 0.0),
+)
+
+
+@pytest.fixture(scope="module")
+def ifcopenshell_rail() -> str:
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("metre")
+    a = al.create(f, "IfcOpenShell rail", include_vertical=True, include_cant=True)
+    _plan(f, a, RAIL_PLAN)
+    _profile(f, a, 10.0, (("CONSTANTGRADIENT", 1040.0, 0.004, 0.004, None),))
+    cant = al.get_cant_layout(a)
+    cant.RailHeadDistance = 1.435  # create() writes 1.0 and takes no rail head distance: set on the entity
+    distance = 0.0
+    for kind, length, left0, right0, left1, right1 in RAIL_CANT:
+        al.create_layout_segment(
+            f,
+            cant,
+            f.createIfcAlignmentCantSegment(
+                StartDistAlong=distance,
+                HorizontalLength=length,
+                StartCantLeft=left0,
+                EndCantLeft=left1,
+                StartCantRight=right0,
+                EndCantRight=right1,
+                PredefinedType=kind,
+            ),
+        )
+        distance += length
+    # the start station before the start of the stationing (-0+153.1), and a station equation 500 m along
+    al.add_stationing_referent(f, "start", a, 0.0, -153.1)
+    al.add_stationing_referent(f, "equation", a, 500.0, 1000.0, incoming_station=-153.1 + 500.0)
+    return f.to_string()
+
+
+def test_ifcopenshell_rail_cant_cosine_transitions_and_stationing(ifcopenshell_rail: str) -> None:
+    """A railway alignment IfcOpenShell's API writes: bends both ways (clothoids, cosine transitions), a cant of
+    0.06 and 0.09 m on a rail head distance of 1.435 m (``create(include_cant=True)`` writes 1.0, set on the
+    entity) with linear and cosine transitions, a start station of -153.1 m and a station equation
+    (``add_stationing_referent``: Pset_Stationing ``Station`` and ``IncomingStation``)."""
+    text = ifcopenshell_rail
+    _written_by_ifcopenshell(text)
+    step = _step(text)
+    road = read_ifc(text.encode())
+    (a,) = road.alignments
+    assert len(road.skipped) == 3 and all("closing segment" in why for _, why in road.skipped)  # one a layout
+    written = _nested_segments(step, "IFCALIGNMENTHORIZONTAL")
+    h = [x for x in written if _num(x[6]) > 0]
+    assert len(a.elements) == len(h) == 9
+    types = {".LINE.": None, ".CIRCULARARC.": None, ".CLOTHOID.": "clothoid", ".COSINECURVE.": "cosinecurve"}
+    for e, x in zip(a.elements, h, strict=True):
+        r0, r1 = _num(x[4]), _num(x[5])
+        assert (e.length_m, e.radius_start_m, e.radius_end_m) == (_num(x[6]), abs(r0) or math.inf, abs(r1) or math.inf)
+        assert e.direction == (None if r0 == r1 == 0 else "left" if r0 + r1 > 0 else "right")
+        assert e.spiral_type == types[x[8]]
+    assert [e.direction for e in a.elements if e.kind == "arc"] == ["left", "right"]
+    turn = (_num(written[-1][3]) - _num(h[0][3])) * _plane_angle(step)
+    assert math.isclose(_turn(a), turn, rel_tol=1e-9)
+    # cant: the plane through both rails, 100 tan(asin((right - left) / RailHeadDistance)) at each segment's ends
+    (rhd,) = [_num(x[7]) for t, x in step.values() if t == "IFCALIGNMENTCANT"]
+    assert rhd == 1.435
+    c = [x for x in _nested_segments(step, "IFCALIGNMENTCANT") if _num(x[3]) > 0]
+    assert [x[8] for x in c] == [f".{k[0]}." for k in RAIL_CANT]
+    ends = set()
+    for x in c:
+        d0, d1 = _num(x[2]), _num(x[2]) + _num(x[3])
+        for d, left, right in ((d0, _num(x[4]), _num(x[6])), (d1, _num(x[5]), _num(x[7]))):
+            expected = 100 * math.tan(math.asin((right - left) / rhd))
+            at = [s for s in a.cross_slopes if _rel(s.distance_m, d)]
+            assert at and all(s.left_percent == s.right_percent == expected for s in at), (d, expected)
+            ends.add(d)
+    assert all(any(_rel(s.distance_m, d) for d in ends) for s in a.cross_slopes)
+    # banked toward each bend's inside: + (rising left to right) on the left-hand bend, - on the right-hand one
+    assert max(s.left_percent for s in a.cross_slopes) > 0 > min(s.left_percent for s in a.cross_slopes)
+    assert [s.left_percent > 0 for s in a.cross_slopes if s.left_percent] == [True, True, False, False]
+    # stations: the referent at distance 0 gives the start station, the one 500 m along an equation
+    (d0, start), (d1, equation) = _station_referents(step)
+    assert (d0, d1) == (0.0, 500.0) and a.start_station_m == start["Station"] == -153.1
+    assert a.station_equations == (StationEquation(d1, equation["IncomingStation"], equation["Station"]),)
+    assert equation["IncomingStation"] == pytest.approx(-153.1 + 500.0, rel=1e-15) and not a.notes
+
+
+#: a road in feet laid out by the PI method (no transitions): points of intersection, circular curve radii, the
+#: profile's points of vertical intersection and symmetric parabolic curve lengths [ft], and its start station
+FT_PIS = ((1000.0, 1000.0), (3400.0, 1000.0), (5000.0, 2800.0), (7200.0, 2300.0), (8600.0, 3600.0))
+FT_RADII = (1200.0, 950.0, 1500.0)
+FT_PVIS = ((0.0, 500.0), (2000.0, 540.0), (4500.0, 505.0), (7000.0, 535.0), (8600.0, 515.0))
+FT_CURVES = (800.0, 1000.0, 1200.0)
+FT_START = 1000.0
+
+
+@pytest.fixture(scope="module")
+def ifcopenshell_road_in_feet() -> str:
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("foot")
+    name = "IfcOpenShell road in feet"
+    al.create_by_pi_method(f, name, FT_PIS, FT_RADII, FT_PVIS, FT_CURVES, start_station=FT_START)
+    return f.to_string()
+
+
+def test_ifcopenshell_road_in_feet_by_the_pi_method(ifcopenshell_road_in_feet: str) -> None:
+    """A road IfcOpenShell's ``create_by_pi_method`` lays out in a conversion-based foot
+    (``add_conversion_based_unit(name="foot")``: 0.3048 of a metre, as an ``IfcReal``) with angles in degrees: three
+    circular curves between tangents, three symmetric parabolic vertical curves, a start station of 10+00 ft.
+    Checked against the file's text and against the closed forms of the PI method (tangent length R tan(D/2), arc
+    length R D; a parabola starts L/2 before its PVI)."""
+    text = ifcopenshell_road_in_feet
+    _written_by_ifcopenshell(text)
+    step = _step(text)
+    # the unit from the text: IFCCONVERSIONBASEDUNIT(.., .LENGTHUNIT., 'foot', #m); #m = 0.3048 of a METRE
+    (unit,) = [x for t, x in step.values() if t == "IFCCONVERSIONBASEDUNIT" and x[1] == ".LENGTHUNIT."]
+    factor, si = step[_ref(unit[3])][1]
+    assert step[_ref(si)] == ("IFCSIUNIT", ["*", ".LENGTHUNIT.", "$", ".METRE."])
+    foot = _num(factor)
+    assert foot == 0.3048  # the international foot (NIST SP 811, appendix B)
+    road = read_ifc(text.encode())
+    assert road.linear_unit == unit[2].strip("'") == "foot"
+    (a,) = road.alignments
+    written = _nested_segments(step, "IFCALIGNMENTHORIZONTAL")
+    h = [x for x in written if _num(x[6]) > 0]
+    assert [e.kind for e in a.elements] == ["line", "arc"] * 3 + ["line"] and len(h) == 7
+    for e, x in zip(a.elements, h, strict=True):
+        assert math.isclose(e.length_m, _num(x[6]) * foot, rel_tol=REL)
+        assert e.radius_start_m == e.radius_end_m and math.isclose(
+            e.radius_start_m, (abs(_num(x[4])) or math.inf) * foot, rel_tol=REL
+        )
+    # the PI method's closed forms, in feet: each curve's deflection D from the two tangents' bearings
+    bearings = [math.atan2(q[1] - p[1], q[0] - p[0]) for p, q in itertools.pairwise(FT_PIS)]
+    legs = [math.dist(p, q) for p, q in itertools.pairwise(FT_PIS)]
+    deflections = [math.remainder(b1 - b0, math.tau) for b0, b1 in itertools.pairwise(bearings)]
+    tangents = [r * math.tan(abs(d) / 2) for r, d in zip(FT_RADII, deflections, strict=True)]
+    lines = [leg - t0 - t1 for leg, t0, t1 in zip(legs, [0.0, *tangents], [*tangents, 0.0], strict=True)]
+    arcs = [r * abs(d) for r, d in zip(FT_RADII, deflections, strict=True)]
+    expected = [*itertools.chain.from_iterable(zip(lines, arcs, strict=False)), lines[-1]]
+    for e, length in zip(a.elements, expected, strict=True):
+        assert math.isclose(e.length_m, length * foot, rel_tol=1e-9), e.where
+    arcs_read = [e for e in a.elements if e.kind == "arc"]
+    assert [e.direction for e in arcs_read] == ["left" if d > 0 else "right" for d in deflections]
+    assert [e.direction for e in arcs_read] == ["left", "right", "left"]
+    # the turn read against the directions the PI method wrote, in the file's degrees, from the first tangent to the
+    # last (IfcOpenShell 0.9 writes the closing segment's StartDirection in radians whatever the angle unit)
+    assert _plane_angle(step) == pytest.approx(math.pi / 180, rel=1e-12)
+    turn = (_num(h[-1][3]) - _num(h[0][3])) * _plane_angle(step)
+    assert math.isclose(_turn(a), turn, rel_tol=1e-9) and math.isclose(turn, sum(deflections), rel_tol=1e-9)
+    # profile: from the text, and from the PVIs (grades between them; a curve from PVI - L/2 to PVI + L/2)
+    v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
+    (p,) = a.profiles
+    assert [s.kind for s in p.segments] == ["constant", "parabolic"] * 3 + ["constant"] and len(v) == 7
+    for s, x in zip(p.segments, v, strict=True):
+        for got, ft in ((s.start_distance_m, x[2]), (s.length_m, x[3]), (s.start_elevation_m, x[4])):
+            assert math.isclose(got, _num(ft) * foot, rel_tol=REL, abs_tol=1e-12)
+        assert (s.start_grade, s.end_grade) == (_num(x[5]), _num(x[6]))
+    grades = [(z1 - z0) / (x1 - x0) for (x0, z0), (x1, z1) in itertools.pairwise(FT_PVIS)]
+    for i, (s, length) in enumerate(zip(p.segments[1::2], FT_CURVES, strict=True), start=1):
+        x, z = FT_PVIS[i]
+        assert math.isclose(s.start_distance_m, (x - length / 2) * foot, rel_tol=1e-9)
+        assert math.isclose(s.length_m, length * foot, rel_tol=1e-9)
+        assert math.isclose(s.start_elevation_m, (z - grades[i - 1] * length / 2) * foot, rel_tol=1e-9)
+        assert s.start_grade == pytest.approx(grades[i - 1], rel=1e-9)
+        assert s.end_grade == pytest.approx(grades[i], rel=1e-9)
+    # the start station: Pset_Stationing's Station (in feet) of the referent at distance 0
+    ((d, pset),) = _station_referents(step)
+    assert d == 0.0 and pset["Station"] == FT_START
+    assert math.isclose(a.start_station_m, FT_START * foot, rel_tol=REL)
 
 
 # -- public files -----------------------------------------------------------------------------------------------

@@ -1,8 +1,10 @@
 """IFC 4.3 alignments read into the neutral road geometry (app/formats/ifc_io.py).
 
-Expected values come from outside the reader: the records written by tests/ifc_writer.py (round trips), the public
-files' own STEP text parsed here with regular expressions (tests/data/ifc/README.md names their sources), the
-units' definitions (1 ft = 0.3048 m, 1 US survey foot = 1200/3937 m: NIST SP 811 appendix B) and closed forms.
+Expected values come from outside the reader: the records written by tests/ifc_writer.py (round trips), the STEP
+text of the files IfcOpenShell's own authoring API (``ifcopenshell.api.alignment``, ``ifcopenshell.api.unit``)
+writes when the tests run, parsed here with regular expressions, the units' definitions (1 ft = 0.3048 m, 1 US
+survey foot = 1200/3937 m: NIST SP 811 appendix B) and closed forms. The one public file kept
+(tests/data/ifc/README.md names its source and licence) is a release candidate the reader refuses.
 """
 
 from __future__ import annotations
@@ -55,8 +57,7 @@ def _split(args: str) -> list[str]:
     return out
 
 
-def _step(source: Path | str) -> dict[int, tuple[str, list[str]]]:
-    text = source.read_text() if isinstance(source, Path) else source
+def _step(text: str) -> dict[int, tuple[str, list[str]]]:
     return {int(m[1]): (m[2], _split(m[3])) for m in _ENTITY.finditer(text)}
 
 
@@ -627,129 +628,7 @@ def test_ifcopenshell_road_in_feet_by_the_pi_method(ifcopenshell_road_in_feet: s
     assert math.isclose(a.start_station_m, FT_START * foot, rel_tol=REL)
 
 
-# -- public files -----------------------------------------------------------------------------------------------
-
-
-def test_buildingsmart_fixed_reference_sample() -> None:
-    """buildingSMART's IFC 4.3 sample: a line, a clothoid and a circular arc turning right (negative radii), and a
-    profile with a circular sag, every number from the file's text."""
-    path = DATA / "fixed-reference-swept-area-solid.ifc"
-    step = _step(path)
-    h = [a for a in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(a[6]) > 0]
-    road = read_ifc(path.read_bytes())
-    assert road.linear_unit == "metre"  # IFCSIUNIT(*, .LENGTHUNIT., $, .METRE.)
-    (a,) = road.alignments
-    assert a.name == "Test Alignment"
-    assert [e.kind for e in a.elements] == ["line", "spiral", "arc"]
-    assert [e.spiral_type for e in a.elements] == [None, "clothoid", None]
-    for e, args in zip(a.elements, h, strict=True):
-        assert e.length_m == _num(args[6])
-        r_end = _num(args[5])
-        assert e.radius_end_m == (abs(r_end) if r_end else math.inf)
-        assert e.direction == (None if r_end == 0 else "left" if r_end > 0 else "right")
-    assert sum(e.length_m for e in a.elements) == sum(_num(x[6]) for x in h) == 950.0
-    v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
-    (p,) = a.profiles
-    assert [s.kind for s in p.segments] == ["constant", "circular", "constant"]
-    for s, args in zip(p.segments, v, strict=True):
-        assert s.start_distance_m == _num(args[2]) and s.length_m == _num(args[3])
-        assert s.start_elevation_m == _num(args[4])
-        assert (s.start_grade, s.end_grade) == (_num(args[5]), _num(args[6]))
-    assert p.segments[1].radius_m == _num(v[1][7])  # + : a sag, the grade rising from -0.1 % to +0.044 %
-    # no Pset_Stationing on its STATION referent: start station 0, said
-    assert a.start_station_m == 0.0 and a.notes
-    assert road.writer == "redacted redacted"  # IFCAPPLICATION(#5, 'redacted', 'redacted', 'redacted')
-
-
-def test_buildingsmart_rail_sample_cant_and_stationing() -> None:
-    """buildingSMART's linear placement sample (a railway): clothoid-arc-clothoid bends both ways, circular vertical
-    curves, a cant of +/-0.03 m on a rail head distance of 1.435 m, and a start station of -153.1 m."""
-    path = DATA / "linear-placement-of-signal.ifc"
-    text = path.read_text()
-    step = _step(path)
-    road = read_ifc(path.read_bytes())
-    (a,) = road.alignments
-    h = [x for x in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(x[6]) > 0]
-    assert len(a.elements) == len(h) == 9
-    assert math.isclose(sum(e.length_m for e in a.elements), sum(_num(x[6]) for x in h), rel_tol=1e-12)
-    arcs = [e for e in a.elements if e.kind == "arc"]
-    assert [(e.direction, e.radius_start_m) for e in arcs] == [
-        ("left", _num(h[2][4])),
-        ("right", -_num(h[6][4])),
-    ]
-    # the station of the STATION referent's Pset_Stationing
-    station = re.search(r"IFCPROPERTYSINGLEVALUE\('Station', \$, IFCLENGTHMEASURE\(([-0-9.E]+)\)", text)
-    assert station is not None and a.start_station_m == float(station[1]) == -153.1
-    # cant: the plane through both rails, 100 tan(asin((right - left) / RailHeadDistance))
-    rhd = _num(next(x for t, x in step.values() if t == "IFCALIGNMENTCANT")[7])
-    assert rhd == 1.435
-    c = [x for x in _nested_segments(step, "IFCALIGNMENTCANT") if _num(x[3]) > 0]
-    full = [x for x in c if x[8] == ".CONSTANTCANT." and _num(x[4]) != 0]
-    assert len(full) == 2
-    for x in full:
-        expected = 100 * math.tan(math.asin((_num(x[6]) - _num(x[4])) / rhd))
-        at = [s for s in a.cross_slopes if _rel(s.distance_m, _num(x[2]))]
-        assert at and math.isclose(at[-1].left_percent, expected, rel_tol=REL) and at[-1].right_percent == expected
-    # the left-hand bend (radius +1000) is banked up on the right: + rising left to right
-    assert a.cross_slopes[2].left_percent > 0 and arcs[0].direction == "left"
-
-
-def test_buildingsmart_cosine_transition_and_cosine_cant() -> None:
-    """A COSINECURVE transition from R 300 to R 1000 (both +: left) read as a spiral of that type; a cant of 0.16 m
-    on the right over a rail head distance of 1.5 m."""
-    path = DATA / "segmented-reference-curve.ifc"
-    road = read_ifc(path.read_bytes())
-    (a,) = road.alignments
-    (e,) = a.elements
-    assert (e.kind, e.spiral_type, e.direction, e.radius_start_m, e.radius_end_m, e.length_m) == (
-        "spiral",
-        "cosinecurve",
-        "left",
-        300.0,
-        1000.0,
-        100.0,
-    )  # #29=IFCALIGNMENTHORIZONTALSEGMENT($,$,#28,0.,300.,1000.,100.,$,.COSINECURVE.)
-    # #64=IFCALIGNMENTCANTSEGMENT($,$,0.,100.,0.,0.,0.16,0.,.COSINECURVE.) on #61 RailHeadDistance 1.5
-    assert [(s.distance_m, s.left_percent) for s in a.cross_slopes] == [
-        (0.0, 100 * math.tan(math.asin(0.16 / 1.5))),
-        (100.0, 0.0),
-    ]
-
-
-def test_ifcopenshell_fhwa_example_in_feet() -> None:
-    """The FHWA Bridge Geometry Manual example alignment as IfcOpenShell 0.8.0 wrote it: a length unit 'FEET' whose
-    conversion factor is 304.8 millimetres, three arcs and four parabolic vertical curves."""
-    path = DATA / "FHWA_Bridge_Geometry_Alignment_Example.ifc"
-    text = path.read_text()
-    step = _step(path)
-    # the unit from the text: IFCCONVERSIONBASEDUNIT(.., 'FEET', #9); #9 = 304.8 of #2 = MILLI METRE
-    (factor,) = re.findall(r"IFCMEASUREWITHUNIT\(IFCLENGTHMEASURE\(([0-9.]+)\),#2\)", text)
-    assert ".MILLI.,.METRE." in text
-    foot = float(factor) * 1e-3
-    assert foot == 0.3048  # the international foot
-    road = read_ifc(path.read_bytes())
-    assert road.linear_unit == "FEET" and road.writer == "IfcOpenShell 0.8.0"
-    (a,) = road.alignments
-    h = [x for x in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(x[6]) > 0]
-    assert len(a.elements) == len(h) == 7
-    for e, x in zip(a.elements, h, strict=True):
-        assert math.isclose(e.length_m, _num(x[6]) * foot, rel_tol=REL)
-        r = _num(x[4])
-        assert e.radius_start_m == (abs(r) * foot if r else math.inf) or math.isclose(
-            e.radius_start_m, abs(r) * foot, rel_tol=REL
-        )
-    assert [e.direction for e in a.elements if e.kind == "arc"] == ["left", "right", "right"]  # 1000, -1250, -950
-    v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
-    (p,) = a.profiles
-    assert [s.kind for s in p.segments] == ["constant", "parabolic"] * 4 + ["constant"]
-    for s, x in zip(p.segments, v, strict=True):
-        assert math.isclose(s.start_distance_m, _num(x[2]) * foot, rel_tol=REL, abs_tol=1e-12)
-        assert math.isclose(s.length_m, _num(x[3]) * foot, rel_tol=REL)
-        assert (s.start_grade, s.end_grade) == (_num(x[5]), _num(x[6]))
-    # a symmetric parabola's grade at its middle is the mean of its end grades; the file's own parabola constant
-    # (RadiusOfCurvature) is L / (g1 - g0), in feet
-    x = v[1]
-    assert math.isclose(_num(x[7]), _num(x[3]) / (_num(x[6]) - _num(x[5])), rel_tol=1e-12)
+# -- a public file ---------------------------------------------------------------------------------------------
 
 
 def test_release_candidate_file_refused_by_schema_name() -> None:

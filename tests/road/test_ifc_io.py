@@ -287,12 +287,12 @@ def _circle_length(radius: float, g0: float, g1: float) -> float:
     return radius * (math.sin(math.atan(g1)) - math.sin(math.atan(g0)))
 
 
-def _profile(f: Any, alignment: Any, height: float, segments: tuple) -> None:
-    """Appends vertical segments (PredefinedType, horizontal length, start grade, end grade, radius or None), each
-    starting at the distance and height where IfcOpenShell's geometry ends the one before."""
+def _profile(f: Any, layout: Any, height: float, segments: tuple) -> None:
+    """Appends vertical segments (PredefinedType, horizontal length, start grade, end grade, radius or None) to an
+    IfcAlignmentVertical, each starting at the distance and height where IfcOpenShell's geometry ends the one
+    before."""
     import ifcopenshell.api.alignment as al
 
-    layout = al.get_vertical_layout(alignment)
     distance = 0.0
     for kind, length, g0, g1, radius in segments:
         end = al.create_layout_segment(
@@ -391,7 +391,7 @@ def ifcopenshell_road() -> str:
     f = _ifcopenshell_file("metre")
     a = al.create(f, "IfcOpenShell road", include_vertical=True)
     _plan(f, a, ROAD_PLAN)
-    _profile(f, a, 50.0, ROAD_PROFILE)
+    _profile(f, al.get_vertical_layout(a), 50.0, ROAD_PROFILE)
     return f.to_string()
 
 
@@ -434,6 +434,45 @@ def test_ifcopenshell_road_clothoid_and_arc_to_the_right_circular_sag_and_crest(
     assert "IFCREFERENT(" not in text and a.start_station_m == 0.0 and a.notes
 
 
+def test_ifcopenshell_second_profile_moves_both_into_child_alignments() -> None:
+    """``add_vertical_layout`` on an alignment that has a profile moves it into a child alignment and puts the new
+    one in another (IFC CT 4.1.4.4.1.2, a horizontal layout reused): both read as profiles of the one alignment,
+    in the order of the child alignments' entity ids, every value from the text."""
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("metre")
+    a = al.create(f, "IfcOpenShell two profiles")
+    _plan(f, a, (("LINE", 0.0, 0.0, 100.0), ("CIRCULARARC", 300.0, 300.0, 200.0)))
+    _profile(f, al.add_vertical_layout(f, a), 20.0, (("CONSTANTGRADIENT", 300.0, 0.01, 0.01, None),))
+    second = (("PARABOLICARC", 300.0, 0.03, -0.01, 300.0 / -0.04),)
+    _profile(f, al.add_vertical_layout(f, a), 21.0, second)
+    text = f.to_string()
+    step = _step(text)
+    road = read_ifc(text.encode())
+    (read,) = road.alignments  # the child alignments are not read as alignments of their own
+    nests = {_ref(x[4]): re.findall(r"#(\d+)", x[5]) for t, x in step.values() if t == "IFCRELNESTS"}
+    children = sorted(
+        int(r)
+        for t, x in step.values()
+        if t == "IFCRELAGGREGATES" and step[_ref(x[4])][1][2] == "'IfcOpenShell two profiles'"
+        for r in re.findall(r"#(\d+)", x[5])
+    )
+    assert len(children) == 2 and all(step[c][0] == "IFCALIGNMENT" for c in children)
+    layouts = [int(r) for c in children for r in nests[c] if step[int(r)][0] == "IFCALIGNMENTVERTICAL"]
+    assert len(layouts) == 2 and len(read.profiles) == 2
+    for profile, layout in zip(read.profiles, layouts, strict=True):
+        segments = [step[_ref(step[int(r)][1][7])][1] for r in nests[layout]]
+        (x,) = [x for x in segments if _num(x[3]) > 0]
+        (s,) = profile.segments
+        assert (s.start_distance_m, s.length_m, s.start_elevation_m) == (_num(x[2]), _num(x[3]), _num(x[4]))
+        assert (s.kind, s.start_grade, s.end_grade) == (
+            {".CONSTANTGRADIENT.": "constant", ".PARABOLICARC.": "parabolic"}[x[8]],
+            _num(x[5]),
+            _num(x[6]),
+        )
+    assert [p.segments[0].kind for p in read.profiles] == ["constant", "parabolic"]
+
+
 #: a railway: a left-hand bend of R 1000 m between clothoids and a right-hand one of R 800 m between cosine
 #: transitions (IFC's COSINECURVE), 1040 m in all
 RAIL_PLAN = (
@@ -471,7 +510,7 @@ def ifcopenshell_rail() -> str:
     f = _ifcopenshell_file("metre")
     a = al.create(f, "IfcOpenShell rail", include_vertical=True, include_cant=True)
     _plan(f, a, RAIL_PLAN)
-    _profile(f, a, 10.0, (("CONSTANTGRADIENT", 1040.0, 0.004, 0.004, None),))
+    _profile(f, al.get_vertical_layout(a), 10.0, (("CONSTANTGRADIENT", 1040.0, 0.004, 0.004, None),))
     cant = al.get_cant_layout(a)
     cant.RailHeadDistance = 1.435  # create() writes 1.0 and takes no rail head distance: set on the entity
     distance = 0.0

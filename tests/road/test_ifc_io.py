@@ -1,16 +1,20 @@
 """IFC 4.3 alignments read into the neutral road geometry (app/formats/ifc_io.py).
 
-Expected values come from outside the reader: the records written by tests/ifc_writer.py (round trips), the public
-files' own STEP text parsed here with regular expressions (tests/data/ifc/README.md names their sources), the
-units' definitions (1 ft = 0.3048 m, 1 US survey foot = 1200/3937 m: NIST SP 811 appendix B) and closed forms.
+Expected values come from outside the reader: the records written by tests/ifc_writer.py (round trips), the STEP
+text of the files IfcOpenShell's own authoring API (``ifcopenshell.api.alignment``, ``ifcopenshell.api.unit``)
+writes when the tests run, parsed here with regular expressions, the units' definitions (1 ft = 0.3048 m, 1 US
+survey foot = 1200/3937 m: NIST SP 811 appendix B) and closed forms. The one public file kept
+(tests/data/ifc/README.md names its source and licence) is a release candidate the reader refuses.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import random
 import re
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -53,8 +57,7 @@ def _split(args: str) -> list[str]:
     return out
 
 
-def _step(path: Path) -> dict[int, tuple[str, list[str]]]:
-    text = path.read_text()
+def _step(text: str) -> dict[int, tuple[str, list[str]]]:
     return {int(m[1]): (m[2], _split(m[3])) for m in _ENTITY.finditer(text)}
 
 
@@ -232,129 +235,439 @@ def test_feet_and_metres_give_the_same_records() -> None:
     _same(feet, metric)
 
 
-# -- public files -----------------------------------------------------------------------------------------------
+# -- files IfcOpenShell's authoring API writes ------------------------------------------------------------------
+#
+# ifcopenshell.api.alignment and ifcopenshell.api.unit write these files when the tests run: a writer other than
+# the project's (tests/ifc_writer.py) and than the reader. The expected values are read from the written STEP text
+# (the entity lines, with the regular expressions above), and where the input has a closed form, from that too.
 
 
-def test_buildingsmart_fixed_reference_sample() -> None:
-    """buildingSMART's IFC 4.3 sample: a line, a clothoid and a circular arc turning right (negative radii), and a
-    profile with a circular sag, every number from the file's text."""
-    path = DATA / "fixed-reference-swept-area-solid.ifc"
-    step = _step(path)
-    h = [a for a in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(a[6]) > 0]
-    road = read_ifc(path.read_bytes())
-    assert road.linear_unit == "metre"  # IFCSIUNIT(*, .LENGTHUNIT., $, .METRE.)
+def _ifcopenshell_file(unit: str) -> Any:
+    """An IFC 4.3 file with a project, made with IfcOpenShell's API: lengths in metres, or in a conversion-based
+    foot with plane angles in a conversion-based degree (``ifcopenshell.api.unit.add_conversion_based_unit``)."""
+    import ifcopenshell.api.project
+    import ifcopenshell.api.root
+    import ifcopenshell.api.unit
+
+    f = ifcopenshell.api.project.create_file(version="IFC4X3")
+    ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="rollover tests")
+    if unit == "metre":
+        units = [ifcopenshell.api.unit.add_si_unit(f, unit_type="LENGTHUNIT")]
+    else:
+        units = [ifcopenshell.api.unit.add_conversion_based_unit(f, name=name) for name in ("foot", "degree")]
+    ifcopenshell.api.unit.assign_unit(f, units=units)
+    return f
+
+
+def _plan(f: Any, alignment: Any, segments: tuple[tuple[str, float, float, float], ...]) -> None:
+    """Appends horizontal segments (PredefinedType, start radius, end radius, length) with create_layout_segment,
+    each starting where IfcOpenShell's geometry ends the one before (the placement matrix it returns)."""
+    import ifcopenshell.api.alignment as al
+
+    layout = al.get_horizontal_layout(alignment)
+    point, direction = (0.0, 0.0), 0.0
+    for kind, r0, r1, length in segments:
+        end = al.create_layout_segment(
+            f,
+            layout,
+            f.createIfcAlignmentHorizontalSegment(
+                StartPoint=f.createIfcCartesianPoint(point),
+                StartDirection=direction,
+                StartRadiusOfCurvature=r0,
+                EndRadiusOfCurvature=r1,
+                SegmentLength=length,
+                PredefinedType=kind,
+            ),
+        )
+        point, direction = (float(end[0][3]), float(end[1][3])), math.atan2(float(end[1][0]), float(end[0][0]))
+
+
+def _circle_length(radius: float, g0: float, g1: float) -> float:
+    """The horizontal length of a vertical circular arc of signed radius (+ sag) between grades g0 and g1."""
+    return radius * (math.sin(math.atan(g1)) - math.sin(math.atan(g0)))
+
+
+def _profile(f: Any, layout: Any, height: float, segments: tuple) -> None:
+    """Appends vertical segments (PredefinedType, horizontal length, start grade, end grade, radius or None) to an
+    IfcAlignmentVertical, each starting at the distance and height where IfcOpenShell's geometry ends the one
+    before."""
+    import ifcopenshell.api.alignment as al
+
+    distance = 0.0
+    for kind, length, g0, g1, radius in segments:
+        end = al.create_layout_segment(
+            f,
+            layout,
+            f.createIfcAlignmentVerticalSegment(
+                StartDistAlong=distance,
+                HorizontalLength=length,
+                StartHeight=height,
+                StartGradient=g0,
+                EndGradient=g1,
+                RadiusOfCurvature=radius,
+                PredefinedType=kind,
+            ),
+        )
+        distance, height = float(end[0][3]), float(end[1][3])
+
+
+def _turn(a: AlignmentGeometry) -> float:
+    """The change of direction along the alignment as read [rad, + left]: curvature is linear in length along a
+    line, an arc and a clothoid, and a cosine transition's is symmetric about its middle, so each turns its length
+    times the mean of its end curvatures."""
+
+    def k(r: float) -> float:
+        return 0.0 if math.isinf(r) else 1.0 / r
+
+    return sum(
+        e.length_m * (k(e.radius_start_m) + k(e.radius_end_m)) / 2 * (1 if e.direction == "left" else -1)
+        for e in a.elements
+    )
+
+
+def _plane_angle(step) -> float:
+    """Radians per plane angle unit: 1, or the conversion factor of the file's conversion-based PLANEANGLEUNIT."""
+    for t, a in step.values():
+        if t == "IFCCONVERSIONBASEDUNIT" and a[1] == ".PLANEANGLEUNIT.":
+            factor, si = step[_ref(a[3])][1]
+            assert step[_ref(si)] == ("IFCSIUNIT", ["*", ".PLANEANGLEUNIT.", "$", ".RADIAN."])
+            return _num(factor)
+    return 1.0
+
+
+def _station_referents(step) -> list[tuple[float, dict[str, float]]]:
+    """(DistanceAlong, Pset_Stationing's lengths) of each STATION IfcReferent, by distance: IfcReferent >
+    IfcLinearPlacement > IfcAxis2PlacementLinear > IfcPointByDistanceExpression, and IfcRelDefinesByProperties >
+    IfcPropertySet 'Pset_Stationing' > IfcPropertySingleValue."""
+    psets: dict[int, dict[str, float]] = {}
+    for t, a in step.values():
+        if t == "IFCRELDEFINESBYPROPERTIES" and step[_ref(a[5])][1][2] == "'Pset_Stationing'":
+            props = [step[int(r)][1] for r in re.findall(r"#(\d+)", step[_ref(a[5])][1][4])]
+            values = {p[0].strip("'"): _num(p[2]) for p in props if p[2].startswith("IFCLENGTHMEASURE(")}
+            psets.update((int(r), values) for r in re.findall(r"#(\d+)", a[4]))
+    out = []
+    for i, (t, a) in step.items():
+        if t == "IFCREFERENT" and a[7] == ".STATION.":
+            placement = step[_ref(a[5])]
+            assert placement[0] == "IFCLINEARPLACEMENT"
+            axis = step[_ref(placement[1][1])][1]
+            point = step[_ref(axis[0])]
+            assert point[0] == "IFCPOINTBYDISTANCEEXPRESSION"
+            out.append((_num(point[1][0]), psets[i]))
+    return sorted(out, key=lambda x: x[0])
+
+
+def _written_by_ifcopenshell(text: str) -> str:
+    """The header's originating system (FILE_NAME's sixth argument), after checking the schema the reader needs."""
+    assert "FILE_SCHEMA(('IFC4X3_ADD2'));" in text
+    m = re.search(r"FILE_NAME\('[^']*','[^']*',\([^)]*\),\([^)]*\),'[^']*','([^']*)','[^']*'\);", text)
+    assert m is not None and m[1].startswith("IfcOpenShell ")
+    return m[1]
+
+
+#: a road: 200 m straight, a clothoid into a right-hand arc of 250 m (IFC: radius -250), the clothoid out, 340 m
+ROAD_PLAN = (
+    ("LINE", 0.0, 0.0, 200.0),
+    ("CLOTHOID", 0.0, -250.0, 60.0),
+    ("CIRCULARARC", -250.0, -250.0, 140.0),
+    ("CLOTHOID", -250.0, 0.0, 60.0),
+    ("LINE", 0.0, 0.0, 340.0),
+)
+#: its profile: -2 %, a circular sag (R +8000 m) to +1.5 %, a circular crest (R -6000 m) to -1 %, 800 m in all
+_SAG, _CREST = _circle_length(8000.0, -0.02, 0.015), _circle_length(-6000.0, 0.015, -0.01)
+ROAD_PROFILE = (
+    ("CONSTANTGRADIENT", 150.0, -0.02, -0.02, None),
+    ("CIRCULARARC", _SAG, -0.02, 0.015, 8000.0),
+    ("CONSTANTGRADIENT", 450.0 - _SAG, 0.015, 0.015, None),
+    ("CIRCULARARC", _CREST, 0.015, -0.01, -6000.0),
+    ("CONSTANTGRADIENT", 200.0 - _CREST, -0.01, -0.01, None),
+)
+
+
+@pytest.fixture(scope="module")
+def ifcopenshell_road() -> str:
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("metre")
+    a = al.create(f, "IfcOpenShell road", include_vertical=True)
+    _plan(f, a, ROAD_PLAN)
+    _profile(f, al.get_vertical_layout(a), 50.0, ROAD_PROFILE)
+    return f.to_string()
+
+
+def test_ifcopenshell_road_clothoid_and_arc_to_the_right_circular_sag_and_crest(ifcopenshell_road: str) -> None:
+    """An alignment IfcOpenShell's API writes segment by segment (its PI method writes no transition curves): a
+    line, a clothoid and an arc turning right (negative radii), and a profile with a circular sag and crest."""
+    text = ifcopenshell_road
+    writer = _written_by_ifcopenshell(text)
+    step = _step(text)
+    road = read_ifc(text.encode())
+    assert road.format == "IFC 4.3 (IFC4X3_ADD2)" and road.writer == writer
+    assert "IFCSIUNIT(*,.LENGTHUNIT.,$,.METRE.)" in text and road.linear_unit == "metre"
     (a,) = road.alignments
-    assert a.name == "Test Alignment"
-    assert [e.kind for e in a.elements] == ["line", "spiral", "arc"]
-    assert [e.spiral_type for e in a.elements] == [None, "clothoid", None]
-    for e, args in zip(a.elements, h, strict=True):
-        assert e.length_m == _num(args[6])
-        r_end = _num(args[5])
-        assert e.radius_end_m == (abs(r_end) if r_end else math.inf)
-        assert e.direction == (None if r_end == 0 else "left" if r_end > 0 else "right")
-    assert sum(e.length_m for e in a.elements) == sum(_num(x[6]) for x in h) == 950.0
+    assert a.name == "IfcOpenShell road"
+    written = _nested_segments(step, "IFCALIGNMENTHORIZONTAL")
+    h = [x for x in written if _num(x[6]) > 0]
+    assert [e.kind for e in a.elements] == ["line", "spiral", "arc", "spiral", "line"]
+    for e, x in zip(a.elements, h, strict=True):
+        r0, r1 = _num(x[4]), _num(x[5])
+        assert e.length_m == _num(x[6])
+        assert (e.radius_start_m, e.radius_end_m) == (abs(r0) or math.inf, abs(r1) or math.inf)
+        assert e.direction == (None if r0 == r1 == 0 else "left" if r0 + r1 > 0 else "right")
+        assert e.spiral_type == ("clothoid" if x[8] == ".CLOTHOID." else None)
+    assert [e.direction for e in a.elements if e.kind != "line"] == ["right"] * 3
+    # a second route: the turn of the elements read is the change of direction IfcOpenShell's geometry computed,
+    # from the first segment's StartDirection to the closing (zero-length) segment's
+    assert _num(written[-1][6]) == 0 and len(written) == len(h) + 1
+    turn = (_num(written[-1][3]) - _num(h[0][3])) * _plane_angle(step)
+    assert math.isclose(_turn(a), turn, rel_tol=1e-9) and turn == pytest.approx(-(60 / 250 + 140 / 250), rel=1e-12)
     v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
     (p,) = a.profiles
-    assert [s.kind for s in p.segments] == ["constant", "circular", "constant"]
-    for s, args in zip(p.segments, v, strict=True):
-        assert s.start_distance_m == _num(args[2]) and s.length_m == _num(args[3])
-        assert s.start_elevation_m == _num(args[4])
-        assert (s.start_grade, s.end_grade) == (_num(args[5]), _num(args[6]))
-    assert p.segments[1].radius_m == _num(v[1][7])  # + : a sag, the grade rising from -0.1 % to +0.044 %
-    # no Pset_Stationing on its STATION referent: start station 0, said
-    assert a.start_station_m == 0.0 and a.notes
-    assert road.writer == "redacted redacted"  # IFCAPPLICATION(#5, 'redacted', 'redacted', 'redacted')
+    assert [s.kind for s in p.segments] == ["constant", "circular", "constant", "circular", "constant"]
+    for s, x in zip(p.segments, v, strict=True):
+        assert (s.start_distance_m, s.length_m, s.start_elevation_m) == (_num(x[2]), _num(x[3]), _num(x[4]))
+        assert (s.start_grade, s.end_grade) == (_num(x[5]), _num(x[6]))
+        assert s.radius_m == (None if x[7] == "$" else abs(_num(x[7])))
+    assert _num(v[1][7]) > 0 > _num(v[3][7])  # IFC's signs: + a sag, - a crest
+    # each layout's closing segment listed, nothing else; no STATION referent: start station 0, said
+    assert len(road.skipped) == 2 and all("closing segment" in why for _, why in road.skipped)
+    assert "IFCREFERENT(" not in text and a.start_station_m == 0.0 and a.notes
 
 
-def test_buildingsmart_rail_sample_cant_and_stationing() -> None:
-    """buildingSMART's linear placement sample (a railway): clothoid-arc-clothoid bends both ways, circular vertical
-    curves, a cant of +/-0.03 m on a rail head distance of 1.435 m, and a start station of -153.1 m."""
-    path = DATA / "linear-placement-of-signal.ifc"
-    text = path.read_text()
-    step = _step(path)
-    road = read_ifc(path.read_bytes())
+def test_ifcopenshell_second_profile_moves_both_into_child_alignments() -> None:
+    """``add_vertical_layout`` on an alignment that has a profile moves it into a child alignment and puts the new
+    one in another (IFC CT 4.1.4.4.1.2, a horizontal layout reused): both read as profiles of the one alignment,
+    in the order of the child alignments' entity ids, every value from the text."""
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("metre")
+    a = al.create(f, "IfcOpenShell two profiles")
+    _plan(f, a, (("LINE", 0.0, 0.0, 100.0), ("CIRCULARARC", 300.0, 300.0, 200.0)))
+    _profile(f, al.add_vertical_layout(f, a), 20.0, (("CONSTANTGRADIENT", 300.0, 0.01, 0.01, None),))
+    second = (("PARABOLICARC", 300.0, 0.03, -0.01, 300.0 / -0.04),)
+    _profile(f, al.add_vertical_layout(f, a), 21.0, second)
+    text = f.to_string()
+    step = _step(text)
+    road = read_ifc(text.encode())
+    (read,) = road.alignments  # the child alignments are not read as alignments of their own
+    nests = {_ref(x[4]): re.findall(r"#(\d+)", x[5]) for t, x in step.values() if t == "IFCRELNESTS"}
+    children = sorted(
+        int(r)
+        for t, x in step.values()
+        if t == "IFCRELAGGREGATES" and step[_ref(x[4])][1][2] == "'IfcOpenShell two profiles'"
+        for r in re.findall(r"#(\d+)", x[5])
+    )
+    assert len(children) == 2 and all(step[c][0] == "IFCALIGNMENT" for c in children)
+    layouts = [int(r) for c in children for r in nests[c] if step[int(r)][0] == "IFCALIGNMENTVERTICAL"]
+    assert len(layouts) == 2 and len(read.profiles) == 2
+    for profile, layout in zip(read.profiles, layouts, strict=True):
+        segments = [step[_ref(step[int(r)][1][7])][1] for r in nests[layout]]
+        (x,) = [x for x in segments if _num(x[3]) > 0]
+        (s,) = profile.segments
+        assert (s.start_distance_m, s.length_m, s.start_elevation_m) == (_num(x[2]), _num(x[3]), _num(x[4]))
+        assert (s.kind, s.start_grade, s.end_grade) == (
+            {".CONSTANTGRADIENT.": "constant", ".PARABOLICARC.": "parabolic"}[x[8]],
+            _num(x[5]),
+            _num(x[6]),
+        )
+    assert [p.segments[0].kind for p in read.profiles] == ["constant", "parabolic"]
+
+
+#: a railway: a left-hand bend of R 1000 m between clothoids and a right-hand one of R 800 m between cosine
+#: transitions (IFC's COSINECURVE), 1040 m in all
+RAIL_PLAN = (
+    ("LINE", 0.0, 0.0, 100.0),
+    ("CLOTHOID", 0.0, 1000.0, 80.0),
+    ("CIRCULARARC", 1000.0, 1000.0, 200.0),
+    ("CLOTHOID", 1000.0, 0.0, 80.0),
+    ("LINE", 0.0, 0.0, 150.0),
+    ("COSINECURVE", 0.0, -800.0, 90.0),
+    ("CIRCULARARC", -800.0, -800.0, 150.0),
+    ("COSINECURVE", -800.0, 0.0, 90.0),
+    ("LINE", 0.0, 0.0, 100.0),
+)
+#: its cant (kind, length, start left, start right, end left, end right) [m]: the outer rail raised 0.06 m on the
+#: left-hand bend and 0.09 m on the right-hand one, the inner rail on the profile, in linear transitions along the
+#: clothoids and cosine ones along the cosine transitions. (A cant turning about the axis, the rails at -x and +x,
+#: makes IfcOpenShell 0.9's geometry for a LINEARTRANSITION cant divide by zero: its mean height does not change.)
+RAIL_CANT = (
+    ("CONSTANTCANT", 100.0, 0.0, 0.0, 0.0, 0.0),
+    ("LINEARTRANSITION", 80.0, 0.0, 0.0, 0.0, 0.06),
+    ("CONSTANTCANT", 200.0, 0.0, 0.06, 0.0, 0.06),
+    ("LINEARTRANSITION", 80.0, 0.0, 0.06, 0.0, 0.0),
+    ("CONSTANTCANT", 150.0, 0.0, 0.0, 0.0, 0.0),
+    ("COSINECURVE", 90.0, 0.0, 0.0, 0.09, 0.0),
+    ("CONSTANTCANT", 150.0, 0.09, 0.0, 0.09, 0.0),
+    ("COSINECURVE", 90.0, 0.09, 0.0, 0.0, 0.0),
+    ("CONSTANTCANT", 100.0, 0.0, 0.0, 0.0, 0.0),
+)
+
+
+@pytest.fixture(scope="module")
+def ifcopenshell_rail() -> str:
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("metre")
+    a = al.create(f, "IfcOpenShell rail", include_vertical=True, include_cant=True)
+    _plan(f, a, RAIL_PLAN)
+    _profile(f, al.get_vertical_layout(a), 10.0, (("CONSTANTGRADIENT", 1040.0, 0.004, 0.004, None),))
+    cant = al.get_cant_layout(a)
+    cant.RailHeadDistance = 1.435  # create() writes 1.0 and takes no rail head distance: set on the entity
+    distance = 0.0
+    for kind, length, left0, right0, left1, right1 in RAIL_CANT:
+        al.create_layout_segment(
+            f,
+            cant,
+            f.createIfcAlignmentCantSegment(
+                StartDistAlong=distance,
+                HorizontalLength=length,
+                StartCantLeft=left0,
+                EndCantLeft=left1,
+                StartCantRight=right0,
+                EndCantRight=right1,
+                PredefinedType=kind,
+            ),
+        )
+        distance += length
+    # the start station before the start of the stationing (-0+153.1), and a station equation 500 m along
+    al.add_stationing_referent(f, "start", a, 0.0, -153.1)
+    al.add_stationing_referent(f, "equation", a, 500.0, 1000.0, incoming_station=-153.1 + 500.0)
+    return f.to_string()
+
+
+def test_ifcopenshell_rail_cant_cosine_transitions_and_stationing(ifcopenshell_rail: str) -> None:
+    """A railway alignment IfcOpenShell's API writes: bends both ways (clothoids, cosine transitions), a cant of
+    0.06 and 0.09 m on a rail head distance of 1.435 m (``create(include_cant=True)`` writes 1.0, set on the
+    entity) with linear and cosine transitions, a start station of -153.1 m and a station equation
+    (``add_stationing_referent``: Pset_Stationing ``Station`` and ``IncomingStation``)."""
+    text = ifcopenshell_rail
+    _written_by_ifcopenshell(text)
+    step = _step(text)
+    road = read_ifc(text.encode())
     (a,) = road.alignments
-    h = [x for x in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(x[6]) > 0]
+    assert len(road.skipped) == 3 and all("closing segment" in why for _, why in road.skipped)  # one a layout
+    written = _nested_segments(step, "IFCALIGNMENTHORIZONTAL")
+    h = [x for x in written if _num(x[6]) > 0]
     assert len(a.elements) == len(h) == 9
-    assert math.isclose(sum(e.length_m for e in a.elements), sum(_num(x[6]) for x in h), rel_tol=1e-12)
-    arcs = [e for e in a.elements if e.kind == "arc"]
-    assert [(e.direction, e.radius_start_m) for e in arcs] == [
-        ("left", _num(h[2][4])),
-        ("right", -_num(h[6][4])),
-    ]
-    # the station of the STATION referent's Pset_Stationing
-    station = re.search(r"IFCPROPERTYSINGLEVALUE\('Station', \$, IFCLENGTHMEASURE\(([-0-9.E]+)\)", text)
-    assert station is not None and a.start_station_m == float(station[1]) == -153.1
-    # cant: the plane through both rails, 100 tan(asin((right - left) / RailHeadDistance))
-    rhd = _num(next(x for t, x in step.values() if t == "IFCALIGNMENTCANT")[7])
+    types = {".LINE.": None, ".CIRCULARARC.": None, ".CLOTHOID.": "clothoid", ".COSINECURVE.": "cosinecurve"}
+    for e, x in zip(a.elements, h, strict=True):
+        r0, r1 = _num(x[4]), _num(x[5])
+        assert (e.length_m, e.radius_start_m, e.radius_end_m) == (_num(x[6]), abs(r0) or math.inf, abs(r1) or math.inf)
+        assert e.direction == (None if r0 == r1 == 0 else "left" if r0 + r1 > 0 else "right")
+        assert e.spiral_type == types[x[8]]
+    assert [e.direction for e in a.elements if e.kind == "arc"] == ["left", "right"]
+    turn = (_num(written[-1][3]) - _num(h[0][3])) * _plane_angle(step)
+    assert math.isclose(_turn(a), turn, rel_tol=1e-9)
+    # cant: the plane through both rails, 100 tan(asin((right - left) / RailHeadDistance)) at each segment's ends
+    (rhd,) = [_num(x[7]) for t, x in step.values() if t == "IFCALIGNMENTCANT"]
     assert rhd == 1.435
     c = [x for x in _nested_segments(step, "IFCALIGNMENTCANT") if _num(x[3]) > 0]
-    full = [x for x in c if x[8] == ".CONSTANTCANT." and _num(x[4]) != 0]
-    assert len(full) == 2
-    for x in full:
-        expected = 100 * math.tan(math.asin((_num(x[6]) - _num(x[4])) / rhd))
-        at = [s for s in a.cross_slopes if _rel(s.distance_m, _num(x[2]))]
-        assert at and math.isclose(at[-1].left_percent, expected, rel_tol=REL) and at[-1].right_percent == expected
-    # the left-hand bend (radius +1000) is banked up on the right: + rising left to right
-    assert a.cross_slopes[2].left_percent > 0 and arcs[0].direction == "left"
+    assert [x[8] for x in c] == [f".{k[0]}." for k in RAIL_CANT]
+    ends = set()
+    for x in c:
+        d0, d1 = _num(x[2]), _num(x[2]) + _num(x[3])
+        for d, left, right in ((d0, _num(x[4]), _num(x[6])), (d1, _num(x[5]), _num(x[7]))):
+            expected = 100 * math.tan(math.asin((right - left) / rhd))
+            at = [s for s in a.cross_slopes if _rel(s.distance_m, d)]
+            assert at and all(s.left_percent == s.right_percent == expected for s in at), (d, expected)
+            ends.add(d)
+    assert all(any(_rel(s.distance_m, d) for d in ends) for s in a.cross_slopes)
+    # banked toward each bend's inside: + (rising left to right) on the left-hand bend, - on the right-hand one
+    assert max(s.left_percent for s in a.cross_slopes) > 0 > min(s.left_percent for s in a.cross_slopes)
+    assert [s.left_percent > 0 for s in a.cross_slopes if s.left_percent] == [True, True, False, False]
+    # stations: the referent at distance 0 gives the start station, the one 500 m along an equation
+    (d0, start), (d1, equation) = _station_referents(step)
+    assert (d0, d1) == (0.0, 500.0) and a.start_station_m == start["Station"] == -153.1
+    assert a.station_equations == (StationEquation(d1, equation["IncomingStation"], equation["Station"]),)
+    assert equation["IncomingStation"] == pytest.approx(-153.1 + 500.0, rel=1e-15) and not a.notes
 
 
-def test_buildingsmart_cosine_transition_and_cosine_cant() -> None:
-    """A COSINECURVE transition from R 300 to R 1000 (both +: left) read as a spiral of that type; a cant of 0.16 m
-    on the right over a rail head distance of 1.5 m."""
-    path = DATA / "segmented-reference-curve.ifc"
-    road = read_ifc(path.read_bytes())
+#: a road in feet laid out by the PI method (no transitions): points of intersection, circular curve radii, the
+#: profile's points of vertical intersection and symmetric parabolic curve lengths [ft], and its start station
+FT_PIS = ((1000.0, 1000.0), (3400.0, 1000.0), (5000.0, 2800.0), (7200.0, 2300.0), (8600.0, 3600.0))
+FT_RADII = (1200.0, 950.0, 1500.0)
+FT_PVIS = ((0.0, 500.0), (2000.0, 540.0), (4500.0, 505.0), (7000.0, 535.0), (8600.0, 515.0))
+FT_CURVES = (800.0, 1000.0, 1200.0)
+FT_START = 1000.0
+
+
+@pytest.fixture(scope="module")
+def ifcopenshell_road_in_feet() -> str:
+    import ifcopenshell.api.alignment as al
+
+    f = _ifcopenshell_file("foot")
+    name = "IfcOpenShell road in feet"
+    al.create_by_pi_method(f, name, FT_PIS, FT_RADII, FT_PVIS, FT_CURVES, start_station=FT_START)
+    return f.to_string()
+
+
+def test_ifcopenshell_road_in_feet_by_the_pi_method(ifcopenshell_road_in_feet: str) -> None:
+    """A road IfcOpenShell's ``create_by_pi_method`` lays out in a conversion-based foot
+    (``add_conversion_based_unit(name="foot")``: 0.3048 of a metre, as an ``IfcReal``) with angles in degrees: three
+    circular curves between tangents, three symmetric parabolic vertical curves, a start station of 10+00 ft.
+    Checked against the file's text and against the closed forms of the PI method (tangent length R tan(D/2), arc
+    length R D; a parabola starts L/2 before its PVI)."""
+    text = ifcopenshell_road_in_feet
+    _written_by_ifcopenshell(text)
+    step = _step(text)
+    # the unit from the text: IFCCONVERSIONBASEDUNIT(.., .LENGTHUNIT., 'foot', #m); #m = 0.3048 of a METRE
+    (unit,) = [x for t, x in step.values() if t == "IFCCONVERSIONBASEDUNIT" and x[1] == ".LENGTHUNIT."]
+    factor, si = step[_ref(unit[3])][1]
+    assert step[_ref(si)] == ("IFCSIUNIT", ["*", ".LENGTHUNIT.", "$", ".METRE."])
+    foot = _num(factor)
+    assert foot == 0.3048  # the international foot (NIST SP 811, appendix B)
+    road = read_ifc(text.encode())
+    assert road.linear_unit == unit[2].strip("'") == "foot"
     (a,) = road.alignments
-    (e,) = a.elements
-    assert (e.kind, e.spiral_type, e.direction, e.radius_start_m, e.radius_end_m, e.length_m) == (
-        "spiral",
-        "cosinecurve",
-        "left",
-        300.0,
-        1000.0,
-        100.0,
-    )  # #29=IFCALIGNMENTHORIZONTALSEGMENT($,$,#28,0.,300.,1000.,100.,$,.COSINECURVE.)
-    # #64=IFCALIGNMENTCANTSEGMENT($,$,0.,100.,0.,0.,0.16,0.,.COSINECURVE.) on #61 RailHeadDistance 1.5
-    assert [(s.distance_m, s.left_percent) for s in a.cross_slopes] == [
-        (0.0, 100 * math.tan(math.asin(0.16 / 1.5))),
-        (100.0, 0.0),
-    ]
-
-
-def test_ifcopenshell_fhwa_example_in_feet() -> None:
-    """The FHWA Bridge Geometry Manual example alignment as IfcOpenShell 0.8.0 wrote it: a length unit 'FEET' whose
-    conversion factor is 304.8 millimetres, three arcs and four parabolic vertical curves."""
-    path = DATA / "FHWA_Bridge_Geometry_Alignment_Example.ifc"
-    text = path.read_text()
-    step = _step(path)
-    # the unit from the text: IFCCONVERSIONBASEDUNIT(.., 'FEET', #9); #9 = 304.8 of #2 = MILLI METRE
-    (factor,) = re.findall(r"IFCMEASUREWITHUNIT\(IFCLENGTHMEASURE\(([0-9.]+)\),#2\)", text)
-    assert ".MILLI.,.METRE." in text
-    foot = float(factor) * 1e-3
-    assert foot == 0.3048  # the international foot
-    road = read_ifc(path.read_bytes())
-    assert road.linear_unit == "FEET" and road.writer == "IfcOpenShell 0.8.0"
-    (a,) = road.alignments
-    h = [x for x in _nested_segments(step, "IFCALIGNMENTHORIZONTAL") if _num(x[6]) > 0]
-    assert len(a.elements) == len(h) == 7
+    written = _nested_segments(step, "IFCALIGNMENTHORIZONTAL")
+    h = [x for x in written if _num(x[6]) > 0]
+    assert [e.kind for e in a.elements] == ["line", "arc"] * 3 + ["line"] and len(h) == 7
     for e, x in zip(a.elements, h, strict=True):
         assert math.isclose(e.length_m, _num(x[6]) * foot, rel_tol=REL)
-        r = _num(x[4])
-        assert e.radius_start_m == (abs(r) * foot if r else math.inf) or math.isclose(
-            e.radius_start_m, abs(r) * foot, rel_tol=REL
+        assert e.radius_start_m == e.radius_end_m and math.isclose(
+            e.radius_start_m, (abs(_num(x[4])) or math.inf) * foot, rel_tol=REL
         )
-    assert [e.direction for e in a.elements if e.kind == "arc"] == ["left", "right", "right"]  # 1000, -1250, -950
+    # the PI method's closed forms, in feet: each curve's deflection D from the two tangents' bearings
+    bearings = [math.atan2(q[1] - p[1], q[0] - p[0]) for p, q in itertools.pairwise(FT_PIS)]
+    legs = [math.dist(p, q) for p, q in itertools.pairwise(FT_PIS)]
+    deflections = [math.remainder(b1 - b0, math.tau) for b0, b1 in itertools.pairwise(bearings)]
+    tangents = [r * math.tan(abs(d) / 2) for r, d in zip(FT_RADII, deflections, strict=True)]
+    lines = [leg - t0 - t1 for leg, t0, t1 in zip(legs, [0.0, *tangents], [*tangents, 0.0], strict=True)]
+    arcs = [r * abs(d) for r, d in zip(FT_RADII, deflections, strict=True)]
+    expected = [*itertools.chain.from_iterable(zip(lines, arcs, strict=False)), lines[-1]]
+    for e, length in zip(a.elements, expected, strict=True):
+        assert math.isclose(e.length_m, length * foot, rel_tol=1e-9), e.where
+    arcs_read = [e for e in a.elements if e.kind == "arc"]
+    assert [e.direction for e in arcs_read] == ["left" if d > 0 else "right" for d in deflections]
+    assert [e.direction for e in arcs_read] == ["left", "right", "left"]
+    # the turn read against the directions the PI method wrote, in the file's degrees, from the first tangent to the
+    # last (IfcOpenShell 0.9 writes the closing segment's StartDirection in radians whatever the angle unit)
+    assert _plane_angle(step) == pytest.approx(math.pi / 180, rel=1e-12)
+    turn = (_num(h[-1][3]) - _num(h[0][3])) * _plane_angle(step)
+    assert math.isclose(_turn(a), turn, rel_tol=1e-9) and math.isclose(turn, sum(deflections), rel_tol=1e-9)
+    # profile: from the text, and from the PVIs (grades between them; a curve from PVI - L/2 to PVI + L/2)
     v = [x for x in _nested_segments(step, "IFCALIGNMENTVERTICAL") if _num(x[3]) > 0]
     (p,) = a.profiles
-    assert [s.kind for s in p.segments] == ["constant", "parabolic"] * 4 + ["constant"]
+    assert [s.kind for s in p.segments] == ["constant", "parabolic"] * 3 + ["constant"] and len(v) == 7
     for s, x in zip(p.segments, v, strict=True):
-        assert math.isclose(s.start_distance_m, _num(x[2]) * foot, rel_tol=REL, abs_tol=1e-12)
-        assert math.isclose(s.length_m, _num(x[3]) * foot, rel_tol=REL)
+        for got, ft in ((s.start_distance_m, x[2]), (s.length_m, x[3]), (s.start_elevation_m, x[4])):
+            assert math.isclose(got, _num(ft) * foot, rel_tol=REL, abs_tol=1e-12)
         assert (s.start_grade, s.end_grade) == (_num(x[5]), _num(x[6]))
-    # a symmetric parabola's grade at its middle is the mean of its end grades; the file's own parabola constant
-    # (RadiusOfCurvature) is L / (g1 - g0), in feet
-    x = v[1]
-    assert math.isclose(_num(x[7]), _num(x[3]) / (_num(x[6]) - _num(x[5])), rel_tol=1e-12)
+    grades = [(z1 - z0) / (x1 - x0) for (x0, z0), (x1, z1) in itertools.pairwise(FT_PVIS)]
+    for i, (s, length) in enumerate(zip(p.segments[1::2], FT_CURVES, strict=True), start=1):
+        x, z = FT_PVIS[i]
+        assert math.isclose(s.start_distance_m, (x - length / 2) * foot, rel_tol=1e-9)
+        assert math.isclose(s.length_m, length * foot, rel_tol=1e-9)
+        assert math.isclose(s.start_elevation_m, (z - grades[i - 1] * length / 2) * foot, rel_tol=1e-9)
+        assert s.start_grade == pytest.approx(grades[i - 1], rel=1e-9)
+        assert s.end_grade == pytest.approx(grades[i], rel=1e-9)
+    # the start station: Pset_Stationing's Station (in feet) of the referent at distance 0
+    ((d, pset),) = _station_referents(step)
+    assert d == 0.0 and pset["Station"] == FT_START
+    assert math.isclose(a.start_station_m, FT_START * foot, rel_tol=REL)
+
+
+# -- a public file ---------------------------------------------------------------------------------------------
 
 
 def test_release_candidate_file_refused_by_schema_name() -> None:

@@ -736,6 +736,13 @@ class ReadingOut(OutputModel):
         )
     )
     skipped: list[SkippedOut] = Field(description=describe("What was read but not used, and why.", unit="-"))
+    notes: list[str] = Field(
+        description=describe(
+            "What the reader assumed where the file is silent or irregular, each prefixed by its alignment's name "
+            "(e.g. no start station: 0 taken; names written in raw UTF-8 instead of ISO 10303-21's escapes).",
+            unit="-",
+        ),
+    )
 
 
 class AlignmentResult(OutputModel):

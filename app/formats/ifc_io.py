@@ -54,6 +54,7 @@ value.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections import Counter
@@ -126,6 +127,18 @@ _CANT_TYPES = (
 )
 _HEADER_SCAN = 64 * 1024  # the header section comes first; FILE_SCHEMA is found within this many bytes
 _FILE_SCHEMA = re.compile(rb"FILE_SCHEMA\s*\(\s*\(\s*'([^']*)'", re.IGNORECASE)
+_NON_ASCII = re.compile(r"[^\x00-\x7f]+")
+
+
+def _step_escape(run: re.Match[str]) -> str:
+    """A run of characters outside ASCII as ISO 10303-21 writes it in a string: ``\\X2\\`` and four hex digits per
+    UTF-16 code unit, or ``\\X4\\`` and eight per character where one lies beyond the Basic Multilingual Plane."""
+    chars = run.group(0)
+    if all(ord(c) <= 0xFFFF for c in chars):
+        return "\\X2\\" + "".join(f"{ord(c):04X}" for c in chars) + "\\X0\\"
+    return "\\X4\\" + "".join(f"{ord(c):08X}" for c in chars) + "\\X0\\"
+
+
 #: a circular vertical arc's horizontal length against the one its radius and end grades give (relative)
 _ARC_TOLERANCE = 1e-3
 _Entity: Any = None  # ifcopenshell.entity_instance, once ifcopenshell is imported (on the first file read)
@@ -204,7 +217,8 @@ def _schema_of(data: bytes) -> str:
     return m.group(1).decode("ascii", "replace").strip()
 
 
-def _open(data: bytes) -> Any:
+def _open(data: bytes) -> tuple[Any, str | None]:
+    """The parsed file, and a note for the reading when raw characters outside ASCII had to be escaped."""
     schema = _schema_of(data)
     if schema.upper() != SCHEMA:
         raise AlignmentFormatError(
@@ -214,12 +228,22 @@ def _open(data: bytes) -> Any:
             "HEADER",
             "FILE_SCHEMA",
         )
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:
-        # ISO 10303-21 is 7-bit text (other characters as \X2\ escapes); some writers put Latin-1 in strings,
-        # which only names carry
-        text = data.decode("latin-1")
+    note = None
+    if not data.isascii():
+        # ISO 10303-21 is 7-bit text (other characters as \X2\ escapes); some writers put UTF-8 or Latin-1 in
+        # strings, which only names carry. IfcOpenShell's parser drops such characters ("Straße" reads "Strae"),
+        # so they are escaped as the standard writes them and a name keeps every letter.
+        try:
+            text, encoding = data.decode("utf-8-sig"), "UTF-8"  # an editor's byte-order mark is no character
+        except UnicodeDecodeError:
+            text, encoding = data.decode("latin-1"), "Latin-1"
+        text = _NON_ASCII.sub(_step_escape, text)
+        note = (
+            f"characters outside ASCII written as they are (ISO 10303-21 asks for \\X2\\ escapes) were read as "
+            f"{encoding}"
+        )
+    else:
+        text = data.decode("ascii")
     global _Entity
     import ifcopenshell  # ~0.2 s on first use: imported only when an IFC file is read
 
@@ -235,7 +259,7 @@ def _open(data: bytes) -> Any:
         raise AlignmentFormatError(f"unreadable IFC file: {reason}"[:300]) from None
     if parsed_schema.upper() != SCHEMA:
         raise AlignmentFormatError(f"the file's schema is {parsed_schema[:60]!r}", "HEADER", "FILE_SCHEMA")
-    return f
+    return f, note
 
 
 def _length_unit(f: Any) -> tuple[float, str]:
@@ -766,7 +790,7 @@ def read_ifc(data: bytes) -> RoadFile:
     """
     if not isinstance(data, bytes | bytearray | memoryview):
         raise TypeError("read_ifc takes the file's bytes")
-    f = _open(bytes(data))
+    f, note = _open(bytes(data))
     skipped: list[tuple[str, str]] = []
     counts: Counter[str] = Counter()
     try:
@@ -775,6 +799,8 @@ def read_ifc(data: bytes) -> RoadFile:
         if not alignments:
             raise AlignmentFormatError("the file has no IfcAlignment", None, "IfcAlignment")
         read = tuple(_alignment(a, unit, skipped, counts) for a in sorted(alignments, key=lambda a: a.id()))
+        if note is not None:
+            read = tuple(dataclasses.replace(a, notes=(*a.notes, note)) for a in read)
         writer = _writer(f)
     except AlignmentFormatError:
         raise

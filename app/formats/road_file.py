@@ -275,6 +275,8 @@ def curves_from_road_file(
         # the source of most rows (each row says its own)
         "superelevation_from": max(SUPERELEVATION_FROM, key=lambda s: (sources[s], -SUPERELEVATION_FROM.index(s))),
         "skipped": skipped,
+        # what the reader had to assume or read in a way the file did not say (e.g. a start station of 0)
+        "notes": [f"{a.name}: {note}" for a in road.alignments for note in a.notes],
     }
     bend_table = BendTable({name: np.ascontiguousarray(col[name], dtype=float) for name in BEND_COLUMNS})
     return dataclasses.replace(table, bends=bend_table, reading=reading)

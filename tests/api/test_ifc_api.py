@@ -231,12 +231,30 @@ def test_an_escaped_name_is_read_whole(shared_client):
 @pytest.mark.parametrize("encoding", ["utf-8", "utf-8-sig", "latin-1"])
 def test_raw_utf_8_or_latin_1_and_a_byte_order_mark_are_read(shared_client, encoding):
     """Some writers put UTF-8 or Latin-1 in strings anyway, and an editor may add a byte-order mark: the upload is
-    read (app/formats/uploads.py ``decode_step``), its rows those of the plain file."""
+    read (app/formats/uploads.py ``decode_step``), its rows those of the plain file, and the name keeps every letter
+    (IfcOpenShell's parser drops raw characters outside ASCII: "Rodovia So Jos"), which the reading notes."""
     plain = _post(shared_client, PATH, ROAD_IFC).json()
+    assert plain["reading"]["alignments"] == ["Example road (synthetic): two curves"]
+    assert not any("ASCII" in n for n in plain["reading"]["notes"])
     text = ROAD_IFC.decode().replace("Example road (synthetic): two curves", "Rodovia São José")
     out = _post(shared_client, PATH, text.encode(encoding)).json()
     assert out["curves"] == 2
     _same_rows(out["vehicles"][0]["rows"], plain["vehicles"][0]["rows"])
+    assert out["reading"]["alignments"] == ["Rodovia São José"]
+    assert "Rodovia São José: characters outside ASCII written as they are" in " ".join(out["reading"]["notes"])
+
+
+def test_raw_characters_beyond_the_basic_plane_and_in_element_names_are_read_whole():
+    """A raw character beyond the Basic Multilingual Plane is escaped as ``\\X4\\`` (eight hex digits), one in
+    it as ``\\X2\\``: both come back as written, in the alignment's and a curve's name."""
+    from app.formats.ifc_io import read_ifc
+
+    text = ROAD_IFC.decode().replace("Example road (synthetic): two curves", "Estrada \U0001f69b Süd")
+    road = read_ifc(text.encode("utf-8"))
+    assert road.alignments[0].name == "Estrada \U0001f69b Süd"
+    first = next(e.name for e in road.alignments[0].elements if e.name)
+    text = ROAD_IFC.decode().replace(f"'{first}'", f"'{first} – Curva São'")
+    assert next(e.name for e in read_ifc(text.encode()).alignments[0].elements if e.name) == f"{first} – Curva São"
 
 
 def test_the_published_example_is_the_landxml_examples_road(shared_client):

@@ -49,7 +49,6 @@ from dataclasses import dataclass
 import numpy as np
 
 _AXICLE = "TruckSim example database (github.com/Steve-Krug/Axicle, 04-Trucksim/Tires/Fy/"
-DEG_PER_RAD = 180.0 / math.pi
 
 
 @dataclass(frozen=True)
@@ -99,7 +98,7 @@ class TyreType:
             per_deg = c[-1] + (c[-1] - c[-2]) / (fz[-1] - fz[-2]) * (load_n - fz[-1])
         else:
             per_deg = float(np.interp(load_n, fz, c))
-        return per_deg * DEG_PER_RAD
+        return per_deg * 180.0 / math.pi  # as the model always computed it (bit for bit)
 
 
 #: the TruckSim example tables' 1 deg row [N] at their loads [N]

@@ -28,7 +28,10 @@ def f(default: Any = ..., text: str = "", unit: str = "-", **kw: Any) -> Any:
     return Field(default, description=d(text, unit), **kw)
 
 
-def _optional(text: str, unit: str, low: float, high: float) -> Any:
+def _optional(text: str, unit: str, low: Any, high: float | None = None) -> Any:
+    """An optional number in [low, high], or an optional choice when ``low`` is the tuple of choices."""
+    if isinstance(low, tuple):
+        return (Literal[low] | None, Field(None, description=d(text + " (the default when left out).", unit)))  # type: ignore[valid-type]
     return (float | None, Field(None, ge=low, le=high, description=d(text + " (estimated when left out).", unit)))
 
 

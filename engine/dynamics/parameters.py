@@ -8,13 +8,15 @@ low-speed corners), and per axle group a cornering coefficient and the axle spac
 
 Estimates
 ---------
-* cornering stiffness of an axle ``C = Cc N`` with ``N`` its static load and ``Cc`` the cornering coefficient
-  [1/rad]. Given, ``Cc`` is constant; estimated, each tyre's cornering stiffness is the presets' tyre class's at its
-  static load, from TruckSim's measured-style carpet plot of that tyre (:data:`TYRE_FY_1DEG`: 9.8 /rad at 7.4 kN a
-  tyre falling to 7.4 /rad at 58.9 kN), since the description does not name its tyres; the only other readable
-  value, OpenPBS's constant 5.5 /rad for every axle (``OpenPBS/Parameters/Base/VehicleModel.mo``, ``Cc``), is
-  kept for comparison (:data:`CORNERING_COEFFICIENT_PER_RAD`). Accepted range 2-12 /rad (assumed: outside it no
-  truck tyre's linear coefficient lies);
+* cornering stiffness of an axle ``C = n_tyres x C_tyre(N)`` with ``N`` each tyre's static load and ``C_tyre`` the
+  cornering stiffness of the group's tyre type (``tyre_type``, :data:`~engine.dynamics.tyres.TYRE_TYPES`, each with
+  its table, its source and the rule that reads it; :mod:`engine.dynamics.tyres`). Left out, the type is the presets'
+  tyre class, TruckSim's 3000 kg tyre (9.8 /rad at 7.4 kN a tyre falling to 7.4 /rad at 58.9 kN), since the
+  description does not name its tyres; the other types are two tyres measured in the SAE Cooperative Research
+  program (a 295/75R22.5 steer and drive tyre), TruckSim's 2000 and 3500 kg tyres, and OpenPBS's constant 5.5 /rad
+  for every axle (``openpbs-constant``, also :data:`CORNERING_COEFFICIENT_PER_RAD`). A cornering coefficient may be
+  given instead (``C = Cc N``, constant): accepted range 2-12 /rad (assumed: outside it no truck tyre's linear
+  coefficient lies); a coefficient and a tyre type for one group are refused;
 * axle spacing within a group: 1.27 m (the spacing of the tandems and tridems of the TruckSim example database
   the presets use: LX_AXLE 5000 / 6270 / 7540 mm, 5230 / 6500 mm);
 * body extent (ahead of / behind the unit's reference point): a uniform load-carrying body centred on its sprung
@@ -33,26 +35,20 @@ Estimates
 
 References
 ----------
-.. [1] TruckSim 2022.1 example dataset, github.com/Steve-Krug/Axicle, 04-Trucksim/Tires/Fy/TireFy_b8272e0f...par
-   ('Fy: 3000 kg Load Rating'); OpenPBS (performance-based-standards/OpenPBS),
-   ``OpenPBS/Parameters/Base/VehicleModel.mo``: ``Cc = 5.5`` cornering coefficient per axle.
+.. [1] The tyre tables and their sources: :mod:`engine.dynamics.tyres` (TruckSim 2022.1 example dataset,
+   github.com/Steve-Krug/Axicle, 04-Trucksim/Tires/Fy/; OpenPBS, ``OpenPBS/Parameters/Base/VehicleModel.mo``).
 .. [2] Gillespie, T. D. (1992), *Fundamentals of Vehicle Dynamics*, SAE, ch. 6.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
-import numpy as np
-
+from engine.dynamics.tyres import DEFAULT_TYRE_TYPE, TYRE_TYPES
 from engine.errors import InvalidVehicle
 from engine.vehicle.combination import G_M_PER_S2, Combination, static_loads
 
-#: the tyre class of the presets (TruckSim's 3000 kg radial: 305/75R22.5, 11.00R22, 12R24.5): lateral force at 1 deg
-#: slip [N] against vertical load [N], from its carpet plot (the linear range: the 2 deg column is 1.94-1.96 x this)
-TYRE_FY_1DEG = ((0.0, 0.0), (7357.5, 1253.8), (14715.0, 2418.0), (29430.0, 4477.9), (44145.0, 6179.4),
-                (58860.0, 7612.3))  # fmt: skip
+#: the presets' tyre class (TruckSim's 3000 kg radial), the default tyre type
 TYRE_SOURCE = (
     "TruckSim 2022.1 example dataset 'Fy: 3000 kg Load Rating' (github.com/Steve-Krug/Axicle, "
     "04-Trucksim/Tires/Fy/TireFy_b8272e0f...par, FY_TIRE_CARPET at 1 deg), the tyre of the '510 mm Radius (Trailer)' "
@@ -154,11 +150,15 @@ UNIT_DATA_DOCS: dict[str, tuple[str, str, float, float]] = {
                       "coupling", "m", 0.5, 25.0),
     "width_m": ("Overall width of the unit", "m", 1.5, 3.5),
 }  # fmt: skip
-#: every optional per-group field: (description, unit, lowest, highest)
-GROUP_DATA_DOCS: dict[str, tuple[str, str, float, float]] = {
-    "cornering_coefficient_per_rad": ("Cornering stiffness of each axle per unit of its vertical load",
-                                      "1/rad", *CORNERING_RANGE_PER_RAD),
+#: every optional per-group field: (description, unit, lowest, highest) of a number, or (description, unit,
+#: choices) of a choice
+GROUP_DATA_DOCS: dict[str, tuple] = {
+    "cornering_coefficient_per_rad": ("Cornering stiffness of each axle per unit of its vertical load; not with "
+                                      "tyre_type", "1/rad", *CORNERING_RANGE_PER_RAD),
     "axle_spacing_m": ("Spacing of the group's axles", "m", 0.9, 3.0),
+    "tyre_type": ("The group's tyre type, whose sourced table of cornering stiffness against load gives each axle's "
+                  f"(default {DEFAULT_TYRE_TYPE}, the presets' tyre); not with cornering_coefficient_per_rad",
+                  "-", tuple(TYRE_TYPES)),
 }  # fmt: skip
 
 
@@ -175,10 +175,12 @@ class UnitData:
 
 @dataclass(frozen=True)
 class GroupData:
-    """Optional per-group data: cornering coefficient [1/rad] and axle spacing [m] (None: estimated)."""
+    """Optional per-group data: cornering coefficient [1/rad], axle spacing [m] and tyre type (an id of
+    :data:`~engine.dynamics.tyres.TYRE_TYPES`); None: estimated, the tyre type the presets'."""
 
     cornering_coefficient_per_rad: float | None = None
     axle_spacing_m: float | None = None
+    tyre_type: str | None = None
 
 
 @dataclass(frozen=True)
@@ -207,6 +209,9 @@ class GroupParameters:
     axle_positions_m: tuple[float, ...]
     axle_load_kn: float
     cornering_stiffness_kn_per_rad: tuple[float, ...]
+    #: the tyre type used and where it came from (None: a coefficient was given)
+    tyre_type: str | None = None
+    tyre_type_source: str = ""
 
 
 @dataclass(frozen=True)
@@ -259,6 +264,14 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
         for j, g in enumerate(u.groups):
             gd = data.groups.get((u.id, g.id), GroupData())
             path = f"dynamics.groups[{u.id}/{g.id}]"
+            if gd.tyre_type is not None and gd.tyre_type not in TYRE_TYPES:
+                raise InvalidVehicle(f"{path}.tyre_type must be one of {', '.join(TYRE_TYPES)}, got "
+                                     f"{gd.tyre_type!r}", field=f"{path}.tyre_type", value=gd.tyre_type)  # fmt: skip
+            if gd.tyre_type is not None and gd.cornering_coefficient_per_rad is not None:
+                raise InvalidVehicle(f"{path}: give a tyre_type or a cornering_coefficient_per_rad, not both (the "
+                                     "coefficient replaces the tyre's table)", field=f"{path}.tyre_type",
+                                     value=gd.tyre_type)  # fmt: skip
+            tyre_id, tyre_why = None, "not used: the cornering coefficient was given"
             if gd.cornering_coefficient_per_rad is not None:
                 _check_range(
                     gd.cornering_coefficient_per_rad,
@@ -268,9 +281,14 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                 )
                 cc = Parameter(gd.cornering_coefficient_per_rad, "1/rad", "given")
             else:
+                tyre_id = gd.tyre_type or DEFAULT_TYRE_TYPE
+                tyre = TYRE_TYPES[tyre_id]
+                tyre_why = "given" if gd.tyre_type else "default: the presets' tyre class (the description names none)"
                 per_tyre = st.normal_kn[(i, j)] * 1000.0 / g.axles / g.tyres_per_axle
-                cc = Parameter(tyre_cornering_stiffness_n_per_rad(per_tyre) / per_tyre, "1/rad",
-                               f"estimated: {TYRE_SOURCE} ({per_tyre / 1000.0:.1f} kN a tyre)")  # fmt: skip
+                # the default keeps its source text of before tyre types, so that default answers do not change
+                src = TYRE_SOURCE if tyre_id == DEFAULT_TYRE_TYPE else f"{tyre.name}: {tyre.source}"
+                cc = Parameter(tyre.stiffness_n_per_rad(per_tyre) / per_tyre, "1/rad",
+                               f"estimated: {src} ({per_tyre / 1000.0:.1f} kN a tyre)")  # fmt: skip
             if gd.axle_spacing_m is not None:
                 _check_range(gd.axle_spacing_m, 0.9, 3.0, f"{path}.axle_spacing_m", "axles of one group")
                 sp = Parameter(gd.axle_spacing_m, "m", "given")
@@ -279,7 +297,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             n = g.axles
             xs = tuple(g.position_m + (k - (n - 1) / 2.0) * sp.value for k in range(n))
             load = st.normal_kn[(i, j)] / n
-            groups[(i, j)] = GroupParameters(cc, sp, xs, load, tuple(cc.value * load for _ in xs))
+            groups[(i, j)] = GroupParameters(cc, sp, xs, load, tuple(cc.value * load for _ in xs), tyre_id, tyre_why)
     units = []
     for i, u in enumerate(c.units):
         ud = data.units.get(u.id, UnitData())
@@ -359,16 +377,10 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
     return ResolvedParameters(tuple(units), groups, tau)
 
 
-def tyre_cornering_stiffness_n_per_rad(load_n: float) -> float:
-    """Cornering stiffness of one tyre of the presets' class at a vertical load: its lateral force at 1 deg slip
-    (:data:`TYRE_FY_1DEG`, linear between the loads of the table, by the last two beyond it) per radian [N/rad]."""
-    fz = [p[0] for p in TYRE_FY_1DEG]
-    fy = [p[1] for p in TYRE_FY_1DEG]
-    if load_n > fz[-1]:
-        fy1 = fy[-1] + (fy[-1] - fy[-2]) / (fz[-1] - fz[-2]) * (load_n - fz[-1])
-    else:
-        fy1 = float(np.interp(load_n, fz, fy))
-    return fy1 * 180.0 / math.pi
+def tyre_cornering_stiffness_n_per_rad(load_n: float, tyre_type: str = DEFAULT_TYRE_TYPE) -> float:
+    """Cornering stiffness of one tyre of a type (default: the presets' class) at a vertical load [N/rad]
+    (:meth:`engine.dynamics.tyres.TyreType.stiffness_n_per_rad`)."""
+    return TYRE_TYPES[tyre_type].stiffness_n_per_rad(load_n)
 
 
 def unit_total_mass_kg(c: Combination, i: int) -> float:
@@ -389,6 +401,8 @@ def as_dict(c: Combination, p: ResolvedParameters) -> dict:
             "unit": c.units[i].id, "group": c.units[i].groups[j].id,
             "cornering_coefficient_per_rad": vars(gp.cornering_coefficient_per_rad),
             "axle_spacing_m": vars(gp.axle_spacing_m),
+            "tyre_type": {"value": gp.tyre_type, "source": gp.tyre_type_source if gp.tyre_type is None else
+                          f"{gp.tyre_type_source}: {TYRE_TYPES[gp.tyre_type].name}"},
             "axle_positions_m": list(gp.axle_positions_m),
             "cornering_stiffness_kn_per_rad": list(gp.cornering_stiffness_kn_per_rad),
         })  # fmt: skip

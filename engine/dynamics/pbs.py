@@ -76,12 +76,22 @@ STANDARDS: dict[str, tuple[str, str, str]] = {
 }
 LEVELS = (1, 2, 3, 4)
 #: limits read in a primary text: standard id -> {level: (limit in the standard's unit, the text it was read in)}.
-#: Empty: no primary text of the limits could be read (searched 2026-12-07: the rules' copies found show only their
-#: title page and contents; NHVR's vehicle-standards page defines the standards without limits).
+#: Empty: no primary text of the limits could be read (searched twice on 2026-12-07: the rules' copies found show
+#: only their title page and contents; NHVR's pages define the standards without limits; what was tried is listed in
+#: docs/dynamics.md).
 VERIFIED_LIMITS: dict[str, LevelLimits] = {}
 #: NHVR network levels by length [m]: level -> (Class A, Class B)
 LENGTH_LEVELS = {1: (20.0, 20.0), 2: (26.0, 30.0), 3: (36.5, 42.0), 4: (53.5, 60.0)}
 LENGTH_SOURCE = "NHVR, PBS road access: network levels by length (recorded in the project's source notes, 2026-12-07)"
+#: New Zealand's minimum SRT for heavy vehicles (not a PBS level limit, listed beside the screening)
+NZ_SRT_G = 0.35
+NZ_SRT_SOURCE = (
+    "NZ Transport Agency, 'Static roll thresholds' (the agency's statement of the legal requirements of Land "
+    "Transport Rule: Vehicle Dimensions and Mass 2016, Rule 41001, its 'Stability performance requirements: Static "
+    "Roll Threshold'): goods service vehicles with a GVM over 12 tonnes (class NC) and trailers with a GVM over 10 "
+    "tonnes (class TD) need an SRT of at least 0.35 g; the same value under the 2002 Rule's section 3.2 in the "
+    "agency's SRT calculator pages. Read in the regulator's pages, not in the Rule's own clause"
+)
 
 
 @dataclass
@@ -200,6 +210,10 @@ def screen(model: YawRollModel, *, lane_change_speed_kmh: float = LANE_CHANGE_SP
         "scheme": "New Zealand (NZ Transport Agency low-speed method)", "standard": "low_speed_swept_path",
         "limit": 7.0, "unit": "m", "source": "recorded in the project's source notes, not re-read here: unverified",
         "verified": False,
+    }, {
+        "scheme": "New Zealand, Land Transport Rule: Vehicle Dimensions and Mass 2016 (class NC over 12 t GVM, "
+                  "class TD over 10 t GVM)", "standard": "srt", "limit": NZ_SRT_G, "unit": "g", "sense": "min",
+        "source": NZ_SRT_SOURCE, "verified": True, "met": bool(values["srt"] >= NZ_SRT_G),
     }]  # fmt: skip
     given = {"lane_change_speed_kmh": (lane_change_speed_kmh, LANE_CHANGE_SPEED_KMH),
              "lane_change_amplitude_g": (lane_change_amplitude_g, LANE_CHANGE_AMPLITUDE_G),

@@ -278,3 +278,21 @@ def test_a_plot_above_the_stability_limit_is_a_422_naming_the_speed(shared_clien
     r = shared_client.post("/v1/dynamics/plots/lane-change",
                            json={"vehicle": {"combination": one}, "dynamics": dyn, "speed_kmh": 150})  # fmt: skip
     assert r.status_code == 422 and r.json()["errors"][0]["field"] == "speed_kmh"
+
+
+def test_a_tyre_type_per_group_is_used_reported_and_refused_when_impossible(shared_client):
+    steer = {"unit": "tractor", "group": "steer"}
+    r = shared_client.post("/v1/dynamics/lane-change", json={"vehicle": "adouble", "dynamics": {
+        "groups": [{**steer, "tyre_type": "sae-steer-295-75r22.5"}]}})  # fmt: skip
+    assert r.status_code == 200, r.text
+    groups = r.json()["parameters"]["groups"]
+    g = next(x for x in groups if x["unit"] == "tractor" and x["group"] == "steer")
+    assert g["tyre_type"]["value"] == "sae-steer-295-75r22.5" and g["tyre_type"]["source"].startswith("given")
+    assert "SAE Steer Tire" in g["cornering_coefficient_per_rad"]["source"]
+    others = [x for x in groups if x is not g]
+    assert all(x["tyre_type"]["value"] == "trucksim-3000kg" for x in others)
+    for bad in ({**steer, "tyre_type": "385/65R22.5"},
+                {**steer, "tyre_type": "sae-steer-295-75r22.5", "cornering_coefficient_per_rad": 6.0}):  # fmt: skip
+        r = shared_client.post("/v1/dynamics/lane-change", json={"vehicle": "adouble", "dynamics": {"groups": [bad]}})
+        assert r.status_code == 422, r.text
+        assert r.json()["errors"][0]["field"] == "dynamics.groups.0.tyre_type"

@@ -118,3 +118,18 @@ def test_unstable_vehicle_is_answered_unstable_not_with_a_number():
     by_id = {x.id: x for x in s.standards}
     for sid in ("rearward_amplification", "high_speed_transient_offtracking", "yaw_damping"):
         assert by_id[sid].value is None and by_id[sid].note.startswith("unstable")
+
+
+def test_new_zealands_minimum_srt_is_listed_beside_the_screening_and_judged_on_the_lowest_unit():
+    """NZ's 0.35 g (read in the NZ Transport Agency's statement of VDAM 2016) is another scheme's limit, not a PBS
+    level: it sits in ``other_limits`` with its source, met exactly when the lowest roll-coupled SRT reaches it."""
+    for pid in ("tractor-semitrailer-table15", "adouble"):
+        c = COMBINATIONS[pid]
+        s = screen(build(c))
+        (nz,) = [o for o in s.other_limits if o["standard"] == "srt"]
+        assert nz["limit"] == 0.35 and nz["verified"] is True and nz["sense"] == "min"
+        assert "NZ Transport Agency" in nz["source"] and "Vehicle Dimensions and Mass 2016" in nz["source"]
+        lowest = min(r.srt for r in solve_combination(c).roll_coupled_units)
+        assert nz["met"] is (lowest >= 0.35)
+        assert all(lim["limit"] is None for x in s.standards for lim in x.limits)  # PBS levels stay unread
+    assert not screen(build(COMBINATIONS["tractor-semitrailer-table15"])).other_limits[1]["met"]  # SRT 0.30 g

@@ -115,8 +115,9 @@ def test_pbs_screening(shared_client):
 
 def test_pbs_answer_never_carries_a_number_for_an_unverified_limit(shared_client):
     """The rules' limits by level could not be read (PBS-AND-ADVISORY-SOURCES.md): every one is null, unverified,
-    with a source saying so. The one exception allowed is NZ's 7.0 m swept width in `other_limits`, recorded in the
-    project's source notes and said to be unverified there."""
+    with a source saying so. The exceptions allowed are New Zealand's in `other_limits`, each with where it was read
+    and said to be unverified there: the 7.0 m swept width (the project's source notes) and the 0.35 g minimum SRT
+    (the NZ Transport Agency's statement of the VDAM Rule, not the Rule's clause)."""
     body = shared_client.post("/v1/pbs", json={"vehicle": "adouble"}).json()
     for s in body["standards"]:
         for lim in s["limits"]:
@@ -124,8 +125,12 @@ def test_pbs_answer_never_carries_a_number_for_an_unverified_limit(shared_client
             assert "unverified" in lim["source"] and "could not be read" in lim["source"]
     assert list(_unverified_numbers(body["standards"])) == []
     others = list(_unverified_numbers(body["other_limits"]))
-    assert others == ["$[0]"] and body["other_limits"][0]["limit"] == 7.0
-    assert "source notes" in body["other_limits"][0]["source"] and "unverified" in body["other_limits"][0]["source"]
+    assert others == ["$[0]", "$[1]"] and [o["limit"] for o in body["other_limits"]] == [7.0, 0.35]
+    assert (
+        "source notes" in body["other_limits"][0]["source"]
+        and "NZ Transport Agency" in body["other_limits"][1]["source"]
+    )
+    assert all("unverified" in o["source"] for o in body["other_limits"])
 
 
 def test_pbs_level_is_null_without_a_verified_limit(shared_client):

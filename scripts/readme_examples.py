@@ -508,14 +508,16 @@ EXAMPLES = [
         "/v1/dynamics/lane-change",
         {"vehicle": "adouble", "speed_kmh": 88},
         pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
-        'print(r["rearward_amplification"], r["high_speed_transient_offtracking_m"], '
-        'r["steer_axle_lateral_offset_m"]); '
-        '[print(u["units"], u["peak_load_transfer_ratio"]) for u in r["roll_coupled_units"]]; print(r["validity"])\'',
+        'print(round(r["rearward_amplification"], 6), round(r["high_speed_transient_offtracking_m"], 6), '
+        'round(r["steer_axle_lateral_offset_m"], 6)); '
+        '[print(u["units"], round(u["peak_load_transfer_ratio"], 6)) for u in r["roll_coupled_units"]]; '
+        'print(r["validity"])\'',
         show=lambda r: "\n".join(
             [
-                f"{r.json()['rearward_amplification']} {r.json()['high_speed_transient_offtracking_m']} "
-                f"{r.json()['steer_axle_lateral_offset_m']}",
-                *(f"{u['units']} {u['peak_load_transfer_ratio']}" for u in r.json()["roll_coupled_units"]),
+                f"{round(r.json()['rearward_amplification'], 6)} "
+                f"{round(r.json()['high_speed_transient_offtracking_m'], 6)} "
+                f"{round(r.json()['steer_axle_lateral_offset_m'], 6)}",
+                *(f"{u['units']} {round(u['peak_load_transfer_ratio'], 6)}" for u in r.json()["roll_coupled_units"]),
                 str(r.json()["validity"]),
             ]
         ),
@@ -529,9 +531,11 @@ EXAMPLES = [
         "/v1/dynamics/frequency-response",
         {"vehicle": "adouble", "frequencies_hz": [0.2, 0.4, 0.8]},
         pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
-        'print(r["frequencies_hz"], r["rearward_amplification"], r["worst_frequency_hz"])\'',
+        'print(r["frequencies_hz"], [round(x, 6) for x in r["rearward_amplification"]], '
+        'round(r["worst_frequency_hz"], 4))\'',
         show=lambda r: (
-            f"{r.json()['frequencies_hz']} {r.json()['rearward_amplification']} {r.json()['worst_frequency_hz']}"
+            f"{r.json()['frequencies_hz']} {[round(x, 6) for x in r.json()['rearward_amplification']]} "
+            f"{round(r.json()['worst_frequency_hz'], 4)}"
         ),
     ),
     Example(
@@ -540,10 +544,12 @@ EXAMPLES = [
         "/v1/dynamics/pulse-steer",
         {"vehicle": "adouble", "speed_kmh": 100},
         pipe=' | python -c \'import json,sys; r = json.load(sys.stdin); m = r["least_damped_mode"]; '
-        'print(r["yaw_damping_ratio"], r["articulation"], m["damping_ratio"], m["frequency_hz"])\'',
+        'print(round(r["yaw_damping_ratio"], 6), r["articulation"], round(m["damping_ratio"], 6), '
+        'round(m["frequency_hz"], 6))\'',
         show=lambda r: (
-            f"{r.json()['yaw_damping_ratio']} {r.json()['articulation']} "
-            f"{r.json()['least_damped_mode']['damping_ratio']} {r.json()['least_damped_mode']['frequency_hz']}"
+            f"{round(r.json()['yaw_damping_ratio'], 6)} {r.json()['articulation']} "
+            f"{round(r.json()['least_damped_mode']['damping_ratio'], 6)} "
+            f"{round(r.json()['least_damped_mode']['frequency_hz'], 6)}"
         ),
     ),
     Example(
@@ -562,11 +568,16 @@ EXAMPLES = [
         {"vehicle": "btrain-table16", "radius_m": 200, "speed_kmh": 60},
         pipe=" | python -c 'import json,sys; r = json.load(sys.stdin); "
         '[print(a["unit"], a["group"], round(a["path_radius_m"], 3)) for a in r["axles"]]; '
-        '[print(u["unit"], u["articulation_deg"], round(u["roll_angle_deg"], 3)) for u in r["units"]]\'',
+        '[print(u["unit"], u["articulation_deg"] and round(u["articulation_deg"], 6), round(u["roll_angle_deg"], 3)) '
+        'for u in r["units"]]\'',
         show=lambda r: "\n".join(
             [
                 *(f"{a['unit']} {a['group']} {round(a['path_radius_m'], 3)}" for a in r.json()["axles"]),
-                *(f"{u['unit']} {u['articulation_deg']} {round(u['roll_angle_deg'], 3)}" for u in r.json()["units"]),
+                *(
+                    f"{u['unit']} {u['articulation_deg'] and round(u['articulation_deg'], 6)} "
+                    f"{round(u['roll_angle_deg'], 3)}"
+                    for u in r.json()["units"]
+                ),
             ]
         ),
     ),

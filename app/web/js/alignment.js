@@ -6,7 +6,7 @@
 
 import * as api from "./api.js";
 import * as curves from "./curves.js";
-import { $, clear, download, el, fmt, svgEl } from "./dom.js";
+import { $, clear, download, el, fmt, num, svgEl, svgNode } from "./dom.js";
 import { value } from "./form.js";
 import { designFields, srtOptions } from "./road.js";
 
@@ -42,6 +42,10 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
     targets: caseRequest.targets,
     ...designFields(),
     max_superelevation_percent: value($("#al-emax")),
+    // the truck's speed profile and the plaques (docs/advisory.md): only what was typed
+    desired_speed_kmh: value($("#al-desired")),
+    deceleration_mps2: value($("#al-decel")),
+    units: $("#al-units").value || undefined,
   });
   if (kind === "csv") return ["/v1/alignments/assess", { ...common, csv: text }];
   if (kind === "landxml" || kind === "ifc") {
@@ -375,6 +379,53 @@ export function readingPanel(reading, { print = false } = {}) {
 
 // ------------------------------------------------------------------------------------------ render
 
+/** The speed profile's inputs in words (the answer's `advisory`; the defaults as docs/advisory.md states them). */
+function profileBasis(adv) {
+  const decel = adv?.deceleration_mps2;
+  const desired = typeof adv?.desired_speed_kmh === "number" ? `${fmt(adv.desired_speed_kmh, 0)} km/h, as typed` : "each curve's posted speed";
+  const braking = typeof decel === "number" ? `${num(decel, 3)} m/s\u00b2 (${num(decel / 0.3048, 1)} ft/s\u00b2)` : "the service's default";
+  return (
+    `It depends on the truck's desired speed on the tangents (${desired}), the braking rate into each curve (${braking}; ` +
+    "the default 10 ft/s\u00b2 and the 2.5 s reaction time are MUTCD 11e Table 2C-3's basis as transcribed: unverified) " +
+    "and the acceleration out of it within the truck's power (120 kg/kW, the HCM truck; the resistances assumed). " +
+    "The speed never exceeds a curve's safe or advisory speed."
+  );
+}
+
+/**
+ * The truck's speed profile along an alignment (POST /v1/plots/speed-profile with the assessment's request): the
+ * plot with what it depends on, or in words why there is none. A route's plot is not offered by the service, and a
+ * job's request is not sent twice: both say where the profile is.
+ */
+async function speedProfile({ result, job, route, head }) {
+  if (!head?.advisory || !(await api.has("post", "/v1/plots/speed-profile"))) return null;
+  const box = el("figure", { class: "plot speed-profile keep", id: "speed-profile" });
+  const caption = el("figcaption", {}, el("strong", {}, "The truck's speed profile. "), profileBasis(head.advisory));
+  if (route || job) {
+    box.append(
+      el(
+        "p",
+        { class: "hint" },
+        route
+          ? "The service draws the speed profile for an alignment file; a route's profile (its stations and speeds) is in the service's JSON answer (speed_profile)."
+          : "A job's speed profile (its stations and speeds) is in its JSON result (speed_profile); the plot is drawn for a road assessed in one request.",
+      ),
+      caption,
+    );
+    return box;
+  }
+  const notes = (result?.vehicles || []).flatMap((v) => v.speed_profile_notes || []);
+  try {
+    const { data } = await api.call("POST", "/v1/plots/speed-profile", { json: state.request, accept: "image/svg+xml", key: state.key });
+    box.append(svgNode(data), caption);
+  } catch (err) {
+    if (!(err instanceof api.ApiError)) throw err;
+    box.append(el("p", { class: "no-profile" }, `No speed profile: ${err.problem.detail || err.problem.title}.`), caption);
+  }
+  if (notes.length) box.append(el("ul", { class: "hint" }, [...new Set(notes)].map((n) => el("li", {}, n))));
+  return box;
+}
+
 /** A fleet's vehicle choice: each vehicle, and for a route "the governing vehicle of each curve". */
 function vehicleChoice(names, route, onChange) {
   const options = names.map((name, i) => el("option", { value: String(i) }, name));
@@ -403,13 +454,24 @@ export async function render({ result = null, job = null, stored = null, kind, l
   const tableBox = el("div", { id: "curves-box" });
   let names;
   let loaded = null;
+  let head = result;
   if (job) {
-    loaded = await curves.ask("fetch", { url: job.url, key: job.key, vehicle: 0 });
+    // the rows as CSV (the table's), and the head of the JSON result for what the CSV lacks: what was read from the
+    // file and the plaques' options (its first bytes only: the worker stops reading at the rows)
+    let top;
+    [loaded, top] = await Promise.all([
+      curves.ask("fetch", { url: job.url, key: job.key, vehicle: 0 }),
+      curves.ask("head", { url: job.url, key: job.key }).catch(() => ({ head: null })),
+    ]);
+    head = top.head;
     names = csvVehicles(loaded.stats).map((v, i) => vehicleLabel(v, i));
   } else {
     names = result.vehicles.map((v, i) => vehicleLabel(v, i));
   }
   const several = names.length > 1;
+  curves.advisory.units = head?.advisory?.units ?? null;
+  curves.advisory.increment = head?.advisory?.increment ?? null;
+  const signs = el("div", { id: "alignment-signs" });
   const show = async (index) => {
     let stats;
     if (job) stats = (await curves.ask("stats", { vehicle: index })).stats;
@@ -418,6 +480,8 @@ export async function render({ result = null, job = null, stored = null, kind, l
     const lengthM = result?.length_m;
     const governing = several && index === null;
     summary.textContent = curves.summaryText(stats, { vehicleText, lengthM, governing });
+    clear(signs);
+    if (stats.advised) signs.append(curves.signsNotes(stats, head?.advisory));
     await curves.showTable(tableBox, { keys: stats.keys, vehicle: job ? index : null });
     const printed = await curves.printout({
       stats,
@@ -429,12 +493,17 @@ export async function render({ result = null, job = null, stored = null, kind, l
       downloadName: state.file ? `${state.file.replace(/\.[^.]*$/, "")}-curves.csv` : "curves.csv",
     });
     // what was read, on the road's first printed page right after its summary
-    if (result?.reading) printed.splice(1, 0, readingPanel(result.reading, { print: true }));
+    if (head?.reading) printed.splice(1, 0, readingPanel(head.reading, { print: true }));
+    // the speed profile, after the outline and before the curves
+    const plot = $("#speed-profile");
+    if (plot) printed.splice(printed.findIndex((n) => n?.tagName === "H4"), 0, plot.cloneNode(true));
     document.dispatchEvent(new CustomEvent("curves-printout", { detail: { title: route ? "Route" : "Alignment", nodes: printed } }));
   };
-  if (result?.reading) box.append(readingPanel(result.reading));
+  if (head?.reading) box.append(readingPanel(head.reading));
   if (several) box.append(vehicleChoice(names, route, show));
-  box.append(summary);
+  box.append(summary, signs);
+  const profile = await speedProfile({ result, job, route, head });
+  if (profile) box.append(profile);
   state.outline = lines && result ? outline(lines, result) : null;
   if (state.outline) box.append(el("figure", { class: "outline" }, state.outline, el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")));
   const downloads = el("div", { class: "actions" });

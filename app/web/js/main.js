@@ -148,9 +148,9 @@ async function roadDesign() {
 async function curveSpeed() {
   const { vehicle: v, request } = page.last;
   const speed = await guarded($("#speed-compute"), $("#speed-form"), $("#speed-error"), () => road.curveSpeed(v.ref, request));
-  if (speed === undefined) stale.mark(["speed"], stale.FAILED);
+  if (speed === undefined) stale.mark(["speed", "advisory"], stale.FAILED);
   if (speed !== undefined) {
-    stale.fresh(["speed"]);
+    stale.fresh(["speed", "advisory"]);
     page.last.speed = speed;
     page.last.link = writeUrl(stateParams(v.params));
   }

@@ -9,6 +9,7 @@ export const PANELS = {
   srt: "#results-body",
   design: "#road-results",
   speed: "#speed-result",
+  advisory: "#advisory-result",
   limits: "#limits-result",
   builder: "#build-result",
   combo: "#cb-result",
@@ -19,11 +20,11 @@ export const PANELS = {
 
 /** Which panels an input of each part of the page invalidates. */
 export const DEPENDS = {
-  vehicle: ["srt", "design", "speed", "limits", "builder", "combo", "alignment", "summary"],
-  case: ["srt", "design", "speed", "limits", "alignment", "summary"],
+  vehicle: ["srt", "design", "speed", "advisory", "limits", "builder", "combo", "alignment", "summary"],
+  case: ["srt", "design", "speed", "advisory", "limits", "alignment", "summary"],
   road: ["design", "summary"],
-  speed: ["speed", "summary"],
-  standard: ["design", "superelevation", "alignment", "summary"],
+  speed: ["speed", "advisory", "summary"],
+  standard: ["design", "advisory", "superelevation", "alignment", "summary"],
   superelevation: ["superelevation"],
   limits: ["limits"],
   alignment: ["alignment"],

@@ -15,12 +15,13 @@ export const PANELS = {
   combo: "#cb-result",
   superelevation: "#super-output",
   alignment: "#alignment-results",
+  dynamics: "#dyn-results",
   summary: "#summary-body",
 };
 
 /** Which panels an input of each part of the page invalidates. */
 export const DEPENDS = {
-  vehicle: ["srt", "design", "speed", "advisory", "limits", "builder", "combo", "alignment", "summary"],
+  vehicle: ["srt", "design", "speed", "advisory", "limits", "builder", "combo", "alignment", "dynamics", "summary"],
   case: ["srt", "design", "speed", "advisory", "limits", "alignment", "summary"],
   road: ["design", "summary"],
   speed: ["speed", "advisory", "summary"],
@@ -28,6 +29,7 @@ export const DEPENDS = {
   superelevation: ["superelevation"],
   limits: ["limits"],
   alignment: ["alignment"],
+  dynamics: ["dynamics"],
 };
 
 export const CHANGED = "Stale \u2014 inputs changed, press Compute";

@@ -168,3 +168,39 @@ def test_one_curve_shows_its_advisory_speed_beside_its_maximum_speed(page, api):
     assert any(m["id"] == "design-method" and m["speed_kmh"] is None for m in out["methods"])
     body = squeeze("".join(p.extract_text() for p in print_pdf(page).pages))
     assert squeeze(f"advisory speed {mph} mph") in body and squeeze("unverified: no speed") in body
+
+
+def test_a_route_draws_its_speed_profile_from_its_answer(page, api):
+    """The service plots an alignment's request only; a route's profile is drawn on the page from the answer's
+    `speed_profile`: one vertex a profile point, in the same order (chainage increasing), with what it depends on."""
+    page.open("?vehicle=table16-btrain")
+    page.find("#alignment-file").send_keys(str(EXAMPLES / "road.gpx"))
+    page.type("#al-e", "7.5")  # examples/README.md: the GPX sample's superelevation and posted speed
+    page.type("#al-posted", "70")
+    page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=120)
+    document = (EXAMPLES / "road.gpx").read_text()
+    body = {"vehicle": "table16-btrain", "gpx": document, "superelevation_percent": 7.5, "posted_speed_kmh": 70}
+    answer = api.post("/v1/routes/assess", json=body)
+    assert answer.status_code == 200, answer.text
+    profile = answer.json()["vehicles"][0]["speed_profile"]
+    assert len(profile) >= 2
+    svg = page.find("#speed-profile svg")
+    assert svg.get_attribute("aria-label") == "Truck speed profile against chainage (route)"
+    points = page.driver.execute_script(
+        "return document.querySelector('#speed-profile svg polyline').getAttribute('points').split(' ')"
+        ".map((p) => p.split(',').map(Number));"
+    )
+    assert len(points) == len(profile)
+    xs = [x for x, _ in points]
+    assert xs == sorted(xs)
+    # the drawn heights keep the profile's order of speeds (a lower speed is drawn lower: a larger y)
+    for (_, ya), (_, yb), a, b in zip(points, points[1:], profile, profile[1:], strict=False):
+        if a["speed_kmh"] < b["speed_kmh"]:
+            assert ya > yb
+        elif a["speed_kmh"] > b["speed_kmh"]:
+            assert ya < yb
+    caption = page.text("#speed-profile figcaption")
+    assert "each curve's posted speed" in caption and "m/s\u00b2" in caption
+    assert squeeze("Truck speed profile along the route") in squeeze(
+        "".join(p.extract_text() for p in print_pdf(page).pages)
+    )

@@ -401,20 +401,18 @@ async function speedProfile({ result, job, route, head }) {
   if (!head?.advisory || !(await api.has("post", "/v1/plots/speed-profile"))) return null;
   const box = el("figure", { class: "plot speed-profile keep", id: "speed-profile" });
   const caption = el("figcaption", {}, el("strong", {}, "The truck's speed profile. "), profileBasis(head.advisory));
-  if (route || job) {
-    box.append(
-      el(
-        "p",
-        { class: "hint" },
-        route
-          ? "The service draws the speed profile for an alignment file; a route's profile (its stations and speeds) is in the service's JSON answer (speed_profile)."
-          : "A job's speed profile (its stations and speeds) is in its JSON result (speed_profile); the plot is drawn for a road assessed in one request.",
-      ),
-      caption,
-    );
+  const notes = (result?.vehicles || []).flatMap((v) => v.speed_profile_notes || []);
+  if (job) {
+    box.append(el("p", { class: "hint" }, "A job's speed profile (its stations and speeds) is in its JSON result (speed_profile); the plot is drawn for a road assessed in one request."), caption);
     return box;
   }
-  const notes = (result?.vehicles || []).flatMap((v) => v.speed_profile_notes || []);
+  if (route) {
+    // the service plots an alignment's request only: a route's profile is drawn here from its answer
+    const drawn = routeProfile(result);
+    box.append(drawn || el("p", { class: "no-profile" }, "No speed profile: the curves' stations or tangent speeds cannot carry one (each curve's row says why)."), caption);
+    if (notes.length) box.append(el("ul", { class: "hint" }, [...new Set(notes)].map((n) => el("li", {}, n))));
+    return box;
+  }
   try {
     const { data } = await api.call("POST", "/v1/plots/speed-profile", { json: state.request, accept: "image/svg+xml", key: state.key });
     box.append(svgNode(data), caption);
@@ -424,6 +422,70 @@ async function speedProfile({ result, job, route, head }) {
   }
   if (notes.length) box.append(el("ul", { class: "hint" }, [...new Set(notes)].map((n) => el("li", {}, n))));
   return box;
+}
+
+/**
+ * A route's speed profile drawn from its answer (the first vehicle's `speed_profile`, each curve's safe and advisory
+ * speed over its chainage, its posted speed): speed [km/h] against chainage [km], as the service's alignment plot
+ * shows them. Null when there is no profile.
+ */
+export function routeProfile(result) {
+  const vehicle = result.vehicles?.[0];
+  const points = vehicle?.speed_profile || [];
+  if (points.length < 2) return null;
+  const spans = routeCurves(result).map((c) => ({ start: c.start_m, end: c.end_m, row: c.vehicles ? c.vehicles[0] : c.assessment }));
+  const speeds = [
+    ...points.map((p) => p.speed_kmh),
+    ...spans.flatMap((c) => [c.row?.safe_speed_kmh, c.row?.advisory_speed_kmh, c.row?.posted_speed_kmh]),
+  ].filter((v) => typeof v === "number" && Number.isFinite(v));
+  const x0 = Math.min(points[0].station_m, ...spans.map((c) => c.start).filter(Number.isFinite));
+  const x1 = Math.max(points.at(-1).station_m, ...spans.map((c) => c.end).filter(Number.isFinite));
+  const top = Math.ceil(Math.max(...speeds) / 10) * 10 + 10;
+  const [w, h, left, right, up, down] = [760, 400, 56, 190, 28, 44];
+  const X = (m) => left + ((m - x0) / (x1 - x0 || 1)) * (w - left - right);
+  const Y = (v) => h - down - (v / top) * (h - up - down);
+  const svg = svgEl("svg", { viewBox: `0 0 ${w} ${h}`, role: "img", "aria-label": "Truck speed profile against chainage (route)", "font-family": "Helvetica, Arial, sans-serif", "font-size": "12" });
+  const text = (x, y, t, anchor = "middle") => {
+    const n = svgEl("text", { x, y, "text-anchor": anchor });
+    n.textContent = t;
+    svg.append(n);
+  };
+  svg.append(svgEl("rect", { width: w, height: h, fill: "white" }));
+  for (let v = 0; v <= top; v += top > 80 ? 20 : 10) {
+    svg.append(svgEl("line", { x1: left, x2: w - right, y1: Y(v), y2: Y(v), stroke: "#dddddd" }));
+    text(left - 6, Y(v) + 4, String(v), "end");
+  }
+  const step = Math.max(0.1, Number((10 ** Math.floor(Math.log10((x1 - x0) / 1000 || 1))).toPrecision(1)));
+  for (let k = Math.ceil(x0 / 1000 / step) * step; k <= x1 / 1000 + 1e-9; k += step) {
+    svg.append(svgEl("line", { x1: X(k * 1000), x2: X(k * 1000), y1: up, y2: h - down, stroke: "#eeeeee" }));
+    text(X(k * 1000), h - down + 16, num(k, 2));
+  }
+  text((left + w - right) / 2, h - 8, "chainage [km]");
+  text(14, up - 10, "speed [km/h]", "start");
+  const segment = (c, v, colour, dash) => {
+    if (typeof v !== "number" || !Number.isFinite(c.start) || !Number.isFinite(c.end)) return;
+    svg.append(svgEl("line", { x1: X(c.start), x2: X(c.end), y1: Y(v), y2: Y(v), stroke: colour, "stroke-width": 3, ...(dash ? { "stroke-dasharray": dash } : {}) }));
+  };
+  for (const c of spans) {
+    segment(c, c.row?.posted_speed_kmh, "#2e7d32", "6 4");
+    segment(c, c.row?.safe_speed_kmh, "#c62828");
+    segment(c, c.row?.advisory_speed_kmh, "#ef6c00");
+  }
+  svg.append(svgEl("polyline", { points: points.map((p) => `${X(p.station_m)},${Y(p.speed_kmh)}`).join(" "), fill: "none", stroke: "#1565c0", "stroke-width": 2 }));
+  const legend = [
+    ["#1565c0", "truck's speed profile", null],
+    ["#c62828", "safe speed of each curve", null],
+    ["#ef6c00", "advisory speed (plaque)", null],
+    ["#2e7d32", "posted speed", "6 4"],
+  ];
+  legend.forEach(([colour, label, dash], i) => {
+    const y = up + 14 + i * 20;
+    svg.append(svgEl("line", { x1: w - right + 12, x2: w - right + 36, y1: y - 4, y2: y - 4, stroke: colour, "stroke-width": 3, ...(dash ? { "stroke-dasharray": dash } : {}) }));
+    text(w - right + 42, y, label, "start");
+  });
+  const name = vehicleLabel(vehicle, 0);
+  text((left + w - right) / 2, 16, `Truck speed profile along the route: ${name}`);
+  return svg;
 }
 
 /** A fleet's vehicle choice: each vehicle, and for a route "the governing vehicle of each curve". */

@@ -30,6 +30,11 @@ const words = (id) => {
   return text.charAt(0).toUpperCase() + text.slice(1);
 };
 
+const sentence = (text) => text.charAt(0).toUpperCase() + text.slice(1);
+
+/** A request field in words: `lane_change_speed_kmh` -> "lane change speed" (its unit is said beside its value). */
+const fieldWords = (id) => String(id).replace(/_(kmh|g|hz|mps2|m|s)$/, "").replace(/_/g, " ");
+
 const UNIT_WORDS = { "-": "(ratio)", g: "g", m: "m" };
 
 /** The combination choices: the page's own combination (when the vehicle chosen is one), then the presets. */
@@ -88,7 +93,7 @@ function caveat(result) {
   return el(
     "div",
     { class: "caveat", role: "note", id: "dyn-caveat" },
-    el("strong", {}, `Indicative screening only: ${result.note || "not a certification"}. `),
+    el("strong", {}, `${sentence(result.note || "indicative screening, not a certification")}. `),
     "A linear passive yaw-roll model: no electronic stability control, no tyre saturation, no wheel lift-off; " +
       "above a unit's rollover threshold the model is no longer valid. It cannot certify a vehicle.",
   );
@@ -101,7 +106,7 @@ function conditionsList(result) {
     `Pulse steer at ${fmt(c.pulse_steer_speed_kmh, 0)} km/h`,
     `Rearward amplification of the rearmost unit's ${c.ra_definition === "axle" ? "rearmost axle" : "centre of gravity"} over the steer axle`,
   ];
-  if (c.unverified_defaults_used?.length) items.push(`Defaults used that are unverified: ${c.unverified_defaults_used.map(words).join(", ")}`);
+  if (c.unverified_defaults_used?.length) items.push(`Defaults used that are unverified: ${c.unverified_defaults_used.map(fieldWords).join(", ")}`);
   if (c.source) items.push(c.source);
   return el("ul", { class: "dyn-conditions" }, items.map((t) => el("li", {}, t)));
 }

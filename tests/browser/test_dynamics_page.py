@@ -40,7 +40,9 @@ def table_rows(page) -> list[list[str]]:
     )
 
 
-def test_a_combination_is_screened_shown_and_printed_on_a4(page, api):
+@pytest.mark.parametrize("width", [1366, 390])
+def test_a_combination_is_screened_shown_and_printed_on_a4(page, api, width):
+    page.driver.set_window_size(width, 900)
     page.open("?vehicle=adouble")
     page.run("screenings", lambda: page.find("#dynamics-compute").click(), timeout_s=120)
     answer = api.post("/v1/pbs", json={"vehicle": "adouble"})

@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 from selenium.webdriver.support.ui import WebDriverWait
 
+from .harness import wait_until_computed
 from .test_road_printout import print_pdf, runs, squeeze
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
@@ -143,6 +144,11 @@ def test_one_curve_shows_its_advisory_speed_beside_its_maximum_speed(page, api):
     page.open("?vehicle=table16-btrain&bank_percent=6&radius_m=200")
     page.type("#speed-posted", "90")
     page.run("computations", lambda: page.find("#speed-compute").click(), timeout_s=120)
+    # the link keeps the posted speed: opened again, it shows the same line
+    link = page.driver.current_url
+    assert "posted_speed_kmh=90" in link
+    page.driver.get(link)
+    wait_until_computed(page.driver)
     answer = api.post(
         "/v1/advisory-speed",
         json={"vehicle": "table16-btrain", "radius_m": 200, "superelevation_percent": 6, "posted_speed_kmh": 90},

@@ -382,7 +382,8 @@ export function readingPanel(reading, { print = false } = {}) {
 /** The speed profile's inputs in words (the answer's `advisory`; the defaults as docs/advisory.md states them). */
 function profileBasis(adv) {
   const decel = adv?.deceleration_mps2;
-  const desired = typeof adv?.desired_speed_kmh === "number" ? `${fmt(adv.desired_speed_kmh, 0)} km/h, as typed` : "each curve's posted speed";
+  // a curve's posted speed is its tangent's; the desired speed, when given, only where a curve has none
+  const desired = typeof adv?.desired_speed_kmh === "number" ? `each curve's posted speed, ${fmt(adv.desired_speed_kmh, 0)} km/h where a curve has none` : "each curve's posted speed";
   const braking = typeof decel === "number" ? `${num(decel, 3)} m/s\u00b2 (${num(decel / 0.3048, 1)} ft/s\u00b2)` : "the service's default";
   return (
     `It depends on the truck's desired speed on the tangents (${desired}), the braking rate into each curve (${braking}; ` +
@@ -394,8 +395,9 @@ function profileBasis(adv) {
 
 /**
  * The truck's speed profile along an alignment (POST /v1/plots/speed-profile with the assessment's request): the
- * plot with what it depends on, or in words why there is none. A route's plot is not offered by the service, and a
- * job's request is not sent twice: both say where the profile is.
+ * plot with what it depends on, or in words why there is none. The service plots an alignment's request only: a
+ * route's profile is drawn here from its answer; a job's request is not sent twice, so its figure says where the
+ * profile is.
  */
 async function speedProfile({ result, job, route, head }) {
   if (!head?.advisory || !(await api.has("post", "/v1/plots/speed-profile"))) return null;

@@ -184,8 +184,9 @@ export async function showTable(box, { keys, vehicle = null }) {
     { id: "curves-filter" },
     el("option", { value: "all" }, "all curves, flagged first"),
     el("option", { value: "flagged" }, "flagged curves only"),
-    el("option", { value: "signed" }, "curves whose treatment calls for signs"),
-    el("option", { value: "warning" }, "curves with a W1-13 truck rollover warning"),
+    // the sign's filters where the rows carry advisory speeds
+    keys.includes("advisory_speed_kmh") ? el("option", { value: "signed" }, "curves whose treatment calls for signs") : null,
+    keys.includes("advisory_speed_kmh") ? el("option", { value: "warning" }, "curves with a W1-13 truck rollover warning") : null,
   );
   const find = el("input", { id: "curves-find", type: "search", spellcheck: "false", placeholder: "C12 or the file's id" });
   filter.addEventListener("change", () => refilter({ flagged: filter.value === "flagged", signed: filter.value === "signed", warning: filter.value === "warning" }));

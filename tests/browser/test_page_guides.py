@@ -338,6 +338,8 @@ def test_a_vehicle_below_a_target_is_offered_its_payload_table_and_the_printout_
         expected = ok(api.post("/v1/vehicles/payload-table", json={"spec": spec, "target_srt_g": 0.35}))
         first = cells(page, "#payload-tables .scroll-box:first-child tbody tr")
         assert [c[0] for c in first] == [f"{r['load_height_m']:.2f}" for r in expected["by_load_height"]]
+        # the button may sit just under the sticky compute bar after the payload table's scroll: centred first
+        page.driver.execute_script("document.querySelector('#super-compute').scrollIntoView({block: 'center'})")
         page.run("superelevations", lambda: page.find("#super-compute").click())
         path = tmp_path / "curves.csv"
         path.write_text(CURVES_CSV)

@@ -133,3 +133,39 @@ def test_an_ifc_file_is_accepted_and_shows_what_was_read(page, api, width):
     assert texts == [f"{s['what']}: {s['why']}" for s in reading["skipped"]]
     # the page's curves are the API's
     assert page.text("#alignment-summary").startswith(f"{len(result['vehicles'][0]['rows'])} curves")
+
+
+def test_an_alignment_job_shows_and_prints_what_was_read(page, api, live_server):
+    """A road file assessed as a job (issue 39 point 9): its rows are read as CSV, which holds no `reading`; the page
+    reads the head of the job's JSON result (its `reading` and `advisory`, written before the rows) and shows the
+    same panel as the synchronous answer's, and the plaques in the answer's units."""
+    page.open("?vehicle=table16-btrain")
+    # the page's job size (5,000 curves) lowered, so this two-curve file goes through POST /v1/jobs
+    page.driver.execute_script("return import('/web/js/alignment.js').then((m) => { m.settings.jobRows = 1; });")
+    page.find("#catalog-box summary").click()  # the jobs of a deployment with keys are the key's own
+    page.type("#api-key", live_server.key)
+    page.network()
+    panel = upload(page, "alignment-feet.xml")
+    assert page.text("#alignment-progress-text").endswith("job done)")
+    sent, _ = page.network()
+    assert any(u.endswith("/v1/jobs") for u in sent.values())
+    assert not any(u.endswith("/v1/alignments/assess") for u in sent.values())
+
+    document = (EXAMPLES / "alignment-feet.xml").read_text()
+    answer = api.post("/v1/alignments/assess", json={"vehicle": "table16-btrain", "landxml": {"document": document}})
+    assert answer.status_code == 200, answer.text
+    reading = answer.json()["reading"]
+    assert panel.startswith("Read from the file")
+    assert "feet (international foot, 0.3048 m)" in panel and reading["format"] in panel
+    assert f"Profile used\n{reading['profile']}" in panel or f"Profile used {reading['profile']}" in panel
+    for kind, n in reading["elements"].items():
+        assert f"{kind} {n}" in panel
+    # the plaques in the answer's units (US: mph beside km/h), read from the same head
+    cells = page.driver.execute_script(
+        "const keys = Array.from(document.querySelectorAll('#curves-table thead button.sort'))"
+        ".map((b) => b.dataset.key);"
+        "return Array.from(document.querySelectorAll('#curves-table tbody tr')).map((tr) =>"
+        " tr.cells[keys.indexOf('advisory_speed_kmh')].textContent);"
+    )
+    assert cells and all(" mph (" in c for c in cells)
+    assert squeeze("Read from the file") in first_road_page(page)

@@ -28,6 +28,15 @@ VERDICT_HEADINGS = [
     "Side-friction speed [km/h]", "Standard's Rmin [m]", "Meets Rmin",
 ]  # fmt: skip
 
+#: the headings of the second printed table (the same curves: their sign and the truck's speed profile), which
+#: starts on a page of its own (the first fills A4 landscape's width)
+SIGN_HEADINGS = [
+    "Curve", "Id in the file", "Posted [km/h]", "Safe speed [km/h]", "Advisory speed (plaque)", "Treatment (signs)",
+    "W1-13 truck rollover warning", "Approach speed [km/h]", "Required deceleration [m/s\u00b2]",
+    "Why no profile figure",
+]  # fmt: skip
+SIGNS_TITLE = "Signs and the truck's speed profile"
+
 
 def road_csv(rows: int) -> str:
     """A synthetic road: radii 40-1,540 m, superelevation 0-8 %, grades -3..+3 %, posted 50-90 km/h."""
@@ -95,11 +104,12 @@ def test_the_printout_holds_every_verdict_column_and_the_worst_curve_first(page,
 
     # the printout's table, in the document: the API's order, cut at PRINT_ROWS
     printed_ids = page.driver.execute_script(
-        "const t = document.querySelector('#summary-extras table.curves-print');"
+        "return Array.from(document.querySelectorAll('#summary-extras table.curves-print')).map((t) => {"
         "const col = Array.from(t.tHead.rows[0].cells).findIndex((c) => c.textContent === 'Id in the file');"
-        "return Array.from(t.tBodies[0].rows).map((r) => r.cells[col].textContent);"
+        "return Array.from(t.tBodies[0].rows).map((r) => r.cells[col].textContent); });"
     )
-    assert printed_ids == order[:PRINT_ROWS]
+    # the curves' table, then the signs' table of the same curves in the same order
+    assert printed_ids == [order[:PRINT_ROWS], order[:PRINT_ROWS]]
 
     pdf = print_pdf(page)
     pages = list(pdf.pages)
@@ -113,10 +123,13 @@ def test_the_printout_holds_every_verdict_column_and_the_worst_curve_first(page,
     # the curves on A4 landscape pages (842 x 595 pt), every heading on each, no text beyond the paper's edge
     road = [p for p in pages if float(p.mediabox.width) > float(p.mediabox.height)]
     assert road and all(abs(float(p.mediabox.width) - 841.9) < 1 for p in road)
-    for p in road[1:]:
-        text = squeeze(p.extract_text())
-        for heading in VERDICT_HEADINGS:
-            assert squeeze(heading) in text, (width, heading)
+    # the curves' pages, then (from its title) the signs' pages: each page repeats its own table's headings
+    texts = [squeeze(p.extract_text()) for p in road]
+    signs_from = next(i for i, t in enumerate(texts) if squeeze(SIGNS_TITLE) in t)
+    assert 1 < signs_from < len(texts)
+    for i, text in enumerate(texts[1:], start=1):
+        for heading in VERDICT_HEADINGS if i < signs_from else SIGN_HEADINGS:
+            assert squeeze(heading) in text, (width, i, heading)
     for p in road:
         right = float(p.mediabox.width)
         assert all(0 <= x < right - 20 for x, _ in runs(p)), width

@@ -90,6 +90,13 @@ def test_every_table_is_readable_or_says_it_scrolls(page, tmp_path, width):
     path.write_text(ROAD_CSV)
     page.find("#alignment-file").send_keys(str(path))
     page.run("assessments", lambda: page.find("#alignment-assess").click())
+    # the curve's advisory speed by method, and the combination's PBS screening: tables of long source texts
+    page.type("#speed-posted", "90")
+    page.driver.execute_script("document.querySelector('#speed-compute').scrollIntoView({block: 'center'})")
+    page.run("computations", lambda: page.find("#speed-compute").click(), timeout_s=120)
+    page.driver.execute_script("document.querySelector('#dynamics-compute').scrollIntoView({block: 'center'})")
+    page.run("screenings", lambda: page.find("#dynamics-compute").click(), timeout_s=120)
+    assert page.find_all("#advisory-result table") and page.find_all("#dyn-results table")
     # a cue follows its box's overflow through a ResizeObserver, whose callback runs a frame after the layout:
     # the check is read again until it holds (or the wait ends and the last reading fails the test)
     check = """

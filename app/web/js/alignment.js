@@ -6,7 +6,7 @@
 
 import * as api from "./api.js";
 import * as curves from "./curves.js";
-import { $, clear, download, el, fmt, svgEl } from "./dom.js";
+import { $, clear, download, el, fmt, num, svgEl, svgNode } from "./dom.js";
 import { value } from "./form.js";
 import { designFields, srtOptions } from "./road.js";
 
@@ -42,6 +42,10 @@ export async function buildRequest(kind, text, vehicleRef, caseRequest) {
     targets: caseRequest.targets,
     ...designFields(),
     max_superelevation_percent: value($("#al-emax")),
+    // the truck's speed profile and the plaques (docs/advisory.md): only what was typed
+    desired_speed_kmh: value($("#al-desired")),
+    deceleration_mps2: value($("#al-decel")),
+    units: $("#al-units").value || undefined,
   });
   if (kind === "csv") return ["/v1/alignments/assess", { ...common, csv: text }];
   if (kind === "landxml" || kind === "ifc") {
@@ -375,6 +379,117 @@ export function readingPanel(reading, { print = false } = {}) {
 
 // ------------------------------------------------------------------------------------------ render
 
+/** The speed profile's inputs in words (the answer's `advisory`; the defaults as docs/advisory.md states them). */
+function profileBasis(adv) {
+  const decel = adv?.deceleration_mps2;
+  // a curve's posted speed is its tangent's; the desired speed, when given, only where a curve has none
+  const desired = typeof adv?.desired_speed_kmh === "number" ? `each curve's posted speed, ${fmt(adv.desired_speed_kmh, 0)} km/h where a curve has none` : "each curve's posted speed";
+  const braking = typeof decel === "number" ? `${num(decel, 3)} m/s\u00b2 (${num(decel / 0.3048, 1)} ft/s\u00b2)` : "the service's default";
+  return (
+    `It depends on the truck's desired speed on the tangents (${desired}), the braking rate into each curve (${braking}; ` +
+    "the default 10 ft/s\u00b2 and the 2.5 s reaction time are MUTCD 11e Table 2C-3's basis as transcribed: unverified) " +
+    "and the acceleration out of it within the truck's power (120 kg/kW, the HCM truck; the resistances assumed). " +
+    "The speed never exceeds a curve's safe or advisory speed."
+  );
+}
+
+/**
+ * The truck's speed profile along an alignment (POST /v1/plots/speed-profile with the assessment's request): the
+ * plot with what it depends on, or in words why there is none. The service plots an alignment's request only: a
+ * route's profile is drawn here from its answer; a job's request is not sent twice, so its figure says where the
+ * profile is.
+ */
+async function speedProfile({ result, job, route, head }) {
+  if (!head?.advisory || !(await api.has("post", "/v1/plots/speed-profile"))) return null;
+  const box = el("figure", { class: "plot speed-profile keep", id: "speed-profile" });
+  const caption = el("figcaption", {}, el("strong", {}, "The truck's speed profile. "), profileBasis(head.advisory));
+  const notes = (result?.vehicles || []).flatMap((v) => v.speed_profile_notes || []);
+  if (job) {
+    box.append(el("p", { class: "hint" }, "A job's speed profile (its stations and speeds) is in its JSON result (speed_profile); the plot is drawn for a road assessed in one request."), caption);
+    return box;
+  }
+  if (route) {
+    // the service plots an alignment's request only: a route's profile is drawn here from its answer
+    const drawn = routeProfile(result);
+    box.append(drawn || el("p", { class: "no-profile" }, "No speed profile: the curves' stations or tangent speeds cannot carry one (each curve's row says why)."), caption);
+    if (notes.length) box.append(el("ul", { class: "hint" }, [...new Set(notes)].map((n) => el("li", {}, n))));
+    return box;
+  }
+  try {
+    const { data } = await api.call("POST", "/v1/plots/speed-profile", { json: state.request, accept: "image/svg+xml", key: state.key });
+    box.append(svgNode(data), caption);
+  } catch (err) {
+    if (!(err instanceof api.ApiError)) throw err;
+    box.append(el("p", { class: "no-profile" }, `No speed profile: ${err.problem.detail || err.problem.title}.`), caption);
+  }
+  if (notes.length) box.append(el("ul", { class: "hint" }, [...new Set(notes)].map((n) => el("li", {}, n))));
+  return box;
+}
+
+/**
+ * A route's speed profile drawn from its answer (the first vehicle's `speed_profile`, each curve's safe and advisory
+ * speed over its chainage, its posted speed): speed [km/h] against chainage [km], as the service's alignment plot
+ * shows them. Null when there is no profile.
+ */
+export function routeProfile(result) {
+  const vehicle = result.vehicles?.[0];
+  const points = vehicle?.speed_profile || [];
+  if (points.length < 2) return null;
+  const spans = routeCurves(result).map((c) => ({ start: c.start_m, end: c.end_m, row: c.vehicles ? c.vehicles[0] : c.assessment }));
+  const speeds = [
+    ...points.map((p) => p.speed_kmh),
+    ...spans.flatMap((c) => [c.row?.safe_speed_kmh, c.row?.advisory_speed_kmh, c.row?.posted_speed_kmh]),
+  ].filter((v) => typeof v === "number" && Number.isFinite(v));
+  const x0 = Math.min(points[0].station_m, ...spans.map((c) => c.start).filter(Number.isFinite));
+  const x1 = Math.max(points.at(-1).station_m, ...spans.map((c) => c.end).filter(Number.isFinite));
+  const top = Math.ceil(Math.max(...speeds) / 10) * 10 + 10;
+  const [w, h, left, right, up, down] = [760, 400, 56, 190, 28, 44];
+  const X = (m) => left + ((m - x0) / (x1 - x0 || 1)) * (w - left - right);
+  const Y = (v) => h - down - (v / top) * (h - up - down);
+  const svg = svgEl("svg", { viewBox: `0 0 ${w} ${h}`, role: "img", "aria-label": "Truck speed profile against chainage (route)", "font-family": "Helvetica, Arial, sans-serif", "font-size": "12" });
+  const text = (x, y, t, anchor = "middle") => {
+    const n = svgEl("text", { x, y, "text-anchor": anchor });
+    n.textContent = t;
+    svg.append(n);
+  };
+  svg.append(svgEl("rect", { width: w, height: h, fill: "white" }));
+  for (let v = 0; v <= top; v += top > 80 ? 20 : 10) {
+    svg.append(svgEl("line", { x1: left, x2: w - right, y1: Y(v), y2: Y(v), stroke: "#dddddd" }));
+    text(left - 6, Y(v) + 4, String(v), "end");
+  }
+  const step = Math.max(0.1, Number((10 ** Math.floor(Math.log10((x1 - x0) / 1000 || 1))).toPrecision(1)));
+  for (let k = Math.ceil(x0 / 1000 / step) * step; k <= x1 / 1000 + 1e-9; k += step) {
+    svg.append(svgEl("line", { x1: X(k * 1000), x2: X(k * 1000), y1: up, y2: h - down, stroke: "#eeeeee" }));
+    text(X(k * 1000), h - down + 16, num(k, 2));
+  }
+  text((left + w - right) / 2, h - 8, "chainage [km]");
+  text(14, up - 10, "speed [km/h]", "start");
+  const segment = (c, v, colour, dash) => {
+    if (typeof v !== "number" || !Number.isFinite(c.start) || !Number.isFinite(c.end)) return;
+    svg.append(svgEl("line", { x1: X(c.start), x2: X(c.end), y1: Y(v), y2: Y(v), stroke: colour, "stroke-width": 3, ...(dash ? { "stroke-dasharray": dash } : {}) }));
+  };
+  for (const c of spans) {
+    segment(c, c.row?.posted_speed_kmh, "#2e7d32", "6 4");
+    segment(c, c.row?.safe_speed_kmh, "#c62828");
+    segment(c, c.row?.advisory_speed_kmh, "#ef6c00");
+  }
+  svg.append(svgEl("polyline", { points: points.map((p) => `${X(p.station_m)},${Y(p.speed_kmh)}`).join(" "), fill: "none", stroke: "#1565c0", "stroke-width": 2 }));
+  const legend = [
+    ["#1565c0", "truck's speed profile", null],
+    ["#c62828", "safe speed of each curve", null],
+    ["#ef6c00", "advisory speed (plaque)", null],
+    ["#2e7d32", "posted speed", "6 4"],
+  ];
+  legend.forEach(([colour, label, dash], i) => {
+    const y = up + 14 + i * 20;
+    svg.append(svgEl("line", { x1: w - right + 12, x2: w - right + 36, y1: y - 4, y2: y - 4, stroke: colour, "stroke-width": 3, ...(dash ? { "stroke-dasharray": dash } : {}) }));
+    text(w - right + 42, y, label, "start");
+  });
+  const name = vehicleLabel(vehicle, 0);
+  text((left + w - right) / 2, 16, `Truck speed profile along the route: ${name}`);
+  return svg;
+}
+
 /** A fleet's vehicle choice: each vehicle, and for a route "the governing vehicle of each curve". */
 function vehicleChoice(names, route, onChange) {
   const options = names.map((name, i) => el("option", { value: String(i) }, name));
@@ -403,13 +518,24 @@ export async function render({ result = null, job = null, stored = null, kind, l
   const tableBox = el("div", { id: "curves-box" });
   let names;
   let loaded = null;
+  let head = result;
   if (job) {
-    loaded = await curves.ask("fetch", { url: job.url, key: job.key, vehicle: 0 });
+    // the rows as CSV (the table's), and the head of the JSON result for what the CSV lacks: what was read from the
+    // file and the plaques' options (its first bytes only: the worker stops reading at the rows)
+    let top;
+    [loaded, top] = await Promise.all([
+      curves.ask("fetch", { url: job.url, key: job.key, vehicle: 0 }),
+      curves.ask("head", { url: job.url, key: job.key }).catch(() => ({ head: null })),
+    ]);
+    head = top.head;
     names = csvVehicles(loaded.stats).map((v, i) => vehicleLabel(v, i));
   } else {
     names = result.vehicles.map((v, i) => vehicleLabel(v, i));
   }
   const several = names.length > 1;
+  curves.advisory.units = head?.advisory?.units ?? null;
+  curves.advisory.increment = head?.advisory?.increment ?? null;
+  const signs = el("div", { id: "alignment-signs" });
   const show = async (index) => {
     let stats;
     if (job) stats = (await curves.ask("stats", { vehicle: index })).stats;
@@ -418,6 +544,8 @@ export async function render({ result = null, job = null, stored = null, kind, l
     const lengthM = result?.length_m;
     const governing = several && index === null;
     summary.textContent = curves.summaryText(stats, { vehicleText, lengthM, governing });
+    clear(signs);
+    if (stats.advised) signs.append(curves.signsNotes(stats, head?.advisory));
     await curves.showTable(tableBox, { keys: stats.keys, vehicle: job ? index : null });
     const printed = await curves.printout({
       stats,
@@ -429,12 +557,17 @@ export async function render({ result = null, job = null, stored = null, kind, l
       downloadName: state.file ? `${state.file.replace(/\.[^.]*$/, "")}-curves.csv` : "curves.csv",
     });
     // what was read, on the road's first printed page right after its summary
-    if (result?.reading) printed.splice(1, 0, readingPanel(result.reading, { print: true }));
+    if (head?.reading) printed.splice(1, 0, readingPanel(head.reading, { print: true }));
+    // the speed profile, after the outline and before the curves
+    const plot = $("#speed-profile");
+    if (plot) printed.splice(printed.findIndex((n) => n?.tagName === "H4"), 0, plot.cloneNode(true));
     document.dispatchEvent(new CustomEvent("curves-printout", { detail: { title: route ? "Route" : "Alignment", nodes: printed } }));
   };
-  if (result?.reading) box.append(readingPanel(result.reading));
+  if (head?.reading) box.append(readingPanel(head.reading));
   if (several) box.append(vehicleChoice(names, route, show));
-  box.append(summary);
+  box.append(summary, signs);
+  const profile = await speedProfile({ result, job, route, head });
+  if (profile) box.append(profile);
   state.outline = lines && result ? outline(lines, result) : null;
   if (state.outline) box.append(el("figure", { class: "outline" }, state.outline, el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")));
   const downloads = el("div", { class: "actions" });

@@ -100,7 +100,7 @@ function nameCurves(rows) {
 
 /** Counts over the rows of one vehicle (all of them, whatever the view shows). */
 function stats(vehicle) {
-  const out = { curves: 0, flagged: 0, refused: 0, below_standard_min_radius: 0, min_margin_kmh: null, min_safe_speed_kmh: null, worst: null, keys: [] };
+  const out = { curves: 0, flagged: 0, refused: 0, below_standard_min_radius: 0, min_margin_kmh: null, min_safe_speed_kmh: null, worst: null, keys: [], devices: {}, warnings: 0, advised: 0 };
   const unseen = new Set(store.rows.slice(0, 100).flatMap((r) => Object.keys(r))); // fields with no value yet
   const keys = new Set();
   for (const r of store.rows) {
@@ -109,6 +109,10 @@ function stats(vehicle) {
     if (r.flagged) out.flagged += 1;
     if (!isBlank(r.error)) out.refused += 1;
     if (r.meets_standard_min_radius === false) out.below_standard_min_radius += 1;
+    // the signs to post: curves per device, and the W1-13 warnings
+    if (typeof r.advisory_speed_kmh === "number") out.advised += 1;
+    if (r.truck_rollover_warning === true) out.warnings += 1;
+    if (!isBlank(r.treatment_devices)) for (const d of String(r.treatment_devices).split("; ")) out.devices[d] = (out.devices[d] || 0) + 1;
     if (typeof r.margin_kmh === "number" && (out.min_margin_kmh === null || r.margin_kmh < out.min_margin_kmh)) {
       out.min_margin_kmh = r.margin_kmh;
       out.worst = { id: r.id, name: r.name, station_m: r.station_m ?? null, margin_kmh: r.margin_kmh };
@@ -160,10 +164,16 @@ function byKey(key, direction) {
   };
 }
 
-/** Whether a row passes the filter: {flagged: true} (only flagged curves), {text} (in its id or name, any case). */
+/**
+ * Whether a row passes the filter: {flagged: true} (only flagged curves), {signed: true} (curves whose treatment
+ * calls for a device), {warning: true} (curves with a W1-13 truck rollover warning), {text} (in its id or name, any
+ * case).
+ */
 function passes(r, filter, vehicle) {
   if (vehicle !== null && vehicle !== undefined && (r.vehicle_index ?? 0) !== vehicle) return false;
   if (filter.flagged && !r.flagged) return false;
+  if (filter.signed && isBlank(r.treatment_devices)) return false;
+  if (filter.warning && r.truck_rollover_warning !== true) return false;
   if (filter.text) {
     const needle = filter.text.toLowerCase();
     if (!`${r.name ?? ""} ${r.id ?? ""}`.toLowerCase().includes(needle)) return false;
@@ -215,7 +225,56 @@ async function fetchCsv({ url, key }) {
   return parseCsv(await response.text());
 }
 
+/**
+ * A JSON answer's sign fields as the CSV answer writes them (docs/advisory.md, section 4): `treatment.devices` ->
+ * `treatment_devices` (joined by "; ", null when none), `truck_rollover_warning.recommended` -> a boolean. Their long
+ * source texts are stated once in the answer's `advisory`, not per row.
+ */
+function flatten(rows) {
+  for (const r of rows) {
+    const t = r.treatment;
+    if (t && typeof t === "object") {
+      r.treatment_devices = Array.isArray(t.devices) && t.devices.length ? t.devices.join("; ") : null;
+      delete r.treatment;
+    } else if (typeof r.treatment_devices === "string") {
+      r.treatment_devices = r.treatment_devices.split(";").map((d) => d.trim()).filter(Boolean).join("; ") || null;
+    }
+    const w = r.truck_rollover_warning;
+    if (w && typeof w === "object") r.truck_rollover_warning = w.recommended ?? null;
+  }
+}
+
+/**
+ * The head of a job's JSON result: the answer up to its `vehicles` list (`reading`, `advisory`, ...), which the
+ * service writes first (app/alignments/rows.py, json_head). The stream is read until `,"vehicles":[` and cancelled:
+ * the rows of a million curves are never read here. Inside a JSON string a quote is escaped, so that sequence can
+ * only be the member's start.
+ */
+async function fetchHead({ url, key }) {
+  const headers = { Accept: "application/json" };
+  if (key) headers.Authorization = `Bearer ${key}`;
+  const response = await fetch(url, { headers, credentials: "omit" });
+  if (!response.ok || !response.body) return { head: null };
+  const reader = response.body.getReader();
+  const decoder = new TextDecoder();
+  const marker = ',"vehicles":[';
+  let text = "";
+  try {
+    while (text.length < 4_000_000) {
+      const { value, done } = await reader.read();
+      if (value) text += decoder.decode(value, { stream: true });
+      const at = text.indexOf(marker);
+      if (at >= 0) return { head: JSON.parse(`${text.slice(0, at)}}`) };
+      if (done) return { head: JSON.parse(text) };
+    }
+    return { head: null };
+  } finally {
+    reader.cancel().catch(() => undefined);
+  }
+}
+
 function load(rows, vehicle) {
+  flatten(rows);
   store.rows = rows;
   nameCurves(rows);
   // a fleet's CSV: each vehicle's index, preset or saved id
@@ -231,6 +290,7 @@ function load(rows, vehicle) {
 const OPERATIONS = {
   load: ({ rows, vehicle }) => load(rows, vehicle),
   fetch: async (msg) => load(await fetchCsv(msg), msg.vehicle),
+  head: fetchHead,
   stats: ({ vehicle }) => ({ stats: stats(vehicle) }),
   view,
   slice,

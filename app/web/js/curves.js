@@ -80,15 +80,46 @@ export const COLUMNS = [
   { key: "side_friction_speed_kmh", label: "Side-friction speed [km/h]", format: (v) => fmt(v, 1), width: 10 },
   { key: "standard_min_radius_m", label: "Standard's Rmin [m]", format: (v) => grouped(v, 0), width: 10 },
   { key: "meets_standard_min_radius", label: "Meets Rmin", format: yesNo, text: true, width: 7 },
+  // the sign and the truck's speed profile (docs/advisory.md): the worker flattens `treatment` and
+  // `truck_rollover_warning` to the CSV's columns, so both answers sort and filter alike
+  { key: "advisory_speed_kmh", label: "Advisory speed (plaque)", format: (v) => advisoryText(v), nowrap: true, width: 13, advisory: true },
+  { key: "treatment_devices", label: "Treatment (signs)", format: (v, r) => treatmentText(v, r), text: true, wrap: true, width: 26, advisory: true },
+  { key: "truck_rollover_warning", label: "W1-13 truck rollover warning", format: (v) => (blank(v) ? "-" : v ? "\u26a0 recommended" : "not recommended"), text: true, width: 12, advisory: true },
+  { key: "approach_speed_kmh", label: "Approach speed [km/h]", format: (v) => fmt(v, 1), width: 9, advisory: true },
+  { key: "required_deceleration_mps2", label: "Required deceleration [m/s\u00b2]", format: (v) => fmt(v, 2), width: 11, advisory: true },
+  { key: "profile_reason", label: "Why no profile figure", text: true, wrap: true, width: 22, advisory: true },
   { key: "error", label: "Error", text: true, wrap: true, width: 24 },
 ];
+
+/** The plaques' units and increment of the answer shown (its `advisory`; a job's from its result's head). */
+export const advisory = { units: null, increment: null };
+
+const MPH = 1.609344; // km per mile (exact)
+
+/** The advisory speed as the plaque shows it: "55 mph (88.5 km/h)" with US plaques, "90 km/h" with metric ones. */
+function advisoryText(v) {
+  if (blank(v)) return "-";
+  if (advisory.units === "us") return `${fmt(v / MPH, 0)} mph (${fmt(v, 1)} km/h)`;
+  if (advisory.units === "metric") return `${fmt(v, 0)} km/h`;
+  return `${fmt(v, 1)} km/h`;
+}
+
+/** The devices in words; none called for, or none without a posted speed (the difference needs one). */
+function treatmentText(v, r) {
+  if (!blank(v)) return v;
+  if (blank(r?.advisory_speed_kmh)) return "-";
+  return blank(r?.posted_speed_kmh) ? "none judged (no posted speed)" : "none called for";
+}
+
+/** Keys of the sign's and the profile's columns (printed in a table of their own: the curves' table fills A4). */
+export const ADVISORY_KEYS = new Set(COLUMNS.filter((c) => c.advisory).map((c) => c.key));
 
 /** Fields not shown as columns: the vehicle's place in a fleet's CSV, the targets (the SRT section has them), the
  * intermediate values of the verdict, the page's own order. */
 const HIDDEN = new Set([
   "vehicle_index", "vehicle_preset", "vehicle_saved_id", "road_order", "targets", "level_road_srt",
   "tilt_table_angle_deg", "side_friction", "side_friction_clamped", "superelevation_source", "coordinates",
-  "assessment", "vehicles", "governing_vehicle", "start_m", "end_m",
+  "assessment", "vehicles", "governing_vehicle", "start_m", "end_m", "treatment", "advisory_speed_mph",
 ]); // prettier-ignore
 const HIDDEN_PATTERN = /^(meets_.+|margin_.+_g)$/; // a CSV's target columns (meets_general, margin_general_g)
 
@@ -100,7 +131,10 @@ const generic = (v) => (typeof v === "boolean" ? yesNo(v) : typeof v === "number
 /** The columns of rows whose fields are `keys`: the known ones that carry a value (the flag always), then the rest. */
 export function columnsOf(keys) {
   const have = new Set(keys);
-  const known = COLUMNS.filter((c) => have.has(c.key) || c.key === "flagged" || c.key === "name");
+  // a row with an advisory speed has every sign and profile column, blank where the profile gives no figure (its
+  // reason says why)
+  const advised = have.has("advisory_speed_kmh");
+  const known = COLUMNS.filter((c) => have.has(c.key) || c.key === "flagged" || c.key === "name" || (advised && c.advisory));
   const knownKeys = new Set(COLUMNS.map((c) => c.key));
   const extra = keys
     .filter((k) => !knownKeys.has(k) && !HIDDEN.has(k) && !HIDDEN_PATTERN.test(k))
@@ -144,15 +178,18 @@ const view = { token: 0, columns: [], sort: null, filter: { flagged: false, text
 
 /** Show the rows the worker holds in `box`: controls (filter, find), the table, the pager. Resolves when drawn. */
 export async function showTable(box, { keys, vehicle = null }) {
-  Object.assign(view, { box, columns: columnsOf(keys), sort: null, filter: { flagged: false, text: "" }, vehicle, first: 0 });
+  Object.assign(view, { box, columns: columnsOf(keys), sort: null, filter: { flagged: false, signed: false, warning: false, text: "" }, vehicle, first: 0 });
   const filter = el(
     "select",
     { id: "curves-filter" },
     el("option", { value: "all" }, "all curves, flagged first"),
     el("option", { value: "flagged" }, "flagged curves only"),
+    // the sign's filters where the rows carry advisory speeds
+    keys.includes("advisory_speed_kmh") ? el("option", { value: "signed" }, "curves whose treatment calls for signs") : null,
+    keys.includes("advisory_speed_kmh") ? el("option", { value: "warning" }, "curves with a W1-13 truck rollover warning") : null,
   );
   const find = el("input", { id: "curves-find", type: "search", spellcheck: "false", placeholder: "C12 or the file's id" });
-  filter.addEventListener("change", () => refilter({ flagged: filter.value === "flagged" }));
+  filter.addEventListener("change", () => refilter({ flagged: filter.value === "flagged", signed: filter.value === "signed", warning: filter.value === "warning" }));
   let timer = null;
   find.addEventListener("input", () => {
     clearTimeout(timer);
@@ -279,14 +316,79 @@ export async function printout({ stats, fileName, vehicleText, lengthM, governin
       ? `All ${grouped(flagged, 0)} flagged curves are printed, worst first, then ${grouped(printedOthers, 0)} of the ${grouped(others, 0)} others in road order.`
       : `All ${grouped(flagged + others, 0)} curves are printed: the ${grouped(flagged, 0)} flagged ones first, worst first, then the others in road order.`;
   const note = el("p", { class: "print-note" }, what, left ? ` The other ${grouped(left, 0)} curves are in the CSV download (${downloadName}).` : "");
-  const columns = columnsOf(stats.keys);
+  const all = columnsOf(stats.keys);
+  // the curves' table fills A4 landscape: the sign's and the profile's columns are a second table of the same rows,
+  // each curve named again by its name, id, station and speeds
+  const columns = all.filter((c) => !ADVISORY_KEYS.has(c.key));
+  const signColumns = all.filter((c) => ["name", "id", "station_m", "posted_speed_kmh", "safe_speed_kmh"].includes(c.key) || ADVISORY_KEYS.has(c.key));
+  const t = await printTable(columns, rows, "curves-print");
+  const parts = [summary, figure(outline), el("h4", { class: "with-next" }, "Curves"), note, t];
+  if (stats.keys.includes("advisory_speed_kmh")) {
+    parts.push(
+      el("h4", { class: "with-next signs-title" }, "Signs and the truck's speed profile"),
+      el("p", { class: "print-note" }, "The same curves in the same order: the advisory speed on the plaque, the treatment, the W1-13 warning and the profile's figures."),
+      signsNotes(stats, advisory, { print: true }),
+      await printTable(signColumns, rows, "curves-print signs-print"),
+    );
+  }
+  return parts;
+}
+
+function figure(outline) {
+  return outline ? el("figure", { class: "outline keep" }, outline.cloneNode(true), el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")) : null;
+}
+
+/** A printed table of `rows`, built 25 rows at a time (the page answers in between). */
+async function printTable(columns, rows, cls) {
   const head = el("thead", {}, el("tr", {}, columns.map((c) => el("th", { scope: "col", class: cellClass(c) }, c.label))));
   const body = el("tbody");
-  const t = el("table", { class: "curves-print" }, head, body);
   for (let i = 0; i < rows.length; i += 25) {
     body.append(...rows.slice(i, i + 25).map((r) => el("tr", { class: r.flagged ? "flagged" : null }, cells(columns, r))));
     await pause();
   }
-  const figure = outline ? el("figure", { class: "outline keep" }, outline.cloneNode(true), el("figcaption", { class: "hint" }, "Route outline (north up); flagged curves in red.")) : null;
-  return [summary, figure, el("h4", { class: "with-next" }, "Curves"), note, t];
+  return el("table", { class: cls }, head, body);
+}
+
+// ------------------------------------------------------------------------------------------ signs and methods
+
+const plural = (n, word) => `${grouped(n, 0)} ${word}${n === 1 ? "" : "s"}`;
+
+/** "Signs to post: advisory speed plaque (W13-1) at 3 curves; ...": the devices over the curves shown. */
+export function signsText(stats) {
+  if (!stats.advised) return "";
+  const devices = Object.entries(stats.devices || {}).map(([d, n]) => `${d} at ${plural(n, "curve")}`);
+  const warn = stats.warnings ? `a W1-13 truck rollover warning at ${plural(stats.warnings, "curve")} (this service's rule)` : "no W1-13 truck rollover warning";
+  if (!devices.length) return `Signs to post: none called for by the posted-advisory difference; ${warn}.`;
+  return `Signs to post: ${devices.join("; ")}; ${warn}.`;
+}
+
+/** The plaque's rounding in words, by the answer's units and increment (docs/advisory.md, "The plaque"). */
+function plaqueWords(adv) {
+  if (adv?.units === "us") return `US plaques in multiples of ${num(adv.increment ?? 5, 0)} mph (TxDOT Direct Method, Step 2: +1 mph, then down to a multiple of 5 mph), shown with the speed in km/h`;
+  if (adv?.units === "metric") return `metric plaques in multiples of ${num(adv.increment ?? 10, 0)} km/h (rounded down: assumed, no metric rule was read)`;
+  return "the plaque's increment is not in this result";
+}
+
+/**
+ * How the advisory speeds were found, in words: the primary method is unverified (no number from it), which method
+ * sets them, the plaque's rounding, and the long sources the answer states once (`advisory`). `adv` may be null.
+ */
+export function signsNotes(stats, adv, { print = false } = {}) {
+  const items = [
+    el(
+      "li",
+      { class: "unverified-method" },
+      "Primary method unverified: the Design Method that FHWA-SA-11-22 (2011) and TxDOT name (Bonneson, Pratt, Miles and Carlson's curve speed model) could not be read in its primary text, so the service computes no speed from it and none is shown. ",
+      "Without a measured car speed (TxDOT's Direct Method), each advisory speed is the newest legacy ball-bank criterion's (MUTCD 2009, 16/14/12 degrees by speed; unverified).",
+    ),
+    el("li", {}, `Plaques: ${plaqueWords(adv)}. Curves within 600 ft (183 m) of each other share one sign, its lowest speed (TxDOT).`),
+  ];
+  if (adv?.treatment_source) items.push(el("li", {}, `Treatment: ${adv.treatment_source}.`));
+  if (adv?.truck_rollover_warning_rule) items.push(el("li", {}, `W1-13: ${adv.truck_rollover_warning_rule}.`));
+  return el(
+    "div",
+    { class: `signs-notes${print ? " keep" : ""}` },
+    el("p", { class: "signs-line" }, signsText(stats)),
+    el("ul", { class: "method-notes" }, items),
+  );
 }

@@ -6,6 +6,7 @@ import * as api from "./api.js";
 import * as combination from "./combination.js";
 import * as combo from "./combobuilder.js";
 import * as curves from "./curves.js";
+import * as dynamics from "./dynamics.js";
 import * as filecheck from "./filecheck.js";
 import { $, $$, clear, cueStaticTables, el, num } from "./dom.js";
 import { clearErrors, localError, showError } from "./errors.js";
@@ -148,9 +149,9 @@ async function roadDesign() {
 async function curveSpeed() {
   const { vehicle: v, request } = page.last;
   const speed = await guarded($("#speed-compute"), $("#speed-form"), $("#speed-error"), () => road.curveSpeed(v.ref, request));
-  if (speed === undefined) stale.mark(["speed"], stale.FAILED);
+  if (speed === undefined) stale.mark(["speed", "advisory"], stale.FAILED);
   if (speed !== undefined) {
-    stale.fresh(["speed"]);
+    stale.fresh(["speed", "advisory"]);
     page.last.speed = speed;
     page.last.link = writeUrl(stateParams(v.params));
   }
@@ -287,6 +288,7 @@ function watchInputs() {
   stale.watch($("#super-form"), "superelevation");
   stale.watch($("#limits-form"), "limits");
   stale.watch($("#alignment-form"), "alignment");
+  stale.watch($("#dynamics-form"), "dynamics");
 }
 
 function wire() {
@@ -352,6 +354,21 @@ function wire() {
   for (const id of ["#alignment-file", "#al-e", "#al-emax", "#al-posted", "#al-grade"]) {
     $(id).addEventListener("change", () => checkFile().catch(() => undefined));
   }
+  $("#dynamics-form").addEventListener("submit", async (ev) => {
+    ev.preventDefault();
+    const out = await guarded($("#dynamics-compute"), $("#dynamics-section"), $("#dynamics-error"), () =>
+      dynamics.screen(async () => {
+        const v = await vehicle.current();
+        syncModel();
+        return v;
+      }),
+    );
+    // printed after the summary, on A4 pages of its own
+    if (out) summary.extra("dynamics", "Dynamics: PBS screening", out.nodes, { owned: true });
+    if (out) stale.fresh(["dynamics"]);
+    else stale.mark(["dynamics"], stale.FAILED);
+    counted("screenings");
+  });
   $("#alignment-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
     assessFile();
@@ -455,6 +472,7 @@ async function init() {
   if (components) vehicle.fillComponents(components);
   await showOptionalParts();
   if (await api.has("post", "/v1/combinations/build")) await combo.init(combinations || []);
+  if (await api.has("post", "/v1/pbs")) dynamics.fillChoices(combinations || []);
   syncModel();
   document.body.dataset.ready = "true";
   if (wanted) await compute();

@@ -8,7 +8,7 @@ import { $, clear, download, el, fmt, grouped, num, scroller, svgNode, table } f
 import { value } from "./form.js";
 import { srtText } from "./results.js";
 
-export const state = { standards: null, design: null, speed: null };
+export const state = { standards: null, design: null, speed: null, advisory: null };
 
 const drop = (obj) => Object.fromEntries(Object.entries(obj).filter(([, v]) => v !== undefined));
 
@@ -138,6 +138,84 @@ export async function curveSpeed(vehicleRef, caseRequest) {
   const out = await api.post("/v1/curve-speed", { vehicle: vehicleRef, ...caseRequest, radius_m: radius });
   state.speed = out;
   $("#speed-result").textContent = `On a curve of radius ${grouped(out.radius_m, 0)} m ${bankWords(caseRequest)}: at most ${fmt(out.max_speed_kmh, 1)} km/h before rollover (SRT ${srtText(out.srt)}, V = sqrt(127 SRT R), Eq. 9.1).`;
+  await advisorySpeed(vehicleRef, caseRequest, radius);
+  return out;
+}
+
+/** The advisory methods in words (docs/advisory.md, section 2): which kind each is. */
+const METHODS = {
+  "design-method": "Design Method (FHWA-SA-11-22 and TxDOT: the primary method)",
+  "txdot-direct": "TxDOT Direct Method (from a measured car speed)",
+  "ball-bank-16deg-2003": "Ball-bank 16 deg (MUTCD 2003; legacy)",
+  "ball-bank-2009": "Ball-bank 16/14/12 deg by speed (MUTCD 2009; legacy)",
+  "ball-bank-10-12-14deg": "Ball-bank 14/12/10 deg by speed (traditional; legacy)",
+  "txdot-calculated-speed": "TxDOT calculated speed (legacy; never the sole basis)",
+  "side-friction": "Side friction, Eq. 9.2 (this service's check)",
+  rollover: "Rollover, Eq. 9.1 (this service's check)",
+};
+
+/** "50 mph (80.5 km/h)" with US plaques, "80 km/h" with metric ones. */
+function plaque(out) {
+  if (out.advisory_speed_kmh === null || out.advisory_speed_kmh === undefined) return "none (it cannot be computed)";
+  return out.units === "us" ? `${fmt(out.advisory_speed_mph, 0)} mph (${fmt(out.advisory_speed_kmh, 1)} km/h)` : `${fmt(out.advisory_speed_kmh, 0)} km/h`;
+}
+
+/**
+ * The advisory speed of the same curve beside its maximum speed (POST /v1/advisory-speed), when a posted speed is
+ * typed: the plaque, which method sets it, each method's speed with its source -- a method the answer marks
+ * unverified and gives no speed (the primary Design Method) is said so in words, never with a number -- the
+ * treatment and the W1-13 warning.
+ */
+async function advisorySpeed(vehicleRef, caseRequest, radius) {
+  const box = clear($("#advisory-result"));
+  state.advisory = null;
+  const posted = value($("#speed-posted"));
+  if (posted === undefined || !(await api.has("post", "/v1/advisory-speed"))) return null;
+  const out = await api.post(
+    "/v1/advisory-speed",
+    drop({
+      vehicle: vehicleRef,
+      ...srtOptions(caseRequest),
+      ...designFields(),
+      radius_m: radius,
+      superelevation_percent: caseRequest.road?.bank_percent ?? 0,
+      grade_percent: caseRequest.road?.slope_percent,
+      posted_speed_kmh: posted,
+      units: $("#speed-units").value || undefined,
+    }),
+  );
+  state.advisory = out;
+  const by = out.methods.find((m) => m.id === out.governed_by);
+  const devices = out.treatment.devices.length ? out.treatment.devices.join("; ") : "none called for";
+  const warning = out.truck_rollover_warning.recommended ? "recommended (this service's rule)" : "not recommended (this service's rule)";
+  const rows = out.methods.map((m) => ({
+    method: METHODS[m.id] || m.id,
+    speed: m.speed_kmh,
+    status: m.verified ? "verified" : "unverified",
+    source: m.source,
+  }));
+  box.append(
+    el(
+      "p",
+      { id: "advisory-line" },
+      `Posted ${fmt(posted, 0)} km/h: advisory speed ${plaque(out)}, set by ${by ? METHODS[by.id] || by.id : out.governed_by}. `,
+      `Treatment: ${devices}. Truck rollover warning (W1-13): ${warning}.`,
+    ),
+    scroller(
+      "Advisory speed by method",
+      table(
+        [
+          { key: "method", label: "Method", text: true },
+          { key: "speed", label: "Speed [km/h]", format: (v) => (v === null || v === undefined ? "unverified: no speed" : fmt(v, 1)) },
+          { key: "status", label: "Source read", text: true },
+          { key: "source", label: "Source", text: true },
+        ],
+        rows,
+        { caption: `The advisory speed of a curve of radius ${grouped(radius, 0)} m ${bankWords(caseRequest)}, each method's speed (before the plaque's rounding).` },
+      ),
+    ),
+    el("ul", { class: "hint" }, out.notes.map((n) => el("li", {}, n))),
+  );
   return out;
 }
 

@@ -9,24 +9,27 @@ export const PANELS = {
   srt: "#results-body",
   design: "#road-results",
   speed: "#speed-result",
+  advisory: "#advisory-result",
   limits: "#limits-result",
   builder: "#build-result",
   combo: "#cb-result",
   superelevation: "#super-output",
   alignment: "#alignment-results",
+  dynamics: "#dyn-results",
   summary: "#summary-body",
 };
 
 /** Which panels an input of each part of the page invalidates. */
 export const DEPENDS = {
-  vehicle: ["srt", "design", "speed", "limits", "builder", "combo", "alignment", "summary"],
-  case: ["srt", "design", "speed", "limits", "alignment", "summary"],
+  vehicle: ["srt", "design", "speed", "advisory", "limits", "builder", "combo", "alignment", "dynamics", "summary"],
+  case: ["srt", "design", "speed", "advisory", "limits", "alignment", "summary"],
   road: ["design", "summary"],
-  speed: ["speed", "summary"],
-  standard: ["design", "superelevation", "alignment", "summary"],
+  speed: ["speed", "advisory", "summary"],
+  standard: ["design", "advisory", "superelevation", "alignment", "summary"],
   superelevation: ["superelevation"],
   limits: ["limits"],
   alignment: ["alignment"],
+  dynamics: ["dynamics"],
 };
 
 export const CHANGED = "Stale \u2014 inputs changed, press Compute";

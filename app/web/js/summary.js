@@ -82,6 +82,14 @@ function combinationList(combination) {
   return [el("div", { class: "keep" }, units), el("ul", {}, couplings.map((c) => el("li", {}, c)))];
 }
 
+/** A copy of a node of the page without its ids (the page keeps them). */
+function copyWithoutIds(node) {
+  const copy = node.cloneNode(true);
+  if (copy.removeAttribute) copy.removeAttribute("id");
+  for (const n of copy.querySelectorAll?.("[id]") || []) n.removeAttribute("id");
+  return copy;
+}
+
 function verdictLines(result) {
   return plainVerdicts(result).map((v) => v.text).join(" ");
 }
@@ -143,6 +151,9 @@ export function update({ vehicle, request, result, figures, design, speed, link 
       el("h3", { class: "with-next" }, "Curve speed"),
       el("p", {}, `Radius ${fmt(speed.radius_m, 0)} m ${bankWords(request)}: at most ${fmt(speed.max_speed_kmh, 1)} km/h (Eq. 9.1, SRT ${srtText(speed.srt)}).`),
     );
+    // the same curve's advisory speed, by method, when a posted speed was typed
+    const advised = $("#advisory-result");
+    if (advised?.childNodes.length) box.append(el("div", { class: "advisory-print" }, Array.from(advised.childNodes).map(copyWithoutIds)));
   }
   if (design) {
     const fig = $("#road-results figure");

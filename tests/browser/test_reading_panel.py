@@ -20,8 +20,9 @@ pytestmark = [pytest.mark.browser, pytest.mark.slow]
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def upload(page, name: str, superelevation: str | None = None) -> str:
-    page.find("#alignment-file").send_keys(str(EXAMPLES / name))
+def upload(page, name: str | Path, superelevation: str | None = None) -> str:
+    """Uploads an example by name, or any file by its path, and returns the reading panel's text."""
+    page.find("#alignment-file").send_keys(str(name if isinstance(name, Path) else EXAMPLES / name))
     if superelevation is not None:
         page.type("#al-e", superelevation)
     page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=120)
@@ -169,3 +170,33 @@ def test_an_alignment_job_shows_and_prints_what_was_read(page, api, live_server)
     )
     assert cells and all(" mph (" in c for c in cells)
     assert squeeze("Read from the file") in first_road_page(page)
+
+
+def test_what_the_reader_assumed_is_shown_and_printed(page, api, tmp_path):
+    """An IFC file whose alignment name is written in raw UTF-8 (ISO 10303-21 asks for \\X2\\ escapes) and with no
+    STATION referent: the name is read whole and the reading's two notes (docs/uploads.md) are listed on the page and
+    on paper, word for word as the API gives them."""
+    text = (EXAMPLES / "road.ifc").read_text()
+    (name,) = [
+        n
+        for n in api.post(
+            "/v1/alignments/assess", json={"vehicle": "table16-btrain", "ifc": {"document": text}}
+        ).json()["reading"]["alignments"]
+    ]
+    path = tmp_path / "road-raw-utf8.ifc"
+    path.write_bytes(text.replace(f"'{name}'", "'Rodovia São José'").encode("utf-8"))
+    assert "São" in path.read_text(encoding="utf-8")
+    page.open("?vehicle=table16-btrain")
+    panel = upload(page, path)
+    answer = api.post(
+        "/v1/alignments/assess",
+        json={"vehicle": "table16-btrain", "ifc": {"document": path.read_text(encoding="utf-8")}},
+    ).json()
+    notes = answer["reading"]["notes"]
+    assert answer["reading"]["alignments"] == ["Rodovia São José"]
+    assert any("outside ASCII" in n for n in notes)
+    assert "Assumed where the file is silent:" in panel and "Rodovia São José" in panel
+    shown = [n.get_attribute("textContent") for n in page.find_all("#alignment-results section.reading .notes li")]
+    assert shown == notes
+    printed = first_road_page(page)
+    assert all(squeeze(n) in printed for n in notes)

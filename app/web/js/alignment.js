@@ -347,7 +347,8 @@ const SKIPPED_OPEN = 5;
 
 /**
  * The "Read from the file" panel of an answer's `reading` (format, writer, unit, alignments, elements, profile,
- * superelevation's source, skipped parts with why). `print`: the printout's copy (the skipped list never folded).
+ * superelevation's source, what the reader assumed, skipped parts with why). `print`: the printout's copy (the
+ * skipped list never folded).
  */
 export function readingPanel(reading, { print = false } = {}) {
   const unit = unitWords(reading.linear_unit);
@@ -362,6 +363,11 @@ export function readingPanel(reading, { print = false } = {}) {
     ["Profile used", reading.profile || "none (no grades read from the file)"],
     ["Superelevation from", from ? SUPERELEVATION_WORDS[from] || from : "none (no curves)"],
   ];
+  // what the reader assumed where the file is silent (a start station of 0, names in raw UTF-8): never folded
+  const notes = reading.notes || [];
+  const assumed = notes.length
+    ? [el("p", { class: "notes-head" }, "Assumed where the file is silent:"), el("ul", { class: "notes" }, notes.map((n) => el("li", {}, n)))]
+    : [];
   const skipped = reading.skipped || [];
   const items = el("ul", { class: "skipped" }, skipped.map((s) => el("li", {}, el("strong", {}, s.what), `: ${s.why}`)));
   let rest;
@@ -373,6 +379,7 @@ export function readingPanel(reading, { print = false } = {}) {
     { class: `reading${print ? " keep" : ""}`, "aria-label": "Read from the file" },
     el(print ? "h4" : "h3", { class: "reading-title" }, "Read from the file"),
     el("dl", { class: "facts" }, facts.flatMap(([k, v]) => [el("dt", {}, k), el("dd", {}, v)])),
+    ...assumed,
     rest,
   );
 }

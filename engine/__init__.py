@@ -23,9 +23,9 @@ Layout (each subpackage has its own ``__all__``; the names below are re-exported
 - :mod:`engine.mechanics`: screw theory and the generic Davies statics (knows nothing of vehicles);
 - :mod:`engine.models`: the model registry, spring laws, axle groups, the 2D and 3D models, the closed forms, load
   stepping and the SRT entry points;
-- :mod:`engine.vehicle`: the vehicle record, the presets, the component library; :mod:`engine.vehicle.builder`
-  (a vehicle from what can be measured, :func:`~engine.vehicle.builder.build_vehicle`; a whole combination from
-  what can be measured of each unit, :func:`~engine.vehicle.builder.build_combination`);
+- :mod:`engine.vehicle`: the vehicle record, the presets, the component library; :mod:`engine.builder`
+  (a vehicle from what can be measured, :func:`~engine.builder.build_vehicle`; a whole combination from
+  what can be measured of each unit, :func:`~engine.builder.build_combination`);
 - :mod:`engine.road`: Eqs. 9.1-9.3, the design standards, superelevation, SRT targets, inverse limits, curve and
   alignment assessment;
 - :mod:`engine.route`: geodesy, the noise model, circle and line fits, curve detection of surveyed routes;

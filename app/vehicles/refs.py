@@ -4,9 +4,9 @@ A computation's ``vehicle`` (and the alignment's ``vehicles`` or ``fleet``) may 
 
 * a preset id (``table16-btrain``): public; the service expands it itself;
 * a full record: used as it is;
-* ``{"spec": {...}}``: built into a record by :func:`engine.vehicle.builder.build_vehicle`;
+* ``{"spec": {...}}``: built into a record by :func:`engine.builder.build_vehicle`;
 * ``{"combination": {...}}``: a combination record, validated;
-* ``{"combination_spec": {...}}``: built into a combination by :func:`engine.vehicle.builder.build_combination`;
+* ``{"combination_spec": {...}}``: built into a combination by :func:`engine.builder.build_combination`;
 * a saved vehicle's id (``veh_...``) or, in a batch, a fleet's id (``flt_...``): read from the catalog with the
   caller's bearer key (another key's or a deleted id is a 404 naming it), then as above.
 

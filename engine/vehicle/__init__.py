@@ -1,4 +1,4 @@
-"""Vehicles: the parameter record, the thesis presets, the component library and the builder.
+"""Vehicles: the parameter record, the thesis presets and the component library.
 
 - :mod:`~engine.vehicle.record`: :class:`Vehicle` (every field in :data:`FIELD_DOCS` with unit, symbol, bounds)
   and its validation;
@@ -7,11 +7,10 @@
 - :mod:`~engine.vehicle.plausibility`: the plausible range of every measurable input, and the likely unit slip;
 - :mod:`~engine.vehicle.combination`: combinations (units, axle groups, couplings) and their static loads;
 - :mod:`~engine.vehicle.roll_components`: suspensions in roll, tyres by size and fifth wheels, with sources;
-- :mod:`~engine.vehicle.combination_presets`: the combination presets and the source of every value;
-- :mod:`~engine.vehicle.builder` (imported on its own: it builds on the models): a vehicle from what can be
-  measured -> the record and its derivation (:func:`~engine.vehicle.builder.build_vehicle`); a combination, each
-  unit from what can be measured -> the whole-combination record, every component value with its source
-  (:class:`~engine.vehicle.builder.CombinationSpec`, :func:`~engine.vehicle.builder.build_combination`).
+- :mod:`~engine.vehicle.combination_presets`: the combination presets and the source of every value.
+
+The builder (a vehicle from what can be measured) is :mod:`engine.builder`, a storey above: it builds on the
+models.
 """
 
 from .combination import (

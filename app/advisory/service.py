@@ -21,12 +21,9 @@ from app.compute.resolved import Resolved, ResolvedSrt
 from app.compute.results import Computed, cached
 from app.srt.service import resolve_case, resolve_srt, solve
 from app.vehicles.refs import resolve_vehicle
-from engine import ENGINE_VERSION
-from engine.case import Road
-from engine.errors import InvalidInput
-from engine.road import advisory as adv
-from engine.road import max_curve_speed_kmh, side_friction_speed
-from engine.road.profile import check_deceleration
+from engine import ENGINE_VERSION, InvalidInput, Road
+from engine import road as adv
+from engine.road import check_deceleration, max_curve_speed_kmh, side_friction_speed
 from engine.vehicle import FIELD_DOCS
 
 OPERATION = "advisory-speed"

@@ -19,9 +19,8 @@ from pydantic import ConfigDict, Field, create_model
 
 from app.http.schemas import InputModel, OutputModel, describe, json_int
 from engine import builder as eb
-from engine.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
-from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
-from engine.vehicle.plausibility import RANGES
+from engine.builder import SPEC_RANGES, SPEC_ZERO_ALLOWED
+from engine.vehicle import FIELD_DOCS, RANGES, SUSPENSIONS, TYRES
 
 #: thesis symbols a spec field's description may start with ("kLs, vertical rate ...")
 _SYMBOLS = {d.symbol for d in FIELD_DOCS.values()} | {"kLs", "kT", "lr", "ls", "b", "kf", "lf", "b1", "k_theta"}

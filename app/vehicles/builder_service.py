@@ -26,7 +26,7 @@ from app.vehicles.builder_schemas import (
     TyreOut,
 )
 from app.vehicles.payload_schemas import PayloadTableRequest
-from engine import ENGINE_VERSION
+from engine import ENGINE_VERSION, InvalidInput
 from engine.builder import (
     BuiltVehicle,
     CombinationSpec,
@@ -35,7 +35,6 @@ from engine.builder import (
     build_vehicle,
     payload_table,
 )
-from engine.errors import InvalidInput
 from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
 
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")

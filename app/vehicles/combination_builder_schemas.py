@@ -17,7 +17,7 @@ from pydantic import ConfigDict, Field
 from app.http.schemas import InputModel, OutputModel, describe
 from app.vehicles import builder_schemas as bs
 from app.vehicles.builder_schemas import DerivationOut, MassOut
-from engine.builder import combination as ec
+from engine import builder as ec
 from engine.vehicle import FIFTH_WHEELS, SUSPENSIONS_IN_ROLL, UNIT_KINDS
 
 bs._CHOICES.update(

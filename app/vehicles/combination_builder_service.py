@@ -16,8 +16,8 @@ from app.compute.resolved import ResolvedBuild
 from app.compute.results import Computed, cached
 from app.vehicles.builder_service import at_field
 from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
+from engine import InvalidInput
 from engine.builder import BuiltCombination, CombinationSpec, build_combination
-from engine.errors import InvalidInput
 from engine.vehicle import Combination, validate_combination
 
 

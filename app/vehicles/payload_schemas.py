@@ -18,7 +18,7 @@ from app.http.schemas import (
 from app.vehicles.builder_schemas import EXAMPLE_SPEC, MAX_PAYLOADS, VehicleSpecIn
 from app.vehicles.combination_builder_schemas import CombinationSpecIn
 from engine import builder as eb
-from engine.builder import combination as ec
+from engine import builder as ec
 
 
 class PayloadTableRequest(InputModel):

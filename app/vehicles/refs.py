@@ -36,16 +36,16 @@ from app.vehicles.builder_service import build_spec
 from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_builder_service import build_combination_spec, combination_of
 from app.vehicles.combination_schemas import CombinationRef
-from engine.errors import UnknownPreset
+from engine import UnknownPreset
 from engine.vehicle import (
     COMBINATIONS,
     PRESETS,
     Combination,
     Vehicle,
+    check_record_plausible,
     get_combination,
     get_preset,
 )
-from engine.vehicle.plausibility import check_record_plausible
 
 
 @dataclass(frozen=True)

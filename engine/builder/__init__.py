@@ -31,6 +31,70 @@ References
 .. [3] Centroid of a circular segment, ybar = 4 R sin^3(theta/2) / (3 (theta - sin theta)) from the centre: the
    sector (area R^2 theta/2, centroid 4 R sin(theta/2) / (3 theta) from the centre; Wolfram MathWorld, "Circular
    Sector", after Gearhart and Schulz, 1990) minus its triangle (area R^2 sin(theta)/2, centroid 2/3 R cos(theta/2)).
+
+Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
+module path for the package and its tests):
+
+:mod:`~engine.builder.build`: The build: a spec -> the record, every field with how it was obtained
+
+- ``build_vehicle``: The engine's vehicle record for a measurable spec, with the derivation of every field
+
+:mod:`~engine.builder.combination`: The combination builder: every unit of a combination from measurable data -> the
+roll model's ``Combination``, every component value with its source
+
+- ``build_combination``: The whole-combination roll model's record for a measurable spec, every component value with its
+  source
+- ``BuiltCombination``: The combination record, every component value with its derivation, each unit's masses and the
+  static loads
+- ``SPEC_COUPLING_KINDS``: the coupling kinds a spec may name: the record's kinds, and ``ball`` (an A-dolly's ball
+  coupling: a pintle)
+
+:mod:`~engine.builder.combination_spec`: The combination builder's input (``build_combination``): a combination
+described by its units' parts (tare, payloads, axle groups with catalogue tyres and suspensions, couplings), as the
+API's ...
+
+- ``CombinationSpec``: A combination in measurable terms: units front to rear and one coupling between each two
+- ``CouplingSpec``: The coupling between a unit (towing) and the next one (towed)
+- ``RollSuspensionSpec``: The suspension of an axle group in roll, per axle: a library type and/or explicit data
+  (explicit values win)
+- ``RollTyreSpec``: The tyres of an axle group, for the roll model: a size and/or explicit data (explicit values win)
+- ``UnitGroupSpec``: One axle group of a unit (load-sharing axles under one suspension)
+- ``UnitSpec``: One unit in measurable terms
+
+:mod:`~engine.builder.payload_table`: The payload table: the largest payload by load height (and load height by payload)
+that meets a target
+
+- ``payload_table``: Largest payload mass for each load height and largest load height for each payload mass meeting a
+  target
+- ``PayloadTable``: TERNZ's table of acceptable payload mass / load height pairs, solved with the 3D model
+
+:mod:`~engine.builder.plausible`: Plausibility of a builder spec's measurable inputs, checked field by field before
+anything is derived
+
+- ``SPEC_RANGES``: (builder dataclass, field) -> the key of ``RANGES`` the builders judge it by: what
+  ``check_spec_plausible``, ``check_payloads_plausible`` and the combination builder check, as data, for the ...
+- ``SPEC_ZERO_ALLOWED``: spec fields whose 0 is taken (and means none) although the rest of the range starts above it: a
+  payload of 0 kg is no payload (what the payload table's first row builds); any other mass under the ...
+
+:mod:`~engine.builder.spec`: The builder's inputs (``VehicleSpec`` and its parts) and its result records
+
+- ``AxleGroupSpec``: One axle group
+- ``BuiltVehicle``: The record, the derivation of every field, the masses behind the CG and notes on what is not
+  represented
+- ``DeckSpec``: The load space
+- ``FrontUnitSpec``: Front-unit and chassis data; every value defaults as documented in ``build_vehicle``
+- ``G_M_PER_S2``: gravitational acceleration used for W = m g [m/s^2]
+- ``LOAD_DISTRIBUTIONS``: height of a payload's CG above the deck as a fraction of the load thickness, per load category
+  [2]
+- ``METHODS``: how a record field's value was obtained: given, computed, library or default
+- ``PayloadSpec``: One payload: its mass, how high it sits (one of three ways) and where along the unit
+- ``SuspensionSpec``: Suspension of an axle group: a library ``type`` and/or explicit data (explicit values win)
+- ``TANK_SHAPES``: the tank cross-sections a liquid payload may have
+- ``TankSpec``: A liquid payload in a tank of circular or elliptical cross-section (constant along its length)
+- ``TareSpec``: The unit's unladen mass with its CG
+- ``TyreSpec``: Tyres of an axle group: a library ``id`` and/or explicit data (explicit values win)
+- ``UNIT_TYPES``: the unit types a single-unit spec may describe
+- ``VehicleSpec``: A vehicle in measurable terms (see the module docstring)
 """
 
 from .build import (
@@ -39,57 +103,40 @@ from .build import (
 from .combination import (
     SPEC_COUPLING_KINDS,
     BuiltCombination,
-    BuiltUnit,
+    build_combination,
+)
+from .combination_spec import (
     CombinationSpec,
     CouplingSpec,
-    GroupLoad,
     RollSuspensionSpec,
     RollTyreSpec,
     UnitGroupSpec,
     UnitSpec,
-    build_combination,
-)
-from .groups import (
-    ResolvedGroup,
-    check_width,
-    component_fields,
-    resolve_group,
 )
 from .payload_table import (
-    PayloadLimit,
-    PayloadRow,
     PayloadTable,
     payload_table,
 )
-from .payloads import (
-    payload_item,
-    sloped_load_centroid,
-    tank_liquid_cg_height_m,
-    tare_item,
+from .plausible import (
+    SPEC_RANGES,
+    SPEC_ZERO_ALLOWED,
 )
 from .spec import (
     G_M_PER_S2,
     LOAD_DISTRIBUTIONS,
     METHODS,
     TANK_SHAPES,
-    THESIS,
-    TRAILER_TYPES,
     UNIT_TYPES,
     AxleGroupSpec,
     BuiltVehicle,
     DeckSpec,
-    FieldDerivation,
     FrontUnitSpec,
-    MassItem,
     PayloadSpec,
     SuspensionSpec,
     TankSpec,
     TareSpec,
     TyreSpec,
     VehicleSpec,
-    check_choice,
-    check_count,
-    check_number,
 )
 
 __all__ = [
@@ -97,26 +144,19 @@ __all__ = [
     "LOAD_DISTRIBUTIONS",
     "METHODS",
     "SPEC_COUPLING_KINDS",
+    "SPEC_RANGES",
+    "SPEC_ZERO_ALLOWED",
     "TANK_SHAPES",
-    "THESIS",
-    "TRAILER_TYPES",
     "UNIT_TYPES",
     "AxleGroupSpec",
     "BuiltCombination",
-    "BuiltUnit",
     "BuiltVehicle",
     "CombinationSpec",
     "CouplingSpec",
     "DeckSpec",
-    "FieldDerivation",
     "FrontUnitSpec",
-    "GroupLoad",
-    "MassItem",
-    "PayloadLimit",
-    "PayloadRow",
     "PayloadSpec",
     "PayloadTable",
-    "ResolvedGroup",
     "RollSuspensionSpec",
     "RollTyreSpec",
     "SuspensionSpec",
@@ -128,15 +168,5 @@ __all__ = [
     "VehicleSpec",
     "build_combination",
     "build_vehicle",
-    "check_choice",
-    "check_count",
-    "check_number",
-    "check_width",
-    "component_fields",
-    "payload_item",
     "payload_table",
-    "resolve_group",
-    "sloped_load_centroid",
-    "tank_liquid_cg_height_m",
-    "tare_item",
 ]

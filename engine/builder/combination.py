@@ -22,7 +22,7 @@ per coupling: a fifth wheel's roll stiffness and lash from the library (:func:`e
 as given; a pintle (drawbar) or an A-dolly's ball coupling passes no roll moment (the record's ``pintle``);
 
 per unit: the tare and payload masses and CGs exactly as the single-unit builder computes them
-(:func:`~engine.builder.tare_item`, :func:`~engine.builder.payload_item`), composited as the
+(:func:`~engine.builder.payloads.tare_item`, :func:`~engine.builder.payloads.payload_item`), composited as the
 single-unit builder composites them, and the **sprung** mass and CG the roll model takes: the tare includes the
 axles (as a weighbridge weighs it), so the axles' unsprung masses are taken out at their CGs,
 ``m_s = sum(m) - n m_u``, ``z_s = (sum(m z) - n m_u z_u) / m_s`` (as the presets derive it from a thesis record,

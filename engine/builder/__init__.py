@@ -35,12 +35,12 @@ References
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-:mod:`~engine.builder.build`: The build: a spec -> the record, every field with how it was obtained
+From :mod:`~engine.builder.build`, the build: a spec -> the record, every field with how it was obtained:
 
 - ``build_vehicle``: The engine's vehicle record for a measurable spec, with the derivation of every field
 
-:mod:`~engine.builder.combination`: The combination builder: every unit of a combination from measurable data -> the
-roll model's ``Combination``, every component value with its source
+From :mod:`~engine.builder.combination`, the combination builder: every unit of a combination from measurable data ->
+the roll model's ``Combination``, every component value with its source:
 
 - ``build_combination``: The whole-combination roll model's record for a measurable spec, every component value with its
   source
@@ -49,9 +49,9 @@ roll model's ``Combination``, every component value with its source
 - ``SPEC_COUPLING_KINDS``: the coupling kinds a spec may name: the record's kinds, and ``ball`` (an A-dolly's ball
   coupling: a pintle)
 
-:mod:`~engine.builder.combination_spec`: The combination builder's input (``build_combination``): a combination
+From :mod:`~engine.builder.combination_spec`, the combination builder's input (``build_combination``): a combination
 described by its units' parts (tare, payloads, axle groups with catalogue tyres and suspensions, couplings), as the
-API's ...
+API's ...:
 
 - ``CombinationSpec``: A combination in measurable terms: units front to rear and one coupling between each two
 - ``CouplingSpec``: The coupling between a unit (towing) and the next one (towed)
@@ -61,22 +61,22 @@ API's ...
 - ``UnitGroupSpec``: One axle group of a unit (load-sharing axles under one suspension)
 - ``UnitSpec``: One unit in measurable terms
 
-:mod:`~engine.builder.payload_table`: The payload table: the largest payload by load height (and load height by payload)
-that meets a target
+From :mod:`~engine.builder.payload_table`, the payload table: the largest payload by load height (and load height by
+payload) that meets a target:
 
 - ``payload_table``: Largest payload mass for each load height and largest load height for each payload mass meeting a
   target
 - ``PayloadTable``: TERNZ's table of acceptable payload mass / load height pairs, solved with the 3D model
 
-:mod:`~engine.builder.plausible`: Plausibility of a builder spec's measurable inputs, checked field by field before
-anything is derived
+From :mod:`~engine.builder.plausible`, plausibility of a builder spec's measurable inputs, checked field by field before
+anything is derived:
 
 - ``SPEC_RANGES``: (builder dataclass, field) -> the key of ``RANGES`` the builders judge it by: what
   ``check_spec_plausible``, ``check_payloads_plausible`` and the combination builder check, as data, for the ...
 - ``SPEC_ZERO_ALLOWED``: spec fields whose 0 is taken (and means none) although the rest of the range starts above it: a
   payload of 0 kg is no payload (what the payload table's first row builds); any other mass under the ...
 
-:mod:`~engine.builder.spec`: The builder's inputs (``VehicleSpec`` and its parts) and its result records
+From :mod:`~engine.builder.spec`, the builder's inputs (``VehicleSpec`` and its parts) and its result records:
 
 - ``AxleGroupSpec``: One axle group
 - ``BuiltVehicle``: The record, the derivation of every field, the masses behind the CG and notes on what is not

@@ -23,14 +23,14 @@ screening, not a certification.
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-:mod:`~engine.dynamics.lowspeed`: The low-speed 90 degree turn: kinematic (no slip) paths of every unit, swept path,
-tail swing, frontal swing
+From :mod:`~engine.dynamics.lowspeed`, the low-speed 90 degree turn: kinematic (no slip) paths of every unit, swept
+path, tail swing, frontal swing:
 
 - ``low_speed_turn``: The 90 degree turn (module docstring)
 - ``OUTER_RADIUS_M``: the outer radius of the low-speed 90 degree turn [m]
 
-:mod:`~engine.dynamics.manoeuvres`: Manoeuvres and measures: lane change, frequency response, pulse steer, stability
-against speed, steady turn
+From :mod:`~engine.dynamics.manoeuvres`, manoeuvres and measures: lane change, frequency response, pulse steer,
+stability against speed, steady turn:
 
 - ``lane_change``: The single lane change (module docstring)
 - ``pulse_steer``: Yaw damping after a steer pulse (a half sine of ``pulse_s``; its shape unverified against the rules)
@@ -42,14 +42,14 @@ against speed, steady turn
 - ``worst_frequency``: (frequency [Hz], RA) of the largest RA in ``band``: a 60-point logarithmic scan refined by a
   bounded search
 
-:mod:`~engine.dynamics.model`: The linear yaw-roll model of a combination: a constrained multibody assembly, built once
-per vehicle
+From :mod:`~engine.dynamics.model`, the linear yaw-roll model of a combination: a constrained multibody assembly, built
+once per vehicle:
 
 - ``build``: Assemble the equations of ``c`` (validated) with its given or estimated dynamic data (see the module)
 - ``YawRollModel``: The assembled, condensed equations (SI: kg, N, m, rad) and the maps to every output
 
-:mod:`~engine.dynamics.parameters`: What the yaw-roll model needs beyond the combination description, and how it is
-estimated where not given
+From :mod:`~engine.dynamics.parameters`, what the yaw-roll model needs beyond the combination description, and how it is
+estimated where not given:
 
 - ``as_dict``: The parameters used, plain JSON types: units and groups with value, unit and source (for the answers)
 - ``DynamicsData``: What the caller gives beyond the description
@@ -58,8 +58,8 @@ estimated where not given
 - ``UNIT_DATA_DOCS``: every optional per-unit field
 - ``UnitData``: Optional per-unit data (None: estimated)
 
-:mod:`~engine.dynamics.pbs`: Performance-Based Standards: the standards this model can judge, with the limits' sources,
-as indicative screening
+From :mod:`~engine.dynamics.pbs`, Performance-Based Standards: the standards this model can judge, with the limits'
+sources, as indicative screening:
 
 - ``LANE_CHANGE_AMPLITUDE_G``: the lane change's lateral acceleration amplitude by default [g]
 - ``LANE_CHANGE_SPEED_KMH``: the lane change's speed by default [km/h]

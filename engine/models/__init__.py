@@ -16,24 +16,24 @@
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-:mod:`~engine.models.combination`: The whole-combination static roll model: every unit, every axle group, every
-coupling, solved step by step
+From :mod:`~engine.models.combination`, the whole-combination static roll model: every unit, every axle group, every
+coupling, solved step by step:
 
 - ``solve_combination``: Every roll-coupled unit's SRT and state, the governing one, and LLTf/LLTr of the last unit
 
-:mod:`~engine.models.combination_reference`: The reference solution of the whole-combination roll model: the equilibrium
-of every roll degree of freedom as a general nonlinear system, solved with scipy
+From :mod:`~engine.models.combination_reference`, the reference solution of the whole-combination roll model: the
+equilibrium of every roll degree of freedom as a general nonlinear system, solved with scipy:
 
 - ``reference_srt``: The largest ay of each roll-coupled unit, from the nonlinear equilibrium (see the module docstring)
   [g]
 
-:mod:`~engine.models.groups`: Axle-group sub-mechanisms: tires (Sec. 4.1), leaf-spring suspension (Sec. 4.2), fifth
-wheel (Sec. 4.3)
+From :mod:`~engine.models.groups`, axle-group sub-mechanisms: tires (Sec. 4.1), leaf-spring suspension (Sec. 4.2), fifth
+wheel (Sec. 4.3):
 
 - ``group_statics``: All in-plane forces of a group whose top link carries force (fy, fz) at ``g.top`` and moment mx
 
-:mod:`~engine.models.registry`: The model registry: one entry per SRT model, used by every place that needs to know the
-models
+From :mod:`~engine.models.registry`, the model registry: one entry per SRT model, used by every place that needs to know
+the models:
 
 - ``get_model``: The registered model with this id
 - ``Model``: One SRT model (see the module docstring)
@@ -42,13 +42,13 @@ models
   support (the towing unit's group under the fifth wheel) acts through LLTf/LLTr computed by the ...
 - ``supported_models``: The ids of the models whose required fields the record has (a preset's model list)
 
-:mod:`~engine.models.stepping`: Quasi-static load stepping to the rollover limit with the developed mechanisms (3D of
-Ch. 6, 2D of Ch. 5)
+From :mod:`~engine.models.stepping`, quasi-static load stepping to the rollover limit with the developed mechanisms (3D
+of Ch. 6, 2D of Ch. 5):
 
 - ``stage_model``: The 3D model of one stage of the case's vehicle (the case's own stage by default), calibrated
 
-:mod:`~engine.models.threshold`: The SRT entry points: one case (``rollover_threshold``), a list of cases and a grid
-(``sweep``)
+From :mod:`~engine.models.threshold`, the SRT entry points: one case (``rollover_threshold``), a list of cases and a
+grid (``sweep``):
 
 - ``BATCH_ROWS``: rows of one batch solve: larger batches are split into blocks of this many rows, in the rows' order
   (so the same request always gives the same bits)

@@ -13,8 +13,8 @@
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-:mod:`~engine.road.advisory`: Advisory speeds on horizontal curves: each method's speed, the speed shown on the plaque,
-the sign treatment and the truck rollover warning (W1-13)
+From :mod:`~engine.road.advisory`, advisory speeds on horizontal curves: each method's speed, the speed shown on the
+plaque, the sign treatment and the truck rollover warning (W1-13):
 
 - ``advise_alignment``: Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one
   alignment and one vehicle: the function the alignment and route answers call per vehicle
@@ -41,8 +41,8 @@ the sign treatment and the truck rollover warning (W1-13)
 - ``TREATMENTS``: the devices of each sign treatment, by code (0: none)
 - ``W1_13_RULE``: the truck rollover warning (W1-13) rule, this service's, with its margin
 
-:mod:`~engine.road.curves`: Curve and alignment assessment: the safe speed on every horizontal curve (Eq. 9.1 against
-side friction)
+From :mod:`~engine.road.curves`, curve and alignment assessment: the safe speed on every horizontal curve (Eq. 9.1
+against side friction):
 
 - ``AlignmentAssessment``: every curve of an alignment assessed, and the SRT solves it took
 - ``AlignmentColumns``: The assessment of every curve of an alignment for one vehicle, as arrays (one entry per curve)
@@ -59,7 +59,7 @@ side friction)
 - ``superelevation_used``: The superelevation each curve is assessed on by ``assess_alignment``: its own, or (nan) the
   design standard's at its posted speed and ``max_superelevation_percent``, without solving any SRT
 
-:mod:`~engine.road.formulas`: Road-design formulas of Ch. 9: maximum curve speed and minimum curve radius
+From :mod:`~engine.road.formulas`, road-design formulas of Ch. 9: maximum curve speed and minimum curve radius:
 
 - ``aashto_min_radius_m``: deprecated name of ``side_friction_min_radius_m`` (Eq. 9.2 is not only AASHTO's); kept for
   one version
@@ -70,8 +70,8 @@ side friction)
 - ``side_friction_min_radius_m``: Minimum radius by the simplified curve formula R = V^2 / (127 (0.01 e + f)) [m] (Eq.
   9.2)
 
-:mod:`~engine.road.geometry`: An alignment's geometry as road-design files describe it, in SI units: the horizontal
-elements (lines, circular arcs, spirals), stations, the vertical profile and the superelevation
+From :mod:`~engine.road.geometry`, an alignment's geometry as road-design files describe it, in SI units: the horizontal
+elements (lines, circular arcs, spirals), stations, the vertical profile and the superelevation:
 
 - ``AlignmentGeometry``: One alignment as read from a file, in SI units (see the module's conventions)
 - ``bend_columns``: The alignment's rows, in order of distance (see ``Bend``), as arrays
@@ -101,8 +101,8 @@ elements (lines, circular arcs, spirals), stations, the vertical profile and the
 - ``VerticalSegment``: One piece of the vertical profile over ``[start_distance_m, start_distance_m + length_m]``
   (horizontal length): a constant grade, a parabola (the grade changes linearly from ``start_grade`` to ...
 
-:mod:`~engine.road.limits`: Inverse limits: the largest (smallest) value of one parameter at which the SRT still meets a
-target
+From :mod:`~engine.road.limits`, inverse limits: the largest (smallest) value of one parameter at which the SRT still
+meets a target:
 
 - ``Limit``: one parameter's inverse limit at a target
 - ``LIMIT_PARAMETERS``: the parameters an inverse limit can be found for, each with its direction
@@ -112,14 +112,14 @@ target
   bracketed)
 - ``with_parameter``: The case with one ``LIMIT_PARAMETERS`` entry set to ``value`` (a vehicle field or a load input)
 
-:mod:`~engine.road.min_radius`: Minimum curve radius
+From :mod:`~engine.road.min_radius`, minimum curve radius:
 
 - ``min_radius``: Both minimum radii (Eqs. 9.2 and 9.3) and the governing (larger) one
 - ``min_radius_m``: The standard's minimum radius for a design speed and maximum superelevation
 - ``MinRadius``: Both minimum radii of a design speed and superelevation, and which governs
 
-:mod:`~engine.road.profile`: The speed profile of a truck along a sequence of curves: desired speed on the tangents,
-braking into each curve at a stated rate, accelerating out of it within the truck's power on the grade, ...
+From :mod:`~engine.road.profile`, the speed profile of a truck along a sequence of curves: desired speed on the
+tangents, braking into each curve at a stated rate, accelerating out of it within the truck's power on the grade, ...:
 
 - ``check_deceleration``: Refuse a deceleration a loaded truck cannot brake at (> NCHRP 774's 15 ft/s^2) or <= 0
 - ``DECELERATION_MPS2``: the deceleration into a curve, MUTCD 11e Table 2C-3 basis (as transcribed; unverified) [m/s^2]
@@ -127,8 +127,8 @@ braking into each curve at a stated rate, accelerating out of it within the truc
   taken to brake in a curve
 - ``REACTION_TIME_S``: the perception-reaction time before braking for a curve [s]
 
-:mod:`~engine.road.standards`: Named road-design standards: side friction, minimum radius and superelevation
-distribution
+From :mod:`~engine.road.standards`, named road-design standards: side friction, minimum radius and superelevation
+distribution:
 
 - ``check_design_speeds``: The design speeds as an array [km/h]
 - ``DEFAULT_DESIGN_STANDARD``: the design standard used when none is named
@@ -140,12 +140,13 @@ distribution
   array
 - ``STANDARDS``: the known standards by id (``thesis-table21`` at its default ``low`` bound)
 
-:mod:`~engine.road.superelevation`: Superelevation distribution of a design standard
+From :mod:`~engine.road.superelevation`, superelevation distribution of a design standard:
 
 - ``superelevation_percent``: Design superelevation of a curve by the standard's distribution method
 - ``superelevation_table``: Vectorised ``superelevation_percent`` over an array of radii [m] (all at least R_min)
 
-:mod:`~engine.road.targets`: Road-design and compliance tools built on the SRT (the thesis's Ch. 9.6 and 11 proposals)
+From :mod:`~engine.road.targets`, road-design and compliance tools built on the SRT (the thesis's Ch. 9.6 and 11
+proposals):
 
 - ``check_targets``: Whether ``srt_g`` meets each target (SRT >= target) and the margin SRT - target [g]
 - ``DEFAULT_TARGETS``: the SRT targets checked by default [g]

@@ -8,14 +8,14 @@
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-:mod:`~engine.route.detect`: Horizontal curves of a route from its geometry: a polyline in a local metric frame ->
-tangents and curves
+From :mod:`~engine.route.detect`, horizontal curves of a route from its geometry: a polyline in a local metric frame ->
+tangents and curves:
 
 - ``find_curves``: Tangents and horizontal curves of a polyline (see the module docstring for the method)
 - ``HorizontalCurve``: One horizontal curve of a route
 
-:mod:`~engine.route.geodesy`: WGS84 longitude/latitude of a route to a local metric frame in which its curves keep their
-size
+From :mod:`~engine.route.geodesy`, WGS84 longitude/latitude of a route to a local metric frame in which its curves keep
+their size:
 
 - ``local_frame``: Develop a WGS84 route into a plane frame that keeps its segment lengths and turning angles
 - ``segment_lengths_m``: Horizontal length of each segment of a polyline on the WGS84 surface, shape (n - 1,) [m]

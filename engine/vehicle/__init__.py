@@ -15,8 +15,8 @@ models.
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-:mod:`~engine.vehicle.combination`: A combination vehicle as a chain of units: axle groups, sprung masses and couplings,
-and its static loads
+From :mod:`~engine.vehicle.combination`, a combination vehicle as a chain of units: axle groups, sprung masses and
+couplings, and its static loads:
 
 - ``AxleGroup``: One axle group of a unit (the load-sharing axles under one suspension), with per-axle values
 - ``check_combination_load``: Refuse a load case that puts a load-carrying unit's CG outside its track, below its roll
@@ -38,16 +38,16 @@ and its static loads
 - ``UnitLoad``: The load case applied to one load-carrying unit
 - ``validate_combination``: Refuse a combination that no real vehicle can be, naming the unit and the field
 
-:mod:`~engine.vehicle.combination_presets`: Combination presets: the thesis's trailers behind sourced towing units, and
-two doubles from sourced components
+From :mod:`~engine.vehicle.combination_presets`, combination presets: the thesis's trailers behind sourced towing units,
+and two doubles from sourced components:
 
 - ``COMBINATION_INFO``: each combination preset's title and description
 - ``COMBINATION_SOURCES``: where each value of a preset comes from: preset id -> {field path -> source}
 - ``COMBINATIONS``: the combination presets by id
 - ``get_combination``: The combination preset with this id
 
-:mod:`~engine.vehicle.components`: Tyre and suspension library: the component values the vehicle builder can look up,
-each with its source
+From :mod:`~engine.vehicle.components`, tyre and suspension library: the component values the vehicle builder can look
+up, each with its source:
 
 - ``get_suspension``: The library suspension ``suspension_id``
 - ``get_tyre``: The library tyre ``tyre_id``
@@ -61,8 +61,8 @@ each with its source
 - ``SUSPENSIONS``: the suspension library by id, each value with its source
 - ``TYRES``: the tyre library by id, each value with its source
 
-:mod:`~engine.vehicle.plausibility`: Plausibility of measurable inputs: the range a heavy vehicle's masses, heights,
-lengths and stiffnesses can take, and the unit slip that most likely explains a value outside it
+From :mod:`~engine.vehicle.plausibility`, plausibility of measurable inputs: the range a heavy vehicle's masses,
+heights, lengths and stiffnesses can take, and the unit slip that most likely explains a value outside it:
 
 - ``check_plausible``: ``value`` as a float if it is a finite number inside ``RANGES`` ``[quantity]``, else
   ``InvalidVehicle`` naming ``field`` and the likely unit slip
@@ -76,13 +76,13 @@ lengths and stiffnesses can take, and the unit slip that most likely explains a 
   another unit too (``RECORD_RANGES``), named ``where`` + the record field (``vehicle.weight_kn``)
 - ``unit_slip``: The first unit slip of ``slips`` that brings ``value`` into [minimum, maximum]
 
-:mod:`~engine.vehicle.presets`: The thesis presets: the vehicles of Tables 14, 15, 16, 22 and 23 as full records
+From :mod:`~engine.vehicle.presets`, the thesis presets: the vehicles of Tables 14, 15, 16, 22 and 23 as full records:
 
 - ``get_preset``: The preset vehicle with this id
 - ``PRESET_INFO``: each preset's title, table and description
 - ``PRESETS``: the thesis's vehicles (Tables 14, 15, 16, 22 and 23) by id
 
-:mod:`~engine.vehicle.record`: The vehicle parameter record and the thesis presets (Tables 14, 15, 16, 22 and 23)
+From :mod:`~engine.vehicle.record`, the vehicle parameter record and the thesis presets (Tables 14, 15, 16, 22 and 23):
 
 - ``cg_height_m``: Static CG height above the road h = lr + ls + l12 (+ d3) [m] (rigid-model h of Eq. 2.6)
 - ``FIELD_DOCS``: every record field's unit, symbol, bounds and meaning
@@ -92,8 +92,8 @@ lengths and stiffnesses can take, and the unit slip that most likely explains a 
 - ``validate_vehicle``: Refuse a record that no heavy vehicle can be, or that misses what a model needs, before solving
 - ``Vehicle``: One vehicle (the last unit of a combination, or a rigid truck)
 
-:mod:`~engine.vehicle.roll_components`: Component library of the whole-combination roll model: suspensions in roll,
-tyres by size, fifth wheels, units
+From :mod:`~engine.vehicle.roll_components`, component library of the whole-combination roll model: suspensions in roll,
+tyres by size, fifth wheels, units:
 
 - ``FIFTH_WHEELS``: the fifth-wheel library by id, each value with its source
 - ``get_fifth_wheel``: the fifth wheel with this id

@@ -159,7 +159,7 @@ async def compute_advisory_speed(cache: ResultCache, req: AdvisorySpeedRequest) 
             advisory_speed_mph=float(adv.displayed_in_units(shown, "us")) if req.units == "us" else None,
             units=req.units,
             increment=adv.SIGN_INCREMENTS[req.units],
-            governed_by=adv.GOVERNED_BY[int(cols.governed_by[0])],
+            governed_by=adv.ADVICE_GOVERNED_BY[int(cols.governed_by[0])],
             methods=methods,
             treatment=TreatmentOut(
                 devices=list(adv.TREATMENTS[code]) if code >= 0 else [],

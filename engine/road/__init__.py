@@ -16,6 +16,7 @@ module path for the package and its tests):
 From :mod:`~engine.road.advisory`, advisory speeds on horizontal curves: each method's speed, the speed shown on the
 plaque, the sign treatment and the truck rollover warning (W1-13):
 
+- ``ADVICE_GOVERNED_BY``: the codes of an advisory speed's governed_by: the method that set it
 - ``advise_alignment``: Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one
   alignment and one vehicle: the function the alignment and route answers call per vehicle
 - ``advise_curves``: Advisory speed, treatment and W1-13 rule of every curve (arrays; the alignment answers call this)
@@ -26,7 +27,6 @@ plaque, the sign treatment and the truck rollover warning (W1-13):
 - ``DESIGN_METHOD_NOTE``: why the Design Method gives no speed (its model unread: unverified)
 - ``displayed_in_units``: A displayed speed [km/h] in the units of the plaque (mph for ``us``, km/h for ``metric``),
   rounded to the increment (removes the conversion's float noise)
-- ``GOVERNED_BY``: codes of ``governed_by``
 - ``kmh_to_mph``: a speed in km/h as mph
 - ``method_source``: (source, legacy, verified) of a method id of ``advise_curves``
 - ``MIN_DEFLECTION_DEG``: the smallest deflection that justifies curve signs or an advisory speed [deg] (TxDOT 0-5439,
@@ -54,6 +54,7 @@ against side friction):
 - ``Curve``: One horizontal curve. grade_percent is signed along the direction of travel (+ uphill); a superelevation of
   None is derived from the design standard's distribution (see ``assess_alignment``)
 - ``CurveAssessment``: one curve's SRT, safe speed and what governs it
+- ``GOVERNED_BY``: the codes of a curve assessment's governed_by: none, rollover, side friction
 - ``solve_bank_grade_pairs``: The SRT of ``case`` on each (superelevation, grade) pair (rows of ``pairs``) in one batch,
   and why a pair has none (``evaluate_arrays``); a pair's SRT does not depend on the others in the batch
 - ``superelevation_used``: The superelevation each curve is assessed on by ``assess_alignment``: its own, or (nan) the
@@ -155,10 +156,10 @@ proposals):
 """
 
 from .advisory import (
+    ADVICE_GOVERNED_BY,
     BALL_BANK_2009,
     BODY_ROLL_DEG_PER_G,
     DESIGN_METHOD_NOTE,
-    GOVERNED_BY,
     MIN_DEFLECTION_DEG,
     ROLLOVER_MARGIN_KMH,
     SIGN_INCREMENTS,
@@ -175,6 +176,7 @@ from .advisory import (
     rollover_warning,
 )
 from .curves import (
+    GOVERNED_BY,
     AlignmentAssessment,
     AlignmentColumns,
     Curve,
@@ -254,6 +256,7 @@ from .targets import (
 )
 
 __all__ = [
+    "ADVICE_GOVERNED_BY",
     "BALL_BANK_2009",
     "BODY_ROLL_DEG_PER_G",
     "DECELERATION_MPS2",

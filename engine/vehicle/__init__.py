@@ -15,7 +15,7 @@ models.
 Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
 module path for the package and its tests):
 
-From :mod:`~engine.vehicle.combination`, a combination vehicle as a chain of units: axle groups, sprung masses and
+From :mod:`~engine.vehicle.combination`, A combination vehicle as a chain of units: axle groups, sprung masses and
 couplings, and its static loads:
 
 - ``AxleGroup``: One axle group of a unit (the load-sharing axles under one suspension), with per-axle values

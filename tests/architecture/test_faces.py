@@ -11,11 +11,13 @@ A face is a package's ``__init__``. Three checks:
    from use, but each must be one of its own modules' names (``engine.case``, ``engine.errors``, ...) or a subpackage
    face's export, so that the top face is composed from the faces;
 3. app/, bench/, scripts/, examples/ and the docs' examples import the engine only through faces (an AST scan),
-   except the imports listed in :data:`INTERNALS`, each with its reason.
+   except the imports listed in :data:`INTERNALS`, each with its reason;
+4. no face exports a name that two of its package's modules define (the face would bind one of them).
 
 On the code before this change each failed: no face's docstring had an "Exports" list; ``engine.models`` exported
 130 names, ``TOL``, ``HALF_PI`` and ``ARRAY`` among the 110 nobody outside the package used; 91 of the 179 import
-statements of app/, bench/, scripts/ and examples/ reached below a face.
+statements of app/, bench/, scripts/ and examples/ reached below a face; ``engine.models`` exported ``solve`` (three
+modules define one), ``engine.road`` ``GOVERNED_BY`` (two).
 """
 
 from __future__ import annotations
@@ -123,6 +125,31 @@ def test_every_name_a_subpackage_face_exports_is_used_outside_its_package(face):
     used = uses()[face]
     unused = sorted(n for n in importlib.import_module(face).__all__ if not used.get(n))
     assert not unused, f"{face} exports names nothing outside its package uses (drop them from the face): {unused}"
+
+
+@pytest.mark.parametrize("face", [f for f in FACES if f != "engine"])
+def test_no_face_exports_a_name_two_of_its_modules_define(face):
+    """A name two modules of a package define (each its own ``GOVERNED_BY``) is ambiguous on the face: the face binds
+    one, and a caller that took the other from its module would silently get the wrong one through the face."""
+    package = ROOT / face.replace(".", "/")
+    homes: dict[str, list[str]] = defaultdict(list)
+    for path in sorted(package.glob("*.py")):
+        if path.name == "__init__.py":
+            continue
+        for node in ast.parse(path.read_text(encoding="utf-8")).body:
+            if isinstance(node, ast.FunctionDef | ast.ClassDef):
+                names = [node.name]
+            elif isinstance(node, ast.Assign):
+                names = [t.id for t in node.targets if isinstance(t, ast.Name)]
+            elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+                names = [node.target.id]
+            else:
+                continue
+            for name in names:
+                homes[name].append(path.stem)
+    exported = importlib.import_module(face).__all__
+    twice = {n: homes[n] for n in exported if len(set(homes[n])) > 1}
+    assert not twice, f"{face} exports names defined in more than one of its modules: {twice}"
 
 
 #: the engine's own modules (not subpackages) whose names the top face re-exports

@@ -21,9 +21,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine.case import Case
-from engine.road.advisory import advise_alignment
-from engine.road.curves import assess_alignment
+from engine import Case
+from engine.road import advise_alignment, assess_alignment
 from engine.vehicle import PRESETS
 
 

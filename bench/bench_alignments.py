@@ -23,7 +23,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from engine.case import Case  # noqa: E402
+from engine import Case  # noqa: E402
 from engine.road import Curve, assess_curves  # noqa: E402
 from engine.vehicle import get_preset  # noqa: E402
 

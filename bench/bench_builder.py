@@ -21,9 +21,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from engine.builder import G_M_PER_S2, VehicleSpec, build_vehicle, payload_table
 from engine.models import rollover_threshold
 from engine.vehicle import PRESETS
-from engine.vehicle.builder import G_M_PER_S2, VehicleSpec, build_vehicle, payload_table
 
 EXAMPLE = {
     "unit_type": "semitrailer",

@@ -35,11 +35,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import numpy as np
 
 from engine import Case, get_preset, rollover_threshold
-from engine.models import combination, roll_tree
-from engine.models.combination import solve_combination
-from engine.models.combination_reference import reference_srt
-from engine.models.threshold import evaluate_arrays
-from engine.vehicle.combination_presets import COMBINATIONS
+from engine.models import combination, evaluate_arrays, reference_srt, roll_tree, solve_combination
+from engine.vehicle import COMBINATIONS
 
 
 def timeit(fn, repeat: int) -> list[float]:

@@ -36,12 +36,16 @@ if OPTS.blas_threads is not None:  # before numpy loads
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from engine import Case, rollover_threshold  # noqa: E402
-from engine.dynamics import build  # noqa: E402
-from engine.dynamics.lowspeed import low_speed_turn  # noqa: E402
-from engine.dynamics.manoeuvres import lane_change, pulse_steer, stability  # noqa: E402
-from engine.dynamics.pbs import screen  # noqa: E402
-from engine.models.combination import solve_combination  # noqa: E402
-from engine.vehicle.combination_presets import COMBINATIONS  # noqa: E402
+from engine.dynamics import (  # noqa: E402
+    build,
+    lane_change,
+    low_speed_turn,
+    pulse_steer,
+    screen,
+    stability,
+)
+from engine.models import solve_combination  # noqa: E402
+from engine.vehicle import COMBINATIONS  # noqa: E402
 
 
 def timed(fn, repeat: int) -> tuple[float, float]:

@@ -25,7 +25,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine.case import Case, Road
+from engine import Case, Road
 from engine.models import (
     BATCH_ROWS,
     MIN_ARRAY_CASES,

@@ -38,7 +38,7 @@ from app.formats.alignment_io import (  # noqa: E402
     read_landxml,
 )
 from bench.bench_alignments import as_landxml, make_curves  # noqa: E402
-from engine.errors import InvalidRoad  # noqa: E402
+from engine import InvalidRoad  # noqa: E402
 from engine.road import check_columns  # noqa: E402
 from scripts.docblock import markers, write_block  # noqa: E402
 

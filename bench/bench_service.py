@@ -345,7 +345,7 @@ def measure_cached(args) -> None:
 
 def engine_srt_rate(seconds: float = 3.0) -> float:
     """Distinct single solves per second of the engine in process (the bank angles the uncached run sends)."""
-    from engine.case import Case, Road
+    from engine import Case, Road
     from engine.models import rollover_threshold
     from engine.vehicle import get_preset
 

@@ -13,7 +13,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from engine.case import Case, LoadCase
+from engine import Case, LoadCase
 from engine.models import rollover_threshold, sweep
 from engine.road import max_curve_speed_kmh
 from engine.vehicle import PRESETS

@@ -169,7 +169,7 @@ def ifc_bytes() -> bytes:
     clothoids and arcs as the LandXML file, the +3.5 % grade as the profile, and the cross slope as a cant: -2 %
     (one-way crossfall, falling to the right) on the tangents, run off along the spirals to the full
     superelevation on the arcs (K1, right-hand: -7.5 %; K2, left-hand: +8 %)."""
-    from engine.road.geometry import AlignmentGeometry, CrossSlope, HorizontalElement, Profile, VerticalSegment
+    from engine.road import AlignmentGeometry, CrossSlope, HorizontalElement, Profile, VerticalSegment
     from tests.ifc_writer import write_ifc
 
     H = HorizontalElement

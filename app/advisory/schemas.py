@@ -9,13 +9,15 @@ from pydantic import ConfigDict, Field, model_validator
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, shape_error
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, VehicleRef
-from engine.road.advisory import (
+from engine.road import (
     BODY_ROLL_DEG_PER_G,
+    DECELERATION_MPS2,
+    MAX_TRUCK_DECELERATION_MPS2,
     MIN_DEFLECTION_DEG,
+    REACTION_TIME_S,
     ROLLOVER_MARGIN_KMH,
     SPEED_RANGE_KMH,
 )
-from engine.road.profile import DECELERATION_MPS2, MAX_TRUCK_DECELERATION_MPS2, REACTION_TIME_S
 
 MAX_VEHICLES = 10
 _LO, _HI = SPEED_RANGE_KMH

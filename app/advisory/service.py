@@ -21,12 +21,9 @@ from app.compute.resolved import Resolved, ResolvedSrt
 from app.compute.results import Computed, cached
 from app.srt.service import resolve_case, resolve_srt, solve
 from app.vehicles.refs import resolve_vehicle
-from engine import ENGINE_VERSION
-from engine.case import Road
-from engine.errors import InvalidInput
-from engine.road import advisory as adv
-from engine.road import max_curve_speed_kmh, side_friction_speed
-from engine.road.profile import check_deceleration
+from engine import ENGINE_VERSION, InvalidInput, Road
+from engine import road as adv
+from engine.road import check_deceleration, max_curve_speed_kmh, side_friction_speed
 from engine.vehicle import FIELD_DOCS
 
 OPERATION = "advisory-speed"
@@ -162,7 +159,7 @@ async def compute_advisory_speed(cache: ResultCache, req: AdvisorySpeedRequest) 
             advisory_speed_mph=float(adv.displayed_in_units(shown, "us")) if req.units == "us" else None,
             units=req.units,
             increment=adv.SIGN_INCREMENTS[req.units],
-            governed_by=adv.GOVERNED_BY[int(cols.governed_by[0])],
+            governed_by=adv.ADVICE_GOVERNED_BY[int(cols.governed_by[0])],
             methods=methods,
             treatment=TreatmentOut(
                 devices=list(adv.TREATMENTS[code]) if code >= 0 else [],

@@ -16,9 +16,8 @@ import numpy as np
 
 from app.compute.resolved import ResolvedAssessment
 from app.formats.alignment_io import CurveTable
-from engine.road import AlignmentColumns
-from engine.road.advisory import ROLLOVER_MARGIN_KMH as RULE_MARGIN_KMH
-from engine.road.advisory import SIGN_INCREMENTS, TREATMENT_SOURCE, TREATMENTS, W1_13_RULE, advise_alignment
+from engine.road import ROLLOVER_MARGIN_KMH as RULE_MARGIN_KMH
+from engine.road import SIGN_INCREMENTS, TREATMENT_SOURCE, TREATMENTS, W1_13_RULE, AlignmentColumns, advise_alignment
 
 #: the reason of a curve the truck cannot brake for: inf in the engine's required deceleration
 NO_ROOM = (

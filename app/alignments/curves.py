@@ -21,7 +21,7 @@ from pydantic import Field, TypeAdapter, ValidationError
 
 from app.alignments.schemas import CurveIn, as_a_job
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_REFUSED, MAX_CURVES, CurveTable
-from engine.domain import BOUNDS
+from engine import BOUNDS
 
 _REQUIRED = frozenset(("id", "radius_m"))  # the superelevation may be left out: it is then derived
 _FIELDS = frozenset(("id", "radius_m", "superelevation_percent", "grade_percent", "posted_speed_kmh"))

@@ -30,8 +30,7 @@ from app.formats.tables import (
 )
 from app.formats.texts import Texts
 from engine import ENGINE_VERSION
-from engine.road import GOVERNED_BY, AlignmentColumns
-from engine.road.advisory import TREATMENTS
+from engine.road import GOVERNED_BY, TREATMENTS, AlignmentColumns
 
 if TYPE_CHECKING:
     from app.compute.resolved import ResolvedAlignment, ResolvedAssessment

@@ -47,16 +47,15 @@ from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_targets
 from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
-from engine.case import Case, LoadCase
-from engine.errors import InvalidInput, RolloverError
+from engine import Case, InvalidInput, LoadCase, RolloverError
 from engine.models import rollover_threshold
 from engine.road import (
     AlignmentColumns,
     assess_alignment,
     bank_grade_pairs,
+    check_deceleration,
     superelevation_used,
 )
-from engine.road.profile import check_deceleration
 from engine.vehicle import Vehicle
 
 _PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curves while the rest is validated

@@ -70,10 +70,9 @@ from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_builder_service import build_combination_spec, combination_of
 from app.vehicles.combination_schemas import CombinationRef
 from app.vehicles.schemas import VehicleRecord
-from engine.errors import InvalidVehicle, MissingParameter
+from engine import InvalidVehicle, MissingParameter
 from engine.models import get_model
-from engine.vehicle import COMBINATIONS, PRESETS, Vehicle
-from engine.vehicle.plausibility import check_record_plausible
+from engine.vehicle import COMBINATIONS, PRESETS, Vehicle, check_record_plausible
 
 SAVED_VEHICLE_ID = re.compile(SAVED_VEHICLE_ID_PATTERN)
 FLEET_ID = re.compile(FLEET_ID_PATTERN)

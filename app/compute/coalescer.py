@@ -25,9 +25,8 @@ import time
 import weakref
 
 from app.metrics import SOLVE_BATCH_CASES, SOLVE_SECONDS
-from engine.case import Case
+from engine import Case, RolloverResult
 from engine.models import rollover_thresholds
-from engine.results import RolloverResult
 
 #: loop turns without a new waiting solve before a flush: a request read in one turn reaches this point in the next
 QUIET_TURNS = 2

@@ -32,8 +32,8 @@ from pydantic import ConfigDict, GetCoreSchemaHandler, TypeAdapter, ValidationEr
 from pydantic_core import core_schema
 
 from app.compute.cache import cache_key
-from engine.case import Case
-from engine.vehicle.builder import CombinationSpec, VehicleSpec
+from engine import Case
+from engine.builder import CombinationSpec, VehicleSpec
 
 #: what :meth:`Resolved.from_json_dict` accepts: exactly the fields, of their types (ints for floats, arrays for tuples)
 _STRICT = ConfigDict(extra="forbid", strict=True)

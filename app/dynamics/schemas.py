@@ -13,8 +13,13 @@ from pydantic import ConfigDict, Field, create_model
 
 from app.http.schemas import InputModel, OutputModel, describe
 from app.srt.schemas import VEHICLE_DESCRIPTION, VehicleRef
-from engine.dynamics.parameters import GROUP_DATA_DOCS, UNIT_DATA_DOCS
-from engine.dynamics.pbs import LANE_CHANGE_AMPLITUDE_G, LANE_CHANGE_SPEED_KMH, PULSE_STEER_SPEED_KMH
+from engine.dynamics import (
+    GROUP_DATA_DOCS,
+    LANE_CHANGE_AMPLITUDE_G,
+    LANE_CHANGE_SPEED_KMH,
+    PULSE_STEER_SPEED_KMH,
+    UNIT_DATA_DOCS,
+)
 
 RaDefinition = Literal["cg", "axle"]
 

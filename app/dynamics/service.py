@@ -20,25 +20,30 @@ from app.compute.results import Computed, cached
 from app.dynamics import plots
 from app.dynamics import schemas as s
 from app.vehicles.refs import resolve_vehicle
-from engine import ENGINE_VERSION
-from engine.dynamics import DynamicsData, GroupData, UnitData, build
-from engine.dynamics.lowspeed import OUTER_RADIUS_M, low_speed_turn
-from engine.dynamics.manoeuvres import (
+from engine import ENGINE_VERSION, InvalidVehicle
+from engine.dynamics import (
+    GROUP_DATA_DOCS,
+    OUTER_RADIUS_M,
+    SCREENING_NOTE,
+    UNIT_DATA_DOCS,
+    DynamicsData,
+    GroupData,
+    UnitData,
     Unstable,
+    YawRollModel,
+    as_dict,
+    build,
     lane_change,
+    low_speed_turn,
     pulse_steer,
     rearward_amplification_spectrum,
+    screen,
     stability,
     steady_turn,
     worst_frequency,
 )
-from engine.dynamics.model import YawRollModel
-from engine.dynamics.parameters import GROUP_DATA_DOCS, UNIT_DATA_DOCS, as_dict
-from engine.dynamics.pbs import SCREENING_NOTE, screen
-from engine.errors import InvalidVehicle
-from engine.models.combination import solve_combination
-from engine.vehicle import Combination
-from engine.vehicle.combination import validate_combination
+from engine.models import solve_combination
+from engine.vehicle import Combination, validate_combination
 
 #: default frequencies of the RA spectrum [Hz]
 DEFAULT_FREQUENCIES_HZ = tuple(np.geomspace(0.1, 3.0, 60).round(6).tolist())

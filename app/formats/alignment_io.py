@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from app.formats.csv_dialect import CsvDialect, CsvDialectError, detect
-from engine.errors import InvalidRoad
+from engine import InvalidRoad
 from engine.road import check_columns
 
 #: a synchronous request's curves: what interactive use needs (a road's or a district's curves answer in a fraction

@@ -62,7 +62,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from app.formats.alignment_io import AlignmentFormatError
-from engine.road.geometry import (
+from engine.road import (
     AlignmentGeometry,
     CrossSlope,
     HorizontalElement,

@@ -42,7 +42,7 @@ import numpy as np
 
 from app.formats import xmlsafe
 from app.formats.alignment_io import AlignmentFormatError
-from engine.road.geometry import (
+from engine.road import (
     AlignmentGeometry,
     CrossSlope,
     ElementColumns,

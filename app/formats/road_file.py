@@ -32,7 +32,7 @@ from app.formats.alignment_io import (
     check_curve_id,
     checked,
 )
-from engine.road.geometry import (
+from engine.road import (
     AlignmentGeometry,
     ElementColumns,
     Profile,

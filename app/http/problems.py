@@ -42,7 +42,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from app.logs import get_logger
 from app.metrics import ENGINE_ERRORS
-from engine.errors import (
+from engine import (
     ConvergenceError,
     InvalidInput,
     InvalidLoad,
@@ -288,8 +288,7 @@ def _with_unit_slip(e: dict[str, Any]) -> str:
     """A vehicle record field's bound error with the likely unit slip added (``rear_track_m`` = 1860: ``1860 m: in
     millimetres? (1860 millimetres would be 1.86 m)``), when multiplying by the slip's factor brings the value inside
     the field's bounds; the message as it is otherwise."""
-    from engine.vehicle import FIELD_DOCS
-    from engine.vehicle.plausibility import RECORD_SLIPS, unit_slip
+    from engine.vehicle import FIELD_DOCS, RECORD_SLIPS, unit_slip
 
     msg, loc, value = str(e.get("msg")), tuple(e.get("loc", ())), e.get("input")
     if e.get("type") not in _BOUND_ERRORS or "record" not in loc or not loc or str(loc[-1]) not in FIELD_DOCS:

@@ -7,7 +7,7 @@ from typing import Annotated, Any
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
 from pydantic_core import InitErrorDetails, PydanticCustomError, PydanticUndefined
 
-from engine.domain import BOUNDS
+from engine import BOUNDS
 
 #: the preset used in every request example
 EXAMPLE_PRESET = "table16-btrain"

@@ -41,7 +41,7 @@ from app.formats.alignment_io import (
 )
 from app.formats.csv_dialect import CsvDialect
 from app.formats.decimals import decimals
-from engine.errors import InvalidRoad
+from engine import InvalidRoad
 from engine.road import check_columns
 
 #: what the plain form has no place for: quotes, control characters but the line ends (and a BOM: a dialect)

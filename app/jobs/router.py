@@ -35,7 +35,7 @@ from app.jobs.service import parse_submission, prepare, status_body, under_reque
 from app.jobs.store import JobView, problem
 from app.logs import get_logger
 from app.routes.service import MAX_JOB_ROWS as ROUTE_JOB_ROWS
-from engine.errors import InvalidInput
+from engine import InvalidInput
 
 #: a job's request body: 1,000,000 curves as JSON are about 100 MB; a LandXML document of 200 M characters [bytes]
 JOBS_BODY_LIMIT = 256 * 2**20

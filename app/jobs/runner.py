@@ -20,7 +20,7 @@ from app.jobs.operations import OPERATIONS
 from app.jobs.store import JobRecord, JobStore, Stopped, problem
 from app.logs import get_logger
 from app.metrics import JOB_PART_SECONDS
-from engine.errors import RolloverError
+from engine import RolloverError
 
 _log = get_logger("rollover.jobs")
 #: zlib level of the fragments: 1 compresses the rows 5-8x at a few hundred MB/s

@@ -19,7 +19,7 @@ from app.jobs.base import Operation, ResolveContext
 from app.jobs.operations import OPERATIONS
 from app.jobs.store import JobNotFound, JobView, problem
 from app.settings import Settings
-from engine.errors import InvalidInput
+from engine import InvalidInput
 
 
 def _rfc3339(t: float | None) -> str | None:

@@ -10,7 +10,7 @@ from app.alignments.schemas import ALIGNMENT_LANDXML_EXAMPLE, AlignmentRequest
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, bounded, describe, json_int, shape_error
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import SRT_EXAMPLE, VEHICLE_DESCRIPTION, SrtInputs, SrtOptions, VehicleRef
-from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
+from engine import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 from engine.road import get_standard
 

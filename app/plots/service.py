@@ -27,10 +27,9 @@ from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
 from app.settings import Settings
 from app.srt.service import resolve_case, resolve_srt, solve
 from app.vehicles.refs import SavedRef
-from engine.case import Case, Road
-from engine.errors import InvalidRoad
-from engine.results import RolloverResult
+from engine import Case, InvalidRoad, Road, RolloverResult
 from engine.road import (
+    SIGN_INCREMENTS,
     DesignStandard,
     check_design_speeds,
     get_standard,
@@ -38,7 +37,6 @@ from engine.road import (
     side_friction_factor,
     side_friction_min_radius_m,
 )
-from engine.road.advisory import SIGN_INCREMENTS
 from engine.vehicle import Vehicle
 
 SVG_MEDIA_TYPE = "image/svg+xml"

@@ -21,8 +21,7 @@ from app.srt.service import (
     solve_with_level,
     srt_result,
 )
-from engine import ENGINE_VERSION
-from engine.case import Case, Road
+from engine import ENGINE_VERSION, Case, Road
 from engine.road import max_curve_speed_kmh, min_radius, side_friction_factor
 
 

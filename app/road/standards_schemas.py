@@ -17,7 +17,7 @@ from app.http.schemas import (
     not_together_schema,
     shape_error,
 )
-from engine.domain import BOUNDS
+from engine import BOUNDS
 from engine.road import DEFAULT_DESIGN_STANDARD, FRICTION_BOUNDS, STANDARDS
 
 __all__ = [

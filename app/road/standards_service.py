@@ -20,7 +20,7 @@ from app.road.standards_schemas import (
     SuperelevationTableRequest,
     SuperelevationTableResult,
 )
-from engine.errors import InvalidRoad
+from engine import InvalidRoad
 from engine.road import (
     FRICTION_BOUNDS,
     STANDARDS,

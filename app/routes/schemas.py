@@ -23,7 +23,7 @@ from app.http.schemas import (
 )
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, SrtTargets, VehicleRef
-from engine.domain import BOUNDS
+from engine import BOUNDS
 
 #: the model's domain of a curve (:data:`engine.domain.BOUNDS`): a route's curve outside it is a row with ``error``
 MIN_RADIUS_M = BOUNDS["radius_m"].minimum

@@ -66,9 +66,7 @@ from app.routes.schemas import (
 )
 from app.settings import Settings
 from app.vehicles.refs import resolve_vehicle, vehicle_of_resolved
-from engine import ENGINE_VERSION
-from engine.domain import BOUNDS
-from engine.errors import InvalidInput
+from engine import BOUNDS, ENGINE_VERSION, InvalidInput
 from engine.road import AlignmentColumns
 from engine.route import HorizontalCurve, find_curves, local_frame
 

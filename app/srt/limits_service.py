@@ -19,9 +19,7 @@ from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.limits_schemas import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
 from app.srt.service import level_case, resolve_base_case, target_checks
-from engine import ENGINE_VERSION
-from engine.case import Case
-from engine.errors import InvalidInput, RolloverError
+from engine import ENGINE_VERSION, Case, InvalidInput, RolloverError
 from engine.models import rollover_threshold
 from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg, with_parameter
 

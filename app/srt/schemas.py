@@ -20,7 +20,7 @@ from app.vehicles.builder_schemas import SpecRef
 from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_schemas import CombinationRef, LiftEventOut, RollCoupledUnitOut
 from app.vehicles.schemas import VehicleRecord
-from engine.domain import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
+from engine import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 
 # "3d", "2d", "rigid", "rigid-bank", "winkler", "rill", "chang", "gillespie", "navin"

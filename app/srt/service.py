@@ -32,13 +32,10 @@ from app.settings import Settings
 from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
 from app.vehicles.refs import resolve_vehicle
 from app.vehicles.schemas import VehicleRecord
-from engine import ENGINE_VERSION
-from engine.case import Case, LoadCase, Road
+from engine import ENGINE_VERSION, Case, LoadCase, Road, RolloverResult
 from engine.models import rollover_threshold
-from engine.results import RolloverResult
 from engine.road import check_targets, tilt_table_angle_deg
-from engine.vehicle import Vehicle
-from engine.vehicle.plausibility import InputWarning, record_warnings
+from engine.vehicle import InputWarning, Vehicle, record_warnings
 
 # ------------------------------------------------------------------------------------- resolution
 

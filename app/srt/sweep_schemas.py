@@ -9,7 +9,7 @@ from pydantic import ConfigDict, Field, model_validator
 
 from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
 from app.srt.schemas import LEVEL_ROAD_SRT_TEXT, TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
-from engine.domain import BOUNDS
+from engine import BOUNDS
 
 MAX_AXIS_VALUES = 200
 #: a synchronous sweep's cases, the rows of its answer: the synchronous batch answers' one size (alignments: MAX_ROWS)

@@ -29,8 +29,7 @@ from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_base_case, target_checks
 from app.srt.sweep_schemas import SweepRequest
-from engine import ENGINE_VERSION
-from engine.case import Case
+from engine import ENGINE_VERSION, Case
 from engine.models import SweepResult as EngineSweep
 from engine.models import sweep
 from engine.road import tilt_table_angle_deg

@@ -1,6 +1,6 @@
 """The vehicle builder's spec, its result, the component library and the payload table, as HTTP schemas.
 
-The spec's models are generated from the engine's dataclasses (:mod:`engine.vehicle.builder`): their fields, types and
+The spec's models are generated from the engine's dataclasses (:mod:`engine.builder`): their fields, types and
 defaults, and each field's description and unit from the dataclass's docstring (``name : text [unit]``), so the
 published schema and the engine cannot drift. The engine checks what a schema cannot say (a load height below its
 deck, a CG outside the track, a payload over a rated load, an unknown component) and answers 422 naming the spec
@@ -18,10 +18,9 @@ from typing import Annotated, Any, Literal
 from pydantic import ConfigDict, Field, create_model
 
 from app.http.schemas import InputModel, OutputModel, describe, json_int
-from engine.vehicle import FIELD_DOCS, SUSPENSIONS, TYRES
-from engine.vehicle import builder as eb
-from engine.vehicle.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
-from engine.vehicle.plausibility import RANGES
+from engine import builder as eb
+from engine.builder import SPEC_RANGES, SPEC_ZERO_ALLOWED
+from engine.vehicle import FIELD_DOCS, RANGES, SUSPENSIONS, TYRES
 
 #: thesis symbols a spec field's description may start with ("kLs, vertical rate ...")
 _SYMBOLS = {d.symbol for d in FIELD_DOCS.values()} | {"kLs", "kT", "lr", "ls", "b", "kf", "lf", "b1", "k_theta"}
@@ -101,7 +100,7 @@ def _python_type(owner: str, name: str, tp: Any) -> tuple[Any, bool]:
 
 
 def _bounds(cls: type, name: str) -> dict[str, Any]:
-    """The schema's bounds of a spec field: its plausible range (``engine.vehicle.builder.plausible.SPEC_RANGES``),
+    """The schema's bounds of a spec field: its plausible range (``engine.builder.plausible.SPEC_RANGES``),
     which the engine enforces (422 naming the likely unit slip); a count (axles, tyres) is at least 1. Published
     only: the engine's check says more than a schema error would (the slip)."""
     key = SPEC_RANGES.get((cls.__name__, name))

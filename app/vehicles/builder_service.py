@@ -1,6 +1,6 @@
 """The vehicle builder over HTTP: POST /v1/vehicles/build, GET /v1/components, POST /v1/vehicles/payload-table.
 
-A spec is turned into the engine's record by :func:`engine.vehicle.builder.build_vehicle`; :func:`build_spec` is the one
+A spec is turned into the engine's record by :func:`engine.builder.build_vehicle`; :func:`build_spec` is the one
 place that does it for the service (the build endpoint, a ``{"spec": ...}`` vehicle in any computation, a saved
 spec), re-pointing the engine's ``spec.<field>`` errors at where the spec sits in the request.
 """
@@ -26,10 +26,8 @@ from app.vehicles.builder_schemas import (
     TyreOut,
 )
 from app.vehicles.payload_schemas import PayloadTableRequest
-from engine import ENGINE_VERSION
-from engine.errors import InvalidInput
-from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
-from engine.vehicle.builder import (
+from engine import ENGINE_VERSION, InvalidInput
+from engine.builder import (
     BuiltVehicle,
     CombinationSpec,
     PayloadTable,
@@ -37,6 +35,7 @@ from engine.vehicle.builder import (
     build_vehicle,
     payload_table,
 )
+from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
 
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")
 

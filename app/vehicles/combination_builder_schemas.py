@@ -1,6 +1,6 @@
 """The combination builder over HTTP: ``POST /v1/combinations/build`` and ``{"combination_spec": {...}}`` as a vehicle.
 
-The spec's models are generated from the engine's dataclasses (:mod:`engine.vehicle.builder.combination`) by the
+The spec's models are generated from the engine's dataclasses (:mod:`engine.builder.combination`) by the
 single-unit builder's generator (:func:`app.vehicles.builder_schemas.spec_model`): fields, types, defaults and each
 field's description and unit from the dataclass docstring, so the published schema and the engine cannot drift.
 The tare, payloads and deck are the single-unit spec's own models. The engine checks what a schema cannot say (a
@@ -17,8 +17,8 @@ from pydantic import ConfigDict, Field
 from app.http.schemas import InputModel, OutputModel, describe
 from app.vehicles import builder_schemas as bs
 from app.vehicles.builder_schemas import DerivationOut, MassOut
+from engine import builder as ec
 from engine.vehicle import FIFTH_WHEELS, SUSPENSIONS_IN_ROLL, UNIT_KINDS
-from engine.vehicle.builder import combination as ec
 
 bs._CHOICES.update(
     {

@@ -16,9 +16,9 @@ from app.compute.resolved import ResolvedBuild
 from app.compute.results import Computed, cached
 from app.vehicles.builder_service import at_field
 from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
-from engine.errors import InvalidInput
+from engine import InvalidInput
+from engine.builder import BuiltCombination, CombinationSpec, build_combination
 from engine.vehicle import Combination, validate_combination
-from engine.vehicle.builder import BuiltCombination, CombinationSpec, build_combination
 
 
 def build_combination_spec(spec: CombinationSpec | dict[str, Any], where: str | None = None) -> BuiltCombination:

@@ -15,8 +15,7 @@ from app.vehicles.combination_builder_schemas import BuildCombinationRequest, Bu
 from app.vehicles.combination_builder_service import compute_combination_build
 from app.vehicles.combination_schemas import CombinationPreset, CombinationPresetSummary
 from engine.models import supported_models
-from engine.vehicle import COMBINATION_INFO, COMBINATION_SOURCES, COMBINATIONS, get_combination
-from engine.vehicle.combination import roll_coupled_units
+from engine.vehicle import COMBINATION_INFO, COMBINATION_SOURCES, COMBINATIONS, get_combination, roll_coupled_units
 
 router = APIRouter(prefix="/v1/combinations", tags=["combinations"])
 

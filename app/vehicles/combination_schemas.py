@@ -13,7 +13,7 @@ from pydantic import Field
 
 from app.http.schemas import InputModel, OutputModel, describe, json_int
 from app.vehicles.schemas import VehicleRecord
-from engine.vehicle.combination import COUPLING_KINDS, UNIT_KINDS
+from engine.vehicle import COUPLING_KINDS, UNIT_KINDS
 
 UnitKind = Literal[tuple(UNIT_KINDS)]  # type: ignore[valid-type]
 CouplingKind = Literal[tuple(COUPLING_KINDS)]  # type: ignore[valid-type]

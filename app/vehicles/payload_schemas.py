@@ -17,8 +17,8 @@ from app.http.schemas import (
 )
 from app.vehicles.builder_schemas import EXAMPLE_SPEC, MAX_PAYLOADS, VehicleSpecIn
 from app.vehicles.combination_builder_schemas import CombinationSpecIn
-from engine.vehicle import builder as eb
-from engine.vehicle.builder import combination as ec
+from engine import builder as eb
+from engine import builder as ec
 
 
 class PayloadTableRequest(InputModel):

@@ -4,9 +4,9 @@ A computation's ``vehicle`` (and the alignment's ``vehicles`` or ``fleet``) may 
 
 * a preset id (``table16-btrain``): public; the service expands it itself;
 * a full record: used as it is;
-* ``{"spec": {...}}``: built into a record by :func:`engine.vehicle.builder.build_vehicle`;
+* ``{"spec": {...}}``: built into a record by :func:`engine.builder.build_vehicle`;
 * ``{"combination": {...}}``: a combination record, validated;
-* ``{"combination_spec": {...}}``: built into a combination by :func:`engine.vehicle.builder.build_combination`;
+* ``{"combination_spec": {...}}``: built into a combination by :func:`engine.builder.build_combination`;
 * a saved vehicle's id (``veh_...``) or, in a batch, a fleet's id (``flt_...``): read from the catalog with the
   caller's bearer key (another key's or a deleted id is a 404 naming it), then as above.
 
@@ -36,16 +36,16 @@ from app.vehicles.builder_service import build_spec
 from app.vehicles.combination_builder_schemas import CombinationSpecRef
 from app.vehicles.combination_builder_service import build_combination_spec, combination_of
 from app.vehicles.combination_schemas import CombinationRef
-from engine.errors import UnknownPreset
+from engine import UnknownPreset
 from engine.vehicle import (
     COMBINATIONS,
     PRESETS,
     Combination,
     Vehicle,
+    check_record_plausible,
     get_combination,
     get_preset,
 )
-from engine.vehicle.plausibility import check_record_plausible
 
 
 @dataclass(frozen=True)

@@ -12,290 +12,113 @@
   its many-road batch :mod:`~engine.models.combination_batch`, the solve of its equations on their tree
   :mod:`~engine.models.roll_tree`, and :mod:`~engine.models.combination_reference`, the same equations solved as a
   general nonlinear equilibrium.
+
+Exports (the face's ``__all__``, by concept; every other name is the package's own, importable by its
+module path for the package and its tests):
+
+From :mod:`~engine.models.combination`, the whole-combination static roll model: every unit, every axle group, every
+coupling, solved step by step:
+
+- ``solve_combination``: Every roll-coupled unit's SRT and state, the governing one, and LLTf/LLTr of the last unit
+
+From :mod:`~engine.models.combination_reference`, the reference solution of the whole-combination roll model: the
+equilibrium of every roll degree of freedom as a general nonlinear system, solved with scipy:
+
+- ``reference_srt``: The largest ay of each roll-coupled unit, from the nonlinear equilibrium (see the module docstring)
+  [g]
+
+From :mod:`~engine.models.groups`, axle-group sub-mechanisms: tires (Sec. 4.1), leaf-spring suspension (Sec. 4.2), fifth
+wheel (Sec. 4.3):
+
+- ``group_statics``: All in-plane forces of a group whose top link carries force (fy, fz) at ``g.top`` and moment mx
+
+From :mod:`~engine.models.registry`, the model registry: one entry per SRT model, used by every place that needs to know
+the models:
+
+- ``get_model``: The registered model with this id
+- ``Model``: One SRT model (see the module docstring)
+- ``MODELS``: every SRT model by id
+- ``record_view``: The case as a record model sees it: a combination's last unit as its thesis record, whose front
+  support (the towing unit's group under the fifth wheel) acts through LLTf/LLTr computed by the ...
+- ``supported_models``: The ids of the models whose required fields the record has (a preset's model list)
+
+From :mod:`~engine.models.stepping`, quasi-static load stepping to the rollover limit with the developed mechanisms (3D
+of Ch. 6, 2D of Ch. 5):
+
+- ``stage_model``: The 3D model of one stage of the case's vehicle (the case's own stage by default), calibrated
+
+From :mod:`~engine.models.threshold`, the SRT entry points: one case (``rollover_threshold``), a list of cases and a
+grid (``sweep``):
+
+- ``BATCH_ROWS``: rows of one batch solve: larger batches are split into blocks of this many rows, in the rows' order
+  (so the same request always gives the same bits)
+- ``BlockMap``: how the blocks of a batch are run
+- ``evaluate_arrays``: SRT [g] and roll [deg] of many cases of one vehicle, model and stage
+- ``evaluate_cases``: SRT [g] and roll [deg] of a list of cases of one vehicle, model and stage (``evaluate_arrays``)
+- ``map_blocks``: ``function`` of each block of ``rows`` consecutive positions of ``range(size)`` (the last one
+  shorter), in order, run by ``block_map``; a single block is run in the caller
+- ``MIN_ARRAY_CASES``: fewest 3D cases of one vehicle and stage that ``rollover_thresholds`` solves together on arrays:
+  an array solve costs about as much as 15 one-case solves whatever its size up to a few hundred ...
+- ``rollover_threshold``: Static rollover threshold of one case
+- ``rollover_thresholds``: ``rollover_threshold`` of each case with the default options (no curves, the reduced statics,
+  the default chassis closure): in each case's place its result, or the error it raises
+- ``sweep``: SRT over the Cartesian product of ``grid`` (axes of ``SWEEP_AXES``) around ``case``, e.g
+- ``SWEEP_AXES``: grid axes accepted by ``sweep``, with the part of the case each one sets
+- ``SweepResult``: A grid of cases
 """
 
-from .classic import (
-    ClassicResult,
-    chang,
-    gillespie,
-    gillespie_roll,
-    navin,
-    rigid,
-    rigid_bank,
-    rill,
-    rill_roll_angles,
-    solve_chang,
-    solve_gillespie,
-    solve_navin,
-    solve_rigid,
-    solve_rigid_bank,
-    solve_rill,
-    solve_winkler,
-    winkler,
-)
 from .combination import (
-    TOL,
-    DeadZone,
-    Regime,
-    RoadFactors,
-    System,
-    Tyres,
-    UnitSolution,
-    build_systems,
-    front_llt_ratio,
-    rigid_srt,
     solve_combination,
-    solve_unit,
-    unit_result,
 )
 from .combination_reference import (
     reference_srt,
 )
 from .groups import (
-    ARRAY,
-    FIXED_POINT_TOL,
-    HALF_PI,
-    SCALAR,
-    FifthWheelParams,
-    FourBarForces,
-    FourBarGeometry,
-    GroupForces,
-    GroupGeometry,
-    GroupParams,
-    fixed_point,
-    fixed_point_batch,
-    four_bar,
-    four_bar_statics,
-    ground_reactions,
-    group_geometry,
-    group_next_state,
-    group_params,
     group_statics,
-    tire_system,
 )
 from .registry import (
-    ALL_INPUTS,
-    INPUTS,
-    MODEL_IDS,
     MODELS,
     Model,
     get_model,
-    last_unit_record,
     record_view,
     supported_models,
 )
-from .springs import (
-    SHEAR_TO_VERTICAL_RATIO,
-    chassis_torque_components,
-    chassis_torque_split,
-    chassis_twist,
-    fifth_wheel_height,
-    leaf_spring_height,
-    leaf_spring_rate,
-    shear_torsion_coefficient,
-    tire_radius,
-    torsion_angle,
-)
 from .stepping import (
-    batch_2d,
-    batch_3d,
-    solve_2d,
-    solve_3d,
-    solve_3d_many,
-    solver_case_3d,
     stage_model,
 )
 from .threshold import (
     BATCH_ROWS,
-    METHODS,
     MIN_ARRAY_CASES,
     SWEEP_AXES,
-    TIRE_ROAD_FRICTION,
     BlockMap,
     SweepResult,
-    case_at,
     evaluate_arrays,
     evaluate_cases,
     map_blocks,
     rollover_threshold,
     rollover_thresholds,
-    sliding_threshold_g,
     sweep,
-    with_axis,
-)
-from .trailer2d import (
-    REPORTED,
-    Case2D,
-    PlanarModel,
-    Solution2D,
-    build_mechanism,
-    build_model,
-    cg_position,
-    davies_forces_at,
-    forces_at,
-    solve,
-    srt_eq_5_22,
-)
-from .trailer3d import (
-    CLOSURES,
-    STAGES,
-    ChassisClosure,
-    ChassisLoads,
-    Geometry,
-    Solution,
-    SolverCase,
-    State,
-    TrailerModel,
-    calibrate_chassis_constant,
-    cg_actions,
-    chassis_loads,
-    geometry,
-    get_closure,
-    next_state,
-    reference_case,
-    rest_state,
-    solve_loads,
-)
-from .trailer3d_davies import (
-    FRONT_LINKS,
-    FW_LINKS,
-    REAR_LINKS,
-    REPORTED_FW,
-    DaviesForces,
-    davies_closures,
-    eq_6_37_coefficients,
-    srt_eq_6_39,
 )
 
 __all__ = [
-    "ALL_INPUTS",
-    "ARRAY",
     "BATCH_ROWS",
-    "CLOSURES",
-    "FIXED_POINT_TOL",
-    "FRONT_LINKS",
-    "FW_LINKS",
-    "HALF_PI",
-    "INPUTS",
-    "METHODS",
     "MIN_ARRAY_CASES",
     "MODELS",
-    "MODEL_IDS",
-    "REAR_LINKS",
-    "REPORTED",
-    "REPORTED_FW",
-    "SCALAR",
-    "SHEAR_TO_VERTICAL_RATIO",
-    "STAGES",
     "SWEEP_AXES",
-    "TIRE_ROAD_FRICTION",
-    "TOL",
     "BlockMap",
-    "Case2D",
-    "ChassisClosure",
-    "ChassisLoads",
-    "ClassicResult",
-    "DaviesForces",
-    "DeadZone",
-    "FifthWheelParams",
-    "FourBarForces",
-    "FourBarGeometry",
-    "Geometry",
-    "GroupForces",
-    "GroupGeometry",
-    "GroupParams",
     "Model",
-    "PlanarModel",
-    "Regime",
-    "RoadFactors",
-    "Solution",
-    "Solution2D",
-    "SolverCase",
-    "State",
     "SweepResult",
-    "System",
-    "TrailerModel",
-    "Tyres",
-    "UnitSolution",
-    "batch_2d",
-    "batch_3d",
-    "build_mechanism",
-    "build_model",
-    "build_systems",
-    "calibrate_chassis_constant",
-    "case_at",
-    "cg_actions",
-    "cg_position",
-    "chang",
-    "chassis_loads",
-    "chassis_torque_components",
-    "chassis_torque_split",
-    "chassis_twist",
-    "davies_closures",
-    "davies_forces_at",
-    "eq_6_37_coefficients",
     "evaluate_arrays",
     "evaluate_cases",
-    "fifth_wheel_height",
-    "fixed_point",
-    "fixed_point_batch",
-    "forces_at",
-    "four_bar",
-    "four_bar_statics",
-    "front_llt_ratio",
-    "geometry",
-    "get_closure",
     "get_model",
-    "gillespie",
-    "gillespie_roll",
-    "ground_reactions",
-    "group_geometry",
-    "group_next_state",
-    "group_params",
     "group_statics",
-    "last_unit_record",
-    "leaf_spring_height",
-    "leaf_spring_rate",
     "map_blocks",
-    "navin",
-    "next_state",
     "record_view",
-    "reference_case",
     "reference_srt",
-    "rest_state",
-    "rigid",
-    "rigid_bank",
-    "rigid_srt",
-    "rill",
-    "rill_roll_angles",
     "rollover_threshold",
     "rollover_thresholds",
-    "shear_torsion_coefficient",
-    "sliding_threshold_g",
-    "solve",
-    "solve_2d",
-    "solve_3d",
-    "solve_3d_many",
-    "solve_chang",
     "solve_combination",
-    "solve_gillespie",
-    "solve_loads",
-    "solve_navin",
-    "solve_rigid",
-    "solve_rigid_bank",
-    "solve_rill",
-    "solve_unit",
-    "solve_winkler",
-    "solver_case_3d",
-    "srt_eq_5_22",
-    "srt_eq_6_39",
     "stage_model",
     "supported_models",
     "sweep",
-    "tire_radius",
-    "tire_system",
-    "torsion_angle",
-    "unit_result",
-    "winkler",
-    "with_axis",
 ]

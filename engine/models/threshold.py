@@ -163,9 +163,9 @@ def rollover_thresholds(cases: Sequence[Case]) -> list[RolloverResult | Rollover
     default chassis closure): in each case's place its result, or the error it raises.
 
     The 3D cases of one vehicle and stage, when there are at least :data:`MIN_ARRAY_CASES` of them, are solved
-    together on arrays (:func:`engine.models.solve_3d_many`); a converged case stops where it would alone, so its
-    result is the one :func:`rollover_threshold` gives, to rounding (tests/engine/test_thresholds_many.py). The others,
-    and a case whose array solve failed (for its exact error), are solved one at a time.
+    together on arrays (:func:`~engine.models.stepping.solve_3d_many`); a converged case stops where it would alone,
+    so its result is the one :func:`rollover_threshold` gives, to rounding (tests/engine/test_thresholds_many.py). The
+    others, and a case whose array solve failed (for its exact error), are solved one at a time.
     """
     out: list[RolloverResult | RolloverError | None] = [None] * len(cases)
     notes: dict[int, str] = {}

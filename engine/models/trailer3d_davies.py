@@ -1,8 +1,8 @@
 """The Davies reference path of the 3D model (Ch. 6): the full 23-link mechanism and Eq. 6.39.
 
-:func:`davies_forces_at` is a drop-in replacement of :func:`engine.models.forces_at` that builds the mechanism of
-Fig. 43 by successive screws (Table 9), writes the cut-set statics of Eqs. 6.10-6.14 with the closure rows of
-Eq. 6.19, and solves them with :func:`engine.mechanics.solve_statics`, which refuses any reported quantity that the
+:func:`davies_forces_at` is a drop-in replacement of :func:`~engine.models.trailer3d.forces_at` that builds the
+mechanism of Fig. 43 by successive screws (Table 9), writes the cut-set statics of Eqs. 6.10-6.14 with the closure rows
+of Eq. 6.19, and solves them with :func:`engine.mechanics.solve_statics`, which refuses any reported quantity that the
 equations leave undetermined. ``tests/engine/test_fastpath.py`` checks the fast path against it to 1e-9.
 :func:`eq_6_37_coefficients` and :func:`srt_eq_6_39` give the thesis's closed form of the SRT from the Davies
 solution.

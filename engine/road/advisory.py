@@ -315,8 +315,8 @@ def rollover_warning(rollover_speed_kmh, advisory_shown_kmh, margin_kmh: float =
 
 # ------------------------------------------------------------------------------------------------ curves as arrays
 
-#: codes of :attr:`AdvisoryColumns.governed_by`
-GOVERNED_BY = ("txdot-direct", BALL_BANK_2009.id)
+#: codes of :attr:`AdvisoryColumns.governed_by` (the curve assessment's are :data:`engine.road.curves.GOVERNED_BY`)
+ADVICE_GOVERNED_BY = ("txdot-direct", BALL_BANK_2009.id)
 
 
 @dataclass(frozen=True)
@@ -324,7 +324,7 @@ class AdvisoryColumns:
     """The advisory speed of every curve, as arrays (one entry per curve; nan = not known).
 
     ``methods`` maps a method id to its speed [km/h] before rounding; ``advisory_speed_kmh`` is the shown speed
-    (a multiple of the increment); ``governed_by`` indexes :data:`GOVERNED_BY`; ``treatment`` indexes
+    (a multiple of the increment); ``governed_by`` indexes :data:`ADVICE_GOVERNED_BY`; ``treatment`` indexes
     :data:`TREATMENTS` (-1: no posted speed); ``truck_rollover_warning`` is the W1-13 rule per curve (any vehicle).
     """
 

@@ -51,7 +51,7 @@ from engine.errors import InvalidVehicle
 from engine.vehicle.plausibility import RANGES, check_plausible
 from engine.vehicle.record import Vehicle
 
-#: gravitational acceleration used for W = m g [m/s^2], as the builder's (:data:`engine.vehicle.builder.G_M_PER_S2`)
+#: gravitational acceleration used for W = m g [m/s^2], as the builder's (:data:`engine.builder.G_M_PER_S2`)
 G_M_PER_S2 = 9.81
 
 #: unit kinds, what reference point their positions are measured from, and how many axle groups they have

@@ -20,7 +20,7 @@ import pytest
 
 from app.catalog.service import encode_cursor
 from app.main import create_app
-from engine.vehicle.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
+from engine.builder.plausible import SPEC_RANGES, SPEC_ZERO_ALLOWED
 from engine.vehicle.plausibility import RANGES
 
 from .conftest import ROOT

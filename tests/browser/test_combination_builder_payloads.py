@@ -5,7 +5,7 @@ Expected numbers come from the public API called directly by the test for the sa
 ``"vehicle": {"combination_spec": ...}``, ``POST /v1/combinations/build``) -- never from the page itself. The
 specs are the service's example combination (app/vehicles/combination_builder_schemas.py) with its deck load
 replaced; the tank, deck and weighbridge values are round illustrative numbers within the engine's checks
-(engine/vehicle/builder/payloads.py), not measured data.
+(engine/builder/payloads.py), not measured data.
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ import engine
 from app.main import create_app
 from app.page import WEB_DIR
 from app.settings import Settings
-from engine.vehicle.builder.spec import VehicleSpec
+from engine.builder.spec import VehicleSpec
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -99,10 +99,10 @@ def test_direct_method_truck_speed_and_display():
     cols = adv.advise_curves([200.0], [6.0], [90.0], measured_car_speed_kmh=[44.0 / 0.97 * MPH])
     assert cols.methods["txdot-direct"][0] / MPH == pytest.approx(44.0, rel=1e-12)
     assert cols.advisory_speed_kmh[0] / MPH == pytest.approx(45.0)
-    assert adv.GOVERNED_BY[cols.governed_by[0]] == "txdot-direct"
+    assert adv.ADVICE_GOVERNED_BY[cols.governed_by[0]] == "txdot-direct"
     # without a measurement the 2009 ball-bank criterion governs, labelled legacy
     cols = adv.advise_curves([200.0], [6.0], [90.0])
-    assert adv.GOVERNED_BY[cols.governed_by[0]] == adv.BALL_BANK_2009.id
+    assert adv.ADVICE_GOVERNED_BY[cols.governed_by[0]] == adv.BALL_BANK_2009.id
     assert adv.method_source(adv.BALL_BANK_2009.id)[1] is True
     assert adv.method_source("design-method")[2] is False  # the primary method: unverified here
 

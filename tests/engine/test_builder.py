@@ -16,13 +16,10 @@ import numpy as np
 import pytest
 
 from engine.bracket import bracketed_limit
-from engine.case import Case
-from engine.errors import InvalidInput, InvalidVehicle
-from engine.models.threshold import rollover_threshold
-from engine.vehicle.builder.build import build_vehicle
-from engine.vehicle.builder.payload_table import payload_table
-from engine.vehicle.builder.payloads import sloped_load_centroid, tank_liquid_cg_height_m
-from engine.vehicle.builder.spec import (
+from engine.builder.build import build_vehicle
+from engine.builder.payload_table import payload_table
+from engine.builder.payloads import sloped_load_centroid, tank_liquid_cg_height_m
+from engine.builder.spec import (
     G_M_PER_S2,
     METHODS,
     AxleGroupSpec,
@@ -35,6 +32,9 @@ from engine.vehicle.builder.spec import (
     TyreSpec,
     VehicleSpec,
 )
+from engine.case import Case
+from engine.errors import InvalidInput, InvalidVehicle
+from engine.models.threshold import rollover_threshold
 from engine.vehicle.components import (
     NOT_FOUND,
     SUSPENSIONS,

@@ -1,4 +1,4 @@
-"""The combination builder (engine.vehicle.builder.combination) against a preset rebuilt from its sources, force
+"""The combination builder (engine.builder.combination) against a preset rebuilt from its sources, force
 balance, the rigid closed form and bad input.
 
 Independent numbers used here:
@@ -19,13 +19,13 @@ import itertools
 
 import pytest
 
+from engine.builder import CombinationSpec, build_combination
+from engine.builder.last_unit import last_unit_spec
 from engine.case import Case
 from engine.errors import InvalidInput, InvalidVehicle
 from engine.models import rollover_threshold
 from engine.models.combination import rigid_srt, solve_combination
 from engine.vehicle import COMBINATIONS, PRESETS
-from engine.vehicle.builder import CombinationSpec, build_combination
-from engine.vehicle.builder.last_unit import last_unit_spec
 from engine.vehicle.combination import G_M_PER_S2, roll_coupled_units, static_loads
 
 T15 = PRESETS["table15-semitrailer"]
@@ -101,7 +101,7 @@ def test_the_table15_preset_is_rebuilt_from_its_measurable_data():
                 assert same(getattr(g, f.name), getattr(pg, f.name)), (u.id, g.id, f.name)
     assert built.couplings == preset.couplings
     # the titles differ; the last unit's record for the 3D model, built from the same measurable data
-    # (engine/vehicle/builder/last_unit.py), is Table 15's record (the preset's) field by field, with no LLTf/LLTr of
+    # (engine/builder/last_unit.py), is Table 15's record (the preset's) field by field, with no LLTf/LLTr of
     # its own (the combination computes it)
     assert built.title == "Table 15 rebuilt"
     derived, table15 = built.last_unit_record.to_dict(), preset.last_unit_record.to_dict()
@@ -385,8 +385,8 @@ def test_payload_table_of_a_combination_finds_the_governing_srt_at_the_target_an
     independently with the whole-combination model, is the target; the largest mass falls as the load rises."""
     from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
     from engine import Case, rollover_threshold
-    from engine.vehicle.builder import CombinationSpec, build_combination
-    from engine.vehicle.builder.payload_table import payload_table
+    from engine.builder import CombinationSpec, build_combination
+    from engine.builder.payload_table import payload_table
 
     spec = CombinationSpec.from_dict(EXAMPLE_COMBINATION_SPEC)
     table = payload_table(spec, 0.55, load_heights_m=[2.0, 2.3, 2.6], payload_masses_kg=[20000.0], rows=3)

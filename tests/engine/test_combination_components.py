@@ -9,11 +9,16 @@ import itertools
 
 import pytest
 
+from engine.builder import CombinationSpec, build_combination
 from engine.models.combination import solve_combination
 from engine.models.combination_reference import reference_srt
-from engine.vehicle import NOT_FOUND_IN_ROLL, SUSPENSIONS_IN_ROLL
-from engine.vehicle.builder import CombinationSpec, build_combination
-from engine.vehicle.roll_components import _FACTBOOK_SINGLE_SPRING, _FACTBOOK_TANDEM_SPRING, leaf_table_rate
+from engine.vehicle import SUSPENSIONS_IN_ROLL
+from engine.vehicle.roll_components import (
+    _FACTBOOK_SINGLE_SPRING,
+    _FACTBOOK_TANDEM_SPRING,
+    NOT_FOUND_IN_ROLL,
+    leaf_table_rate,
+)
 
 IN_LB = 4.4482216152605 * 0.0254  # N m
 PER_DEG = 180.0 / 3.141592653589793  # N m/deg -> N m/rad

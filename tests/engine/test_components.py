@@ -12,11 +12,11 @@ from dataclasses import replace
 
 import pytest
 
+from engine.builder.build import build_vehicle
+from engine.builder.spec import AxleGroupSpec, SuspensionSpec, TyreSpec
 from engine.case import Case
 from engine.errors import InvalidVehicle
 from engine.models.threshold import rollover_threshold
-from engine.vehicle.builder.build import build_vehicle
-from engine.vehicle.builder.spec import AxleGroupSpec, SuspensionSpec, TyreSpec
 from engine.vehicle.components import (
     LOAD_INDEX_KG,
     NOT_FOUND,

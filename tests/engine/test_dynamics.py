@@ -278,7 +278,7 @@ def test_preset_inertias_are_sourced_and_a_changed_vehicle_is_estimated():
     """The A-double's sprung inertias are TruckSim's (body and payload combined about their common CG, Izz adding
     as both CGs lie at LX 3500 mm: 40672.8 + 21750); a unit changed in any field is estimated, the others keep
     theirs."""
-    from engine.dynamics import resolve
+    from engine.dynamics.parameters import resolve
 
     c = COMBINATIONS["adouble"]
     p = resolve(c)

@@ -17,7 +17,8 @@ import pytest
 from scipy.stats import binom
 
 from engine.errors import InvalidInput
-from engine.route import RADIUS_CONFIDENCE, find_curves, radius_lower_bound_m
+from engine.route import find_curves
+from engine.route.fit import RADIUS_CONFIDENCE, radius_lower_bound_m
 from tests.synthetic_routes import Arc, Tangent, layout, spiral_curve
 
 Z95 = 1.6448536269514722  # standard normal quantile of 0.95 (tables of the normal distribution)

@@ -20,6 +20,7 @@ import pytest
 
 from engine import road as st
 from engine.errors import InvalidRoad
+from engine.road.min_radius import meets_min_radius
 
 # --------------------------------------------------------------------------------- published tables
 
@@ -205,14 +206,14 @@ def test_min_radius_refuses_a_bad_e_max():
 
 def test_meets_min_radius_uses_the_published_value_at_a_row_and_eq_9_2_between_rows():
     # 80 km/h, e_max 8 %: Quadro 5.4.3.2 gives 230 m although Eq. 9.2 gives 229.06 m
-    assert st.meets_min_radius("dnit-1999", 80.0, 230.0, 8.0).meets
-    short = st.meets_min_radius("dnit-1999", 80.0, 229.5, 8.0)
+    assert meets_min_radius("dnit-1999", 80.0, 230.0, 8.0).meets
+    short = meets_min_radius("dnit-1999", 80.0, 229.5, 8.0)
     assert not short.meets and short.min_radius_m == 230 and short.source == "table"
     assert short.margin_m == pytest.approx(-0.5)
-    mid = st.meets_min_radius("dnit-1999", 85.0, 259.0, 8.0)
+    mid = meets_min_radius("dnit-1999", 85.0, 259.0, 8.0)
     assert mid.source == "formula" and mid.min_radius_m == pytest.approx(85**2 / (127 * 0.22)) and mid.meets
     with pytest.raises(InvalidRoad) as exc:
-        st.meets_min_radius("aashto-2018", 130.0, 500.0, 8.0)
+        meets_min_radius("aashto-2018", 130.0, 500.0, 8.0)
     assert exc.value.field == "posted_speed_kmh" and "20-120" in str(exc.value)
 
 

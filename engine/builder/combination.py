@@ -3,7 +3,7 @@
 
 A :class:`CombinationSpec` lists the units front to rear (rigid truck, tractor, semitrailer, B-train lead trailer,
 converter dolly, full trailer) and the couplings between them. Each unit is given as the single-unit builder takes
-it (:class:`~engine.vehicle.builder.VehicleSpec`): its axle groups (axles, tyres per axle, track, position, tyre
+it (:class:`~engine.builder.VehicleSpec`): its axle groups (axles, tyres per axle, track, position, tyre
 size, suspension type), its tare mass with its CG, and its payloads (mass with a CG height, or deck and load
 heights, or a tank), on its deck. Positions are metres behind the unit's reference point
 (:data:`engine.vehicle.combination.UNIT_KINDS`): a tractor's or rigid truck's front group centre, a semitrailer's or
@@ -22,7 +22,7 @@ per coupling: a fifth wheel's roll stiffness and lash from the library (:func:`e
 as given; a pintle (drawbar) or an A-dolly's ball coupling passes no roll moment (the record's ``pintle``);
 
 per unit: the tare and payload masses and CGs exactly as the single-unit builder computes them
-(:func:`~engine.vehicle.builder.tare_item`, :func:`~engine.vehicle.builder.payload_item`), composited as the
+(:func:`~engine.builder.payloads.tare_item`, :func:`~engine.builder.payloads.payload_item`), composited as the
 single-unit builder composites them, and the **sprung** mass and CG the roll model takes: the tare includes the
 axles (as a weighbridge weighs it), so the axles' unsprung masses are taken out at their CGs,
 ``m_s = sum(m) - n m_u``, ``z_s = (sum(m z) - n m_u z_u) / m_s`` (as the presets derive it from a thesis record,
@@ -36,7 +36,7 @@ re-pointed at the spec field behind the record field; the static axle loads are
 
 References
 ----------
-.. [1] Moreno (thesis), Eq. 2.11, Eq. 4.27; the single-unit builder (:mod:`engine.vehicle.builder`).
+.. [1] Moreno (thesis), Eq. 2.11, Eq. 4.27; the single-unit builder (:mod:`engine.builder`).
 .. [2] TruckSim 2022.1 example database (the roll component library, :mod:`engine.vehicle.roll_components`).
 """
 
@@ -48,9 +48,8 @@ import re
 import typing
 from dataclasses import asdict, dataclass
 
-from engine.errors import InvalidInput, InvalidVehicle
-from engine.vehicle.builder.build import _composite
-from engine.vehicle.builder.combination_spec import (
+from engine.builder.build import _composite
+from engine.builder.combination_spec import (
     ROOT,
     CombinationSpec,
     CouplingSpec,
@@ -59,10 +58,10 @@ from engine.vehicle.builder.combination_spec import (
     UnitGroupSpec,
     UnitSpec,
 )
-from engine.vehicle.builder.last_unit import last_unit_record
-from engine.vehicle.builder.payloads import payload_item, tare_item
-from engine.vehicle.builder.plausible import check_payloads_plausible
-from engine.vehicle.builder.spec import (
+from engine.builder.last_unit import last_unit_record
+from engine.builder.payloads import payload_item, tare_item
+from engine.builder.plausible import check_payloads_plausible
+from engine.builder.spec import (
     DeckSpec,
     FieldDerivation,
     MassItem,
@@ -72,6 +71,7 @@ from engine.vehicle.builder.spec import (
     check_count,
     check_number,
 )
+from engine.errors import InvalidInput, InvalidVehicle
 from engine.vehicle.combination import (
     G_M_PER_S2,
     LEADING_KINDS,

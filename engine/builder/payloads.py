@@ -7,8 +7,7 @@ from collections.abc import Sequence
 
 from scipy.optimize import brentq
 
-from engine.errors import InvalidVehicle
-from engine.vehicle.builder.spec import (
+from engine.builder.spec import (
     LOAD_DISTRIBUTIONS,
     TANK_SHAPES,
     DeckSpec,
@@ -19,6 +18,7 @@ from engine.vehicle.builder.spec import (
     check_choice,
     check_number,
 )
+from engine.errors import InvalidVehicle
 
 # ------------------------------------------------------------------------------------------ payload CGs
 

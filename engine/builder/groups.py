@@ -5,8 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from engine.errors import InvalidVehicle
-from engine.vehicle.builder.spec import (
+from engine.builder.spec import (
     AxleGroupSpec,
     FieldDerivation,
     SuspensionSpec,
@@ -14,6 +13,7 @@ from engine.vehicle.builder.spec import (
     check_count,
     check_number,
 )
+from engine.errors import InvalidVehicle
 from engine.vehicle.components import (
     Sourced,
     get_suspension,

@@ -5,12 +5,10 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from engine.errors import InvalidVehicle
-from engine.models.registry import get_model
-from engine.vehicle.builder.groups import ResolvedGroup, check_width, component_fields, resolve_group
-from engine.vehicle.builder.payloads import payload_item, tare_item
-from engine.vehicle.builder.plausible import check_spec_plausible
-from engine.vehicle.builder.spec import (
+from engine.builder.groups import ResolvedGroup, check_width, component_fields, resolve_group
+from engine.builder.payloads import payload_item, tare_item
+from engine.builder.plausible import check_spec_plausible
+from engine.builder.spec import (
     G_M_PER_S2,
     THESIS,
     TRAILER_TYPES,
@@ -25,6 +23,8 @@ from engine.vehicle.builder.spec import (
     check_choice,
     check_number,
 )
+from engine.errors import InvalidVehicle
+from engine.models.registry import get_model
 from engine.vehicle.record import FIELD_DOCS, Vehicle
 
 # --------------------------------------------------------------------------------------------- the build

@@ -11,12 +11,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from engine.bracket import bracketed_limit
+from engine.builder.build import build_vehicle
+from engine.builder.combination import CombinationSpec, build_combination
+from engine.builder.spec import PayloadSpec, VehicleSpec
 from engine.case import Case, LoadCase, Road
 from engine.errors import InvalidInput, RolloverError
 from engine.models.threshold import rollover_threshold
-from engine.vehicle.builder.build import build_vehicle
-from engine.vehicle.builder.combination import CombinationSpec, build_combination
-from engine.vehicle.builder.spec import PayloadSpec, VehicleSpec
 
 # ------------------------------------------------------------------------------------ payload table
 

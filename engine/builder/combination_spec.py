@@ -1,7 +1,7 @@
-"""The combination builder's input (:func:`engine.vehicle.builder.combination.build_combination`): a combination
+"""The combination builder's input (:func:`engine.builder.combination.build_combination`): a combination
 described by its units' parts (tare, payloads, axle groups with catalogue tyres and suspensions, couplings), as the
 API's ``combination_spec`` takes it. Apart from the build so that the modules the build calls (the last unit's record,
-:mod:`engine.vehicle.builder.last_unit`) can name these types without importing the build.
+:mod:`engine.builder.last_unit`) can name these types without importing the build.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import typing
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 
-from engine.vehicle.builder.spec import DeckSpec, PayloadSpec, TareSpec, _from_dict
+from engine.builder.spec import DeckSpec, PayloadSpec, TareSpec, _from_dict
 
 #: the root of the spec's field paths in errors
 ROOT = "combination_spec"

@@ -1,6 +1,6 @@
 """Plausibility of a builder spec's measurable inputs, checked field by field before anything is derived.
 
-Every number a user types into a :class:`~engine.vehicle.builder.spec.VehicleSpec` is checked against its range in
+Every number a user types into a :class:`~engine.builder.spec.VehicleSpec` is checked against its range in
 :data:`engine.vehicle.plausibility.RANGES` (each range gives its source, or says it is assumed and why) under the
 spec path the user typed (``spec.tare.mass_kg``, ``spec.payloads[0].load_height_m``), with the likely unit slip:
 ``spec.tare.mass_kg = 7.5 kg for the tare of a semitrailer: in tonnes?``. Checked first, so a height typed in
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from engine.vehicle.builder.spec import AxleGroupSpec, VehicleSpec
+from engine.builder.spec import AxleGroupSpec, VehicleSpec
 from engine.vehicle.plausibility import check_plausible
 
 #: what a unit type's tare is called in a message
@@ -96,7 +96,7 @@ def check_spec_plausible(spec: VehicleSpec) -> None:
 
 
 def check_payloads_plausible(payloads: object, where: str) -> None:
-    """Refuse a payload (:class:`~engine.vehicle.builder.spec.PayloadSpec`) with a measurable input outside its
+    """Refuse a payload (:class:`~engine.builder.spec.PayloadSpec`) with a measurable input outside its
     plausible range, named under ``where`` (``spec``, ``combination_spec.units[1]``): the single-unit spec's and every
     unit of a combination spec's, one rule (a 22 kg payload is 22 t typed in kg, in either).
 
@@ -161,7 +161,7 @@ SPEC_RANGES: dict[tuple[str, str], str] = {
     ("FrontUnitSpec", "fifth_wheel_stiffness_kn_per_m"): "fifth_wheel_rate_kn_per_m",
     ("FrontUnitSpec", "fifth_wheel_height_m"): "height_m",
     ("FrontUnitSpec", "fifth_wheel_width_m"): "spring_spacing_m",
-    # the combination spec (engine.vehicle.builder.combination)
+    # the combination spec (engine.builder.combination)
     ("RollTyreSpec", "stiffness_kn_per_m"): "tyre_stiffness_kn_per_m",
     ("RollTyreSpec", "loaded_radius_m"): "tyre_radius_m",
     ("RollSuspensionSpec", "roll_stiffness_knm_per_rad"): "suspension_roll_stiffness_knm_per_rad",

@@ -2,9 +2,9 @@
 
 The whole-combination roll model computes LLTf/LLTr at the limit; the thesis's 3D model of the last trailer takes
 that ratio instead of an assumed one (:func:`engine.models.registry.last_unit_record`). A combination built from
-measurable data (:func:`~engine.vehicle.builder.build_combination`) has no thesis record of its own, so this module
-writes the last unit's spec in the single-unit builder's terms (:class:`~engine.vehicle.builder.VehicleSpec`) from the
-same data and builds it (:func:`~engine.vehicle.builder.build_vehicle`):
+measurable data (:func:`~engine.builder.build_combination`) has no thesis record of its own, so this module
+writes the last unit's spec in the single-unit builder's terms (:class:`~engine.builder.VehicleSpec`) from the
+same data and builds it (:func:`~engine.builder.build_vehicle`):
 
 * the unit type: the last unit is a semitrailer behind a fifth wheel (``semitrailer``: on a tractor or a converter
   dolly) or behind a B-coupling (``btrain-rear``); the 3D model has no other (a full trailer's turntable, a rigid
@@ -30,14 +30,14 @@ import dataclasses
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
+from engine.builder.build import build_vehicle
+from engine.builder.spec import AxleGroupSpec, FieldDerivation, SuspensionSpec, TyreSpec, VehicleSpec
 from engine.errors import InvalidInput
-from engine.vehicle.builder.build import build_vehicle
-from engine.vehicle.builder.spec import AxleGroupSpec, FieldDerivation, SuspensionSpec, TyreSpec, VehicleSpec
 from engine.vehicle.combination import AxleGroup, Combination
 from engine.vehicle.record import Vehicle
 
 if TYPE_CHECKING:  # the combination builder calls this module: its spec types only for annotations
-    from engine.vehicle.builder.combination_spec import CombinationSpec, UnitGroupSpec
+    from engine.builder.combination_spec import CombinationSpec, UnitGroupSpec
 
 _UNIT_TYPE = {"fifth-wheel": "semitrailer", "b-coupling": "btrain-rear"}
 
@@ -117,6 +117,6 @@ def last_unit_record(
         return None, f"no thesis record of the last unit for the 3D model: {exc}"
     return record, (
         f"the last unit's thesis record (for the 3D model) was built from the same data as a {vspec.unit_type} "
-        "(engine/vehicle/builder/last_unit.py: the suspension height from the roll centre, assumed; the fifth "
+        "(engine/builder/last_unit.py: the suspension height from the roll centre, assumed; the fifth "
         "wheel's springs the thesis's defaults)"
     )

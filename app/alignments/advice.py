@@ -16,8 +16,24 @@ import numpy as np
 
 from app.compute.resolved import ResolvedAssessment
 from app.formats.alignment_io import CurveTable
+from engine.road import (
+    BALL_BANK_2009,
+    BODY_ROLL_DEG_PER_G,
+    DESIGN_METHOD_NOTE,
+    SIGN_INCREMENTS,
+    TREATMENT_SOURCE,
+    TREATMENTS,
+    W1_13_RULE,
+    AlignmentColumns,
+    advise_alignment,
+)
 from engine.road import ROLLOVER_MARGIN_KMH as RULE_MARGIN_KMH
-from engine.road import SIGN_INCREMENTS, TREATMENT_SOURCE, TREATMENTS, W1_13_RULE, AlignmentColumns, advise_alignment
+
+#: how an assessed curve's advisory speed is found: without a measured car speed (which only the one-curve
+#: endpoint takes), every row's speed is the 2009 ball-bank criterion's (engine.road.advisory.advise_curves)
+ROW_METHOD_SOURCE = f"{BALL_BANK_2009.source}; a passenger car's body roll of {BODY_ROLL_DEG_PER_G:g} deg/g assumed" + (
+    "" if BALL_BANK_2009.verified else ": unverified"
+)
 
 #: the reason of a curve the truck cannot brake for: inf in the engine's required deceleration
 NO_ROOM = (
@@ -151,6 +167,9 @@ def advisory_head(r: ResolvedAssessment) -> dict[str, object]:
         "increment": SIGN_INCREMENTS[r.units],
         "desired_speed_kmh": r.desired_speed_kmh,
         "deceleration_mps2": r.deceleration_mps2,
+        "method": BALL_BANK_2009.id,
+        "method_source": ROW_METHOD_SOURCE,
+        "primary_method": f"Design Method (FHWA-SA-11-22, TxDOT): {DESIGN_METHOD_NOTE}",
         "treatment_source": TREATMENT_SOURCE,
         "truck_rollover_warning_rule": W1_13_RULE.format(margin=RULE_MARGIN_KMH),
     }

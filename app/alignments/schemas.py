@@ -428,6 +428,18 @@ class AdvisoryOut(OutputModel):
         description=describe("The request's tangent speed where a curve has no posted speed.", unit="km/h")
     )
     deceleration_mps2: float = Field(description=describe("The profile's braking rate.", unit="m/s^2"))
+    method: str = Field(
+        description=describe(
+            "The method every row's advisory speed comes from (`ball-bank-2009`: the 2009 MUTCD ball-bank "
+            "criterion, from the curve's radius and superelevation; a measured car speed, which TxDOT's Direct "
+            "Method needs, is taken only by `POST /v1/advisory-speed`).",
+            unit="-",
+        )
+    )
+    method_source: str = Field(description=describe("Where that method was read, and its status.", unit="-"))
+    primary_method: str = Field(
+        description=describe("The primary method of FHWA-SA-11-22 and TxDOT, and why it gives no speed.", unit="-")
+    )
     treatment_source: str = Field(description=describe("The treatment table and its status.", unit="-"))
     truck_rollover_warning_rule: str = Field(description=describe("The W1-13 rule (this service's).", unit="-"))
 

@@ -164,3 +164,45 @@ def test_the_speed_profile_plot_draws_the_answers_profile_and_speeds(client):
     curves = {"vehicle": BTRAIN, "curves": [{"id": "A", "radius_m": 150.0, "superelevation_percent": 6.0}]}
     problem = _post(client, curves, status=422, path="/v1/plots/speed-profile").json()
     assert problem["errors"][0]["field"] == "curves" and "no speed profile" in problem["detail"]
+
+
+def test_the_answer_says_which_method_set_the_rows_speeds(client):
+    """Without a measured car speed every row's advisory speed is the 2009 ball-bank criterion's: the answer names it
+    with its source and status, and why the primary Design Method gives none, once (docs/advisory.md). Each row's
+    speed is recomputed here from the criterion's bands (16/14/12 deg from 0/25/35 mph): the side friction a
+    ball-bank angle stands for, atan(f) + 5 deg/g x f = angle (Brent's root, not the engine's bisection), the
+    point-mass speed sqrt(127 R (e + f)) in the first band that holds it (or that band's lower edge), then the metric
+    plaque: down to a multiple of 10 km/h."""
+    import math
+
+    from scipy.optimize import brentq
+
+    from engine.road import BALL_BANK_2009, BODY_ROLL_DEG_PER_G
+
+    curves = [(150, 6), (600, 4), (60, 8), (1200, 2)]
+    body = {
+        "vehicle": "table16-btrain",
+        "units": "metric",
+        "curves": [
+            {"id": f"C{k}", "radius_m": r, "superelevation_percent": e, "posted_speed_kmh": 100}
+            for k, (r, e) in enumerate(curves)
+        ],
+    }
+    out = client.post("/v1/alignments/assess", json=body).json()
+    adv = out["advisory"]
+    assert adv["method"] == BALL_BANK_2009.id == "ball-bank-2009"
+    assert "MUTCD 2009" in adv["method_source"] and adv["method_source"].endswith("unverified")
+    assert adv["primary_method"].startswith("Design Method") and "unverified" in adv["primary_method"]
+    edges = [1.609344 * mph for mph in BALL_BANK_2009.edges_mph] + [math.inf]
+    assert BALL_BANK_2009.values == (16.0, 14.0, 12.0) and BODY_ROLL_DEG_PER_G == 5.0
+    shown = []
+    for r, e in curves:
+        for k, angle in enumerate(BALL_BANK_2009.values):
+            f = brentq(lambda f, a=angle: math.degrees(math.atan(f)) + 5.0 * f - a, 0.0, 1.0, xtol=1e-14)
+            v = math.sqrt(127.0 * r * (e / 100 + f))
+            if v < edges[k + 1]:
+                v = max(v, edges[k])
+                break
+        shown.append(max(10.0, 10.0 * math.floor(v / 10.0 + 1e-9)))
+    rows = {row["id"]: row["advisory_speed_kmh"] for row in out["vehicles"][0]["rows"]}
+    assert [rows[f"C{k}"] for k in range(len(curves))] == pytest.approx(shown, abs=1e-9)

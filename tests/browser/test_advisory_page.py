@@ -93,7 +93,9 @@ def test_a_road_file_shows_filters_downloads_and_prints_its_advisory_speeds(page
         n = sum(device in r["treatment"]["devices"] for r in rows.values())
         assert f"{device} at {n} curve{'s' if n > 1 else ''}" in line
     notes = page.text("#alignment-signs .method-notes")
-    assert "Primary method unverified" in notes and "computes no speed from it and none is shown" in notes
+    # in the service's own words: which method set the speeds, and why the primary one gives none
+    assert "Primary method unverified" in notes and "no speed is computed from it" in notes
+    assert result["advisory"]["primary_method"] in notes and result["advisory"]["method_source"] in notes
     assert result["advisory"]["treatment_source"] in notes
 
     # the filter: the curves whose treatment calls for signs

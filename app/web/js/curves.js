@@ -374,13 +374,19 @@ function plaqueWords(adv) {
  * sets them, the plaque's rounding, and the long sources the answer states once (`advisory`). `adv` may be null.
  */
 export function signsNotes(stats, adv, { print = false } = {}) {
+  // the service's own words where the answer states them (advisory.primary_method, method_source), else the same
+  // facts as docs/advisory.md gives them
+  const method = adv?.primary_method && adv?.method_source
+    ? [
+        `Primary method ${adv.primary_method.includes("unverified") ? "unverified" : "used"}: ${adv.primary_method}. `,
+        `Each advisory speed here: ${adv.method_source}.`,
+      ]
+    : [
+        "Primary method unverified: the Design Method that FHWA-SA-11-22 (2011) and TxDOT name (Bonneson, Pratt, Miles and Carlson's curve speed model) could not be read in its primary text, so the service computes no speed from it and none is shown. ",
+        "Without a measured car speed (TxDOT's Direct Method), each advisory speed is the newest legacy ball-bank criterion's (MUTCD 2009, 16/14/12 degrees by speed; unverified).",
+      ];
   const items = [
-    el(
-      "li",
-      { class: "unverified-method" },
-      "Primary method unverified: the Design Method that FHWA-SA-11-22 (2011) and TxDOT name (Bonneson, Pratt, Miles and Carlson's curve speed model) could not be read in its primary text, so the service computes no speed from it and none is shown. ",
-      "Without a measured car speed (TxDOT's Direct Method), each advisory speed is the newest legacy ball-bank criterion's (MUTCD 2009, 16/14/12 degrees by speed; unverified).",
-    ),
+    el("li", { class: "unverified-method" }, ...method),
     el("li", {}, `Plaques: ${plaqueWords(adv)}. Curves within 600 ft (183 m) of each other share one sign, its lowest speed (TxDOT).`),
   ];
   if (adv?.treatment_source) items.push(el("li", {}, `Treatment: ${adv.treatment_source}.`));

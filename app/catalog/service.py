@@ -13,7 +13,7 @@ validation with a 409 problem (logged, never served).
 
 What is checked, on write and again on every read (a row is never trusted because it is in the database):
 
-* a record: the :class:`~app.vehicles.schemas.VehicleRecord` schema, then the engine's
+* a record: the :class:`~app.vehicle_forms.schemas.VehicleRecord` schema, then the engine's
   ``validate_vehicle(..., model="3d")``; a record without the 3D fields (``MissingParameter``) is checked as a
   2D record instead, so a 2D vehicle may be saved; any other engine refusal is a 422 naming ``vehicle.<field>``;
 * a spec: :func:`validate_spec`: the builder's schema and the build itself (422 naming ``vehicle.spec.<field>``);
@@ -64,12 +64,11 @@ from app.http.problems import http_handler, problem_response
 from app.http.route_table import documented_paths
 from app.logs import get_logger
 from app.settings import Settings
-from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
-from app.vehicles.builder_service import build_spec
-from app.vehicles.combination_builder_schemas import CombinationSpecRef
-from app.vehicles.combination_builder_service import build_combination_spec, combination_of
-from app.vehicles.combination_schemas import CombinationRef
-from app.vehicles.schemas import VehicleRecord
+from app.vehicle_forms.build import build_combination_spec, build_spec, combination_of
+from app.vehicle_forms.builder_schemas import SpecRef, VehicleSpecIn
+from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
+from app.vehicle_forms.combination_schemas import CombinationRef
+from app.vehicle_forms.schemas import VehicleRecord
 from engine.errors import InvalidVehicle, MissingParameter
 from engine.models import get_model
 from engine.vehicle import COMBINATIONS, PRESETS, Vehicle

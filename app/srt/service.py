@@ -30,8 +30,8 @@ from app.compute.results import Computed, cached
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
+from app.vehicle_forms.schemas import VehicleRecord
 from app.vehicles.refs import resolve_vehicle
-from app.vehicles.schemas import VehicleRecord
 from engine import ENGINE_VERSION
 from engine.case import Case, LoadCase, Road
 from engine.models import rollover_threshold

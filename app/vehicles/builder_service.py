@@ -17,7 +17,8 @@ from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedBuild, ResolvedPayloadTable
 from app.compute.results import Computed, cached
 from app.formats.tables import Text, to_csv
-from app.vehicles.builder_schemas import (
+from app.vehicle_forms.build import build_spec
+from app.vehicle_forms.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
@@ -27,35 +28,16 @@ from app.vehicles.builder_schemas import (
 )
 from app.vehicles.payload_schemas import PayloadTableRequest
 from engine import ENGINE_VERSION
-from engine.errors import InvalidInput
 from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
 from engine.vehicle.builder import (
     BuiltVehicle,
     CombinationSpec,
     PayloadTable,
     VehicleSpec,
-    build_vehicle,
     payload_table,
 )
 
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")
-
-
-def at_field(exc: InvalidInput, prefix: str | None) -> InvalidInput:
-    """The engine's error with its field under ``prefix`` (``spec.rear.tyre.id`` -> ``vehicle.spec.rear.tyre.id``)."""
-    if not prefix:
-        return exc
-    return type(exc)(str(exc), field=f"{prefix}.{exc.field}" if exc.field else prefix, value=exc.value)
-
-
-def build_spec(spec: VehicleSpec | dict[str, Any], where: str | None = None) -> BuiltVehicle:
-    """The built vehicle a spec describes; its errors name ``<where>.spec.<field>`` (``spec.<field>`` alone when
-    ``where`` is None: the spec is the request's own)."""
-    try:
-        engine_spec = spec if isinstance(spec, VehicleSpec) else VehicleSpec.from_dict(spec)
-        return build_vehicle(engine_spec)
-    except InvalidInput as e:
-        raise at_field(e, where) from e
 
 
 def build_result(built: BuiltVehicle) -> BuildResult:

@@ -31,11 +31,10 @@ from pydantic import BaseModel
 from app.catalog import service as catalog
 from app.catalog.auth import authenticate
 from app.settings import Settings
-from app.vehicles.builder_schemas import SpecRef
-from app.vehicles.builder_service import build_spec
-from app.vehicles.combination_builder_schemas import CombinationSpecRef
-from app.vehicles.combination_builder_service import build_combination_spec, combination_of
-from app.vehicles.combination_schemas import CombinationRef
+from app.vehicle_forms.build import build_combination_spec, build_spec, combination_of
+from app.vehicle_forms.builder_schemas import SpecRef
+from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
+from app.vehicle_forms.combination_schemas import CombinationRef
 from engine.errors import UnknownPreset
 from engine.vehicle import (
     COMBINATIONS,

@@ -31,7 +31,7 @@ from app.srt.schemas import SrtRequest
 from app.srt.service import resolve_case, resolve_srt
 from app.srt.sweep_schemas import SweepRequest
 from app.srt.sweep_service import resolve_sweep
-from app.vehicles.builder_schemas import EXAMPLE_SPEC, BuildRequest
+from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC, BuildRequest
 from app.vehicles.payload_schemas import PayloadTableRequest
 from app.vehicles.refs import vehicle_preset
 from engine.case import Road

@@ -1,10 +1,11 @@
 """Saved vehicles and fleets: the rules between the HTTP routes and the database.
 
-For the computations (wired by the HTTP layer): :func:`catalog_db` gives the request's :class:`Database`,
-:func:`app.catalog.auth.authenticate` the caller's owner id, and
+For the computations, one read: :class:`SavedVehicles` of a request (its database and the caller's owner id from its
+bearer key, each opened at most once; its user is the vehicles feature's resolver, :mod:`app.vehicles.resolve`).
+Its :meth:`~SavedVehicles.vehicle` and :meth:`~SavedVehicles.fleet` are
 
 * :func:`resolve_saved_vehicle` ``(db, owner, id) -> dict``: the stored vehicle body, usable as the ``vehicle``
-  of any request (a full record, or ``{"spec": {...}}`` for the builder);
+  of any request (a full record, ``{"spec": {...}}``, ``{"combination": {...}}`` or ``{"combination_spec": ...}``);
 * :func:`resolve_fleet` ``(db, owner, id) -> list[(id, dict | None)]``: the members in order, each with its id:
   a preset with None, a saved vehicle with its stored body.
 
@@ -38,11 +39,13 @@ import orjson
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
+from fastapi.security import HTTPAuthorizationCredentials
+from fastapi.security.utils import get_authorization_scheme_param
 from sqlalchemy.exc import OperationalError
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from app.catalog.auth import CatalogDisabled, NotAuthenticated
+from app.catalog.auth import CatalogDisabled, NotAuthenticated, authenticate
 from app.catalog.schemas import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
@@ -813,3 +816,42 @@ async def resolve_fleet(db: Database, owner: str, id: str) -> list[tuple[str, di
         decoded = decode_vehicle(saved)
         out.append((decoded.id, decoded.vehicle.model_dump()))
     return out
+
+
+def _credentials(request: Request) -> HTTPAuthorizationCredentials | None:
+    scheme, token = get_authorization_scheme_param(request.headers.get("authorization"))
+    if scheme.lower() != "bearer" or not token:
+        return None
+    return HTTPAuthorizationCredentials(scheme=scheme, credentials=token)
+
+
+class SavedVehicles:
+    """The catalog's one read for the computations: the saved vehicles and fleets of the request's bearer key, as
+    their stored bodies (validated as on every read). The key is checked and the database opened on the first read
+    only, at most once per request; a request without a saved id or a fleet never touches either."""
+
+    def __init__(self, request: Request, settings: Settings) -> None:
+        self._request = request
+        self._settings = settings
+        self._owner: str | None = None
+
+    @staticmethod
+    def is_saved_id(ref: str) -> bool:
+        """Whether a vehicle id names a saved vehicle (``veh_...``) rather than a preset."""
+        return ref.startswith(SAVED_VEHICLE_PREFIX)
+
+    async def _open(self) -> tuple[Database, str]:
+        db = await catalog_db(self._request)  # first: a catalog that is off (or down) says so before any key is asked
+        if self._owner is None:
+            self._owner = authenticate(_credentials(self._request), self._settings)
+        return db, self._owner
+
+    async def vehicle(self, id: str) -> dict[str, Any]:
+        """:func:`resolve_saved_vehicle` of the caller's key (401/403 without a valid one, 404 naming ``id``)."""
+        db, owner = await self._open()
+        return await resolve_saved_vehicle(db, owner, id)
+
+    async def fleet(self, id: str) -> list[tuple[str, dict[str, Any] | None]]:
+        """:func:`resolve_fleet` of the caller's key (401/403 without a valid one, 404 naming ``id``)."""
+        db, owner = await self._open()
+        return await resolve_fleet(db, owner, id)

@@ -355,7 +355,7 @@ async def _run(fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
 # ------------------------------------------------------------------------------------- vehicle validation
 def validate_spec(spec: dict[str, Any]) -> None:
     """A stored or sent builder spec checked as the builder reads it: the request schema, then the build itself
-    (:func:`app.vehicles.builder_service.build_spec`: the physics, the component library, the ratings).
+    (:func:`app.vehicle_forms.build.build_spec`: the physics, the component library, the ratings).
 
     Raises :class:`~engine.errors.InvalidVehicle` naming ``vehicle.spec.<field>`` (a 422 problem), or pydantic's
     ``ValidationError`` (a ``ValueError``) for a stored spec that no longer fits the schema.

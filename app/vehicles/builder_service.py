@@ -1,8 +1,7 @@
 """The vehicle builder over HTTP: POST /v1/vehicles/build, GET /v1/components, POST /v1/vehicles/payload-table.
 
-A spec is turned into the engine's record by :func:`engine.vehicle.builder.build_vehicle`; :func:`build_spec` is the one
-place that does it for the service (the build endpoint, a ``{"spec": ...}`` vehicle in any computation, a saved
-spec), re-pointing the engine's ``spec.<field>`` errors at where the spec sits in the request.
+A spec is turned into the engine's record by :func:`app.vehicle_forms.build.build_spec`, the one place that does it for
+the service (the build endpoint, a ``{"spec": ...}`` vehicle in any computation, a saved spec).
 """
 
 from __future__ import annotations

@@ -1,8 +1,7 @@
 """The combination builder for the service: ``POST /v1/combinations/build`` and ``{"combination_spec": ...}``.
 
-:func:`build_combination_spec` is the one place that builds a combination spec for the service (the build endpoint
-and a ``{"combination_spec": ...}`` vehicle in any computation), re-pointing the engine's ``combination_spec.<field>``
-errors at where the spec sits in the request (``vehicle.combination_spec.units[1].tare.mass_kg``).
+:func:`app.vehicle_forms.build.build_combination_spec` is the one place that builds a combination spec for the
+service (the build endpoint, a ``{"combination_spec": ...}`` vehicle in any computation, a saved one).
 """
 
 from __future__ import annotations

@@ -134,7 +134,9 @@ def resolve_given(ref: Any, where: str) -> ResolvedVehicle:
         return ResolvedVehicle(where, "combination_spec", built)
     if isinstance(ref, VehicleRecord):
         vehicle = Vehicle.from_dict(ref.record())
-        check_record_plausible(vehicle)  # typed over HTTP: its weight and stiffnesses in plausible units
+        # typed over HTTP: its weight and stiffnesses in plausible units, a slip named where it was typed
+        # (vehicles[1].weight_kn, answered as vehicles.1.weight_kn), not as the request's single vehicle
+        check_record_plausible(vehicle, f"{where}.")
         warnings = tuple(record_warnings(vehicle, f"{where}."))
         return ResolvedVehicle(where, "record", vehicle, warnings=warnings)
     raise TypeError(f"{where}: not a vehicle reference: {type(ref).__name__}")

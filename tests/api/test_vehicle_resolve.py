@@ -186,6 +186,19 @@ def test_a_typed_records_warnings_name_where_it_was_typed():
     assert resolve_module.resolve_request_given(SrtRequest.model_validate({"vehicle": SEMI})).vehicle.warnings == ()
 
 
+@pytest.mark.parametrize(
+    ("path", "extra"),
+    [("/v1/srt", None), ("/v1/alignments/assess", {"curves": CURVES}), ("/v1/advisory-speed", ADVISORY)],
+)
+def test_a_record_typed_in_the_wrong_unit_is_named_where_it_was_typed(shared_client, path, extra):
+    record = {**_record(shared_client, BTRAIN), "weight_kn": 31.5}  # 31.5 t typed as kN
+    body = {"vehicle": record} if extra is None else {**extra, "vehicles": [BTRAIN, record]}
+    r = shared_client.post(path, json=body)
+    field = "vehicle.weight_kn" if extra is None else "vehicles.1.weight_kn"
+    assert r.status_code == 422 and [e["field"] for e in r.json()["errors"]] == [field], r.text
+    assert "in tonnes?" in r.json()["detail"]
+
+
 def _imports(package: Path) -> set[str]:
     out = set()
     for path in package.rglob("*.py"):

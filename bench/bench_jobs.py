@@ -153,7 +153,12 @@ def download(url: str, accept: str, client: httpx.Client) -> tuple[int, float]:
 
 
 def submission_in_process(body: bytes) -> float:
-    """The submission's parse and split in this process [s]: the POST's work without HTTP and the job store."""
+    """The submission's parse, vehicle resolution and split in this process [s]: the POST's work without HTTP and the
+    job store (the request names a preset: its resolution reads no catalog, so a bare request object will do)."""
+    import asyncio
+
+    from starlette.requests import Request
+
     from app.compute import solvers
     from app.jobs.base import ResolveContext
     from app.jobs.service import parse_submission, prepare
@@ -163,6 +168,8 @@ def submission_in_process(body: bytes) -> float:
     solvers.configure(settings.solve_threads)
     t0 = time.perf_counter()
     op, parsed = parse_submission(body)
+    if op.refs is not None:
+        parsed = asyncio.run(op.refs(Request({"type": "http", "headers": []}), parsed, settings))
     prepare(op, parsed, ResolveContext(settings, None))
     return time.perf_counter() - t0
 

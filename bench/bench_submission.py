@@ -1,7 +1,8 @@
-"""A 1,000,000-curve ``alignments.assess`` job's submission in this process (``parse_submission`` + ``prepare``, the
-POST's work without HTTP and the job store), the same curves as CSV text and as JSON objects, each through the
-columns reader (the default) and through the old reader (``orjson`` into a dict per curve, ``read_csv``), in the same
-run: the machine is shared and its speed varies between runs, so the figures read against each other.
+"""A 1,000,000-curve ``alignments.assess`` job's submission in this process (``parse_submission``, the vehicle's
+resolution and ``prepare``: the POST's work without HTTP and the job store), the same curves as CSV text and as JSON
+objects, each through the columns reader (the default) and through the old reader (``orjson`` into a dict per curve,
+``read_csv``), in the same run: the machine is shared and its speed varies between runs, so the figures read against
+each other.
 
     python bench/bench_submission.py [--curves 1000000] [--repeat 3]
 

@@ -121,8 +121,8 @@ def ansi_c(text: str) -> str:
 BTRAIN = "table16-btrain"
 sys.path.insert(0, str(ROOT))
 from app.routes.schemas import EXAMPLE_GEOJSON  # noqa: E402
-from app.vehicles.builder_schemas import EXAMPLE_SPEC  # noqa: E402
-from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC  # noqa: E402
+from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC  # noqa: E402
+from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC  # noqa: E402
 from scripts.docblock import split_block  # noqa: E402
 
 CURVES_CSV = (

@@ -10,7 +10,7 @@ from app.deps import CacheDep, SettingsDep
 from app.http.fastpath import replayable
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_responses, json_response
-from app.vehicles.refs import resolve_vehicle_refs
+from app.vehicles.resolve import resolve_request
 
 router = APIRouter(prefix="/v1", tags=["road"])
 
@@ -32,5 +32,4 @@ async def advisory_speed(
     service's rule: a vehicle's rollover speed, Eq. 9.1, less a margin below the advisory speed). 422 for a posted or
     tangent speed outside 10-130 km/h, a deceleration a loaded truck cannot brake at, an increment that is not the
     sign's."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await compute_advisory_speed(cache, body))
+    return json_response(await compute_advisory_speed(cache, await resolve_request(request, body, settings)))

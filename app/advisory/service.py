@@ -20,7 +20,7 @@ from app.compute.cache import ResultCache
 from app.compute.resolved import Resolved, ResolvedSrt
 from app.compute.results import Computed, cached
 from app.srt.service import resolve_case, resolve_srt, solve
-from app.vehicles.refs import resolve_vehicle
+from app.vehicles.resolve import VehicleRequest
 from engine import ENGINE_VERSION, InvalidInput, Road
 from engine import road as adv
 from engine.road import check_deceleration, max_curve_speed_kmh, side_friction_speed
@@ -53,12 +53,6 @@ class ResolvedAdvisory(Resolved):
     srt_requests: tuple[ResolvedSrt, ...]
 
 
-def _vehicle_refs(req: AdvisorySpeedRequest) -> list:
-    if req.vehicles is not None:
-        return list(req.vehicles)
-    return [] if req.vehicle is None else [req.vehicle]
-
-
 def _method(mid: str, speed: float | None, vehicle: int | None = None) -> MethodOut:
     source, legacy, verified = adv.method_source(mid)
     return MethodOut(id=mid, speed_kmh=speed, source=source, legacy=legacy, verified=verified, vehicle=vehicle)
@@ -68,13 +62,14 @@ def _finite(x: float) -> float | None:
     return x if x == x else None  # nan -> None
 
 
-async def compute_advisory_speed(cache: ResultCache, req: AdvisorySpeedRequest) -> Computed:
+async def compute_advisory_speed(cache: ResultCache, vr: VehicleRequest[AdvisorySpeedRequest]) -> Computed:
+    req = vr.body
     # refusals the schema cannot state: the sign's increment, a truck's braking limit
     if req.increment is not None:
         adv.check_increment(req.units, req.increment)
     check_deceleration(req.deceleration_mps2)
     road = Road(bank_percent=req.superelevation_percent, slope_percent=req.grade_percent)
-    cases = [resolve_case(req, road=road, vehicle=resolve_vehicle(ref)) for ref in _vehicle_refs(req)]  # type: ignore[arg-type]
+    cases = [resolve_case(req, v.vehicle, road=road) for v in vr.vehicles]  # type: ignore[arg-type]
     tangent = req.tangent_speed_kmh if req.tangent_speed_kmh is not None else req.posted_speed_kmh
     resolved = ResolvedAdvisory.of(
         req,

@@ -18,7 +18,7 @@ from app.alignments.schemas import (
     AlignmentRequest,
     AlignmentResult,
 )
-from app.alignments.service import compute_alignment, parse_json_request
+from app.alignments.service import compute_alignment, parse_json_request, resolve_assessment_request
 from app.alignments.uploads import (
     CsvUploadQuery,
     IfcUploadQuery,
@@ -67,7 +67,11 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     # 100,000 curves are 15 MB of JSON: read and validated in a worker thread, the curves as columns
     body, curves = await run_in_threadpool(parse_json_request, await request.body())
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_alignment(cache, request, body, curves, settings, csv=csv))
+    return table_answer(
+        await compute_alignment(
+            cache, await resolve_assessment_request(request, body, settings), curves, settings, csv=csv
+        )
+    )
 
 
 @router.post(
@@ -94,7 +98,16 @@ async def assess_csv(
 ) -> Response:
     body, field = await csv_upload(request, query, CSV_UPLOAD_LIMIT)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))
+    return table_answer(
+        await compute_alignment(
+            cache,
+            await resolve_assessment_request(request, body, settings),
+            None,
+            settings,
+            csv=csv,
+            source_field=field,
+        )
+    )
 
 
 @router.post(
@@ -118,7 +131,16 @@ async def assess_landxml(
 ) -> Response:
     body, field = await landxml_upload(request, query, LANDXML_UPLOAD_LIMIT)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))
+    return table_answer(
+        await compute_alignment(
+            cache,
+            await resolve_assessment_request(request, body, settings),
+            None,
+            settings,
+            csv=csv,
+            source_field=field,
+        )
+    )
 
 
 @router.post(
@@ -145,4 +167,13 @@ async def assess_ifc(
 ) -> Response:
     body, field = await ifc_upload(request, query, IFC_UPLOAD_LIMIT)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_alignment(cache, request, body, None, settings, csv=csv, source_field=field))
+    return table_answer(
+        await compute_alignment(
+            cache,
+            await resolve_assessment_request(request, body, settings),
+            None,
+            settings,
+            csv=csv,
+            source_field=field,
+        )
+    )

@@ -10,7 +10,7 @@ by the fast path on a repeat; larger work goes to a job.
 
 The assessment of a curve table is public for the routes (:mod:`app.routes.service`: a route's curves are assessed as
 an alignment's) and the jobs (:mod:`app.jobs.op_alignments`): :class:`AlignmentJob`, :func:`resolved_assessment`,
-:func:`solve_alignment`, :func:`check_alignment`, :func:`resolve_alignment_refs`, :func:`as_fleet_error`.
+:func:`solve_alignment`, :func:`check_alignment`, :func:`resolve_assessment_request`, :func:`as_fleet_error`.
 """
 
 from __future__ import annotations
@@ -18,14 +18,15 @@ from __future__ import annotations
 import hashlib
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 import orjson
 from fastapi import Request
 from fastapi.exceptions import RequestValidationError
-from pydantic import ValidationError
+from pydantic import BaseModel, ValidationError
 from starlette.concurrency import run_in_threadpool
 
 from app.alignments.advice import advise, curve_places
@@ -46,7 +47,7 @@ from app.http.strictjson import refuse_duplicate_keys
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_targets
-from app.vehicles.refs import SavedRef, resolve_vehicle, resolve_vehicle_refs
+from app.vehicles.resolve import ResolvedVehicle, VehicleRequest, resolve_request
 from engine import Case, InvalidInput, LoadCase, RolloverError
 from engine.models import rollover_threshold
 from engine.road import (
@@ -56,7 +57,8 @@ from engine.road import (
     check_deceleration,
     superelevation_used,
 )
-from engine.vehicle import Vehicle
+
+Req = TypeVar("Req", bound=BaseModel)
 
 _PLACEHOLDER = [{"id": "placeholder", "radius_m": 100.0}]  # stands for the curves while the rest is validated
 
@@ -174,15 +176,15 @@ class AlignmentJob:
         return curve_places(self.curves) if self.places is None else self.places
 
 
-def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], settings: Settings) -> ResolvedAssessment:
+def resolved_assessment(req: Any, vehicles: Sequence[ResolvedVehicle], settings: Settings) -> ResolvedAssessment:
     """What an assessment's answer depends on besides its curves (part of its cache key): the vehicles' records
     (and preset ids, saved ids), the SRT options, the design standard, e_max and the targets. ``req`` is an
-    alignment or a route request (they share these fields)."""
+    alignment or a route request (they share these fields), ``vehicles`` its resolved vehicles."""
     check_deceleration(req.deceleration_mps2)  # a truck's braking limit: a 422 naming the field
     return ResolvedAssessment(
-        vehicles=tuple(v.to_dict() for v in vehicles),
-        presets=tuple(r if isinstance(r, str) else None for r in refs),
-        saved_ids=tuple(r.id if isinstance(r, SavedRef) else None for r in refs),
+        vehicles=tuple(v.vehicle.to_dict() for v in vehicles),
+        presets=tuple(v.preset for v in vehicles),
+        saved_ids=tuple(v.saved_id for v in vehicles),
         model=req.model,
         stage=req.stage,
         trailer_angle_deg=req.trailer_angle_deg,
@@ -199,7 +201,7 @@ def resolved_assessment(req: Any, refs: list[Any], vehicles: list[Vehicle], sett
 
 
 def resolve_alignment(
-    req: AlignmentRequest,
+    vr: VehicleRequest[AlignmentRequest],
     curves: CurveTable | None,
     settings: Settings,
     source_field: str | None = None,
@@ -209,17 +211,17 @@ def resolve_alignment(
 ) -> AlignmentJob:
     """The fully resolved request: the vehicles' records (and preset ids), the options, and the curves (at most
     ``max_curves`` and ``max_rows`` rows: a job's limits are larger than a request's)."""
+    req, refs = vr.body, vr.vehicles
     which = "vehicle" if req.vehicle is not None else "vehicles"
-    refs = [req.vehicle] if which == "vehicle" else list(req.vehicles)
     table = read_curves(req, curves, source_field, max_curves)
     if len(table) * len(refs) > max_rows:
         rows = f"{len(table)} curves x {len(refs)} vehicles = {len(table) * len(refs)} rows; at most {max_rows}"
         if max_rows == MAX_ROWS:
             raise request_error(which, as_a_job(f"{rows} per request"))
         raise request_error(which, f"{rows} per job (split the alignment or the vehicles)")
-    vehicles = [resolve_vehicle(r) for r in refs]
+    vehicles = vr.engine_vehicles
     resolved = ResolvedAlignment(
-        **resolved_assessment(req, refs, vehicles, settings).assessment_fields(),
+        **resolved_assessment(req, refs, settings).assessment_fields(),
         curves=CurvesDigest(len(table), _digest(table)),
         # the answer names it; the keys of curves and LandXML stay as they were (None: not in the key)
         csv_dialect=None if table.dialect is None else table.dialect.as_dict(),
@@ -390,23 +392,24 @@ def check_alignment(job: AlignmentJob) -> AlignmentPairs:
 # ---------------------------------------------------------------------------------------- the flow
 
 
-async def resolve_alignment_refs(request: Request, req: Any, settings: Settings, what: str = "an assessment") -> Any:
-    """``req`` (an alignment or a route request) with its saved vehicles, specs and fleet resolved
-    (:func:`~app.vehicles.refs.resolve_vehicle_refs`); a fleet larger than ``what`` takes (:data:`MAX_VEHICLES`) is
+async def resolve_assessment_request(
+    request: Request, req: Req, settings: Settings, what: str = "an assessment"
+) -> VehicleRequest[Req]:
+    """``req`` (an alignment or a route request) and its vehicles resolved, a fleet's members among them
+    (:func:`app.vehicles.resolve.resolve_request`); a fleet larger than ``what`` takes (:data:`MAX_VEHICLES`) is
     a 422 naming ``fleet``."""
-    fleet = req.fleet
-    req = await resolve_vehicle_refs(request, req, settings)
-    if fleet is not None and len(req.vehicles) > MAX_VEHICLES:
+    vr = await resolve_request(request, req, settings)
+    fleet = req.fleet  # type: ignore[attr-defined]
+    if fleet is not None and len(vr.vehicles) > MAX_VEHICLES:
         raise request_error(
-            "fleet", f"fleet {fleet} has {len(req.vehicles)} vehicles; {what} takes at most {MAX_VEHICLES}"
+            "fleet", f"fleet {fleet} has {len(vr.vehicles)} vehicles; {what} takes at most {MAX_VEHICLES}"
         )
-    return req
+    return vr
 
 
 async def compute_alignment(
     cache: ResultCache,
-    request: Request,
-    req: AlignmentRequest,
+    vr: VehicleRequest[AlignmentRequest],
     curves: CurveTable | None,
     settings: Settings,
     *,
@@ -414,9 +417,8 @@ async def compute_alignment(
     source_field: str | None = None,
 ) -> Computed:
     """The assessment as a cached body (at most :data:`~app.alignments.schemas.MAX_ROWS` rows: built whole)."""
-    fleet = req.fleet
-    req = await resolve_alignment_refs(request, req, settings)
-    job = await run_in_threadpool(resolve_alignment, req, curves, settings, source_field)
+    fleet = vr.body.fleet
+    job = await run_in_threadpool(resolve_alignment, vr, curves, settings, source_field)
     operation = "alignments-csv" if csv else "alignments"
 
     async def produce() -> bytes:

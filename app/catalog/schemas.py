@@ -9,10 +9,10 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
 from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, describe
-from app.vehicles.builder_schemas import SpecRef
-from app.vehicles.combination_builder_schemas import CombinationSpecRef
-from app.vehicles.combination_schemas import CombinationRef
-from app.vehicles.schemas import VehiclePreset, VehicleRecord
+from app.vehicle_forms.builder_schemas import SpecRef
+from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
+from app.vehicle_forms.combination_schemas import CombinationRef
+from app.vehicle_forms.schemas import VehiclePreset, VehicleRecord
 from engine.vehicle import Vehicle
 
 #: a saved vehicle's id: ``veh_`` + 22 url-safe base64 characters (128 random bits); a fleet's: ``flt_`` + 22

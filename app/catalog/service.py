@@ -1,10 +1,11 @@
 """Saved vehicles and fleets: the rules between the HTTP routes and the database.
 
-For the computations (wired by the HTTP layer): :func:`catalog_db` gives the request's :class:`Database`,
-:func:`app.catalog.auth.authenticate` the caller's owner id, and
+For the computations, one read: :class:`SavedVehicles` of a request (its database and the caller's owner id from its
+bearer key, each opened at most once; its user is the vehicles feature's resolver, :mod:`app.vehicles.resolve`).
+Its :meth:`~SavedVehicles.vehicle` and :meth:`~SavedVehicles.fleet` are
 
 * :func:`resolve_saved_vehicle` ``(db, owner, id) -> dict``: the stored vehicle body, usable as the ``vehicle``
-  of any request (a full record, or ``{"spec": {...}}`` for the builder);
+  of any request (a full record, ``{"spec": {...}}``, ``{"combination": {...}}`` or ``{"combination_spec": ...}``);
 * :func:`resolve_fleet` ``(db, owner, id) -> list[(id, dict | None)]``: the members in order, each with its id:
   a preset with None, a saved vehicle with its stored body.
 
@@ -13,7 +14,7 @@ validation with a 409 problem (logged, never served).
 
 What is checked, on write and again on every read (a row is never trusted because it is in the database):
 
-* a record: the :class:`~app.vehicles.schemas.VehicleRecord` schema, then the engine's
+* a record: the :class:`~app.vehicle_forms.schemas.VehicleRecord` schema, then the engine's
   ``validate_vehicle(..., model="3d")``; a record without the 3D fields (``MissingParameter``) is checked as a
   2D record instead, so a 2D vehicle may be saved; any other engine refusal is a 422 naming ``vehicle.<field>``;
 * a spec: :func:`validate_spec`: the builder's schema and the build itself (422 naming ``vehicle.spec.<field>``);
@@ -38,11 +39,13 @@ import orjson
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
+from fastapi.security import HTTPAuthorizationCredentials
+from fastapi.security.utils import get_authorization_scheme_param
 from sqlalchemy.exc import OperationalError
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from app.catalog.auth import CatalogDisabled, NotAuthenticated
+from app.catalog.auth import CatalogDisabled, NotAuthenticated, authenticate
 from app.catalog.schemas import (
     FLEET_ID_PATTERN,
     SAVED_VEHICLE_ID_PATTERN,
@@ -64,12 +67,11 @@ from app.http.problems import http_handler, problem_response
 from app.http.route_table import documented_paths
 from app.logs import get_logger
 from app.settings import Settings
-from app.vehicles.builder_schemas import SpecRef, VehicleSpecIn
-from app.vehicles.builder_service import build_spec
-from app.vehicles.combination_builder_schemas import CombinationSpecRef
-from app.vehicles.combination_builder_service import build_combination_spec, combination_of
-from app.vehicles.combination_schemas import CombinationRef
-from app.vehicles.schemas import VehicleRecord
+from app.vehicle_forms.build import build_combination_spec, build_spec, combination_of
+from app.vehicle_forms.builder_schemas import SpecRef, VehicleSpecIn
+from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
+from app.vehicle_forms.combination_schemas import CombinationRef
+from app.vehicle_forms.schemas import VehicleRecord
 from engine import InvalidVehicle, MissingParameter
 from engine.models import get_model
 from engine.vehicle import COMBINATIONS, PRESETS, Vehicle, check_record_plausible
@@ -352,7 +354,7 @@ async def _run(fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
 # ------------------------------------------------------------------------------------- vehicle validation
 def validate_spec(spec: dict[str, Any]) -> None:
     """A stored or sent builder spec checked as the builder reads it: the request schema, then the build itself
-    (:func:`app.vehicles.builder_service.build_spec`: the physics, the component library, the ratings).
+    (:func:`app.vehicle_forms.build.build_spec`: the physics, the component library, the ratings).
 
     Raises :class:`~engine.errors.InvalidVehicle` naming ``vehicle.spec.<field>`` (a 422 problem), or pydantic's
     ``ValidationError`` (a ``ValueError``) for a stored spec that no longer fits the schema.
@@ -813,3 +815,42 @@ async def resolve_fleet(db: Database, owner: str, id: str) -> list[tuple[str, di
         decoded = decode_vehicle(saved)
         out.append((decoded.id, decoded.vehicle.model_dump()))
     return out
+
+
+def _credentials(request: Request) -> HTTPAuthorizationCredentials | None:
+    scheme, token = get_authorization_scheme_param(request.headers.get("authorization"))
+    if scheme.lower() != "bearer" or not token:
+        return None
+    return HTTPAuthorizationCredentials(scheme=scheme, credentials=token)
+
+
+class SavedVehicles:
+    """The catalog's one read for the computations: the saved vehicles and fleets of the request's bearer key, as
+    their stored bodies (validated as on every read). The key is checked and the database opened on the first read
+    only, at most once per request; a request without a saved id or a fleet never touches either."""
+
+    def __init__(self, request: Request, settings: Settings) -> None:
+        self._request = request
+        self._settings = settings
+        self._owner: str | None = None
+
+    @staticmethod
+    def is_saved_id(ref: str) -> bool:
+        """Whether a vehicle id names a saved vehicle (``veh_...``) rather than a preset."""
+        return ref.startswith(SAVED_VEHICLE_PREFIX)
+
+    async def _open(self) -> tuple[Database, str]:
+        db = await catalog_db(self._request)  # first: a catalog that is off (or down) says so before any key is asked
+        if self._owner is None:
+            self._owner = authenticate(_credentials(self._request), self._settings)
+        return db, self._owner
+
+    async def vehicle(self, id: str) -> dict[str, Any]:
+        """:func:`resolve_saved_vehicle` of the caller's key (401/403 without a valid one, 404 naming ``id``)."""
+        db, owner = await self._open()
+        return await resolve_saved_vehicle(db, owner, id)
+
+    async def fleet(self, id: str) -> list[tuple[str, dict[str, Any] | None]]:
+        """:func:`resolve_fleet` of the caller's key (401/403 without a valid one, 404 naming ``id``)."""
+        db, owner = await self._open()
+        return await resolve_fleet(db, owner, id)

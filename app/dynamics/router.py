@@ -12,7 +12,7 @@ from app.http.fastpath import replayable
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_response, computed_responses, json_response
 from app.plots.router import svg_responses
-from app.vehicles.refs import resolve_vehicle_refs
+from app.vehicles.resolve import resolve_request
 
 router = APIRouter(prefix="/v1/dynamics", tags=["dynamics"])
 pbs_router = APIRouter(prefix="/v1", tags=["pbs"])
@@ -25,8 +25,7 @@ async def lane_change(body: s.LaneChangeRequest, request: Request, cache: CacheD
     """Single lane change: one sine period of the steer axle's lateral acceleration; rearward amplification,
     high-speed transient offtracking, peak load transfer ratio per roll-coupled unit, peak lateral acceleration and
     roll per unit. Indicative screening by a linear model: lift-off ends its validity (flagged in `validity`)."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_lane_change(cache, body))
+    return json_response(await service.compute_lane_change(cache, await resolve_request(request, body, settings)))
 
 
 @router.post("/frequency-response", name="frequency_response", response_model=s.FrequencyResponseResult,
@@ -36,8 +35,9 @@ async def frequency_response(body: s.FrequencyResponseRequest, request: Request,
                              settings: SettingsDep) -> Response:  # fmt: skip
     """Rearward amplification against frequency (the ratio of the rear unit's to the steer axle's lateral
     acceleration amplitudes) and its worst frequency."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_frequency_response(cache, body))
+    return json_response(
+        await service.compute_frequency_response(cache, await resolve_request(request, body, settings))
+    )
 
 
 @router.post("/pulse-steer", name="pulse_steer", response_model=s.PulseSteerResult, responses=CODES)
@@ -45,8 +45,7 @@ async def frequency_response(body: s.FrequencyResponseRequest, request: Request,
 async def pulse_steer(body: s.PulseSteerRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Yaw damping of the rearmost articulation after a steer pulse (successive same-sign peaks, full-cycle
     logarithmic decrement), the least-damped mode's damping ratio, frequency and shape, and every eigenvalue."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_pulse_steer(cache, body))
+    return json_response(await service.compute_pulse_steer(cache, await resolve_request(request, body, settings)))
 
 
 @router.post("/stability", name="stability", response_model=s.StabilityResult, responses=CODES)
@@ -54,8 +53,7 @@ async def pulse_steer(body: s.PulseSteerRequest, request: Request, cache: CacheD
 async def stability(body: s.StabilityRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """The speed at which trailer sway reaches zero damping and the speed of any divergence (null where stable up
     to 200 km/h)."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_stability(cache, body))
+    return json_response(await service.compute_stability(cache, await resolve_request(request, body, settings)))
 
 
 @router.post("/steady-turn", name="steady_turn", response_model=s.SteadyTurnResult, responses=CODES)
@@ -63,8 +61,7 @@ async def stability(body: s.StabilityRequest, request: Request, cache: CacheDep,
 async def steady_turn(body: s.SteadyTurnRequest, request: Request, cache: CacheDep, settings: SettingsDep) -> Response:
     """Steady turn at a radius and speed: every group's path radius and offtracking, every unit's articulation and
     roll, the load transfer ratio of every roll-coupled unit."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_steady_turn(cache, body))
+    return json_response(await service.compute_steady_turn(cache, await resolve_request(request, body, settings)))
 
 
 @router.post("/low-speed-turn", name="low_speed_turn", response_model=s.LowSpeedTurnResult, responses=CODES)
@@ -73,8 +70,7 @@ async def low_speed_turn(body: s.LowSpeedTurnRequest, request: Request, cache: C
                          settings: SettingsDep) -> Response:  # fmt: skip
     """The low-speed 90 degree turn (12.5 m radius at the outer steer tyre, no slip): swept path width, tail swing,
     frontal swing and the path of every corner of every unit."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_low_speed_turn(cache, body))
+    return json_response(await service.compute_low_speed_turn(cache, await resolve_request(request, body, settings)))
 
 
 @pbs_router.post("/pbs", name="pbs", response_model=s.PbsResult, responses=CODES)
@@ -86,8 +82,7 @@ async def pbs(body: s.PbsRequest, request: Request, cache: CacheDep, settings: S
     network level and the standards not judged. The manoeuvres' default speeds and amplitude are unverified: set
     them to the rules' values (`conditions` names those left at default). Indicative screening, not a
     certification."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await service.compute_pbs(cache, body))
+    return json_response(await service.compute_pbs(cache, await resolve_request(request, body, settings)))
 
 
 @router.post("/plots/lane-change", name="plot_lane_change", response_class=Response,
@@ -96,8 +91,7 @@ async def pbs(body: s.PbsRequest, request: Request, cache: CacheDep, settings: S
 async def plot_lane_change(body: s.LaneChangeRequest, request: Request, cache: CacheDep,
                            settings: SettingsDep) -> Response:  # fmt: skip
     """The lane change's lateral acceleration of every unit against time, as SVG (the lane change's body)."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return computed_response(await service.plot_lane_change(cache, body))
+    return computed_response(await service.plot_lane_change(cache, await resolve_request(request, body, settings)))
 
 
 @router.post("/plots/frequency-response", name="plot_frequency_response", response_class=Response,
@@ -106,8 +100,9 @@ async def plot_lane_change(body: s.LaneChangeRequest, request: Request, cache: C
 async def plot_frequency_response(body: s.FrequencyResponseRequest, request: Request, cache: CacheDep,
                                   settings: SettingsDep) -> Response:  # fmt: skip
     """Rearward amplification against frequency, the worst frequency marked, as SVG."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return computed_response(await service.plot_frequency_response(cache, body))
+    return computed_response(
+        await service.plot_frequency_response(cache, await resolve_request(request, body, settings))
+    )
 
 
 LOW_SPEED_SVG = svg_responses("the paths of every corner of every unit in the 90 degree turn, to scale")
@@ -118,5 +113,4 @@ LOW_SPEED_SVG = svg_responses("the paths of every corner of every unit in the 90
 async def plot_low_speed_turn(body: s.LowSpeedTurnRequest, request: Request, cache: CacheDep,
                               settings: SettingsDep) -> Response:  # fmt: skip
     """The low-speed turn's corner paths and the outer steer tyre's path, to scale, as SVG."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return computed_response(await service.plot_low_speed_turn(cache, body))
+    return computed_response(await service.plot_low_speed_turn(cache, await resolve_request(request, body, settings)))

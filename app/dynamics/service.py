@@ -19,7 +19,7 @@ from app.compute.resolved import Resolved
 from app.compute.results import Computed, cached
 from app.dynamics import plots
 from app.dynamics import schemas as s
-from app.vehicles.refs import resolve_vehicle
+from app.vehicles.resolve import VehicleRequest
 from engine import ENGINE_VERSION, InvalidVehicle
 from engine.dynamics import (
     GROUP_DATA_DOCS,
@@ -58,8 +58,8 @@ class ResolvedDynamics(Resolved):
     options: dict[str, Any]
 
 
-def combination_of_request(req: s.DynamicsInputs) -> Combination:
-    vehicle = resolve_vehicle(req.vehicle)
+def combination_of_request(vr: VehicleRequest[Any]) -> Combination:
+    vehicle = vr.vehicles[0].vehicle
     if not isinstance(vehicle, Combination):
         raise InvalidVehicle(
             "the dynamics need a combination (units, axle groups, couplings): a combination preset id "
@@ -106,8 +106,9 @@ def _as_typed(exc: InvalidVehicle, req: s.DynamicsInputs) -> InvalidVehicle:
     return exc
 
 
-def resolve(req: s.DynamicsInputs, **options: Any) -> tuple[Combination, DynamicsData, ResolvedDynamics]:
-    c = combination_of_request(req)
+def resolve(vr: VehicleRequest[Any], **options: Any) -> tuple[Combination, DynamicsData, ResolvedDynamics]:
+    req = vr.body
+    c = combination_of_request(vr)
     data = dynamics_data(req)
     given = req.dynamics.model_dump() if req.dynamics is not None else {"units": [], "groups": []}
     return c, data, ResolvedDynamics(c.to_dict(), given, options)
@@ -142,10 +143,10 @@ def _srts(c: Combination) -> list[float]:
     return [r.srt for r in solve_combination(c).roll_coupled_units]
 
 
-async def _answer(cache: ResultCache, operation: str, req: s.DynamicsInputs, options: dict[str, Any], compute
+async def _answer(cache: ResultCache, operation: str, vr: VehicleRequest[Any], options: dict[str, Any], compute
                   ) -> Computed:  # fmt: skip
-    c, data, resolved = resolve(req, **options)
-    model = _model(cache, c, data, resolved, req)
+    c, data, resolved = resolve(vr, **options)
+    model = _model(cache, c, data, resolved, vr.body)
 
     async def produce() -> bytes:
         result = await run_in_threadpool(compute, model)
@@ -154,7 +155,8 @@ async def _answer(cache: ResultCache, operation: str, req: s.DynamicsInputs, opt
     return await cached(cache, operation, resolved, produce)
 
 
-async def compute_lane_change(cache: ResultCache, req: s.LaneChangeRequest) -> Computed:
+async def compute_lane_change(cache: ResultCache, vr: VehicleRequest[s.LaneChangeRequest]) -> Computed:
+    req = vr.body
     opts = req.model_dump(exclude={"vehicle", "dynamics"})
 
     def compute(model: YawRollModel) -> s.LaneChangeResult:
@@ -176,10 +178,11 @@ async def compute_lane_change(cache: ResultCache, req: s.LaneChangeRequest) -> C
             units=lc.units, time_step_s=lc.time_step_s, history=lc.history or None,
         )  # fmt: skip
 
-    return await _answer(cache, "dynamics-lane-change", req, opts, compute)
+    return await _answer(cache, "dynamics-lane-change", vr, opts, compute)
 
 
-async def compute_frequency_response(cache: ResultCache, req: s.FrequencyResponseRequest) -> Computed:
+async def compute_frequency_response(cache: ResultCache, vr: VehicleRequest[s.FrequencyResponseRequest]) -> Computed:
+    req = vr.body
     freqs = tuple(req.frequencies_hz) if req.frequencies_hz is not None else DEFAULT_FREQUENCIES_HZ
     for i, f in enumerate(freqs):
         if not 0.001 <= f <= 20.0:
@@ -200,10 +203,11 @@ async def compute_frequency_response(cache: ResultCache, req: s.FrequencyRespons
         return s.FrequencyResponseResult(**base, **_common(model, []), rearward_amplification=ra.tolist(),
                                          worst_frequency_hz=wf, worst_rearward_amplification=wra)  # fmt: skip
 
-    return await _answer(cache, "dynamics-frequency-response", req, opts, compute)
+    return await _answer(cache, "dynamics-frequency-response", vr, opts, compute)
 
 
-async def compute_pulse_steer(cache: ResultCache, req: s.PulseSteerRequest) -> Computed:
+async def compute_pulse_steer(cache: ResultCache, vr: VehicleRequest[s.PulseSteerRequest]) -> Computed:
+    req = vr.body
     opts = {"speed_kmh": req.speed_kmh}
 
     def compute(model: YawRollModel) -> s.PulseSteerResult:
@@ -219,18 +223,20 @@ async def compute_pulse_steer(cache: ResultCache, req: s.PulseSteerRequest) -> C
             eigenvalues=[{"real": z.real, "imag": z.imag} for z in ps.eigenvalues],
         )  # fmt: skip
 
-    return await _answer(cache, "dynamics-pulse-steer", req, opts, compute)
+    return await _answer(cache, "dynamics-pulse-steer", vr, opts, compute)
 
 
-async def compute_stability(cache: ResultCache, req: s.StabilityRequest) -> Computed:
+async def compute_stability(cache: ResultCache, vr: VehicleRequest[s.StabilityRequest]) -> Computed:
+
     def compute(model: YawRollModel) -> s.StabilityResult:
         st = stability(model)
         return s.StabilityResult(**_common(model, []), **asdict(st))
 
-    return await _answer(cache, "dynamics-stability", req, {}, compute)
+    return await _answer(cache, "dynamics-stability", vr, {}, compute)
 
 
-async def compute_steady_turn(cache: ResultCache, req: s.SteadyTurnRequest) -> Computed:
+async def compute_steady_turn(cache: ResultCache, vr: VehicleRequest[s.SteadyTurnRequest]) -> Computed:
+    req = vr.body
     opts = {"radius_m": req.radius_m, "speed_kmh": req.speed_kmh}
 
     def compute(model: YawRollModel) -> s.SteadyTurnResult:
@@ -245,10 +251,11 @@ async def compute_steady_turn(cache: ResultCache, req: s.SteadyTurnRequest) -> C
             steer_deg=st.steer_deg, axles=st.axles, units=st.units, roll_coupled_units=st.roll_coupled_units,
         )  # fmt: skip
 
-    return await _answer(cache, "dynamics-steady-turn", req, opts, compute)
+    return await _answer(cache, "dynamics-steady-turn", vr, opts, compute)
 
 
-async def compute_low_speed_turn(cache: ResultCache, req: s.LowSpeedTurnRequest) -> Computed:
+async def compute_low_speed_turn(cache: ResultCache, vr: VehicleRequest[s.LowSpeedTurnRequest]) -> Computed:
+    req = vr.body
     opts = {"path_step_m": req.path_step_m}
 
     def compute(model: YawRollModel) -> s.LowSpeedTurnResult:
@@ -259,10 +266,11 @@ async def compute_low_speed_turn(cache: ResultCache, req: s.LowSpeedTurnRequest)
             steer_axle_radius_m=ls.steer_axle_radius_m, not_judged=["steer-tyre friction demand"],
         )  # fmt: skip
 
-    return await _answer(cache, "dynamics-low-speed-turn", req, opts, compute)
+    return await _answer(cache, "dynamics-low-speed-turn", vr, opts, compute)
 
 
-async def compute_pbs(cache: ResultCache, req: s.PbsRequest) -> Computed:
+async def compute_pbs(cache: ResultCache, vr: VehicleRequest[s.PbsRequest]) -> Computed:
+    req = vr.body
     opts = req.model_dump(exclude={"vehicle", "dynamics"})
 
     def compute(model: YawRollModel) -> s.PbsResult:
@@ -275,7 +283,7 @@ async def compute_pbs(cache: ResultCache, req: s.PbsRequest) -> Computed:
             conditions=sc.conditions,
         )  # fmt: skip
 
-    return await _answer(cache, "pbs", req, opts, compute)
+    return await _answer(cache, "pbs", vr, opts, compute)
 
 
 # ------------------------------------------------------------------------------------------------ figures
@@ -283,19 +291,21 @@ async def compute_pbs(cache: ResultCache, req: s.PbsRequest) -> Computed:
 SVG_MEDIA_TYPE = "image/svg+xml"
 
 
-def _label(req: s.DynamicsInputs) -> str:
-    v = req.vehicle
-    if isinstance(v, str):
-        return v
-    if isinstance(v, Combination) and v.title:
-        return v.title
+def _label(vr: VehicleRequest[Any]) -> str:
+    """The combination as a figure names it (part of the figure's key): a preset's id, a given combination's title;
+    a saved one is "the given combination" (its title may change while its id stays)."""
+    v = vr.vehicles[0]
+    if v.preset is not None:
+        return v.preset
+    if v.kind != "saved" and isinstance(v.vehicle, Combination) and v.vehicle.title:
+        return v.vehicle.title
     return "the given combination"
 
 
-async def _figure(cache: ResultCache, operation: str, req: s.DynamicsInputs, options: dict[str, Any], draw
+async def _figure(cache: ResultCache, operation: str, vr: VehicleRequest[Any], options: dict[str, Any], draw
                   ) -> Computed:  # fmt: skip
-    c, data, resolved = resolve(req, **options, svg_version=plots.SVG_VERSION, label=_label(req))
-    model = _model(cache, c, data, resolved, req)
+    c, data, resolved = resolve(vr, **options, svg_version=plots.SVG_VERSION, label=_label(vr))
+    model = _model(cache, c, data, resolved, vr.body)
 
     async def produce() -> bytes:
         return (await run_in_threadpool(draw, model)).encode()
@@ -307,7 +317,8 @@ def _unstable_svg(exc: Unstable) -> InvalidVehicle:
     return InvalidVehicle(f"no figure: {_unstable(exc)[0]}", field="speed_kmh", value=exc.speed_kmh)
 
 
-async def plot_lane_change(cache: ResultCache, req: s.LaneChangeRequest) -> Computed:
+async def plot_lane_change(cache: ResultCache, vr: VehicleRequest[s.LaneChangeRequest]) -> Computed:
+    req = vr.body
     opts = req.model_dump(exclude={"vehicle", "dynamics", "include_history"})
 
     def draw(model: YawRollModel) -> str:
@@ -316,14 +327,15 @@ async def plot_lane_change(cache: ResultCache, req: s.LaneChangeRequest) -> Comp
                              ra_definition=req.ra_definition, history=True)  # fmt: skip
         except Unstable as exc:
             raise _unstable_svg(exc) from exc
-        return plots.lane_change_svg(_label(req), lc.history, lc.rearward_amplification,
+        return plots.lane_change_svg(_label(vr), lc.history, lc.rearward_amplification,
                                      lc.high_speed_transient_offtracking_m, req.speed_kmh, req.frequency_hz,
                                      req.amplitude_g)  # fmt: skip
 
-    return await _figure(cache, "dynamics-plot-lane-change", req, opts, draw)
+    return await _figure(cache, "dynamics-plot-lane-change", vr, opts, draw)
 
 
-async def plot_frequency_response(cache: ResultCache, req: s.FrequencyResponseRequest) -> Computed:
+async def plot_frequency_response(cache: ResultCache, vr: VehicleRequest[s.FrequencyResponseRequest]) -> Computed:
+    req = vr.body
     freqs = tuple(req.frequencies_hz) if req.frequencies_hz is not None else DEFAULT_FREQUENCIES_HZ
     opts = {"speed_kmh": req.speed_kmh, "frequencies_hz": list(freqs), "ra_definition": req.ra_definition}
 
@@ -334,18 +346,19 @@ async def plot_frequency_response(cache: ResultCache, req: s.FrequencyResponseRe
             raise _unstable_svg(Unstable(req.speed_kmh, min(limits), "a growing mode"))
         ra = rearward_amplification_spectrum(model, req.speed_kmh, np.array(freqs), req.ra_definition)
         wf, wra = worst_frequency(model, req.speed_kmh, req.ra_definition)
-        return plots.frequency_response_svg(_label(req), list(freqs), ra.tolist(), wf, wra, req.speed_kmh,
+        return plots.frequency_response_svg(_label(vr), list(freqs), ra.tolist(), wf, wra, req.speed_kmh,
                                             req.ra_definition)  # fmt: skip
 
-    return await _figure(cache, "dynamics-plot-frequency-response", req, opts, draw)
+    return await _figure(cache, "dynamics-plot-frequency-response", vr, opts, draw)
 
 
-async def plot_low_speed_turn(cache: ResultCache, req: s.LowSpeedTurnRequest) -> Computed:
+async def plot_low_speed_turn(cache: ResultCache, vr: VehicleRequest[s.LowSpeedTurnRequest]) -> Computed:
+    req = vr.body
     opts = {"path_step_m": req.path_step_m}
 
     def draw(model: YawRollModel) -> str:
         ls = low_speed_turn(model, path_every_m=req.path_step_m)
-        return plots.low_speed_turn_svg(_label(req), ls.paths, OUTER_RADIUS_M, ls.swept_path_width_m,
+        return plots.low_speed_turn_svg(_label(vr), ls.paths, OUTER_RADIUS_M, ls.swept_path_width_m,
                                         ls.tail_swing_m, ls.frontal_swing_m)  # fmt: skip
 
-    return await _figure(cache, "dynamics-plot-low-speed-turn", req, opts, draw)
+    return await _figure(cache, "dynamics-plot-low-speed-turn", vr, opts, draw)

@@ -5,8 +5,9 @@ An operation says how to
 * **parse** the job's ``request`` exactly as its synchronous endpoint does (the same pydantic model, made job-sized:
   only the size limits differ), raising the same :class:`~fastapi.exceptions.RequestValidationError` located under
   ``("body", ...)`` (the API puts ``request`` in front);
-* **refs**: resolve its vehicle references (saved vehicles and fleets of the caller's key, builder specs) as the
-  synchronous endpoint does, with the submitting request (its bearer key), so a stored job holds records only;
+* **refs**: resolve its vehicles (presets, records, specs, saved vehicles and fleets of the caller's key) as the
+  synchronous endpoint does (:func:`app.vehicles.resolve.resolve_request`, with the submitting request: its bearer
+  key), into what **resolve** takes, so a stored job holds records only;
 * **resolve** it with what only the API process has (presets, the caller's saved vehicles and fleets, the configured
   SRT targets): :class:`ResolveContext` carries the settings and the caller's owner id;
 * **split** the resolved request into parts: a :class:`Prepared` with the inputs every part shares and each part's
@@ -77,8 +78,9 @@ class Operation:
     split: Callable[[Any, int], Prepared]
     run_part: Callable[[dict[str, Any], bytes, PartContext], dict[str, Any]]
     assemble: Callable[[dict[str, Any], list[dict[str, Any]], str, Fragments], Iterator[bytes]]
-    #: resolves the parsed request's vehicle references (saved ``veh_`` ids, ``flt_`` fleets, builder specs) with
-    #: the submitting request's bearer key, in the API process, before :attr:`resolve` (None: nothing to resolve)
+    #: resolves the parsed request's vehicles (:func:`app.vehicles.resolve.resolve_request`: saved ``veh_`` ids and
+    #: ``flt_`` fleets with the submitting request's bearer key) in the API process; :attr:`resolve` takes what it
+    #: returns (None: nothing to resolve, :attr:`resolve` takes the parsed request)
     refs: Callable[[Request, Any, Settings], Awaitable[Any]] | None = None
     #: the one format the parts write their fragments in (kept raw, rendered by ``assemble``); None: the parts write
     #: each of :attr:`formats`, rendered (zlib-compressed)

@@ -62,7 +62,7 @@ from app.alignments.service import (
     check_alignment,
     level_road_srt,
     resolve_alignment,
-    resolve_alignment_refs,
+    resolve_assessment_request,
     validate_request_data,
 )
 from app.compute import solvers
@@ -83,7 +83,7 @@ from app.jobs.columns import (
 )
 from app.jobs.csv_columns import read_csv_columns
 from app.settings import Settings
-from app.vehicles.refs import vehicle_of_resolved
+from app.vehicles.resolve import vehicle_of_resolved
 from engine.road import (
     GOVERNED_BY,
     AlignmentColumns,
@@ -184,18 +184,20 @@ def read_body(body: bytes) -> tuple[dict[str, Any], CurveTable] | None:
 
 
 async def refs(request: Request, parsed, settings: Settings):
-    """Saved vehicles, fleets and specs resolved as ``POST /v1/alignments/assess`` resolves them."""
+    """The request's vehicles (saved vehicles, fleets, specs...) resolved as ``POST /v1/alignments/assess`` resolves
+    them: ``(VehicleRequest, curves)``."""
     req, curves = parsed
-    return await resolve_alignment_refs(request, req, settings), curves
+    return await resolve_assessment_request(request, req, settings), curves
 
 
 def resolve(parsed, ctx: ResolveContext) -> AlignmentJob:
-    """Presets and records (references were resolved by :func:`refs`) to the engine's inputs."""
-    req, curves = parsed
+    """The request, its vehicles resolved by :func:`refs`, to the engine's inputs."""
+    vr, curves = parsed
+    req = vr.body
     fast = None
     if curves is None and req.csv is not None:  # the plain CSV form straight into columns; any other: read_csv's
         fast = curves = read_csv_columns(req.csv, max_curves=MAX_JOB_CURVES)
-    job = resolve_alignment(req, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
+    job = resolve_alignment(vr, curves, ctx.settings, max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
     return job if fast is None else dataclasses.replace(job, source="csv")
 
 

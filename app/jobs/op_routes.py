@@ -26,20 +26,21 @@ from app.routes.service import (
     find_route_curves,
     read_route,
     render_route,
-    resolve_route_refs,
+    resolve_route_request,
     resolved_route,
-    route_refs,
 )
 from app.settings import Settings
+from app.vehicles.resolve import VehicleRequest
 
 
 def parse(data: Any) -> RouteRequest:
     return RouteRequest.model_validate(data)
 
 
-async def refs(request: Request, req: RouteRequest, settings: Settings) -> RouteRequest:
-    """Saved vehicles, fleets and specs resolved as ``POST /v1/routes/assess`` resolves them."""
-    return await resolve_route_refs(request, req, settings)
+async def refs(request: Request, req: RouteRequest, settings: Settings) -> VehicleRequest[RouteRequest]:
+    """The request's vehicles (saved vehicles, fleets, specs...) resolved as ``POST /v1/routes/assess`` resolves
+    them."""
+    return await resolve_route_request(request, req, settings)
 
 
 @dataclass(frozen=True)
@@ -52,9 +53,10 @@ class RouteJob:
     vertices: int
 
 
-def resolve(req: RouteRequest, ctx: ResolveContext) -> RouteJob:
+def resolve(vr: VehicleRequest[RouteRequest], ctx: ResolveContext) -> RouteJob:
     """The route request without its vehicle references (a worker rebuilds it) and the resolved assessment."""
-    resolved = resolved_route(req, route_refs(req), ctx.settings)
+    req = vr.body
+    resolved = resolved_route(vr, ctx.settings)
     read = read_route(req, synchronous=False)  # reading refuses bad geometry now (a 422)
     parts = read.parts
     vertices = sum(int(p.lon_deg.size) for p in parts)

@@ -25,7 +25,7 @@ from app.jobs.base import Fragments, Operation, PartContext, Prepared, ResolveCo
 from app.settings import Settings
 from app.srt.sweep_schemas import AXIS_ORDER, MAX_AXIS_VALUES, MAX_JOB_CASES, SweepGrid, SweepRequest
 from app.srt.sweep_service import resolve_sweep, solve_sweep, sweep_answer, sweep_csv_chunks, sweep_json_chunks
-from app.vehicles.refs import resolve_vehicle_refs
+from app.vehicles.resolve import VehicleRequest, resolve_request
 
 #: a job's limit, MAX_JOB_CASES, is in app.srt.sweep_schemas (the synchronous request's 10,000 cases' error names it)
 #: cases per part (and at most per block: one synchronous sweep's worth)
@@ -87,13 +87,13 @@ def parse(data: Any) -> SweepJobRequest:
     return SweepJobRequest.model_validate(data)
 
 
-async def refs(request: Request, req: SweepJobRequest, settings: Settings) -> SweepJobRequest:
-    """A saved vehicle or a spec resolved as ``POST /v1/srt/sweep`` resolves it."""
-    return await resolve_vehicle_refs(request, req, settings)
+async def refs(request: Request, req: SweepJobRequest, settings: Settings) -> VehicleRequest[SweepJobRequest]:
+    """The request's vehicle resolved as ``POST /v1/srt/sweep`` resolves it (:mod:`app.vehicles.resolve`)."""
+    return await resolve_request(request, req, settings)
 
 
-def resolve(req: SweepJobRequest, ctx: ResolveContext) -> ResolvedSweep:
-    return resolve_sweep(req, ctx.settings)
+def resolve(vr: VehicleRequest[SweepJobRequest], ctx: ResolveContext) -> ResolvedSweep:
+    return resolve_sweep(vr, ctx.settings)
 
 
 def split(resolved: ResolvedSweep, part_cases: int) -> Prepared:

@@ -11,13 +11,12 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from fastapi import Request
 from starlette.concurrency import run_in_threadpool
 
 from app.alignments.answer import AlignmentAnswer
 from app.alignments.curves import curves_from_json
 from app.alignments.schemas import MAX_CURVES, AlignmentRequest
-from app.alignments.service import resolve_alignment, resolve_alignment_refs, solve_alignment
+from app.alignments.service import resolve_alignment, solve_alignment
 from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedCurvesPlot, ResolvedMinRadiusPlot
 from app.compute.results import Computed, cached
@@ -26,7 +25,7 @@ from app.http.problems import request_error
 from app.plots.schemas import MinRadiusPlotRequest, PlotRequest
 from app.settings import Settings
 from app.srt.service import resolve_case, resolve_srt, solve
-from app.vehicles.refs import SavedRef
+from app.vehicles.resolve import ResolvedVehicle, VehicleRequest
 from engine import Case, InvalidRoad, Road, RolloverResult
 from engine.road import (
     SIGN_INCREMENTS,
@@ -37,7 +36,6 @@ from engine.road import (
     side_friction_factor,
     side_friction_min_radius_m,
 )
-from engine.vehicle import Vehicle
 
 SVG_MEDIA_TYPE = "image/svg+xml"
 SVG_VERSION = 2  # 2: the caption names the design standard
@@ -46,12 +44,13 @@ SERIES_92 = "Eq. 9.2 (side friction)"
 SERIES_93 = "Eq. 9.3 (rollover)"
 
 
-def _label(req) -> str:
-    if isinstance(req.vehicle, str):
-        return req.vehicle
-    if isinstance(req.vehicle, SavedRef):
-        return f"saved vehicle {req.vehicle.id}"
-    return "built vehicle" if isinstance(req.vehicle, Vehicle) else "vehicle record"
+def _label(v: ResolvedVehicle) -> str:
+    """The vehicle as a figure's caption names it (part of the figure's key)."""
+    if v.preset is not None:
+        return v.preset
+    if v.saved_id is not None:
+        return f"saved vehicle {v.saved_id}"
+    return "built vehicle" if v.kind == "spec" else "vehicle record"
 
 
 def _conditions(r: RolloverResult, case: Case) -> str:
@@ -155,10 +154,11 @@ def render_curves(kind: str, r: RolloverResult, label: str, case: Case) -> str:
     )
 
 
-async def plot_curves(cache: ResultCache, req: PlotRequest, settings: Settings, kind: str) -> Computed:
+async def plot_curves(cache: ResultCache, vr: VehicleRequest[PlotRequest], settings: Settings, kind: str) -> Computed:
     """One of the figures against ay/g (``FIGURES``) as SVG."""
-    case = resolve_case(req)
-    label = _label(req)
+    req, vehicle = vr.body, vr.vehicles[0]
+    case = resolve_case(req, vehicle.vehicle)
+    label = _label(vehicle)
     resolved = ResolvedCurvesPlot(
         srt_request=resolve_srt(case, settings.default_targets(), include_curves=True, curve_points=req.curve_points),
         figure=kind,
@@ -228,7 +228,8 @@ def render_min_radius(req: MinRadiusPlotRequest, r: RolloverResult, case: Case, 
     )
 
 
-async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, settings: Settings) -> Computed:
+async def plot_min_radius(cache: ResultCache, vr: VehicleRequest[MinRadiusPlotRequest], settings: Settings) -> Computed:
+    req, vehicle = vr.body, vr.vehicles[0]
     std = get_standard(req.design_standard, req.bound)
     for name in ("speed_min_kmh", "speed_max_kmh"):  # in the standard's range (422 naming it), before any solve
         if getattr(req, name) is not None:
@@ -243,8 +244,9 @@ async def plot_min_radius(cache: ResultCache, req: MinRadiusPlotRequest, setting
             value=getattr(req, name),
         )
     # the SRT of Eq. 9.3 is the one on the curve's bank (the superelevation) and slope
-    case = resolve_case(req, road=Road(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent))
-    label = _label(req)
+    road = Road(bank_percent=req.superelevation_percent, slope_percent=req.slope_percent)
+    case = resolve_case(req, vehicle.vehicle, road=road)
+    label = _label(vehicle)
     resolved = ResolvedMinRadiusPlot(
         srt_request=resolve_srt(case, settings.default_targets()),
         speeds_kmh=tuple(req.speeds),
@@ -311,15 +313,13 @@ def render_speed_profile(answer: AlignmentAnswer, starts: np.ndarray, lengths: n
     return line_chart("Truck speed profile against station", "station [m]", panels, caption)
 
 
-async def plot_speed_profile(
-    cache: ResultCache, request: Request, req: AlignmentRequest, settings: Settings
-) -> Computed:
+async def plot_speed_profile(cache: ResultCache, vr: VehicleRequest[AlignmentRequest], settings: Settings) -> Computed:
     """The speed-profile plot of an alignment request (the body of ``POST /v1/alignments/assess``), cached under the
     alignment's resolved key (which holds the engine version, not :data:`SVG_VERSION`: a change of this drawing
     alone needs the operation renamed)."""
-    req = await resolve_alignment_refs(request, req, settings)
+    req = vr.body
     curves = None if req.curves is None else curves_from_json([c.model_dump() for c in req.curves], MAX_CURVES)
-    job = await run_in_threadpool(resolve_alignment, req, curves, settings)
+    job = await run_in_threadpool(resolve_alignment, vr, curves, settings)
 
     async def produce() -> bytes:
         def draw() -> bytes:

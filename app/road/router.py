@@ -10,7 +10,7 @@ from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import computed_responses, json_response
 from app.road.schemas import CurveSpeedRequest, CurveSpeedResult, MinRadiusRequest, MinRadiusResult
 from app.road.service import compute_curve_speed, compute_min_radius
-from app.vehicles.refs import resolve_vehicle_refs
+from app.vehicles.resolve import resolve_request
 
 router = APIRouter(prefix="/v1", tags=["road"])
 
@@ -27,8 +27,7 @@ async def curve_speed(body: CurveSpeedRequest, request: Request, cache: CacheDep
 
     The SRT is either given or computed from the SRT request fields for `road`'s bank and slope; it already
     contains the bank, so no superelevation term is added."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await compute_curve_speed(cache, body, settings))
+    return json_response(await compute_curve_speed(cache, await resolve_request(request, body, settings), settings))
 
 
 @router.post(
@@ -42,5 +41,4 @@ async def min_radius(body: MinRadiusRequest, request: Request, cache: CacheDep, 
     """Minimum curve radius for a design speed and superelevation: Eq. 9.2 (side friction: the design standard's
     f_max, AASHTO 2018 by default, unless `side_friction` is given), Eq. 9.3 (rollover, the SRT on that bank and
     slope) and the governing one. The design speed must lie in the standard's range (422 naming it)."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await compute_min_radius(cache, body, settings))
+    return json_response(await compute_min_radius(cache, await resolve_request(request, body, settings), settings))

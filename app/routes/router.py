@@ -20,7 +20,7 @@ from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import ANSWER_MODELS, computed_response, table_responses
 from app.http.strictjson import refuse_duplicate_keys
 from app.routes.schemas import EXAMPLE_GEOJSON, EXAMPLE_GPX, ROUTE_BODY_LIMIT, RouteCurves, RouteRequest, RouteResult
-from app.routes.service import assess_route
+from app.routes.service import assess_route, resolve_route_request
 from app.routes.uploads import RouteUploadQuery, geojson_upload, gpx_upload
 
 router = APIRouter(prefix="/v1/routes", tags=["routes"])
@@ -83,7 +83,10 @@ async def assess(request: Request, cache: CacheDep, settings: SettingsDep) -> Re
     req = await run_in_threadpool(parse_route_request, await request.body())
     accept = request.headers.get("accept")
     form = negotiate(accept, WITH_GEOJSON)
-    return computed_response(await assess_route(cache, request, req, settings, form=form), vary_accept=True)
+    return computed_response(
+        await assess_route(cache, await resolve_route_request(request, req, settings), settings, form=form),
+        vary_accept=True,
+    )
 
 
 UPLOAD = """
@@ -111,7 +114,9 @@ async def assess_gpx(
 ) -> Response:
     req, field = await gpx_upload(request, query, ROUTE_BODY_LIMIT)
     form = negotiate(request.headers.get("accept"), WITH_GEOJSON)
-    result = await assess_route(cache, request, req, settings, form=form, source_field=field)
+    result = await assess_route(
+        cache, await resolve_route_request(request, req, settings), settings, form=form, source_field=field
+    )
     return computed_response(result, vary_accept=True)
 
 
@@ -132,5 +137,7 @@ async def assess_geojson(
 ) -> Response:
     req, field = await geojson_upload(request, query, ROUTE_BODY_LIMIT)
     form = negotiate(request.headers.get("accept"), WITH_GEOJSON)
-    result = await assess_route(cache, request, req, settings, form=form, source_field=field)
+    result = await assess_route(
+        cache, await resolve_route_request(request, req, settings), settings, form=form, source_field=field
+    )
     return computed_response(result, vary_accept=True)

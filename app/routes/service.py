@@ -37,7 +37,7 @@ from app.alignments.schemas import MAX_ROWS
 from app.alignments.service import (
     AlignmentJob,
     as_fleet_error,
-    resolve_alignment_refs,
+    resolve_assessment_request,
     resolved_assessment,
     solve_alignment,
 )
@@ -65,10 +65,11 @@ from app.routes.schemas import (
     RouteResult,
 )
 from app.settings import Settings
-from app.vehicles.refs import resolve_vehicle, vehicle_of_resolved
+from app.vehicles.resolve import VehicleRequest, vehicle_of_resolved
 from engine import BOUNDS, ENGINE_VERSION, InvalidInput
 from engine.road import AlignmentColumns
 from engine.route import HorizontalCurve, find_curves, local_frame
+from engine.vehicle import Combination, Vehicle
 
 #: a ``routes.assess`` job's rows (curves x vehicles): a route job reads one document (the synchronous request's
 #: body limit, up to :data:`~app.formats.route_io.MAX_VERTICES` vertices), so a job takes what such documents hold,
@@ -271,10 +272,11 @@ def _document_digest(req: RouteRequest) -> str:
     return hashlib.sha256(doc).hexdigest()
 
 
-def resolved_route(req: RouteRequest, refs: list[Any], settings: Settings) -> ResolvedRoute:
+def resolved_route(vr: VehicleRequest[RouteRequest], settings: Settings) -> ResolvedRoute:
     """What the route's answer depends on (its key): the assessment's options and vehicles, and the document."""
+    req = vr.body
     return ResolvedRoute(
-        **resolved_assessment(req, refs, [resolve_vehicle(r) for r in refs], settings).assessment_fields(),
+        **resolved_assessment(req, vr.vehicles, settings).assessment_fields(),
         route=RouteDocument(
             format="geojson" if req.geojson is not None else "gpx",
             sha256=_document_digest(req),
@@ -599,16 +601,19 @@ def render_route(
     source_field: str | None = None,
     *,
     max_rows: int | None = None,
+    vehicles: list[Vehicle | Combination] | None = None,
 ) -> dict[str, bytes]:
     """Read, find, assess and render the route in each of ``forms`` (blocking: a worker thread, or a job's worker):
     ``resolved`` is :func:`resolved_route` of the request (its vehicles' records, options and targets);
     ``source_field`` names an upload's document in errors (``body``, ``file``); ``max_rows`` bounds curves x
     vehicles (None: the synchronous request's :data:`~app.alignments.schemas.MAX_ROWS`; a job passes
-    :data:`MAX_JOB_ROWS`)."""
+    :data:`MAX_JOB_ROWS`); ``vehicles``: the engine records of ``resolved.vehicles`` when the caller has them (the
+    synchronous request: :mod:`app.vehicles.resolve`), else rebuilt from the stored records (a job's worker)."""
     synchronous = max_rows is None
     read = read_route(req, source_field, synchronous=synchronous)
     geo = find_route_curves(req, read, source_field)
-    vehicles = [vehicle_of_resolved(v) for v in resolved.vehicles]
+    if vehicles is None:
+        vehicles = [vehicle_of_resolved(v) for v in resolved.vehicles]
     rows = len(geo.curves) * len(vehicles)
     max_rows = MAX_ROWS if max_rows is None else max_rows
     if rows > max_rows:
@@ -627,34 +632,32 @@ def render_route(
     return {form: renderers[form]() for form in forms}
 
 
-async def resolve_route_refs(request: Request, req: RouteRequest, settings: Settings) -> RouteRequest:
-    """``req`` with its saved vehicles, specs and fleet resolved (a fleet becomes ``vehicles``, at most
-    :data:`MAX_VEHICLES`): the alignment's resolution, worded for a route."""
-    return await resolve_alignment_refs(request, req, settings, what="a route")
-
-
-def route_refs(req: RouteRequest) -> list[Any]:
-    return [req.vehicle] if req.vehicle is not None else list(req.vehicles)
+async def resolve_route_request(
+    request: Request, req: RouteRequest, settings: Settings
+) -> VehicleRequest[RouteRequest]:
+    """``req`` and its vehicles resolved (a fleet's members among them, at most :data:`MAX_VEHICLES`): the
+    alignment's resolution, worded for a route."""
+    return await resolve_assessment_request(request, req, settings, what="a route")
 
 
 async def assess_route(
     cache: ResultCache,
-    request: Request,
-    req: RouteRequest,
+    vr: VehicleRequest[RouteRequest],
     settings: Settings,
     *,
     form: str = "json",
     source_field: str | None = None,
 ) -> Computed:
     """The route's answer in ``form`` (cached); ``source_field`` names an upload's document in errors."""
-    fleet = req.fleet
-    req = await resolve_route_refs(request, req, settings)
-    resolved = await run_in_threadpool(resolved_route, req, route_refs(req), settings)  # the key: resolved
+    req, fleet = vr.body, vr.body.fleet
+    resolved = await run_in_threadpool(resolved_route, vr, settings)  # the key: resolved
     operation, media = FORMS[form]
 
     async def produce() -> bytes:
         try:
-            bodies = await run_in_threadpool(render_route, req, resolved, (form,), source_field)
+            bodies = await run_in_threadpool(
+                lambda: render_route(req, resolved, (form,), source_field, vehicles=vr.engine_vehicles)
+            )
         except InvalidInput as exc:
             raise as_fleet_error(exc, fleet, resolved) from None
         return bodies[form]

@@ -19,18 +19,20 @@ from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.limits_schemas import DEFAULT_OVERWEIGHTS, PARAMETER_INFO, LimitsRequest, LimitsResult
 from app.srt.service import level_case, resolve_base_case, target_checks
+from app.vehicles.resolve import VehicleRequest
 from engine import ENGINE_VERSION, Case, InvalidInput, RolloverError
 from engine.models import rollover_threshold
 from engine.road import LIMIT_PARAMETERS, Limit, limit_table, parameter_limit, tilt_table_angle_deg, with_parameter
 
 
-def resolve_limits(req: LimitsRequest, settings: Settings) -> ResolvedLimits:
+def resolve_limits(vr: VehicleRequest[LimitsRequest], settings: Settings) -> ResolvedLimits:
+    req = vr.body
     table = None
     if req.parameter != "overweight_percent":
         table = tuple(req.overweights_percent) if req.overweights_percent is not None else tuple(DEFAULT_OVERWEIGHTS)
     target = req.target_srt_g if req.target_srt_g is not None else settings.srt_target_general_g
     return ResolvedLimits(
-        case=resolve_base_case(req, settings),
+        case=resolve_base_case(req, vr.vehicles[0].vehicle, settings),
         parameter=req.parameter,
         target_srt_g=target,
         overweights_percent=table,
@@ -149,8 +151,8 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
     )
 
 
-async def compute_limits(cache: ResultCache, req: LimitsRequest, settings: Settings) -> Computed:
-    resolved = resolve_limits(req, settings)
+async def compute_limits(cache: ResultCache, vr: VehicleRequest[LimitsRequest], settings: Settings) -> Computed:
+    resolved = resolve_limits(vr, settings)
 
     async def produce() -> bytes:
         return await run_in_threadpool(solve_limits, resolved)

@@ -16,7 +16,7 @@ from app.srt.schemas import SrtRequest, SrtResult
 from app.srt.service import compute_srt
 from app.srt.sweep_schemas import SWEEP_BODY_LIMIT, SweepRequest, SweepResult
 from app.srt.sweep_service import compute_sweep
-from app.vehicles.refs import resolve_vehicle_refs
+from app.vehicles.resolve import resolve_request
 
 router = APIRouter(prefix="/v1", tags=["srt"])
 
@@ -32,8 +32,7 @@ async def srt(body: SrtRequest, request: Request, cache: CacheDep, settings: Set
     """Static rollover threshold (g) of a vehicle on a road with a load case, the roll angle, the stage values,
     the state at the limit and, with `include_curves`, the curves against ay/g; whether the SRT meets each
     target (`targets`, default 0.35 g general and 0.40 g dangerous goods) and its tilt-table angle atan(SRT)."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return json_response(await compute_srt(cache, body, settings))
+    return json_response(await compute_srt(cache, await resolve_request(request, body, settings), settings))
 
 
 @router.post(
@@ -48,8 +47,7 @@ async def limits(body: LimitsRequest, request: Request, cache: CacheDep, setting
     smallest spring separation -- at which the vehicle still meets it (Brent's bracketed root finder on the
     engine; about 10-15 SRT solves), and the same limit over a range of overweights (TERNZ's table of acceptable
     mass / load-height pairs, solved exactly)."""
-    body = await resolve_vehicle_refs(request, body, settings)
-    return computed_response(await compute_limits(cache, body, settings))
+    return computed_response(await compute_limits(cache, await resolve_request(request, body, settings), settings))
 
 
 @router.post(
@@ -64,6 +62,6 @@ async def sweep(body: SweepRequest, request: Request, cache: CacheDep, settings:
     """The SRT over the Cartesian product of up to eight axes (bank, slope, trailer angle, d1, d2, d3,
     overweight, rear LLT limit; at most 10,000 cases: a larger grid goes to a job), like the thesis's Tables 17 and
     19, in one call; JSON, or CSV with `Accept: text/csv`. A case the engine refuses keeps its row, with `error`."""
-    body = await resolve_vehicle_refs(request, body, settings)
+    resolved = await resolve_request(request, body, settings)
     csv = wants_csv(request.headers.get("accept"))
-    return table_answer(await compute_sweep(cache, body, settings, csv=csv))
+    return table_answer(await compute_sweep(cache, resolved, settings, csv=csv))

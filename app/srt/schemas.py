@@ -16,10 +16,10 @@ from app.http.schemas import (
     describe,
     json_int,
 )
-from app.vehicles.builder_schemas import SpecRef
-from app.vehicles.combination_builder_schemas import CombinationSpecRef
-from app.vehicles.combination_schemas import CombinationRef, LiftEventOut, RollCoupledUnitOut
-from app.vehicles.schemas import VehicleRecord
+from app.vehicle_forms.builder_schemas import SpecRef
+from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
+from app.vehicle_forms.combination_schemas import CombinationRef, LiftEventOut, RollCoupledUnitOut
+from app.vehicle_forms.schemas import VehicleRecord
 from engine import BOUNDS, DEFAULT_CURVE_POINTS, MAX_CURVE_POINTS
 from engine.models import MODELS
 

@@ -30,22 +30,21 @@ from app.compute.results import Computed, cached
 from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.schemas import SrtInputs, SrtRequest, SrtResult
-from app.vehicles.refs import resolve_vehicle
-from app.vehicles.schemas import VehicleRecord
+from app.vehicles.resolve import VehicleRequest
 from engine import ENGINE_VERSION, Case, LoadCase, Road, RolloverResult
 from engine.models import rollover_threshold
 from engine.road import check_targets, tilt_table_angle_deg
-from engine.vehicle import InputWarning, Vehicle, record_warnings
+from engine.vehicle import Combination, InputWarning, Vehicle
 
 # ------------------------------------------------------------------------------------- resolution
 
 
-def resolve_case(req: SrtInputs, *, road: Road | None = None, vehicle: Vehicle | None = None) -> Case:
-    """The engine case of an SRT request (``road`` replaces the request's, e.g. a curve's own; ``vehicle`` the
-    resolved one)."""
+def resolve_case(req: SrtInputs, vehicle: Vehicle | Combination, *, road: Road | None = None) -> Case:
+    """The engine case of an SRT request with its resolved vehicle (:mod:`app.vehicles.resolve`; ``road`` replaces
+    the request's, e.g. a curve's own)."""
     road = road if road is not None else Road(**req.road.model_dump())
     return Case(
-        vehicle=vehicle or resolve_vehicle(req.vehicle),
+        vehicle=vehicle,
         model=req.model,
         stage=req.stage,
         road=road,
@@ -107,9 +106,9 @@ def resolve_srt(
     )
 
 
-def resolve_base_case(req: SrtInputs, settings: Settings) -> ResolvedCase:
+def resolve_base_case(req: SrtInputs, vehicle: Vehicle | Combination, settings: Settings) -> ResolvedCase:
     """The base case of a limits or sweep request and its targets (no curves: those fields would only blur the key)."""
-    return ResolvedCase(case=resolve_case(req), targets=resolve_targets(req.targets, settings))
+    return ResolvedCase(case=resolve_case(req, vehicle), targets=resolve_targets(req.targets, settings))
 
 
 # -------------------------------------------------------------------------------------- computing
@@ -163,7 +162,8 @@ def srt_result(
 ) -> SrtResult:
     """The published SRT result of an engine result and of its level-road case's (:func:`level_case`; None: the case
     is level), validated against the schema (a contract break is loud). The targets are judged on the level SRT;
-    ``warnings``: the inputs that read plausibly in another unit too (:func:`input_warnings`)."""
+    ``warnings``: the inputs that read plausibly in another unit too
+    (:attr:`app.vehicles.resolve.ResolvedVehicle.warnings`)."""
     level_srt = result.srt if level is None else level.srt
     data = result.to_dict()
     detail = data.pop("combination", None)
@@ -181,23 +181,14 @@ def srt_result(
     return SrtResult.model_validate(data)
 
 
-def input_warnings(ref: Any, vehicle: Vehicle | Any) -> list[InputWarning]:
-    """The warnings of a request's ``vehicle``: a record typed in the request whose weight or stiffness reads
-    plausibly in another unit too (``vehicle.weight_kn`` = 50: a light trailer, or 50 t typed as kN). Presets,
-    specs and combinations carry none (their weights are derived from masses in kg). A property of the record, so
-    of the cache key: a cached answer carries the same warnings."""
-    if isinstance(ref, VehicleRecord) and isinstance(vehicle, Vehicle):
-        return record_warnings(vehicle, "vehicle.")
-    return []
-
-
-async def compute_srt(cache: ResultCache, req: SrtRequest, settings: Settings) -> Computed:
-    case = resolve_case(req)
+async def compute_srt(cache: ResultCache, vr: VehicleRequest[SrtRequest], settings: Settings) -> Computed:
+    req, vehicle = vr.body, vr.vehicles[0]
+    case = resolve_case(req, vehicle.vehicle)
     targets = resolve_targets(req.targets, settings)
     resolved = resolve_srt(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
     points = resolved.curve_points  # None without curves (ResolvedSrt): what the key holds is what is solved
 
-    warnings = input_warnings(req.vehicle, case.vehicle)
+    warnings = list(vehicle.warnings)
 
     async def produce() -> bytes:
         result, level = await solve_with_level(cache, case, curve_points=points)

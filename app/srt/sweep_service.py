@@ -29,6 +29,7 @@ from app.metrics import SOLVE_SECONDS
 from app.settings import Settings
 from app.srt.service import level_case, resolve_base_case, target_checks
 from app.srt.sweep_schemas import SweepRequest
+from app.vehicles.resolve import VehicleRequest
 from engine import ENGINE_VERSION, Case
 from engine.models import SweepResult as EngineSweep
 from engine.models import sweep
@@ -37,8 +38,10 @@ from engine.road import tilt_table_angle_deg
 ROWS_PER_CHUNK = 1_000
 
 
-def resolve_sweep(req: SweepRequest, settings: Settings) -> ResolvedSweep:
-    return ResolvedSweep(case=resolve_base_case(req, settings), grid={a: tuple(v) for a, v in req.grid.axes().items()})
+def resolve_sweep(vr: VehicleRequest[SweepRequest], settings: Settings) -> ResolvedSweep:
+    req = vr.body
+    case = resolve_base_case(req, vr.vehicles[0].vehicle, settings)
+    return ResolvedSweep(case=case, grid={a: tuple(v) for a, v in req.grid.axes().items()})
 
 
 @dataclass(frozen=True)
@@ -160,9 +163,11 @@ def solve_sweep(resolved: ResolvedSweep, csv: bool = False) -> bytes:
     return b"".join(render_sweep(sweep_answer(resolved), csv))
 
 
-async def compute_sweep(cache: ResultCache, req: SweepRequest, settings: Settings, *, csv: bool) -> Computed:
+async def compute_sweep(
+    cache: ResultCache, vr: VehicleRequest[SweepRequest], settings: Settings, *, csv: bool
+) -> Computed:
     """The sweep as a cached body (at most :data:`~app.srt.sweep_schemas.MAX_CASES` cases: built whole)."""
-    resolved = resolve_sweep(req, settings)
+    resolved = resolve_sweep(vr, settings)
     operation, media_type = ("srt-sweep-csv", CSV_TYPE) if csv else ("srt-sweep", JSON_TYPE)
 
     async def produce() -> bytes:

@@ -9,7 +9,7 @@ from app.http.fastpath import replayable
 from app.http.negotiation import TABLE_FORMS, wants_csv
 from app.http.problems import error_responses
 from app.http.responses import computed_response, computed_responses, json_response, table_responses
-from app.vehicles.builder_schemas import (
+from app.vehicle_forms.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,

@@ -1,8 +1,8 @@
 """The vehicle builder over HTTP: POST /v1/vehicles/build, GET /v1/components, POST /v1/vehicles/payload-table.
 
-A spec is turned into the engine's record by :func:`engine.builder.build_vehicle`; :func:`build_spec` is the one
-place that does it for the service (the build endpoint, a ``{"spec": ...}`` vehicle in any computation, a saved
-spec), re-pointing the engine's ``spec.<field>`` errors at where the spec sits in the request.
+A spec is turned into the engine's record by :func:`app.vehicle_forms.build.build_spec` (over
+:func:`engine.builder.build_vehicle`), the one place that does it for the service (the build endpoint, a
+``{"spec": ...}`` vehicle in any computation, a saved spec).
 """
 
 from __future__ import annotations
@@ -17,7 +17,8 @@ from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedBuild, ResolvedPayloadTable
 from app.compute.results import Computed, cached
 from app.formats.tables import Text, to_csv
-from app.vehicles.builder_schemas import (
+from app.vehicle_forms.build import build_spec
+from app.vehicle_forms.builder_schemas import (
     BuildRequest,
     BuildResult,
     ComponentLibrary,
@@ -26,35 +27,17 @@ from app.vehicles.builder_schemas import (
     TyreOut,
 )
 from app.vehicles.payload_schemas import PayloadTableRequest
-from engine import ENGINE_VERSION, InvalidInput
+from engine import ENGINE_VERSION
 from engine.builder import (
     BuiltVehicle,
     CombinationSpec,
     PayloadTable,
     VehicleSpec,
-    build_vehicle,
     payload_table,
 )
 from engine.vehicle import NOT_FOUND, SUSPENSIONS, TYRES
 
 PAYLOAD_CSV_COLUMNS = ("table", "load_height_m", "payload_mass_kg", "limit_value", "limit_status", "srt_g")
-
-
-def at_field(exc: InvalidInput, prefix: str | None) -> InvalidInput:
-    """The engine's error with its field under ``prefix`` (``spec.rear.tyre.id`` -> ``vehicle.spec.rear.tyre.id``)."""
-    if not prefix:
-        return exc
-    return type(exc)(str(exc), field=f"{prefix}.{exc.field}" if exc.field else prefix, value=exc.value)
-
-
-def build_spec(spec: VehicleSpec | dict[str, Any], where: str | None = None) -> BuiltVehicle:
-    """The built vehicle a spec describes; its errors name ``<where>.spec.<field>`` (``spec.<field>`` alone when
-    ``where`` is None: the spec is the request's own)."""
-    try:
-        engine_spec = spec if isinstance(spec, VehicleSpec) else VehicleSpec.from_dict(spec)
-        return build_vehicle(engine_spec)
-    except InvalidInput as e:
-        raise at_field(e, where) from e
 
 
 def build_result(built: BuiltVehicle) -> BuildResult:

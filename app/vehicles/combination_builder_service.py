@@ -1,34 +1,19 @@
 """The combination builder for the service: ``POST /v1/combinations/build`` and ``{"combination_spec": ...}``.
 
-:func:`build_combination_spec` is the one place that builds a combination spec for the service (the build endpoint
-and a ``{"combination_spec": ...}`` vehicle in any computation), re-pointing the engine's ``combination_spec.<field>``
-errors at where the spec sits in the request (``vehicle.combination_spec.units[1].tare.mass_kg``).
+:func:`app.vehicle_forms.build.build_combination_spec` is the one place that builds a combination spec for the
+service (the build endpoint, a ``{"combination_spec": ...}`` vehicle in any computation, a saved one).
 """
 
 from __future__ import annotations
-
-from typing import Any
 
 from starlette.concurrency import run_in_threadpool
 
 from app.compute.cache import ResultCache
 from app.compute.resolved import ResolvedBuild
 from app.compute.results import Computed, cached
-from app.vehicles.builder_service import at_field
-from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
-from engine import InvalidInput
-from engine.builder import BuiltCombination, CombinationSpec, build_combination
-from engine.vehicle import Combination, validate_combination
-
-
-def build_combination_spec(spec: CombinationSpec | dict[str, Any], where: str | None = None) -> BuiltCombination:
-    """The built combination a spec describes; its errors name ``<where>.combination_spec.<field>``
-    (``combination_spec.<field>`` when ``where`` is None: the spec is the request's own)."""
-    try:
-        engine_spec = spec if isinstance(spec, CombinationSpec) else CombinationSpec.from_dict(spec)
-        return build_combination(engine_spec)
-    except InvalidInput as e:
-        raise at_field(e, where) from e
+from app.vehicle_forms.build import build_combination_spec
+from app.vehicle_forms.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
+from engine.builder import BuiltCombination
 
 
 def build_combination_result(built: BuiltCombination) -> BuildCombinationResult:
@@ -46,14 +31,3 @@ async def compute_combination_build(cache: ResultCache, req: BuildCombinationReq
         return build_combination_result(built).model_dump_json().encode()
 
     return await cached(cache, "combination-build", resolved, produce)
-
-
-def combination_of(data: dict[str, Any], where: str | None) -> Combination:
-    """The engine's combination of a ``combination`` object, validated; its errors name ``<where>.combination.<...>``
-    (``combination.<...>`` when ``where`` is None: the request's own vehicle)."""
-    try:
-        c = Combination.from_dict(data)
-        validate_combination(c)
-    except InvalidInput as e:
-        raise at_field(e, where) from e
-    return c

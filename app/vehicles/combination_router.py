@@ -11,9 +11,9 @@ from app.deps import CacheDep
 from app.http.fastpath import replayable
 from app.http.problems import Problem, error_responses
 from app.http.responses import computed_responses, json_response
-from app.vehicles.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
+from app.vehicle_forms.combination_builder_schemas import BuildCombinationRequest, BuildCombinationResult
+from app.vehicle_forms.combination_schemas import CombinationPreset, CombinationPresetSummary
 from app.vehicles.combination_builder_service import compute_combination_build
-from app.vehicles.combination_schemas import CombinationPreset, CombinationPresetSummary
 from engine.models import supported_models
 from engine.vehicle import COMBINATION_INFO, COMBINATION_SOURCES, COMBINATIONS, get_combination, roll_coupled_units
 

@@ -15,8 +15,8 @@ from app.http.schemas import (
     not_together_schema,
     shape_error,
 )
-from app.vehicles.builder_schemas import EXAMPLE_SPEC, MAX_PAYLOADS, VehicleSpecIn
-from app.vehicles.combination_builder_schemas import CombinationSpecIn
+from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC, MAX_PAYLOADS, VehicleSpecIn
+from app.vehicle_forms.combination_builder_schemas import CombinationSpecIn
 from engine import builder as eb
 from engine import builder as ec
 

@@ -14,7 +14,7 @@ from app.catalog.router import problem_responses
 from app.catalog.schemas import SavedVehicle
 from app.deps import SettingsDep
 from app.http.problems import Problem, error_responses
-from app.vehicles.schemas import VehiclePreset
+from app.vehicle_forms.schemas import VehiclePreset
 from engine.models import supported_models
 from engine.vehicle import PRESET_INFO, PRESETS, get_preset
 

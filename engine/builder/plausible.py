@@ -124,8 +124,9 @@ def check_payloads_plausible(payloads: object, where: str) -> None:
 
 
 #: (builder dataclass, field) -> the key of :data:`engine.vehicle.plausibility.RANGES` the builders judge it by: what
-#: :func:`check_spec_plausible`, :func:`check_payloads_plausible` and the combination builder check, as data, for the
-#: published schema's bounds (``app.vehicles.builder_schemas``: a value outside is refused, so the bounds are true).
+#: :func:`check_spec_plausible`, :func:`check_payloads_plausible` and the combination builder check, as data, for
+#: the published schema's bounds (``app.vehicle_forms.builder_schemas``: a value outside is refused, so the bounds are
+#: true).
 #: Left out where the server takes a value outside the range: a tank's fill height of 0 (empty), a pintle's roll
 #: stiffness of 0 (none)
 SPEC_RANGES: dict[tuple[str, str], str] = {

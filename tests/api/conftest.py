@@ -102,7 +102,7 @@ def redis_server() -> Iterator[RedisServer]:
 def a_spec(tag: object = None, payloads: int = 1) -> dict:
     """A valid builder spec ``{"spec": ...}`` (the schema's example semi-trailer), told apart by its title, with
     ``payloads`` equal deck loads (more payloads make a larger body)."""
-    from app.vehicles.builder_schemas import EXAMPLE_SPEC
+    from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC
 
     load = EXAMPLE_SPEC["payloads"][0]
     each = {**load, "mass_kg": load["mass_kg"] / payloads}

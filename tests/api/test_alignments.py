@@ -24,6 +24,7 @@ from app.alignments.rows import rows as _rows
 from app.alignments.service import parse_json_request, resolve_alignment, solve_alignment
 from app.formats.tables import Text, csv_lines_cellwise, flatten_targets
 from app.settings import Settings
+from app.vehicles.resolve import resolve_request_given
 
 BTRAIN = "table16-btrain"
 PATH = "/v1/alignments/assess"
@@ -560,7 +561,7 @@ def _every_kind_of_row():
     }
     req, table = parse_json_request(orjson.dumps(body))
     table = dataclasses.replace(table, station_m=np.array([0.0, 150.5, np.nan, 900.0, 1200.0]))  # as from LandXML
-    return solve_alignment(resolve_alignment(req, table, Settings()))
+    return solve_alignment(resolve_alignment(resolve_request_given(req), table, Settings()))
 
 
 def test_csv_written_by_blocks_of_columns_is_the_rows_written_cell_by_cell():

@@ -22,7 +22,7 @@ from app.catalog.auth import owner_of
 from app.catalog.service import CatalogProblem, resolve_fleet, resolve_saved_vehicle
 from app.db import Database, repo
 from app.settings import Settings
-from app.vehicles.schemas import METADATA_FIELDS
+from app.vehicle_forms.schemas import METADATA_FIELDS
 
 from .conftest import a_spec, make_client
 

@@ -156,7 +156,7 @@ def record():
     from fastapi.testclient import TestClient
 
     from app.main import create_app
-    from app.vehicles.schemas import METADATA_FIELDS
+    from app.vehicle_forms.schemas import METADATA_FIELDS
 
     with TestClient(create_app()) as c:
         body = c.get("/v1/vehicles/table16-btrain").json()

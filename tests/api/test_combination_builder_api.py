@@ -116,8 +116,8 @@ def test_a_tare_in_tonnes_says_so(shared_client):
 def test_the_payload_table_takes_a_combination_spec_and_refuses_both_or_neither(shared_client):
     """POST /v1/vehicles/payload-table with a combination: the table of its loaded unit, the SRT of the spec as
     /v1/srt answers it for the same combination_spec; exactly one of spec and combination_spec."""
-    from app.vehicles.builder_schemas import EXAMPLE_SPEC
-    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC
+    from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
 
     body = {"combination_spec": EXAMPLE_COMBINATION_SPEC, "target_srt_g": 0.55, "rows": 2}
     table = shared_client.post("/v1/vehicles/payload-table", json=body)
@@ -137,7 +137,7 @@ def test_a_payload_typed_in_tonnes_is_refused_as_in_a_single_unit_spec(shared_cl
     """Issue 40 item 5: a combination spec's payload of 22 (or 5, or 0.5) kg was accepted and lifted the example's
     SRT from 0.503 to 0.846 g, while the single-unit spec refused it "in tonnes?". The same range now judges both
     (RANGES["payload_mass_kg"], 100-60,000 kg, its reason in engine.vehicle.plausibility)."""
-    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
 
     spec = copy.deepcopy(EXAMPLE_COMBINATION_SPEC)
     spec["units"][1]["payloads"][0]["mass_kg"] = mass
@@ -161,7 +161,7 @@ def test_a_payload_typed_in_tonnes_is_refused_as_in_a_single_unit_spec(shared_cl
 def test_every_measurable_input_of_a_combination_spec_is_judged_by_its_range(shared_client, where, value, slip):
     """Inputs the combination builder took unchecked (an axle spacing, a load's length) or judged by another
     quantity's range (a tyre radius as any height, a deck length as a position up to 30 m)."""
-    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
 
     spec = copy.deepcopy(EXAMPLE_COMBINATION_SPEC)
     d = spec

@@ -160,7 +160,7 @@ def test_a_saved_combination_spec_is_built_on_use_and_refused_on_save_when_it_ca
     """A combination in measurable terms is saved as sent (kind combination_spec), answers what the same spec sent
     inline answers, and a spec the builder refuses is a 422 naming the field under vehicle.combination_spec."""
     from app.settings import Settings
-    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
 
     key = "combination-key-0123456789"
     with tempfile.TemporaryDirectory() as tmp:

@@ -10,7 +10,7 @@ import pytest
 from openapi_spec_validator import validate
 
 from app.main import create_app
-from app.vehicles.schemas import METADATA_FIELDS, VehicleRecord
+from app.vehicle_forms.schemas import METADATA_FIELDS, VehicleRecord
 from engine.vehicle.record import Vehicle
 
 from .conftest import ROOT

@@ -101,8 +101,8 @@ def _model_of(spec: dict, root: str, path: tuple) -> tuple[str, str]:
 def test_a_value_past_a_published_bound_is_refused_by_the_server(spec, shared_client, which):
     """The published bounds are true: each bounded number of the schemas' example specs, set 1% past its maximum
     (and below its minimum where that is positive), is refused with a 422 naming that field."""
-    from app.vehicles.builder_schemas import EXAMPLE_SPEC
-    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC
+    from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
 
     example, root, url = (
         (EXAMPLE_SPEC, "VehicleSpec", "/v1/vehicles/build")

@@ -20,14 +20,14 @@ from app.compute.resolved import (
     RouteDocument,
 )
 from app.routes.schemas import RouteRequest
-from app.routes.service import _document_digest, resolved_route, route_refs
+from app.routes.service import _document_digest, resolved_route
 from app.settings import Settings
 from app.srt.limits_schemas import LimitsRequest
 from app.srt.limits_service import resolve_limits
 from app.srt.service import resolve_case
 from app.srt.sweep_schemas import SweepRequest
 from app.srt.sweep_service import resolve_sweep
-from app.vehicles.refs import vehicle_preset
+from app.vehicles.resolve import resolve_request_given, vehicle_preset
 from engine.road.profile import DECELERATION_MPS2
 
 BTRAIN = "table16-btrain"
@@ -78,7 +78,7 @@ def _assessment_dict(presets: list[str], **options) -> dict:
 
 def _alignment(body: dict) -> ResolvedAlignment:
     req, table = parse_json_request(orjson.dumps(body))
-    return resolve_alignment(req, table, Settings()).resolved
+    return resolve_alignment(resolve_request_given(req), table, Settings()).resolved
 
 
 def test_an_alignments_key_is_the_key_of_the_dict_it_replaces():
@@ -107,7 +107,7 @@ def test_the_csv_dialect_is_in_the_key_only_when_the_curves_came_as_csv():
 
 def test_a_routes_key_is_the_key_of_the_dict_it_replaces():
     req = RouteRequest.model_validate({"vehicle": BTRAIN, "geojson": ROUTE, "superelevation_percent": 5.0})
-    resolved = resolved_route(req, route_refs(req), Settings())
+    resolved = resolved_route(resolve_request_given(req), Settings())
     route = {
         "format": "geojson",
         "sha256": _document_digest(req),
@@ -127,14 +127,18 @@ def test_a_routes_key_is_the_key_of_the_dict_it_replaces():
 def _case_dict(req, targets: dict | None = None) -> dict:
     """What the keys held of an SRT request's case before the types: the case's dict beside the targets."""
     targets = Settings().default_targets() if targets is None else targets
-    return {**resolve_case(req).to_dict(), "targets": targets, "targets_judged_on": "level_road_srt"}
+    return {
+        **resolve_case(req, resolve_request_given(req).vehicles[0].vehicle).to_dict(),
+        "targets": targets,
+        "targets_judged_on": "level_road_srt",
+    }
 
 
 def test_a_sweeps_and_a_limits_key_are_the_keys_of_the_dicts_they_replace():
     settings = Settings()
     sweep = SweepRequest.model_validate({"vehicle": BTRAIN, "grid": {"slope_percent": [0, 4], "bank_percent": [2]}})
     old = {"case": _case_dict(sweep), "grid": {"bank_percent": [2.0], "slope_percent": [0.0, 4.0]}}
-    resolved = resolve_sweep(sweep, settings)
+    resolved = resolve_sweep(resolve_request_given(sweep), settings)
     assert list(resolved.grid) == ["bank_percent", "slope_percent"] and resolved.cases == 2
     for op in ("srt-sweep", "srt-sweep-csv", "srt-sweep-answer"):
         assert resolved.key(op) == cache_key(op, old)
@@ -148,20 +152,18 @@ def test_a_sweeps_and_a_limits_key_are_the_keys_of_the_dicts_they_replace():
         # the request's road under the old key is never served for the new default
         "limit_on": "level_road",
     }
-    assert resolve_limits(limits, settings).key("srt-limits") == cache_key("srt-limits", old)
+    assert resolve_limits(resolve_request_given(limits), settings).key("srt-limits") == cache_key("srt-limits", old)
 
 
 def _samples() -> list:
     alignment = _alignment({"vehicles": [BTRAIN, SEMI], "curves": CURVES, "targets": {"x": 0.3}})
     csv = _alignment({"vehicle": BTRAIN, "csv": "id,radius_m,superelevation_percent\nC1,120,6\n"})
     req = RouteRequest.model_validate({"vehicle": BTRAIN, "geojson": ROUTE, "max_superelevation_percent": 8.0})
-    route = resolved_route(req, route_refs(req), Settings())
-    sweep = resolve_sweep(
-        SweepRequest.model_validate({"vehicle": BTRAIN, "grid": {"bank_percent": [0, 2]}}), Settings()
-    )
-    limits = resolve_limits(
-        LimitsRequest.model_validate({"vehicle": BTRAIN, "parameter": "overweight_percent"}), Settings()
-    )
+    route = resolved_route(resolve_request_given(req), Settings())
+    sweep_req = SweepRequest.model_validate({"vehicle": BTRAIN, "grid": {"bank_percent": [0, 2]}})
+    sweep = resolve_sweep(resolve_request_given(sweep_req), Settings())
+    limits_req = LimitsRequest.model_validate({"vehicle": BTRAIN, "parameter": "overweight_percent"})
+    limits = resolve_limits(resolve_request_given(limits_req), Settings())
     return [alignment, csv, route, sweep, limits]
 
 

@@ -31,20 +31,25 @@ from app.srt.schemas import SrtRequest
 from app.srt.service import resolve_case, resolve_srt
 from app.srt.sweep_schemas import SweepRequest
 from app.srt.sweep_service import resolve_sweep
-from app.vehicles.builder_schemas import EXAMPLE_SPEC, BuildRequest
+from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC, BuildRequest
 from app.vehicles.payload_schemas import PayloadTableRequest
-from app.vehicles.refs import vehicle_preset
+from app.vehicles.resolve import resolve_request_given, vehicle_preset
 from engine.case import Road
 
 BTRAIN = "table16-btrain"
 TARGETS = {"general": 0.35, "nz": 0.4}
 
 
+def _vehicle(req):
+    """The request's engine vehicle, resolved as the service resolves it."""
+    return resolve_request_given(req).vehicles[0].vehicle
+
+
 def _srt_dict(req, *, targets=None, curves: bool = False, points: int | None = None, road: Road | None = None) -> dict:
     """``srt_key`` as the services wrote it: the case's dict, the curve fields, the targets and what they are judged
     on."""
     return {
-        **resolve_case(req, road=road).to_dict(),
+        **resolve_case(req, _vehicle(req), road=road).to_dict(),
         "include_curves": curves,
         "curve_points": points if curves else None,
         "targets": Settings().default_targets() if targets is None else targets,
@@ -146,7 +151,7 @@ def test_every_field_of_a_request_is_in_its_key(request_type, resolved_type, ren
 
 def _single_samples() -> list:
     req = SrtRequest.model_validate({"vehicle": BTRAIN, "road": {"slope_percent": 2.0}})
-    srt = resolve_srt(resolve_case(req), TARGETS, include_curves=True, curve_points=11)
+    srt = resolve_srt(resolve_case(req, _vehicle(req)), TARGETS, include_curves=True, curve_points=11)
     payload = PayloadTableRequest.model_validate({"spec": EXAMPLE_SPEC, "target_srt_g": 0.45, "rows": 3})
     return [
         srt.base,
@@ -187,7 +192,7 @@ def test_a_single_answers_json_form_reads_back_as_the_same_request(index):
 
 def _sweep_form() -> dict:
     req = SweepRequest.model_validate({"vehicle": BTRAIN, "grid": {"bank_percent": [0, 2]}})
-    return orjson.loads(orjson.dumps(resolve_sweep(req, Settings()).to_json_dict()))
+    return orjson.loads(orjson.dumps(resolve_sweep(resolve_request_given(req), Settings()).to_json_dict()))
 
 
 @pytest.mark.parametrize(
@@ -224,7 +229,10 @@ def test_a_stored_build_of_another_shape_is_refused(data):
 
 def test_an_srt_without_curves_keeps_no_points():
     req = SrtRequest.model_validate({"vehicle": BTRAIN})
-    assert ResolvedSrt(base=ResolvedCase(case=resolve_case(req), targets={}), curve_points=41).curve_points is None
+    assert (
+        ResolvedSrt(base=ResolvedCase(case=resolve_case(req, _vehicle(req)), targets={}), curve_points=41).curve_points
+        is None
+    )
 
 
 def test_of_takes_each_field_from_the_request_and_refuses_what_neither_gives():

@@ -16,7 +16,7 @@ import math
 
 import pytest
 
-from app.vehicles.refs import resolve_vehicle
+from app.vehicles.resolve import vehicle_preset
 from engine.case import Case
 from engine.models import rollover_threshold
 
@@ -55,7 +55,7 @@ def test_the_issue_btrain_on_a_6_percent_bank_fails_both_targets_on_its_level_sr
     assert_judged_on(banked["targets"], level["srt"])
     assert [t["meets"] for t in banked["targets"]] == [False, False]
     # the engine's own level case agrees (not through the service's verdict code)
-    engine_level = rollover_threshold(Case(resolve_vehicle(BTRAIN), "3d")).srt
+    engine_level = rollover_threshold(Case(vehicle_preset(BTRAIN), "3d")).srt
     assert banked["level_road_srt"] == pytest.approx(engine_level, rel=1e-12)
     # the curve's own threshold stays the case's: the tilt angle is of srt, not of the level SRT
     assert banked["tilt_table_angle_deg"] == pytest.approx(math.degrees(math.atan(banked["srt"])), rel=1e-12)
@@ -263,7 +263,7 @@ def test_the_level_case_is_cached_and_keyed_apart(client):
     from app.srt.schemas import SrtRequest
     from app.srt.service import level_case, resolve_case
 
-    case = resolve_case(SrtRequest.model_validate({"vehicle": BTRAIN, "road": BANK6}))
+    case = resolve_case(SrtRequest.model_validate({"vehicle": BTRAIN, "road": BANK6}), vehicle_preset(BTRAIN))
     memo = client.app.state.cache.objects
     key = cache_key("engine-result", {**level_case(case).to_dict(), "curve_points": None})
     assert memo[key].srt == level.json()["srt"]

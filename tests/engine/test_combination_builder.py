@@ -383,7 +383,7 @@ def test_the_b_double_is_rebuilt_with_every_group_value_given():
 def test_payload_table_of_a_combination_finds_the_governing_srt_at_the_target_and_falls_with_height():
     """The payload table of a combination (the semitrailer's payload varied): each found limit, rebuilt and solved
     independently with the whole-combination model, is the target; the largest mass falls as the load rises."""
-    from app.vehicles.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
+    from app.vehicle_forms.combination_builder_schemas import EXAMPLE_COMBINATION_SPEC
     from engine import Case, rollover_threshold
     from engine.builder import CombinationSpec, build_combination
     from engine.builder.payload_table import payload_table

@@ -48,9 +48,11 @@ def unlimited_answer(request: dict, *, csv: bool = False) -> bytes:
     from app.alignments.schemas import MAX_JOB_CURVES, MAX_JOB_ROWS
     from app.alignments.service import resolve_alignment, solve_alignment, validate_request_data
     from app.jobs.op_alignments import AlignmentJobRequest
+    from app.vehicles.resolve import resolve_request_given
 
     req, curves = validate_request_data(request, model=AlignmentJobRequest, max_curves=MAX_JOB_CURVES)
-    job = resolve_alignment(req, curves, Settings(), max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
+    vr = resolve_request_given(req)
+    job = resolve_alignment(vr, curves, Settings(), max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS)
     return b"".join(render(solve_alignment(job), csv))
 
 

@@ -1,7 +1,7 @@
 """The combination builder over HTTP: ``POST /v1/combinations/build`` and ``{"combination_spec": {...}}`` as a vehicle.
 
 The spec's models are generated from the engine's dataclasses (:mod:`engine.builder.combination`) by the
-single-unit builder's generator (:func:`app.vehicles.builder_schemas.spec_model`): fields, types, defaults and each
+single-unit builder's generator (:func:`app.vehicle_forms.builder_schemas.spec_model`): fields, types, defaults and each
 field's description and unit from the dataclass docstring, so the published schema and the engine cannot drift.
 The tare, payloads and deck are the single-unit spec's own models. The engine checks what a schema cannot say (a
 roll centre above the CG, a fifth wheel behind its group, a dolly towing nothing, a tare typed in tonnes) and
@@ -15,8 +15,8 @@ from typing import Any
 from pydantic import ConfigDict, Field
 
 from app.http.schemas import InputModel, OutputModel, describe
-from app.vehicles import builder_schemas as bs
-from app.vehicles.builder_schemas import DerivationOut, MassOut
+from app.vehicle_forms import builder_schemas as bs
+from app.vehicle_forms.builder_schemas import DerivationOut, MassOut
 from engine import builder as ec
 from engine.vehicle import FIFTH_WHEELS, SUSPENSIONS_IN_ROLL, UNIT_KINDS
 

@@ -12,7 +12,7 @@ from typing import Literal
 from pydantic import Field
 
 from app.http.schemas import InputModel, OutputModel, describe, json_int
-from app.vehicles.schemas import VehicleRecord
+from app.vehicle_forms.schemas import VehicleRecord
 from engine.vehicle import COUPLING_KINDS, UNIT_KINDS
 
 UnitKind = Literal[tuple(UNIT_KINDS)]  # type: ignore[valid-type]

@@ -572,7 +572,8 @@ class _Reader:
         """The sections the scan read, checked and refused as :meth:`cross_sections` checks the tree's: the first
         station that is not a finite number, then the first section with a point that is not."""
         n = len(sc.counts)
-        self.counts["CrossSect"] += n
+        if n:  # (as the tree's reading counts them: no entry for none)
+            self.counts["CrossSect"] += n
         try:
             sta = np.array([float(t) for t in sc.stations])  # type: ignore[arg-type]  (None: a TypeError)
             good = bool(np.isfinite(sta).all())
@@ -630,16 +631,18 @@ class _Reader:
 _SCANNED = "rollover-scanned-cross-sections"
 #: characters per chunk of the scan (each a few C calls; the interpreter's lock is given up between chunks)
 _SCAN_CHUNK = 2**20
-_ATTRS = r"(?:\s[^<>]*)?(?<!/)>"  # attributes not read (any, but no '>' in a value: else the section is not taken)
+#: a start tag's attributes and its end (not "/>": an empty element is not taken), as XML writes them: the guard has
+#: passed the document, so every value is quoted and holds no '<' (it may hold '>' and the other quote)
+_ATTRS = r"""(?:\s+[^\s=<>/"']+\s*=\s*(?:"[^"<]*"|'[^'<]*'))*\s*>"""
 _POINT = r"<CrossSectPnt" + _ATTRS + r"\s*[^\s<&]+\s+[^\s<&]+\s*</CrossSectPnt\s*>"
 _SECTION = re.compile(
-    r"<CrossSect(?:\s+sta\s*=\s*\"([^\"<&]*)\"\s*>|(\s[^<>]*)(?<!/)>)[^<&]*"
+    r"<CrossSect(?:\s+sta\s*=\s*(\"[^\"<&]*\")\s*>|(" + _ATTRS[:-1] + r")>)[^<&]*"
     r"<DesignCrossSectSurf" + _ATTRS + r"((?:\s*" + _POINT + r")*)\s*</DesignCrossSectSurf\s*>[^<&]*"
     r"</CrossSect\s*>"
 )
 _OPEN = re.compile(r"<CrossSects(?:\s+[^\s=<>/]+\s*=\s*(?:\"[^\"<>]*\"|'[^'<>]*'))*\s*>")
 _ATTRIBUTE = re.compile(r"([^\s=]+)\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
-_TAG = re.compile(r"<[^>]*>")
+_TAG = re.compile(r"""<(?:[^>"']|"[^"]*"|'[^']*')*>""")  # a tag, quoted values holding '>' included
 
 
 class _Scanned:
@@ -680,12 +683,12 @@ def _scan_region(text: str) -> _Scanned | None:
         if piece.count("<") != 4 * len(found) + 2 * sum(counts):
             return None
         for sta, attrs, _ in found:
-            if attrs:
-                if "&" in attrs:
-                    return None  # a reference in an attribute: the tree's value is not the text's
-                out.stations.append(_attribute_sta(attrs))
+            if sta:  # the usual start tag, <CrossSect sta="...">: the value in its quotes
+                out.stations.append(sta[1:-1])
+            elif "&" in attrs:
+                return None  # a reference in an attribute: the tree's value is not the text's
             else:
-                out.stations.append(sta)
+                out.stations.append(_attribute_sta(attrs))  # None: no sta
         joined = " ".join(block for _, _, block in found)
         bare = joined.replace("<CrossSectPnt>", " ").replace("</CrossSectPnt>", " ")
         words = (_TAG.sub(" ", joined) if "<" in bare else bare).split()

@@ -183,3 +183,40 @@ def test_a_document_naming_the_marker_itself_is_read_by_the_tree(monkeypatch):
     ):
         out = _same(_doc(forged + real), monkeypatch, scanned=scanned)
         assert out[0] == "read" and len(out[1][0]) == 1
+
+
+def _random_section(rng: random.Random, k: int) -> str:
+    """A section in one of the shapes writers use, now and then with something the scan must refuse or the tree
+    refuses (numbers, attributes, white space, a third word, an empty element, a character reference)."""
+    ws = lambda: rng.choice(["", " ", "\n  ", "\r\n\t"])  # noqa: E731
+    sta = rng.choice(
+        [f"{10 * k}", f" {10 * k}.0 ", f"{10 * k}e0", "x", "", "inf"] if rng.random() < 0.1 else [f"{10 * k}"]
+    )
+    quote = rng.choice(['"', "'"]) if rng.random() < 0.2 else '"'
+    attrs = rng.choice(["", ' name="S"', " name='a>b'", ' a="&amp;"', ' b = "x\'>y"']) if rng.random() < 0.2 else ""
+    start = f"<CrossSect{attrs} sta={quote}{sta}{quote}{ws()}>" if rng.random() > 0.05 else f"<CrossSect{attrs}>"
+    points = []
+    for _ in range(rng.choice([0, 1, 2, 3, 3, 3, 5])):
+        x = rng.choice([-3.5, -2.0, 0.0, 0.0, 1.5, 3.5])
+        z = round(100 + rng.uniform(-0.2, 0.2), 3)
+        text = f"{ws()}{x:g}{rng.choice([' ', '  ', chr(9), chr(10)])}{z}{ws()}"
+        if rng.random() < 0.03:
+            text = rng.choice([f"{x} {z} EP", f"{x}", "a b", "&#45;1 2", f"{x} nan"])
+        tags = ["<CrossSectPnt>", '<CrossSectPnt code="EP">', "<CrossSectPnt code='a>b'>", "<CrossSectPnt c='&amp;'>"]
+        tag = rng.choice(tags) if rng.random() < 0.2 else "<CrossSectPnt>"
+        points.append(f"{ws()}{tag}{text}</CrossSectPnt>" if rng.random() > 0.01 else "<CrossSectPnt/>")
+    surf = rng.choice(["<DesignCrossSectSurf>", '<DesignCrossSectSurf name="Top">', "<DesignCrossSectSurf n='>'>"])
+    body = f"{surf}{''.join(points)}{ws()}</DesignCrossSectSurf>"
+    if rng.random() < 0.02:
+        body = "<CrossSectSurf><PntList2D>-3 99 0 100 3 99</PntList2D></CrossSectSurf>"
+    return f"{ws()}{start}{ws()}{body}{ws()}</CrossSect>"
+
+
+@pytest.mark.parametrize("seed", range(300))
+def test_random_documents_read_alike_with_and_without_the_scan(monkeypatch, seed):
+    rng = random.Random(seed)
+    sections = "".join(_random_section(rng, k) for k in range(rng.randint(0, 12)))
+    doc = _doc(f"<CrossSects>{sections}</CrossSects>")
+    ours, _ = _outcome(doc.encode() if seed % 2 else doc, scan=True, monkeypatch=monkeypatch)
+    tree, _ = _outcome(doc.encode() if seed % 2 else doc, scan=False, monkeypatch=monkeypatch)
+    assert ours == tree, doc

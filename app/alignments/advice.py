@@ -60,6 +60,8 @@ class VehicleAdvice:
     station_m: np.ndarray  # the profile's stations [m] (empty: no profile)
     speed_kmh: np.ndarray  # the profile's speeds [km/h]
     notes: list[str]
+    #: each profile point's part where the curves lie on unconnected parts (a route's; None: one road)
+    point_part: np.ndarray | None = None
 
     def sliced(self, start: int, stop: int) -> VehicleAdvice:
         """Curves [start, stop) (a job's part), the profile kept whole."""
@@ -75,6 +77,7 @@ class VehicleAdvice:
             self.station_m,
             self.speed_kmh,
             self.notes,
+            self.point_part,
         )
 
 
@@ -111,9 +114,11 @@ def advise(
     start_m: np.ndarray,
     length_m: np.ndarray,
     deflection_deg: np.ndarray | None,
+    part: np.ndarray | None = None,
 ) -> VehicleAdvice:
     """:func:`engine.road.advisory.advise_alignment` of one vehicle's assessed curves (``cols``: their
-    :data:`ADVICE_INPUTS` at least) with the request's options, as the columns the renderers write."""
+    :data:`ADVICE_INPUTS` at least) with the request's options, as the columns the renderers write. ``part``: each
+    curve's part where the curves lie on unconnected parts, stations along each (a route's): a profile per part."""
     a = advise_alignment(
         cols,
         start_m,
@@ -122,6 +127,7 @@ def advise(
         desired_speed_kmh=r.desired_speed_kmh,
         units=r.units,
         deceleration_mps2=r.deceleration_mps2,
+        part=part,
     )
     p = a.profile
     required = np.asarray(p.required_deceleration_mps2, dtype=float)
@@ -129,11 +135,13 @@ def advise(
     reason = np.full(n, -1, dtype=np.intp)
     reasons: list[str] = []
     if p.reasons and any(p.reasons):  # no profile: every curve has its reason (per curve: only then a loop)
+        # (of a road of several parts, the curves of the parts without a profile; the others' are None)
         reasons = sorted({x for x in p.reasons if x is not None})
         code = {x: k for k, x in enumerate(reasons)}
         reason = np.array([-1 if x is None else code[x] for x in p.reasons], dtype=np.intp)
-    else:  # a profile: the curves whose rate is not finite say why, on arrays
+    if not reasons or (reason == -1).any():  # a profile: the curves whose rate is not finite say why, on arrays
         for text, where in ((NO_ROOM, required == np.inf), (UNKNOWN_APPROACH, np.isnan(required))):
+            where &= reason == -1
             if where.any():
                 reason[where] = len(reasons)
                 reasons.append(text)
@@ -151,6 +159,7 @@ def advise(
         station_m=np.round(np.asarray(p.station_m, dtype=float), 3),
         speed_kmh=np.floor(np.asarray(p.speed_kmh, dtype=float) * 1000.0) / 1000.0,
         notes=list(p.notes),
+        point_part=p.point_part,
     )
 
 

@@ -34,9 +34,13 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
+import secrets
+import time
 import xml.etree.ElementTree as ET
 from array import array
 from collections import Counter
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -171,7 +175,8 @@ def _float(text: str | None, where: str, attribute: str) -> float:
 
 
 class _Reader:
-    def __init__(self, root: ET.Element) -> None:
+    def __init__(self, root: ET.Element, scanned: dict[str, _Scanned] | None = None) -> None:
+        self.scanned = scanned or {}
         self.units = _Units(root)
         self.m = self.units.metres
         self.counts: Counter[str] = Counter()
@@ -389,7 +394,7 @@ class _Reader:
             self.superelevation(s, a, f"{where_a} Superelevation {k}")
             for k, s in enumerate(_children(el, "Superelevation"), start=1)
         )
-        slopes = tuple(s for cs in _children(el, "CrossSects") for s in self.cross_sections(cs, a, where_a))
+        rows = [self.cross_sections(cs, a, where_a) for cs in _children(el, "CrossSects")]
         # the ranges' and sections' stations as distances along, in one call each
         if supers:
             ends = distance_at(a, np.array([[r.start_distance_m, r.end_distance_m] for r in supers]))
@@ -397,9 +402,11 @@ class _Reader:
                 SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
                 for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
             )
-        if slopes:
-            at = distance_at(a, np.array([c.distance_m for c in slopes])).tolist()
-            slopes = tuple(CrossSlope(d, c.left_percent, c.right_percent) for d, c in zip(at, slopes, strict=True))
+        slopes: tuple[CrossSlope, ...] = ()
+        if rows and sum(map(len, rows)):
+            sections = np.concatenate(rows)
+            at = distance_at(a, sections[:, 0]).tolist()
+            slopes = tuple(map(CrossSlope, at, sections[:, 1].tolist(), sections[:, 2].tolist()))
         return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
@@ -517,7 +524,12 @@ class _Reader:
         end = end * self.m if end is not None else self.length(el, "staEnd", where)
         return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
 
-    def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> list[CrossSlope]:
+    def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> np.ndarray:
+        """The sections' rows (station, left slope, right slope) [m, %, %], in the file's order."""
+        if self.scanned and len(el) == 1 and xmlsafe.local(el[0].tag) == _SCANNED:
+            sc = self.scanned.get(el[0].get("key") or "")  # (a marker the file wrote itself has no key of this read)
+            if sc is not None:
+                return self.scanned_sections(sc, where_a)
         # each section's numbers read here, one by one; the slopes computed below for every section at once
         words: list[str] = []
         counts: list[int] = []  # how many numbers each section has
@@ -543,7 +555,7 @@ class _Reader:
             stations.append(self.length(cs, "sta", f"{where_a} CrossSect {k}"))  # a distance made by the caller
             numbered.append(k)
         if not counts:
-            return []
+            return np.empty((0, 3))
         try:
             values = np.array(words, dtype=float)
             bad = not np.isfinite(values).all()
@@ -554,16 +566,207 @@ class _Reader:
             for k, c in zip(numbered, counts, strict=True):
                 _numbers(words[first : first + c], f"{where_a} CrossSect {k}", "CrossSectPnt")
                 first += c
+        return self.slopes(values, counts, stations, numbered, where_a)
+
+    def scanned_sections(self, sc: _Scanned, where_a: str) -> np.ndarray:
+        """The sections the scan read, checked and refused as :meth:`cross_sections` checks the tree's: the first
+        station that is not a finite number, then the first section with a point that is not."""
+        n = len(sc.counts)
+        if n:  # (as the tree's reading counts them: no entry for none)
+            self.counts["CrossSect"] += n
+        try:
+            sta = np.array([float(t) for t in sc.stations])  # type: ignore[arg-type]  (None: a TypeError)
+            good = bool(np.isfinite(sta).all())
+        except (TypeError, ValueError):
+            good = False
+        if not good:  # the first bad one refused as the tree's reading refuses it
+            for k, t in enumerate(sc.stations, start=1):
+                attrib = {} if t is None else {"sta": _attribute_sta(f'sta="{t}"')}
+                self.length(ET.Element("CrossSect", attrib), "sta", f"{where_a} CrossSect {k}")
+        stations = sta * self.m
+        if not n:
+            return np.empty((0, 3))
+        parts = []
+        for first, many, values, words in sc.chunks:
+            if values is None:
+                at = 0
+                for k in range(first, first + many):
+                    _numbers(words[at : at + sc.counts[k]], f"{where_a} CrossSect {k + 1}", "CrossSectPnt")
+                    at += sc.counts[k]
+                values = np.array([float(w) for w in words])
+            parts.append(values)
+        return self.slopes(np.concatenate(parts), sc.counts, stations, range(1, n + 1), where_a)
+
+    def slopes(
+        self,
+        values: np.ndarray,
+        counts: list[int],
+        stations: list[float] | np.ndarray,
+        numbered: Sequence[int],
+        where_a: str,
+    ) -> np.ndarray:
+        """The sections' (station, left, right) rows from their numbers (``counts`` of them each; the stations made
+        distances by the caller), a section with no point on one side skipped and said so."""
         slopes = _slopes(values, np.array(counts))
-        out = []
-        for k, sta, (left, right) in zip(numbered, stations, slopes.tolist(), strict=True):
-            if math.isnan(left):
-                self.skipped.append(
-                    (f"{where_a} CrossSect {k}", "its design surface has no point on one side of the centreline")
-                )
+        missing = np.isnan(slopes[:, 0])
+        for i in np.flatnonzero(missing).tolist():
+            self.skipped.append(
+                (f"{where_a} CrossSect {numbered[i]}", "its design surface has no point on one side of the centreline")
+            )
+        return np.column_stack((np.array(stations, dtype=float).reshape(-1), slopes))[~missing]
+
+
+# ---------------------------------------------------------------------------------------------- cross sections, scanned
+# Design cross sections make a document several times larger (one every 50 m: four times) and were most of its
+# reading time as a tree (five elements per section made and read one by one). Where a <CrossSects> element holds
+# only sections of the shape design packages write (a CrossSect with one DesignCrossSectSurf of CrossSectPnt
+# "offset elevation" points), its content is read here by regular expressions over the document's text, a chunk at a
+# time, and left out of the tree (a marker element stands in its place). The guard has read the whole document first
+# (xmlsafe.fromstring: well-formed, no entities), so what is scanned is well-formed XML; the scan only decides whether
+# it recognises every element in the content, and where it does not (another element, a comment, a character
+# reference, a point that is not two words, text not ASCII), the document is read as a tree as before. The numbers
+# are then the tree's: the same words, converted by the same calls.
+
+#: the element that stands in the tree for a scanned <CrossSects>'s content (its ``key``: the scan's, random)
+_SCANNED = "rollover-scanned-cross-sections"
+#: characters per chunk of the scan (each a few C calls; the interpreter's lock is given up between chunks)
+_SCAN_CHUNK = 2**20
+#: a start tag's attributes and its end (not "/>": an empty element is not taken), as XML writes them: the guard has
+#: passed the document, so every value is quoted and holds no '<' (it may hold '>' and the other quote)
+_ATTRS = r"""(?:\s+[^\s=<>/"']+\s*=\s*(?:"[^"<]*"|'[^'<]*'))*\s*>"""
+_POINT = r"<CrossSectPnt" + _ATTRS + r"\s*[^\s<&]+\s+[^\s<&]+\s*</CrossSectPnt\s*>"
+_SECTION = re.compile(
+    r"<CrossSect(?:\s+sta\s*=\s*(\"[^\"<&]*\")\s*>|(" + _ATTRS[:-1] + r")>)[^<&]*"
+    r"<DesignCrossSectSurf" + _ATTRS + r"((?:\s*" + _POINT + r")*)\s*</DesignCrossSectSurf\s*>[^<&]*"
+    r"</CrossSect\s*>"
+)
+_OPEN = re.compile(r"<CrossSects(?:\s+[^\s=<>/]+\s*=\s*(?:\"[^\"<>]*\"|'[^'<>]*'))*\s*>")
+_ATTRIBUTE = re.compile(r"([^\s=]+)\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
+_TAG = re.compile(r"""<(?:[^>"']|"[^"]*"|'[^']*')*>""")  # a tag, quoted values holding '>' included
+
+
+class _Scanned:
+    """One <CrossSects>'s sections as the scan read them: each section's ``sta`` text (None: the attribute is
+    absent), how many numbers its points have, and per chunk the points' numbers (``np.array(words, dtype=float)``)
+    or, where that conversion failed, the words themselves (the reader names the first bad one, as the tree's
+    reading does)."""
+
+    def __init__(self) -> None:
+        self.stations: list[str | None] = []
+        self.counts: list[int] = []
+        self.chunks: list[tuple[int, int, np.ndarray | None, list[str]]] = []  # first section, sections, values, words
+
+
+def _attribute_sta(attrs: str) -> str | None:
+    """``sta`` from a start tag's attributes (their value as the tree has it: XML's white-space normalisation)."""
+    for name, dq, sq in _ATTRIBUTE.findall(attrs):
+        if name == "sta":
+            value = dq if dq or not sq else sq
+            return value.replace("\r\n", " ").replace("\r", " ").replace("\n", " ").replace("\t", " ")
+    return None
+
+
+def _scan_region(text: str) -> _Scanned | None:
+    """The sections of one <CrossSects>'s content (``text``), or None where it holds anything the scan does not
+    recognise (the document is then read as a tree)."""
+    out = _Scanned()
+    pos, n = 0, len(text)
+    while pos < n:
+        stop = text.find("</CrossSect>", min(pos + _SCAN_CHUNK, n))
+        stop = n if stop < 0 else stop + len("</CrossSect>")
+        piece = text[pos:stop]
+        pos = stop
+        found = _SECTION.findall(piece)
+        counts = [block.count("<CrossSectPnt") for _, _, block in found]  # points, two numbers each
+        # every element of the content is in a recognised section: its '<' are the sections' (4 tags each and 2
+        # per point); what lies outside the sections is text, which the tree's reading ignores too
+        if piece.count("<") != 4 * len(found) + 2 * sum(counts):
+            return None
+        for sta, attrs, _ in found:
+            if sta:  # the usual start tag, <CrossSect sta="...">: the value in its quotes
+                out.stations.append(sta[1:-1])
+            elif "&" in attrs:
+                return None  # a reference in an attribute: the tree's value is not the text's
             else:
-                out.append(CrossSlope(sta, left, right))
-        return out
+                out.stations.append(_attribute_sta(attrs))  # None: no sta
+        joined = " ".join(block for _, _, block in found)
+        bare = joined.replace("<CrossSectPnt>", " ").replace("</CrossSectPnt>", " ")
+        words = (_TAG.sub(" ", joined) if "<" in bare else bare).split()
+        if len(words) != 2 * sum(counts):
+            return None
+        try:
+            values: np.ndarray | None = np.array(words, dtype=float)
+            keep: list[str] = []
+        except ValueError:
+            values, keep = None, words
+        if values is not None and not np.isfinite(values).all():
+            values, keep = None, words
+        out.chunks.append((len(out.counts), len(found), values, keep))
+        out.counts += [2 * c for c in counts]
+        time.sleep(0)  # the lock given up between chunks, as xmlsafe's parse does
+    return out
+
+
+def _cross_section_scan(text: str | bytes) -> tuple[list[str | bytes | memoryview], dict[str, _Scanned]] | None:
+    """The pieces of ``text`` to build the tree from (each scanned <CrossSects>'s content replaced by the marker)
+    and the scanned sections by their marker's key (random: a file cannot name them), or None where no <CrossSects>
+    can be scanned (a document of another shape, or one with a comment, a processing instruction, a CDATA section or
+    a document type before the last section: there the text <CrossSects> could be no element)."""
+    is_bytes = isinstance(text, bytes | bytearray)
+    open_tag, close_tag = ("<CrossSects", "</CrossSects") if not is_bytes else (b"<CrossSects", b"</CrossSects")
+    spans: list[tuple[int, int]] = []
+    at = text.find(open_tag)
+    while at >= 0:
+        head = text[at : at + 4096]
+        head = head.decode("ascii", "replace") if is_bytes else head
+        m = _OPEN.match(head)
+        if m is None:
+            if head[len("<CrossSects") : len("<CrossSects") + 1] not in ("", " ", "\t", "\r", "\n", ">", "/"):
+                at = text.find(open_tag, at + 1)  # another name (<CrossSectsX>)
+                continue
+            return None  # an empty element or attributes the pattern does not take: the tree reads it
+        start = at + m.end()
+        end = text.find(close_tag, start)
+        if end < 0:
+            return None
+        spans.append((start, end))
+        at = text.find(open_tag, end)
+    if not spans:
+        return None
+    last = spans[-1][1]
+    bang, query = ("<!", "<?") if not is_bytes else (b"<!", b"<?")
+    if text.find(bang, 0, last) >= 0:
+        return None
+    q = text.find(query, 0, last)
+    if q >= 0:  # only the XML declaration, at the start (after a byte-order mark)
+        declaration = ("<?xml", b"<?xml")[is_bytes]
+        lead = text[:q]
+        if lead not in ("", "\ufeff", b"", b"\xef\xbb\xbf") or not text.startswith(declaration, q):
+            return None
+        if text.find(query, q + 2, last) >= 0:
+            return None
+    scanned: dict[str, _Scanned] = {}
+    pieces: list[str | bytes | memoryview] = []
+    key = secrets.token_hex(16)
+    view = memoryview(text) if is_bytes else text
+    done = 0
+    for k, (start, end) in enumerate(spans):
+        content = text[start:end]
+        if is_bytes:
+            if not content.isascii():
+                return None
+            content = content.decode("ascii")
+        elif not content.isascii():
+            return None
+        region = _scan_region(content)
+        if region is None:
+            return None
+        marker = f'<{_SCANNED} key="{key}-{k}"/>'
+        pieces += [view[done:start], marker.encode("ascii") if is_bytes else marker]
+        done = end
+        scanned[f"{key}-{k}"] = region
+    pieces.append(view[done:])
+    return pieces, scanned
 
 
 def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
@@ -620,19 +823,28 @@ def writer_of(root: ET.Element) -> str | None:
 def read_road_file(text: str | bytes) -> RoadFile:
     """A LandXML 1.2 document as a :class:`~engine.road.geometry.RoadFile` (every alignment, in metres); raises
     :class:`~app.formats.alignment_io.AlignmentFormatError`."""
+    scanned: dict[str, _Scanned] = {}
+
+    def edit(whole: str | bytes) -> list[str | bytes | memoryview] | None:  # after the guard: the sections scanned
+        scan = _cross_section_scan(whole)
+        if scan is None:
+            return None
+        scanned.update(scan[1])
+        return scan[0]
+
     with xmlsafe.collection_paused():  # the tree's million elements: no collector passes, freed in slices
-        root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError)
+        root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError, edit)
         try:
-            return _road_file(root)
+            return _road_file(root, scanned)
         finally:
             xmlsafe.free(root)
 
 
-def _road_file(root: ET.Element) -> RoadFile:
+def _road_file(root: ET.Element, scanned: dict[str, _Scanned]) -> RoadFile:
     alignments_el = [e for e in root.iter() if e.tag.endswith("Alignment") and xmlsafe.local(e.tag) == "Alignment"]
     if not alignments_el:
         raise AlignmentFormatError("no <Alignment> element", "LandXML")
-    reader = _Reader(root)
+    reader = _Reader(root, scanned)
     alignments = tuple(reader.alignment(el, k) for k, el in enumerate(alignments_el, start=1))
     version = root.get("version")
     return RoadFile(

@@ -32,7 +32,7 @@ import gc
 import threading
 import time
 import xml.etree.ElementTree as ET
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import NoReturn
 from xml.parsers import expat
@@ -57,9 +57,17 @@ def _external_reference(context, base, sysid, pubid) -> NoReturn:
     raise ExternalReferenceForbidden(context, base, sysid, pubid)
 
 
-def fromstring(text: str | bytes) -> ET.Element:
+#: a reader's edit of a document that passed the guard: the pieces to build the tree from, or None (the document)
+Edit = Callable[[str | bytes], Iterable[str | bytes | memoryview] | None]
+
+
+def fromstring(text: str | bytes, edit: Edit | None = None) -> ET.Element:
     """The document's root element; raises ``defusedxml.common.DefusedXmlException`` (an entity declared, an external
-    entity referenced) or :class:`ParseError` (not well-formed: ``.position`` is (line, column))."""
+    entity referenced) or :class:`ParseError` (not well-formed: ``.position`` is (line, column)).
+
+    ``edit``, called once the whole document has passed the guard, may give the pieces (of ``text``'s type) the tree
+    is built from instead of ``text``: a reader that takes part of a document without a tree (app/formats/landxml.py,
+    the cross sections) leaves it out of the tree. The guard and its errors are always the whole document's."""
     guard = expat.ParserCreate()
     guard.EntityDeclHandler = _entity
     guard.UnparsedEntityDeclHandler = _unparsed_entity
@@ -72,9 +80,11 @@ def fromstring(text: str | bytes) -> ET.Element:
         err = ParseError(expat.ErrorString(exc.code) + f": line {exc.lineno}, column {exc.offset}")
         err.code, err.position = exc.code, (exc.lineno, exc.offset)
         raise err from None
+    pieces = edit(text) if edit is not None else None
     parser = ET.XMLParser()
-    for chunk in _chunks(text):
-        parser.feed(chunk)
+    for piece in (text,) if pieces is None else pieces:
+        for chunk in _chunks(piece):
+            parser.feed(chunk)
     return parser.close()
 
 
@@ -133,12 +143,18 @@ def local(tag: str) -> str:
     return tag.rsplit("}", 1)[-1]
 
 
-def document(text: str | bytes, root: str, label: str, error: Callable[[str, str], Exception]) -> ET.Element:
+def document(
+    text: str | bytes,
+    root: str,
+    label: str,
+    error: Callable[[str, str], Exception],
+    edit: Edit | None = None,
+) -> ET.Element:
     """The root element of a document whose root must be ``<root>`` (any namespace); each refusal raised as
     ``error(message, where)``, ``where`` starting with ``label`` (``"LandXML line 3, column 7"``): the one way the
-    readers of LandXML and GPX word them."""
+    readers of LandXML and GPX word them. ``edit``: see :func:`fromstring`."""
     try:
-        element = fromstring(text)
+        element = fromstring(text, edit)
     except DefusedXmlException as exc:
         raise error(f"refused: {exc.__class__.__name__} (entities are not allowed)", label) from None
     except ParseError as exc:

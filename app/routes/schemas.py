@@ -8,7 +8,7 @@ from typing import Any, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from app.advisory.schemas import AdvisoryOptions
-from app.alignments.schemas import MAX_VEHICLES, AdvisoryOut, CurveRow, VehicleAssessment
+from app.alignments.schemas import MAX_VEHICLES, AdvisoryOut, CurveRow, SpeedPointOut, VehicleAssessment
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.route_io import MAX_LENGTH_M, MAX_PARTS, MAX_VERTICES
 from app.http.schemas import (
@@ -523,6 +523,28 @@ class RouteReading(OutputModel):
     )
 
 
+class RouteSpeedPointOut(SpeedPointOut):
+    part: str = Field(
+        description=describe(
+            "The line part the point lies on (as the curves' `part`): each part has its own profile, its stations "
+            "along that part (the parts are not connected: no profile runs from one to the next).",
+            unit="-",
+        )
+    )
+
+
+class RouteVehicleAssessment(VehicleAssessment):
+    speed_profile: list[RouteSpeedPointOut] = Field(  # type: ignore[assignment]
+        description=describe(
+            "The truck's speed profile along the curves of each part (engine/road/profile.py; docs/advisory.md): "
+            "its speed at each station of a part, linear in speed squared between them, the parts one after the "
+            "other; a part whose curves' stations cannot carry one has none (the rows' `profile_reason`, "
+            "`speed_profile_notes`).",
+            unit="per field",
+        )
+    )
+
+
 class RouteResult(OutputModel):
     """The route's curves, each with its geometry, vertices and assessment; per-vehicle summaries; what was read.
     `Accept: application/geo+json` answers the curves as a GeoJSON FeatureCollection instead (ready for a GIS)."""
@@ -538,7 +560,7 @@ class RouteResult(OutputModel):
     design_standard: str = Field(description=describe("The design standard used.", unit="-"))
     length_m: float = Field(description=describe("Total route length.", unit="m"))
     parts: list[RoutePartOut] = Field(description=describe("The line parts read, in document order.", unit="-"))
-    vehicles: list[VehicleAssessment] = Field(
+    vehicles: list[RouteVehicleAssessment] = Field(
         description=describe(
             "One entry per vehicle: its summary over the curves (`rows` empty: see `curves`).", unit="-"
         )

@@ -259,12 +259,14 @@ def curve_table(req: RouteRequest, geo: Geometry) -> CurveTable:
     )
 
 
-def curve_places(geo: Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each found curve's start station [m], length [m] and deflection [deg] along its line part (the advice's
-    profile; curves of several parts restart their stations, and then have no profile, each row saying why)."""
+def curve_places(geo: Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Each found curve's start station [m], length [m] and deflection [deg] along its line part, and its part (the
+    advice's profile: one per part, the parts being unconnected and each one's stations restarting)."""
     cs = [c.curve for c in geo.curves]
     start = np.array([h.start_m for h in cs], dtype=float)
-    return start, np.array([h.end_m - h.start_m for h in cs], dtype=float), np.array([h.deflection_deg for h in cs])
+    part = np.array([c.part.source for c in geo.curves], dtype=object)
+    lengths = np.array([h.end_m - h.start_m for h in cs], dtype=float)
+    return start, lengths, np.array([h.deflection_deg for h in cs]), part
 
 
 def _document_digest(req: RouteRequest) -> str:
@@ -410,6 +412,17 @@ def reading(req: RouteRequest, geo: Geometry) -> dict[str, Any]:
     }
 
 
+def _profile_points(geo: Geometry, advice: Any) -> list[dict[str, Any]]:
+    """A vehicle's speed profile as the answer's points, each with the part it lies on (its stations along that
+    part: each part has its own profile)."""
+    station, speed = advice.station_m.tolist(), advice.speed_kmh.tolist()
+    if advice.point_part is not None:
+        part = advice.point_part.tolist()
+    else:  # the curves on one part
+        part = [geo.curves[0].part.source if geo.curves else None] * len(station)
+    return [{"station_m": x, "speed_kmh": y, "part": p} for x, y, p in zip(station, speed, part, strict=True)]
+
+
 def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> bytes:
     r = answer.resolved
     found = zip(_curves(req, geo, answer), geo.curves, strict=True)
@@ -442,10 +455,7 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
                 "saved_vehicle_id": v.saved_id,
                 "summary": alignment_rows.summary(v.columns),
                 "rows": [],
-                "speed_profile": [
-                    {"station_m": x, "speed_kmh": y}
-                    for x, y in zip(v.advice.station_m.tolist(), v.advice.speed_kmh.tolist(), strict=True)
-                ],
+                "speed_profile": _profile_points(geo, v.advice),
                 "speed_profile_notes": v.advice.notes,
             }
             for v in answer.vehicles

@@ -23,6 +23,7 @@ from typing import Annotated, Any
 from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from pydantic import ConfigDict, Field, ValidationError, create_model
+from starlette.concurrency import run_in_threadpool
 
 from app.alignments import uploads as alignment_uploads
 from app.alignments.schemas import MAX_VEHICLES
@@ -98,16 +99,24 @@ def _empty(field: str, what: str) -> InvalidRoute:
 async def gpx_upload(request: Request, query, limit: int) -> tuple[RouteRequest, str]:
     """The JSON request equivalent to a GPX upload, and the field that holds the file (``body`` or ``file``)."""
     upload = await read_upload(request, limit)
-    text = decode_xml(upload.data, upload.field, "GPX", InvalidRoute)
-    if not text.strip():
-        raise _empty(upload.field, "GPX")
-    return upload_request(query, upload.field, gpx=text), upload.field
+
+    def build() -> RouteRequest:
+        text = decode_xml(upload.data, upload.field, "GPX", InvalidRoute)
+        if not text.strip():
+            raise _empty(upload.field, "GPX")
+        return upload_request(query, upload.field, gpx=text)
+
+    return await run_in_threadpool(build), upload.field  # decoding tens of MB: not on the event loop
 
 
 async def geojson_upload(request: Request, query, limit: int) -> tuple[RouteRequest, str]:
     """The JSON request equivalent to a GeoJSON upload, and the field that holds the file (``body`` or ``file``)."""
     upload = await read_upload(request, limit)
-    if not upload.data.strip():
-        raise _empty(upload.field, "GeoJSON")
-    doc = decode_json_object(upload.data, upload.field, "GeoJSON", InvalidRoute)
-    return upload_request(query, upload.field, geojson=doc), upload.field
+
+    def build() -> RouteRequest:
+        if not upload.data.strip():
+            raise _empty(upload.field, "GeoJSON")
+        doc = decode_json_object(upload.data, upload.field, "GeoJSON", InvalidRoute)
+        return upload_request(query, upload.field, geojson=doc)
+
+    return await run_in_threadpool(build), upload.field  # parsing tens of MB: not on the event loop

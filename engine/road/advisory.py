@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import numpy as np
 
@@ -439,9 +439,11 @@ class AlignmentAdvice:
         return list(TREATMENTS[code]) if code >= 0 else []
 
 
-def sign_groups(start_station_m, length_m) -> np.ndarray:
+def sign_groups(start_station_m, length_m, part=None) -> np.ndarray:
     """Index of the first curve of each curve's sign group: a curve whose tangent from the previous curve is at most
-    600 ft shares that curve's sign (TxDOT). -1 where a curve's stations are unknown or out of order (no group)."""
+    600 ft shares that curve's sign (TxDOT). -1 where a curve's stations are unknown or out of order (no group).
+    ``part``: each curve's part where the road has unconnected parts (stations along each part): no group spans two
+    parts."""
     s = np.atleast_1d(np.asarray(start_station_m, dtype=float))
     length = np.broadcast_to(np.asarray(length_m, dtype=float), s.shape)
     n = len(s)
@@ -450,6 +452,9 @@ def sign_groups(start_station_m, length_m) -> np.ndarray:
     if n > 1:
         tangent = s[1:] - (s[:-1] + length[:-1])
         joined = ok[1:] & ok[:-1] & (tangent >= 0) & (tangent <= SHARED_SIGN_TANGENT_M + 1e-9)
+        if part is not None:
+            p = np.asarray(part)
+            joined &= p[1:] == p[:-1]
         starts = np.ones(n, dtype=bool)
         starts[1:] = ~joined
         groups = np.maximum.accumulate(np.where(starts, np.arange(n), 0))
@@ -471,6 +476,7 @@ def advise_alignment(
     reaction_time_s: float | None = None,
     alignment_start_m: float | None = None,
     alignment_end_m: float | None = None,
+    part=None,
 ) -> AlignmentAdvice:
     """Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one alignment and one
     vehicle: the function the alignment and route answers call per vehicle.
@@ -486,6 +492,9 @@ def advise_alignment(
     units, rollover_margin_kmh, body_roll_deg_per_g : see :func:`advise_curves`
     deceleration_mps2, reaction_time_s, alignment_start_m, alignment_end_m : see
         :func:`engine.road.profile.speed_profile` (None: its defaults)
+    part : each curve's part where the road is made of unconnected parts, their stations each along its own part
+        (a route's tracks): one profile per part (:func:`engine.road.profile.speed_profiles_by_part`) and no shared
+        sign across parts; None: one road
 
     Returns
     -------
@@ -504,7 +513,7 @@ def advise_alignment(
         rollover_margin_kmh=rollover_margin_kmh,
         body_roll_deg_per_g=body_roll_deg_per_g,
     )
-    groups = sign_groups(start_station_m, length_m)
+    groups = sign_groups(start_station_m, length_m, part)
     shown = cols.advisory_speed_kmh.copy()
     grouped = groups >= 0
     if np.any(grouped):
@@ -545,7 +554,7 @@ def advise_alignment(
             "no profile: a curve has no tangent speed",
         )
     else:
-        profile = prof.speed_profile(
+        profile = (prof.speed_profile if part is None else partial(prof.speed_profiles_by_part, part))(
             start_station_m,
             length_m,
             desired,

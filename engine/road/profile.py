@@ -139,6 +139,9 @@ class SpeedProfile:
     deceleration_mps2: float
     reaction_time_s: float
     notes: list[str] = field(default_factory=list)
+    #: the part (its label) of each of ``station_m``'s points, where the curves lie on several unconnected parts
+    #: (:func:`speed_profiles_by_part`: one profile per part, its stations along its part); None: one part
+    point_part: np.ndarray | None = None
 
     @classmethod
     def none(cls, reasons: list[str | None], deceleration_mps2: float, reaction_time_s: float, note: str):
@@ -152,9 +155,10 @@ class SpeedProfile:
         )  # fmt: skip
 
 
-def check_stations(start_m: np.ndarray, length_m: np.ndarray) -> list[str | None]:
+def check_stations(start_m: np.ndarray, length_m: np.ndarray, first_index: int = 0) -> list[str | None]:
     """A reason per curve whose stations cannot carry a profile (None where fine): no station or length, a start
-    before the previous curve's start (out of order) or before its end (overlap)."""
+    before the previous curve's start (out of order) or before its end (overlap). ``first_index``: the first curve's
+    index in the reasons' wording (``curves[i]``)."""
     n = len(start_m)
     reasons: list[str | None] = [None] * n
     bad_station = ~np.isfinite(start_m) | ~np.isfinite(length_m) | (length_m <= 0)
@@ -164,12 +168,17 @@ def check_stations(start_m: np.ndarray, length_m: np.ndarray) -> list[str | None
         end = start_m + length_m
         order = np.flatnonzero(start_m[1:] < start_m[:-1]) + 1
         overlap = np.flatnonzero((start_m[1:] < end[:-1] - 1e-9) & ~(start_m[1:] < start_m[:-1])) + 1
+        o = first_index
         for i in order:
             if reasons[i] is None:
-                reasons[i] = f"out of order: starts at {start_m[i]:g} m, before curves[{i - 1}] ({start_m[i - 1]:g} m)"
+                reasons[i] = (
+                    f"out of order: starts at {start_m[i]:g} m, before curves[{o + i - 1}] ({start_m[i - 1]:g} m)"
+                )
         for i in overlap:
             if reasons[i] is None:
-                reasons[i] = f"overlaps curves[{i - 1}]: starts at {start_m[i]:g} m, before its end at {end[i - 1]:g} m"
+                reasons[i] = (
+                    f"overlaps curves[{o + i - 1}]: starts at {start_m[i]:g} m, before its end at {end[i - 1]:g} m"
+                )
     return reasons
 
 
@@ -192,6 +201,7 @@ def speed_profile(
     deceleration_mps2: float = DECELERATION_MPS2,
     reaction_time_s: float = REACTION_TIME_S,
     acceleration: dict | None = None,
+    first_index: int = 0,
 ) -> SpeedProfile:
     """The truck's speed profile along curves given by their start stations and lengths.
 
@@ -210,6 +220,7 @@ def speed_profile(
     deceleration_mps2 : braking rate, at most :data:`MAX_TRUCK_DECELERATION_MPS2` [m/s^2]
     reaction_time_s : reaction time before braking [s]
     acceleration : overrides of :data:`ACCELERATION_DEFAULTS`
+    first_index : the first curve's index where the curves are part of a longer list (the reasons' ``curves[i]``)
 
     Returns
     -------
@@ -229,16 +240,18 @@ def speed_profile(
     desired = column(desired_speed_kmh, np.nan)
     if np.any(~np.isfinite(desired) | (desired <= 0)):
         i = int(np.flatnonzero(~np.isfinite(desired) | (desired <= 0))[0])
-        raise InvalidRoad("the desired speed must be a positive speed", field=f"curves[{i}].desired_speed_kmh")
+        raise InvalidRoad(
+            "the desired speed must be a positive speed", field=f"curves[{first_index + i}].desired_speed_kmh"
+        )
     safe = column(safe_speed_kmh, np.nan)
     advisory = column(advisory_speed_kmh, np.nan)
     grade = column(grade_percent, 0.0)
     grade = np.where(np.isfinite(grade), grade, 0.0)
     cap = np.fmin(np.fmin(desired, safe), advisory)  # fmin: nan (no safe/advisory speed) does not cap
 
-    reasons = check_stations(s0, length) if n else []
+    reasons = check_stations(s0, length, first_index) if n else []
     if any(reasons):
-        first = next(i for i, r in enumerate(reasons) if r)
+        first = first_index + next(i for i, r in enumerate(reasons) if r)
         reasons = [r or f"no profile: curves[{first}] cannot be placed (see its reason)" for r in reasons]
         note = "no profile: the curves' stations overlap, run backwards or are missing"
         return SpeedProfile.none(reasons, deceleration_mps2, reaction_time_s, note)
@@ -386,3 +399,57 @@ def _profile_points(node_s, v2, gaps, acc, d, caps_kmh):
     keep = np.ones(len(pts_s), dtype=bool)
     keep[1:] = (np.diff(pts_s) > 1e-9) | (np.abs(np.diff(pts_v)) > 1e-9)
     return pts_s[keep], np.sqrt(np.maximum(pts_v[keep], 0.0)) * 3.6
+
+
+def speed_profiles_by_part(part, start_station_m, length_m, desired_speed_kmh, safe_speed_kmh=None,
+                           advisory_speed_kmh=None, grade_percent=None, **options) -> SpeedProfile:  # fmt: skip
+    """One :func:`speed_profile` per part of a road made of unconnected parts (a route's tracks or segments): the
+    curves of each run of equal ``part`` (any labels; their stations along their own part, each part's restarting)
+    make one profile, which does not run across the gap to the next part (the truck's speed there is unknown: each
+    part's first curve is approached as a road's first curve is). The per-curve figures and reasons are each part's,
+    in the curves' order (a part whose stations cannot carry a profile has none, the others keep theirs); the
+    profiles' points follow each other part by part, ``point_part`` giving each point's part label, and each note
+    names the part it is about. ``options``: :func:`speed_profile`'s keywords (no road start or end: a road of
+    several parts has none). One part: :func:`speed_profile` itself."""
+    part = np.atleast_1d(np.asarray(part))
+    s0 = np.atleast_1d(np.asarray(start_station_m, dtype=float))
+    n = len(s0)
+    starts = np.flatnonzero(np.r_[True, part[1:] != part[:-1]]) if n else np.zeros(0, dtype=int)
+    if len(starts) <= 1:
+        return speed_profile(start_station_m, length_m, desired_speed_kmh, safe_speed_kmh, advisory_speed_kmh,
+                             grade_percent, **options)  # fmt: skip
+    if options.get("alignment_start_m") is not None or options.get("alignment_end_m") is not None:
+        raise ValueError("a road of several parts has no one start and end: give none")
+
+    def column(x, fill):
+        return np.full(n, fill) if x is None else np.array(np.broadcast_to(np.asarray(x, dtype=float), (n,)))
+
+    cols = [column(length_m, np.nan), column(desired_speed_kmh, np.nan), column(safe_speed_kmh, np.nan),
+            column(advisory_speed_kmh, np.nan), column(grade_percent, 0.0)]  # fmt: skip
+    pieces = []
+    for a, b in zip(starts.tolist(), [*starts[1:].tolist(), n], strict=True):
+        p = speed_profile(s0[a:b], *(c[a:b] for c in cols), first_index=a, **options)
+        pieces.append((part[a], p))
+    ps = [p for _, p in pieces]
+
+    def joined(name):
+        return np.concatenate([getattr(p, name) for p in ps])
+
+    notes = [f"part {k}: {note}" for k, p in pieces for note in p.notes]
+    return SpeedProfile(
+        station_m=joined("station_m"),
+        speed_kmh=joined("speed_kmh"),
+        approach_speed_kmh=joined("approach_speed_kmh"),
+        entry_speed_kmh=joined("entry_speed_kmh"),
+        curve_speed_kmh=joined("curve_speed_kmh"),
+        required_deceleration_mps2=joined("required_deceleration_mps2"),
+        slows_to_advisory=joined("slows_to_advisory"),
+        slows_to_safe=joined("slows_to_safe"),
+        advance_sign_distance_m=joined("advance_sign_distance_m"),
+        speed_drop_kmh=joined("speed_drop_kmh"),
+        reasons=[r for p in ps for r in p.reasons],
+        deceleration_mps2=ps[0].deceleration_mps2,
+        reaction_time_s=ps[0].reaction_time_s,
+        notes=notes,
+        point_part=np.concatenate([np.full(len(p.station_m), k) for k, p in pieces]),
+    )

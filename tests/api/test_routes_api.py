@@ -256,3 +256,31 @@ def test_a_curve_error_names_the_route_requests_own_field_and_the_curve(shared_c
     e = p["errors"][0]
     assert e["field"] == "posted_speed_kmh" and e["loc"] == ["body", "posted_speed_kmh"]
     assert "the route's curve features[0]-C1" in p["detail"]
+
+
+def test_a_route_of_two_parts_has_a_speed_profile_per_part_each_as_the_part_alone(shared_client):
+    """Two unconnected line parts (issue 43): each part's curves get the profile figures, the vehicle's profile is
+    each part's own, one after the other (each point naming its part, its stations along that part) and equal to
+    the profile of the same part sent alone: nothing runs across the gap between them."""
+    first, second = route(45.0), route(46.0)
+    both = feature_collection(first)
+    both["features"].append({"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
+                             "coordinates": second}})  # fmt: skip
+    body = {"vehicle": BTRAIN, "superelevation_percent": 6.0, "posted_speed_kmh": 90.0}
+    out = post(shared_client, {**body, "geojson": both}).json()
+    parts = [p["part"] for p in out["parts"]]
+    assert len(parts) == 2 and all(p["curves"] == 2 for p in out["parts"])
+    (vehicle,) = out["vehicles"]
+    assert vehicle["speed_profile_notes"] == []
+    for c in out["curves"]:  # every curve has its approach figures, none a reason for having none
+        a = c["assessment"]
+        assert a["profile_reason"] is None and a["approach_speed_kmh"] is not None, a
+    points = vehicle["speed_profile"]
+    assert [p["part"] for p in points] == sorted((p["part"] for p in points), key=parts.index)
+    for k, coords in enumerate((first, second)):
+        (alone,) = post(shared_client, {**body, "geojson": feature_collection(coords)}).json()["vehicles"]
+        mine = [(p["station_m"], p["speed_kmh"]) for p in points if p["part"] == parts[k]]
+        assert mine == [(p["station_m"], p["speed_kmh"]) for p in alone["speed_profile"]]
+        assert all(p["part"] == "features[0]" for p in alone["speed_profile"])
+        stations = [s for s, _ in mine]
+        assert stations == sorted(stations) and stations[0] < 1000.0  # along its own part: it restarts

@@ -122,3 +122,51 @@ def test_advance_sign_distance_in_metric_and_us_forms():
     v1_mph, v2_mph = 100.0 / 1.609344, 60.0 / 1.609344
     us_ft = 1.47 * v1_mph * 2.5 + 1.075 * (v1_mph**2 - v2_mph**2) / 10.0
     assert p.advance_sign_distance_m[0] == pytest.approx(us_ft * 0.3048, rel=0.003)
+
+
+def test_a_road_of_parts_has_each_parts_own_profile_and_none_across_the_gap():
+    """Parts (a route's unconnected tracks, stations restarting on each): the profile of each part is the one the
+    part alone has, point for point and curve for curve (the second formulation: speed_profile on the part); a part
+    whose stations cannot carry a profile has its reasons, worded with the curves' indices in the whole list, and
+    leaves the other parts' profiles as they are."""
+    rng = np.random.default_rng(3)
+    a, b = _random_alignment(rng, 7), _random_alignment(rng, 5)
+    bad = _random_alignment(rng, 4)
+    bad[0][2] = bad[0][1] - 10.0  # runs backwards: this part has no profile
+    parts = [a, bad, b]
+    label = np.repeat(["A", "bad", "B"], [7, 4, 5])
+    whole = [np.concatenate([p[k] for p in parts]) for k in range(5)]
+    start, length, safe, advisory, grade = whole
+    got = prof.speed_profiles_by_part(label, start, length, 80.0, safe, advisory, grade)
+    at = 0
+    for name, p in zip(("A", "bad", "B"), parts, strict=True):
+        alone = prof.speed_profile(p[0], p[1], 80.0, p[2], p[3], p[4])
+        sl = slice(at, at + len(p[0]))
+        mine = got.point_part == name
+        np.testing.assert_array_equal(got.station_m[mine], alone.station_m)
+        np.testing.assert_array_equal(got.speed_kmh[mine], alone.speed_kmh)
+        np.testing.assert_array_equal(got.approach_speed_kmh[sl], alone.approach_speed_kmh)
+        np.testing.assert_array_equal(got.required_deceleration_mps2[sl], alone.required_deceleration_mps2)
+        if name == "bad":
+            assert all(r is not None for r in got.reasons[sl]) and len(alone.station_m) == 0
+            assert "before curves[8]" in got.reasons[at + 2]  # its third curve, the whole list's 10th
+        else:
+            assert got.reasons[sl] == [None] * len(p[0])
+            # each part's first curve: approached from an unknown distance (as a road's first), not from the gap
+            assert np.isnan(got.required_deceleration_mps2[at]) or got.required_deceleration_mps2[at] == 0.0
+        at += len(p[0])
+    assert list(dict.fromkeys(got.point_part.tolist())) == ["A", "B"]  # the points part by part
+    assert got.notes and all(n.startswith("part bad: ") for n in got.notes)
+    # one part: speed_profile itself
+    one = prof.speed_profiles_by_part(np.zeros(7), a[0], a[1], 80.0, a[2], a[3], a[4])
+    assert one.point_part is None and np.array_equal(one.speed_kmh, prof.speed_profile(*a[:2], 80.0, *a[2:]).speed_kmh)
+
+
+def test_no_shared_sign_across_parts():
+    from engine.road.advisory import sign_groups
+
+    # tangents of 50 m (< 600 ft): one sign; the third curve's station is along another part (the numbers alone
+    # would put it 50 m after the second's end)
+    start, length = [0.0, 150.0, 300.0], [100.0, 100.0, 100.0]
+    assert list(sign_groups(start, length)) == [0, 0, 0]
+    assert list(sign_groups(start, length, ["p", "p", "q"])) == [0, 0, 2]

@@ -164,15 +164,15 @@ class AlignmentJob:
     vehicles: list[Any]
     curves: CurveTable
     source: str  # the request field the curves came from, for an error in a document (``csv``, ``body``, ...)
-    # each curve's start station and length [m] and deflection [deg] for the advice (None: a road file's,
-    # :func:`app.alignments.advice.curve_places`; a route gives its found curves')
-    places: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
+    # each curve's start station and length [m], deflection [deg] and, for a route, the part it lies on, for the
+    # advice (None: a road file's, :func:`app.alignments.advice.curve_places`; a route gives its found curves')
+    places: tuple[np.ndarray, ...] | None = None
 
     @property
     def rows(self) -> int:
         return len(self.curves) * len(self.vehicles)
 
-    def curve_places(self) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    def curve_places(self) -> tuple[np.ndarray | None, ...]:
         return curve_places(self.curves) if self.places is None else self.places
 
 

@@ -21,6 +21,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from engine import Case
 from engine.builder import G_M_PER_S2, VehicleSpec, build_vehicle, payload_table
 from engine.models import rollover_threshold
 from engine.vehicle import PRESETS
@@ -91,12 +92,12 @@ def main() -> None:
         print(f"   note: {n}")
 
     print("2. SRT")
-    print(f"   example semi-trailer: {rollover_threshold(built.vehicle, '3d').srt:.4f} g")
+    print(f"   example semi-trailer: {rollover_threshold(Case(built.vehicle, '3d')).srt:.4f} g")
     restated = build_vehicle(VehicleSpec.from_dict(BTRAIN)).vehicle
     preset = PRESETS["table16-btrain"]
     print(
-        f"   Table 16 restated: {rollover_threshold(restated, '3d').srt:.6f} g; preset: "
-        f"{rollover_threshold(preset, '3d').srt:.6f} g; records equal: {restated == preset}"
+        f"   Table 16 restated: {rollover_threshold(Case(restated, '3d')).srt:.6f} g; preset: "
+        f"{rollover_threshold(Case(preset, '3d')).srt:.6f} g; records equal: {restated == preset}"
     )
 
     print("3. acceptable payload table, target 0.35 g")
@@ -119,7 +120,8 @@ def main() -> None:
 
     print("4. timings (median)")
     print(f"   build: {median_ms(lambda: build_vehicle(spec), 200):.3f} ms")
-    print(f"   build + SRT: {median_ms(lambda: rollover_threshold(build_vehicle(spec).vehicle, '3d'), 50):.2f} ms")
+    build_and_solve = lambda: rollover_threshold(Case(build_vehicle(spec).vehicle, "3d"))  # noqa: E731
+    print(f"   build + SRT: {median_ms(build_and_solve, 50):.2f} ms")
     print(f"   payload table (5 + 5 rows): {median_ms(lambda: payload_table(spec, 0.35), 5):.0f} ms")
 
 

@@ -6,7 +6,17 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, bounded, describe, shape_error
+from app.http.schemas import (
+    ABSENT,
+    EXAMPLE_PRESET,
+    WARNINGS_DESCRIPTION,
+    InputModel,
+    InputWarningOut,
+    OutputModel,
+    bounded,
+    describe,
+    shape_error,
+)
 from app.road.standards_schemas import BOUND_ONLY_WITH_TABLE21, DesignOptions
 from app.srt.schemas import VEHICLE_DESCRIPTION, SrtOptions, VehicleRef
 from engine.road import (
@@ -224,6 +234,7 @@ class AdvisorySpeedResult(OutputModel):
         description=describe("The truck rollover warning (W1-13).", unit="see its fields")
     )
     notes: list[str] = Field(description=describe("What the answer could not verify or apply.", unit="-"))
+    warnings: list[InputWarningOut] = Field(description=WARNINGS_DESCRIPTION)
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))
 
 

@@ -4,6 +4,7 @@ memoised SRT solve of :mod:`app.srt.service`, and the answer cached under its re
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 from pydantic import ConfigDict
@@ -75,7 +76,11 @@ async def compute_advisory_speed(cache: ResultCache, vr: VehicleRequest[Advisory
         req,
         tangent_speed_kmh=tangent,
         side_friction_bound=req.side_friction_bound,
-        srt_requests=tuple(resolve_srt(c, {}) for c in cases),
+        # each vehicle's input warnings beside its SRT request: the answer carries them, so the key holds them
+        srt_requests=tuple(
+            resolve_srt(c, {}, warnings=tuple(dataclasses.asdict(w) for w in v.warnings))
+            for c, v in zip(cases, vr.vehicles, strict=True)
+        ),
     )
 
     async def produce() -> bytes:
@@ -168,6 +173,7 @@ async def compute_advisory_speed(cache: ResultCache, vr: VehicleRequest[Advisory
                 vehicles=checks,
             ),
             notes=notes,
+            warnings=list(vr.warnings),
             engine_version=ENGINE_VERSION,
         )
         return out.model_dump_json().encode()

@@ -34,6 +34,7 @@ class VehicleAnswer:
     targets: dict[str, float]
     advice: VehicleAdvice  # the advisory speed, treatment and speed profile of each row
     level_srt: float = math.nan  # the vehicle's level-road SRT (bank and grade zero) [g]; nan when refused
+    warnings: tuple[dict[str, Any], ...] = ()  # a typed record's inputs that read plausibly in another unit too
 
     @cached_property
     def tilt(self) -> list[float | None]:  # per distinct SRT
@@ -72,4 +73,16 @@ def vehicle_answer(
     # per distinct SRT (-1: none), on arrays: 100,000 distinct SRTs one by one took a second
     tilt = np.where(srts >= 0, tilt_table_angle_deg(srts), np.nan)
     preset, saved = r.presets[index], r.saved_ids[index]
-    return VehicleAnswer(index, preset, saved, cols, pair_of_row.reshape(-1), srts, tilt, r.targets, advice, level)
+    return VehicleAnswer(
+        index,
+        preset,
+        saved,
+        cols,
+        pair_of_row.reshape(-1),
+        srts,
+        tilt,
+        r.targets,
+        advice,
+        level,
+        tuple(r.vehicle_warnings(index)),
+    )

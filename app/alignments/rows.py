@@ -233,11 +233,15 @@ def json_head(resolved: ResolvedAlignment, curves: int) -> bytes:
     return orjson.dumps(head)[:-1] + b',"vehicles":['
 
 
-def json_vehicle_head(
-    index: int, preset: str | None, saved_id: str | None, summary: dict[str, Any], *, first: bool
-) -> bytes:
+def json_vehicle_head(resolved: ResolvedAssessment, index: int, summary: dict[str, Any], *, first: bool) -> bytes:
     """One vehicle's entry up to its ``rows`` list (opened); closed by :func:`json_vehicle_end`."""
-    vehicle = {"index": index, "preset": preset, "saved_vehicle_id": saved_id, "summary": summary}
+    vehicle = {
+        "index": index,
+        "preset": resolved.presets[index],
+        "saved_vehicle_id": resolved.saved_ids[index],
+        "warnings": resolved.vehicle_warnings(index),
+        "summary": summary,
+    }
     return (b"" if first else b",") + orjson.dumps(vehicle)[:-1] + b',"rows":['
 
 
@@ -395,7 +399,7 @@ def json_chunks(answer: AlignmentAnswer) -> Iterator[bytes]:
     yield json_head(answer.resolved, len(answer.curves))
     n = len(answer.curves)
     for k, v in enumerate(answer.vehicles):
-        yield json_vehicle_head(v.index, v.preset, v.saved_id, summary(v.columns), first=k == 0)
+        yield json_vehicle_head(answer.resolved, v.index, summary(v.columns), first=k == 0)
         for start in range(0, n, ROWS_PER_CHUNK):
             yield json_rows(answer, v, start, min(start + ROWS_PER_CHUNK, n), comma=start > 0)
         yield json_vehicle_end(v.advice)

@@ -15,7 +15,9 @@ from app.http import problems
 from app.http.schemas import (
     ABSENT,
     EXAMPLE_PRESET,
+    WARNINGS_DESCRIPTION,
     InputModel,
+    InputWarningOut,
     OutputModel,
     bounded,
     describe,
@@ -681,6 +683,7 @@ class VehicleAssessment(OutputModel):
     saved_vehicle_id: str | None = Field(
         description=describe("The saved vehicle's id (`veh_...`), or null for another vehicle.", unit="-")
     )
+    warnings: list[InputWarningOut] = Field(description=WARNINGS_DESCRIPTION)
     summary: AlignmentSummary = Field(description=describe("Counts over the curves.", unit="see its fields"))
     rows: list[CurveRow] = Field(description=describe("One row per curve, in the request's order.", unit="per field"))
     speed_profile: list[SpeedPointOut] = Field(

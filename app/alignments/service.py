@@ -15,6 +15,7 @@ an alignment's) and the jobs (:mod:`app.jobs.op_alignments`): :class:`AlignmentJ
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 import time
@@ -181,6 +182,7 @@ def resolved_assessment(req: Any, vehicles: Sequence[ResolvedVehicle], settings:
     (and preset ids, saved ids), the SRT options, the design standard, e_max and the targets. ``req`` is an
     alignment or a route request (they share these fields), ``vehicles`` its resolved vehicles."""
     check_deceleration(req.deceleration_mps2)  # a truck's braking limit: a 422 naming the field
+    warnings = tuple(tuple(dataclasses.asdict(w) for w in v.warnings) for v in vehicles)
     return ResolvedAssessment(
         vehicles=tuple(v.vehicle.to_dict() for v in vehicles),
         presets=tuple(v.preset for v in vehicles),
@@ -197,6 +199,7 @@ def resolved_assessment(req: Any, vehicles: Sequence[ResolvedVehicle], settings:
         units=req.units,
         desired_speed_kmh=req.desired_speed_kmh,
         deceleration_mps2=req.deceleration_mps2,
+        warnings=warnings if any(warnings) else None,  # None: the keys of answers without any stay as they were
     )
 
 

@@ -114,9 +114,15 @@ class Resolved:
 class ResolvedAssessment(Resolved):
     """What an assessment of curves depends on besides its curves: the vehicles' records (``to_dict()`` of a record
     or of a combination), their preset and saved ids (None where a vehicle is neither), the SRT options, the design
-    options and the targets (name -> minimum SRT [g])."""
+    options and the targets (name -> minimum SRT [g]), and the vehicles' input warnings (per vehicle, each a
+    :class:`engine.vehicle.InputWarning` as a dict; None, and then absent from the key, when no vehicle has one).
+
+    The warnings follow from the record and from how and where it was typed (a record typed as ``vehicles[1]`` warns
+    of ``vehicles[1].weight_kn``; the same record built from a spec, or given as ``vehicle``, answers otherwise), so
+    they are in the key: an answer cached for one is never served for the other."""
 
     __pydantic_config__ = _STRICT
+    _omitted_when_none = ("warnings",)
 
     vehicles: tuple[dict[str, Any], ...]
     presets: tuple[str | None, ...]
@@ -134,12 +140,19 @@ class ResolvedAssessment(Resolved):
     units: str
     desired_speed_kmh: float | None
     deceleration_mps2: float
+    warnings: tuple[tuple[dict[str, Any], ...], ...] | None = None
 
     def __post_init__(self) -> None:
         if not len(self.vehicles) == len(self.presets) == len(self.saved_ids):
             raise ValueError(
                 f"{len(self.vehicles)} vehicles, {len(self.presets)} presets and {len(self.saved_ids)} saved ids"
             )
+        if self.warnings is not None and len(self.warnings) != len(self.vehicles):
+            raise ValueError(f"{len(self.vehicles)} vehicles and {len(self.warnings)} lists of warnings")
+
+    def vehicle_warnings(self, index: int) -> list[dict[str, Any]]:
+        """Vehicle ``index``'s input warnings, as the answer writes them (``[]`` when none)."""
+        return [] if self.warnings is None else list(self.warnings[index])
 
     def assessment_fields(self) -> dict[str, Any]:
         """The fields of :class:`ResolvedAssessment` (to build an alignment's or a route's from it)."""
@@ -162,7 +175,7 @@ class ResolvedAlignment(ResolvedAssessment):
     answer names it; None, and then absent from the key, for curves given as JSON or LandXML), and when they came
     from a road file the reading summary (likewise)."""
 
-    _omitted_when_none = ("csv_dialect", "reading")
+    _omitted_when_none = ("warnings", "csv_dialect", "reading")
 
     curves: CurvesDigest
     csv_dialect: dict[str, str | bool] | None = None
@@ -260,8 +273,12 @@ class ResolvedSweep(Resolved):
 
     __pydantic_config__ = _STRICT
 
+    _omitted_when_none = ("warnings",)
+
     case: ResolvedCase
     grid: dict[str, tuple[float, ...]]
+    #: the vehicle's input warnings (InputWarning as dicts; None, and absent from the key, without any): see ResolvedSrt
+    warnings: tuple[dict[str, Any], ...] | None = None
 
     @property
     def cases(self) -> int:
@@ -286,6 +303,10 @@ class ResolvedLimits(Resolved):
     target_srt_g: float
     overweights_percent: tuple[float, ...] | None
     limit_on: Literal["level_road", "road"]
+    #: the vehicle's input warnings (InputWarning as dicts; None, and absent from the key, without any): see ResolvedSrt
+    warnings: tuple[dict[str, Any], ...] | None = None
+
+    _omitted_when_none = ("warnings",)
 
 
 # ------------------------------------------------------------------------------------- single answers
@@ -295,11 +316,16 @@ class ResolvedLimits(Resolved):
 class ResolvedSrt(Resolved):
     """An SRT (POST /v1/srt), or the SRT inside a curve speed, a minimum radius or a plot: the case and its targets,
     and whether (and at how many points) the curves are asked for. Without curves the number of points changes
-    nothing and is None. Its JSON form is the case's (:class:`ResolvedCase`) with the two curve fields beside it."""
+    nothing and is None. Its JSON form is the case's (:class:`ResolvedCase`) with the two curve fields beside it, and
+    the vehicle's input warnings (:class:`engine.vehicle.InputWarning` as dicts) when it has any: they follow from how
+    and where the record was typed, not from the record alone (the same record built from a spec warns of nothing),
+    so an answer with them is never served for one without, nor the other way round. Without any the key is what it
+    always was."""
 
     base: ResolvedCase
     include_curves: bool = False
     curve_points: int | None = None
+    warnings: tuple[dict[str, Any], ...] = ()
 
     def __post_init__(self) -> None:
         if not self.include_curves:  # without curves the points would only blur the key
@@ -314,7 +340,10 @@ class ResolvedSrt(Resolved):
         return self.base.targets
 
     def to_json_dict(self) -> dict[str, Any]:
-        return {**self.base.to_json_dict(), "include_curves": self.include_curves, "curve_points": self.curve_points}
+        out = {**self.base.to_json_dict(), "include_curves": self.include_curves, "curve_points": self.curve_points}
+        if self.warnings:
+            out["warnings"] = [dict(w) for w in self.warnings]
+        return out
 
     @classmethod
     def from_json_dict(cls, data: Any) -> Self:
@@ -322,11 +351,16 @@ class ResolvedSrt(Resolved):
             raise _refused(cls, "not an object")
         data = dict(data)
         curves, points = data.pop("include_curves", None), data.pop("curve_points", None)
+        warnings = data.pop("warnings", [])
+        if not (isinstance(warnings, list) and all(isinstance(w, dict) for w in warnings)):
+            raise _refused(cls, "warnings: not a list of objects")
         if not isinstance(curves, bool):
             raise _refused(cls, "include_curves: not a boolean")
         if not (points is None or (isinstance(points, int) and not isinstance(points, bool))):
             raise _refused(cls, "curve_points: not an integer")
-        return cls(base=ResolvedCase.from_json_dict(data), include_curves=curves, curve_points=points)
+        return cls(
+            base=ResolvedCase.from_json_dict(data), include_curves=curves, curve_points=points, warnings=tuple(warnings)
+        )
 
     __get_pydantic_core_schema__ = classmethod(_read_by_from_json_dict)
 

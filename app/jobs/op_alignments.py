@@ -613,7 +613,7 @@ def assemble(shared: dict[str, Any], metas: list[dict[str, Any]], fmt: str, frag
     for v in range(nv):
         total = merge_summaries([m["summaries"][v] for m in metas], shared["distinct_srt_solves"])
         advice, part = vehicle(v)
-        yield json_vehicle_head(v, resolved.presets[v], resolved.saved_ids[v], total, first=v == 0)
+        yield json_vehicle_head(resolved, v, total, first=v == 0)
         for k in range(nk):
             if k:
                 yield b","

@@ -45,7 +45,8 @@ async def compute_curve_speed(
     req = vr.body
     targets = resolve_targets(req.targets, settings)
     case = resolve_case(req, vr.vehicle.vehicle) if req.srt is None and vr.vehicle is not None else None
-    resolved = ResolvedCurveSpeed.of(req, srt_request=None if case is None else resolve_srt(case, targets))
+    srt_request = None if case is None else resolve_srt(case, targets, warnings=vr.warnings)
+    resolved = ResolvedCurveSpeed.of(req, srt_request=srt_request)
 
     async def produce() -> bytes:
         srt, source, inner = await _srt_for(cache, vr, case, targets)
@@ -73,7 +74,9 @@ async def compute_min_radius(cache: ResultCache, vr: VehicleRequest[MinRadiusReq
     if req.side_friction is None:  # refuse a speed outside the standard's range before solving for the SRT
         side_friction_factor(req.design_standard, req.design_speed_kmh, req.bound)
     resolved = ResolvedMinRadius.of(  # the bound in force (Table 21's default filled), not the one typed
-        req, side_friction_bound=req.bound, srt_request=None if case is None else resolve_srt(case, targets)
+        req,
+        side_friction_bound=req.bound,
+        srt_request=None if case is None else resolve_srt(case, targets, warnings=vr.warnings),
     )
 
     async def produce() -> bytes:

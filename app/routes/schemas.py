@@ -15,6 +15,7 @@ from app.http.schemas import (
     ABSENT,
     EXAMPLE_PRESET,
     InputModel,
+    InputWarningOut,
     OutputModel,
     bounded,
     describe,
@@ -433,6 +434,14 @@ class RouteCurves(OutputModel):
     advisory: AdvisoryOut = Field(
         description=describe(
             "The options and sources of the advisory figures (a foreign member, RFC 7946 section 6.1).",
+            unit="see its fields",
+        )
+    )
+    warnings: list[InputWarningOut] = Field(
+        description=describe(
+            "Every vehicle's inputs answered as given that read plausibly in another unit too, each naming its "
+            "vehicle (`vehicles[1].weight_kn`; the JSON answer lists them per vehicle), empty when none: check "
+            "them (a foreign member, RFC 7946 section 6.1).",
             unit="see its fields",
         )
     )

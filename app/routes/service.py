@@ -453,6 +453,7 @@ def route_json(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> byt
                 "index": v.index,
                 "preset": v.preset,
                 "saved_vehicle_id": v.saved_id,
+                "warnings": list(v.warnings),
                 "summary": alignment_rows.summary(v.columns),
                 "rows": [],
                 "speed_profile": _profile_points(geo, v.advice),
@@ -480,6 +481,7 @@ def route_geojson(req: RouteRequest, geo: Geometry, answer: AlignmentAnswer) -> 
         "features": features,
         "reading": reading(req, geo),
         "advisory": advisory_head(answer.resolved),
+        "warnings": [w for v in answer.vehicles for w in v.warnings],
     }
     return RouteCurves.model_validate(doc).model_dump_json().encode()
 

@@ -6,7 +6,15 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.http.schemas import EXAMPLE_PRESET, OutputModel, bounded, describe, shape_error
+from app.http.schemas import (
+    EXAMPLE_PRESET,
+    WARNINGS_DESCRIPTION,
+    InputWarningOut,
+    OutputModel,
+    bounded,
+    describe,
+    shape_error,
+)
 from app.srt.schemas import LEVEL_ROAD_SRT_TEXT, TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine.road import LIMIT_PARAMETERS
 
@@ -208,4 +216,5 @@ class LimitsResult(OutputModel):
     )
     model: str = Field(description=describe("Model used.", unit="-"))
     stage: str | None = Field(description=describe("Stage (3d only).", unit="-", symbol="SRT_TS / SRT_3D"))
+    warnings: list[InputWarningOut] = Field(description=WARNINGS_DESCRIPTION)
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

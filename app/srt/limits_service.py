@@ -37,6 +37,7 @@ def resolve_limits(vr: VehicleRequest[LimitsRequest], settings: Settings) -> Res
         target_srt_g=target,
         overweights_percent=table,
         limit_on=req.limit_on,
+        warnings=vr.warnings or None,
     )
 
 
@@ -143,6 +144,7 @@ def solve_limits(resolved: ResolvedLimits) -> bytes:
                 "table": table,
                 "model": base.model,
                 "stage": base.stage if base.model == "3d" else None,
+                "warnings": list(resolved.warnings or ()),
                 "engine_version": ENGINE_VERSION,
             }
         )

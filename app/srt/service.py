@@ -97,12 +97,21 @@ def target_checks_many(srts: np.ndarray, targets: dict[str, float]) -> list[list
 
 
 def resolve_srt(
-    case: Case, targets: dict[str, float], *, include_curves: bool = False, curve_points: int | None = None
+    case: Case,
+    targets: dict[str, float],
+    *,
+    include_curves: bool = False,
+    curve_points: int | None = None,
+    warnings: tuple[dict[str, Any], ...] = (),
 ) -> ResolvedSrt:
-    """The resolved SRT request hashed into a key: the case, whether (and how finely) the curves are asked for, and
-    the targets the result is checked against (they are in the body, so they are in the key)."""
+    """The resolved SRT request hashed into a key: the case, whether (and how finely) the curves are asked for, the
+    targets the result is checked against (they are in the body, so they are in the key) and the vehicle's input
+    warnings (:attr:`app.vehicles.resolve.VehicleRequest.warnings`: the answer carries them)."""
     return ResolvedSrt(
-        base=ResolvedCase(case=case, targets=dict(targets)), include_curves=include_curves, curve_points=curve_points
+        base=ResolvedCase(case=case, targets=dict(targets)),
+        include_curves=include_curves,
+        curve_points=curve_points,
+        warnings=warnings,
     )
 
 
@@ -185,7 +194,9 @@ async def compute_srt(cache: ResultCache, vr: VehicleRequest[SrtRequest], settin
     req, vehicle = vr.body, vr.vehicles[0]
     case = resolve_case(req, vehicle.vehicle)
     targets = resolve_targets(req.targets, settings)
-    resolved = resolve_srt(case, targets, include_curves=req.include_curves, curve_points=req.curve_points)
+    resolved = resolve_srt(
+        case, targets, include_curves=req.include_curves, curve_points=req.curve_points, warnings=vr.warnings
+    )
     points = resolved.curve_points  # None without curves (ResolvedSrt): what the key holds is what is solved
 
     warnings = list(vehicle.warnings)

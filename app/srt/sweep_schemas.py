@@ -7,7 +7,16 @@ from typing import Annotated, Any
 
 from pydantic import ConfigDict, Field, model_validator
 
-from app.http.schemas import ABSENT, EXAMPLE_PRESET, InputModel, OutputModel, describe, shape_error
+from app.http.schemas import (
+    ABSENT,
+    EXAMPLE_PRESET,
+    WARNINGS_DESCRIPTION,
+    InputModel,
+    InputWarningOut,
+    OutputModel,
+    describe,
+    shape_error,
+)
 from app.srt.schemas import LEVEL_ROAD_SRT_TEXT, TARGETS_OUT, TILT_OUT, SrtInputs, SrtTargets, TargetCheckOut
 from engine import BOUNDS
 
@@ -185,5 +194,6 @@ class SweepResult(OutputModel):
     )
     cases: int = Field(description=describe("Number of cases (rows).", unit="count"))
     refused: int = Field(description=describe("Cases without an SRT (rows with `error`).", unit="count"))
+    warnings: list[InputWarningOut] = Field(description=WARNINGS_DESCRIPTION)
     rows: list[SweepRow] = Field(description=describe("One row per case, in the product's order.", unit="per field"))
     engine_version: str = Field(description=describe("Engine version (part of the cache key).", unit="-"))

@@ -41,7 +41,8 @@ ROWS_PER_CHUNK = 1_000
 def resolve_sweep(vr: VehicleRequest[SweepRequest], settings: Settings) -> ResolvedSweep:
     req = vr.body
     case = resolve_base_case(req, vr.vehicles[0].vehicle, settings)
-    return ResolvedSweep(case=case, grid={a: tuple(v) for a, v in req.grid.axes().items()})
+    grid = {a: tuple(v) for a, v in req.grid.axes().items()}
+    return ResolvedSweep(case=case, grid=grid, warnings=vr.warnings or None)
 
 
 @dataclass(frozen=True)
@@ -132,7 +133,14 @@ def sweep_json_chunks(answer: SweepAnswer) -> Iterator[bytes]:
     """The SweepResult JSON document in chunks of rows: byte for byte what pydantic writes for the same result
     (``SweepResult.model_dump_json(exclude_unset=True)``: a row holds the swept axes only)."""
     r = answer.result
-    head = {"model": r.model, "stage": r.stage, "axes": list(r.axes), "cases": len(r.srt), "refused": len(r.errors)}
+    head = {
+        "model": r.model,
+        "stage": r.stage,
+        "axes": list(r.axes),
+        "cases": len(r.srt),
+        "refused": len(r.errors),
+        "warnings": list(answer.resolved.warnings or ()),
+    }
     yield orjson.dumps(head)[:-1] + b',"rows":['
     for k, rows in enumerate(_row_chunks(answer)):
         yield (b"," if k else b"") + orjson.dumps(rows)[1:-1]

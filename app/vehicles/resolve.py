@@ -29,6 +29,7 @@ A job's worker rebuilds the vehicles of a stored resolved request from their rec
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Generic, Literal, TypeVar
 
@@ -79,8 +80,10 @@ class ResolvedVehicle:
         The saved vehicle's id, for a saved vehicle (also a fleet's member).
     warnings : tuple of InputWarning
         A typed record's fields that read plausibly in another unit too
-        (:func:`engine.vehicle.plausibility.record_warnings`, named ``<where>.<field>``); none for the other kinds
-        (their weights are derived from masses in kg).
+        (:func:`engine.vehicle.plausibility.record_warnings`, named ``<where>.<field>``), a saved record's likewise
+        (a fleet's member: ``fleet[0].weight_kn``), and a typed or saved combination's ``last_unit_record``'s
+        (``vehicle.combination.last_unit_record.weight_kn``); none for the other kinds (their weights are derived
+        from masses in kg).
     """
 
     where: str
@@ -110,6 +113,12 @@ class VehicleRequest(Generic[Req]):
         """The engine records, in order."""
         return [v.vehicle for v in self.vehicles]
 
+    @property
+    def warnings(self) -> tuple[dict[str, Any], ...]:
+        """Every vehicle's input warnings, in order, as the answers write them (and their keys hold them: they
+        depend on how and where a record was typed, not on the record alone)."""
+        return tuple(dataclasses.asdict(w) for v in self.vehicles for w in v.warnings)
+
 
 def vehicle_preset(preset_id: str) -> Vehicle | Combination:
     """The vehicle or combination preset with this id; :class:`UnknownPreset` listing both kinds of id otherwise."""
@@ -128,6 +137,14 @@ def vehicle_of_resolved(data: dict[str, Any]) -> Vehicle | Combination:
     return Vehicle.from_dict(data)
 
 
+def _last_unit_warnings(c: Combination, where: str) -> tuple[InputWarning, ...]:
+    """A typed combination's ``last_unit_record`` (a vehicle record, for the 3D model of its last unit) warns as a
+    typed record does, named ``<where>.combination.last_unit_record.<field>``."""
+    if c.last_unit_record is None:
+        return ()
+    return tuple(record_warnings(c.last_unit_record, f"{where}.combination.last_unit_record."))
+
+
 def resolve_given(ref: Any, where: str) -> ResolvedVehicle:
     """A reference that needs no catalog (a preset id, a record, a spec, a combination or a combination spec)
     resolved; its errors name ``where`` (``vehicle.spec.rear.tyre.id``). A saved vehicle's id is an unknown preset
@@ -137,7 +154,8 @@ def resolve_given(ref: Any, where: str) -> ResolvedVehicle:
     if isinstance(ref, SpecRef):
         return ResolvedVehicle(where, "spec", build_spec(ref.engine_spec(), where).vehicle)
     if isinstance(ref, CombinationRef):
-        return ResolvedVehicle(where, "combination", combination_of(ref.combination.engine_dict(), where))
+        c = combination_of(ref.combination.engine_dict(), where)
+        return ResolvedVehicle(where, "combination", c, warnings=_last_unit_warnings(c, where))
     if isinstance(ref, CombinationSpecRef):
         built = build_combination_spec(ref.engine_spec(), where).combination
         return ResolvedVehicle(where, "combination_spec", built)
@@ -160,8 +178,13 @@ def _stored(id: str, body: dict[str, Any], where: str) -> ResolvedVehicle:
         vehicle = build_combination_spec(body["combination_spec"], where).combination
     elif "combination" in body:
         vehicle = combination_of(body["combination"], where)
+        return ResolvedVehicle(where, "saved", vehicle, saved_id=id, warnings=_last_unit_warnings(vehicle, where))
     else:
         vehicle = Vehicle.from_dict({k: v for k, v in body.items() if k in Vehicle.__dataclass_fields__})
+        # a record its owner typed when saving it: what reads plausibly in another unit too warns as a typed one does,
+        # named where the request gives it (vehicles[1].weight_kn, fleet[0].weight_kn; the saved id is beside it)
+        warnings = tuple(record_warnings(vehicle, f"{where}."))
+        return ResolvedVehicle(where, "saved", vehicle, saved_id=id, warnings=warnings)
     return ResolvedVehicle(where, "saved", vehicle, saved_id=id)
 
 

@@ -90,7 +90,7 @@ The version
 """
 
 #: bumped whenever a change can alter a number the engine returns (it is part of every cache key)
-ENGINE_VERSION = "1.7.0"
+ENGINE_VERSION = "1.8.0"
 __version__ = ENGINE_VERSION
 
 from engine.case import STAGES, Case, LoadCase, Road  # noqa: E402

@@ -188,6 +188,28 @@ def test_a_pasted_record_is_computed_and_its_errors_point_at_it(page, api):
     assert "record" in parse_qs(urlsplit(page.driver.current_url).query)
 
 
+def test_a_weight_that_reads_plausibly_in_tonnes_too_is_answered_with_a_warning_beside_the_result(page, api):
+    """A pasted record with weight 50 (a light trailer's 50 kN, or 50 t typed as kN): the service answers it as kN
+    and says both readings (issue 40 item 5); the page shows the service's words beside the SRT, with the field as
+    the request names it, and hides the box again for a record without one."""
+    page.open("?vehicle=table16-btrain")
+    page.find('input[name="source"][value="record"]').click()
+    page.find("#record-from-preset").click()
+    record = json.loads(page.find("#record-json").get_attribute("value"))
+    light = {**record, "weight_kn": 50}
+    page.type("#record-json", json.dumps(light))
+    page.run("computations", lambda: page.find("#compute").click())
+    answer = api.post("/v1/srt", json={"vehicle": light}).json()
+    (warning,) = answer["warnings"]
+    assert warning["field"] == "vehicle.weight_kn" and warning["value"] == 50
+    box = page.find("#result-warnings")
+    assert box.is_displayed()
+    assert page.text("#result-warnings li") == f"{warning['field']}: {warning['message']}"
+    page.type("#record-json", json.dumps(record))  # Table 16's 355.22 kN reads only one way
+    page.run("computations", lambda: page.find("#compute").click())
+    assert not page.find("#result-warnings").is_displayed()
+
+
 def test_a_saved_vehicle_is_read_with_its_key_which_stays_out_of_the_link(page, api, live_server):
     record = api.get("/v1/vehicles/table16-btrain").json()
     record = {k: v for k, v in record.items() if k not in ("id", "title", "source", "models")}

@@ -9,6 +9,7 @@ profile and `Superelevation` elements (examples/make_examples.py); examples/driv
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -200,3 +201,26 @@ def test_what_the_reader_assumed_is_shown_and_printed(page, api, tmp_path):
     assert shown == notes
     printed = first_road_page(page)
     assert all(squeeze(n) in printed for n in notes)
+
+
+def test_a_typed_record_that_reads_plausibly_in_tonnes_warns_above_the_road_results(page, api):
+    """An alignment assessed for a pasted record of 50 "kN" (a light trailer, or 50 t typed as kN): the answer's
+    per-vehicle warning is shown above the curves in the service's words; the preset alone shows none."""
+    page.open("?vehicle=table16-btrain")
+    upload(page, "alignment-feet.xml")
+    assert page.find_all("#alignment-warnings") == []
+    for selector in ('input[name="source"][value="record"]', "#record-from-preset"):
+        # back up the page, clear of the sticky compute bar
+        node = page.find(selector)
+        page.driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", node)
+        node.click()
+    record = json.loads(page.find("#record-json").get_attribute("value"))
+    page.type("#record-json", json.dumps({**record, "weight_kn": 50}))
+    page.run("assessments", lambda: page.find("#alignment-assess").click(), timeout_s=120)
+    document = (EXAMPLES / "alignment-feet.xml").read_text()
+    answer = api.post(
+        "/v1/alignments/assess", json={"vehicle": {**record, "weight_kn": 50}, "landxml": {"document": document}}
+    ).json()
+    (warning,) = answer["vehicles"][0]["warnings"]
+    assert warning["field"] == "vehicle.weight_kn"
+    assert page.text("#alignment-warnings li") == f"{warning['field']}: {warning['message']}"

@@ -9,6 +9,7 @@ import * as curves from "./curves.js";
 import { $, clear, download, el, fmt, num, svgEl, svgNode } from "./dom.js";
 import { value } from "./form.js";
 import { designFields, srtOptions } from "./road.js";
+import { showWarnings } from "./results.js";
 
 export const state = { result: null, request: null, path: null, key: undefined, kind: null, rows: [], outline: null, job: null };
 
@@ -573,6 +574,16 @@ export async function render({ result = null, job = null, stored = null, kind, l
   if (head?.reading) box.append(readingPanel(head.reading));
   if (several) box.append(vehicleChoice(names, route, show));
   box.append(summary, signs);
+  // typed values that read plausibly in another unit too, every vehicle's, in the service's words (a job's CSV
+  // rows carry none: its JSON result has them)
+  const warnings = (result?.vehicles || []).flatMap((v) => v.warnings || []);
+  if (warnings.length) {
+    const warned = el("div", { id: "alignment-warnings", class: "input-warnings", role: "note" },
+      el("p", {}, el("strong", {}, "Check these inputs:"), " each was answered as typed, but reads plausibly in another unit too."),
+      el("ul"));
+    showWarnings(warned, warnings);
+    box.append(warned);
+  }
   const profile = await speedProfile({ result, job, route, head });
   if (profile) box.append(profile);
   state.outline = lines && result ? outline(lines, result) : null;

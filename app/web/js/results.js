@@ -99,7 +99,19 @@ export function showResult(result, modelInfo) {
   clear($("#targets-table tbody")).append(...targetsTable(result.targets));
   clear($("#result-facts")).append(...factList(facts(result)));
   clear($("#result-notes")).append(...result.notes.map((n) => el("li", {}, n)));
+  showWarnings($("#result-warnings"), result.warnings);
   $("#engine-version").textContent = result.engine_version;
+}
+
+/**
+ * The answer's input warnings (a typed value that reads plausibly in another unit too: a light trailer's 50 kN, or
+ * 50 t typed as kN) in the service's own words, each with the field as the request names it; the box hides when
+ * there are none.
+ */
+export function showWarnings(box, warnings) {
+  const list = warnings || [];
+  box.hidden = !list.length;
+  clear(box.querySelector("ul")).append(...list.map((w) => el("li", {}, el("code", {}, w.field), `: ${w.message}`)));
 }
 
 /** Draw the curves of the case (2d and 3d models); returns the figures (for the summary). */

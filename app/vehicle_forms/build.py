@@ -20,7 +20,7 @@ from engine.builder import (
     build_combination,
     build_vehicle,
 )
-from engine.vehicle import Combination, validate_combination
+from engine.vehicle import Combination, check_record_plausible, validate_combination
 
 
 def at_field(exc: InvalidInput, prefix: str | None) -> InvalidInput:
@@ -56,6 +56,8 @@ def combination_of(data: dict[str, Any], where: str | None) -> Combination:
     try:
         c = Combination.from_dict(data)
         validate_combination(c)
+        if c.last_unit_record is not None:  # typed like any record: the same unit-slip bounds (issue 40 item 5)
+            check_record_plausible(c.last_unit_record, "combination.last_unit_record.")
     except InvalidInput as e:
         raise at_field(e, where) from e
     return c

@@ -190,3 +190,17 @@ def test_the_road_answers_carry_the_warnings_in_their_srt_result(shared_client, 
     r = shared_client.post(path, json={"vehicle": {**record, "weight_kn": 50.0}, **extra})
     assert r.status_code == 200, r.text
     assert [w["field"] for w in r.json()["srt_result"]["warnings"]] == ["vehicle.weight_kn"]
+
+
+def test_a_combinations_last_unit_record_is_judged_like_any_typed_record(shared_client):
+    """A whole combination typed in the request carries the thesis's record of its last unit: its 31.5 "kN" is
+    31.5 t typed in kN (the bound: 3.5 t, categories N2/N3, O3/O4), refused naming the field where the request puts
+    it, as a record's own is; the preset's 364.147 kN is answered."""
+    combination = shared_client.get("/v1/combinations/tractor-semitrailer-table15").json()["combination"]
+    assert shared_client.post("/v1/srt", json={"vehicle": {"combination": combination}}).status_code == 200
+    bad = copy.deepcopy(combination)
+    bad["last_unit_record"]["weight_kn"] = 31.5
+    msg = refused(
+        shared_client, "/v1/srt", {"vehicle": {"combination": bad}}, "vehicle.combination.last_unit_record.weight_kn"
+    )
+    assert "in tonnes?" in msg and "308.909 kN" in msg  # 31.5 t x 9.80665 m/s^2

@@ -22,7 +22,7 @@ from engine.builder import (
     build_vehicle,
 )
 from engine.dynamics import DynamicsData
-from engine.dynamics import build as build_yaw_roll
+from engine.dynamics import resolve as resolve_dynamics
 from engine.vehicle import Combination, validate_combination
 
 
@@ -61,7 +61,7 @@ def check_dynamics(c: Combination, data: DynamicsData) -> None:
     masses, a rear extent that leaves an axle outside its unit, a tyre type beside a coefficient...), naming the field
     where it was typed: the spec is refused when built or saved, not first when a dynamics answer needs it."""
     try:
-        build_yaw_roll(c, data)
+        resolve_dynamics(c, data)
     except InvalidVehicle as e:
         raise typed_field(e, data) from e
 

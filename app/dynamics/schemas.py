@@ -13,13 +13,8 @@ from pydantic import ConfigDict, Field, create_model
 
 from app.http.schemas import InputModel, OutputModel, describe
 from app.srt.schemas import VEHICLE_DESCRIPTION, VehicleRef
-from engine.dynamics import (
-    GROUP_DATA_DOCS,
-    LANE_CHANGE_AMPLITUDE_G,
-    LANE_CHANGE_SPEED_KMH,
-    PULSE_STEER_SPEED_KMH,
-    UNIT_DATA_DOCS,
-)
+from app.vehicle_forms.dynamic_data_schemas import group_fields, unit_fields
+from engine.dynamics import LANE_CHANGE_AMPLITUDE_G, LANE_CHANGE_SPEED_KMH, PULSE_STEER_SPEED_KMH
 
 RaDefinition = Literal["cg", "axle"]
 
@@ -33,20 +28,13 @@ def f(default: Any = ..., text: str = "", unit: str = "-", **kw: Any) -> Any:
     return Field(default, description=d(text, unit), **kw)
 
 
-def _optional(text: str, unit: str, low: Any, high: float | None = None) -> Any:
-    """An optional number in [low, high], or an optional choice when ``low`` is the tuple of choices."""
-    if isinstance(low, tuple):
-        return (Literal[low] | None, Field(None, description=d(text + " (the default when left out).", unit)))  # type: ignore[valid-type]
-    return (float | None, Field(None, ge=low, le=high, description=d(text + " (estimated when left out).", unit)))
-
-
 UNIT_ID = (str, Field(min_length=1, max_length=40, description=d("The unit's id in the combination.")))
 UnitDataIn = create_model(
     "UnitDataIn",
     __base__=InputModel,
     __doc__="Optional data of one unit; what is left out is estimated (the answer's `parameters` say how).",
     unit=UNIT_ID,
-    **{name: _optional(*doc) for name, doc in UNIT_DATA_DOCS.items()},
+    **unit_fields(),
 )
 GroupDataIn = create_model(
     "GroupDataIn",
@@ -54,7 +42,7 @@ GroupDataIn = create_model(
     __doc__="Optional data of one axle group; what is left out is estimated.",
     unit=UNIT_ID,
     group=(str, Field(min_length=1, max_length=40, description=d("The group's id in its unit."))),
-    **{name: _optional(*doc) for name, doc in GROUP_DATA_DOCS.items()},
+    **group_fields(),
 )
 
 

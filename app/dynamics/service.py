@@ -8,7 +8,7 @@ record, the dynamic data, the options) like every other computed answer (:func:`
 from __future__ import annotations
 
 import re
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -19,6 +19,7 @@ from app.compute.resolved import Resolved
 from app.compute.results import Computed, cached
 from app.dynamics import plots
 from app.dynamics import schemas as s
+from app.vehicle_forms.build import typed_field
 from app.vehicles.resolve import VehicleRequest
 from engine import ENGINE_VERSION, InvalidVehicle
 from engine.dynamics import (
@@ -71,26 +72,65 @@ def combination_of_request(vr: VehicleRequest[Any]) -> Combination:
 
 
 def dynamics_data(req: s.DynamicsInputs) -> DynamicsData:
-    """The engine's dynamic data of the request; a unit or group listed twice is refused naming the entry."""
+    """The engine's dynamic data of the request's ``dynamics`` field, each value named where it was typed; a unit or
+    group listed twice is refused naming the entry."""
     d = req.dynamics
     if d is None:
         return DynamicsData()
     units: dict[str, UnitData] = {}
+    given_at: dict[str, str] = {}
     for i, u in enumerate(d.units):
         if u.unit in units:
             raise InvalidVehicle(f"unit {u.unit!r} is listed twice", field=f"dynamics.units[{i}].unit", value=u.unit)
         units[u.unit] = UnitData(**{k: getattr(u, k) for k in UNIT_DATA_DOCS})
+        given_at.update({f"units[{u.unit}].{k}": f"dynamics.units[{i}].{k}" for k in UNIT_DATA_DOCS
+                         if getattr(u, k) is not None})  # fmt: skip
     groups: dict[tuple[str, str], GroupData] = {}
     for i, g in enumerate(d.groups):
         if (g.unit, g.group) in groups:
             raise InvalidVehicle(f"group {g.group!r} of unit {g.unit!r} is listed twice",
                                  field=f"dynamics.groups[{i}].group", value=g.group)  # fmt: skip
         groups[(g.unit, g.group)] = GroupData(**{k: getattr(g, k) for k in GROUP_DATA_DOCS})
-    return DynamicsData(units, groups)
+        given_at.update({f"groups[{g.unit}/{g.group}].{k}": f"dynamics.groups[{i}].{k}" for k in GROUP_DATA_DOCS
+                         if getattr(g, k) is not None})  # fmt: skip
+    return DynamicsData(units, groups, given_at)
 
 
-def _as_typed(exc: InvalidVehicle, req: s.DynamicsInputs) -> InvalidVehicle:
-    """The engine names a unit's data ``dynamics.units[<unit id>].field``; the caller typed a list index."""
+def _merge(carried: DynamicsData, request: DynamicsData) -> DynamicsData:
+    """The vehicle's data (a combination spec's) and the request's ``dynamics`` field together, field by field. A
+    field given in both is refused (422 naming both places), whatever the values: neither silently wins."""
+    if not carried:
+        return request
+    if not request:
+        return carried
+    for key, place in request.given_at.items():
+        if key in carried.given_at:
+            raise InvalidVehicle(
+                f"{place} is also given by the vehicle at {carried.given_at[key]}: give it in one place",
+                field=place,
+            )
+    units = dict(carried.units)
+    for uid, ud in request.units.items():
+        units[uid] = replace(units[uid], **{k: v for k, v in asdict(ud).items() if v is not None}) if uid in units \
+            else ud  # fmt: skip
+    groups = dict(carried.groups)
+    for key, gd in request.groups.items():
+        groups[key] = replace(groups[key], **{k: v for k, v in asdict(gd).items() if v is not None}) if key in groups \
+            else gd  # fmt: skip
+    return DynamicsData(units, groups, {**carried.given_at, **request.given_at})
+
+
+def _key_form(data: DynamicsData) -> dict[str, Any]:
+    """The data as the cache key holds it: every given value and where it was typed (the answer's sources say)."""
+    return {**data.as_lists(), "given_at": dict(sorted(data.given_at.items()))}
+
+
+def _as_typed(exc: InvalidVehicle, req: s.DynamicsInputs, data: DynamicsData) -> InvalidVehicle:
+    """The engine names a unit's data ``dynamics.units[<unit id>].field``: the field where it was typed (the request's
+    list index, or the vehicle's combination spec)."""
+    typed = typed_field(exc, data)
+    if typed is not exc:
+        return typed
     field = exc.field or ""
     d = req.dynamics
     m = re.match(r"dynamics\.units\[(.+?)\](.*)", field)
@@ -107,10 +147,14 @@ def _as_typed(exc: InvalidVehicle, req: s.DynamicsInputs) -> InvalidVehicle:
 
 
 def resolve(vr: VehicleRequest[Any], **options: Any) -> tuple[Combination, DynamicsData, ResolvedDynamics]:
+    """The combination, its dynamic data (the vehicle's and the request's ``dynamics``) and the resolved request.
+
+    The key holds every given value with where it was typed (the answer's sources name the place); with none given
+    it is the empty lists it always was, so the answers without dynamic data keep their keys."""
     req = vr.body
     c = combination_of_request(vr)
-    data = dynamics_data(req)
-    given = req.dynamics.model_dump() if req.dynamics is not None else {"units": [], "groups": []}
+    data = _merge(vr.vehicles[0].dynamics, dynamics_data(req))
+    given = _key_form(data) if data else {"units": [], "groups": []}
     return c, data, ResolvedDynamics(c.to_dict(), given, options)
 
 
@@ -122,7 +166,7 @@ def _model(cache: ResultCache, c: Combination, data: DynamicsData, resolved: Res
         try:
             model = build(c, data)
         except InvalidVehicle as exc:
-            raise _as_typed(exc, req) from exc
+            raise _as_typed(exc, req, data) from exc
         cache.objects[key] = model
     return model
 

@@ -9,9 +9,10 @@ A ``{"spec": ...}`` is built by :func:`engine.builder.build_vehicle`, a ``{"comb
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
-from engine import InvalidInput
+from engine import InvalidInput, InvalidVehicle
 from engine.builder import (
     BuiltCombination,
     BuiltVehicle,
@@ -20,6 +21,8 @@ from engine.builder import (
     build_combination,
     build_vehicle,
 )
+from engine.dynamics import DynamicsData
+from engine.dynamics import resolve as resolve_dynamics
 from engine.vehicle import Combination, check_record_plausible, validate_combination
 
 
@@ -45,9 +48,35 @@ def build_combination_spec(spec: CombinationSpec | dict[str, Any], where: str | 
     (``combination_spec.<field>`` when ``where`` is None: the spec is the request's own)."""
     try:
         engine_spec = spec if isinstance(spec, CombinationSpec) else CombinationSpec.from_dict(spec)
-        return build_combination(engine_spec)
+        built = build_combination(engine_spec)
+        if built.dynamics:
+            check_dynamics(built.combination, built.dynamics)
+        return built
     except InvalidInput as e:
         raise at_field(e, where) from e
+
+
+def check_dynamics(c: Combination, data: DynamicsData) -> None:
+    """Refuse dynamic data the yaw-roll model refuses (a yaw inertia below the point-mass bound of the unit's own
+    masses, a rear extent that leaves an axle outside its unit, a tyre type beside a coefficient...), naming the field
+    where it was typed: the spec is refused when built or saved, not first when a dynamics answer needs it."""
+    try:
+        resolve_dynamics(c, data)
+    except InvalidVehicle as e:
+        raise typed_field(e, data) from e
+
+
+_ENGINE_FIELD = re.compile(r"dynamics\.((?:units|groups)\[[^\]]+\]\.\w+)$")
+
+
+def typed_field(exc: InvalidVehicle, data: DynamicsData) -> InvalidVehicle:
+    """The yaw-roll model's error on a given value (``dynamics.units[<unit id>].<field>``) at the field where the
+    value was typed (``data.given_at``); the error unchanged when not a given value's."""
+    m = _ENGINE_FIELD.match(exc.field or "")
+    if m is None or m.group(1) not in data.given_at:
+        return exc
+    typed = data.given_at[m.group(1)]
+    return InvalidVehicle(str(exc).replace(exc.field or "", typed), field=typed, value=exc.value)
 
 
 def combination_of(data: dict[str, Any], where: str | None) -> Combination:
@@ -61,3 +90,12 @@ def combination_of(data: dict[str, Any], where: str | None) -> Combination:
     except InvalidInput as e:
         raise at_field(e, where) from e
     return c
+
+
+def dynamics_at(built: BuiltCombination, where: str | None) -> DynamicsData:
+    """The built combination's data for the yaw-roll model, each value named where the request typed it
+    (``vehicle.combination_spec.units[1].dynamics.width_m``)."""
+    data = built.dynamics
+    if not where:
+        return data
+    return DynamicsData(data.units, data.groups, {k: f"{where}.{v}" for k, v in data.given_at.items()})

@@ -17,6 +17,7 @@ from pydantic import ConfigDict, Field
 from app.http.schemas import InputModel, OutputModel, describe
 from app.vehicle_forms import builder_schemas as bs
 from app.vehicle_forms.builder_schemas import DerivationOut, MassOut
+from app.vehicle_forms.dynamic_data_schemas import GroupDynamicsSpec, UnitDynamicsSpec
 from engine import builder as ec
 from engine.vehicle import FIFTH_WHEELS, SUSPENSIONS_IN_ROLL, UNIT_KINDS
 
@@ -28,6 +29,8 @@ bs._CHOICES.update(
         ("RollSuspensionSpec", "type"): tuple(SUSPENSIONS_IN_ROLL),
     }
 )
+# the yaw-roll model's data of a unit and of a group: generated from its one definition, not from a dataclass docstring
+bs.MODELS["UnitData"], bs.MODELS["GroupData"] = UnitDynamicsSpec, GroupDynamicsSpec
 for _cls in (
     ec.RollTyreSpec,
     ec.RollSuspensionSpec,
@@ -142,3 +145,12 @@ class BuildCombinationResult(OutputModel):
     )
     gross_mass_kg: float = Field(description=describe("All tares and payloads.", unit="kg", symbol="sum W/g"))
     notes: list[str] = Field(description=describe("What the model does not represent of this spec.", unit="-"))
+    dynamics: dict[str, list[dict[str, Any]]] = Field(
+        description=describe(
+            "The spec's data for the yaw-roll model (its units' and groups' `dynamics`, and each group's "
+            "`axle_spacing_m`), in the form of the dynamics requests' `dynamics` field: `units` (`unit` and the given "
+            "fields) and `groups` (`unit`, `group` and the given fields). The combination record does not hold it: "
+            "with the record, give it as the dynamics request's `dynamics`.",
+            unit="see its fields",
+        )
+    )

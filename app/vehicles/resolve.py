@@ -30,7 +30,7 @@ A job's worker rebuilds the vehicles of a stored resolved request from their rec
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Generic, Literal, TypeVar
 
 from fastapi import Request
@@ -38,12 +38,13 @@ from pydantic import BaseModel
 
 from app.catalog.service import SavedVehicles
 from app.settings import Settings
-from app.vehicle_forms.build import build_combination_spec, build_spec, combination_of
+from app.vehicle_forms.build import build_combination_spec, build_spec, combination_of, dynamics_at
 from app.vehicle_forms.builder_schemas import SpecRef
 from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
 from app.vehicle_forms.combination_schemas import CombinationRef
 from app.vehicle_forms.schemas import VehicleRecord
 from engine import UnknownPreset
+from engine.dynamics import DynamicsData
 from engine.vehicle import (
     COMBINATIONS,
     PRESETS,
@@ -84,6 +85,10 @@ class ResolvedVehicle:
         (a fleet's member: ``fleet[0].weight_kn``), and a typed or saved combination's ``last_unit_record``'s
         (``vehicle.combination.last_unit_record.weight_kn``); none for the other kinds (their weights are derived
         from masses in kg).
+    dynamics : DynamicsData
+        The data for the yaw-roll model a combination spec gives (its units' and groups' ``dynamics``, its groups'
+        axle spacings), each value named where it was typed (``given_at``); empty for the other kinds. Not part of the
+        record, so the static answers (keyed by the record) do not depend on it.
     """
 
     where: str
@@ -92,6 +97,7 @@ class ResolvedVehicle:
     preset: str | None = None
     saved_id: str | None = None
     warnings: tuple[InputWarning, ...] = ()
+    dynamics: DynamicsData = field(default_factory=DynamicsData)
 
 
 @dataclass(frozen=True)
@@ -157,8 +163,8 @@ def resolve_given(ref: Any, where: str) -> ResolvedVehicle:
         c = combination_of(ref.combination.engine_dict(), where)
         return ResolvedVehicle(where, "combination", c, warnings=_last_unit_warnings(c, where))
     if isinstance(ref, CombinationSpecRef):
-        built = build_combination_spec(ref.engine_spec(), where).combination
-        return ResolvedVehicle(where, "combination_spec", built)
+        built = build_combination_spec(ref.engine_spec(), where)
+        return ResolvedVehicle(where, "combination_spec", built.combination, dynamics=dynamics_at(built, where))
     if isinstance(ref, VehicleRecord):
         vehicle = Vehicle.from_dict(ref.record())
         # typed over HTTP: its weight and stiffnesses in plausible units, a slip named where it was typed
@@ -175,7 +181,8 @@ def _stored(id: str, body: dict[str, Any], where: str) -> ResolvedVehicle:
     if "spec" in body:
         vehicle: Vehicle | Combination = build_spec(body["spec"], where).vehicle
     elif "combination_spec" in body:
-        vehicle = build_combination_spec(body["combination_spec"], where).combination
+        built = build_combination_spec(body["combination_spec"], where)
+        return ResolvedVehicle(where, "saved", built.combination, saved_id=id, dynamics=dynamics_at(built, where))
     elif "combination" in body:
         vehicle = combination_of(body["combination"], where)
         return ResolvedVehicle(where, "saved", vehicle, saved_id=id, warnings=_last_unit_warnings(vehicle, where))

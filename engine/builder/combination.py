@@ -83,6 +83,7 @@ from engine.vehicle.combination import (
     static_loads,
     validate_combination,
 )
+from engine.vehicle.dynamic_data import DynamicsData, GroupData, UnitData
 from engine.vehicle.plausibility import check_plausible
 from engine.vehicle.roll_components import (
     FIFTH_WHEELS,
@@ -142,6 +143,9 @@ class BuiltCombination:
     coupling_loads_kn: tuple[float, ...]
     gross_mass_kg: float
     notes: tuple[str, ...] = ()
+    #: the spec's data for the yaw-roll model, by the built unit and group ids, ``given_at`` the spec paths; the
+    #: combination (the static record) does not hold it, so the static answers do not depend on it
+    dynamics: DynamicsData = dataclasses.field(default_factory=DynamicsData)
 
     def to_dict(self) -> dict[str, typing.Any]:
         return {
@@ -152,6 +156,7 @@ class BuiltCombination:
             "coupling_loads_kn": list(self.coupling_loads_kn),
             "gross_mass_kg": self.gross_mass_kg,
             "notes": list(self.notes),
+            "dynamics": self.dynamics.as_lists(),
         }
 
 
@@ -355,7 +360,9 @@ def _unit(book: _Book, u: UnitSpec, i: int, uid: str, path: str) -> tuple[Unit, 
     built = BuiltUnit(uid, kind, items, mass, z, x, m_u, sprung, z_s, x_s)
     notes = [f"{path}: {note}"] if note else []
     if any(isinstance(g, UnitGroupSpec) and g.axle_spacing_m is not None for g in specs):
-        notes.append(f"{path}: axle spacing is recorded but not used: the roll model has one equivalent axle per group")
+        notes.append(
+            f"{path}: axle spacing is used by the yaw-roll model only: the roll model has one equivalent axle per group"
+        )
     return unit, built, notes
 
 
@@ -455,6 +462,7 @@ def build_combination(spec: CombinationSpec) -> BuiltCombination:
         built.append(b)
         notes += n
     couplings = [_coupling(book, cs, k, units[k]) for k, cs in enumerate(couplings_in)]
+    dynamics = _dynamics(units_in, units)
     c = Combination(tuple(units), tuple(couplings), spec.title, None, spec.front_llt_ratio)
     try:
         validate_combination(c)
@@ -487,7 +495,56 @@ def build_combination(spec: CombinationSpec) -> BuiltCombination:
     gross = sum(b.mass_kg for b in built)
     if not math.isfinite(gross):  # pragma: no cover - every mass is checked finite above
         raise InvalidVehicle("the masses are not finite", field=f"{ROOT}.units")
-    return BuiltCombination(c, book.derivation, tuple(built), tuple(axle_loads), coupling_loads, gross, tuple(notes))
+    return BuiltCombination(c, book.derivation, tuple(built), tuple(axle_loads), coupling_loads, gross, tuple(notes),
+                            dynamics)  # fmt: skip
+
+
+def _given_fields(data: UnitData | GroupData, path: str) -> dict[str, typing.Any]:
+    """The given fields of one unit's or group's dynamic data, numbers checked finite; the yaw-roll model checks
+    their ranges where it takes them (:func:`engine.dynamics.parameters.resolve`)."""
+    out = {}
+    for f in dataclasses.fields(data):
+        v = getattr(data, f.name)
+        if v is not None:
+            out[f.name] = v if f.name == "tyre_type" else check_number(v, f"{path}.{f.name}")
+    return out
+
+
+def _dynamics(units_in: tuple[UnitSpec, ...], units: list[Unit]) -> DynamicsData:
+    """The spec's data for the yaw-roll model by the built ids, each value with the spec path it was typed at; a
+    group's ``axle_spacing_m`` is its spacing (given once, on the group)."""
+    out_units: dict[str, UnitData] = {}
+    out_groups: dict[tuple[str, str], GroupData] = {}
+    given_at: dict[str, str] = {}
+    for i, (us, u) in enumerate(zip(units_in, units, strict=True)):
+        path = f"{ROOT}.units[{i}]"
+        if us.dynamics is not None:
+            if not isinstance(us.dynamics, UnitData):
+                raise InvalidVehicle(f"{path}.dynamics must be an object", field=f"{path}.dynamics", value=us.dynamics)
+            fields = _given_fields(us.dynamics, f"{path}.dynamics")
+            if fields:
+                out_units[u.id] = UnitData(**fields)
+                given_at.update({f"units[{u.id}].{k}": f"{path}.dynamics.{k}" for k in fields})
+        for j, (gs, g) in enumerate(zip(us.axle_groups, u.groups, strict=True)):
+            gpath = f"{path}.axle_groups[{j}]"
+            fields = {}
+            if gs.dynamics is not None:
+                if not isinstance(gs.dynamics, GroupData):
+                    raise InvalidVehicle(f"{gpath}.dynamics must be an object", field=f"{gpath}.dynamics",
+                                         value=gs.dynamics)  # fmt: skip
+                spacing = gs.dynamics.axle_spacing_m
+                if spacing is not None:
+                    raise InvalidVehicle(f"{gpath}.dynamics.axle_spacing_m: the group's spacing is "
+                                         f"{gpath}.axle_spacing_m", field=f"{gpath}.dynamics.axle_spacing_m",
+                                         value=spacing)  # fmt: skip
+                fields = _given_fields(gs.dynamics, f"{gpath}.dynamics")
+                given_at.update({f"groups[{u.id}/{g.id}].{k}": f"{gpath}.dynamics.{k}" for k in fields})
+            if gs.axle_spacing_m is not None:
+                fields["axle_spacing_m"] = gs.axle_spacing_m
+                given_at[f"groups[{u.id}/{g.id}].axle_spacing_m"] = f"{gpath}.axle_spacing_m"
+            if fields:
+                out_groups[(u.id, g.id)] = GroupData(**fields)
+    return DynamicsData(out_units, out_groups, given_at)
 
 
 #: the library a spec can name: roll suspensions, tyre sizes (through :func:`roll_tyre_for_size`), fifth wheels

@@ -11,6 +11,7 @@ from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 
 from engine.builder.spec import DeckSpec, PayloadSpec, TareSpec, _from_dict
+from engine.vehicle.dynamic_data import GroupData, UnitData
 
 #: the root of the spec's field paths in errors
 ROOT = "combination_spec"
@@ -63,8 +64,11 @@ class UnitGroupSpec:
         0 for the front group; semitrailer, lead trailer: the kingpin; dolly, full trailer: the drawbar eye) [m]
     tyre : the group's tyres
     suspension : the group's suspension
-    axle_spacing_m : spread between adjacent axles (recorded; the roll model has one equivalent axle per group) [m]
+    axle_spacing_m : spread between adjacent axles (the roll model has one equivalent axle per group; the yaw-roll
+        model places the axles at this spacing, estimated when left out) [m]
     id : a name unique within its unit (default: steer, drive; front, rear; the unit's id) [-]
+    dynamics : for the yaw-roll model only (each field optional, estimated when left out): the group's cornering
+        coefficient or tyre type; its axle spacing is ``axle_spacing_m`` above
     """
 
     axles: int
@@ -75,6 +79,7 @@ class UnitGroupSpec:
     suspension: RollSuspensionSpec
     axle_spacing_m: float | None = None
     id: str | None = None
+    dynamics: GroupData | None = None
 
 
 @dataclass(frozen=True)
@@ -110,6 +115,7 @@ class UnitSpec:
     deck : its load space (for payload positions), behind its reference point
     id : a name unique within the combination (default: its kind, numbered when repeated) [-]
     title : a name for people [-]
+    dynamics : for the yaw-roll model only (each field optional, estimated when left out): inertias, extents, width
     """
 
     kind: str
@@ -119,6 +125,7 @@ class UnitSpec:
     deck: DeckSpec | None = None
     id: str | None = None
     title: str | None = None
+    dynamics: UnitData | None = None
 
 
 @dataclass(frozen=True)

@@ -55,6 +55,7 @@ estimated where not given:
 - ``DynamicsData``: What the caller gives beyond the description
 - ``GROUP_DATA_DOCS``: every optional per-group field
 - ``GroupData``: Optional per-group data: cornering coefficient [1/rad] and axle spacing [m] (None: estimated)
+- ``resolve``: Every unit's and group's dynamic data, given or estimated, with sources; refuse impossible given values
 - ``UNIT_DATA_DOCS``: every optional per-unit field
 - ``UnitData``: Optional per-unit data (None: estimated)
 
@@ -92,6 +93,7 @@ from .parameters import (
     GroupData,
     UnitData,
     as_dict,
+    resolve,
 )
 from .pbs import (
     LANE_CHANGE_AMPLITUDE_G,
@@ -120,6 +122,7 @@ __all__ = [
     "low_speed_turn",
     "pulse_steer",
     "rearward_amplification_spectrum",
+    "resolve",
     "screen",
     "stability",
     "steady_turn",

@@ -42,11 +42,12 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from engine.dynamics.tyres import DEFAULT_TYRE_TYPE, TYRE_TYPES
 from engine.errors import InvalidVehicle
 from engine.vehicle.combination import G_M_PER_S2, Combination, static_loads
+from engine.vehicle.dynamic_data import DynamicsData, GroupData, UnitData
 
 #: the presets' tyre class (TruckSim's 3000 kg radial), the default tyre type
 TYRE_SOURCE = (
@@ -163,35 +164,6 @@ GROUP_DATA_DOCS: dict[str, tuple] = {
 
 
 @dataclass(frozen=True)
-class UnitData:
-    """Optional per-unit data (None: estimated). Extents are metres ahead of / behind the unit's reference point."""
-
-    yaw_inertia_kgm2: float | None = None
-    roll_inertia_kgm2: float | None = None
-    front_overhang_m: float | None = None
-    rear_extent_m: float | None = None
-    width_m: float | None = None
-
-
-@dataclass(frozen=True)
-class GroupData:
-    """Optional per-group data: cornering coefficient [1/rad], axle spacing [m] and tyre type (an id of
-    :data:`~engine.dynamics.tyres.TYRE_TYPES`); None: estimated, the tyre type the presets'."""
-
-    cornering_coefficient_per_rad: float | None = None
-    axle_spacing_m: float | None = None
-    tyre_type: str | None = None
-
-
-@dataclass(frozen=True)
-class DynamicsData:
-    """What the caller gives beyond the description: ``units`` by unit id, ``groups`` by ``(unit id, group id)``."""
-
-    units: dict[str, UnitData] = field(default_factory=dict)
-    groups: dict[tuple[str, str], GroupData] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
 class UnitParameters:
     """The resolved data of one unit (all SI): see the module docstring for the estimates."""
 
@@ -247,6 +219,11 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
         ``field`` is ``dynamics.units[<unit id>].<name>`` or ``dynamics.groups[<unit id>/<group id>].<name>``.
     """
     data = data or DynamicsData()
+
+    def given(key: str) -> str:
+        """A given value's source: where it was typed, when known (``key``: ``units[<id>].<field>``)."""
+        return f"given in {data.given_at[key]}" if key in data.given_at else "given"
+
     known_units = {u.id for u in c.units}
     for uid in data.units:
         if uid not in known_units:
@@ -263,7 +240,8 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
     for i, u in enumerate(c.units):
         for j, g in enumerate(u.groups):
             gd = data.groups.get((u.id, g.id), GroupData())
-            path = f"dynamics.groups[{u.id}/{g.id}]"
+            gkey = f"groups[{u.id}/{g.id}]"
+            path = f"dynamics.{gkey}"
             if gd.tyre_type is not None and gd.tyre_type not in TYRE_TYPES:
                 raise InvalidVehicle(f"{path}.tyre_type must be one of {', '.join(TYRE_TYPES)}, got "
                                      f"{gd.tyre_type!r}", field=f"{path}.tyre_type", value=gd.tyre_type)  # fmt: skip
@@ -279,11 +257,17 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                     f"{path}.cornering_coefficient_per_rad",
                     "a truck tyre's linear cornering coefficient",
                 )
-                cc = Parameter(gd.cornering_coefficient_per_rad, "1/rad", "given")
+                cc = Parameter(
+                    gd.cornering_coefficient_per_rad, "1/rad", given(f"{gkey}.cornering_coefficient_per_rad")
+                )
             else:
                 tyre_id = gd.tyre_type or DEFAULT_TYRE_TYPE
                 tyre = TYRE_TYPES[tyre_id]
-                tyre_why = "given" if gd.tyre_type else "default: the presets' tyre class (the description names none)"
+                tyre_why = (
+                    given(f"{gkey}.tyre_type")
+                    if gd.tyre_type
+                    else "default: the presets' tyre class (the description names none)"
+                )
                 per_tyre = st.normal_kn[(i, j)] * 1000.0 / g.axles / g.tyres_per_axle
                 # the default keeps its source text of before tyre types, so that default answers do not change
                 src = TYRE_SOURCE if tyre_id == DEFAULT_TYRE_TYPE else f"{tyre.name}: {tyre.source}"
@@ -291,7 +275,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                                f"estimated: {src} ({per_tyre / 1000.0:.1f} kN a tyre)")  # fmt: skip
             if gd.axle_spacing_m is not None:
                 _check_range(gd.axle_spacing_m, 0.9, 3.0, f"{path}.axle_spacing_m", "axles of one group")
-                sp = Parameter(gd.axle_spacing_m, "m", "given")
+                sp = Parameter(gd.axle_spacing_m, "m", given(f"{gkey}.axle_spacing_m"))
             else:
                 sp = Parameter(AXLE_SPACING_M, "m", f"estimated: {AXLE_SPACING_SOURCE}")
             n = g.axles
@@ -301,19 +285,20 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
     units = []
     for i, u in enumerate(c.units):
         ud = data.units.get(u.id, UnitData())
-        path = f"dynamics.units[{u.id}]"
+        ukey = f"units[{u.id}]"
+        path = f"dynamics.{ukey}"
         xs_all = [x for j in range(len(u.groups)) for x in groups[(i, j)].axle_positions_m]
         if ud.front_overhang_m is not None:
             _check_range(ud.front_overhang_m, 0.0, 5.0, f"{path}.front_overhang_m", f"unit {u.id!r} (ahead of its "
                          "reference point)")  # fmt: skip
-            front = Parameter(ud.front_overhang_m, "m", "given")
+            front = Parameter(ud.front_overhang_m, "m", given(f"{ukey}.front_overhang_m"))
         else:
             f, why = _front_estimate(u.kind)
             front = Parameter(f, "m", f"estimated: {why}")
         # the body's front, behind the reference point (a full trailer's overhang is measured from its turntable)
         front_x = -front.value + (u.groups[0].position_m if u.kind == "full-trailer" else 0.0)
         if ud.rear_extent_m is not None:
-            rear = Parameter(ud.rear_extent_m, "m", "given")
+            rear = Parameter(ud.rear_extent_m, "m", given(f"{ukey}.rear_extent_m"))
         else:
             hitch = c.couplings[i].position_m + 0.3 if i < len(c.couplings) else 0.0
             if u.kind == "tractor":
@@ -337,7 +322,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             )
         if ud.width_m is not None:
             _check_range(ud.width_m, 1.5, 3.5, f"{path}.width_m", f"unit {u.id!r}")
-            width = Parameter(ud.width_m, "m", "given")
+            width = Parameter(ud.width_m, "m", given(f"{ukey}.width_m"))
         else:
             width = Parameter(WIDTH_M, "m", "estimated: assumed 2.5 m, the common general width limit")
         length = rear.value - front_x
@@ -355,8 +340,8 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                     f"{path}.yaw_inertia_kgm2 = {ud.yaw_inertia_kgm2:g} kg m^2 is below the point-mass bound of "
                     f"unit {u.id!r}'s own masses about its CG ({bound:.0f} kg m^2)",
                     field=f"{path}.yaw_inertia_kgm2", value=ud.yaw_inertia_kgm2)  # fmt: skip
-            iz = Parameter(ud.yaw_inertia_kgm2 - bound, "kg m^2", "given (the unit's, about its CG; the axles' point "
-                           "masses taken out)")  # fmt: skip
+            iz = Parameter(ud.yaw_inertia_kgm2 - bound, "kg m^2", given(f"{ukey}.yaw_inertia_kgm2") + " (the unit's, "
+                           "about its CG; the axles' point masses taken out)")  # fmt: skip
         else:
             iz = Parameter(m * (length**2 + width.value**2) / 12.0, "kg m^2",
                            f"estimated: sprung mass as a uniform box m (L^2 + w^2)/12, L = {length:.2f} m, w = "
@@ -366,7 +351,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             ix = Parameter(sourced[0], "kg m^2", sourced[2])
         elif ud.roll_inertia_kgm2 is not None:
             _check_range(ud.roll_inertia_kgm2, 1.0, 1e6, f"{path}.roll_inertia_kgm2", f"unit {u.id!r}")
-            ix = Parameter(ud.roll_inertia_kgm2, "kg m^2", "given")
+            ix = Parameter(ud.roll_inertia_kgm2, "kg m^2", given(f"{ukey}.roll_inertia_kgm2"))
         else:
             height = 2.0 * (u.cg_height_m - hr)
             formula = f"a uniform box m (w^2 + H^2)/12 with H = 2 (h_cg - h_rc) = {height:.2f} m"

@@ -184,7 +184,8 @@ def test_given_dynamic_data_is_used_and_in_the_key(shared_client):
     t2 = next(u for u in p["units"] if u["unit"] == "trailer2")
     assert t2["yaw_inertia_kgm2"]["source"].startswith("given")
     dolly = next(g for g in p["groups"] if g["unit"] == "dolly")
-    assert dolly["cornering_coefficient_per_rad"] == {"value": 4.0, "unit": "1/rad", "source": "given"}
+    source = "given in dynamics.groups[0].cornering_coefficient_per_rad"
+    assert dolly["cornering_coefficient_per_rad"] == {"value": 4.0, "unit": "1/rad", "source": source}
 
 
 @pytest.mark.parametrize(

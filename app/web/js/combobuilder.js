@@ -117,7 +117,7 @@ export function specFromRecord(c, title) {
 }
 
 export const state = {
-  library: { suspensions: [], fifthWheels: [] }, // the ids the spec schema lists
+  library: { suspensions: [], fifthWheels: [], dynUnit: [], dynGroup: [] }, // the ids and fields the spec schema lists
   combinations: [], // GET /v1/combinations
   pending: null, // a spec from the link, shown once the library is read
   built: null, // the last POST /v1/combinations/build answer
@@ -148,6 +148,53 @@ function box(spec, path, label, { kind = "number", options, hint, extraFields = 
   return el("div", { class: wide ? "field wide" : "field" }, el("label", { for: id }, label), control, hint ? el("span", { class: "hint", id: `${id}-hint` }, hint) : null);
 }
 
+/**
+ * The yaw-roll model's optional fields of a unit or a group as the OpenAPI document describes them (generated from
+ * their one definition, engine.dynamics UNIT_DATA_DOCS / GROUP_DATA_DOCS): per field its label (the description's
+ * first clause and its unit), the rest of the description with the accepted range as the hint, and the choices of a
+ * choice.
+ */
+export function dynamicsFields(schema) {
+  return Object.entries(schema?.properties || {}).map(([name, prop]) => {
+    const description = String(prop.description || name);
+    const unit = /Unit: (.+?)\. Thesis symbol/.exec(description)?.[1] || "-";
+    const text = description.replace(/ Unit: .*$/, "").replace(/ \((estimated|the default) when left out\)\.$/, "");
+    const cut = text.search(/[,;]/);
+    const head = cut > 0 ? text.slice(0, cut) : text;
+    const rest = cut > 0 ? text.slice(cut + 1).trim() : "";
+    const range = (prop.anyOf || []).find((a) => a.type === "number");
+    const choices = (prop.anyOf || []).find((a) => a.enum)?.enum || null;
+    const bounds = range ? `from ${range.minimum} to ${range.maximum}${unit !== "-" ? ` ${unit}` : ""}` : "";
+    const left = choices ? "blank: the default" : "blank: estimated";
+    const hint = [rest && rest.charAt(0).toUpperCase() + rest.slice(1), bounds, left].filter(Boolean).join("; ");
+    return { name, label: unit !== "-" ? `${head} [${unit}]` : head, hint: `${hint}.`, choices };
+  });
+}
+
+/** A unit's or a group's folded boxes for the yaw-roll model (open when one is given), at spec path `p`.dynamics. */
+function dynamicsBoxes(spec, p, fields) {
+  if (!fields.length) return null;
+  const anyGiven = fields.some((f) => given(get(spec, `${p}.dynamics.${f.name}`)));
+  return el(
+    "details",
+    { class: "cb-dynamics", open: anyGiven || null },
+    el("summary", {}, "For the dynamics (optional)"),
+    el("p", { class: "hint" }, "Used by the dynamics and the PBS screening only (the rollover threshold does not use them); each box left blank is estimated, and the answer says how."),
+    el(
+      "div",
+      { class: "grid" },
+      fields.map((f) =>
+        box(spec, `${p}.dynamics.${f.name}`, f.label, {
+          hint: f.hint,
+          kind: f.choices ? "select" : "number",
+          options: f.choices ? { items: [["", "(default)"], ...f.choices.map((c) => [c, c])] } : undefined,
+          extraFields: fieldsFor(`${p}.dynamics`),
+        }),
+      ),
+    ),
+  );
+}
+
 const suspensionItems = () => [["", "(none: explicit values)"], ...state.library.suspensions.map((s) => [s, s])];
 const fifthWheelItems = () => [["", "(none: explicit values)"], ...state.library.fifthWheels.map((s) => [s, s])];
 
@@ -169,7 +216,7 @@ function groupBox(spec, i, j, kind) {
       box(spec, `${p}.tyres_per_axle`, "Tyres per axle", { kind: "select", options: { int: true, items: [["2", "2 (single tyres)"], ["4", "4 (duals)"]] } }),
       box(spec, `${p}.track_m`, "Track [m]"),
       box(spec, `${p}.position_m`, `Group centre behind ${ref} [m]`),
-      box(spec, `${p}.axle_spacing_m`, "Axle spacing [m] (recorded)"),
+      box(spec, `${p}.axle_spacing_m`, "Axle spacing [m]", { hint: "Optional; the dynamics place the axles at it (blank: estimated there)." }),
       box(spec, `${p}.tyre.size`, "Tyre size", { kind: "text", options: { list: "cb-tyre-sizes" }, extraFields: fieldsFor(`${p}.tyre`) }),
       box(spec, `${p}.suspension.type`, "Suspension (roll library)", { kind: "select", options: { items: suspensionItems() }, extraFields: fieldsFor(`${p}.suspension`) }),
     ),
@@ -190,6 +237,7 @@ function groupBox(spec, i, j, kind) {
         box(spec, `${p}.suspension.unsprung_cg_height_m`, "Unsprung CG height [m]"),
       ),
     ),
+    dynamicsBoxes(spec, p, state.library.dynGroup),
   );
 }
 
@@ -334,6 +382,7 @@ function unitBox(spec, i) {
       el("div", { class: "grid" }, box(spec, `${p}.deck.front_from_kingpin_m`, `Deck front behind ${ref} [m]`, { extraFields: fieldsFor(`${p}.deck`) }), box(spec, `${p}.deck.length_m`, "Deck length [m]")),
     ),
     payloads,
+    dynamicsBoxes(spec, p, state.library.dynUnit),
     el(
       "div",
       { class: "actions" },
@@ -576,6 +625,8 @@ export async function init(combinations) {
   const enumOf = (schema, prop) => (schemas[schema]?.properties?.[prop]?.anyOf || []).find((a) => a.enum)?.enum || [];
   state.library.suspensions = enumOf("RollSuspensionSpec", "type");
   state.library.fifthWheels = enumOf("CouplingSpec", "fifth_wheel");
+  state.library.dynUnit = dynamicsFields(schemas.UnitDynamicsSpec);
+  state.library.dynGroup = dynamicsFields(schemas.GroupDynamicsSpec);
   state.combinations = combinations || [];
   fillStart();
   render(state.pending || structuredClone(TABLE15_SPEC));

@@ -144,6 +144,53 @@ async function plots(vehicleRef, request) {
   return figures;
 }
 
+/** A parameter's name in words with its unit: `yaw_inertia_kgm2`, "kg m^2" -> "Yaw inertia [kg m^2]". */
+function parameterLabel(name, unit) {
+  const text = words(String(name).replace(/_(kgm2|m|per_rad)$/, ""));
+  return unit && unit !== "-" ? `${text} [${unit}]` : text;
+}
+
+/** The answer's parameters that were given (not estimated): per unit and axle group, the value and where it was
+ * typed (the vehicle's combination spec or the request's `dynamics`), as the answer's sources say. */
+export function givenRows(result) {
+  const p = result.parameters || {};
+  const rows = [];
+  const take = (unit, group, entry) => {
+    for (const [name, v] of Object.entries(entry)) {
+      if (!v || typeof v !== "object" || Array.isArray(v) || typeof v.source !== "string") continue;
+      if (!v.source.startsWith("given")) continue;
+      const where = /^given in ([^\s:]+)/.exec(v.source)?.[1] || "the request";
+      const value = typeof v.value === "number" ? num(v.value, 6) : String(v.value);
+      rows.push({ unit, group, field: parameterLabel(name, v.unit), value, where });
+    }
+  };
+  for (const u of p.units || []) take(u.unit, "", u);
+  for (const g of p.groups || []) take(g.unit, g.group, g);
+  return rows;
+}
+
+/** What of the model's data was given, and where; or that every inertia, extent and cornering stiffness was estimated. */
+function givenTable(result) {
+  const rows = givenRows(result);
+  if (!rows.length) {
+    return el("p", { class: "dyn-given-none" }, "None given: every inertia, extent, width, axle spacing and cornering stiffness is estimated or a preset's sourced value (the answer's parameters say how).");
+  }
+  return scroller(
+    "Data given for the dynamics",
+    table(
+      [
+        { key: "unit", label: "Unit", text: true },
+        { key: "group", label: "Axle group", text: true },
+        { key: "field", label: "Value of", text: true },
+        { key: "value", label: "Given", text: true },
+        { key: "where", label: "Where given", text: true },
+      ],
+      rows,
+      { caption: "The model's data given rather than estimated: per unit and axle group, the value and where it was typed." },
+    ),
+  );
+}
+
 /** Screen the combination: POST /v1/pbs and the plots. `pageVehicle`: the page's vehicle ({ref, combination}). */
 export async function screen(pageVehicle) {
   const chosen = $("#dyn-vehicle").value;
@@ -186,6 +233,8 @@ function nodes(result, name, figures) {
     el("div", { class: "keep" }, scroller("PBS measures", pbsTable(result))),
     validity ? el("h4", { class: "with-next" }, "Where the model's answer is limited") : null,
     validity,
+    el("h4", { class: "with-next" }, "Data given for the model"),
+    el("div", { class: "keep dyn-given" }, givenTable(result)),
     el("h4", { class: "with-next" }, "Manoeuvres"),
     conditionsList(result),
     lengthLine(result),

@@ -274,8 +274,9 @@ def criterion_speed_kmh(
     # edge); bands taken from the last so the first one's overwrites (selects, not masked assignments: these cost
     # ten times an arithmetic pass on random masks)
     out = np.full(r.shape, np.nan)
+    r127, e01 = KMH2_PER_M_G * r, 0.01 * e  # point_mass_speed_kmh's terms, the same for every band
     for i in reversed(range(len(f))):
-        v = point_mass_speed_kmh(r, e, f[i])
+        v = np.sqrt(np.maximum(r127 * (e01 + f[i]), 0.0))  # point_mass_speed_kmh(r, e, f[i])
         out = np.where(v < edges[i + 1], np.maximum(v, edges[i]), out)
     return out
 
@@ -470,7 +471,7 @@ def sign_groups(start_station_m, length_m, part=None) -> np.ndarray:
             joined &= p[1:] == p[:-1]
         starts = np.ones(n, dtype=bool)
         starts[1:] = ~joined
-        groups = np.maximum.accumulate(np.where(starts, np.arange(n), 0))
+        groups = np.maximum.accumulate(np.arange(n) * starts)  # (a product, not a select on a random mask)
     return np.where(ok, groups, -1)
 
 
@@ -531,8 +532,10 @@ def advise_alignment(
     grouped = groups >= 0
     if grouped.all() and len(groups):
         # every curve placed: the groups are runs of consecutive curves, each run's lowest by one reduction
-        first = np.flatnonzero(np.r_[True, groups[1:] != groups[:-1]])
-        shown = np.repeat(np.minimum.reduceat(shown, first), np.diff(np.r_[first, len(groups)]))
+        first = np.flatnonzero(groups == np.arange(len(groups)))  # (a group's label is its first curve)
+        lowest = np.empty(len(shown))
+        lowest[first] = np.minimum.reduceat(shown, first)
+        shown = lowest[groups]
     elif np.any(grouped):
         shown = shown.copy()
         lowest = np.full(len(shown), np.inf)

@@ -128,6 +128,7 @@ def advise(
         units=r.units,
         deceleration_mps2=r.deceleration_mps2,
         part=part,
+        all_methods=False,  # the rows show the shown speed's method only (advisory_head names it)
     )
     p = a.profile
     required = np.asarray(p.required_deceleration_mps2, dtype=float)

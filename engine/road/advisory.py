@@ -270,15 +270,14 @@ def criterion_speed_kmh(
     e = np.broadcast_to(np.asarray(superelevation_percent, dtype=float), r.shape)
     f = band_values_side_friction(bands, body_roll_deg_per_g)
     edges = mph_to_kmh(np.array((*bands.edges_mph, np.inf)))
+    # the first band (in rising speed) whose own speed lies below its upper edge sets the speed: max(v, its lower
+    # edge); bands taken from the last so the first one's overwrites (selects, not masked assignments: these cost
+    # ten times an arithmetic pass on random masks)
     out = np.full(r.shape, np.nan)
-    open_ = np.ones(r.shape, dtype=bool)
-    for i, fi in enumerate(f):
-        v = point_mass_speed_kmh(r, e, fi)
-        below = open_ & (v < edges[i])
-        out[below] = edges[i]
-        inside = open_ & ~below & (v < edges[i + 1])
-        out[inside] = v[inside]
-        open_ &= ~(below | inside)
+    r127, e01 = KMH2_PER_M_G * r, 0.01 * e  # point_mass_speed_kmh's terms, the same for every band
+    for i in reversed(range(len(f))):
+        v = np.sqrt(np.maximum(r127 * (e01 + f[i]), 0.0))  # point_mass_speed_kmh(r, e, f[i])
+        out = np.where(v < edges[i + 1], np.maximum(v, edges[i]), out)
     return out
 
 
@@ -297,8 +296,8 @@ def treatment_code(posted_speed_kmh, advisory_shown_kmh) -> np.ndarray:
     transcribed): 0 below 5 mph (no advisory speed), then one code per band. nan (no posted speed) gives -1."""
     diff = kmh_to_mph(np.asarray(posted_speed_kmh, dtype=float) - np.asarray(advisory_shown_kmh, dtype=float))
     code = np.zeros(np.shape(diff), dtype=np.int8)
-    for i, (lowest, _) in enumerate(TREATMENT_BANDS_MPH, start=1):
-        code[diff >= lowest - 1e-9] = i
+    for lowest, _ in TREATMENT_BANDS_MPH:  # the bands' lower ends rise: the code is the number of them reached
+        code += diff >= lowest - 1e-9
     code[np.isnan(diff)] = -1
     return code
 
@@ -371,6 +370,29 @@ def advise_curves(
     rollover_margin_kmh : the W1-13 rule's margin [km/h]
     body_roll_deg_per_g : the ball-bank conversion's body-roll allowance [deg/g]
     """
+    shown, governed_by, methods, small_deflection = _advisory_speeds(
+        radius_m, superelevation_percent, deflection_deg, measured_car_speed_kmh, units, body_roll_deg_per_g
+    )
+
+    def column(x):
+        return np.full(shown.shape, np.nan) if x is None else np.broadcast_to(np.asarray(x, dtype=float), shown.shape)
+
+    return AdvisoryColumns(
+        units=units,
+        advisory_speed_kmh=shown,
+        governed_by=governed_by,
+        methods=methods,
+        treatment=treatment_code(column(posted_speed_kmh), shown),
+        truck_rollover_warning=rollover_warning(column(rollover_speed_kmh), shown, rollover_margin_kmh),
+        small_deflection=small_deflection,
+        rollover_margin_kmh=rollover_margin_kmh,
+    )
+
+
+def _advisory_speeds(radius_m, superelevation_percent, deflection_deg, measured_car_speed_kmh, units,
+                     body_roll_deg_per_g, all_methods: bool = True):  # fmt: skip
+    """:func:`advise_curves`'s shown speed, ``governed_by``, methods and small-deflection flag; ``all_methods``
+    False: of the legacy criteria only the one the shown speed comes from (the others' speeds are not wanted)."""
     check_units(units)
     r = np.atleast_1d(np.asarray(radius_m, dtype=float))
     n = r.shape
@@ -379,24 +401,16 @@ def advise_curves(
         return np.full(n, np.nan) if x is None else np.broadcast_to(np.asarray(x, dtype=float), n)
 
     e = column(superelevation_percent)
-    posted = column(posted_speed_kmh)
-    methods = {b.id: criterion_speed_kmh(b, r, e, body_roll_deg_per_g) for b in LEGACY_CRITERIA}
+    criteria = LEGACY_CRITERIA if all_methods else (BALL_BANK_2009,)
+    methods = {b.id: criterion_speed_kmh(b, r, e, body_roll_deg_per_g) for b in criteria}
     direct = direct_method_speed_kmh(column(measured_car_speed_kmh))
     methods["txdot-direct"] = direct
     use_direct = np.isfinite(direct)
     raw = np.where(use_direct, direct, methods[BALL_BANK_2009.id])
     shown = displayed_speed_kmh(raw, units)
     deflection = column(deflection_deg)
-    return AdvisoryColumns(
-        units=units,
-        advisory_speed_kmh=shown,
-        governed_by=np.where(use_direct, 0, 1).astype(np.int8),
-        methods=methods,
-        treatment=treatment_code(posted, shown),
-        truck_rollover_warning=rollover_warning(column(rollover_speed_kmh), shown, rollover_margin_kmh),
-        small_deflection=np.isfinite(deflection) & (deflection < MIN_DEFLECTION_DEG),
-        rollover_margin_kmh=rollover_margin_kmh,
-    )
+    small_deflection = np.isfinite(deflection) & (deflection < MIN_DEFLECTION_DEG)
+    return shown, np.where(use_direct, 0, 1).astype(np.int8), methods, small_deflection
 
 
 def method_source(method_id: str) -> tuple[str, bool, bool]:
@@ -457,7 +471,7 @@ def sign_groups(start_station_m, length_m, part=None) -> np.ndarray:
             joined &= p[1:] == p[:-1]
         starts = np.ones(n, dtype=bool)
         starts[1:] = ~joined
-        groups = np.maximum.accumulate(np.where(starts, np.arange(n), 0))
+        groups = np.maximum.accumulate(np.arange(n) * starts)  # (a product, not a select on a random mask)
     return np.where(ok, groups, -1)
 
 
@@ -477,6 +491,7 @@ def advise_alignment(
     alignment_start_m: float | None = None,
     alignment_end_m: float | None = None,
     part=None,
+    all_methods: bool = True,
 ) -> AlignmentAdvice:
     """Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one alignment and one
     vehicle: the function the alignment and route answers call per vehicle.
@@ -495,6 +510,8 @@ def advise_alignment(
     part : each curve's part where the road is made of unconnected parts, their stations each along its own part
         (a route's tracks): one profile per part (:func:`engine.road.profile.speed_profiles_by_part`) and no shared
         sign across parts; None: one road
+    all_methods : False: ``advisory.methods`` holds only the speeds the shown one comes from (the 2009 ball-bank
+        criterion's and the Direct Method's), not every legacy criterion's (an answer that lists none of them)
 
     Returns
     -------
@@ -502,21 +519,25 @@ def advise_alignment(
         A group of curves that shares a sign shows its lowest advisory speed (this service's reading of TxDOT's rule:
         the one sign has to be right for the sharpest curve); the treatment and W1-13 rule follow the shown speed.
     """
-    cols = advise_curves(
+    shown, governed_by, methods, small_deflection = _advisory_speeds(
         columns.radius_m,
         columns.superelevation_percent,
-        columns.posted_speed_kmh,
-        columns.rollover_speed_kmh,
-        deflection_deg=deflection_deg,
-        measured_car_speed_kmh=measured_car_speed_kmh,
-        units=units,
-        rollover_margin_kmh=rollover_margin_kmh,
-        body_roll_deg_per_g=body_roll_deg_per_g,
+        deflection_deg,
+        measured_car_speed_kmh,
+        units,
+        body_roll_deg_per_g,
+        all_methods,
     )
     groups = sign_groups(start_station_m, length_m, part)
-    shown = cols.advisory_speed_kmh.copy()
     grouped = groups >= 0
-    if np.any(grouped):
+    if grouped.all() and len(groups):
+        # every curve placed: the groups are runs of consecutive curves, each run's lowest by one reduction
+        first = np.flatnonzero(groups == np.arange(len(groups)))  # (a group's label is its first curve)
+        lowest = np.empty(len(shown))
+        lowest[first] = np.minimum.reduceat(shown, first)
+        shown = lowest[groups]
+    elif np.any(grouped):
+        shown = shown.copy()
         lowest = np.full(len(shown), np.inf)
         np.minimum.at(lowest, groups[grouped], shown[grouped])
         shown[grouped] = lowest[groups[grouped]]
@@ -524,11 +545,11 @@ def advise_alignment(
     advisory = AdvisoryColumns(
         units=units,
         advisory_speed_kmh=shown,
-        governed_by=cols.governed_by,
-        methods=cols.methods,
+        governed_by=governed_by,
+        methods=methods,
         treatment=treatment_code(posted, shown),
         truck_rollover_warning=rollover_warning(columns.rollover_speed_kmh, shown, rollover_margin_kmh),
-        small_deflection=cols.small_deflection,
+        small_deflection=small_deflection,
         rollover_margin_kmh=rollover_margin_kmh,
     )
     desired = posted if desired_speed_kmh is None else np.where(np.isfinite(posted), posted, desired_speed_kmh)

@@ -59,6 +59,13 @@ ACCELERATION_DEFAULTS = {
 }
 
 
+#: elements per chunk of the profile's arithmetic (the acceleration, the passes, the per-curve figures, the points):
+#: the temporaries of a chunk stay in the allocator's free memory, where whole-road temporaries (megabytes each) come
+#: back from the system as fresh pages, which cost more to touch than the arithmetic on them (at 100,000 curves, half
+#: the profile's time)
+_CHUNK = 8192
+
+
 def check_deceleration(deceleration_mps2: float, field: str = "deceleration_mps2") -> None:
     """Refuse a deceleration a loaded truck cannot brake at (> NCHRP 774's 15 ft/s^2) or <= 0."""
     if not (math.isfinite(deceleration_mps2) and 0 < deceleration_mps2 <= MAX_TRUCK_DECELERATION_MPS2 + 1e-12):
@@ -109,8 +116,16 @@ def acceleration_mps2(speed_kmh, grade_percent, **params) -> np.ndarray:
     grade_percent : grade along travel, + uphill [%]
     params : overrides of :data:`ACCELERATION_DEFAULTS`
     """
+    speed, grade_percent = np.asarray(speed_kmh, dtype=float), np.asarray(grade_percent, dtype=float)
+    if speed.ndim == 1 and grade_percent.shape == speed.shape and len(speed) > _CHUNK:  # in chunks: small temporaries
+        out = np.empty(len(speed))
+        for lo in range(0, len(speed), _CHUNK):
+            out[lo : lo + _CHUNK] = acceleration_mps2(
+                speed[lo : lo + _CHUNK], grade_percent[lo : lo + _CHUNK], **params
+            )
+        return out
     p = {**ACCELERATION_DEFAULTS, **params}
-    v = np.maximum(np.asarray(speed_kmh, dtype=float) / 3.6, 0.1)
+    v = np.maximum(speed / 3.6, 0.1)
     power_per_kg = 1000.0 / p["weight_to_power_kg_per_kw"]  # W/kg
     grade = 0.01 * np.asarray(grade_percent, dtype=float)
     drag = 0.5 * p["air_density_kg_m3"] * p["drag_area_m2_per_t"] / 1000.0 * v**2
@@ -182,10 +197,27 @@ def check_stations(start_m: np.ndarray, length_m: np.ndarray, first_index: int =
     return reasons
 
 
-def _cummin_forward(caps2, increments):
-    """u_0 = caps2_0, u_i = min(caps2_i, u_{i-1} + increments_{i-1}): u_i = K_i + cummin(caps2 - K)_i."""
-    k = np.concatenate(([0.0], np.cumsum(increments)))
-    return k + np.minimum.accumulate(caps2 - k)
+def _cummin_forward(caps2, rate, gaps):
+    """u_0 = caps2_0, u_i = min(caps2_i, u_{i-1} + 2 rate_{i-1} gaps_{i-1}): u_i = K_i + cummin(caps2 - K)_i, K the
+    cumulative sum of the increments 2 rate gaps (K_0 = 0; ``rate`` an array or one number). In chunks of
+    :data:`_CHUNK`, each chunk's sums and minima carried on from the chunk before's last (the same sums and minima in
+    the same order as over the whole array)."""
+    n = len(caps2)
+    out = np.empty(n)
+    k_last = m_last = None
+    for lo in range(0, n, _CHUNK):
+        hi = min(lo + _CHUNK, n)
+        g = slice(max(lo - 1, 0), hi - 1)  # the increments into the chunk's nodes
+        increments = 2.0 * (rate if np.ndim(rate) == 0 else rate[g]) * gaps[g]
+        if lo == 0:
+            k = np.concatenate(([0.0], np.cumsum(increments)))
+            m = np.minimum.accumulate(caps2[:hi] - k)
+        else:
+            k = np.cumsum(np.concatenate(([k_last], increments)))[1:]
+            m = np.minimum.accumulate(np.concatenate(([m_last], caps2[lo:hi] - k)))[1:]
+        np.add(k, m, out=out[lo:hi])
+        k_last, m_last = k[-1], m[-1]
+    return out
 
 
 def speed_profile(
@@ -233,8 +265,8 @@ def speed_profile(
     n = len(s0)
     shape = (n,)
 
-    def column(x, fill):
-        return np.full(shape, fill) if x is None else np.array(np.broadcast_to(np.asarray(x, dtype=float), shape))
+    def column(x, fill):  # (read-only views, not copies: nothing below writes into them)
+        return np.full(shape, fill) if x is None else np.broadcast_to(np.asarray(x, dtype=float), shape)
 
     length = column(length_m, np.nan)
     desired = column(desired_speed_kmh, np.nan)
@@ -246,11 +278,12 @@ def speed_profile(
     safe = column(safe_speed_kmh, np.nan)
     advisory = column(advisory_speed_kmh, np.nan)
     grade = column(grade_percent, 0.0)
-    grade = np.where(np.isfinite(grade), grade, 0.0)
+    if not np.isfinite(grade).all():
+        grade = np.where(np.isfinite(grade), grade, 0.0)
     cap = np.fmin(np.fmin(desired, safe), advisory)  # fmin: nan (no safe/advisory speed) does not cap
 
     reasons = check_stations(s0, length, first_index) if n else []
-    if any(reasons):
+    if reasons.count(None) < n:  # (not any(): a Python pass over 100,000 Nones)
         first = first_index + next(i for i, r in enumerate(reasons) if r)
         reasons = [r or f"no profile: curves[{first}] cannot be placed (see its reason)" for r in reasons]
         note = "no profile: the curves' stations overlap, run backwards or are missing"
@@ -272,8 +305,10 @@ def speed_profile(
     top = np.full(shape, np.inf)
     # the crawl speed only where it can bind: where the truck has no acceleration left at the higher of the curve's
     # and the next tangent's desired speed over CRAWL_FRACTION
-    binds = acceleration_mps2(np.maximum(desired, desired_after) / CRAWL_FRACTION, grade, **acc_params) <= 0
-    if np.any(binds):
+    # (indices, not a boolean mask: a masked gather over a random mask costs ten times an arithmetic pass)
+    at_top = acceleration_mps2(np.maximum(desired, desired_after) / CRAWL_FRACTION, grade, **acc_params)
+    binds = np.flatnonzero(at_top <= 0)
+    if len(binds):
         top[binds] = CRAWL_FRACTION * crawl_speed_kmh(grade[binds], **acc_params)
     cap = np.minimum(cap, top)
     tangent_cap = np.minimum(desired_after, top)
@@ -281,48 +316,40 @@ def speed_profile(
     a_tangent = acceleration_mps2(tangent_cap, grade, **acc_params)
 
     # nodes: start_0, end_0, start_1, end_1, ...; v^2 in (m/s)^2; a node is under both elements' caps
-    start_cap = cap.copy()
-    start_cap[1:] = np.minimum(cap[1:], tangent_cap[:-1])
-    end_cap = cap.copy()
-    end_cap[:-1] = np.minimum(cap[:-1], tangent_cap[:-1])
-    cap2 = (np.column_stack((start_cap, end_cap)).ravel() / 3.6) ** 2
+    cap2 = np.empty(2 * n)  # written in place, node by node (start, end): fewer whole-road temporaries
+    cap2[0], cap2[-1] = cap[0], cap[-1]
+    np.minimum(cap[1:], tangent_cap[:-1], out=cap2[2::2])
+    np.minimum(cap[:-1], tangent_cap[:-1], out=cap2[1:-1:2])
+    np.square(np.divide(cap2, 3.6, out=cap2), out=cap2)
     lead_cap = min(desired[0], top[0])
     node_s = np.column_stack((s0, end)).ravel()
     gaps = np.diff(node_s)  # curve, tangent, curve, tangent, ...
     acc = np.column_stack((a_curve, a_tangent)).ravel()[:-1]
-    fwd = _cummin_forward(cap2, 2.0 * acc * gaps)
-    bwd = _cummin_forward(cap2[::-1], 2.0 * d * gaps[::-1])[::-1]
-    v2 = np.minimum(fwd, bwd)
+    fwd = _cummin_forward(cap2, acc, gaps)
+    bwd = _cummin_forward(cap2[::-1], d, gaps[::-1])[::-1]
+    v2 = np.minimum(fwd, bwd, out=fwd)
 
-    # approach: from the previous curve's exit accelerating along the tangent, capped by the desired speed
-    exit2 = v2[1::2]
-    approach2 = np.empty(shape)
-    approach2[0] = (lead_cap / 3.6) ** 2
-    approach2[1:] = np.minimum((tangent_cap[:-1] / 3.6) ** 2, exit2[:-1] + 2.0 * a_tangent[:-1] * tangent_before[1:])
-    v1 = np.sqrt(approach2)
-    target = cap / 3.6
+    # the per-curve figures, curve by curve in chunks of _CHUNK (each curve's own arithmetic, the chunk's temporaries
+    # kept small); the approach: from the previous curve's exit accelerating along the tangent, capped by the
+    # desired speed
     t = reaction_time_s
-
-    def too_close(v2_target):
-        need = (approach2 - v2_target**2) / (2.0 * d) + v1 * t
-        with np.errstate(invalid="ignore"):
-            return (v1 > v2_target) & (tangent_before < need)
-
-    room = tangent_before - v1 * t
-    with np.errstate(divide="ignore", invalid="ignore"):
-        required = np.where(
-            v1 <= target, 0.0, np.where(room > 0, (approach2 - target**2) / (2.0 * np.where(room > 0, room, 1)), np.inf)
+    approach_kmh, entry_kmh, required, sign_m, drop_kmh = (np.empty(shape) for _ in range(5))
+    slows_adv, slows_safe = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
+    for lo in range(0, n, _CHUNK):
+        hi = min(lo + _CHUNK, n)
+        k = slice(lo, hi)
+        approach2 = np.empty(hi - lo)
+        j = max(lo, 1)  # curves with a curve before
+        approach2[j - lo :] = np.minimum(
+            (tangent_cap[j - 1 : hi - 1] / 3.6) ** 2,
+            v2[2 * j - 1 : 2 * hi - 1 : 2] + 2.0 * a_tangent[j - 1 : hi - 1] * tangent_before[j:hi],
         )
-    # the first curve approached from an unknown distance (no road start given): the rate it needs is unknown
-    required[~np.isfinite(tangent_before) & (v1 > target)] = np.nan
-    adv = advisory / 3.6
-    safe_v = safe / 3.6
-    slows_adv = ~np.where(np.isfinite(adv), too_close(np.where(np.isfinite(adv), adv, 0.0)), False)
-    slows_safe = ~np.where(np.isfinite(safe_v), too_close(np.where(np.isfinite(safe_v), safe_v, 0.0)), False)
-    # advance sign: reaction distance plus braking from the approach to the advisory speed (Table 2C-3's basis);
-    # without an advisory below the approach, the reaction distance alone
-    drop_to = np.where(np.isfinite(adv), np.minimum(adv, v1), v1)
-    sign_m = v1 * t + (approach2 - drop_to**2) / (2.0 * DECELERATION_MPS2)
+        if lo == 0:
+            approach2[0] = (lead_cap / 3.6) ** 2
+        _curve_figures(
+            approach2, cap[k], tangent_before[k], advisory[k], safe[k], v2[2 * lo : 2 * hi : 2], d, t,
+            (approach_kmh[k], entry_kmh[k], required[k], slows_adv[k], slows_safe[k], sign_m[k], drop_kmh[k]),
+        )  # fmt: skip
 
     # the profile's stations: per element the acceleration line, the cap, the braking line
     element_caps = np.column_stack((cap, tangent_cap)).ravel()[:-1]  # curve 0, tangent 0, curve 1, ...
@@ -353,52 +380,106 @@ def speed_profile(
     return SpeedProfile(
         station_m=stations,
         speed_kmh=speeds,
-        approach_speed_kmh=v1 * 3.6,
-        entry_speed_kmh=np.sqrt(v2[0::2]) * 3.6,
+        approach_speed_kmh=approach_kmh,
+        entry_speed_kmh=entry_kmh,
         curve_speed_kmh=cap,
         required_deceleration_mps2=required,
         slows_to_advisory=slows_adv,
         slows_to_safe=slows_safe,
         advance_sign_distance_m=sign_m,
-        speed_drop_kmh=np.maximum(v1 * 3.6 - cap, 0.0),
+        speed_drop_kmh=drop_kmh,
         reasons=[None] * n,
         deceleration_mps2=d,
         reaction_time_s=t,
     )
 
 
+def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t, out):
+    """Per curve (arrays of a chunk of curves): from the approach speed^2 [(m/s)^2], the curve's speed [km/h], the
+    tangent before it [m], its advisory and safe speeds [km/h] and v^2 at its start, the approach and entry speeds,
+    the required deceleration, whether the tangent lets the truck slow to the advisory and to the safe speed, the
+    advance-sign distance and the speed drop, written into ``out`` (in that order)."""
+    approach_kmh, entry_kmh, required, slows_adv, slows_safe, sign_m, drop_kmh = out
+    v1 = np.sqrt(approach2)
+    target = cap / 3.6
+
+    def too_close(v2_target):
+        need = (approach2 - v2_target**2) / (2.0 * d) + v1 * t
+        with np.errstate(invalid="ignore"):
+            return (v1 > v2_target) & (tangent_before < need)
+
+    room = tangent_before - v1 * t
+    with np.errstate(divide="ignore", invalid="ignore"):
+        required[...] = np.where(
+            v1 <= target, 0.0, np.where(room > 0, (approach2 - target**2) / (2.0 * np.where(room > 0, room, 1)), np.inf)
+        )
+    # the first curve approached from an unknown distance (no road start given): the rate it needs is unknown
+    required[~np.isfinite(tangent_before) & (v1 > target)] = np.nan
+    adv = advisory / 3.6
+    safe_v = safe / 3.6
+    slows_adv[...] = ~np.where(np.isfinite(adv), too_close(np.where(np.isfinite(adv), adv, 0.0)), False)
+    slows_safe[...] = ~np.where(np.isfinite(safe_v), too_close(np.where(np.isfinite(safe_v), safe_v, 0.0)), False)
+    # advance sign: reaction distance plus braking from the approach to the advisory speed (Table 2C-3's basis);
+    # without an advisory below the approach, the reaction distance alone
+    drop_to = np.where(np.isfinite(adv), np.minimum(adv, v1), v1)
+    sign_m[...] = v1 * t + (approach2 - drop_to**2) / (2.0 * DECELERATION_MPS2)
+    approach_kmh[...] = v1 * 3.6
+    entry_kmh[...] = np.sqrt(entry2) * 3.6
+    drop_kmh[...] = np.maximum(v1 * 3.6 - cap, 0.0)
+
+
 def _profile_points(node_s, v2, gaps, acc, d, caps_kmh):
     """Stations and speeds [km/h] of the profile over the elements between nodes: for each element the point where
     acceleration from its start reaches the cap, the point where braking to its end leaves it, or where the two
-    lines meet below the cap. v^2 is linear in station between consecutive points."""
+    lines meet below the cap. v^2 is linear in station between consecutive points. (Computed in chunks of
+    :data:`_CHUNK` elements, the same arithmetic per element.)"""
+    m = len(node_s) - 1
+    out_s, out_v = [], []
+    prev = None  # the chunk before's last candidate point (station, v^2): a point equal to it is dropped
+    for lo in range(0, m, _CHUNK):
+        hi = min(lo + _CHUNK, m)
+        # (acc: positive by construction, every cap below the crawl speed; the floor guards the division)
+        c2, a = (caps_kmh[lo:hi] / 3.6) ** 2, np.maximum(acc[lo:hi], 1e-12)
+        pts_s, pts_v = _element_points(node_s[lo : hi + 1], v2[lo : hi + 1], a, d, c2, last=hi == m)
+        keep = np.empty(len(pts_s), dtype=bool)
+        keep[0] = prev is None or (pts_s[0] - prev[0] > 1e-9) | (np.abs(pts_v[0] - prev[1]) > 1e-9)
+        keep[1:] = (np.diff(pts_s) > 1e-9) | (np.abs(np.diff(pts_v)) > 1e-9)
+        prev = (pts_s[-1], pts_v[-1])
+        keep = np.flatnonzero(keep)  # indices, not a mask: gathers by a random mask are slow
+        out_s.append(pts_s[keep])
+        out_v.append(np.sqrt(np.maximum(pts_v[keep], 0.0)) * 3.6)
+    if len(out_s) == 1:
+        return out_s[0], out_v[0]
+    return np.concatenate(out_s), np.concatenate(out_v)
+
+
+def _element_points(node_s, v2, acc, d, c2, last):
+    """The candidate points of the elements between ``node_s`` (three per element: its start, the end of the
+    acceleration line, the start of the braking line; ``last``: and the last node, thrice), as stations and v^2."""
     s_p, s_q = node_s[:-1], node_s[1:]
     v2p, v2q = v2[:-1], v2[1:]
-    c2 = (caps_kmh / 3.6) ** 2
     c2 = np.maximum(c2, np.maximum(v2p, v2q))  # a node at its cap is never above the element's cap
-    acc = np.maximum(acc, 1e-12)  # positive by construction (every cap is below the crawl speed); guards the division
     s1 = s_p + (c2 - v2p) / (2.0 * acc)
     s2 = s_q - (c2 - v2q) / (2.0 * d)
-    meet = s1 > s2
+    meet = np.flatnonzero(s1 > s2)
     m = len(s_p)
-    pts_s = np.empty((m + 1, 3))
-    pts_v = np.empty((m + 1, 3))
+    rows = m + 1 if last else m
+    pts_s = np.empty((rows, 3))
+    pts_v = np.empty((rows, 3))
     pts_s[:m, 0], pts_v[:m, 0] = s_p, v2p
     np.minimum(s1, s_q, out=pts_s[:m, 1])
     np.maximum(s2, s_p, out=pts_s[:m, 2])
     pts_v[:m, 1] = c2
     pts_v[:m, 2] = c2
-    if np.any(meet):  # where the lines meet below the cap: v2p + 2 a (s - s_p) = v2q + 2 d (s_q - s)
+    if len(meet):  # where the lines meet below the cap: v2p + 2 a (s - s_p) = v2q + 2 d (s_q - s)
         a, sp, sq, vp, vq = acc[meet], s_p[meet], s_q[meet], v2p[meet], v2q[meet]
         s_star = np.clip((vq - vp + 2.0 * d * sq + 2.0 * a * sp) / (2.0 * (a + d)), sp, sq)
         v_star2 = np.minimum(vp + 2.0 * a * (s_star - sp), vq + 2.0 * d * (sq - s_star))
-        rows = np.flatnonzero(meet)
-        pts_s[rows, 1] = pts_s[rows, 2] = s_star
-        pts_v[rows, 1] = pts_v[rows, 2] = v_star2
-    pts_s[m], pts_v[m] = s_q[-1], v2q[-1]  # the last node (thrice: the duplicates go below)
-    pts_s, pts_v = pts_s.ravel(), pts_v.ravel()
-    keep = np.ones(len(pts_s), dtype=bool)
-    keep[1:] = (np.diff(pts_s) > 1e-9) | (np.abs(np.diff(pts_v)) > 1e-9)
-    return pts_s[keep], np.sqrt(np.maximum(pts_v[keep], 0.0)) * 3.6
+        pts_s[meet, 1] = pts_s[meet, 2] = s_star
+        pts_v[meet, 1] = pts_v[meet, 2] = v_star2
+    if last:
+        pts_s[m], pts_v[m] = s_q[-1], v2q[-1]  # the last node (thrice: the duplicates are dropped)
+    return pts_s.ravel(), pts_v.ravel()
 
 
 def speed_profiles_by_part(part, start_station_m, length_m, desired_speed_kmh, safe_speed_kmh=None,

@@ -170,3 +170,132 @@ def test_no_shared_sign_across_parts():
     start, length = [0.0, 150.0, 300.0], [100.0, 100.0, 100.0]
     assert list(sign_groups(start, length)) == [0, 0, 0]
     assert list(sign_groups(start, length, ["p", "p", "q"])) == [0, 0, 2]
+
+
+# ----------------------------------------------------------------- the fast profile against a plain one, curve by curve
+
+
+def _reference_profile(start, length, desired, safe, advisory, grade, d, t, alignment_start=None):
+    """The profile the module docstring describes, written as plain loops over the curves (the second formulation):
+    the forward recurrence u_j = min(cap_j^2, u_{j-1} + 2 a gap) and the backward one w_j = min(cap_j^2, w_{j+1} +
+    2 d gap), v^2 = min(u, w) at the nodes; between two nodes v^2(s) = min(c^2, v_p^2 + 2 a (s - s_p), v_q^2 + 2 d
+    (s_q - s)). Returns v^2(s) as a function, the per-curve approach and entry speeds and the required deceleration.
+    The truck's acceleration and crawl speed are the model's (prof.acceleration_mps2, prof.crawl_speed_kmh)."""
+    n = len(start)
+    mps = 1 / 3.6
+
+    def accel(v_kmh, g):
+        return float(prof.acceleration_mps2(np.array([v_kmh]), np.array([g]))[0])
+
+    top, cap, tcap = [], [], []
+    for i in range(n):
+        after = desired[i + 1] if i + 1 < n else desired[i]
+        g = grade[i]
+        crawl = float(prof.crawl_speed_kmh(np.array([g]))[0]) * prof.CRAWL_FRACTION
+        top.append(crawl if accel(max(desired[i], after) / prof.CRAWL_FRACTION, g) <= 0 else np.inf)
+        c = desired[i]
+        for x in (safe[i], advisory[i]):
+            if np.isfinite(x):
+                c = min(c, x)
+        cap.append(min(c, top[i]))
+        tcap.append(min(after, top[i]))
+    a_curve = [accel(cap[i], grade[i]) for i in range(n)]
+    a_tan = [accel(tcap[i], grade[i]) for i in range(n)]
+    s, c2, a = [], [], []  # nodes, their caps^2; the element after each node: its acceleration and cap^2
+    el_c2 = []
+    for i in range(n):
+        s += [start[i], start[i] + length[i]]
+        c2 += [(min(cap[i], tcap[i - 1]) if i else cap[i]) ** 2, (min(cap[i], tcap[i]) if i < n - 1 else cap[i]) ** 2]
+        a += [a_curve[i], a_tan[i]]
+        el_c2 += [cap[i] ** 2, tcap[i] ** 2]
+    c2 = [x * mps**2 for x in c2]
+    el_c2 = [x * mps**2 for x in el_c2]
+    m = len(s)
+    u, w = c2[:], c2[:]
+    for j in range(1, m):
+        u[j] = min(c2[j], u[j - 1] + 2 * a[j - 1] * (s[j] - s[j - 1]))
+    for j in range(m - 2, -1, -1):
+        w[j] = min(c2[j], w[j + 1] + 2 * d * (s[j + 1] - s[j]))
+    v2 = [min(x, y) for x, y in zip(u, w, strict=True)]
+
+    def v2_at(x):
+        j = min(max(int(np.searchsorted(s, x, side="right")) - 1, 0), m - 2)
+        cc = max(el_c2[j], v2[j], v2[j + 1])
+        return min(cc, v2[j] + 2 * max(a[j], 1e-12) * (x - s[j]), v2[j + 1] + 2 * d * (s[j + 1] - x))
+
+    approach, entry, required = [], [], []
+    for i in range(n):
+        if i == 0:
+            v1sq = (min(desired[0], top[0]) * mps) ** 2
+            room = np.inf if alignment_start is None else max(start[0] - alignment_start, 0.0)
+        else:
+            room = start[i] - start[i - 1] - length[i - 1]
+            v1sq = min((tcap[i - 1] * mps) ** 2, v2[2 * i - 1] + 2 * a_tan[i - 1] * room)
+        v1, target = np.sqrt(v1sq), cap[i] * mps
+        approach.append(v1 / mps)
+        entry.append(np.sqrt(v2[2 * i]) / mps)
+        if v1 <= target:
+            required.append(0.0)
+        elif not np.isfinite(room):
+            required.append(np.nan)
+        elif room - v1 * t > 0:
+            required.append((v1sq - target**2) / (2 * (room - v1 * t)))
+        else:
+            required.append(np.inf)
+    return v2_at, np.array(approach), np.array(entry), np.array(required)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_fast_profile_equals_a_plain_curve_by_curve_one(seed, monkeypatch):
+    """The vectorised, chunked profile (cumulative minima over transformed stations, points per element) against the
+    plain loops of _reference_profile on random roads: the profile's v^2, linear between its points, equals the
+    reference's at every point, midway between points and at random stations; the per-curve approach and entry
+    speeds and the required deceleration (inf: no room to brake after reacting; nan: the first curve approached
+    from an unknown distance) equal it curve by curve. Tangents of 0-30 m on some roads (no room), of up to 800 m
+    on others; grades to 9 % (the crawl speed binds); chunks of 7 elements, so the chunks' carries are crossed."""
+    monkeypatch.setattr(prof, "_CHUNK", 7)
+    rng = np.random.default_rng(seed)
+    n = 60
+    short = seed % 2 == 1
+    gaps = rng.uniform(0.0, 30.0 if short else 800.0, n) * (rng.random(n) < 0.9)
+    length = rng.uniform(5.0, 400.0, n)
+    start = np.cumsum(gaps + np.concatenate(([0.0], length[:-1])))
+    safe = np.where(rng.random(n) < 0.1, np.nan, rng.uniform(20.0, 120.0, n))
+    safe[0] = 40.0  # the first curve slows the truck
+    advisory = np.where(rng.random(n) < 0.3, np.nan, rng.uniform(20.0, 110.0, n))
+    grade = rng.uniform(-9.0, 9.0, n)
+    desired = rng.choice([50.0, 70.0, 90.0, 110.0], n)
+    d, t = (prof.DECELERATION_MPS2, prof.REACTION_TIME_S) if seed < 3 else (2.0, 1.5)
+    lead = None if seed % 3 == 0 else start[0] - 300.0
+    p = prof.speed_profile(start, length, desired, safe, advisory, grade, deceleration_mps2=d, reaction_time_s=t,
+                           alignment_start_m=lead)  # fmt: skip
+    v2_at, approach, entry, required = _reference_profile(start, length, desired, safe, advisory, grade, d, t, lead)
+    on_curves = p.station_m >= start[0]  # (the lead before the first curve: not in the reference)
+    s = p.station_m[on_curves]
+    probes = np.concatenate((s, 0.5 * (s[1:] + s[:-1]), rng.uniform(s[0], s[-1], 500)))
+    got = np.interp(probes, p.station_m, (p.speed_kmh / 3.6) ** 2)
+    want = np.array([v2_at(x) for x in probes])
+    np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(p.approach_speed_kmh, approach, rtol=1e-9)
+    np.testing.assert_allclose(p.entry_speed_kmh, entry, rtol=1e-9)
+    # inf and nan where the same; not where the approach equals the curve's speed to rounding (a zero tangent after
+    # a curve at the same speed: 0 or, by a rounding's worth of speed and no room, inf)
+    tie = np.abs(approach - p.curve_speed_kmh) < 1e-7
+    assert tie.sum() < n // 4
+    np.testing.assert_allclose(p.required_deceleration_mps2[~tie], required[~tie], rtol=1e-9)
+    assert np.isinf(required).any() or not short  # the no-room case is exercised
+    assert bool(np.isnan(p.required_deceleration_mps2[0])) is (lead is None)  # the first curve slows the truck
+
+
+def test_chunks_do_not_change_the_profile(monkeypatch):
+    """The passes and the points computed in chunks give the same bytes whatever the chunk (carries exact), and a
+    road of parts (a route's) the same as each part alone."""
+    rng = np.random.default_rng(11)
+    start, length, safe, advisory, grade = _random_alignment(rng, 500)
+    part = np.repeat([0, 1, 2], [200, 1, 299])
+    whole = prof.speed_profiles_by_part(part, start, length, 90.0, safe, advisory, grade)
+    for chunk in (1, 2, 3, 64, 999):
+        monkeypatch.setattr(prof, "_CHUNK", chunk)
+        got = prof.speed_profiles_by_part(part, start, length, 90.0, safe, advisory, grade)
+        for name in ("station_m", "speed_kmh", "approach_speed_kmh", "entry_speed_kmh", "required_deceleration_mps2"):
+            assert getattr(got, name).tobytes() == getattr(whole, name).tobytes(), (chunk, name)

@@ -617,8 +617,10 @@ async function save() {
     // a route job's answer is in hand: its curves as the service's GeoJSON writes them (each curve's fields as the
     // properties, its coordinates as the LineString), since the synchronous request is above its size
     const features = routeCurves(result).map(({ coordinates, ...properties }) => ({ type: "Feature", geometry: { type: "LineString", coordinates }, properties }));
-    // with the foreign members the service's GeoJSON carries (RFC 7946 section 6.1: `reading`, `advisory`)
+    // with the foreign members the service's GeoJSON carries (RFC 7946 section 6.1: `reading`, `advisory`, and
+    // `warnings`: every vehicle's input warnings in vehicle order, app/routes/service.py route_geojson)
     const members = Object.fromEntries(["reading", "advisory"].filter((k) => result[k] !== undefined).map((k) => [k, result[k]]));
+    members.warnings = (result.vehicles || []).flatMap((v) => v.warnings || []);
     const collection = { type: "FeatureCollection", features, ...members };
     download(downloadName("curves.geojson"), new Blob([JSON.stringify(collection)], { type: "application/geo+json" }));
   } else if (jobResult) {

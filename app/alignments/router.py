@@ -27,6 +27,7 @@ from app.alignments.uploads import (
     ifc_upload,
     landxml_upload,
 )
+from app.compute.cache import ResultCache
 from app.deps import CacheDep, SettingsDep
 from app.http.bodies import json_body, upload_body
 from app.http.bodylimit import body_limit
@@ -34,8 +35,19 @@ from app.http.fastpath import replayable
 from app.http.negotiation import TABLE_FORMS, wants_csv
 from app.http.problems import VEHICLE_REF_CODES
 from app.http.responses import table_answer, table_responses
+from app.settings import Settings
 
 router = APIRouter(prefix="/v1/alignments", tags=["alignments"])
+
+
+async def _uploaded_answer(
+    request: Request, body: AlignmentRequest, field: str, cache: ResultCache, settings: Settings
+) -> Response:
+    """The answer to an uploaded file's request (CSV, LandXML or IFC read into the JSON request ``body``; ``field``
+    names where its curves came from, for an error in the file), as JSON or CSV by the request's ``Accept``."""
+    csv = wants_csv(request.headers.get("accept"))
+    resolved = await resolve_assessment_request(request, body, settings)
+    return table_answer(await compute_alignment(cache, resolved, None, settings, csv=csv, source_field=field))
 
 
 ASSESSMENT = """For each horizontal curve and each vehicle: the SRT on the curve's bank and grade, the rollover
@@ -97,17 +109,7 @@ async def assess_csv(
     request: Request, query: Annotated[CsvUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
     body, field = await csv_upload(request, query, CSV_UPLOAD_LIMIT)
-    csv = wants_csv(request.headers.get("accept"))
-    return table_answer(
-        await compute_alignment(
-            cache,
-            await resolve_assessment_request(request, body, settings),
-            None,
-            settings,
-            csv=csv,
-            source_field=field,
-        )
-    )
+    return await _uploaded_answer(request, body, field, cache, settings)
 
 
 @router.post(
@@ -130,17 +132,7 @@ async def assess_landxml(
     request: Request, query: Annotated[LandXmlUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
     body, field = await landxml_upload(request, query, LANDXML_UPLOAD_LIMIT)
-    csv = wants_csv(request.headers.get("accept"))
-    return table_answer(
-        await compute_alignment(
-            cache,
-            await resolve_assessment_request(request, body, settings),
-            None,
-            settings,
-            csv=csv,
-            source_field=field,
-        )
-    )
+    return await _uploaded_answer(request, body, field, cache, settings)
 
 
 @router.post(
@@ -166,14 +158,4 @@ async def assess_ifc(
     request: Request, query: Annotated[IfcUploadQuery, Query()], cache: CacheDep, settings: SettingsDep
 ) -> Response:
     body, field = await ifc_upload(request, query, IFC_UPLOAD_LIMIT)
-    csv = wants_csv(request.headers.get("accept"))
-    return table_answer(
-        await compute_alignment(
-            cache,
-            await resolve_assessment_request(request, body, settings),
-            None,
-            settings,
-            csv=csv,
-            source_field=field,
-        )
-    )
+    return await _uploaded_answer(request, body, field, cache, settings)

@@ -620,41 +620,55 @@ class _Reader:
 # Design cross sections make a document several times larger (one every 50 m: four times) and were most of its
 # reading time as a tree (five elements per section made and read one by one). Where a <CrossSects> element holds
 # only sections of the shape design packages write (a CrossSect with one DesignCrossSectSurf of CrossSectPnt
-# "offset elevation" points), its content is read here by regular expressions over the document's text, a chunk at a
-# time, and left out of the tree (a marker element stands in its place). The guard has read the whole document first
-# (xmlsafe.fromstring: well-formed, no entities), so what is scanned is well-formed XML; the scan only decides whether
-# it recognises every element in the content, and where it does not (another element, a comment, a character
-# reference, a point that is not two words, text not ASCII), the document is read as a tree as before. The numbers
-# are then the tree's: the same words, converted by the same calls.
+# "offset elevation" points), its content is read here by regular expressions over the document's bytes, a chunk at
+# a time, and left out of the tree (a marker element stands in its place). The scan only decides whether it
+# recognises every element in the content, and where it does not (another element, a comment, a character
+# reference, a point that is not two words, text not ASCII, a character XML forbids), the document is read as a
+# tree as before. The numbers are then the tree's: the same words, converted by the same calls.
+#
+# The scan runs before the guard (xmlsafe.fromstring), and where it recognises a content that is well-formed by
+# itself (only the three known tags, properly nested; attribute names plain and distinct; no reference, no "]]>",
+# no character XML forbids, no markup declaration anywhere before it), that content is also left out of the
+# guard's pass: removing balanced content from an element leaves every error of the rest where it was, and the
+# guard reads a document that failed again whole, for its own error and position. Everything else in the document
+# (its DOCTYPE, where entities would be declared) is guarded as before.
 
 #: the element that stands in the tree for a scanned <CrossSects>'s content (its ``key``: the scan's, random)
 _SCANNED = "rollover-scanned-cross-sections"
-#: characters per chunk of the scan (each a few C calls; the interpreter's lock is given up between chunks)
+#: bytes per chunk of the scan (each a few C calls; the interpreter's lock is given up between chunks)
 _SCAN_CHUNK = 2**20
-#: a start tag's attributes and its end (not "/>": an empty element is not taken), as XML writes them: the guard has
-#: passed the document, so every value is quoted and holds no '<' (it may hold '>' and the other quote)
-_ATTRS = r"""(?:\s+[^\s=<>/"']+\s*=\s*(?:"[^"<]*"|'[^'<]*'))*\s*>"""
+#: an attribute name the scan takes: plain (no namespace prefix, not reserved to XML: both parsers read it alike)
+_NAME = r"(?![xX][mM][lL])[A-Za-z_][A-Za-z0-9._-]*"
+#: a start tag's attributes and its end (not "/>": an empty element is not taken), as XML writes them: every value
+#: quoted and holding no '<' (it may hold '>' and the other quote)
+_ATTRS = r"""(?:\s+""" + _NAME + r"""\s*=\s*(?:"[^"<]*"|'[^'<]*'))*\s*>"""
 _POINT = r"<CrossSectPnt" + _ATTRS + r"\s*[^\s<&]+\s+[^\s<&]+\s*</CrossSectPnt\s*>"
 _SECTION = re.compile(
-    r"<CrossSect(?:\s+sta\s*=\s*(\"[^\"<&]*\")\s*>|(" + _ATTRS[:-1] + r")>)[^<&]*"
-    r"<DesignCrossSectSurf" + _ATTRS + r"((?:\s*" + _POINT + r")*)\s*</DesignCrossSectSurf\s*>[^<&]*"
-    r"</CrossSect\s*>"
+    (
+        r"<CrossSect(?:\s+sta\s*=\s*(\"[^\"<&]*\")\s*>|(" + _ATTRS[:-1] + r")>)[^<&]*"
+        r"<DesignCrossSectSurf(" + _ATTRS[:-1] + r")>((?:\s*" + _POINT + r")*)\s*</DesignCrossSectSurf\s*>[^<&]*"
+        r"</CrossSect\s*>"
+    ).encode("ascii")
 )
 _OPEN = re.compile(r"<CrossSects(?:\s+[^\s=<>/]+\s*=\s*(?:\"[^\"<>]*\"|'[^'<>]*'))*\s*>")
 _ATTRIBUTE = re.compile(r"([^\s=]+)\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
-_TAG = re.compile(r"""<(?:[^>"']|"[^"]*"|'[^']*')*>""")  # a tag, quoted values holding '>' included
+_TAG = re.compile(rb"""<(?:[^>"']|"[^"]*"|'[^']*')*>""")  # a tag, quoted values holding '>' included
+#: the characters XML 1.0 forbids (ASCII controls but tab, line feed, carriage return) made '<', which no pattern
+#: of the scan takes: a chunk holding one is not recognised
+_FORBIDDEN_TO_LT = bytes(ord("<") if c < 0x20 and c not in (0x09, 0x0A, 0x0D) else c for c in range(256))
 
 
 class _Scanned:
     """One <CrossSects>'s sections as the scan read them: each section's ``sta`` text (None: the attribute is
     absent), how many numbers its points have, and per chunk the points' numbers (``np.array(words, dtype=float)``)
     or, where that conversion failed, the words themselves (the reader names the first bad one, as the tree's
-    reading does)."""
+    reading does); ``proved``: whether the content is well-formed by itself (see above), and left out of the guard."""
 
     def __init__(self) -> None:
         self.stations: list[str | None] = []
         self.counts: list[int] = []
         self.chunks: list[tuple[int, int, np.ndarray | None, list[str]]] = []  # first section, sections, values, words
+        self.proved = True
 
 
 def _attribute_sta(attrs: str) -> str | None:
@@ -666,52 +680,76 @@ def _attribute_sta(attrs: str) -> str | None:
     return None
 
 
-def _scan_region(text: str) -> _Scanned | None:
-    """The sections of one <CrossSects>'s content (``text``), or None where it holds anything the scan does not
-    recognise (the document is then read as a tree)."""
+def _distinct(attrs: bytes) -> bool:
+    """Whether a start tag's attributes (as the scan's pattern took them) have distinct names."""
+    if attrs.count(b"=") < 2:  # (the '=' of one attribute, perhaps more in its value: cheap for the usual one)
+        return True
+    names = [name for name, _, _ in _ATTRIBUTE.findall(attrs.decode("ascii"))]
+    return len(names) == len(set(names))
+
+
+def _scan_region(text: bytes) -> _Scanned | None:
+    """The sections of one <CrossSects>'s content (``text``, ASCII), or None where it holds anything the scan does
+    not recognise (the document is then read as a tree)."""
     out = _Scanned()
+    # a reference, or "]]>" (which character data may not hold): well-formed or not, not proved here
+    out.proved = b"&" not in text and b"]]>" not in text
     pos, n = 0, len(text)
     while pos < n:
-        stop = text.find("</CrossSect>", min(pos + _SCAN_CHUNK, n))
-        stop = n if stop < 0 else stop + len("</CrossSect>")
-        piece = text[pos:stop]
+        stop = text.find(b"</CrossSect>", min(pos + _SCAN_CHUNK, n))
+        stop = n if stop < 0 else stop + len(b"</CrossSect>")
+        piece = text[pos:stop].translate(_FORBIDDEN_TO_LT)
         pos = stop
         found = _SECTION.findall(piece)
-        counts = [block.count("<CrossSectPnt") for _, _, block in found]  # points, two numbers each
+        counts = [block.count(b"<CrossSectPnt") for _, _, _, block in found]  # points, two numbers each
         # every element of the content is in a recognised section: its '<' are the sections' (4 tags each and 2
         # per point); what lies outside the sections is text, which the tree's reading ignores too
-        if piece.count("<") != 4 * len(found) + 2 * sum(counts):
+        if piece.count(b"<") != 4 * len(found) + 2 * sum(counts):
             return None
-        for sta, attrs, _ in found:
-            if sta:  # the usual start tag, <CrossSect sta="...">: the value in its quotes
-                out.stations.append(sta[1:-1])
-            elif "&" in attrs:
-                return None  # a reference in an attribute: the tree's value is not the text's
-            else:
-                out.stations.append(_attribute_sta(attrs))  # None: no sta
-        joined = " ".join(block for _, _, block in found)
-        bare = joined.replace("<CrossSectPnt>", " ").replace("</CrossSectPnt>", " ")
-        words = (_TAG.sub(" ", joined) if "<" in bare else bare).split()
+        stas = [sta for sta, _, _, _ in found]
+        usual = len(stas) - stas.count(b"")  # sections with the usual start tag, <CrossSect sta="...">
+        if usual == len(stas) and stas:  # the values in their quotes (which they cannot hold), decoded at once
+            out.stations += b"".join(stas).decode("ascii")[1:-1].split('""')
+        else:
+            for sta, attrs, _, _ in found:
+                if sta:
+                    out.stations.append(sta[1:-1].decode("ascii"))
+                elif b"&" in attrs:
+                    return None  # a reference in an attribute: the tree's value is not the text's
+                else:
+                    out.stations.append(_attribute_sta(attrs.decode("ascii")))  # None: no sta
+        # every tag's attributes distinct (a point's: none at all, else not proved); where the chunk's only '=' are
+        # those of the usual start tags' sta, there is nothing to check
+        if out.proved and piece.count(b"=") != usual:
+            out.proved = all(_distinct(a) and _distinct(s) and b"=" not in block for _, a, s, block in found)
+        joined = b" ".join(block for _, _, _, block in found)
+        bare = joined.replace(b"<CrossSectPnt>", b" ").replace(b"</CrossSectPnt>", b" ")
+        words = (_TAG.sub(b" ", joined) if b"<" in bare else bare).split()
         if len(words) != 2 * sum(counts):
             return None
         try:
             values: np.ndarray | None = np.array(words, dtype=float)
             keep: list[str] = []
         except ValueError:
-            values, keep = None, words
+            values, keep = None, [w.decode("ascii") for w in words]
         if values is not None and not np.isfinite(values).all():
-            values, keep = None, words
+            values, keep = None, [w.decode("ascii") for w in words]
         out.chunks.append((len(out.counts), len(found), values, keep))
         out.counts += [2 * c for c in counts]
         time.sleep(0)  # the lock given up between chunks, as xmlsafe's parse does
     return out
 
 
-def _cross_section_scan(text: str | bytes) -> tuple[list[str | bytes | memoryview], dict[str, _Scanned]] | None:
-    """The pieces of ``text`` to build the tree from (each scanned <CrossSects>'s content replaced by the marker)
-    and the scanned sections by their marker's key (random: a file cannot name them), or None where no <CrossSects>
-    can be scanned (a document of another shape, or one with a comment, a processing instruction, a CDATA section or
-    a document type before the last section: there the text <CrossSects> could be no element)."""
+Pieces = list[str | bytes | memoryview]
+
+
+def _cross_section_scan(text: str | bytes) -> tuple[Pieces, dict[str, _Scanned], Pieces] | None:
+    """The pieces of ``text`` to build the tree from (each scanned <CrossSects>'s content replaced by the marker),
+    the scanned sections by their marker's key (random: a file cannot name them) and the pieces for the guard
+    (``text`` without the contents the scan proved well-formed); or None where no <CrossSects> can be scanned (a
+    document of another shape, or one with a comment, a processing instruction, a CDATA section or a document type
+    before the last section: there the text <CrossSects> could be no element). ``text`` is not yet guarded: what is
+    taken from it is used only once the guard has passed it."""
     is_bytes = isinstance(text, bytes | bytearray)
     open_tag, close_tag = ("<CrossSects", "</CrossSects") if not is_bytes else (b"<CrossSects", b"</CrossSects")
     spans: list[tuple[int, int]] = []
@@ -733,40 +771,45 @@ def _cross_section_scan(text: str | bytes) -> tuple[list[str | bytes | memoryvie
         at = text.find(open_tag, end)
     if not spans:
         return None
-    last = spans[-1][1]
+    # no markup declaration, comment, CDATA section or processing instruction before the last section (but the XML
+    # declaration): searched for between the contents only (a content the scan takes holds no '<' but its tags')
     bang, query = ("<!", "<?") if not is_bytes else (b"<!", b"<?")
-    if text.find(bang, 0, last) >= 0:
+    gaps = [(0, spans[0][0]), *((e, s) for (_, e), (s, _) in itertools.pairwise(spans))]
+    if any(text.find(bang, a, b) >= 0 for a, b in gaps):
         return None
-    q = text.find(query, 0, last)
-    if q >= 0:  # only the XML declaration, at the start (after a byte-order mark)
-        declaration = ("<?xml", b"<?xml")[is_bytes]
-        lead = text[:q]
-        if lead not in ("", "\ufeff", b"", b"\xef\xbb\xbf") or not text.startswith(declaration, q):
+    declaration = ("<?xml", b"<?xml")[is_bytes]
+    for a, b in gaps:
+        q = text.find(query, a, b)
+        if q < 0:
+            continue
+        # only the XML declaration, at the start (after a byte-order mark)
+        if text[:q] not in ("", "\ufeff", b"", b"\xef\xbb\xbf") or not text.startswith(declaration, q):
             return None
-        if text.find(query, q + 2, last) >= 0:
+        if text.find(query, q + 2, b) >= 0:
             return None
     scanned: dict[str, _Scanned] = {}
-    pieces: list[str | bytes | memoryview] = []
+    pieces: Pieces = []
+    guarded: Pieces = []
     key = secrets.token_hex(16)
     view = memoryview(text) if is_bytes else text
-    done = 0
+    done = guarded_to = 0
     for k, (start, end) in enumerate(spans):
         content = text[start:end]
-        if is_bytes:
-            if not content.isascii():
-                return None
-            content = content.decode("ascii")
-        elif not content.isascii():
+        if not content.isascii():
             return None
-        region = _scan_region(content)
+        region = _scan_region(content if is_bytes else content.encode("ascii"))
         if region is None:
             return None
         marker = f'<{_SCANNED} key="{key}-{k}"/>'
         pieces += [view[done:start], marker.encode("ascii") if is_bytes else marker]
         done = end
+        if region.proved:
+            guarded.append(view[guarded_to:start])
+            guarded_to = end
         scanned[f"{key}-{k}"] = region
     pieces.append(view[done:])
-    return pieces, scanned
+    guarded.append(view[guarded_to:])
+    return pieces, scanned, guarded
 
 
 def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
@@ -825,12 +868,12 @@ def read_road_file(text: str | bytes) -> RoadFile:
     :class:`~app.formats.alignment_io.AlignmentFormatError`."""
     scanned: dict[str, _Scanned] = {}
 
-    def edit(whole: str | bytes) -> list[str | bytes | memoryview] | None:  # after the guard: the sections scanned
+    def edit(whole: str | bytes) -> tuple[Pieces, Pieces] | None:  # the sections scanned (before the guard)
         scan = _cross_section_scan(whole)
         if scan is None:
             return None
         scanned.update(scan[1])
-        return scan[0]
+        return scan[0], scan[2]
 
     with xmlsafe.collection_paused():  # the tree's million elements: no collector passes, freed in slices
         root = xmlsafe.document(text, "LandXML", "LandXML", AlignmentFormatError, edit)

@@ -57,35 +57,53 @@ def _external_reference(context, base, sysid, pubid) -> NoReturn:
     raise ExternalReferenceForbidden(context, base, sysid, pubid)
 
 
-#: a reader's edit of a document that passed the guard: the pieces to build the tree from, or None (the document)
-Edit = Callable[[str | bytes], Iterable[str | bytes | memoryview] | None]
+#: a reader's edit of a document (:func:`fromstring`): the pieces to build the tree from and the pieces to guard, or
+#: None (the document for both)
+Edit = Callable[[str | bytes], tuple[Iterable[str | bytes | memoryview], Iterable[str | bytes | memoryview]] | None]
 
 
 def fromstring(text: str | bytes, edit: Edit | None = None) -> ET.Element:
     """The document's root element; raises ``defusedxml.common.DefusedXmlException`` (an entity declared, an external
     entity referenced) or :class:`ParseError` (not well-formed: ``.position`` is (line, column)).
 
-    ``edit``, called once the whole document has passed the guard, may give the pieces (of ``text``'s type) the tree
-    is built from instead of ``text``: a reader that takes part of a document without a tree (app/formats/landxml.py,
-    the cross sections) leaves it out of the tree. The guard and its errors are always the whole document's."""
+    ``edit`` lets a reader take part of a document without a tree (app/formats/landxml.py, the cross sections): it
+    gives the pieces (of ``text``'s type) the tree is built from and the pieces the guard reads, the document with
+    the parts the reader has itself proved well-formed element content left out (the reader's proof: only known
+    tags with distinct well-formed attribute names, no reference, no markup declaration, no character XML forbids;
+    content that is balanced in itself leaves the rest of the document as well-formed as it was). The guard's
+    verdict and errors are always the whole document's: where the pieces fail it, the whole document is guarded
+    again and its own error raised (with its position in the document)."""
+    pieces = edit(text) if edit is not None else None
+    tree, guarded = ((text,), (text,)) if pieces is None else pieces
+    try:
+        _guard(guarded)
+    except (DefusedXmlException, ParseError):
+        if pieces is None:
+            raise
+        _guard((text,))  # the whole document's own error (and its position)
+        tree = (text,)  # (a proof that was wrong: the whole document passes, and is read as a tree)
+    parser = ET.XMLParser()
+    for piece in tree:
+        for chunk in _chunks(piece):
+            parser.feed(chunk)
+    return parser.close()
+
+
+def _guard(pieces: Iterable[str | bytes | memoryview]) -> None:
+    """Parse ``pieces`` (one document) with the guard's handlers only; raise as :func:`fromstring` says."""
     guard = expat.ParserCreate()
     guard.EntityDeclHandler = _entity
     guard.UnparsedEntityDeclHandler = _unparsed_entity
     guard.ExternalEntityRefHandler = _external_reference
     try:
-        for chunk in _chunks(text):
-            guard.Parse(chunk, False)
+        for piece in pieces:
+            for chunk in _chunks(piece):
+                guard.Parse(chunk, False)
         guard.Parse(b"", True)
     except expat.ExpatError as exc:
         err = ParseError(expat.ErrorString(exc.code) + f": line {exc.lineno}, column {exc.offset}")
         err.code, err.position = exc.code, (exc.lineno, exc.offset)
         raise err from None
-    pieces = edit(text) if edit is not None else None
-    parser = ET.XMLParser()
-    for piece in (text,) if pieces is None else pieces:
-        for chunk in _chunks(piece):
-            parser.feed(chunk)
-    return parser.close()
 
 
 def _chunks(text: str | bytes):

@@ -7,11 +7,12 @@ tree with itself) and left where it does not recognise a section's shape.
 
 from __future__ import annotations
 
+import contextlib
 import random
 
 import pytest
 
-from app.formats import landxml
+from app.formats import landxml, xmlsafe
 from app.formats.alignment_io import AlignmentFormatError
 from tests.landxml_writer import Design, Element
 from tests.landxml_writer import landxml as write_landxml
@@ -215,8 +216,100 @@ def _random_section(rng: random.Random, k: int) -> str:
 @pytest.mark.parametrize("seed", range(300))
 def test_random_documents_read_alike_with_and_without_the_scan(monkeypatch, seed):
     rng = random.Random(seed)
-    sections = "".join(_random_section(rng, k) for k in range(rng.randint(0, 12)))
-    doc = _doc(f"<CrossSects>{sections}</CrossSects>")
+    parts = [_random_section(rng, k) for k in range(rng.randint(0, 12))]
+    if rng.random() < 0.2:  # now and then something not well-formed (or not proved so) among them, or after them
+        odd = rng.choice(["\x02", "]]>", "&x;", "&amp;", "<a b='1' b='2'/>", "<p:a/>", "</CrossSect>", "<!-- -->"])
+        parts.insert(rng.randint(0, len(parts)), f"\n{odd}" if rng.random() < 0.5 else odd)
+    sections = "".join(parts)
+    doc = _doc(f"<CrossSects>{sections}</CrossSects>" + rng.choice(["", "", "\n<Oops/ >", "<a>"]))
     ours, _ = _outcome(doc.encode() if seed % 2 else doc, scan=True, monkeypatch=monkeypatch)
     tree, _ = _outcome(doc.encode() if seed % 2 else doc, scan=False, monkeypatch=monkeypatch)
     assert ours == tree, doc
+
+
+# ---------------------------------------------------------------------------------------------- the guard's share
+# A content the scan proves well-formed by itself is left out of the guard's pass (xmlsafe.fromstring); what the
+# guard then refuses, and where, must be what it refuses over the whole document, and anything the proof does not
+# cover must be guarded as before.
+
+
+def _guarded_bytes(doc: str | bytes, monkeypatch) -> int:
+    """How many characters (or bytes) the guard read of ``doc``, over every pass."""
+    seen = []
+    guard = xmlsafe._guard
+
+    def spy(pieces):
+        pieces = list(pieces)
+        seen.append(sum(len(p) for p in pieces))
+        return guard(pieces)
+
+    monkeypatch.setattr(xmlsafe, "_guard", spy)
+    with contextlib.suppress(AlignmentFormatError):
+        landxml.read_road_file(doc)
+    monkeypatch.undo()
+    return sum(seen)
+
+
+@pytest.mark.parametrize("as_bytes", [False, True])
+def test_a_proved_content_is_left_out_of_the_guard_and_a_content_not_proved_is_guarded(monkeypatch, as_bytes):
+    rng = random.Random(3)
+    content = _random_sections(rng, 20)
+    doc = _doc(f"<CrossSects>{content}</CrossSects>")
+    doc = doc.encode() if as_bytes else doc
+    assert _guarded_bytes(doc, monkeypatch) == len(doc) - len(content)
+    # each of these is well-formed but not proved (or not well-formed): the whole document is guarded
+    for odd in ("<!-- -->", "]]>", "&amp;", '<CrossSect sta="9" a="1" a="2"><DesignCrossSectSurf/></CrossSect>'):
+        odd_doc = _doc(f"<CrossSects>{content} {odd} </CrossSects>")
+        odd_doc = odd_doc.encode() if as_bytes else odd_doc
+        assert _guarded_bytes(odd_doc, monkeypatch) >= len(odd_doc), odd
+
+
+ONE = SECTION.format(sta=5, zl=99, zr=99)
+
+
+def _in(content: str) -> str:
+    return "<CrossSects>" + content + "</CrossSects>"
+
+
+@pytest.mark.parametrize(
+    "sections",
+    [
+        # not well-formed inside the sections: a forbidden character (between sections, in a point), "]]>" in text,
+        # a duplicate attribute (on each start tag), an attribute name XML does not allow, an undefined entity, an
+        # unbound prefix and a reserved namespace (the tree's parser reads namespaces)
+        _in(ONE + "\x01"),
+        _in(ONE.replace("<CrossSectPnt>0", "<CrossSectPnt>0\x0c")),
+        _in(ONE + " ]]> "),
+        _in(ONE.replace("sta=", 'a="1" a="2" sta=')),
+        _in(ONE.replace("Surf name", 'Surf b="1" name="2" b')),
+        _in(ONE.replace("<CrossSectPnt>", '<CrossSectPnt c="1" c="2">')),
+        _in(ONE.replace("sta=", '1a="1" sta=')),
+        _in(ONE + " &undefined; "),
+        _in(ONE.replace("sta=", 'p:a="1" sta=')),
+        _in(ONE.replace("sta=", 'xmlns="http://www.w3.org/2000/xmlns/" sta=')),
+        # not well-formed after the sections (on a later line, and on the same line): the guard's own position
+        "<CrossSects>\n" + ONE + "\r\n" + ONE.replace('sta="5', 'sta="55') + "\r</CrossSects><Oops></Alignment>",
+        _in(ONE) + "<Oops a='1' a='2'/>",
+        _in(ONE) + "&undefined;",
+        # before them
+        "<Oops a='<'/>" + _in(ONE),
+        "<CrossSects a='1' a='2'>" + ONE + "</CrossSects>",
+        # the sections not closed
+        _in(ONE + "</CrossSect>"),
+        _in("<CrossSect sta='1'>" + ONE),
+    ],
+)
+@pytest.mark.parametrize("as_bytes", [False, True])
+def test_a_malformed_document_is_refused_as_the_guard_refuses_it_whole(monkeypatch, sections, as_bytes):
+    doc = _doc(sections)
+    ours, _ = _outcome(doc.encode() if as_bytes else doc, scan=True, monkeypatch=monkeypatch)
+    tree, _ = _outcome(doc.encode() if as_bytes else doc, scan=False, monkeypatch=monkeypatch)
+    assert ours == tree
+    assert ours[0] == "refused" and "malformed XML" in ours[1]
+
+
+def test_entities_declared_before_the_sections_are_refused(monkeypatch):
+    doc = _doc(f"<CrossSects>{SECTION.format(sta=5, zl=99, zr=99)}</CrossSects>")
+    doc = doc.replace("<LandXML", '<!DOCTYPE LandXML [<!ENTITY e "x">]>\n<LandXML', 1)
+    out = _same(doc, monkeypatch, scanned=False)
+    assert out[0] == "refused" and "EntitiesForbidden" in out[1]

@@ -16,11 +16,20 @@ document exactly (the list's text is the pieces' texts joined by the commas betw
 as many elements as it has), and on any doubt -- a piece that does not parse, a count that does not match -- the
 whole body is parsed at once, which gives orjson's own value or error. ``tests/api/test_jsonpieces.py`` checks it
 against ``orjson.loads`` on generated documents, valid and not.
+
+A body that is one long string instead (a LandXML, IFC or GPX document sent in a JSON field: ``landxml.document``,
+60 MB of XML whose every quote is escaped) is :func:`loads_long_strings`: the strings of the body are walked (their
+ends found by a regular expression run a slice at a time), each string longer than :data:`LONG_STRING_BYTES` is
+replaced by a placeholder and the small rest parsed by orjson, and the long string is decoded by orjson a slice at a
+time (``orjson.loads(b'"' + slice + b'"')``), cut only where no escape, surrogate pair or UTF-8 character is split,
+so that the slices' values joined are the string's value. Same rule: any doubt, the whole body at once.
 """
 
 from __future__ import annotations
 
 import bisect
+import re
+import time
 from collections.abc import Sequence
 from typing import Any
 
@@ -128,7 +137,7 @@ def loads_in_pieces(
     body parsed a slice of elements at a time (see the module's doc)."""
     found = _locate(body, path) if len(body) >= split_bytes else None
     if found is None:
-        return orjson.loads(body)
+        return loads_long_strings(body, split_bytes=split_bytes)
     opening, closing, commas = found
     try:
         data = orjson.loads(body[:opening] + b"[]" + body[closing + 1 :])
@@ -153,4 +162,132 @@ def loads_in_pieces(
         holder[path[-1]] = items
         return data
     except (orjson.JSONDecodeError, TypeError, KeyError):
+        return orjson.loads(body)  # orjson's own value or error for the whole body
+
+
+#: a string value longer than this (its JSON text) is decoded a slice at a time by :func:`loads_long_strings` [bytes]
+LONG_STRING_BYTES = 1 << 20
+#: the slice of a long string decoded, or scanned for its end, in one call: about a millisecond of orjson [bytes]
+STRING_SLICE_BYTES = 1 << 20
+#: a body with more strings than this before its long ones is parsed at once (walking them in Python would take
+#: longer than the parse it spares) [-]
+MAX_STRINGS = 20_000
+#: a JSON string's text up to its closing quote or an escape cut by the slice's end (unrolled: no alternation per
+#: character); ``match`` from just after the opening quote
+_STRING_BODY = re.compile(rb'[^"\\]*(?:\\.[^"\\]*)*', re.DOTALL)
+_HEX = frozenset(b"0123456789abcdefABCDEF")
+#: a placeholder's text: a string no request holds (a NUL and a private-use character), numbered
+_PLACEHOLDER = "\u0000\ue000long string %d\ue000"
+
+
+def _string_end(body: bytes, start: int, step: int) -> int:
+    """The position of the quote that closes the JSON string whose text starts at ``start`` (just after its opening
+    quote); ``len(body)`` when none does. Scanned ``step`` bytes at a time, the interpreter let go between two."""
+    pos, n = start, len(body)
+    while pos < n:
+        end = _STRING_BODY.match(body, pos, min(n, pos + step)).end()
+        if end < n and body[end] == 0x22:
+            return end
+        if end == pos:  # a backslash at the slice's very end: take the escape with the next slice
+            end = pos + 2 if pos + 1 < n else n
+        pos = end
+        time.sleep(0)
+    return n
+
+
+def _safe_cut(text: bytes, lo: int, hi: int, target: int) -> int | None:
+    """A position in ``(lo, target]`` of a JSON string's text ``text[lo:hi]`` where it may be cut into two strings
+    whose values joined are its value: not inside a UTF-8 character, an escape (``\\n``, ``\\u00e9``) or a
+    surrogate pair (``\\ud83d\\ude00``). None: none found within 64 KiB below ``target``."""
+    for c in range(target, max(lo, target - 65536), -1):
+        if text[c] & 0xC0 == 0x80:  # a UTF-8 continuation byte
+            continue
+        b = text.rfind(b"\\", max(lo, c - 6), c)  # an escape is 6 bytes at most: the one c could be in begins here
+        if b < 0:
+            return c
+        run = b  # the backslashes up to b: in pairs (b ends a "\\\\"), or b begins an escape
+        while run > lo and text[run - 1] == 0x5C:
+            run -= 1
+        if (b - run) % 2 == 1:
+            return c
+        size = 6 if text[b + 1] == 0x75 else 2  # \uXXXX or \n, \", ...
+        high = size == 6 and text[b + 2 : b + 4].lower() in (b"d8", b"d9", b"da", b"db")
+        if c >= b + size and not high:  # after the escape, and not between the two halves of a surrogate pair
+            return c
+    return None
+
+
+def decode_string(text: bytes, step: int = STRING_SLICE_BYTES, lo: int = 0, hi: int | None = None) -> str:
+    """The value of the JSON string whose text (between its quotes) is ``text[lo:hi]``: ``orjson.loads(b'"' + text
+    + b'"')``, decoded ``step`` bytes at a time, the interpreter let go between two slices. Raises
+    ``orjson.JSONDecodeError`` (or ValueError: no place to cut) where the text is not a string's."""
+    hi = len(text) if hi is None else hi
+    parts = []
+    while hi - lo > step:
+        cut = _safe_cut(text, lo, hi, lo + step)
+        if cut is None:
+            raise ValueError("no place to cut the string")
+        parts.append(orjson.loads(b'"' + text[lo:cut] + b'"'))
+        lo = cut
+        time.sleep(0)
+    parts.append(orjson.loads(b'"' + text[lo:hi] + b'"'))
+    return "".join(parts)
+
+
+def _put_back(data: Any, values: dict[str, str], depth: int = 0) -> int:
+    """Replace in ``data``'s objects (a few levels down: where requests put their documents) every placeholder value
+    by its string; the number replaced."""
+    done = 0
+    if isinstance(data, dict) and depth < 6:
+        for key, value in data.items():
+            if isinstance(value, str):
+                if value in values:
+                    data[key] = values[value]
+                    done += 1
+            else:
+                done += _put_back(value, values, depth + 1)
+    return done
+
+
+def loads_long_strings(
+    body: bytes,
+    *,
+    split_bytes: int = SPLIT_BYTES,
+    string_bytes: int = LONG_STRING_BYTES,
+    slice_bytes: int = STRING_SLICE_BYTES,
+) -> Any:
+    """``orjson.loads(body)`` (the same value, or the same ``orjson.JSONDecodeError``), its long string values (a
+    document in a field) decoded a slice at a time (see the module's doc)."""
+    if len(body) < split_bytes:
+        return orjson.loads(body)
+    spans: list[tuple[int, int]] = []  # (opening quote, closing quote) of each long string
+    pos, strings = body.find(b'"'), 0
+    while pos >= 0:  # pos: an opening quote (the text between two strings holds no quote)
+        strings += 1
+        if strings > MAX_STRINGS:
+            return orjson.loads(body)
+        end = _string_end(body, pos + 1, slice_bytes)
+        if end >= len(body):
+            return orjson.loads(body)  # an unclosed string: orjson's error
+        if end - pos - 1 > string_bytes:
+            spans.append((pos, end))
+        pos = body.find(b'"', end + 1)
+    if not spans:
+        return orjson.loads(body)
+    try:
+        names = [_PLACEHOLDER % k for k in range(len(spans))]
+        pieces, last = [], 0
+        for name, (opening, closing) in zip(names, spans, strict=True):
+            pieces += [body[last:opening], orjson.dumps(name)]
+            last = closing + 1
+        pieces.append(body[last:])
+        if any(p.find(b"\\u0000") >= 0 for p in pieces[::2]):  # a NUL in the body's own strings: one could be a
+            return orjson.loads(body)  # placeholder's text (a string with a NUL is written only as this escape)
+        data = orjson.loads(b"".join(pieces))
+        values = {name: decode_string(body, slice_bytes, o + 1, c) for name, (o, c) in zip(names, spans, strict=True)}
+        # each placeholder found once, as a value (not: a long key, a long string in a list: the whole body at once)
+        if _put_back(data, values) != len(spans):
+            return orjson.loads(body)
+        return data
+    except (orjson.JSONDecodeError, ValueError):
         return orjson.loads(body)  # orjson's own value or error for the whole body

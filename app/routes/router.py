@@ -12,6 +12,7 @@ from pydantic import ValidationError
 from starlette.concurrency import run_in_threadpool
 
 from app.deps import CacheDep, SettingsDep
+from app.formats.jsonpieces import loads_long_strings
 from app.http.bodies import json_body, upload_body
 from app.http.bodylimit import body_limit
 from app.http.fastpath import replayable
@@ -27,9 +28,10 @@ router = APIRouter(prefix="/v1/routes", tags=["routes"])
 
 
 def parse_route_request(body: bytes) -> RouteRequest:
-    """The JSON request validated (in a worker thread: a route document may be megabytes)."""
+    """The JSON request validated (in a worker thread: a route document may be megabytes, its long strings decoded a
+    slice at a time, :func:`app.formats.jsonpieces.loads_long_strings`)."""
     try:
-        data = orjson.loads(body)
+        data = loads_long_strings(body)
     except orjson.JSONDecodeError as exc:
         raise RequestValidationError([{"type": "json_invalid", "loc": ("body",), "msg": f"JSON: {exc}"}]) from None
     refuse_duplicate_keys(body, data)

@@ -181,6 +181,32 @@ def test_the_colon_count_is_fooled_neither_by_a_colon_written_as_an_escape_nor_b
                 refuse_duplicate_keys(body, orjson.loads(body))
 
 
+@pytest.mark.parametrize("escape", [b"\\u003a", b"\\u003A"])
+def test_a_colon_escaped_in_either_case_goes_to_the_second_parse(escape):
+    body = b'{"a": 1, "a": "x' + escape + b'y"}'
+    with pytest.raises(RequestValidationError, match="'a' appears twice"):
+        refuse_duplicate_keys(body, orjson.loads(body))
+
+
+def test_a_document_with_every_angle_bracket_escaped_is_checked_by_the_count(monkeypatch):
+    """``\\u003c`` for ``<`` (as some encoders write every ``<`` of an XML document) is no colon: the colon count
+    decides, with no second parse of the whole body (Python's parser: about a second on 64 MB), and a key twice is
+    still refused."""
+    doc = '\\u003ca xmlns:x=\\"urn:x:y\\"/\\u003e' * 40
+    second = []
+    real = strictjson.duplicate_key
+    monkeypatch.setattr(strictjson, "duplicate_key", lambda b: second.append(1) or real(b))
+    for members, duplicate in (('"n": 1', None), ('"n": 1, "n": 2', "n")):
+        body = ('{"vehicle": "v", "landxml": {"document": "' + doc + '", ' + members + "}}").encode()
+        assert real(body) == duplicate
+        if duplicate is None:
+            refuse_duplicate_keys(body, orjson.loads(body))
+            assert second == []
+        else:
+            with pytest.raises(RequestValidationError, match="'n' appears twice"):
+                refuse_duplicate_keys(body, orjson.loads(body))
+
+
 @pytest.mark.parametrize(
     ("path", "content_type", "body", "where"),
     [

@@ -85,9 +85,8 @@ elements (lines, circular arcs, spirals), stations, the vertical profile and the
   (``n + 1`` values): the cumulative sum of the element lengths, from 0 at the alignment's start
 - ``ElementColumns``: An alignment's horizontal elements held as columns, one entry per element: a sequence of
   ``HorizontalElement`` (each made when it is asked for) that the numerics read as arrays (``element_columns``)
-- ``grade_ranges``: ``grade_range`` over many ranges: the grades at each range's ends and at both sides of every segment
-  boundary inside it (every segment's grade is monotone)
-- ``grades_at``: ``grade_at`` at many distances (ratios)
+- ``grades_over``: ``grade_ranges`` over ``[start_m, end_m]`` and ``grades_at`` at ``at_m`` (the same numbers) from one
+  reading of the profile's segments (a long profile has tens of thousands)
 - ``HorizontalElement``: One element of the horizontal alignment (LandXML ``Line``/``Curve``/``Spiral``
 - ``Profile``: A vertical profile (LandXML ``ProfAlign``
 - ``RoadFile``: What a reader made of one road-design file: its alignments in SI units and the facts the answer's
@@ -210,8 +209,7 @@ from .geometry import (
     distance_at,
     element_columns,
     element_distances,
-    grade_ranges,
-    grades_at,
+    grades_over,
     station_at,
     superelevations,
 )
@@ -312,8 +310,7 @@ __all__ = [
     "element_columns",
     "element_distances",
     "get_standard",
-    "grade_ranges",
-    "grades_at",
+    "grades_over",
     "kmh_to_mph",
     "limit_table",
     "max_curve_speed_kmh",

@@ -551,13 +551,15 @@ def _segment_table(profile: Profile) -> tuple[np.ndarray, ...]:
     """The profile's segments as arrays: start, length, kind (0 constant, 1 parabola, 2 circle), start and end
     grade, the circle's radius, the sine of its start angle and its sense (+1 sag, -1 crest)."""
     segs = profile.segments
-    start = np.array([x.start_distance_m for x in segs])
-    length = np.array([x.length_m for x in segs])
+    # a column per field, each a list of floats (a long profile has tens of thousands of segments: a tuple per
+    # segment would be as many containers for the garbage collector to walk, in a process holding a parsed document)
+    start = np.array([x.start_distance_m for x in segs], dtype=float)
+    length = np.array([x.length_m for x in segs], dtype=float)
     kind = np.array([0 if x.kind == "constant" or x.length_m <= 0 else 1 if x.kind == "parabolic" else 2 for x in segs])
-    g0 = np.array([x.start_grade for x in segs])
-    g1 = np.array([x.end_grade for x in segs])
+    g0 = np.array([x.start_grade for x in segs], dtype=float)
+    g1 = np.array([x.end_grade for x in segs], dtype=float)
+    radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs], dtype=float)
     sin0 = np.sin(np.arctan(g0))
-    radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs])
     with np.errstate(divide="ignore"):  # R = L / |sin(theta1) - sin(theta0)| where the file gave none
         from_grades = length / np.abs(np.sin(np.arctan(g1)) - sin0)
     radius = np.where(np.isinf(radius) & (kind == 2), from_grades, radius)
@@ -565,11 +567,9 @@ def _segment_table(profile: Profile) -> tuple[np.ndarray, ...]:
     return start, length, kind, g0, g1, radius, sin0, sense
 
 
-def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = False) -> np.ndarray:
-    """:func:`grade_at` at many distances (ratios); ``from_before``: at a segment's start, the grade at the end of
-    the segment before it (the left limit), as the end of a range takes it."""
-    start, length, kind, g0, g1, radius, sin0, sense = _segment_table(profile)
-    d = np.asarray(distance_m, dtype=float)
+def _grades_in(table: tuple[np.ndarray, ...], d: np.ndarray, from_before: bool) -> np.ndarray:
+    """:func:`grades_at` on a profile's :func:`_segment_table` (built once by a caller that asks several times)."""
+    start, length, kind, g0, g1, radius, sin0, sense = table
     k = np.clip(np.searchsorted(start, d, side="left" if from_before else "right") - 1, 0, len(start) - 1)
     u = np.clip(d - start[k], 0.0, length[k])
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -578,22 +578,44 @@ def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = F
     return np.where(kind[k] == 0, g0[k], np.where(kind[k] == 1, parabola, circle))
 
 
+def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = False) -> np.ndarray:
+    """:func:`grade_at` at many distances (ratios); ``from_before``: at a segment's start, the grade at the end of
+    the segment before it (the left limit), as the end of a range takes it."""
+    return _grades_in(_segment_table(profile), np.asarray(distance_m, dtype=float), from_before)
+
+
 def grade_ranges(profile: Profile, start_m: np.ndarray, end_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`grade_range` over many ranges: the grades at each range's ends and at both sides of every segment
     boundary inside it (every segment's grade is monotone)."""
-    seg_start = _segment_table(profile)[0]
-    a, b = np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float)
-    ga, gb = grades_at(profile, a), grades_at(profile, b, from_before=True)
+    return _ranges_in(_segment_table(profile), np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float))
+
+
+def grades_over(
+    profile: Profile, start_m: np.ndarray, end_m: np.ndarray, at_m: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`grade_ranges` over ``[start_m, end_m]`` and :func:`grades_at` at ``at_m`` (the same numbers) from one
+    reading of the profile's segments (a long profile has tens of thousands)."""
+    table = _segment_table(profile)
+    lo, hi = _ranges_in(table, np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float))
+    return lo, hi, _grades_in(table, np.asarray(at_m, dtype=float), False)
+
+
+def _ranges_in(table: tuple[np.ndarray, ...], a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`grade_ranges` on a profile's :func:`_segment_table`."""
+    ga, gb = _grades_in(table, a, False), _grades_in(table, b, True)
     lo, hi = np.minimum(ga, gb), np.maximum(ga, gb)
-    bounds = seg_start[1:]
+    bounds = table[0][1:]
     if not len(bounds):
         return lo, hi
+    # both sides of every boundary, once each; a range then takes those of the boundaries inside it
+    at_bound = (_grades_in(table, bounds, True), _grades_in(table, bounds, False))
     first = np.searchsorted(bounds, a, side="right")
     stop = np.searchsorted(bounds, b, side="left")
     for t in range(int((stop - first).max(initial=0))):
         inside = first + t < stop
         k = np.minimum(first + t, len(bounds) - 1)
-        for g in (grades_at(profile, bounds[k], from_before=True), grades_at(profile, bounds[k])):
+        for side in at_bound:
+            g = side[k]
             lo = np.where(inside, np.minimum(lo, g), lo)
             hi = np.where(inside, np.maximum(hi, g), hi)
     return lo, hi

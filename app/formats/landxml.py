@@ -53,9 +53,9 @@ from engine.road import (
     HorizontalElement,
     Profile,
     RoadFile,
+    SegmentColumns,
     StationEquation,
     SuperelevationRange,
-    VerticalSegment,
     distance_at,
 )
 
@@ -161,7 +161,6 @@ _ROT_CODE = {"ccw": 0, "cw": 1}  # ElementColumns.direction
 _KIND_CODE = {"line": 0, "arc": 1, "spiral": 2}
 _DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
 _VERTICAL = ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve")  # a ProfAlign's points
-_VERTICAL_KIND = ("constant", "parabolic", "circular")
 
 
 def _float(text: str | None, where: str, attribute: str) -> float:
@@ -525,12 +524,7 @@ class _Reader:
         # in the order of distance: interval by interval, slot by slot
         keep = present.T.ravel()
         cols = [c.T.ravel()[keep] for c in (starts, lengths, z_start, g_in, g_out, radius_col)]
-        kind_names = [_VERTICAL_KIND[k] for k in kinds.T.ravel()[keep].tolist()]
-        radii_out = [None if math.isnan(r) else r for r in cols[5].tolist()]
-        segments = tuple(
-            map(VerticalSegment, kind_names, *(c.tolist() for c in cols[:5]), radii_out)  # type: ignore[arg-type]
-        )
-        return Profile(name, segments)
+        return Profile(name, SegmentColumns(kinds.T.ravel()[keep], *cols))
 
     # ------------------------------------------------------------------------------ crossfall
 

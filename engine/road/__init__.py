@@ -93,6 +93,8 @@ elements (lines, circular arcs, spirals), stations, the vertical profile and the
   ``reading`` summary reports (``format`` such as ``"LandXML 1.2"`` or ``"IFC4X3_ADD2"``
 - ``station_at``: The station as the file writes it [m] at each distance along [m]: the alignment's start station plus
   the distance, restarted at each station equation's ahead station past its distance (an equation ...
+- ``SegmentColumns``: A profile's segments held as columns, one entry per segment: a sequence of ``VerticalSegment``
+  (each made when it is asked for) that the grades read as arrays
 - ``StationEquation``: A station equation (LandXML ``StaEquation``): at ``distance_m`` along the alignment the written
   station jumps from ``station_back_m`` to ``station_ahead_m``
 - ``SuperelevationRange``: The full superelevation of a curve between two distances (LandXML ``Superelevation``)
@@ -201,6 +203,7 @@ from .geometry import (
     HorizontalElement,
     Profile,
     RoadFile,
+    SegmentColumns,
     StationEquation,
     SuperelevationRange,
     VerticalSegment,
@@ -288,6 +291,7 @@ __all__ = [
     "MinRadius",
     "Profile",
     "RoadFile",
+    "SegmentColumns",
     "StationEquation",
     "SuperelevationRange",
     "TargetCheck",

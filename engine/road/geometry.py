@@ -188,12 +188,77 @@ class VerticalSegment:
     radius_m: float | None = None
 
 
+_VERTICAL_KINDS: tuple[VerticalKind, ...] = ("constant", "parabolic", "circular")
+
+
+class SegmentColumns(Sequence[VerticalSegment]):
+    """A profile's segments held as columns, one entry per segment: a sequence of :class:`VerticalSegment` (each
+    made when it is asked for) that the grades read as arrays (as :class:`ElementColumns` for the horizontal
+    elements): a long road's profile has tens of thousands of segments, and records would be made, walked by the
+    garbage collector and read back into arrays at every use.
+
+    ``kind``: 0 constant, 1 parabolic, 2 circular; ``radius_m``: nan where the segment has none; the other columns
+    as in :class:`VerticalSegment`."""
+
+    __slots__ = ("end_grade", "kind", "length_m", "radius_m", "start_distance_m", "start_elevation_m", "start_grade")
+
+    def __init__(self, kind, start_distance_m, length_m, start_elevation_m, start_grade, end_grade, radius_m):
+        self.kind = np.asarray(kind, dtype=np.int8)
+        self.start_distance_m = np.asarray(start_distance_m, dtype=float)
+        self.length_m = np.asarray(length_m, dtype=float)
+        self.start_elevation_m = np.asarray(start_elevation_m, dtype=float)
+        self.start_grade = np.asarray(start_grade, dtype=float)
+        self.end_grade = np.asarray(end_grade, dtype=float)
+        self.radius_m = np.asarray(radius_m, dtype=float)
+        sizes = {len(getattr(self, k)) for k in self.__slots__}
+        if len(sizes) > 1:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+
+    def __len__(self) -> int:
+        return len(self.kind)
+
+    def _one(self, i: int) -> VerticalSegment:
+        r = float(self.radius_m[i])
+        return VerticalSegment(
+            _VERTICAL_KINDS[self.kind[i]],
+            float(self.start_distance_m[i]),
+            float(self.length_m[i]),
+            float(self.start_elevation_m[i]),
+            float(self.start_grade[i]),
+            float(self.end_grade[i]),
+            None if math.isnan(r) else r,
+        )
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return tuple(self._one(k) for k in range(*i.indices(len(self))))
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError("segment index out of range")
+        return self._one(i % n)
+
+    def __iter__(self) -> Iterator[VerticalSegment]:
+        return (self._one(k) for k in range(len(self)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __repr__(self) -> str:
+        return f"SegmentColumns({len(self)} segments)"
+
+
 @dataclass(frozen=True)
 class Profile:
-    """A vertical profile (LandXML ``ProfAlign``; IFC ``IfcAlignmentVertical``): its segments in order of distance."""
+    """A vertical profile (LandXML ``ProfAlign``; IFC ``IfcAlignmentVertical``): its segments in order of distance
+    (a tuple of records, or, from a reader of a large file, the same as :class:`SegmentColumns`)."""
 
     name: str
-    segments: tuple[VerticalSegment, ...]
+    segments: Sequence[VerticalSegment]
 
 
 @dataclass(frozen=True)
@@ -551,14 +616,20 @@ def _segment_table(profile: Profile) -> tuple[np.ndarray, ...]:
     """The profile's segments as arrays: start, length, kind (0 constant, 1 parabola, 2 circle), start and end
     grade, the circle's radius, the sine of its start angle and its sense (+1 sag, -1 crest)."""
     segs = profile.segments
-    # a column per field, each a list of floats (a long profile has tens of thousands of segments: a tuple per
-    # segment would be as many containers for the garbage collector to walk, in a process holding a parsed document)
-    start = np.array([x.start_distance_m for x in segs], dtype=float)
-    length = np.array([x.length_m for x in segs], dtype=float)
-    kind = np.array([0 if x.kind == "constant" or x.length_m <= 0 else 1 if x.kind == "parabolic" else 2 for x in segs])
-    g0 = np.array([x.start_grade for x in segs], dtype=float)
-    g1 = np.array([x.end_grade for x in segs], dtype=float)
-    radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs], dtype=float)
+    if isinstance(segs, SegmentColumns):  # the columns as they are (the records made from them hold the same floats)
+        start, length, g0, g1 = segs.start_distance_m, segs.length_m, segs.start_grade, segs.end_grade
+        kind = np.where(length <= 0, 0, segs.kind)
+        radius = np.where(np.isnan(segs.radius_m) | (segs.radius_m == 0), np.inf, segs.radius_m)
+    else:  # a column per field, each a list of floats (not a tuple per segment: as many containers for the garbage
+        # collector to walk, in a process that may hold a parsed document)
+        start = np.array([x.start_distance_m for x in segs], dtype=float)
+        length = np.array([x.length_m for x in segs], dtype=float)
+        kind = np.array(
+            [0 if x.kind == "constant" or x.length_m <= 0 else 1 if x.kind == "parabolic" else 2 for x in segs]
+        )
+        g0 = np.array([x.start_grade for x in segs], dtype=float)
+        g1 = np.array([x.end_grade for x in segs], dtype=float)
+        radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs], dtype=float)
     sin0 = np.sin(np.arctan(g0))
     with np.errstate(divide="ignore"):  # R = L / |sin(theta1) - sin(theta0)| where the file gave none
         from_grades = length / np.abs(np.sin(np.arctan(g1)) - sin0)

@@ -1,7 +1,7 @@
-"""The LandXML profile read and evaluated for every point at once (app/formats/landxml.py ``_Reader.profile``;
-engine/road/geometry.py ``grades_over``) gives the very numbers of the point-by-point formulation it replaced, which
-is kept below as the reference: random profiles of PVIs, symmetric and unsymmetric parabolas and circular vertical
-curves, and ranges that straddle several vertical elements."""
+"""The LandXML profile read and evaluated for every point at once (app/formats/landxml.py ``_Reader.profile``,
+held as columns; engine/road/geometry.py ``grades_over``) gives the very numbers of the point-by-point formulation
+it replaced, which is kept below as the reference: random profiles of PVIs, symmetric and unsymmetric parabolas and
+circular vertical curves, and ranges that straddle several vertical elements."""
 
 from __future__ import annotations
 
@@ -181,6 +181,11 @@ def test_grades_over_many_ranges_are_those_evaluated_range_by_range(seed):
     lo_ref, hi_ref = scalar_grade_ranges(profile, a, b)
     assert np.array_equal(lo, lo_ref) and np.array_equal(hi, hi_ref)
     assert np.array_equal(at, scalar_grades_at(profile, mid))
+    # the reader's columns and the same segments as records (as another reader gives them) read alike
+    assert type(profile.segments).__name__ == "SegmentColumns"
+    as_records = Profile("P", tuple(profile.segments))
+    for mine, theirs in zip(grades_over(as_records, a, b, mid), (lo, hi, at), strict=True):
+        assert np.array_equal(mine, theirs)
     straddling = np.searchsorted(bounds, b, side="left") - np.searchsorted(bounds, a, side="right")
     assert straddling.max() >= 3  # some ranges cross several vertical elements
     # and a second formulation: the scalar functions, segment by segment (on the ranges that do not start or end

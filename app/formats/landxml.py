@@ -54,6 +54,7 @@ from engine.road import (
     Profile,
     RoadFile,
     SegmentColumns,
+    SlopeColumns,
     StationEquation,
     SuperelevationRange,
     distance_at,
@@ -403,11 +404,10 @@ class _Reader:
                 SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
                 for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
             )
-        slopes: tuple[CrossSlope, ...] = ()
-        if rows and sum(map(len, rows)):
+        slopes: Sequence[CrossSlope] = ()
+        if rows and sum(map(len, rows)):  # as columns: no record per section (a long road has 100,000s)
             sections = np.concatenate(rows)
-            at = distance_at(a, sections[:, 0]).tolist()
-            slopes = tuple(map(CrossSlope, at, sections[:, 1].tolist(), sections[:, 2].tolist()))
+            slopes = SlopeColumns(distance_at(a, sections[:, 0]), sections[:, 1].copy(), sections[:, 2].copy())
         return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:

@@ -95,6 +95,8 @@ elements (lines, circular arcs, spirals), stations, the vertical profile and the
   the distance, restarted at each station equation's ahead station past its distance (an equation ...
 - ``SegmentColumns``: A profile's segments held as columns, one entry per segment: a sequence of ``VerticalSegment``
   (each made when it is asked for) that the grades read as arrays
+- ``SlopeColumns``: Cross slopes held as columns, one entry per section: a sequence of ``CrossSlope`` (each made when
+  it is asked for) that ``superelevations`` reads as arrays
 - ``StationEquation``: A station equation (LandXML ``StaEquation``): at ``distance_m`` along the alignment the written
   station jumps from ``station_back_m`` to ``station_ahead_m``
 - ``SuperelevationRange``: The full superelevation of a curve between two distances (LandXML ``Superelevation``)
@@ -204,6 +206,7 @@ from .geometry import (
     Profile,
     RoadFile,
     SegmentColumns,
+    SlopeColumns,
     StationEquation,
     SuperelevationRange,
     VerticalSegment,
@@ -292,6 +295,7 @@ __all__ = [
     "Profile",
     "RoadFile",
     "SegmentColumns",
+    "SlopeColumns",
     "StationEquation",
     "SuperelevationRange",
     "TargetCheck",

@@ -282,6 +282,50 @@ class CrossSlope:
     right_percent: float
 
 
+class SlopeColumns(Sequence[CrossSlope]):
+    """Cross slopes held as columns, one entry per section: a sequence of :class:`CrossSlope` (each made when it is
+    asked for) that :func:`superelevations` reads as arrays (as :class:`ElementColumns` for the elements): a long
+    road's design cross sections are hundreds of thousands, and records would be made, sorted and read back."""
+
+    __slots__ = ("distance_m", "left_percent", "right_percent")
+
+    def __init__(self, distance_m, left_percent, right_percent):
+        self.distance_m = np.asarray(distance_m, dtype=float)
+        self.left_percent = np.asarray(left_percent, dtype=float)
+        self.right_percent = np.asarray(right_percent, dtype=float)
+        sizes = {len(self.distance_m), len(self.left_percent), len(self.right_percent)}
+        if len(sizes) > 1:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+
+    def __len__(self) -> int:
+        return len(self.distance_m)
+
+    def _one(self, i: int) -> CrossSlope:
+        return CrossSlope(float(self.distance_m[i]), float(self.left_percent[i]), float(self.right_percent[i]))
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return tuple(self._one(k) for k in range(*i.indices(len(self))))
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError("cross slope index out of range")
+        return self._one(i % n)
+
+    def __iter__(self) -> Iterator[CrossSlope]:
+        return (self._one(k) for k in range(len(self)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __repr__(self) -> str:
+        return f"SlopeColumns({len(self)} sections)"
+
+
 @dataclass(frozen=True)
 class AlignmentGeometry:
     """One alignment as read from a file, in SI units (see the module's conventions)."""
@@ -293,7 +337,8 @@ class AlignmentGeometry:
     station_equations: tuple[StationEquation, ...] = ()
     profiles: tuple[Profile, ...] = ()
     superelevation: tuple[SuperelevationRange, ...] = ()
-    cross_slopes: tuple[CrossSlope, ...] = ()
+    #: a tuple of records, or (a reader of a large file) the same as :class:`SlopeColumns`
+    cross_slopes: Sequence[CrossSlope] = ()
     where: str = ""
     notes: tuple[str, ...] = field(default=())
 
@@ -732,16 +777,21 @@ def superelevations(alignment: AlignmentGeometry, cols: BendColumns) -> tuple[np
         found = pick >= 0
         value = np.where(found, full[np.maximum(pick, 0)], np.nan)
         source = np.where(found, 0.0, np.nan)
-    slopes = sorted(alignment.cross_slopes, key=lambda c: c.distance_m)
-    if slopes and n:
-        d = np.array([c.distance_m for c in slopes])
+    slopes = alignment.cross_slopes
+    if not isinstance(slopes, SlopeColumns):
+        slopes = SlopeColumns(
+            [c.distance_m for c in slopes], [c.left_percent for c in slopes], [c.right_percent for c in slopes]
+        )
+    if len(slopes) and n:
+        order = np.argsort(slopes.distance_m, kind="stable")  # in order of distance, sections at one distance as given
+        d = slopes.distance_m[order]
         lo = np.searchsorted(d, cols.start_m, side="left")
         hi = np.searchsorted(d, cols.end_m, side="right")
         within = (hi > lo) & np.isnan(source)
         at = np.clip(mid, d[np.minimum(lo, len(d) - 1)], d[np.clip(hi - 1, 0, len(d) - 1)])
         # a left-hand curve's outside lane is the right one: rising left to right is banked toward the inside
-        right = np.interp(at, d, np.array([c.right_percent for c in slopes]))
-        left = -np.interp(at, d, np.array([c.left_percent for c in slopes]))
+        right = np.interp(at, d, slopes.right_percent[order])
+        left = -np.interp(at, d, slopes.left_percent[order])
         value = np.where(within, np.where(cols.direction == 0, right, left), value)
         source = np.where(within, 1.0, source)
     return value, source

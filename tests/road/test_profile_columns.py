@@ -1,10 +1,12 @@
 """The LandXML profile read and evaluated for every point at once (app/formats/landxml.py ``_Reader.profile``,
 held as columns; engine/road/geometry.py ``grades_over``) gives the very numbers of the point-by-point formulation
 it replaced, which is kept below as the reference: random profiles of PVIs, symmetric and unsymmetric parabolas and
-circular vertical curves, and ranges that straddle several vertical elements."""
+circular vertical curves, and ranges that straddle several vertical elements. And the design cross sections held as
+columns give the superelevation the sorted records gave."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import random
 
@@ -13,7 +15,18 @@ import pytest
 
 from app.formats.landxml import read_road_file
 from engine.road import grades_over
-from engine.road.geometry import Profile, VerticalSegment, grade_at, grade_range
+from engine.road.geometry import (
+    AlignmentGeometry,
+    CrossSlope,
+    HorizontalElement,
+    Profile,
+    SlopeColumns,
+    VerticalSegment,
+    bend_columns,
+    grade_at,
+    grade_range,
+    superelevations,
+)
 
 # ---------------------------------------------------------------------------------------------- the reference
 
@@ -193,3 +206,50 @@ def test_grades_over_many_ranges_are_those_evaluated_range_by_range(seed):
     for k in range(80, 400, 5):
         assert (lo[k], hi[k]) == pytest.approx(grade_range(profile, a[k], b[k]), rel=1e-12, abs=1e-15)
         assert at[k] == pytest.approx(grade_at(profile, mid[k]), rel=1e-12, abs=1e-15)
+
+
+# ---------------------------------------------------------------------------------------------- cross slopes
+
+
+def sorted_records_crossfall(slopes: tuple[CrossSlope, ...], cols) -> tuple[np.ndarray, np.ndarray]:
+    """The cross sections' part of ``superelevations`` as it read records: sorted (stably) by distance, read back."""
+    n = len(cols)
+    mid = cols.arc_start_m + 0.5 * cols.arc_length_m
+    value, source = np.full(n, np.nan), np.full(n, np.nan)
+    slopes = sorted(slopes, key=lambda c: c.distance_m)
+    d = np.array([c.distance_m for c in slopes])
+    lo = np.searchsorted(d, cols.start_m, side="left")
+    hi = np.searchsorted(d, cols.end_m, side="right")
+    within = (hi > lo) & np.isnan(source)
+    at = np.clip(mid, d[np.minimum(lo, len(d) - 1)], d[np.clip(hi - 1, 0, len(d) - 1)])
+    right = np.interp(at, d, np.array([c.right_percent for c in slopes]))
+    left = -np.interp(at, d, np.array([c.left_percent for c in slopes]))
+    value = np.where(within, np.where(cols.direction == 0, right, left), value)
+    return value, np.where(within, 1.0, source)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_cross_slopes_as_columns_give_the_sorted_records_numbers(seed):
+    rng = np.random.default_rng(seed)
+    elements = []
+    for _ in range(60):  # lines and arcs of either hand
+        elements.append(HorizontalElement("line", float(rng.uniform(0.0, 80.0))))
+        r = float(rng.uniform(100.0, 900.0))
+        elements.append(HorizontalElement("arc", float(rng.uniform(5.0, 120.0)), r, r, rng.choice(["left", "right"])))
+    total = sum(e.length_m for e in elements)
+    # sections in no order, some at one distance twice, some bends with none
+    d = rng.uniform(0.0, total, 300)
+    d[::10] = d[1::10]
+    left, right = rng.uniform(-8.0, 8.0, 300), rng.uniform(-8.0, 8.0, 300)
+    records = tuple(map(CrossSlope, d.tolist(), left.tolist(), right.tolist()))
+    columns = SlopeColumns(d, left, right)
+    assert columns == records and columns[7] == records[7] and len(columns) == 300
+    a = AlignmentGeometry("A", 0.0, tuple(elements), cross_slopes=columns)
+    cols = bend_columns(a)
+    value, source = superelevations(a, cols)
+    expected_value, expected_source = sorted_records_crossfall(records, cols)
+    assert np.array_equal(value, expected_value, equal_nan=True)
+    assert np.array_equal(source, expected_source, equal_nan=True)
+    assert (source == 1).sum() > 10 and np.isnan(source).sum() > 0  # bends with sections and bends without
+    from_records = superelevations(dataclasses.replace(a, cross_slopes=records), cols)
+    assert all(np.array_equal(x, y, equal_nan=True) for x, y in zip(from_records, (value, source), strict=True))

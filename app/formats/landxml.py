@@ -53,9 +53,10 @@ from engine.road import (
     HorizontalElement,
     Profile,
     RoadFile,
+    SegmentColumns,
+    SlopeColumns,
     StationEquation,
     SuperelevationRange,
-    VerticalSegment,
     distance_at,
 )
 
@@ -160,6 +161,7 @@ _ROT = {"ccw": "left", "cw": "right"}
 _ROT_CODE = {"ccw": 0, "cw": 1}  # ElementColumns.direction
 _KIND_CODE = {"line": 0, "arc": 1, "spiral": 2}
 _DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
+_VERTICAL = ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve")  # a ProfAlign's points
 
 
 def _float(text: str | None, where: str, attribute: str) -> float:
@@ -402,11 +404,10 @@ class _Reader:
                 SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
                 for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
             )
-        slopes: tuple[CrossSlope, ...] = ()
-        if rows and sum(map(len, rows)):
+        slopes: Sequence[CrossSlope] = ()
+        if rows and sum(map(len, rows)):  # as columns: no record per section (a long road has 100,000s)
             sections = np.concatenate(rows)
-            at = distance_at(a, sections[:, 0]).tolist()
-            slopes = tuple(map(CrossSlope, at, sections[:, 1].tolist(), sections[:, 2].tolist()))
+            slopes = SlopeColumns(distance_at(a, sections[:, 0]), sections[:, 1].copy(), sections[:, 2].copy())
         return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
@@ -440,20 +441,26 @@ class _Reader:
         return out
 
     def profile(self, el: ET.Element, name: str, a: AlignmentGeometry, where_p: str) -> Profile:
-        # (distance, elevation, length before, length after, radius) of each vertical point in order
-        pts: list[tuple[float, float, float, float, float | None, str]] = []
+        # each vertical point's numbers read here, one by one, into columns; the segments made below for every
+        # point at once (a long road's profile has tens of thousands of points)
+        stas: list[float] = []
+        zs: list[float] = []
+        befores: list[float] = []  # each vertical curve's extent before and after its point (parabolas)
+        afters: list[float] = []
+        radii: dict[int, float] = {}  # a circular vertical curve's radius, by its point's index
+        wheres: list[str] = []
         for k, child in enumerate(el, start=1):
             tag = xmlsafe.local(child.tag)
-            if tag not in ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve"):
+            if tag not in _VERTICAL:
                 continue
             self.counts[tag] += 1
             where = f"{where_p} element {k} ({tag})"
             xy = (child.text or "").split()
             if len(xy) < 2:
                 raise AlignmentFormatError("needs 'station elevation' as its text", where, tag)
-            sta, z = _float(xy[0], where, "station") * self.m, _float(xy[1], where, "elevation") * self.m
+            stas.append(_float(xy[0], where, "station") * self.m)
+            zs.append(_float(xy[1], where, "elevation") * self.m)
             before = after = 0.0
-            radius = None
             if tag == "ParaCurve":
                 before = after = 0.5 * (self.length(child, "length", where) or 0.0)
             elif tag == "UnsymParaCurve":
@@ -463,48 +470,61 @@ class _Reader:
                 radius = abs(self.length(child, "radius", where) or 0.0)
                 if radius == 0.0:
                     raise AlignmentFormatError("radius must not be 0", where, "radius")
-            pts.append((sta, z, before, after, radius, where))
-        if len(pts) < 2:
+                radii[len(wheres)] = radius
+            befores.append(before)  # type: ignore[arg-type]
+            afters.append(after)  # type: ignore[arg-type]
+            wheres.append(where)
+        n = len(stas)
+        if n < 2:
             raise AlignmentFormatError("needs at least two points (PVI)", where_p, "PVI")
-        distances = distance_at(a, np.array([p[0] for p in pts])).tolist()  # one call for every point
-        for k in range(1, len(pts)):
-            if distances[k] <= distances[k - 1]:
-                raise AlignmentFormatError(
-                    f"station {pts[k][0] / self.m:g} is not after the previous point's", pts[k][5], "station"
-                )
-        pts = [(d, *p[1:]) for d, p in zip(distances, pts, strict=True)]
-        n = len(pts)
-        grades = [(pts[i + 1][1] - pts[i][1]) / (pts[i + 1][0] - pts[i][0]) for i in range(n - 1)]
-        reach_in, reach_out = [0.0] * n, [0.0] * n  # each vertical curve's extent before and after its point
-        pieces: list[list[tuple[float, float, str, float, float, float | None]]] = [[] for _ in range(n)]
-        for i in range(1, n - 1):
-            d, _, before, after, radius, where = pts[i]
-            g1, g2 = grades[i - 1], grades[i]
-            if radius is not None:  # tangent length R tan(dtheta/2) along each tangent, projected
-                t1, t2 = math.atan(g1), math.atan(g2)
-                tangent = radius * math.tan(abs(t2 - t1) / 2)
-                before, after = tangent * math.cos(t1), tangent * math.cos(t2)
-                pieces[i].append((d - before, d + after, "circular", g1, g2, radius))
-            elif before > 0 or after > 0:
-                # an unsymmetric parabola: two parabolas sharing the grade under the PVI, g1 + Lo (g2 - g1)/(Li + Lo)
-                g_mid = g1 + after * (g2 - g1) / (before + after)
-                if before > 0:
-                    pieces[i].append((d - before, d, "parabolic", g1, g_mid, None))
-                if after > 0:
-                    pieces[i].append((d, d + after, "parabolic", g_mid, g2, None))
-            reach_in[i], reach_out[i] = before, after
-        segments: list[VerticalSegment] = []
-        for i in range(n - 1):
-            d, z = pts[i][0], pts[i][1]
-            a, b = d + reach_out[i], pts[i + 1][0] - reach_in[i + 1]
-            if b < a - 1e-9:
-                raise AlignmentFormatError("its vertical curve overlaps the previous point's", pts[i + 1][5], "length")
-            if b > a:
-                segments.append(VerticalSegment("constant", a, b - a, z + grades[i] * (a - d), grades[i], grades[i]))
-            for start, end, kind, g_in, g_out, radius in pieces[i + 1]:
-                z_start = z + grades[i] * (start - d) if start < pts[i + 1][0] else pts[i + 1][1]
-                segments.append(VerticalSegment(kind, start, end - start, z_start, g_in, g_out, radius))
-        return Profile(name, tuple(segments))
+        d = distance_at(a, np.array(stas))  # one call for every point
+        late = np.flatnonzero(np.diff(d) <= 0)
+        if len(late):
+            k = int(late[0]) + 1
+            raise AlignmentFormatError(
+                f"station {stas[k] / self.m:g} is not after the previous point's", wheres[k], "station"
+            )
+        z = np.array(zs)
+        grades = np.diff(z) / np.diff(d)
+        before, after = np.array(befores), np.array(afters)
+        before[[0, -1]] = after[[0, -1]] = 0.0  # the first and the last point have no vertical curve
+        g1, g2 = np.r_[0.0, grades], np.r_[grades, 0.0]  # the grades before and after each point
+        circle = np.zeros(n, dtype=bool)
+        radius = np.full(n, np.nan)
+        for i, r in radii.items():
+            if 0 < i < n - 1:  # tangent length R tan(dtheta/2) along each tangent, projected
+                t1, t2 = math.atan(g1[i]), math.atan(g2[i])
+                tangent = r * math.tan(abs(t2 - t1) / 2)
+                before[i], after[i] = tangent * math.cos(t1), tangent * math.cos(t2)
+                circle[i], radius[i] = True, r
+        # an unsymmetric parabola: two parabolas sharing the grade under the PVI, g1 + Lo (g2 - g1)/(Li + Lo)
+        para = ~circle & ((before > 0) | (after > 0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g_mid = np.where(para, g1 + after * (g2 - g1) / (before + after), np.nan)
+        # each interval between points i and i + 1: its constant grade (slot 0), then point i + 1's vertical curve:
+        # a circle (slot 1), or the parabolas before (slot 1) and after (slot 2) it
+        d0, z0, nxt = d[:-1], z[:-1], slice(1, None)
+        a_, b_ = d0 + after[:-1], d[nxt] - before[nxt]
+        overlap = np.flatnonzero(b_ < a_ - 1e-9)
+        if len(overlap):
+            raise AlignmentFormatError(
+                "its vertical curve overlaps the previous point's", wheres[int(overlap[0]) + 1], "length"
+            )
+        dn, bn, an, cn, pn = d[nxt], before[nxt], after[nxt], circle[nxt], para[nxt]
+        starts = np.stack([a_, dn - bn, dn])
+        ends = np.stack([b_, np.where(cn, dn + an, dn), dn + an])
+        present = np.stack([b_ > a_, cn | (pn & (bn > 0)), ~cn & pn & (an > 0)])
+        kinds = np.stack([np.zeros(n - 1), np.where(cn, 2, 1), np.ones(n - 1)]).astype(np.int8)
+        g_in = np.stack([grades, g1[nxt], g_mid[nxt]])
+        g_out = np.stack([grades, np.where(cn, g2[nxt], g_mid[nxt]), g2[nxt]])
+        z_start = np.where(starts < dn, z0 + grades * (starts - d0), z[nxt])
+        z_start[0] = z0 + grades * (a_ - d0)
+        lengths = ends - starts
+        radius_col = np.stack([np.full(n - 1, np.nan), radius[nxt], np.full(n - 1, np.nan)])
+        # in the order of distance: interval by interval, slot by slot
+        keep = present.T.ravel()
+        cols = [c.T.ravel()[keep] for c in (starts, lengths, z_start, g_in, g_out, radius_col)]
+        return Profile(name, SegmentColumns(kinds.T.ravel()[keep], *cols))
 
     # ------------------------------------------------------------------------------ crossfall
 

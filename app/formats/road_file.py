@@ -41,8 +41,7 @@ from engine.road import (
     covers_many,
     element_columns,
     element_distances,
-    grade_ranges,
-    grades_at,
+    grades_over,
     station_at,
     superelevations,
 )
@@ -179,8 +178,8 @@ def curves_from_road_file(
         middle = 0.5 * (b.start_m + b.end_m)
         if chosen is not None:
             covered = covers_many(chosen, b.start_m, b.end_m)
-            g_lo, g_hi = grade_ranges(chosen, b.start_m, b.end_m)
-            g_file = 100.0 * grades_at(chosen, middle)
+            g_lo, g_hi, g_mid = grades_over(chosen, b.start_m, b.end_m, middle)
+            g_file = 100.0 * g_mid
         else:
             covered = np.zeros(n, dtype=bool)
             g_lo = g_hi = g_file = np.full(n, nan)

@@ -85,15 +85,18 @@ elements (lines, circular arcs, spirals), stations, the vertical profile and the
   (``n + 1`` values): the cumulative sum of the element lengths, from 0 at the alignment's start
 - ``ElementColumns``: An alignment's horizontal elements held as columns, one entry per element: a sequence of
   ``HorizontalElement`` (each made when it is asked for) that the numerics read as arrays (``element_columns``)
-- ``grade_ranges``: ``grade_range`` over many ranges: the grades at each range's ends and at both sides of every segment
-  boundary inside it (every segment's grade is monotone)
-- ``grades_at``: ``grade_at`` at many distances (ratios)
+- ``grades_over``: ``grade_ranges`` over ``[start_m, end_m]`` and ``grades_at`` at ``at_m`` (the same numbers) from one
+  reading of the profile's segments (a long profile has tens of thousands)
 - ``HorizontalElement``: One element of the horizontal alignment (LandXML ``Line``/``Curve``/``Spiral``
 - ``Profile``: A vertical profile (LandXML ``ProfAlign``
 - ``RoadFile``: What a reader made of one road-design file: its alignments in SI units and the facts the answer's
   ``reading`` summary reports (``format`` such as ``"LandXML 1.2"`` or ``"IFC4X3_ADD2"``
 - ``station_at``: The station as the file writes it [m] at each distance along [m]: the alignment's start station plus
   the distance, restarted at each station equation's ahead station past its distance (an equation ...
+- ``SegmentColumns``: A profile's segments held as columns, one entry per segment: a sequence of ``VerticalSegment``
+  (each made when it is asked for) that the grades read as arrays
+- ``SlopeColumns``: Cross slopes held as columns, one entry per section: a sequence of ``CrossSlope`` (each made when
+  it is asked for) that ``superelevations`` reads as arrays
 - ``StationEquation``: A station equation (LandXML ``StaEquation``): at ``distance_m`` along the alignment the written
   station jumps from ``station_back_m`` to ``station_ahead_m``
 - ``SuperelevationRange``: The full superelevation of a curve between two distances (LandXML ``Superelevation``)
@@ -202,6 +205,8 @@ from .geometry import (
     HorizontalElement,
     Profile,
     RoadFile,
+    SegmentColumns,
+    SlopeColumns,
     StationEquation,
     SuperelevationRange,
     VerticalSegment,
@@ -210,8 +215,7 @@ from .geometry import (
     distance_at,
     element_columns,
     element_distances,
-    grade_ranges,
-    grades_at,
+    grades_over,
     station_at,
     superelevations,
 )
@@ -290,6 +294,8 @@ __all__ = [
     "MinRadius",
     "Profile",
     "RoadFile",
+    "SegmentColumns",
+    "SlopeColumns",
     "StationEquation",
     "SuperelevationRange",
     "TargetCheck",
@@ -312,8 +318,7 @@ __all__ = [
     "element_columns",
     "element_distances",
     "get_standard",
-    "grade_ranges",
-    "grades_at",
+    "grades_over",
     "kmh_to_mph",
     "limit_table",
     "max_curve_speed_kmh",

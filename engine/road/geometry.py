@@ -188,12 +188,77 @@ class VerticalSegment:
     radius_m: float | None = None
 
 
+_VERTICAL_KINDS: tuple[VerticalKind, ...] = ("constant", "parabolic", "circular")
+
+
+class SegmentColumns(Sequence[VerticalSegment]):
+    """A profile's segments held as columns, one entry per segment: a sequence of :class:`VerticalSegment` (each
+    made when it is asked for) that the grades read as arrays (as :class:`ElementColumns` for the horizontal
+    elements): a long road's profile has tens of thousands of segments, and records would be made, walked by the
+    garbage collector and read back into arrays at every use.
+
+    ``kind``: 0 constant, 1 parabolic, 2 circular; ``radius_m``: nan where the segment has none; the other columns
+    as in :class:`VerticalSegment`."""
+
+    __slots__ = ("end_grade", "kind", "length_m", "radius_m", "start_distance_m", "start_elevation_m", "start_grade")
+
+    def __init__(self, kind, start_distance_m, length_m, start_elevation_m, start_grade, end_grade, radius_m):
+        self.kind = np.asarray(kind, dtype=np.int8)
+        self.start_distance_m = np.asarray(start_distance_m, dtype=float)
+        self.length_m = np.asarray(length_m, dtype=float)
+        self.start_elevation_m = np.asarray(start_elevation_m, dtype=float)
+        self.start_grade = np.asarray(start_grade, dtype=float)
+        self.end_grade = np.asarray(end_grade, dtype=float)
+        self.radius_m = np.asarray(radius_m, dtype=float)
+        sizes = {len(getattr(self, k)) for k in self.__slots__}
+        if len(sizes) > 1:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+
+    def __len__(self) -> int:
+        return len(self.kind)
+
+    def _one(self, i: int) -> VerticalSegment:
+        r = float(self.radius_m[i])
+        return VerticalSegment(
+            _VERTICAL_KINDS[self.kind[i]],
+            float(self.start_distance_m[i]),
+            float(self.length_m[i]),
+            float(self.start_elevation_m[i]),
+            float(self.start_grade[i]),
+            float(self.end_grade[i]),
+            None if math.isnan(r) else r,
+        )
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return tuple(self._one(k) for k in range(*i.indices(len(self))))
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError("segment index out of range")
+        return self._one(i % n)
+
+    def __iter__(self) -> Iterator[VerticalSegment]:
+        return (self._one(k) for k in range(len(self)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __repr__(self) -> str:
+        return f"SegmentColumns({len(self)} segments)"
+
+
 @dataclass(frozen=True)
 class Profile:
-    """A vertical profile (LandXML ``ProfAlign``; IFC ``IfcAlignmentVertical``): its segments in order of distance."""
+    """A vertical profile (LandXML ``ProfAlign``; IFC ``IfcAlignmentVertical``): its segments in order of distance
+    (a tuple of records, or, from a reader of a large file, the same as :class:`SegmentColumns`)."""
 
     name: str
-    segments: tuple[VerticalSegment, ...]
+    segments: Sequence[VerticalSegment]
 
 
 @dataclass(frozen=True)
@@ -217,6 +282,50 @@ class CrossSlope:
     right_percent: float
 
 
+class SlopeColumns(Sequence[CrossSlope]):
+    """Cross slopes held as columns, one entry per section: a sequence of :class:`CrossSlope` (each made when it is
+    asked for) that :func:`superelevations` reads as arrays (as :class:`ElementColumns` for the elements): a long
+    road's design cross sections are hundreds of thousands, and records would be made, sorted and read back."""
+
+    __slots__ = ("distance_m", "left_percent", "right_percent")
+
+    def __init__(self, distance_m, left_percent, right_percent):
+        self.distance_m = np.asarray(distance_m, dtype=float)
+        self.left_percent = np.asarray(left_percent, dtype=float)
+        self.right_percent = np.asarray(right_percent, dtype=float)
+        sizes = {len(self.distance_m), len(self.left_percent), len(self.right_percent)}
+        if len(sizes) > 1:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+
+    def __len__(self) -> int:
+        return len(self.distance_m)
+
+    def _one(self, i: int) -> CrossSlope:
+        return CrossSlope(float(self.distance_m[i]), float(self.left_percent[i]), float(self.right_percent[i]))
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return tuple(self._one(k) for k in range(*i.indices(len(self))))
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError("cross slope index out of range")
+        return self._one(i % n)
+
+    def __iter__(self) -> Iterator[CrossSlope]:
+        return (self._one(k) for k in range(len(self)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __repr__(self) -> str:
+        return f"SlopeColumns({len(self)} sections)"
+
+
 @dataclass(frozen=True)
 class AlignmentGeometry:
     """One alignment as read from a file, in SI units (see the module's conventions)."""
@@ -228,7 +337,8 @@ class AlignmentGeometry:
     station_equations: tuple[StationEquation, ...] = ()
     profiles: tuple[Profile, ...] = ()
     superelevation: tuple[SuperelevationRange, ...] = ()
-    cross_slopes: tuple[CrossSlope, ...] = ()
+    #: a tuple of records, or (a reader of a large file) the same as :class:`SlopeColumns`
+    cross_slopes: Sequence[CrossSlope] = ()
     where: str = ""
     notes: tuple[str, ...] = field(default=())
 
@@ -551,13 +661,21 @@ def _segment_table(profile: Profile) -> tuple[np.ndarray, ...]:
     """The profile's segments as arrays: start, length, kind (0 constant, 1 parabola, 2 circle), start and end
     grade, the circle's radius, the sine of its start angle and its sense (+1 sag, -1 crest)."""
     segs = profile.segments
-    start = np.array([x.start_distance_m for x in segs])
-    length = np.array([x.length_m for x in segs])
-    kind = np.array([0 if x.kind == "constant" or x.length_m <= 0 else 1 if x.kind == "parabolic" else 2 for x in segs])
-    g0 = np.array([x.start_grade for x in segs])
-    g1 = np.array([x.end_grade for x in segs])
+    if isinstance(segs, SegmentColumns):  # the columns as they are (the records made from them hold the same floats)
+        start, length, g0, g1 = segs.start_distance_m, segs.length_m, segs.start_grade, segs.end_grade
+        kind = np.where(length <= 0, 0, segs.kind)
+        radius = np.where(np.isnan(segs.radius_m) | (segs.radius_m == 0), np.inf, segs.radius_m)
+    else:  # a column per field, each a list of floats (not a tuple per segment: as many containers for the garbage
+        # collector to walk, in a process that may hold a parsed document)
+        start = np.array([x.start_distance_m for x in segs], dtype=float)
+        length = np.array([x.length_m for x in segs], dtype=float)
+        kind = np.array(
+            [0 if x.kind == "constant" or x.length_m <= 0 else 1 if x.kind == "parabolic" else 2 for x in segs]
+        )
+        g0 = np.array([x.start_grade for x in segs], dtype=float)
+        g1 = np.array([x.end_grade for x in segs], dtype=float)
+        radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs], dtype=float)
     sin0 = np.sin(np.arctan(g0))
-    radius = np.array([x.radius_m if x.radius_m else np.inf for x in segs])
     with np.errstate(divide="ignore"):  # R = L / |sin(theta1) - sin(theta0)| where the file gave none
         from_grades = length / np.abs(np.sin(np.arctan(g1)) - sin0)
     radius = np.where(np.isinf(radius) & (kind == 2), from_grades, radius)
@@ -565,11 +683,9 @@ def _segment_table(profile: Profile) -> tuple[np.ndarray, ...]:
     return start, length, kind, g0, g1, radius, sin0, sense
 
 
-def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = False) -> np.ndarray:
-    """:func:`grade_at` at many distances (ratios); ``from_before``: at a segment's start, the grade at the end of
-    the segment before it (the left limit), as the end of a range takes it."""
-    start, length, kind, g0, g1, radius, sin0, sense = _segment_table(profile)
-    d = np.asarray(distance_m, dtype=float)
+def _grades_in(table: tuple[np.ndarray, ...], d: np.ndarray, from_before: bool) -> np.ndarray:
+    """:func:`grades_at` on a profile's :func:`_segment_table` (built once by a caller that asks several times)."""
+    start, length, kind, g0, g1, radius, sin0, sense = table
     k = np.clip(np.searchsorted(start, d, side="left" if from_before else "right") - 1, 0, len(start) - 1)
     u = np.clip(d - start[k], 0.0, length[k])
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -578,22 +694,44 @@ def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = F
     return np.where(kind[k] == 0, g0[k], np.where(kind[k] == 1, parabola, circle))
 
 
+def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = False) -> np.ndarray:
+    """:func:`grade_at` at many distances (ratios); ``from_before``: at a segment's start, the grade at the end of
+    the segment before it (the left limit), as the end of a range takes it."""
+    return _grades_in(_segment_table(profile), np.asarray(distance_m, dtype=float), from_before)
+
+
 def grade_ranges(profile: Profile, start_m: np.ndarray, end_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`grade_range` over many ranges: the grades at each range's ends and at both sides of every segment
     boundary inside it (every segment's grade is monotone)."""
-    seg_start = _segment_table(profile)[0]
-    a, b = np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float)
-    ga, gb = grades_at(profile, a), grades_at(profile, b, from_before=True)
+    return _ranges_in(_segment_table(profile), np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float))
+
+
+def grades_over(
+    profile: Profile, start_m: np.ndarray, end_m: np.ndarray, at_m: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`grade_ranges` over ``[start_m, end_m]`` and :func:`grades_at` at ``at_m`` (the same numbers) from one
+    reading of the profile's segments (a long profile has tens of thousands)."""
+    table = _segment_table(profile)
+    lo, hi = _ranges_in(table, np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float))
+    return lo, hi, _grades_in(table, np.asarray(at_m, dtype=float), False)
+
+
+def _ranges_in(table: tuple[np.ndarray, ...], a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`grade_ranges` on a profile's :func:`_segment_table`."""
+    ga, gb = _grades_in(table, a, False), _grades_in(table, b, True)
     lo, hi = np.minimum(ga, gb), np.maximum(ga, gb)
-    bounds = seg_start[1:]
+    bounds = table[0][1:]
     if not len(bounds):
         return lo, hi
+    # both sides of every boundary, once each; a range then takes those of the boundaries inside it
+    at_bound = (_grades_in(table, bounds, True), _grades_in(table, bounds, False))
     first = np.searchsorted(bounds, a, side="right")
     stop = np.searchsorted(bounds, b, side="left")
     for t in range(int((stop - first).max(initial=0))):
         inside = first + t < stop
         k = np.minimum(first + t, len(bounds) - 1)
-        for g in (grades_at(profile, bounds[k], from_before=True), grades_at(profile, bounds[k])):
+        for side in at_bound:
+            g = side[k]
             lo = np.where(inside, np.minimum(lo, g), lo)
             hi = np.where(inside, np.maximum(hi, g), hi)
     return lo, hi
@@ -639,16 +777,21 @@ def superelevations(alignment: AlignmentGeometry, cols: BendColumns) -> tuple[np
         found = pick >= 0
         value = np.where(found, full[np.maximum(pick, 0)], np.nan)
         source = np.where(found, 0.0, np.nan)
-    slopes = sorted(alignment.cross_slopes, key=lambda c: c.distance_m)
-    if slopes and n:
-        d = np.array([c.distance_m for c in slopes])
+    slopes = alignment.cross_slopes
+    if not isinstance(slopes, SlopeColumns):
+        slopes = SlopeColumns(
+            [c.distance_m for c in slopes], [c.left_percent for c in slopes], [c.right_percent for c in slopes]
+        )
+    if len(slopes) and n:
+        order = np.argsort(slopes.distance_m, kind="stable")  # in order of distance, sections at one distance as given
+        d = slopes.distance_m[order]
         lo = np.searchsorted(d, cols.start_m, side="left")
         hi = np.searchsorted(d, cols.end_m, side="right")
         within = (hi > lo) & np.isnan(source)
         at = np.clip(mid, d[np.minimum(lo, len(d) - 1)], d[np.clip(hi - 1, 0, len(d) - 1)])
         # a left-hand curve's outside lane is the right one: rising left to right is banked toward the inside
-        right = np.interp(at, d, np.array([c.right_percent for c in slopes]))
-        left = -np.interp(at, d, np.array([c.left_percent for c in slopes]))
+        right = np.interp(at, d, slopes.right_percent[order])
+        left = -np.interp(at, d, slopes.left_percent[order])
         value = np.where(within, np.where(cols.direction == 0, right, left), value)
         source = np.where(within, 1.0, source)
     return value, source

@@ -39,6 +39,7 @@ from app.alignments.service import resolve_alignment, solve_alignment  # noqa: E
 from app.formats import segments  # noqa: E402
 from app.formats.tables import flatten_targets  # noqa: E402
 from app.settings import Settings  # noqa: E402
+from app.vehicles.resolve import resolve_request_given  # noqa: E402
 
 
 def best(repeat: int, fn) -> tuple[float, int]:
@@ -57,7 +58,11 @@ def main() -> None:
     args = ap.parse_args()
     req = AlignmentRequest.model_validate({"vehicle": "table16-btrain", "csv": curves_csv(args.curves)})
     # a job's size (the synchronous request stops at 10,000 curves): what a job's result is rendered at
-    answer = solve_alignment(resolve_alignment(req, None, Settings(), max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS))
+    answer = solve_alignment(
+        resolve_alignment(
+            resolve_request_given(req), None, Settings(), max_curves=MAX_JOB_CURVES, max_rows=MAX_JOB_ROWS
+        )
+    )
     v = answer.vehicles[0]
     dicts = rows(answer, v, 0, len(answer.curves))
     columns = csv_columns(answer.resolved)

@@ -647,7 +647,7 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=8.0, help="seconds of each wrk run (8, as issue 8)")
     parser.add_argument("--curves", type=int, default=MAX_CURVES, help="curves of the alignment run")
     parser.add_argument("--rounds", type=int, default=2, help="alternated runs of the cached figures (best kept)")
-    parser.add_argument("--quick", action="store_true", help="2-second runs, 1 round, 2,000 curves (a smoke run)")
+    parser.add_argument("--quick", action="store_true", help="1-second runs, 1 round, 2,000 curves (a smoke run)")
     parser.add_argument(
         "--only", nargs="*", choices=["cached", "uncached", "workers", "alignment", "sweep", "instrumentator"]
     )
@@ -660,7 +660,7 @@ def main() -> None:
     if args.write and (args.only or args.quick):
         parser.error("--write records a whole run: leave out --only and --quick")
     if args.quick:
-        args.duration, args.curves, args.rounds = 2.0, 2_000, 1
+        args.duration, args.curves, args.rounds = 1.0, 2_000, 1
     if shutil.which("wrk") is None:
         raise SystemExit("wrk is not on the PATH (Debian: apt-get install wrk)")
     steps = {

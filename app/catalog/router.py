@@ -26,6 +26,7 @@ from app.catalog.schemas import (
     PageQuery,
     SavedVehicle,
     SavedVehiclePage,
+    SavedVehicleWritten,
     VehicleWrite,
 )
 from app.deps import SettingsDep
@@ -165,7 +166,7 @@ VEHICLE_WRITE = problem_responses(400, 401, 403, 404, 405, 412, 413, 422, 428, 5
     "/v1/vehicles",
     name="create_vehicle",
     status_code=201,
-    response_model=SavedVehicle,
+    response_model=SavedVehicleWritten,
     responses={
         **success(201, "Saved; `Location` is its path, `ETag` its version (1).", {**_LOCATION, **_ETAG}),
         **problem_responses(400, 401, 403, 409, 413, 422, 500, 503),
@@ -196,7 +197,7 @@ async def list_saved_vehicles(owner: OwnerDep, request: Request, page: PageDep) 
 @router.put(
     "/v1/vehicles/{id}",
     name="replace_vehicle",
-    response_model=SavedVehicle,
+    response_model=SavedVehicleWritten,
     responses={**success(200, "Replaced; `ETag` is the new version.", _ETAG), **VEHICLE_WRITE},
     openapi_extra=required_headers("If-Match"),  # the handler answers its absence: 428, not FastAPI's 422
 )

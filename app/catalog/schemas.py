@@ -8,7 +8,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
 
-from app.http.schemas import EXAMPLE_PRESET, InputModel, OutputModel, describe
+from app.http.schemas import EXAMPLE_PRESET, WARNINGS_DESCRIPTION, InputModel, InputWarningOut, OutputModel, describe
 from app.vehicle_forms.builder_schemas import SpecRef
 from app.vehicle_forms.combination_builder_schemas import CombinationSpecRef
 from app.vehicle_forms.combination_schemas import CombinationRef
@@ -169,6 +169,14 @@ class SavedVehicle(OutputModel):
     version: int = Field(ge=1, description=_VERSION)
     created_at: datetime = Field(description=_CREATED)
     updated_at: datetime = Field(description=_UPDATED)
+
+
+class SavedVehicleWritten(SavedVehicle):
+    """A vehicle just saved (`POST /v1/vehicles`, `PUT /v1/vehicles/{id}`): as `GET` answers it, with the input
+    warnings of what was sent (a typed record's `weight_kn` that reads plausibly in tonnes too). `GET` leaves them
+    out: every computation that uses the saved vehicle answers them again."""
+
+    warnings: list[InputWarningOut] = Field(description=WARNINGS_DESCRIPTION)
 
 
 class SavedVehiclePage(OutputModel):

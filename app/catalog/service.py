@@ -27,6 +27,7 @@ choice: a fleet never silently loses a member; the database's foreign key enforc
 from __future__ import annotations
 
 import base64
+import dataclasses
 import math
 import re
 import secrets
@@ -59,12 +60,14 @@ from app.catalog.schemas import (
     SavedSpec,
     SavedVehicle,
     SavedVehiclePage,
+    SavedVehicleWritten,
     VehicleWrite,
 )
 from app.db import Database, repo
 from app.db import upgrade as upgrade_database
 from app.http.problems import http_handler, problem_response
 from app.http.route_table import documented_paths
+from app.http.schemas import InputWarningOut
 from app.logs import get_logger
 from app.settings import Settings
 from app.vehicle_forms.build import build_combination_spec, build_spec, combination_of
@@ -74,7 +77,7 @@ from app.vehicle_forms.combination_schemas import CombinationRef
 from app.vehicle_forms.schemas import VehicleRecord
 from engine import InvalidVehicle, MissingParameter
 from engine.models import get_model
-from engine.vehicle import COMBINATIONS, PRESETS, Vehicle, check_record_plausible
+from engine.vehicle import COMBINATIONS, PRESETS, Vehicle, check_record_plausible, record_warnings
 
 SAVED_VEHICLE_ID = re.compile(SAVED_VEHICLE_ID_PATTERN)
 FLEET_ID = re.compile(FLEET_ID_PATTERN)
@@ -560,7 +563,28 @@ def expected_versions(if_match: str | None, *, required: bool) -> frozenset[int]
     return frozenset(versions)
 
 
-async def create_vehicle(db: Database, owner: str, body: VehicleWrite, settings: Settings) -> SavedVehicle:
+def input_warnings(kind: str, text: str) -> list[InputWarningOut]:
+    """The input warnings of a vehicle as saved (``kind``, its stored JSON ``text``), named as the request names
+    the field (``vehicle.weight_kn``): a typed record's, or a combination's ``last_unit_record``'s (as
+    app.vehicles.resolve warns of them in a computation); none for a builder spec (the builder computes its
+    weights)."""
+    body = orjson.loads(text)
+    if kind == "record":
+        found = record_warnings(Vehicle.from_dict(body), "vehicle.")
+    elif kind == "combination":
+        last = combination_of(body["combination"], "vehicle").last_unit_record
+        found = [] if last is None else record_warnings(last, "vehicle.combination.last_unit_record.")
+    else:
+        found = []
+    return [InputWarningOut(**dataclasses.asdict(w)) for w in found]
+
+
+def _written(stored: repo.StoredVehicle) -> SavedVehicleWritten:
+    saved = decode_vehicle(stored)
+    return SavedVehicleWritten(**dict(saved), warnings=input_warnings(stored.kind, stored.body))
+
+
+async def create_vehicle(db: Database, owner: str, body: VehicleWrite, settings: Settings) -> SavedVehicleWritten:
     kind, text = prepare_vehicle(body.vehicle, settings)
     stored = await _run(
         repo.insert_vehicle,
@@ -572,7 +596,7 @@ async def create_vehicle(db: Database, owner: str, body: VehicleWrite, settings:
         body=text,
         max_count=settings.catalog_max_vehicles,
     )
-    return decode_vehicle(stored)
+    return _written(stored)
 
 
 async def read_vehicle(db: Database, owner: str, id: str) -> SavedVehicle:
@@ -581,11 +605,11 @@ async def read_vehicle(db: Database, owner: str, id: str) -> SavedVehicle:
 
 async def replace_vehicle(
     db: Database, owner: str, id: str, body: VehicleWrite, if_match: str | None, settings: Settings
-) -> SavedVehicle:
+) -> SavedVehicleWritten:
     expected = expected_versions(if_match, required=True)
     kind, text = prepare_vehicle(body.vehicle, settings)
     stored = await _run(repo.update_vehicle, db, owner, id, expected=expected, title=body.title, kind=kind, body=text)
-    return decode_vehicle(stored)
+    return _written(stored)
 
 
 async def remove_vehicle(db: Database, owner: str, id: str, if_match: str | None) -> None:

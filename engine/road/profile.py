@@ -353,14 +353,14 @@ def speed_profile(
 
     # the profile's stations: per element the acceleration line, the cap, the braking line
     element_caps = np.column_stack((cap, tangent_cap)).ravel()[:-1]  # curve 0, tangent 0, curve 1, ...
-    stations, speeds = _profile_points(node_s, v2, gaps, acc, d, element_caps)
+    stations, speeds = _profile_points(node_s, v2, acc, d, element_caps)
     if alignment_start_m is not None and alignment_start_m < s0[0]:
         lead_len = s0[0] - alignment_start_m
         lead_start2 = min(
             (lead_cap / 3.6) ** 2, v2[0] + 2.0 * d * lead_len
         )  # braked for the first curve within the lead
         lead = _profile_points(
-            np.array([alignment_start_m, s0[0]]), np.array([lead_start2, v2[0]]), np.array([lead_len]),
+            np.array([alignment_start_m, s0[0]]), np.array([lead_start2, v2[0]]),
             acceleration_mps2(np.array([lead_cap]), grade[:1], **acc_params), d, np.array([lead_cap]),
         )  # fmt: skip
         stations = np.concatenate((lead[0][:-1], stations))
@@ -371,7 +371,7 @@ def speed_profile(
         tail_a = acceleration_mps2(np.array([tail_cap]), grade[-1:], **acc_params)
         tail_end2 = min((tail_cap / 3.6) ** 2, v2[-1] + 2.0 * float(tail_a[0]) * tail_len)
         tail = _profile_points(
-            np.array([end[-1], alignment_end_m]), np.array([v2[-1], tail_end2]), np.array([tail_len]),
+            np.array([end[-1], alignment_end_m]), np.array([v2[-1], tail_end2]),
             tail_a, d, np.array([tail_cap]),
         )  # fmt: skip
         stations = np.concatenate((stations, tail[0][1:]))
@@ -428,7 +428,7 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
     drop_kmh[...] = np.maximum(v1 * 3.6 - cap, 0.0)
 
 
-def _profile_points(node_s, v2, gaps, acc, d, caps_kmh):
+def _profile_points(node_s, v2, acc, d, caps_kmh):
     """Stations and speeds [km/h] of the profile over the elements between nodes: for each element the point where
     acceleration from its start reaches the cap, the point where braking to its end leaves it, or where the two
     lines meet below the cap. v^2 is linear in station between consecutive points. (Computed in chunks of

@@ -82,6 +82,7 @@ def test_crud_round_trip(cat, presets):
     assert created["vehicle"] == record  # stored exactly as the preset's record (Table 16: W = 355.22 kN)
     assert created["vehicle"]["weight_kn"] == 355.22
     assert created["created_at"] == created["updated_at"]
+    assert created.pop("warnings") == []  # 355.22 t typed as kN would be 3,484 kN: no second reading
 
     got = cat.get(r.headers["location"], headers=auth(K1))
     assert got.status_code == 200 and got.json() == created and got.headers["etag"] == '"1"'
@@ -97,6 +98,7 @@ def test_crud_round_trip(cat, presets):
     assert r.headers["etag"] == '"2"' and updated["version"] == 2
     assert updated["vehicle"]["cg_height_above_chassis_m"] == 1.5 and updated["title"] == "raised load"
     assert updated["created_at"] == created["created_at"] and updated["updated_at"] > created["updated_at"]
+    assert updated.pop("warnings") == []
     assert cat.get(f"/v1/vehicles/{vid}", headers=auth(K1)).json() == updated
 
     assert cat.delete(f"/v1/vehicles/{vid}", headers=auth(K1, **{"If-Match": '"2"'})).status_code == 204
@@ -107,6 +109,39 @@ def test_crud_round_trip(cat, presets):
     assert cat.put(
         f"/v1/vehicles/{vid}", json={"title": "x", "vehicle": record}, headers=auth(K1, **{"If-Match": "*"})
     ).status_code == 404  # fmt: skip
+
+
+def test_saving_a_record_answers_its_input_warnings_as_a_computation_would(cat):
+    # Table 23's semitrailer typed with weight_kn 50: a light trailer's 50 kN (5.1 t) or 50 t typed as kN
+    # (50 x 9.80665 = 490.3 kN, standard gravity, CGPM 1901); neither reading can be refused, so the save names
+    # the field as the request typed it and both readings, as POST /v1/srt answers the same record
+    record = cat.get("/v1/vehicles/table23-semitrailer").json()
+    record = {k: v for k, v in record.items() if k not in METADATA_FIELDS}
+    light = {**record, "weight_kn": 50.0}
+    srt = cat.post("/v1/srt", json={"vehicle": light, "model": "3d"})
+    assert srt.status_code == 200, srt.text
+    created = save(cat, light)
+    assert created["warnings"] == srt.json()["warnings"]
+    (w,) = created["warnings"]
+    assert w["field"] == "vehicle.weight_kn" and w["value"] == 50.0 and w["unit"] == "kN"
+    assert w["other_unit"] == "tonnes" and w["other_reading"] == pytest.approx(50.0 * 9.80665, rel=1e-12)
+
+    path = f"/v1/vehicles/{created['id']}"
+    got = cat.get(path, headers=auth(K1)).json()
+    assert "warnings" not in got and got == {k: v for k, v in created.items() if k != "warnings"}
+
+    # Table 23's own weight (392.13 kN) reads only in kN; the replacement answers its own (empty) warnings
+    r = cat.put(path, json={"title": "t", "vehicle": record}, headers=auth(K1, **{"If-Match": '"1"'}))
+    assert r.status_code == 200 and r.json()["warnings"] == [], r.text
+    r = cat.put(path, json={"title": "t", "vehicle": light}, headers=auth(K1, **{"If-Match": '"2"'}))
+    assert r.status_code == 200 and [w["field"] for w in r.json()["warnings"]] == ["vehicle.weight_kn"], r.text
+    # a builder spec computes its own weight: nothing typed to warn of
+    assert save(cat, a_spec())["warnings"] == []
+    # a combination's last_unit_record (Table 15's, its weight typed 50) warns named inside the combination
+    combination = cat.get("/v1/combinations/tractor-semitrailer-table15").json()["combination"]
+    combination["last_unit_record"]["weight_kn"] = 50.0
+    saved = save(cat, {"combination": combination})
+    assert [w["field"] for w in saved["warnings"]] == ["vehicle.combination.last_unit_record.weight_kn"]
 
 
 def test_a_2d_record_and_a_spec_can_be_saved(cat, presets):

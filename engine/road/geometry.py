@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, TypeVar
 
 import numpy as np
 
@@ -58,10 +58,52 @@ class HorizontalElement:
 
 
 _KINDS: tuple[ElementKind, ...] = ("line", "arc", "spiral")
+_Record = TypeVar("_Record")
 _DIRECTIONS: tuple[Direction | None, ...] = ("left", "right", None)  # by code 0, 1, -1
 
 
-class ElementColumns(Sequence[HorizontalElement]):
+class _Columns(Sequence[_Record]):
+    """What the column forms (:class:`ElementColumns`, :class:`SegmentColumns`, :class:`SlopeColumns`) share: a
+    sequence of records, each made by the subclass's ``_one(i)`` when it is asked for, equal to any sequence of the
+    same records (a tuple of records included), hashed as that tuple."""
+
+    __slots__ = ()
+    #: what one entry is called in an index error, and many in the repr
+    _noun: str = "entry"
+    _plural: str = "entries"
+
+    def _one(self, i: int) -> _Record:
+        raise NotImplementedError
+
+    def _same_lengths(self) -> None:
+        sizes = {len(getattr(self, k)) for k in self.__slots__}
+        if len(sizes) > 1:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return tuple(self._one(k) for k in range(*i.indices(len(self))))
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError(f"{self._noun} index out of range")
+        return self._one(i % n)
+
+    def __iter__(self) -> Iterator[_Record]:
+        return (self._one(k) for k in range(len(self)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
+
+    def __hash__(self) -> int:
+        return hash(tuple(self))
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({len(self)} {self._plural})"
+
+
+class ElementColumns(_Columns[HorizontalElement]):
     """An alignment's horizontal elements held as columns, one entry per element: a sequence of
     :class:`HorizontalElement` (each made when it is asked for) that the numerics read as arrays
     (:func:`element_columns`). A reader of a large file gives an alignment its elements in this form: a million
@@ -72,6 +114,7 @@ class ElementColumns(Sequence[HorizontalElement]):
     ``spiral_type``, ``name``, ``where``: lists (None where there is none).
     """
 
+    _noun, _plural = "element", "elements"
     __slots__ = (
         "direction",
         "kind",
@@ -95,10 +138,7 @@ class ElementColumns(Sequence[HorizontalElement]):
         self.spiral_type, self.name, self.where = (
             x if isinstance(x, list) else list(x) for x in (spiral_type, name, where)
         )
-        n = len(self.kind)
-        sizes = {len(getattr(self, k)) for k in self.__slots__}
-        if sizes != {n}:
-            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+        self._same_lengths()
 
     @classmethod
     def of(cls, elements: Sequence[HorizontalElement]) -> ElementColumns:
@@ -135,28 +175,6 @@ class ElementColumns(Sequence[HorizontalElement]):
             self.where[i],
         )
 
-    def __getitem__(self, i):  # type: ignore[override]
-        if isinstance(i, slice):
-            return tuple(self._one(k) for k in range(*i.indices(len(self))))
-        n = len(self)
-        if not -n <= i < n:
-            raise IndexError("element index out of range")
-        return self._one(i % n)
-
-    def __iter__(self) -> Iterator[HorizontalElement]:
-        return (self._one(k) for k in range(len(self)))
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Sequence) or isinstance(other, str):
-            return NotImplemented
-        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
-
-    def __hash__(self) -> int:
-        return hash(tuple(self))
-
-    def __repr__(self) -> str:
-        return f"ElementColumns({len(self)} elements)"
-
 
 def element_columns(alignment: AlignmentGeometry) -> ElementColumns:
     """The alignment's elements as columns (:class:`ElementColumns`), whichever form it holds them in."""
@@ -191,7 +209,7 @@ class VerticalSegment:
 _VERTICAL_KINDS: tuple[VerticalKind, ...] = ("constant", "parabolic", "circular")
 
 
-class SegmentColumns(Sequence[VerticalSegment]):
+class SegmentColumns(_Columns[VerticalSegment]):
     """A profile's segments held as columns, one entry per segment: a sequence of :class:`VerticalSegment` (each
     made when it is asked for) that the grades read as arrays (as :class:`ElementColumns` for the horizontal
     elements): a long road's profile has tens of thousands of segments, and records would be made, walked by the
@@ -200,6 +218,7 @@ class SegmentColumns(Sequence[VerticalSegment]):
     ``kind``: 0 constant, 1 parabolic, 2 circular; ``radius_m``: nan where the segment has none; the other columns
     as in :class:`VerticalSegment`."""
 
+    _noun, _plural = "segment", "segments"
     __slots__ = ("end_grade", "kind", "length_m", "radius_m", "start_distance_m", "start_elevation_m", "start_grade")
 
     def __init__(self, kind, start_distance_m, length_m, start_elevation_m, start_grade, end_grade, radius_m):
@@ -210,9 +229,7 @@ class SegmentColumns(Sequence[VerticalSegment]):
         self.start_grade = np.asarray(start_grade, dtype=float)
         self.end_grade = np.asarray(end_grade, dtype=float)
         self.radius_m = np.asarray(radius_m, dtype=float)
-        sizes = {len(getattr(self, k)) for k in self.__slots__}
-        if len(sizes) > 1:
-            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+        self._same_lengths()
 
     def __len__(self) -> int:
         return len(self.kind)
@@ -228,28 +245,6 @@ class SegmentColumns(Sequence[VerticalSegment]):
             float(self.end_grade[i]),
             None if math.isnan(r) else r,
         )
-
-    def __getitem__(self, i):  # type: ignore[override]
-        if isinstance(i, slice):
-            return tuple(self._one(k) for k in range(*i.indices(len(self))))
-        n = len(self)
-        if not -n <= i < n:
-            raise IndexError("segment index out of range")
-        return self._one(i % n)
-
-    def __iter__(self) -> Iterator[VerticalSegment]:
-        return (self._one(k) for k in range(len(self)))
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Sequence) or isinstance(other, str):
-            return NotImplemented
-        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
-
-    def __hash__(self) -> int:
-        return hash(tuple(self))
-
-    def __repr__(self) -> str:
-        return f"SegmentColumns({len(self)} segments)"
 
 
 @dataclass(frozen=True)
@@ -282,48 +277,25 @@ class CrossSlope:
     right_percent: float
 
 
-class SlopeColumns(Sequence[CrossSlope]):
+class SlopeColumns(_Columns[CrossSlope]):
     """Cross slopes held as columns, one entry per section: a sequence of :class:`CrossSlope` (each made when it is
     asked for) that :func:`superelevations` reads as arrays (as :class:`ElementColumns` for the elements): a long
     road's design cross sections are hundreds of thousands, and records would be made, sorted and read back."""
 
+    _noun, _plural = "cross slope", "sections"
     __slots__ = ("distance_m", "left_percent", "right_percent")
 
     def __init__(self, distance_m, left_percent, right_percent):
         self.distance_m = np.asarray(distance_m, dtype=float)
         self.left_percent = np.asarray(left_percent, dtype=float)
         self.right_percent = np.asarray(right_percent, dtype=float)
-        sizes = {len(self.distance_m), len(self.left_percent), len(self.right_percent)}
-        if len(sizes) > 1:
-            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+        self._same_lengths()
 
     def __len__(self) -> int:
         return len(self.distance_m)
 
     def _one(self, i: int) -> CrossSlope:
         return CrossSlope(float(self.distance_m[i]), float(self.left_percent[i]), float(self.right_percent[i]))
-
-    def __getitem__(self, i):  # type: ignore[override]
-        if isinstance(i, slice):
-            return tuple(self._one(k) for k in range(*i.indices(len(self))))
-        n = len(self)
-        if not -n <= i < n:
-            raise IndexError("cross slope index out of range")
-        return self._one(i % n)
-
-    def __iter__(self) -> Iterator[CrossSlope]:
-        return (self._one(k) for k in range(len(self)))
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Sequence) or isinstance(other, str):
-            return NotImplemented
-        return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
-
-    def __hash__(self) -> int:
-        return hash(tuple(self))
-
-    def __repr__(self) -> str:
-        return f"SlopeColumns({len(self)} sections)"
 
 
 @dataclass(frozen=True)

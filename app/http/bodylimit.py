@@ -66,6 +66,21 @@ Receive = Callable[[], Awaitable[MutableMapping[str, Any]]]
 Send = Callable[[MutableMapping[str, Any]], Awaitable[None]]
 
 
+def replaying(body: bytes, receive: Receive) -> Receive:
+    """A ``receive`` for the app behind a middleware that has read the whole body: the body once, as one message,
+    then the server's own ``receive`` (a disconnect, or what follows the request)."""
+    replayed = False
+
+    async def replay() -> MutableMapping[str, Any]:
+        nonlocal replayed
+        if not replayed:
+            replayed = True
+            return {"type": "http.request", "body": body, "more_body": False}
+        return await receive()
+
+    return replay
+
+
 class BodyLimitMiddleware:
     """Refuse a body over its route's limit: at once from ``Content-Length``, or as soon as a chunked body passes
     it (a chunked body is read here, never more than the limit, and handed to the app whole)."""
@@ -109,16 +124,7 @@ class BodyLimitMiddleware:
             chunks.append(message.get("body", b""))
             if not message.get("more_body", False):
                 break
-        replayed = False
-
-        async def replay() -> MutableMapping[str, Any]:
-            nonlocal replayed
-            if not replayed:
-                replayed = True
-                return {"type": "http.request", "body": b"".join(chunks), "more_body": False}
-            return await receive()
-
-        await self.app(scope, replay, send)
+        await self.app(scope, replaying(b"".join(chunks), receive), send)
 
     async def _refuse(self, scope: Scope, send: Send, limit: int) -> None:
         body = self.problem(413, too_large(limit), scope["path"])

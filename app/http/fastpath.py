@@ -28,6 +28,7 @@ from cachetools import LRUCache
 from starlette.concurrency import run_in_threadpool
 
 from app.compute import cache as cache_module
+from app.http.bodylimit import replaying
 from app.http.negotiation import negotiate
 from app.http.route_table import api_routes
 from app.metrics import CACHE_LOOKUPS, FAST_PATH_HITS
@@ -176,14 +177,7 @@ class FastPathMiddleware:
         await self._through_app(scope, body, raw_key, inm, receive, send)
 
     async def _through_app(self, scope: Scope, body: bytes, raw_key: bytes | None, inm, receive: Receive, send: Send):
-        replayed = False
-
-        async def replay() -> MutableMapping[str, Any]:
-            nonlocal replayed
-            if not replayed:
-                replayed = True
-                return {"type": "http.request", "body": body, "more_body": False}
-            return await receive()
+        replay = replaying(body, receive)
 
         state: dict[str, Any] = {"not_modified": False}
 

@@ -33,6 +33,7 @@ from typing import Any
 import orjson
 from fastapi.exceptions import RequestValidationError
 
+from app.http.bodylimit import replaying
 from app.http.route_table import api_routes
 
 Scope = MutableMapping[str, Any]
@@ -274,16 +275,7 @@ class StrictJsonMiddleware:
             if detail is not None:
                 await self._answer(send, 400, "malformed-request", "Malformed request body", detail, scope["path"])
                 return
-        replayed = False
-
-        async def replay() -> MutableMapping[str, Any]:
-            nonlocal replayed
-            if not replayed:
-                replayed = True
-                return {"type": "http.request", "body": body, "more_body": False}
-            return await receive()
-
-        await self.app(scope, replay, send)
+        await self.app(scope, replaying(body, receive), send)
 
     @staticmethod
     async def _answer(send: Send, status: int, slug: str, title: str, detail: str, instance: str) -> None:

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import platform
 import re
 import shutil
 import signal
@@ -41,7 +40,7 @@ import orjson
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from scripts.docblock import split_block  # noqa: E402
+from scripts.docblock import machine, split_block  # noqa: E402
 
 SECRET = "bench-secret-0123456789abcdef"
 DOCS = ROOT / "docs" / "jobs.md"
@@ -237,20 +236,6 @@ def run_job(api: str, body: bytes, env: dict[str, str], n_workers: int) -> dict:
 
 def _when(text: str) -> datetime:
     return datetime.fromisoformat(text.replace("Z", "+00:00"))
-
-
-def machine() -> str:
-    """The CPU model, its cores and the load average when the run started (the machine may be shared)."""
-    model = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    return f"{model}, {os.cpu_count()} cores, load {load:.1f}"
 
 
 def write_docs(rows: dict[int, list[str]], note: str) -> None:

@@ -18,8 +18,6 @@ cross sections' scan off (app/formats/landxml.py: every section read from the tr
 from __future__ import annotations
 
 import argparse
-import os
-import platform
 import statistics
 import sys
 import time
@@ -42,7 +40,7 @@ from app.formats.alignment_io import (  # noqa: E402
 from bench.bench_alignments import as_landxml, make_curves  # noqa: E402
 from engine import InvalidRoad  # noqa: E402
 from engine.road import check_columns  # noqa: E402
-from scripts.docblock import markers, write_block  # noqa: E402
+from scripts.docblock import machine, markers, write_block  # noqa: E402
 
 DOCS = ROOT / "docs" / "uploads.md"
 BEGIN, END = markers("bench_landxml")
@@ -179,19 +177,6 @@ def _as_tree(doc: bytes, **kw):
         return read_landxml(doc, **kw)
     finally:
         landxml._cross_section_scan = scan
-
-
-def machine() -> str:
-    """The CPU model, its cores and the load average when the run started (the machine may be shared)."""
-    model = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{model}, {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}"
 
 
 def main() -> None:

@@ -4,7 +4,24 @@ what a script of the repository printed."""
 
 from __future__ import annotations
 
+import os
+import platform
 from pathlib import Path
+
+
+def machine() -> str:
+    """The CPU model, its cores and the load average when the run started (the machine may be shared): what a bench
+    writes beside the figures it puts in a doc."""
+    model = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    return f"{model}, {os.cpu_count()} cores, load {load:.1f}"
 
 
 def markers(name: str) -> tuple[str, str]:

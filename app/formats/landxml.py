@@ -875,8 +875,11 @@ def writer_of(root: ET.Element) -> str | None:
     app = _child(root, "Application")
     if app is None:
         return None
-    parts = [app.get("name"), app.get("version")]
-    text = " ".join(p for p in parts if p)
+    name, version = app.get("name"), app.get("version")
+    # Novapoint writes its name into its version too (name="Novapoint" version="Novapoint 21.05.FP4d ..."): named once
+    if name and version and (version == name or version.startswith(name + " ")):
+        name = None
+    text = " ".join(p for p in (name, version) if p)
     maker = app.get("manufacturer")
     if maker:
         text = f"{text} ({maker})" if text else maker

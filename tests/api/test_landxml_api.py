@@ -3,19 +3,23 @@ facts, `reading` in every answer, a straight road answered with no rows, the pro
 faults refused by name.
 
 Independent numbers: a curve of 200 ft is a curve of 60.96 m (0.3048 m the foot, by definition): the same request
-with the curve given as JSON at 60.96 m must answer the same assessment.
+with the curve given as JSON at 60.96 m must answer the same assessment. A public Novapoint export's rows against the
+file's own text (its Curves' radius, staStart and delta, its PVIs and circular vertical curves).
 """
 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
 from tests.landxml_writer import Design, Element, Pvi, landxml
+from tests.road.test_landxml_files import _circle_profile, _elements
 
 BTRAIN = "table16-btrain"
 PATH = "/v1/alignments/assess/landxml"
+DATA = Path(__file__).resolve().parents[1] / "data" / "landxml"
 FEET = Design(
     "F",
     0.0,
@@ -84,3 +88,29 @@ def test_a_unit_or_value_the_reader_does_not_know_is_a_422_naming_it(shared_clie
     p = upload(shared_client, doc, f"vehicle={BTRAIN}", status=422).json()
     (error,) = p["errors"]
     assert error["field"] == field and text in error["message"]
+
+
+def test_a_novapoint_file_answers_its_arcs_with_their_turn_and_grade(shared_client):
+    # a public Trimble Novapoint export (tests/data/landxml/README.md): its left-hand arc written with a negative
+    # delta and rot="ccw"; the expected numbers from the file's text (tests/road/test_landxml_files.py's helpers)
+    doc = (DATA / "novapoint-inframodel-m14334.xml").read_bytes()
+    out = upload(shared_client, doc.decode(), f"vehicle={BTRAIN}&superelevation_percent=4").json()
+    rows = out["vehicles"][0]["rows"]
+    curves = _elements(doc, "Curve")
+    assert [r["direction"] for r in rows] == ["left" if c.get("rot") == "ccw" else "right" for c in curves]
+    negative = [float(c.get("delta")) < 0 for c in curves]
+    assert negative == [r["direction"] == "left" for r in rows] == [False, False, True]
+    for row, c in zip(rows, curves, strict=True):
+        assert row["radius_m"] == float(c.get("radius")) and row["station_m"] == float(c.get("staStart"))
+        assert row["deflection_deg"] == pytest.approx(abs(float(c.get("delta"))), abs=1e-6)  # six decimals written
+    # the grade at each arc's middle on the profile's PVIs and circular vertical curves (the arcs placed by their
+    # lengths summed from the alignment's start, 0)
+    _, _, grade = _circle_profile(doc)
+    lengths = [float(e.get("length")) for e in _elements(doc, "CoordGeom")[0]]
+    at = [i for i, e in enumerate(_elements(doc, "CoordGeom")[0]) if e.tag.endswith("}Curve")]
+    middles = [sum(lengths[:i]) + lengths[i] / 2 for i in at]
+    assert [r["grade_percent"] for r in rows] == pytest.approx([100 * grade(m) for m in middles], rel=1e-9)
+    assert {r["grade_source"] for r in rows} == {"profile"}
+    (application,) = _elements(doc, "Application")
+    assert out["reading"]["writer"] == f"{application.get('version')} ({application.get('manufacturer')})"
+    assert out["reading"]["linear_unit"] == "meter"

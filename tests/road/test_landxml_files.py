@@ -1,4 +1,4 @@
-"""LandXML read whole: public exports of four design tools (tests/data/landxml/README.md names each file's
+"""LandXML read whole: public exports of five design tools (tests/data/landxml/README.md names each file's
 repository, path and licence), a file in feet against its metric twin, a round trip through our own writer
 (tests/landxml_writer.py), and the refusals.
 
@@ -21,6 +21,7 @@ import pytest
 
 from app.formats.alignment_io import AlignmentFormatError, read_landxml
 from app.formats.landxml import read_road_file
+from engine.road.geometry import grades_at
 from tests.landxml_writer import Design, Element, Pvi, landxml
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "landxml"
@@ -122,17 +123,24 @@ def test_openroads_in_us_survey_feet():
     assert t.reading["superelevation_from"] == "request" and t.reading["linear_unit"] == "USSurveyFoot"
 
 
-def _crest_circle_grade(p1, p2, p3, radius, x) -> float:
-    """The grade at x on a crest circle of ``radius`` tangent to the lines p1-p2 and p2-p3 (its centre below both
-    at the radius), by the circle's equation: the upper arc y = yc + sqrt(R^2 - (x - xc)^2)."""
-    normals, offsets = [], []
-    for a, b in ((p1, p2), (p2, p3)):
-        g = (b[1] - a[1]) / (b[0] - a[0])
-        n = np.array([-g, 1.0]) / math.hypot(1.0, g)  # the upward normal
-        normals.append(n)
-        offsets.append(n @ np.array(a) - radius)  # the centre lies R below the line
-    xc, _ = np.linalg.solve(np.array(normals), np.array(offsets))
-    return -(x - xc) / math.sqrt(radius**2 - (x - xc) ** 2)
+def _vertical_circle(p1, p2, p3, radius) -> tuple[float, float, float, float]:
+    """The circle of ``radius`` tangent to the lines p1-p2 and p2-p3 [(station, elevation)] on the side the grade
+    turns to (below both on a crest, above on a sag): its centre's station, the sign of its arc (-1 the upper arc,
+    +1 the lower) and the stations of its two tangent points (the feet of the perpendiculars from the centre)."""
+    grades = [(b[1] - a[1]) / (b[0] - a[0]) for a, b in ((p1, p2), (p2, p3))]
+    side = -1.0 if grades[1] < grades[0] else 1.0
+    normals = [np.array([-g, 1.0]) / math.hypot(1.0, g) for g in grades]  # the upward normals
+    offsets = [n @ np.array(a) + side * radius for n, a in zip(normals, (p1, p2), strict=True)]
+    centre = np.linalg.solve(np.array(normals), np.array(offsets))
+    feet = [centre - (n @ centre - n @ np.array(a)) * n for n, a in zip(normals, (p1, p2), strict=True)]
+    return float(centre[0]), side, float(feet[0][0]), float(feet[1][0])
+
+
+def _circle_grade(p1, p2, p3, radius, x) -> float:
+    """The grade at x on the vertical circle of :func:`_vertical_circle`, by the circle's equation: the upper arc
+    y = yc + sqrt(R^2 - (x - xc)^2) on a crest, the lower arc y = yc - sqrt(...) on a sag."""
+    xc, side, _, _ = _vertical_circle(p1, p2, p3, radius)
+    return side * (x - xc) / math.sqrt(radius**2 - (x - xc) ** 2)
 
 
 def test_3dwin_junction_arc_with_circular_vertical_curves():
@@ -148,7 +156,7 @@ def test_3dwin_junction_arc_with_circular_vertical_curves():
     pts = [(float(e.text.split()[0]), float(e.text.split()[1])) for e in _elements(doc, "ProfAlign")[0]]
     s0 = float(curve.get("staStart"))
     middle = s0 + float(curve.get("length")) / 2
-    expected = _crest_circle_grade(pts[1], pts[2], pts[3], 750.0, middle)
+    expected = _circle_grade(pts[1], pts[2], pts[3], 750.0, middle)
     assert t.grade_percent[0] == pytest.approx(100 * expected, rel=1e-9)
     assert t.reading["writer"] == "3D-Win 6.6.4 (Novatron Oy)"
 
@@ -174,6 +182,137 @@ def test_aplitop_arc_from_its_points_and_the_crown_kept_through_it():
     middle = t.station_m[0] + radius * angle / 2
     assert t.grade_percent[0] == pytest.approx(100 * parabola_grade(_pvis(doc), middle), rel=1e-9)
     assert t.reading["format"] == "LandXML 1.0"
+
+
+def _local(el: ET.Element) -> str:
+    return el.tag.rsplit("}", 1)[-1]
+
+
+def _circle_profile(doc: bytes):
+    """The first ProfAlign of PVIs and CircCurves (length, radius) as (points, radii by point index, grade at x):
+    tangents between the points, each interior CircCurve the circle of :func:`_vertical_circle` between its tangent
+    points."""
+    pts, radii = [], {}
+    for i, e in enumerate(_elements(doc, "ProfAlign")[0]):
+        pts.append(tuple(float(v) for v in e.text.split()[:2]))
+        if _local(e) == "CircCurve":
+            radii[i] = float(e.get("radius"))
+    grades = [(b[1] - a[1]) / (b[0] - a[0]) for a, b in itertools.pairwise(pts)]
+    circles = {i: _vertical_circle(pts[i - 1], pts[i], pts[i + 1], r) for i, r in radii.items()}
+
+    def grade(x: float) -> float:
+        for i, (_, _, t1, t2) in circles.items():
+            if t1 <= x <= t2:
+                return _circle_grade(pts[i - 1], pts[i], pts[i + 1], radii[i], x)
+        return grades[max([k for k in range(len(grades)) if pts[k][0] <= x], default=0)]
+
+    return pts, radii, grade
+
+
+def _tag_counts(doc: bytes) -> dict[str, int]:
+    """The elements the reading counts, counted in the file's text: CoordGeom's and ProfAlign's children."""
+    counts: dict[str, int] = {}
+    for parent in ("CoordGeom", "ProfAlign"):
+        for p in _elements(doc, parent):
+            counts[parent] = counts.get(parent, 0) + 1
+            for e in p:
+                counts[_local(e)] = counts.get(_local(e), 0) + 1
+    counts.pop("CoordGeom")  # the reading counts the profiles, not the element lists
+    return counts
+
+
+def test_novapoint_arcs_turn_as_rot_and_the_signed_delta_say_over_circular_vertical_curves():
+    doc = _file("novapoint-inframodel-m14334.xml")
+    t = read_landxml(doc, superelevation_percent=None)
+    (align,) = _elements(doc, "Alignment")
+    (geom,) = _elements(doc, "CoordGeom")
+    elements, curves = list(geom), _elements(doc, "Curve")
+    lengths = np.array([float(e.get("length")) for e in elements])
+    # every element's staStart as written is the alignment's staStart plus the lengths before it, to the rounding of
+    # the six decimals written (half a millionth for each number added and for the staStart itself)
+    running = float(align.get("staStart")) + np.r_[0.0, np.cumsum(lengths)[:-1]]
+    written = np.array([float(e.get("staStart")) for e in elements])
+    assert (np.abs(written - running) <= 0.5e-6 * (np.arange(len(elements)) + 2)).all()
+    at = [i for i, e in enumerate(elements) if _local(e) == "Curve"]
+    assert t.ids == [f"{align.get('name')}#{k}" for k in range(1, len(curves) + 1)]
+    assert t.station_m == pytest.approx(written[at], rel=1e-12)  # the station as written
+    assert _bend(t, "distance_m") == pytest.approx(running[at], rel=1e-12)  # the distance: the lengths summed
+    assert t.radius_m == pytest.approx([float(c.get("radius")) for c in curves], rel=1e-12)
+    assert _bend(t, "arc_length_m") == pytest.approx(lengths[at], rel=1e-12)
+    # the direction three ways: rot, the sign of delta (Novapoint signs it: -25.85 with rot="ccw") and the turn from
+    # the radius to Start to the radius to End about Center (points written northing easting: x east, y north)
+    left = []
+    for c in curves:
+        (n0, e0), (n1, e1), (nc, ec) = (
+            (float(v) for v in c.find(f"{{*}}{p}").text.split()[:2]) for p in ("Start", "End", "Center")
+        )
+        counterclockwise = (e0 - ec) * (n1 - nc) - (n0 - nc) * (e1 - ec) > 0
+        assert counterclockwise == (c.get("rot") == "ccw") == (float(c.get("delta")) < 0)
+        left.append(counterclockwise)
+    assert left.count(True) == 1  # the file's one left-hand arc, the one with the negative delta
+    assert list(_bend(t, "direction")) == [0.0 if k else 1.0 for k in left]
+    # the deflection: |delta|, in decimal degrees as the file's angularUnit says (delta and length/radius each
+    # written to six decimals: 0.5e-6 deg, and 0.5e-6 m / 110 m in radians, apart at most)
+    assert _elements(doc, "Metric")[0].get("angularUnit") == "decimal degrees"
+    assert _bend(t, "deflection_deg") == pytest.approx([abs(float(c.get("delta"))) for c in curves], abs=1e-6)
+    # the profile: PVIs and CircCurves. Each CircCurve's length is its arc, R |atan g2 - atan g1|, to the rounding of
+    # its points' six decimals: the radius is the circle's (the reader does not read the length)
+    pts, radii, grade = _circle_profile(doc)
+    for i, r in radii.items():
+        (x0, z0), (x1, z1), (x2, z2) = pts[i - 1 : i + 2]
+        arc = r * abs(math.atan((z2 - z1) / (x2 - x1)) - math.atan((z1 - z0) / (x1 - x0)))
+        rounding = r * (1e-6 / (x1 - x0) + 1e-6 / (x2 - x1)) + 0.5e-6
+        assert abs(arc - float(_elements(doc, "ProfAlign")[0][i].get("length"))) <= rounding
+    # the grade at each arc's middle, and the least and greatest over it (on a fine grid with both ends), the arc
+    # placed by the lengths summed (its written staStart differs in the sixth decimal: 2e-8 % of grade on R 5000 m)
+    starts, ends = running[at], running[at] + lengths[at]
+    assert t.grade_percent == pytest.approx([100 * grade(s) for s in (starts + ends) / 2], rel=1e-9)
+    over = [[100 * grade(x) for x in np.linspace(s, e, 2001)] for s, e in zip(starts, ends, strict=True)]
+    assert _bend(t, "grade_min_percent") == pytest.approx([min(g) for g in over], rel=1e-9)
+    assert _bend(t, "grade_max_percent") == pytest.approx([max(g) for g in over], rel=1e-9)
+    assert list(_bend(t, "grade_source")) == [1.0] * len(curves)
+    # two of the three middles lie on a vertical circle, one on a tangent: both kinds are held
+    on_circle = [any(v[2] <= m <= v[3] for v in map(lambda i: _vertical_circle(*pts[i - 1 : i + 2], radii[i]), radii))
+                 for m in (starts + ends) / 2]  # fmt: skip
+    assert on_circle == [True, False, True]
+    (application,) = _elements(doc, "Application")
+    r = t.reading
+    assert r["writer"] == f"{application.get('version')} ({application.get('manufacturer')})"
+    assert r["linear_unit"] == _elements(doc, "Metric")[0].get("linearUnit") == "meter"
+    assert r["profile"] == _elements(doc, "ProfAlign")[0].get("name") and r["elements"] == _tag_counts(doc)
+    assert r["superelevation_from"] == "standard" and r["skipped"] == []
+
+
+def test_novapoint_straight_road_with_a_profile_from_before_its_start():
+    doc = _file("novapoint-inframodel-y3-straight.xml")
+    t = read_landxml(doc, superelevation_percent=None)
+    assert len(t) == 0 and t.reading["elements"] == _tag_counts(doc) == {
+        "Line": 1,
+        "ProfAlign": 1,
+        "PVI": 2,
+        "CircCurve": 1,
+    }
+    # its profile starts 1.5 m before the alignment (staStart 0: a station is a distance) over a sag circle
+    pts, _, grade = _circle_profile(doc)
+    (align,) = _elements(doc, "Alignment")
+    assert float(align.get("staStart")) == 0.0 and pts[0][0] < 0.0
+    (profile,) = read_road_file(doc).alignments[0].profiles
+    xs = np.linspace(pts[0][0], pts[-1][0], 1001)
+    np.testing.assert_allclose(grades_at(profile, xs), [grade(x) for x in xs], rtol=1e-9, atol=1e-15)
+
+
+def test_a_writer_naming_itself_in_its_version_is_named_once():
+    # Novapoint writes <Application name="Novapoint" version="Novapoint 21.05.FP4d ...">: read as name + version it
+    # was "Novapoint Novapoint 21.05..."; a version that only begins with the name's letters keeps the name
+    doc = landxml(Design("W", 0.0, [Element("Line", 10.0)]))
+    for version, expected in [
+        ("Novapoint 21.05.FP4d", "Novapoint 21.05.FP4d (Trimble)"),
+        ("Novapoint", "Novapoint (Trimble)"),
+        ("Novapoint2", "Novapoint Novapoint2 (Trimble)"),
+    ]:
+        app = f'<Application name="Novapoint" version="{version}" manufacturer="Trimble"/>'
+        written = doc.replace('<Application name="tests/landxml_writer.py" version="1"/>', app)
+        assert app in written and read_road_file(written).writer == expected
 
 
 def test_a_clothoid_bend_turns_as_the_file_says():

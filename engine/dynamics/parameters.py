@@ -338,7 +338,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             if not ud.yaw_inertia_kgm2 > bound:
                 raise InvalidVehicle(
                     f"{path}.yaw_inertia_kgm2 = {ud.yaw_inertia_kgm2:g} kg m^2 is below the point-mass bound of "
-                    f"unit {u.id!r}'s own masses about its CG ({bound:.0f} kg m^2)",
+                    f"the own masses of unit {u.id!r} about its CG ({bound:.0f} kg m^2)",
                     field=f"{path}.yaw_inertia_kgm2", value=ud.yaw_inertia_kgm2)  # fmt: skip
             iz = Parameter(ud.yaw_inertia_kgm2 - bound, "kg m^2", given(f"{ukey}.yaw_inertia_kgm2") + " (the unit's, "
                            "about its CG; the axles' point masses taken out)")  # fmt: skip

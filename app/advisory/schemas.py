@@ -32,6 +32,17 @@ from engine.road import (
 MAX_VEHICLES = 10
 _LO, _HI = SPEED_RANGE_KMH
 
+# One meaning, one text: the option in every request that takes it (one curve's, an assessment's of curves) and the
+# answers that say which applied (one curve's, an assessment's `advisory`)
+UNITS_DESCRIPTION = describe(
+    "The advisory plaques' units: `us` shows multiples of 5 mph (TxDOT: +1 mph, rounded down to 5 mph); `metric` "
+    "multiples of 10 km/h (rounded down: assumed).",
+    unit="-",
+)
+INCREMENT_DESCRIPTION = describe(
+    "The advisory plaques' increment: 5 with `us` (mph), 10 with `metric` (km/h).", unit="mph or km/h (by `units`)"
+)
+
 
 def _speed(text: str, symbol: str, default=None):
     extra = {"json_schema_extra": ABSENT} if default is None else {}
@@ -122,14 +133,7 @@ class AdvisorySpeedRequest(SrtOptions, DesignOptions):
             f"Several vehicles (1-{MAX_VEHICLES}), each checked; the warning is recommended if any needs it.", unit="-"
         ),
     )  # type: ignore[assignment]
-    units: Literal["us", "metric"] = Field(
-        "us",
-        description=describe(
-            "`us`: the plaque shows multiples of 5 mph (TxDOT: +1 mph, rounded down to 5 mph); `metric`: multiples of "
-            "10 km/h (rounded down: assumed).",
-            unit="-",
-        ),
-    )
+    units: Literal["us", "metric"] = Field("us", description=UNITS_DESCRIPTION)
     increment: float = Field(
         None,
         json_schema_extra=ABSENT,
@@ -225,8 +229,8 @@ class AdvisorySpeedResult(OutputModel):
         description=describe("The advisory speed shown on the plaque (a multiple of the increment).", unit="km/h")
     )
     advisory_speed_mph: float | None = Field(description=describe("The same in mph (with `us`).", unit="mph"))
-    units: Literal["us", "metric"] = Field(description=describe("The plaque's units.", unit="-"))
-    increment: float = Field(description=describe("The plaque's increment.", unit="mph or km/h (by `units`)"))
+    units: Literal["us", "metric"] = Field(description=UNITS_DESCRIPTION)
+    increment: float = Field(description=INCREMENT_DESCRIPTION)
     governed_by: str = Field(description=describe("The method whose speed is shown.", unit="-"))
     methods: list[MethodOut] = Field(description=describe("Every method's speed with its source.", unit="-"))
     treatment: TreatmentOut = Field(description=describe("The sign treatment.", unit="see its fields"))
@@ -242,14 +246,7 @@ class AdvisoryOptions(InputModel):
     """The advisory-speed and speed-profile options of an assessment of curves (alignments and routes): each assessed
     curve carries its advisory speed, treatment, W1-13 rule and the truck's profile figures."""
 
-    units: Literal["us", "metric"] = Field(
-        "us",
-        description=describe(
-            "The plaques' units: `us` shows multiples of 5 mph (TxDOT: +1 mph, rounded down to 5 mph); `metric` "
-            "multiples of 10 km/h (rounded down: assumed).",
-            unit="-",
-        ),
-    )
+    units: Literal["us", "metric"] = Field("us", description=UNITS_DESCRIPTION)
     desired_speed_kmh: float = _speed(
         "The truck's speed on the tangents where a curve has no posted speed (a curve's posted speed is its "
         "tangent's otherwise). Without it, an alignment with a curve without posted speed has no profile (each row "

@@ -8,7 +8,7 @@ from typing import Annotated, Any, Literal
 from pydantic import AfterValidator, ConfigDict, Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from app.advisory.schemas import AdvisoryOptions
+from app.advisory.schemas import INCREMENT_DESCRIPTION, UNITS_DESCRIPTION, AdvisoryOptions
 from app.catalog.schemas import FLEET_ID_PATTERN
 from app.formats.alignment_io import CURVE_ID_MAX_CHARS, CURVE_ID_PATTERN, MAX_CURVES, curve_id_problem
 from app.http import problems
@@ -424,8 +424,8 @@ class SpeedPointOut(OutputModel):
 class AdvisoryOut(OutputModel):
     """The options and sources of the rows' advisory speeds, treatments, warnings and speed profiles."""
 
-    units: Literal["us", "metric"] = Field(description=describe("The plaques' units.", unit="-"))
-    increment: float = Field(description=describe("The plaques' increment.", unit="mph or km/h (by `units`)"))
+    units: Literal["us", "metric"] = Field(description=UNITS_DESCRIPTION)
+    increment: float = Field(description=INCREMENT_DESCRIPTION)
     desired_speed_kmh: float | None = Field(
         description=describe("The request's tangent speed where a curve has no posted speed.", unit="km/h")
     )

@@ -66,17 +66,34 @@ def check_dynamics(c: Combination, data: DynamicsData) -> None:
         raise typed_field(e, data) from e
 
 
-_ENGINE_FIELD = re.compile(r"dynamics\.((?:units|groups)\[[^\]]+\]\.\w+)$")
+_ENGINE_PATH = r"dynamics\.((?:units|groups)\[[^\]]+\]\.\w+)"
+_ENGINE_FIELD = re.compile(_ENGINE_PATH + "$")
+_ENGINE_PATHS = re.compile(_ENGINE_PATH)
+
+
+def saved_place(where: str, saved_id: str, path: str) -> str:
+    """Where a value stored in a saved vehicle sits, as the request gives it: the request's field that holds the
+    saved id (``vehicle``), then the stored path, said to be the saved vehicle's
+    (``vehicle (saved vehicle veh_...: combination_spec.units[1].dynamics.width_m)``). The user typed the id, not
+    ``vehicle.combination_spec...``: no such path is in the request."""
+    return f"{where} (saved vehicle {saved_id}: {path})"
+
+
+def field_of(place: str) -> str:
+    """The request's field of a place where a value was given: the place itself, or for a :func:`saved_place` the
+    field that holds the saved id (an error's ``field``: a path into the request)."""
+    return place.split(" (saved vehicle ", 1)[0]
 
 
 def typed_field(exc: InvalidVehicle, data: DynamicsData) -> InvalidVehicle:
     """The yaw-roll model's error on a given value (``dynamics.units[<unit id>].<field>``) at the field where the
-    value was typed (``data.given_at``); the error unchanged when not a given value's."""
+    value was typed (``data.given_at``), its message naming every given value by where it was typed; the error
+    unchanged when not a given value's."""
     m = _ENGINE_FIELD.match(exc.field or "")
     if m is None or m.group(1) not in data.given_at:
         return exc
-    typed = data.given_at[m.group(1)]
-    return InvalidVehicle(str(exc).replace(exc.field or "", typed), field=typed, value=exc.value)
+    message = _ENGINE_PATHS.sub(lambda k: data.given_at.get(k.group(1), k.group(0)), str(exc))
+    return InvalidVehicle(message, field=field_of(data.given_at[m.group(1)]), value=exc.value)
 
 
 def combination_of(data: dict[str, Any], where: str | None) -> Combination:
@@ -92,10 +109,15 @@ def combination_of(data: dict[str, Any], where: str | None) -> Combination:
     return c
 
 
-def dynamics_at(built: BuiltCombination, where: str | None) -> DynamicsData:
+def dynamics_at(built: BuiltCombination, where: str | None, saved_id: str | None = None) -> DynamicsData:
     """The built combination's data for the yaw-roll model, each value named where the request typed it
-    (``vehicle.combination_spec.units[1].dynamics.width_m``)."""
+    (``vehicle.combination_spec.units[1].dynamics.width_m``), or for a saved vehicle's spec where the request gave
+    its id (:func:`saved_place`)."""
     data = built.dynamics
     if not where:
         return data
+    if saved_id is not None:
+        return DynamicsData(
+            data.units, data.groups, {k: saved_place(where, saved_id, v) for k, v in data.given_at.items()}
+        )
     return DynamicsData(data.units, data.groups, {k: f"{where}.{v}" for k, v in data.given_at.items()})

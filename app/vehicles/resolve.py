@@ -182,7 +182,8 @@ def _stored(id: str, body: dict[str, Any], where: str) -> ResolvedVehicle:
         vehicle: Vehicle | Combination = build_spec(body["spec"], where).vehicle
     elif "combination_spec" in body:
         built = build_combination_spec(body["combination_spec"], where)
-        return ResolvedVehicle(where, "saved", built.combination, saved_id=id, dynamics=dynamics_at(built, where))
+        dynamics = dynamics_at(built, where, saved_id=id)
+        return ResolvedVehicle(where, "saved", built.combination, saved_id=id, dynamics=dynamics)
     elif "combination" in body:
         vehicle = combination_of(body["combination"], where)
         return ResolvedVehicle(where, "saved", vehicle, saved_id=id, warnings=_last_unit_warnings(vehicle, where))

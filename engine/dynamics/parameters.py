@@ -246,8 +246,8 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
                 raise InvalidVehicle(f"{path}.tyre_type must be one of {', '.join(TYRE_TYPES)}, got "
                                      f"{gd.tyre_type!r}", field=f"{path}.tyre_type", value=gd.tyre_type)  # fmt: skip
             if gd.tyre_type is not None and gd.cornering_coefficient_per_rad is not None:
-                raise InvalidVehicle(f"{path}: give a tyre_type or a cornering_coefficient_per_rad, not both (the "
-                                     "coefficient replaces the tyre's table)", field=f"{path}.tyre_type",
+                raise InvalidVehicle(f"{path}.tyre_type and {path}.cornering_coefficient_per_rad: give one, not "
+                                     "both (the coefficient replaces the tyre's table)", field=f"{path}.tyre_type",
                                      value=gd.tyre_type)  # fmt: skip
             tyre_id, tyre_why = None, "not used: the cornering coefficient was given"
             if gd.cornering_coefficient_per_rad is not None:
@@ -338,7 +338,7 @@ def resolve(c: Combination, data: DynamicsData | None = None) -> ResolvedParamet
             if not ud.yaw_inertia_kgm2 > bound:
                 raise InvalidVehicle(
                     f"{path}.yaw_inertia_kgm2 = {ud.yaw_inertia_kgm2:g} kg m^2 is below the point-mass bound of "
-                    f"unit {u.id!r}'s own masses about its CG ({bound:.0f} kg m^2)",
+                    f"the own masses of unit {u.id!r} about its CG ({bound:.0f} kg m^2)",
                     field=f"{path}.yaw_inertia_kgm2", value=ud.yaw_inertia_kgm2)  # fmt: skip
             iz = Parameter(ud.yaw_inertia_kgm2 - bound, "kg m^2", given(f"{ukey}.yaw_inertia_kgm2") + " (the unit's, "
                            "about its CG; the axles' point masses taken out)")  # fmt: skip

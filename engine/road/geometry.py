@@ -610,12 +610,19 @@ def grade_at(profile: Profile, distance_m: float) -> float:
 
 
 def grade_range(profile: Profile, start_m: float, end_m: float) -> tuple[float, float]:
-    """The least and greatest grade (ratios) over ``[start_m, end_m]``: every segment's grade is monotone, so the
-    extremes are at the range's ends or at the segment boundaries inside it (both sides of a jump)."""
+    """The least and greatest grade (ratios) over ``[start_m, end_m]``: of the road inside the range, so of every
+    segment overlapping it over a length (a segment that only touches an end carries none of the range's road).
+    Every segment's grade is monotone, so the extremes are at the range's ends or at the segment boundaries inside
+    it (both sides of a jump). At a PVI without a vertical curve the grade jumps: exactly at a range's end only the
+    grade on the range's side applies (the other is the road beyond it), strictly inside both do; a range of no
+    length at a jump takes both (the grades either side of the one point)."""
     values: list[float] = []
+    point = start_m == end_m
     for s in profile.segments:
+        if not s.length_m > 0.0:  # a segment of no length carries no road
+            continue
         a, b = max(start_m, s.start_distance_m), min(end_m, s.start_distance_m + s.length_m)
-        if a <= b:
+        if a < b or (point and a == b):
             values.extend(_segment_grade(s, np.array([a, b])).tolist())
     if not values:
         g = grade_at(profile, 0.5 * (start_m + end_m))
@@ -673,8 +680,9 @@ def grades_at(profile: Profile, distance_m: np.ndarray, *, from_before: bool = F
 
 
 def grade_ranges(profile: Profile, start_m: np.ndarray, end_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`grade_range` over many ranges: the grades at each range's ends and at both sides of every segment
-    boundary inside it (every segment's grade is monotone)."""
+    """:func:`grade_range` over many ranges: the grades at each range's ends, each taken from inside the range (at
+    a jump the start's from the segment after it, the end's from the segment before it), and at both sides of every
+    segment boundary strictly inside it (every segment's grade is monotone)."""
     return _ranges_in(_segment_table(profile), np.asarray(start_m, dtype=float), np.asarray(end_m, dtype=float))
 
 

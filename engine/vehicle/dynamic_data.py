@@ -41,8 +41,9 @@ class DynamicsData:
 
     ``given_at`` says where each given value was typed, for the answer's sources and the errors' fields:
     ``"units[<unit id>].<field>"`` or ``"groups[<unit id>/<group id>].<field>"`` -> the request's path
-    (``dynamics.units[0].width_m``, ``vehicle.combination_spec.units[1].dynamics.width_m``); a value it does not
-    list is named ``dynamics.units[<unit id>].<field>``.
+    (``dynamics.units[0].width_m``, ``vehicle.combination_spec.units[1].dynamics.width_m``; a saved vehicle's:
+    the field that gives its id and the stored path, ``vehicle (saved vehicle veh_...: combination_spec...)``); a
+    value it does not list is named ``dynamics.units[<unit id>].<field>``.
     """
 
     units: dict[str, UnitData] = field(default_factory=dict)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import os
 import shutil
 import socket
@@ -101,10 +102,13 @@ def redis_server() -> Iterator[RedisServer]:
 
 def a_spec(tag: object = None, payloads: int = 1) -> dict:
     """A valid builder spec ``{"spec": ...}`` (the schema's example semi-trailer), told apart by its title, with
-    ``payloads`` equal deck loads (more payloads make a larger body)."""
+    ``payloads`` equal deck loads (more payloads make a larger body). A deep copy throughout: a test may change any
+    part of it without changing the schema's example, another test's spec or another payload of its own."""
     from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC
 
-    load = EXAMPLE_SPEC["payloads"][0]
-    each = {**load, "mass_kg": load["mass_kg"] / payloads}
-    spec = {**EXAMPLE_SPEC, "payloads": [each] * payloads}
-    return {"spec": spec if tag is None else {**spec, "title": str(tag)}}
+    spec = copy.deepcopy(EXAMPLE_SPEC)
+    load = spec["payloads"][0]
+    spec["payloads"] = [{**load, "mass_kg": load["mass_kg"] / payloads} for _ in range(payloads)]
+    if tag is not None:
+        spec["title"] = str(tag)
+    return {"spec": spec}

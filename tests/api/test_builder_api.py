@@ -57,6 +57,23 @@ def test_a_spec_is_a_vehicle_everywhere(shared_client):
     assert "built vehicle" in svg
 
 
+def test_a_spec_given_to_a_test_shares_nothing_with_another():
+    """A test that changes the spec it was given (its tare, its tyre, one of its payloads) changes no other test's
+    spec, no other payload of its own and not the schema's example (the OpenAPI document's example of the build
+    request): the expected values are the example's literals (8,000 kg tare, 22,000 kg payload in two halves)."""
+    from app.vehicle_forms.builder_schemas import EXAMPLE_SPEC
+
+    mine = a_spec(payloads=2)["spec"]
+    mine["tare"]["mass_kg"] = 1.0
+    mine["rear"]["tyre"]["id"] = "another"
+    mine["payloads"][0]["mass_kg"] = 1.0
+    assert mine["payloads"][1]["mass_kg"] == 11000.0
+    theirs = a_spec()["spec"]
+    assert theirs["tare"]["mass_kg"] == EXAMPLE_SPEC["tare"]["mass_kg"] == 8000.0
+    assert theirs["rear"]["tyre"] == EXAMPLE_SPEC["rear"]["tyre"] == {"id": "thesis-michelin-xza"}
+    assert theirs["payloads"][0]["mass_kg"] == EXAMPLE_SPEC["payloads"][0]["mass_kg"] == 22000.0
+
+
 @pytest.mark.parametrize(
     ("change", "field", "words"),
     [

@@ -151,8 +151,8 @@ def test_a_saved_spec_keeps_its_dynamic_data(tmp_path):
         r = c.post("/v1/dynamics/stability", json={"vehicle": saved["id"]}, headers=auth)
         assert r.status_code == 200, r.text
         u = r.json()["parameters"]["units"][1]
-        assert u["width_m"] == {"value": 2.55, "unit": "m",
-                                "source": "given in vehicle.combination_spec.units[1].dynamics.width_m"}  # fmt: skip
+        place = f"vehicle (saved vehicle {saved['id']}: combination_spec.units[1].dynamics.width_m)"
+        assert u["width_m"] == {"value": 2.55, "unit": "m", "source": f"given in {place}"}
         # editing one dynamic field of the saved spec changes the answer (its key holds the data, not the id)
         put = c.put(
             f"/v1/vehicles/{saved['id']}",
@@ -162,3 +162,37 @@ def test_a_saved_spec_keeps_its_dynamic_data(tmp_path):
         assert put.status_code == 200, put.text
         again = c.post("/v1/dynamics/stability", json={"vehicle": saved["id"]}, headers=auth)
         assert again.json()["parameters"]["units"][1]["yaw_inertia_kgm2"] != u["yaw_inertia_kgm2"]
+
+
+def test_a_saved_specs_values_are_named_where_the_request_gave_the_saved_id(tmp_path):
+    """The request typed ``"vehicle": "veh_..."``: a problem on a value stored in the saved spec names ``vehicle``
+    (no ``vehicle.combination_spec...`` is in the request), its message the saved vehicle and the stored path; the
+    same spec typed in the request keeps naming the spec's field."""
+    settings = Settings(cache_backend="memory", database_url=f"sqlite:///{tmp_path / 'r.db'}", api_keys=KEY)
+    auth = {"Authorization": f"Bearer {KEY}"}
+    s = copy.deepcopy(EXAMPLE_COMBINATION_SPEC)
+    s["units"][1]["dynamics"] = {"width_m": 2.55}
+    s["units"][1]["axle_groups"][0]["dynamics"] = {"tyre_type": "trucksim-3000kg"}
+    group = {"unit": "semitrailer", "group": "semitrailer", "cornering_coefficient_per_rad": 5.0}
+    with make_client(settings) as c:
+        vid = c.post("/v1/vehicles", json={"title": "t", "vehicle": {"combination_spec": s}}, headers=auth).json()["id"]
+        stored = f"vehicle (saved vehicle {vid}: combination_spec.units[1]"
+        # a tyre type stored in the saved spec beside a coefficient given in the request
+        r = c.post("/v1/dynamics/stability", json={"vehicle": vid, "dynamics": {"groups": [group]}}, headers=auth)
+        assert r.status_code == 422, r.text
+        (err,) = r.json()["errors"]
+        assert err["field"] == "vehicle" and err["loc"] == ["body", "vehicle"]
+        assert err["message"].startswith(f"{stored}.axle_groups[0].dynamics.tyre_type) and "
+                                         "dynamics.groups[0].cornering_coefficient_per_rad: give one")  # fmt: skip
+        # a width in both: the request's field, the saved spec's place in its message
+        unit = {"unit": "semitrailer", "width_m": 2.55}
+        r = c.post("/v1/dynamics/stability", json={"vehicle": vid, "dynamics": {"units": [unit]}}, headers=auth)
+        assert r.status_code == 422, r.text
+        (err,) = r.json()["errors"]
+        assert err["field"] == "dynamics.units.0.width_m"
+        assert f"{stored}.dynamics.width_m)" in err["message"] and "vehicle.combination_spec" not in err["message"]
+        # the spec typed in the request: its own field
+        r = c.post("/v1/dynamics/stability", json={"vehicle": {"combination_spec": s}, "dynamics": {"groups": [group]}})
+        (err,) = r.json()["errors"]
+        assert err["field"] == "vehicle.combination_spec.units.1.axle_groups.0.dynamics.tyre_type"
+        assert err["message"].startswith("vehicle.combination_spec.units[1].axle_groups[0].dynamics.tyre_type and ")

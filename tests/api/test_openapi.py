@@ -224,6 +224,22 @@ def test_every_field_names_its_unit_and_thesis_symbol():
     assert missing == []
 
 
+def test_a_field_of_one_meaning_has_one_description():
+    """The plaques' `units` (an option of every request that gives advisory speeds, and said back in one curve's
+    answer and in an assessment's `advisory`) and the answers' `increment` mean the same wherever they are: each
+    has one description (they read "The plaque's units." in one answer and "The plaques' units." in the other)."""
+    schemas = create_app().openapi()["components"]["schemas"]
+    units = {
+        name: schema["properties"]["units"]["description"]
+        for name, schema in schemas.items()
+        if schema.get("properties", {}).get("units", {}).get("enum") == ["us", "metric"]
+    }
+    assert {"AdvisorySpeedRequest", "AdvisorySpeedResult", "AlignmentRequest", "AdvisoryOut"} <= set(units)
+    assert len(set(units.values())) == 1, units
+    answers = ("AdvisorySpeedResult", "AdvisoryOut")
+    assert len({schemas[name]["properties"]["increment"]["description"] for name in answers}) == 1
+
+
 def test_vehicle_record_schema_has_every_engine_field():
     # the record is the engine's Vehicle plus the ignored preset metadata: a new engine field must appear here
     engine_fields = set(Vehicle.__dataclass_fields__)

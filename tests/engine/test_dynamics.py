@@ -307,3 +307,12 @@ def test_impossible_dynamics_data_is_refused_naming_unit_and_field():
         with pytest.raises(InvalidVehicle) as err:
             build(c, data)
         assert err.value.field == fieldname
+
+
+def test_the_inertia_bound_message_quotes_the_unit_once():
+    """The unit's id is quoted by its repr; a possessive after it read ``unit 'trailer2''s``."""
+    with pytest.raises(InvalidVehicle) as err:
+        build(COMBINATIONS["adouble"], DynamicsData(units={"trailer2": UnitData(yaw_inertia_kgm2=1000.0)}))
+    message = str(err.value)
+    assert "''" not in message
+    assert "the own masses of unit 'trailer2' about its CG" in message

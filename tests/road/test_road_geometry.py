@@ -160,6 +160,29 @@ def test_grade_range_sees_a_break_without_a_vertical_curve():
     assert covers(p, 0.0, 200.0) and not covers(p, 150.0, 250.0)
 
 
+@pytest.mark.parametrize(
+    ("start", "end", "expected"),
+    [
+        (100.0, 150.0, (-0.05, -0.05)),  # starts at the PVI: the road over it is all at -5 %
+        (60.0, 100.0, (0.0, 0.016)),  # ends at the PVI: the parabola's grades 0.04 (1 - u/100), u = 60..100
+        (60.0, 150.0, (-0.05, 0.016)),  # the PVI inside: both sides of the break
+        (100.0, 100.0, (-0.05, 0.0)),  # no length, at the PVI: the grades either side of that point
+    ],
+)
+def test_a_range_ending_at_a_pvi_without_a_vertical_curve_takes_the_grade_on_its_own_side(start, end, expected):
+    """The least and greatest grade over a curve are those of the road on it: a break in grade exactly at a curve's
+    end leaves the grade beyond the end out (the road there is not on the curve). Closed forms: a parabola from
+    +4 % to 0 % over 100 m (grade linear in the distance), then -5 % from the PVI at 100 m with no vertical curve;
+    the scalar and the array form give the same."""
+    p = _profile(
+        VerticalSegment("parabolic", 0.0, 100.0, 0.0, 0.04, 0.0),
+        VerticalSegment("constant", 100.0, 100.0, 2.0, -0.05, -0.05),
+    )
+    assert grade_range(p, start, end) == pytest.approx(expected, abs=1e-15)
+    lo, hi = grade_ranges(p, np.array([start]), np.array([end]))
+    assert (lo[0], hi[0]) == pytest.approx(expected, abs=1e-15)
+
+
 def test_superelevation_range_wins_over_cross_slopes():
     a = alignment(
         line(100.0),

@@ -270,6 +270,22 @@ def criterion_speed_kmh(
     e = np.broadcast_to(np.asarray(superelevation_percent, dtype=float), r.shape)
     f = band_values_side_friction(bands, body_roll_deg_per_g)
     edges = mph_to_kmh(np.array((*bands.edges_mph, np.inf)))
+    if r.ndim == 1 and len(r) > _CHUNK:  # in chunks, into one array: the temporaries stay small
+        out = np.empty(len(r))
+        for lo in range(0, len(r), _CHUNK):
+            k = slice(lo, lo + _CHUNK)
+            out[k] = _criterion_speed_kmh(f, edges, r[k], e[k])
+        return out
+    return _criterion_speed_kmh(f, edges, r, e)
+
+
+#: curves per chunk of the criteria's arithmetic (whole-road temporaries are fresh pages at 100,000 curves, which cost
+#: more to touch than the arithmetic on them; a chunk's stay in the allocator's free memory)
+_CHUNK = 8192
+
+
+def _criterion_speed_kmh(f, edges, r, e):
+    """:func:`criterion_speed_kmh` of the bands' side frictions ``f`` and speed edges [km/h] (the last inf)."""
     # the first band (in rising speed) whose own speed lies below its upper edge sets the speed: max(v, its lower
     # edge); bands taken from the last so the first one's overwrites (selects, not masked assignments: these cost
     # ten times an arithmetic pass on random masks)

@@ -129,6 +129,7 @@ def advise(
         deceleration_mps2=r.deceleration_mps2,
         part=part,
         all_methods=False,  # the rows show the shown speed's method only (advisory_head names it)
+        all_figures=False,  # and of the profile's per-curve figures the approach speed and the rate only
     )
     p = a.profile
     required = _own_floats(p.required_deceleration_mps2)

@@ -508,6 +508,7 @@ def advise_alignment(
     alignment_end_m: float | None = None,
     part=None,
     all_methods: bool = True,
+    all_figures: bool = True,
 ) -> AlignmentAdvice:
     """Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one alignment and one
     vehicle: the function the alignment and route answers call per vehicle.
@@ -528,6 +529,8 @@ def advise_alignment(
         sign across parts; None: one road
     all_methods : False: ``advisory.methods`` holds only the speeds the shown one comes from (the 2009 ball-bank
         criterion's and the Direct Method's), not every legacy criterion's (an answer that lists none of them)
+    all_figures : False: the profile's per-curve figures are only the approach speed and the required deceleration
+        (:func:`engine.road.profile.speed_profile`'s ``all_figures``)
 
     Returns
     -------
@@ -600,6 +603,7 @@ def advise_alignment(
             columns.grade_percent,
             alignment_start_m=alignment_start_m,
             alignment_end_m=alignment_end_m,
+            all_figures=all_figures,
             **options,
         )
     return AlignmentAdvice(advisory=advisory, sign_group=groups, profile=profile)

@@ -151,14 +151,14 @@ class SpeedProfile:
     station_m: np.ndarray
     speed_kmh: np.ndarray
     approach_speed_kmh: np.ndarray
-    entry_speed_kmh: np.ndarray
+    entry_speed_kmh: np.ndarray | None  # (this and the checks below None where ``all_figures`` was False)
     curve_speed_kmh: np.ndarray  # the cap the truck takes the curve at (lowest of desired, safe, advisory)
     required_deceleration_mps2: np.ndarray  # to the curve speed, with the reaction distance (inf: no room; nan: the
     # first curve's approach length is unknown)
-    slows_to_advisory: np.ndarray  # bool; True where there is no advisory below the approach
-    slows_to_safe: np.ndarray
-    advance_sign_distance_m: np.ndarray
-    speed_drop_kmh: np.ndarray
+    slows_to_advisory: np.ndarray | None  # bool; True where there is no advisory below the approach
+    slows_to_safe: np.ndarray | None
+    advance_sign_distance_m: np.ndarray | None
+    speed_drop_kmh: np.ndarray | None
     reasons: list[str | None]
     deceleration_mps2: float
     reaction_time_s: float
@@ -258,6 +258,7 @@ def speed_profile(
     reaction_time_s: float = REACTION_TIME_S,
     acceleration: dict | None = None,
     first_index: int = 0,
+    all_figures: bool = True,
 ) -> SpeedProfile:
     """The truck's speed profile along curves given by their start stations and lengths.
 
@@ -277,6 +278,9 @@ def speed_profile(
     reaction_time_s : reaction time before braking [s]
     acceleration : overrides of :data:`ACCELERATION_DEFAULTS`
     first_index : the first curve's index where the curves are part of a longer list (the reasons' ``curves[i]``)
+    all_figures : False: of the per-curve figures only the approach speed and the required deceleration (the
+        entry speed, the two approach checks, the advance-sign distance and the speed drop are None: an answer that
+        shows none of them)
 
     Returns
     -------
@@ -367,8 +371,11 @@ def speed_profile(
     # kept small); the approach: from the previous curve's exit accelerating along the tangent, capped by the
     # desired speed
     t = reaction_time_s
-    approach_kmh, entry_kmh, required, sign_m, drop_kmh = (np.empty(shape) for _ in range(5))
-    slows_adv, slows_safe = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
+    approach_kmh, required = np.empty(shape), np.empty(shape)
+    entry_kmh = sign_m = drop_kmh = slows_adv = slows_safe = None
+    if all_figures:
+        entry_kmh, sign_m, drop_kmh = np.empty(shape), np.empty(shape), np.empty(shape)
+        slows_adv, slows_safe = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
     for lo in range(0, n, _CHUNK):
         hi = min(lo + _CHUNK, n)
         k = slice(lo, hi)
@@ -382,7 +389,8 @@ def speed_profile(
             approach2[0] = (lead_cap / 3.6) ** 2
         _curve_figures(
             approach2, cap[k], tangent_before[k], advisory[k], safe[k], v2[2 * lo : 2 * hi : 2], d, t,
-            (approach_kmh[k], entry_kmh[k], required[k], slows_adv[k], slows_safe[k], sign_m[k], drop_kmh[k]),
+            (approach_kmh[k], required[k])
+            + ((entry_kmh[k], slows_adv[k], slows_safe[k], sign_m[k], drop_kmh[k]) if all_figures else ()),
         )  # fmt: skip
 
     # the profile's stations: per element the acceleration line, the cap, the braking line
@@ -434,8 +442,9 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
     """Per curve (arrays of a chunk of curves): from the approach speed^2 [(m/s)^2], the curve's speed [km/h], the
     tangent before it [m], its advisory and safe speeds [km/h] and v^2 at its start, the approach and entry speeds,
     the required deceleration, whether the tangent lets the truck slow to the advisory and to the safe speed, the
-    advance-sign distance and the speed drop, written into ``out`` (in that order)."""
-    approach_kmh, entry_kmh, required, slows_adv, slows_safe, sign_m, drop_kmh = out
+    advance-sign distance and the speed drop, written into ``out`` (the approach, the required deceleration and then,
+    where ``out`` has them, the entry speed, the two checks, the sign distance and the speed drop)."""
+    approach_kmh, required = out[:2]
     v1 = np.sqrt(approach2)
     target = cap / 3.6
 
@@ -451,6 +460,10 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
         )
     # the first curve approached from an unknown distance (no road start given): the rate it needs is unknown
     required[~np.isfinite(tangent_before) & (v1 > target)] = np.nan
+    approach_kmh[...] = v1 * 3.6
+    if len(out) == 2:
+        return
+    entry_kmh, slows_adv, slows_safe, sign_m, drop_kmh = out[2:]
     adv = advisory / 3.6
     safe_v = safe / 3.6
     slows_adv[...] = ~np.where(np.isfinite(adv), too_close(np.where(np.isfinite(adv), adv, 0.0)), False)
@@ -459,7 +472,6 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
     # without an advisory below the approach, the reaction distance alone
     drop_to = np.where(np.isfinite(adv), np.minimum(adv, v1), v1)
     sign_m[...] = v1 * t + (approach2 - drop_to**2) / (2.0 * DECELERATION_MPS2)
-    approach_kmh[...] = v1 * 3.6
     entry_kmh[...] = np.sqrt(entry2) * 3.6
     drop_kmh[...] = np.maximum(v1 * 3.6 - cap, 0.0)
 
@@ -554,7 +566,8 @@ def speed_profiles_by_part(part, start_station_m, length_m, desired_speed_kmh, s
     ps = [p for _, p in pieces]
 
     def joined(name):
-        return np.concatenate([getattr(p, name) for p in ps])
+        arrays = [getattr(p, name) for p in ps]
+        return None if any(a is None for a in arrays) else np.concatenate(arrays)
 
     notes = [f"part {k}: {note}" for k, p in pieces for note in p.notes]
     return SpeedProfile(

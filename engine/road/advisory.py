@@ -419,14 +419,19 @@ def _advisory_speeds(radius_m, superelevation_percent, deflection_deg, measured_
     e = column(superelevation_percent)
     criteria = LEGACY_CRITERIA if all_methods else (BALL_BANK_2009,)
     methods = {b.id: criterion_speed_kmh(b, r, e, body_roll_deg_per_g) for b in criteria}
-    direct = direct_method_speed_kmh(column(measured_car_speed_kmh))
-    methods["txdot-direct"] = direct
-    use_direct = np.isfinite(direct)
-    raw = np.where(use_direct, direct, methods[BALL_BANK_2009.id])
+    if measured_car_speed_kmh is None:  # (an alignment's rows): every speed is the criterion's, no select
+        methods["txdot-direct"] = np.full(n, np.nan)
+        raw, governed_by = methods[BALL_BANK_2009.id], np.ones(n, dtype=np.int8)
+    else:
+        direct = direct_method_speed_kmh(column(measured_car_speed_kmh))
+        methods["txdot-direct"] = direct
+        use_direct = np.isfinite(direct)
+        raw = np.where(use_direct, direct, methods[BALL_BANK_2009.id])
+        governed_by = np.where(use_direct, 0, 1).astype(np.int8)
     shown = displayed_speed_kmh(raw, units)
     deflection = column(deflection_deg)
     small_deflection = np.isfinite(deflection) & (deflection < MIN_DEFLECTION_DEG)
-    return shown, np.where(use_direct, 0, 1).astype(np.int8), methods, small_deflection
+    return shown, governed_by, methods, small_deflection
 
 
 def method_source(method_id: str) -> tuple[str, bool, bool]:

@@ -136,7 +136,8 @@ def advise(
     n = len(required)
     reason = np.full(n, -1, dtype=np.intp)
     reasons: list[str] = []
-    if p.reasons and any(p.reasons):  # no profile: every curve has its reason (per curve: only then a loop)
+    # (count, not any(): a Python pass over 100,000 Nones, a millisecond)
+    if p.reasons.count(None) < len(p.reasons):  # no profile: every curve has its reason (per curve: only then a loop)
         # (of a road of several parts, the curves of the parts without a profile; the others' are None)
         reasons = sorted({x for x in p.reasons if x is not None})
         code = {x: k for k, x in enumerate(reasons)}

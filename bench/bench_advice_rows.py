@@ -10,7 +10,9 @@ compiled row writer copied beside) to compare: the issue's target is at most +20
 ``--base COMMIT`` also times the advice alone beside the vehicle's assessment alone (``assess_table``), in the same
 process and alternately, round by round: this tree's :func:`app.alignments.advice.advise` and COMMIT's (its
 engine/road/profile.py, engine/road/advisory.py and app/alignments/advice.py read by ``git show``, the rest of this
-tree), and checks that the two give the same arrays.
+tree), and checks that the two give the same arrays; beside each time, the minor page faults a call (fresh pages the
+kernel maps and zeroes on first touch: at 100,000 curves every new whole-road array is such pages, which cost more
+than the arithmetic on them).
 
     python bench/bench_advice_rows.py [--curves 100000] [--repeat 3] [--continuous] [--base COMMIT]
 """
@@ -18,6 +20,7 @@ tree), and checks that the two give the same arrays.
 from __future__ import annotations
 
 import argparse
+import resource
 import subprocess
 import sys
 import time
@@ -116,17 +119,20 @@ def paired(job, base: str, repeat: int) -> None:
         f"advice, {base}": lambda: old(r, cols, *places),
     }
     times = {k: [] for k in stages}
+    faults = dict.fromkeys(stages, 0)  # the process's minor page faults: fresh pages touched (mapped and zeroed)
     for _ in range(repeat):
         for k, fn in stages.items():
+            f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
             t0 = time.perf_counter()
             fn()
             times[k].append(time.perf_counter() - t0)
+            faults[k] += resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0
     t = {k: min(v) for k, v in times.items()}
     assess = t["assessment (assess_table)"]
-    print(f"  advice alone beside the assessment alone (alternately, best of {repeat}):")
+    print(f"  advice alone beside the assessment alone (alternately, best of {repeat}; minor page faults a call):")
     for k, v in t.items():
         added = "" if v is assess else f" ({100.0 * v / assess:+.0f} % of the assessment)"
-        print(f"    {k}: {1e3 * v:.1f} ms{added}")
+        print(f"    {k}: {1e3 * v:.1f} ms{added}; {faults[k] / repeat:,.0f} page faults")
     print(f"    the two advices' arrays identical: {same}")
 
 

@@ -129,13 +129,15 @@ def advise(
         deceleration_mps2=r.deceleration_mps2,
         part=part,
         all_methods=False,  # the rows show the shown speed's method only (advisory_head names it)
+        all_figures=False,  # and of the profile's per-curve figures the approach speed and the rate only
     )
     p = a.profile
-    required = np.asarray(p.required_deceleration_mps2, dtype=float)
+    required = _own_floats(p.required_deceleration_mps2)
     n = len(required)
     reason = np.full(n, -1, dtype=np.intp)
     reasons: list[str] = []
-    if p.reasons and any(p.reasons):  # no profile: every curve has its reason (per curve: only then a loop)
+    # (count, not any(): a Python pass over 100,000 Nones, a millisecond)
+    if p.reasons.count(None) < len(p.reasons):  # no profile: every curve has its reason (per curve: only then a loop)
         # (of a road of several parts, the curves of the parts without a profile; the others' are None)
         reasons = sorted({x for x in p.reasons if x is not None})
         code = {x: k for k, x in enumerate(reasons)}
@@ -146,22 +148,35 @@ def advise(
             if where.any():
                 reason[where] = len(reasons)
                 reasons.append(text)
-    approach = np.asarray(p.approach_speed_kmh, dtype=float)
+    # the profile's arrays are this call's own (the engine made them for it): their figures are rounded in place,
+    # not copied (at 100,000 curves the points are megabytes, each new one fresh pages to touch)
+    approach = _own_floats(p.approach_speed_kmh)
+    np.copyto(approach, np.nan, where=~np.isfinite(approach))
+    np.copyto(required, np.nan, where=~np.isfinite(required))
+    # the profile's points written to the millimetre and 0.001 km/h (floored: never above a cap it touches):
+    # at full precision its 4 points a curve were a fifth of a large answer and as long to write
+    station = _own_floats(p.station_m)
+    np.round(station, 3, out=station)
+    speed = _own_floats(p.speed_kmh)
+    np.divide(np.floor(np.multiply(speed, 1000.0, out=speed), out=speed), 1000.0, out=speed)
     return VehicleAdvice(
         advisory_speed_kmh=np.asarray(a.advisory.advisory_speed_kmh, dtype=float),
         treatment=np.asarray(a.advisory.treatment, dtype=np.intp),
         truck_rollover_warning=np.asarray(a.advisory.truck_rollover_warning, dtype=bool),
-        approach_speed_kmh=np.where(np.isfinite(approach), approach, np.nan),
-        required_deceleration_mps2=np.where(np.isfinite(required), required, np.nan),
+        approach_speed_kmh=approach,
+        required_deceleration_mps2=required,
         reason=reason,
         reasons=reasons,
-        # the profile's points written to the millimetre and 0.001 km/h (floored: never above a cap it touches):
-        # at full precision its 4 points a curve were a fifth of a large answer and as long to write
-        station_m=np.round(np.asarray(p.station_m, dtype=float), 3),
-        speed_kmh=np.floor(np.asarray(p.speed_kmh, dtype=float) * 1000.0) / 1000.0,
+        station_m=station,
+        speed_kmh=speed,
         notes=list(p.notes),
         point_part=p.point_part,
     )
+
+
+def _own_floats(x) -> np.ndarray:
+    """``x`` as a writable float64 array: itself where it already is one, else a copy."""
+    return x if isinstance(x, np.ndarray) and x.dtype == np.float64 and x.flags.writeable else np.array(x, dtype=float)
 
 
 def treatment_devices(code: int) -> list[str]:

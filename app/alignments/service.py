@@ -324,14 +324,16 @@ def _no_curves() -> AlignmentColumns:
     )
 
 
-def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None) -> VehicleAnswer:
+def _vehicle_answer(job: AlignmentJob, index: int, solve_pairs=None, places=None) -> VehicleAnswer:
+    """``places``: :meth:`AlignmentJob.curve_places` (None: found here), the same for every vehicle."""
     r = job.resolved
     case = assessment_case(r, job.vehicles[index])
     try:
         cols = assess_table(case, r, job.curves, solve_pairs) if len(job.curves) else _no_curves()
     except InvalidInput as exc:
         raise _located(exc, job, index) from None
-    return vehicle_answer(r, index, cols, level_road_srt(case), advise(r, cols, *job.curve_places()))
+    places = job.curve_places() if places is None else places
+    return vehicle_answer(r, index, cols, level_road_srt(case), advise(r, cols, *places))
 
 
 def level_road_srt(case: Case) -> float:
@@ -348,7 +350,8 @@ def solve_alignment(job: AlignmentJob, solve_pairs=None) -> AlignmentAnswer:
     :func:`engine.road.curves.assess_alignment` (a job's parts remember the pairs they solved); the blocks of the
     pairs' solve and of the side-friction speeds run on the solver threads (:mod:`app.compute.solvers`)."""
     started = time.perf_counter()
-    vehicles = [_vehicle_answer(job, k, solve_pairs) for k in range(len(job.vehicles))]
+    places = job.curve_places() if job.vehicles else None  # the road's, once for every vehicle
+    vehicles = [_vehicle_answer(job, k, solve_pairs, places) for k in range(len(job.vehicles))]
     answer = AlignmentAnswer(job.resolved, job.curves, vehicles)
     SOLVE_SECONDS.labels("alignments", job.resolved.model or "default").observe(time.perf_counter() - started)
     return answer

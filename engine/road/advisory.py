@@ -270,6 +270,22 @@ def criterion_speed_kmh(
     e = np.broadcast_to(np.asarray(superelevation_percent, dtype=float), r.shape)
     f = band_values_side_friction(bands, body_roll_deg_per_g)
     edges = mph_to_kmh(np.array((*bands.edges_mph, np.inf)))
+    if r.ndim == 1 and len(r) > _CHUNK:  # in chunks, into one array: the temporaries stay small
+        out = np.empty(len(r))
+        for lo in range(0, len(r), _CHUNK):
+            k = slice(lo, lo + _CHUNK)
+            out[k] = _criterion_speed_kmh(f, edges, r[k], e[k])
+        return out
+    return _criterion_speed_kmh(f, edges, r, e)
+
+
+#: curves per chunk of the criteria's arithmetic (whole-road temporaries are fresh pages at 100,000 curves, which cost
+#: more to touch than the arithmetic on them; a chunk's stay in the allocator's free memory)
+_CHUNK = 8192
+
+
+def _criterion_speed_kmh(f, edges, r, e):
+    """:func:`criterion_speed_kmh` of the bands' side frictions ``f`` and speed edges [km/h] (the last inf)."""
     # the first band (in rising speed) whose own speed lies below its upper edge sets the speed: max(v, its lower
     # edge); bands taken from the last so the first one's overwrites (selects, not masked assignments: these cost
     # ten times an arithmetic pass on random masks)
@@ -403,14 +419,19 @@ def _advisory_speeds(radius_m, superelevation_percent, deflection_deg, measured_
     e = column(superelevation_percent)
     criteria = LEGACY_CRITERIA if all_methods else (BALL_BANK_2009,)
     methods = {b.id: criterion_speed_kmh(b, r, e, body_roll_deg_per_g) for b in criteria}
-    direct = direct_method_speed_kmh(column(measured_car_speed_kmh))
-    methods["txdot-direct"] = direct
-    use_direct = np.isfinite(direct)
-    raw = np.where(use_direct, direct, methods[BALL_BANK_2009.id])
+    if measured_car_speed_kmh is None:  # (an alignment's rows): every speed is the criterion's, no select
+        methods["txdot-direct"] = np.full(n, np.nan)
+        raw, governed_by = methods[BALL_BANK_2009.id], np.ones(n, dtype=np.int8)
+    else:
+        direct = direct_method_speed_kmh(column(measured_car_speed_kmh))
+        methods["txdot-direct"] = direct
+        use_direct = np.isfinite(direct)
+        raw = np.where(use_direct, direct, methods[BALL_BANK_2009.id])
+        governed_by = np.where(use_direct, 0, 1).astype(np.int8)
     shown = displayed_speed_kmh(raw, units)
     deflection = column(deflection_deg)
     small_deflection = np.isfinite(deflection) & (deflection < MIN_DEFLECTION_DEG)
-    return shown, np.where(use_direct, 0, 1).astype(np.int8), methods, small_deflection
+    return shown, governed_by, methods, small_deflection
 
 
 def method_source(method_id: str) -> tuple[str, bool, bool]:
@@ -492,6 +513,7 @@ def advise_alignment(
     alignment_end_m: float | None = None,
     part=None,
     all_methods: bool = True,
+    all_figures: bool = True,
 ) -> AlignmentAdvice:
     """Advisory speed, treatment, W1-13 rule and the truck's speed profile for the curves of one alignment and one
     vehicle: the function the alignment and route answers call per vehicle.
@@ -512,6 +534,8 @@ def advise_alignment(
         sign across parts; None: one road
     all_methods : False: ``advisory.methods`` holds only the speeds the shown one comes from (the 2009 ball-bank
         criterion's and the Direct Method's), not every legacy criterion's (an answer that lists none of them)
+    all_figures : False: the profile's per-curve figures are only the approach speed and the required deceleration
+        (:func:`engine.road.profile.speed_profile`'s ``all_figures``)
 
     Returns
     -------
@@ -584,6 +608,7 @@ def advise_alignment(
             columns.grade_percent,
             alignment_start_m=alignment_start_m,
             alignment_end_m=alignment_end_m,
+            all_figures=all_figures,
             **options,
         )
     return AlignmentAdvice(advisory=advisory, sign_group=groups, profile=profile)

@@ -98,15 +98,18 @@ def crawl_speed_kmh(grade_percent, **params) -> np.ndarray:
     disc = (qq / 2.0) ** 2 + (pp / 3.0) ** 3
     with np.errstate(invalid="ignore"):
         root = np.sqrt(np.maximum(disc, 0.0))
-        one = np.cbrt(-qq / 2.0 + root) + np.cbrt(-qq / 2.0 - root)
-        m = np.sqrt(np.maximum(-pp / 3.0, 0.0))
-        arg = np.clip(np.where(m > 0, (-qq / 2.0) / np.where(m > 0, m, 1.0) ** 3, 1.0), -1.0, 1.0)
-        three = 2.0 * m * np.cos(np.arccos(arg) / 3.0)
-    v = np.where(disc >= 0, one, three)
+        v = np.cbrt(-qq / 2.0 + root) + np.cbrt(-qq / 2.0 - root)
+        # the trigonometric form only where the discriminant is negative (a downgrade steeper than the rolling
+        # resistance; nan too): where the crawl speed binds, on upgrades, mostly nowhere
+        three = np.flatnonzero(~(disc >= 0))
+        if len(three):
+            m = np.sqrt(np.maximum(-pp[three] / 3.0, 0.0))
+            arg = np.clip(np.where(m > 0, (-qq / 2.0) / np.where(m > 0, m, 1.0) ** 3, 1.0), -1.0, 1.0)
+            v[three] = 2.0 * m * np.cos(np.arccos(arg) / 3.0)
     return np.minimum(v * 3.6, 200.0)
 
 
-def acceleration_mps2(speed_kmh, grade_percent, **params) -> np.ndarray:
+def acceleration_mps2(speed_kmh, grade_percent, out=None, **params) -> np.ndarray:
     """The truck's largest acceleration at a speed on a grade [m/s^2] (may be negative):
     a = eta P / (m v) - g (C_r + G) - rho C_d A v^2 / (2 m), P/m from the weight-to-power ratio.
 
@@ -114,22 +117,28 @@ def acceleration_mps2(speed_kmh, grade_percent, **params) -> np.ndarray:
     ----------
     speed_kmh : speed [km/h]
     grade_percent : grade along travel, + uphill [%]
+    out : an array of the speeds' length (1-D) to write the accelerations into (None: a new one)
     params : overrides of :data:`ACCELERATION_DEFAULTS`
     """
     speed, grade_percent = np.asarray(speed_kmh, dtype=float), np.asarray(grade_percent, dtype=float)
-    if speed.ndim == 1 and grade_percent.shape == speed.shape and len(speed) > _CHUNK:  # in chunks: small temporaries
-        out = np.empty(len(speed))
+    if speed.ndim == 1 and grade_percent.shape == speed.shape and (len(speed) > _CHUNK or out is not None):
+        # in chunks: small temporaries; each chunk's figures written into ``out`` (which may be ``speed`` itself)
+        if out is None:
+            out = np.empty(len(speed))
         for lo in range(0, len(speed), _CHUNK):
-            out[lo : lo + _CHUNK] = acceleration_mps2(
-                speed[lo : lo + _CHUNK], grade_percent[lo : lo + _CHUNK], **params
-            )
+            k = slice(lo, lo + _CHUNK)
+            out[k] = acceleration_mps2(speed[k], grade_percent[k], **params)
         return out
     p = {**ACCELERATION_DEFAULTS, **params}
     v = np.maximum(speed / 3.6, 0.1)
     power_per_kg = 1000.0 / p["weight_to_power_kg_per_kw"]  # W/kg
     grade = 0.01 * np.asarray(grade_percent, dtype=float)
     drag = 0.5 * p["air_density_kg_m3"] * p["drag_area_m2_per_t"] / 1000.0 * v**2
-    return p["transmission_efficiency"] * power_per_kg / v - G * (p["rolling_resistance"] + grade) - drag
+    a = p["transmission_efficiency"] * power_per_kg / v - G * (p["rolling_resistance"] + grade) - drag
+    if out is not None:
+        out[...] = a
+        return out
+    return a
 
 
 @dataclass
@@ -142,14 +151,14 @@ class SpeedProfile:
     station_m: np.ndarray
     speed_kmh: np.ndarray
     approach_speed_kmh: np.ndarray
-    entry_speed_kmh: np.ndarray
+    entry_speed_kmh: np.ndarray | None  # (this and the checks below None where ``all_figures`` was False)
     curve_speed_kmh: np.ndarray  # the cap the truck takes the curve at (lowest of desired, safe, advisory)
     required_deceleration_mps2: np.ndarray  # to the curve speed, with the reaction distance (inf: no room; nan: the
     # first curve's approach length is unknown)
-    slows_to_advisory: np.ndarray  # bool; True where there is no advisory below the approach
-    slows_to_safe: np.ndarray
-    advance_sign_distance_m: np.ndarray
-    speed_drop_kmh: np.ndarray
+    slows_to_advisory: np.ndarray | None  # bool; True where there is no advisory below the approach
+    slows_to_safe: np.ndarray | None
+    advance_sign_distance_m: np.ndarray | None
+    speed_drop_kmh: np.ndarray | None
     reasons: list[str | None]
     deceleration_mps2: float
     reaction_time_s: float
@@ -197,26 +206,41 @@ def check_stations(start_m: np.ndarray, length_m: np.ndarray, first_index: int =
     return reasons
 
 
-def _cummin_forward(caps2, rate, gaps):
+def _cummin_forward(caps2, rate, gaps, out=None):
     """u_0 = caps2_0, u_i = min(caps2_i, u_{i-1} + 2 rate_{i-1} gaps_{i-1}): u_i = K_i + cummin(caps2 - K)_i, K the
     cumulative sum of the increments 2 rate gaps (K_0 = 0; ``rate`` an array or one number). In chunks of
     :data:`_CHUNK`, each chunk's sums and minima carried on from the chunk before's last (the same sums and minima in
-    the same order as over the whole array)."""
+    the same order as over the whole array: the carried sum is added to the chunk's first increment, the carried
+    minimum taken with its first term). ``out``: an array of u's length whose entries become min(out, u) (the
+    backward pass kept only as its minimum with the forward one: no array of its own); None: u in a new array."""
     n = len(caps2)
-    out = np.empty(n)
+    new = out is None
+    if new:
+        out = np.empty(n)
     k_last = m_last = None
     for lo in range(0, n, _CHUNK):
         hi = min(lo + _CHUNK, n)
         g = slice(max(lo - 1, 0), hi - 1)  # the increments into the chunk's nodes
-        increments = 2.0 * (rate if np.ndim(rate) == 0 else rate[g]) * gaps[g]
-        if lo == 0:
-            k = np.concatenate(([0.0], np.cumsum(increments)))
-            m = np.minimum.accumulate(caps2[:hi] - k)
+        k = np.empty(hi - lo)
+        increments = k[1:] if lo == 0 else k
+        if np.ndim(rate) == 0:
+            np.multiply(2.0 * rate, gaps[g], out=increments)
         else:
-            k = np.cumsum(np.concatenate(([k_last], increments)))[1:]
-            m = np.minimum.accumulate(np.concatenate(([m_last], caps2[lo:hi] - k)))[1:]
-        np.add(k, m, out=out[lo:hi])
+            np.multiply(np.multiply(rate[g], 2.0, out=increments), gaps[g], out=increments)
+        if lo == 0:
+            k[0] = 0.0
+        else:
+            k[0] += k_last
+        np.cumsum(k, out=k)
+        m = np.subtract(caps2[lo:hi], k)
+        if lo > 0:
+            m[0] = np.minimum(m_last, m[0])
+        np.minimum.accumulate(m, out=m)
         k_last, m_last = k[-1], m[-1]
+        if new:
+            np.add(k, m, out=out[lo:hi])
+        else:
+            np.minimum(out[lo:hi], np.add(k, m, out=m), out=out[lo:hi])
     return out
 
 
@@ -234,6 +258,7 @@ def speed_profile(
     reaction_time_s: float = REACTION_TIME_S,
     acceleration: dict | None = None,
     first_index: int = 0,
+    all_figures: bool = True,
 ) -> SpeedProfile:
     """The truck's speed profile along curves given by their start stations and lengths.
 
@@ -253,6 +278,9 @@ def speed_profile(
     reaction_time_s : reaction time before braking [s]
     acceleration : overrides of :data:`ACCELERATION_DEFAULTS`
     first_index : the first curve's index where the curves are part of a longer list (the reasons' ``curves[i]``)
+    all_figures : False: of the per-curve figures only the approach speed and the required deceleration (the
+        entry speed, the two approach checks, the advance-sign distance and the speed drop are None: an answer that
+        shows none of them)
 
     Returns
     -------
@@ -280,7 +308,8 @@ def speed_profile(
     grade = column(grade_percent, 0.0)
     if not np.isfinite(grade).all():
         grade = np.where(np.isfinite(grade), grade, 0.0)
-    cap = np.fmin(np.fmin(desired, safe), advisory)  # fmin: nan (no safe/advisory speed) does not cap
+    cap = np.fmin(desired, safe)  # fmin: nan (no safe/advisory speed) does not cap
+    np.fmin(cap, advisory, out=cap)
 
     reasons = check_stations(s0, length, first_index) if n else []
     if reasons.count(None) < n:  # (not any(): a Python pass over 100,000 Nones)
@@ -301,19 +330,30 @@ def speed_profile(
     # the top speed on an element: the desired speed, or a fraction of the crawl speed on its grade (the tangent
     # after curve i keeps curve i's grade); the element's acceleration is the model's at that top speed, the lowest
     # over the speeds below it, so every step stays within the truck's power
-    desired_after = np.append(desired[1:], desired[-1])  # the tangent after curve i is the one before curve i + 1
-    top = np.full(shape, np.inf)
+    # (each whole-road array below is written in place where it can be: at 100,000 curves every new one is fresh
+    # pages, which cost more to touch than the arithmetic on them)
+    tangent_cap = np.append(desired[1:], desired[-1])  # the tangent after curve i is the one before curve i + 1
     # the crawl speed only where it can bind: where the truck has no acceleration left at the higher of the curve's
-    # and the next tangent's desired speed over CRAWL_FRACTION
+    # and the next tangent's desired speed over CRAWL_FRACTION; there both caps are lowered to its share of it
     # (indices, not a boolean mask: a masked gather over a random mask costs ten times an arithmetic pass)
-    at_top = acceleration_mps2(np.maximum(desired, desired_after) / CRAWL_FRACTION, grade, **acc_params)
-    binds = np.flatnonzero(at_top <= 0)
+    at_top = np.maximum(desired, tangent_cap)
+    at_top /= CRAWL_FRACTION
+    binds = np.flatnonzero(acceleration_mps2(at_top, grade, **acc_params, out=at_top) <= 0)
+    del at_top
+    top_first = top_last = math.inf  # the top speed of the first and the last curve
     if len(binds):
-        top[binds] = CRAWL_FRACTION * crawl_speed_kmh(grade[binds], **acc_params)
-    cap = np.minimum(cap, top)
-    tangent_cap = np.minimum(desired_after, top)
-    a_curve = acceleration_mps2(cap, grade, **acc_params)
-    a_tangent = acceleration_mps2(tangent_cap, grade, **acc_params)
+        top = CRAWL_FRACTION * crawl_speed_kmh(grade[binds], **acc_params)
+        cap[binds] = np.minimum(cap[binds], top)
+        tangent_cap[binds] = np.minimum(tangent_cap[binds], top)
+        if binds[0] == 0:
+            top_first = top[0]
+        if binds[-1] == n - 1:
+            top_last = top[-1]
+    # the elements' accelerations (curve 0, tangent 0, curve 1, ...), the curves' and the tangents' written in place
+    acc_all = np.empty(2 * n)
+    acceleration_mps2(cap, grade, **acc_params, out=acc_all[0::2])
+    a_tangent = acceleration_mps2(tangent_cap, grade, **acc_params, out=acc_all[1::2])
+    acc = acc_all[:-1]
 
     # nodes: start_0, end_0, start_1, end_1, ...; v^2 in (m/s)^2; a node is under both elements' caps
     cap2 = np.empty(2 * n)  # written in place, node by node (start, end): fewer whole-road temporaries
@@ -321,20 +361,21 @@ def speed_profile(
     np.minimum(cap[1:], tangent_cap[:-1], out=cap2[2::2])
     np.minimum(cap[:-1], tangent_cap[:-1], out=cap2[1:-1:2])
     np.square(np.divide(cap2, 3.6, out=cap2), out=cap2)
-    lead_cap = min(desired[0], top[0])
+    lead_cap = min(desired[0], top_first)
     node_s = np.column_stack((s0, end)).ravel()
     gaps = np.diff(node_s)  # curve, tangent, curve, tangent, ...
-    acc = np.column_stack((a_curve, a_tangent)).ravel()[:-1]
-    fwd = _cummin_forward(cap2, acc, gaps)
-    bwd = _cummin_forward(cap2[::-1], d, gaps[::-1])[::-1]
-    v2 = np.minimum(fwd, bwd, out=fwd)
+    v2 = _cummin_forward(cap2, acc, gaps)  # the forward pass, then its minimum with the backward one
+    _cummin_forward(cap2[::-1], d, gaps[::-1], out=v2[::-1])
 
     # the per-curve figures, curve by curve in chunks of _CHUNK (each curve's own arithmetic, the chunk's temporaries
     # kept small); the approach: from the previous curve's exit accelerating along the tangent, capped by the
     # desired speed
     t = reaction_time_s
-    approach_kmh, entry_kmh, required, sign_m, drop_kmh = (np.empty(shape) for _ in range(5))
-    slows_adv, slows_safe = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
+    approach_kmh, required = np.empty(shape), np.empty(shape)
+    entry_kmh = sign_m = drop_kmh = slows_adv = slows_safe = None
+    if all_figures:
+        entry_kmh, sign_m, drop_kmh = np.empty(shape), np.empty(shape), np.empty(shape)
+        slows_adv, slows_safe = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
     for lo in range(0, n, _CHUNK):
         hi = min(lo + _CHUNK, n)
         k = slice(lo, hi)
@@ -348,11 +389,14 @@ def speed_profile(
             approach2[0] = (lead_cap / 3.6) ** 2
         _curve_figures(
             approach2, cap[k], tangent_before[k], advisory[k], safe[k], v2[2 * lo : 2 * hi : 2], d, t,
-            (approach_kmh[k], entry_kmh[k], required[k], slows_adv[k], slows_safe[k], sign_m[k], drop_kmh[k]),
+            (approach_kmh[k], required[k])
+            + ((entry_kmh[k], slows_adv[k], slows_safe[k], sign_m[k], drop_kmh[k]) if all_figures else ()),
         )  # fmt: skip
 
     # the profile's stations: per element the acceleration line, the cap, the braking line
-    element_caps = np.column_stack((cap, tangent_cap)).ravel()[:-1]  # curve 0, tangent 0, curve 1, ...
+    element_caps = gaps  # curve 0, tangent 0, curve 1, ... (in the gaps' array: the passes are done with it)
+    element_caps[0::2] = cap
+    element_caps[1::2] = tangent_cap[:-1]
     stations, speeds = _profile_points(node_s, v2, acc, d, element_caps)
     if alignment_start_m is not None and alignment_start_m < s0[0]:
         lead_len = s0[0] - alignment_start_m
@@ -367,7 +411,7 @@ def speed_profile(
         speeds = np.concatenate((lead[1][:-1], speeds))
     if alignment_end_m is not None and alignment_end_m > end[-1]:
         tail_len = alignment_end_m - end[-1]
-        tail_cap = min(desired[-1], top[-1])
+        tail_cap = min(desired[-1], top_last)
         tail_a = acceleration_mps2(np.array([tail_cap]), grade[-1:], **acc_params)
         tail_end2 = min((tail_cap / 3.6) ** 2, v2[-1] + 2.0 * float(tail_a[0]) * tail_len)
         tail = _profile_points(
@@ -398,8 +442,9 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
     """Per curve (arrays of a chunk of curves): from the approach speed^2 [(m/s)^2], the curve's speed [km/h], the
     tangent before it [m], its advisory and safe speeds [km/h] and v^2 at its start, the approach and entry speeds,
     the required deceleration, whether the tangent lets the truck slow to the advisory and to the safe speed, the
-    advance-sign distance and the speed drop, written into ``out`` (in that order)."""
-    approach_kmh, entry_kmh, required, slows_adv, slows_safe, sign_m, drop_kmh = out
+    advance-sign distance and the speed drop, written into ``out`` (the approach, the required deceleration and then,
+    where ``out`` has them, the entry speed, the two checks, the sign distance and the speed drop)."""
+    approach_kmh, required = out[:2]
     v1 = np.sqrt(approach2)
     target = cap / 3.6
 
@@ -415,6 +460,10 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
         )
     # the first curve approached from an unknown distance (no road start given): the rate it needs is unknown
     required[~np.isfinite(tangent_before) & (v1 > target)] = np.nan
+    approach_kmh[...] = v1 * 3.6
+    if len(out) == 2:
+        return
+    entry_kmh, slows_adv, slows_safe, sign_m, drop_kmh = out[2:]
     adv = advisory / 3.6
     safe_v = safe / 3.6
     slows_adv[...] = ~np.where(np.isfinite(adv), too_close(np.where(np.isfinite(adv), adv, 0.0)), False)
@@ -423,7 +472,6 @@ def _curve_figures(approach2, cap, tangent_before, advisory, safe, entry2, d, t,
     # without an advisory below the approach, the reaction distance alone
     drop_to = np.where(np.isfinite(adv), np.minimum(adv, v1), v1)
     sign_m[...] = v1 * t + (approach2 - drop_to**2) / (2.0 * DECELERATION_MPS2)
-    approach_kmh[...] = v1 * 3.6
     entry_kmh[...] = np.sqrt(entry2) * 3.6
     drop_kmh[...] = np.maximum(v1 * 3.6 - cap, 0.0)
 
@@ -434,7 +482,10 @@ def _profile_points(node_s, v2, acc, d, caps_kmh):
     lines meet below the cap. v^2 is linear in station between consecutive points. (Computed in chunks of
     :data:`_CHUNK` elements, the same arithmetic per element.)"""
     m = len(node_s) - 1
-    out_s, out_v = [], []
+    # the kept points written straight into arrays of the most there can be (three an element, the last node thrice):
+    # no chunk's pieces joined at the end, and the pages past the last point written are never touched
+    out_s, out_v = np.empty(3 * m + 3), np.empty(3 * m + 3)
+    end = 0
     prev = None  # the chunk before's last candidate point (station, v^2): a point equal to it is dropped
     for lo in range(0, m, _CHUNK):
         hi = min(lo + _CHUNK, m)
@@ -446,11 +497,12 @@ def _profile_points(node_s, v2, acc, d, caps_kmh):
         keep[1:] = (np.diff(pts_s) > 1e-9) | (np.abs(np.diff(pts_v)) > 1e-9)
         prev = (pts_s[-1], pts_v[-1])
         keep = np.flatnonzero(keep)  # indices, not a mask: gathers by a random mask are slow
-        out_s.append(pts_s[keep])
-        out_v.append(np.sqrt(np.maximum(pts_v[keep], 0.0)) * 3.6)
-    if len(out_s) == 1:
-        return out_s[0], out_v[0]
-    return np.concatenate(out_s), np.concatenate(out_v)
+        k = slice(end, end + len(keep))
+        end = k.stop
+        np.take(pts_s, keep, out=out_s[k], mode="clip")  # (indices in range: "clip" writes without a buffer)
+        v = np.take(pts_v, keep, out=out_v[k], mode="clip")
+        np.multiply(np.sqrt(np.maximum(v, 0.0, out=v), out=v), 3.6, out=v)
+    return out_s[:end], out_v[:end]
 
 
 def _element_points(node_s, v2, acc, d, c2, last):
@@ -514,7 +566,8 @@ def speed_profiles_by_part(part, start_station_m, length_m, desired_speed_kmh, s
     ps = [p for _, p in pieces]
 
     def joined(name):
-        return np.concatenate([getattr(p, name) for p in ps])
+        arrays = [getattr(p, name) for p in ps]
+        return None if any(a is None for a in arrays) else np.concatenate(arrays)
 
     notes = [f"part {k}: {note}" for k, p in pieces for note in p.notes]
     return SpeedProfile(

@@ -299,3 +299,26 @@ def test_chunks_do_not_change_the_profile(monkeypatch):
         got = prof.speed_profiles_by_part(part, start, length, 90.0, safe, advisory, grade)
         for name in ("station_m", "speed_kmh", "approach_speed_kmh", "entry_speed_kmh", "required_deceleration_mps2"):
             assert getattr(got, name).tobytes() == getattr(whole, name).tobytes(), (chunk, name)
+
+
+def test_fewer_figures_leave_the_profile_and_the_rate_as_they_are():
+    """``all_figures=False`` (the rows' call) computes only the approach speed and the required deceleration: those,
+    the points and the curve speeds are the full call's byte for byte, on one road and on a road of parts, with the
+    first curve's rate unknown (no road start) and known (a start given); the other figures are absent, not
+    invented."""
+    rng = np.random.default_rng(5)
+    start, length, safe, advisory, grade = _random_alignment(rng, 300)
+    kept = ("station_m", "speed_kmh", "curve_speed_kmh", "approach_speed_kmh", "required_deceleration_mps2")
+    dropped = ("entry_speed_kmh", "slows_to_advisory", "slows_to_safe", "advance_sign_distance_m", "speed_drop_kmh")
+    part = np.repeat([0, 1], [120, 180])
+    for call, options in (
+        (prof.speed_profile, {}),
+        (prof.speed_profile, {"alignment_start_m": start[0] - 50.0}),
+        (lambda *a, **k: prof.speed_profiles_by_part(part, *a, **k), {}),
+    ):
+        full = call(start, length, 80.0, safe, advisory, grade, **options)
+        few = call(start, length, 80.0, safe, advisory, grade, all_figures=False, **options)
+        for name in kept:
+            assert getattr(few, name).tobytes() == getattr(full, name).tobytes(), name
+        for name in dropped:
+            assert getattr(full, name) is not None and getattr(few, name) is None, name

@@ -5,7 +5,8 @@ Independent route: the rounding each written number allows is taken from its tex
 of its exponent), and the agreement decided by interval bounds (the least and greatest length/radius and chord over
 the box of rounded values) rather than the reader's propagated derivatives; the angle's unit from its definition
 (pi/200 rad the grad, dd.mm.ss by its digits). Every public export in tests/data/landxml is checked this way from its
-own text, and must be read without a note.
+own text, within the rounding alone (the reader allows a millionth more, ARC_AGREEMENT: not needed by any of them),
+and must be read without a note.
 """
 
 from __future__ import annotations
@@ -21,7 +22,6 @@ from app.formats.alignment_io import AlignmentFormatError
 from app.formats.landxml import read_road_file
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "landxml"
-FLOOR = 1e-6  # the reader's relative floor (app/formats/landxml.py ARC_AGREEMENT), beside the rounding
 RAD = {"radians": 1.0, "grads": math.pi / 200, "decimal degrees": math.pi / 180}
 
 
@@ -52,8 +52,7 @@ def delta_agrees(curve: ET.Element, unit: str) -> bool:
     else:
         value, half = abs(float(d)) * RAD[unit], _half(d) * RAD[unit]
     lo, hi = _theta_bounds(curve.get("radius"), curve.get("length"))
-    slack = FLOOR * hi
-    return value + half >= lo - slack and value - half <= hi + slack
+    return value + half >= lo and value - half <= hi
 
 
 def chord_agrees(curve: ET.Element) -> bool:
@@ -64,8 +63,7 @@ def chord_agrees(curve: ET.Element) -> bool:
     assert (L + hl) / (R - hr) < math.pi
     corners = [2 * (R + a) * math.sin((L + b) / (2 * (R + a))) for a in (-hr, hr) for b in (-hl, hl)]
     c, hc = float(curve.get("chord")), _half(curve.get("chord"))
-    slack = FLOOR * max(corners)
-    return c + hc >= min(corners) - slack and c - hc <= max(corners) + slack
+    return c + hc >= min(corners) and c - hc <= max(corners)
 
 
 def _local(tag: str) -> str:
@@ -197,3 +195,19 @@ def test_many_disagreements_are_noted_up_to_a_count_then_counted():
     text = doc(*[f'rot="cw" {R6} delta="28.60"'] * 25)
     got = notes(text)
     assert len(got) == 21 and "Curve #20 ('C20')" in got[19] and got[20].startswith("and 5 more Curves")
+
+
+@pytest.mark.parametrize(
+    ("attrs", "angular", "field", "text"),
+    [
+        (f'rot="cw" {R6} delta="twenty"', "decimal degrees", "delta", "'twenty'"),
+        (f'rot="cw" {R6} chord="nan"', "decimal degrees", "chord", "'nan'"),
+        (f'rot="cw" {R6} delta="{DEG:.6f}"', "gons", "angularUnit", "'gons'"),
+    ],
+)
+def test_a_delta_or_chord_that_cannot_be_compared_is_refused_by_name(attrs, angular, field, text):
+    # a delta is read now wherever it is written: one that is no number, or in a unit LandXML does not define, is
+    # refused as a Curve's length given by delta alone is
+    with pytest.raises(AlignmentFormatError) as e:
+        read_road_file(doc(attrs, angular=angular))
+    assert e.value.field == field and text in str(e.value)

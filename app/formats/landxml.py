@@ -6,12 +6,12 @@ What is read, per ``Alignment``:
 - ``<Units>``: ``Metric`` or ``Imperial`` with ``linearUnit`` (:data:`LINEAR_UNITS`: meter, kilometer, centimeter,
   millimeter, foot = 0.3048 m, USSurveyFoot = 1200/3937 m, inch, mile), applied to every length read (radii, lengths,
   stations, PVI stations and elevations, cross-section offsets and elevations); ``angularUnit``
-  (:data:`ANGULAR_UNITS`) where an angle is read (a ``Curve`` given by ``delta`` without ``length``). A unit not
-  known is refused naming the attribute and the value; a file without ``<Units>`` is read in metres, and the
-  reading says so.
+  (:data:`ANGULAR_UNITS`) where an angle is read (a ``Curve``'s ``delta``). A unit not known is refused naming the
+  attribute and the value; a file without ``<Units>`` is read in metres, and the reading says so.
 - ``CoordGeom``: ``Line`` (``length``, else from its ``Start``/``End``), ``Curve`` (``rot``, ``radius``,
-  ``length``), ``Spiral`` (``rot``, ``radiusStart``/``radiusEnd`` with ``INF``, ``length``, ``spiType``: the
-  transitions in :data:`SPIRAL_TYPES`, others refused by name), each with its optional ``staStart``. An
+  ``length``; ``delta`` and ``chord`` where written compared with them: :meth:`_Reader.arc_check`), ``Spiral``
+  (``rot``, ``radiusStart``/``radiusEnd`` with ``INF``, ``length``, ``spiType``: the transitions in
+  :data:`SPIRAL_TYPES`, others refused by name), each with its optional ``staStart``. An
   ``IrregularLine`` (a polyline) counts its length for the stations but is not assessed; a ``Chain`` (references to
   elements elsewhere) is skipped; both are listed in the reading.
 - ``StaEquation`` (``staBack``, ``staAhead``, ``staInternal``).
@@ -85,6 +85,17 @@ ANGULAR_UNITS: dict[str, float] = {
 #: values (cubic parabolas, radioids, ...) are refused by name.
 SPIRAL_TYPES = ("clothoid", "bloss", "sinusoid", "cosinusoid", "biquadratic")
 FORMAT = "LandXML"
+#: a Curve's ``delta`` (or ``chord``) and its ``length``/``radius`` agree where they differ by no more than the rounding
+#: of the written numbers (half a unit in the last decimal of each, propagated) plus this share of the value: a
+#: millionth, under any figure the answer reports (a radius a millionth off moves a safe speed half a millionth) and
+#: above the double-precision geometry a writer derives its numbers from (coordinates of up to 10^7 units)
+ARC_AGREEMENT = 1e-6
+#: a disagreement beyond the rounding and beyond this share of the value (1 %: the radius a percent off moves the safe
+#: speed, which goes with its square root, half a percent) is refused: which of the file's numbers is wrong is not
+#: known; a smaller one is a note and the curve is read by its length and radius
+ARC_GROSS = 0.01
+#: notes of disagreeing Curves per alignment; the rest counted in one more
+MAX_ARC_NOTES = 20
 
 
 def _children(el: ET.Element, name: str) -> list[ET.Element]:
@@ -164,6 +175,35 @@ _DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
 _VERTICAL = ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve")  # a ProfAlign's points
 
 
+def _half_unit(text: str) -> float:
+    """Half a unit in the last decimal a number's text writes: "15.594208" 5e-7, "2600" 0.5, "1.25e-3" 5e-6."""
+    mantissa, _, exponent = text.strip().lower().partition("e")
+    try:
+        shift = int(exponent) if exponent else 0
+    except ValueError:
+        shift = 0
+    try:
+        return 0.5 * 10.0 ** (shift - len(mantissa.partition(".")[2]))
+    except OverflowError:  # ("0.5e309" is no finite number: refused before; kept from raising here)
+        return math.inf
+
+
+def _plain_half(text: str) -> float:
+    """:func:`_half_unit` where it is cheap: a number written with a point and no exponent (white space after it
+    counts as decimals: less, never more), else 0."""
+    dot = text.find(".")
+    return 0.5 * 10.0 ** (dot + 1 - len(text)) if dot >= 0 and "e" not in text and "E" not in text else 0.0
+
+
+def _half_unit_dms(text: str) -> float:
+    """Half a unit in the last decimal of a ``decimal dd.mm.ss`` angle, in degrees: its first two decimals are
+    minutes, the next two seconds, the rest fractions of a second (45.3025: half a second)."""
+    k = len(text.strip().partition(".")[2])
+    if k == 0:
+        return 0.5
+    return 0.5 * (10.0 ** (2 - k) / 60.0 if k <= 2 else 10.0 ** (4 - k) / 3600.0)
+
+
 def _float(text: str | None, where: str, attribute: str) -> float:
     try:
         v = float(text or "")  # float() takes surrounding white space itself
@@ -183,6 +223,12 @@ class _Reader:
         self.m = self.units.metres
         self.counts: Counter[str] = Counter()
         self.skipped: list[tuple[str, str]] = list(self.units.notes)
+        # radians per unit of a Curve's delta where a float's product gives it (not dd.mm.ss, nor an unknown unit:
+        # those Curves take the careful path, which converts or refuses)
+        name = self.units.angular_name
+        self.angle_factor = ANGULAR_UNITS.get(name) if name != "decimal dd.mm.ss" else None
+        self.notes: list[str] = []  # the alignment's being read
+        self.disagreeing = 0  # its Curves whose delta or chord disagrees with length/radius
 
     def length(self, el: ET.Element, attribute: str, where: str, *, required: bool = True) -> float | None:
         text = el.get(attribute)
@@ -243,6 +289,108 @@ class _Reader:
 
     # ------------------------------------------------------------------------------ horizontal
 
+    def arc_close(
+        self, r_text: str, l_text: str, d_text: str | None, c_text: str | None, r: float, length: float
+    ) -> bool:
+        """Whether a Curve's delta and chord (those written) agree with its length and radius [m]: first within
+        :data:`ARC_AGREEMENT` and the delta's or chord's own rounding (counted plainly: a share of what
+        :meth:`arc_check` allows), else as :meth:`arc_check` compares them. False sends the Curve to the careful
+        path, which notes or refuses it."""
+        theta = length / r
+        try:
+            if d_text is not None:
+                f = self.angle_factor
+                if (
+                    f is None
+                    or not abs(abs(float(d_text)) * f - theta) <= ARC_AGREEMENT * theta + _plain_half(d_text) * f
+                ):
+                    return not self.arc_disagreements(r_text, l_text, d_text, c_text, r, length, "")
+            if c_text is not None:
+                chord = 2.0 * r * math.sin(0.5 * theta)
+                tol = ARC_AGREEMENT * chord + _plain_half(c_text) * self.m
+                if not abs(float(c_text) * self.m - chord) <= tol:
+                    return not self.arc_disagreements(r_text, l_text, d_text, c_text, r, length, "")
+        except (ValueError, AlignmentFormatError):  # (the careful path names it)
+            return False
+        return True
+
+    def arc_check(self, el: ET.Element, r: float, length: float, where: str) -> None:
+        """A Curve's ``delta`` and ``chord``, where written beside ``radius`` and ``length``, compared with them
+        (:meth:`arc_disagreements`): a disagreement is a note (the curve read by length and radius), and one beyond
+        :data:`ARC_GROSS` too a refusal naming the element, the attribute and both values."""
+        r_text, l_text, d_text, c_text = el.get("radius"), el.get("length"), el.get("delta"), el.get("chord")
+        if r_text is None or l_text is None or (d_text is None and c_text is None):
+            return
+        said = self.arc_disagreements(r_text, l_text, d_text, c_text, r, length, where)
+        for attribute, gross, text in said:
+            if gross:
+                raise AlignmentFormatError(
+                    f"{text}: the file contradicts itself by more than {100 * ARC_GROSS:g} % and which of its numbers"
+                    " is wrong is not known",
+                    where,
+                    attribute,
+                )
+        if said:
+            self.disagreeing += 1
+            if self.disagreeing <= MAX_ARC_NOTES:
+                self.notes.append(f"{where}: {'; '.join(t for _, _, t in said)}; read by its length and radius")
+
+    def arc_disagreements(
+        self, r_text: str, l_text: str, d_text: str | None, c_text: str | None, r: float, length: float, where: str
+    ) -> list[tuple[str, bool, str]]:
+        """(attribute, beyond :data:`ARC_GROSS`, what) for a ``delta`` (|delta|: Novapoint signs it by the turn)
+        and a ``chord`` (2 R sin(|delta|/2)) that differ from length/radius [m] by more than the rounding of the
+        written numbers (half a unit in the last decimal of each, propagated) and :data:`ARC_AGREEMENT`."""
+        theta = length / r
+        h_r, h_l = _half_unit(r_text) * self.m, _half_unit(l_text) * self.m  # [m]
+        said = []
+        if d_text is not None:
+            delta = abs(self.units.angle_rad(d_text, where, "delta"))
+            name = self.units.angular_name
+            if name == "decimal dd.mm.ss":
+                h_d, per, unit = _half_unit_dms(d_text) * math.pi / 180.0, math.pi / 180.0, "decimal degrees"
+            else:
+                per, unit = ANGULAR_UNITS[name], name
+                h_d = _half_unit(d_text) * per
+            # d(L/R) = dL/R - L dR/R^2
+            tol = h_d + h_l / r + h_r * length / r**2 + ARC_AGREEMENT * theta
+            diff = abs(delta - theta)
+            if diff > tol:
+                said.append(
+                    (
+                        "delta",
+                        diff > ARC_GROSS * theta,
+                        f"delta {d_text.strip()[:40]} ({unit}) and length/radius {l_text.strip()[:40]}/"
+                        f"{r_text.strip()[:40]} = {theta / per:.9g} ({unit}) differ by {diff / per:.3g}"
+                        f" ({100 * diff / theta if theta else math.inf:.3g} %), beyond the +-{tol / per:.2g}"
+                        " the written decimals allow",
+                    )
+                )
+        if c_text is not None:
+            chord = _float(c_text, where, "chord") * self.m
+            half = 0.5 * theta
+            expected = 2.0 * r * math.sin(half)
+            # dc = cos(theta/2) dL + (2 sin(theta/2) - theta cos(theta/2)) dR
+            tol = (
+                _half_unit(c_text) * self.m
+                + abs(math.cos(half)) * h_l
+                + abs(2.0 * math.sin(half) - theta * math.cos(half)) * h_r
+                + ARC_AGREEMENT * expected
+            )
+            diff = abs(chord - expected)
+            if diff > tol:
+                said.append(
+                    (
+                        "chord",
+                        diff > ARC_GROSS * expected,
+                        f"chord {c_text.strip()[:40]} and 2 radius sin(length/(2 radius)) = "
+                        f"{expected / self.m:.9g} ({self.units.linear_name}) differ by {diff / self.m:.3g}"
+                        f" ({100 * diff / expected if expected else math.inf:.3g} %), beyond the +-{tol / self.m:.2g}"
+                        " the written decimals allow",
+                    )
+                )
+        return said
+
     def element(self, el: ET.Element, name: str, where: str, label: str | None) -> HorizontalElement | None:
         get = el.get
         sta_text = get("staStart")
@@ -255,6 +403,7 @@ class _Reader:
                 except ValueError:
                     r = length = math.nan
                 if 0.0 < r < math.inf and 0.0 <= length < math.inf:
+                    self.arc_check(el, r, length, where)
                     return HorizontalElement("arc", length, r, r, direction, sta, None, label, where)
         if name == "Line":
             length = self.length(el, "length", where, required=False)
@@ -318,6 +467,7 @@ class _Reader:
         wheres: list[str] = []
         ordinal: dict[str, int] = {}
         prefix, m, inf, nan = f"{where_a} CoordGeom ", self.m, math.inf, math.nan
+        self.notes, self.disagreeing = [], 0
         for geom in _children(el, "CoordGeom"):
             for child in geom:
                 tag = child.tag
@@ -343,7 +493,19 @@ class _Reader:
                     except (TypeError, ValueError):
                         r = length = sta = inf
                     finite_sta = s_text is None or -inf < sta < inf
-                    if direction is not None and 0.0 < r < inf and 0.0 <= length < inf and finite_sta:
+                    # a delta or chord written beside them (real exports write one) compared; one that is not close
+                    # takes the careful path, which allows for the rounding and notes or refuses
+                    d_text, c_text = get("delta"), get("chord")
+                    if (
+                        direction is not None
+                        and 0.0 < r < inf
+                        and 0.0 <= length < inf
+                        and finite_sta
+                        and (
+                            (d_text is None and c_text is None)
+                            or self.arc_close(r_text, l_text, d_text, c_text, r, length)
+                        )
+                    ):
                         kinds.append(1)
                         lengths.append(length)
                         r1s.append(r)
@@ -387,6 +549,12 @@ class _Reader:
                     wheres.append(e.where)
         for name, count in ordinal.items():
             self.counts[name] += count
+        if self.disagreeing > MAX_ARC_NOTES:
+            self.notes.append(
+                f"and {self.disagreeing - MAX_ARC_NOTES} more Curves whose delta or chord disagrees with their length"
+                " and radius beyond the written decimals: each read by its length and radius"
+            )
+        notes = tuple(self.notes)
         elements = ElementColumns(kinds, lengths, r1s, r2s, dirs, stas, types, names, wheres)
         a = AlignmentGeometry(a_name, start, elements, where=where_a)
         equations = self.equations(el, a, where_a)
@@ -408,7 +576,7 @@ class _Reader:
         if rows and sum(map(len, rows)):  # as columns: no record per section (a long road has 100,000s)
             sections = np.concatenate(rows)
             slopes = SlopeColumns(distance_at(a, sections[:, 0]), sections[:, 1].copy(), sections[:, 2].copy())
-        return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a)
+        return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a, notes)
 
     def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
         out: list[StationEquation] = []

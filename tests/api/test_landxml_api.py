@@ -114,3 +114,23 @@ def test_a_novapoint_file_answers_its_arcs_with_their_turn_and_grade(shared_clie
     (application,) = _elements(doc, "Application")
     assert out["reading"]["writer"] == f"{application.get('version')} ({application.get('manufacturer')})"
     assert out["reading"]["linear_unit"] == "meter"
+
+
+def test_a_curve_whose_delta_disagrees_with_its_length_and_radius_is_noted_or_refused(shared_client):
+    # radius 100, length 50: the arc turns 0.5 rad = 28.6478898 deg; a delta of 28.60 (two decimals: +-0.005) is
+    # 0.17 % off, noted, the row at the file's radius; a delta of 30 is 4.7 % off, refused naming the element
+    curve = '<Curve name="K" rot="cw" radius="100.000000" length="50.000000" delta="{}"/>'
+    doc = landxml(Design("D", 0.0, [Element("Line", 20.0), Element("Curve", 50.0, 100.0, 100.0, "cw", "K")]))
+    start = doc.index("<Curve")
+    end = doc.index("/>", start) + 2
+    noted = doc[:start] + curve.format("28.60") + doc[end:]
+    out = upload(shared_client, noted, f"vehicle={BTRAIN}&superelevation_percent=6").json()
+    (row,) = out["vehicles"][0]["rows"]
+    assert row["radius_m"] == 100.0 and row["arc_length_m"] == 50.0
+    (note,) = out["reading"]["notes"]
+    assert note.startswith("D: Alignment 'D' CoordGeom Curve #1 ('K')")
+    assert "delta 28.60 (decimal degrees)" in note and f"{math.degrees(0.5):.9g}" in note
+    p = upload(shared_client, doc[:start] + curve.format("30") + doc[end:], f"vehicle={BTRAIN}", status=422).json()
+    (error,) = p["errors"]
+    assert error["field"] == "body.delta" and error["location"] == "Alignment 'D' CoordGeom Curve #1 ('K')"
+    assert "delta 30 (decimal degrees)" in error["message"] and f"{math.degrees(0.5):.9g}" in error["message"]

@@ -45,6 +45,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from app.formats import xmlsafe
+
+try:
+    from app.formats import _xsectscan
+except ImportError:  # built without a C compiler: the Python scan (the same numbers, slower)
+    _xsectscan = None
 from app.formats.alignment_io import AlignmentFormatError
 from engine.road import (
     AlignmentGeometry,
@@ -594,11 +599,14 @@ class _Reader:
         n = len(sc.counts)
         if n:  # (as the tree's reading counts them: no entry for none)
             self.counts["CrossSect"] += n
-        try:
-            sta = np.array([float(t) for t in sc.stations])  # type: ignore[arg-type]  (None: a TypeError)
-            good = bool(np.isfinite(sta).all())
-        except (TypeError, ValueError):
-            good = False
+        if sc.station_values is not None:  # the compiled scan's: finite numbers, converted as float() converts
+            sta, good = sc.station_values, True
+        else:
+            try:
+                sta = np.array([float(t) for t in sc.stations])  # type: ignore[arg-type]  (None: a TypeError)
+                good = bool(np.isfinite(sta).all())
+            except (TypeError, ValueError):
+                good = False
         if not good:  # the first bad one refused as the tree's reading refuses it
             for k, t in enumerate(sc.stations, start=1):
                 attrib = {} if t is None else {"sta": _attribute_sta(f'sta="{t}"')}
@@ -686,7 +694,9 @@ class _Scanned:
 
     def __init__(self) -> None:
         self.stations: list[str | None] = []
-        self.counts: list[int] = []
+        #: the stations as numbers, where the compiled scan read them (then ``stations`` is empty)
+        self.station_values: np.ndarray | None = None
+        self.counts: list[int] | np.ndarray = []
         self.chunks: list[tuple[int, int, np.ndarray | None, list[str]]] = []  # first section, sections, values, words
         self.proved = True
 
@@ -708,9 +718,46 @@ def _distinct(attrs: bytes) -> bool:
     return len(names) == len(set(names))
 
 
-def _scan_region(text: bytes) -> _Scanned | None:
-    """The sections of one <CrossSects>'s content (``text``, ASCII), or None where it holds anything the scan does
-    not recognise (the document is then read as a tree)."""
+def _scan_region(text: bytes, start: int, end: int) -> _Scanned | None:
+    """The sections of one <CrossSects>'s content (``text[start:end]``), or None where it holds anything the scan
+    does not recognise (the document is then read as a tree): by the compiled scan where it was built and takes the
+    content (read in place), else by :func:`_scan_region_python` (the reference: the same numbers, more shapes)."""
+    if _xsectscan is not None:
+        compiled = _scan_region_compiled(text, start, end)
+        if compiled is not None:
+            return compiled
+    content = text[start:end]
+    return _scan_region_python(content) if content.isascii() else None
+
+
+def _scan_region_compiled(text: bytes, start: int, end: int) -> _Scanned | None:
+    """``text[start:end]``'s sections read by app.formats._xsectscan (app/formats/csrc/xsectscan.c), a chunk at a
+    time (the interpreter's lock is held in each and given up between them), or None where a chunk holds anything it
+    does not take (a shape, a word or a number the Python scan and the tree's reading must judge). What it takes is
+    the Python scan's usual shape in ASCII, well-formed by itself (proved), every number finite."""
+    stations, counts, values = [], [], []
+    view = memoryview(text)
+    pos, n = start, end
+    while pos < n:
+        stop = text.find(b"</CrossSect>", min(pos + _SCAN_CHUNK, n), n)
+        stop = n if stop < 0 else stop + len(b"</CrossSect>")
+        got = _xsectscan.scan(view[pos:stop])
+        if got is None:
+            return None
+        pos = stop
+        stations.append(got[0])
+        counts.append(got[1])
+        values.append(got[2])
+        time.sleep(0)  # the lock given up between chunks, as xmlsafe's parse does
+    out = _Scanned()
+    out.station_values = np.frombuffer(b"".join(stations), dtype=np.float64)
+    out.counts = np.frombuffer(b"".join(counts), dtype=np.int64)
+    out.chunks = [(0, len(out.counts), np.frombuffer(b"".join(values), dtype=np.float64), [])]
+    return out
+
+
+def _scan_region_python(text: bytes) -> _Scanned | None:
+    """:func:`_scan_region` by regular expressions (the reference, and where the compiled scan was not built)."""
     out = _Scanned()
     # a reference, or "]]>" (which character data may not hold): well-formed or not, not proved here
     out.proved = b"&" not in text and b"]]>" not in text
@@ -814,10 +861,11 @@ def _cross_section_scan(text: str | bytes) -> tuple[Pieces, dict[str, _Scanned],
     view = memoryview(text) if is_bytes else text
     done = guarded_to = 0
     for k, (start, end) in enumerate(spans):
-        content = text[start:end]
-        if not content.isascii():
-            return None
-        region = _scan_region(content if is_bytes else content.encode("ascii"))
+        if is_bytes:  # read in place (a copy of the content only where the Python scan reads it)
+            region = _scan_region(text, start, end)
+        else:
+            content = text[start:end]
+            region = _scan_region(content.encode("ascii"), 0, end - start) if content.isascii() else None
         if region is None:
             return None
         marker = f'<{_SCANNED} key="{key}-{k}"/>'

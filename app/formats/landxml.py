@@ -623,7 +623,7 @@ class _Reader:
                     at += sc.counts[k]
                 values = np.array([float(w) for w in words])
             parts.append(values)
-        return self.slopes(np.concatenate(parts), sc.counts, stations, range(1, n + 1), where_a)
+        return self.slopes(np.concatenate(parts), sc.counts, stations, range(1, n + 1), where_a, sc.picks)
 
     def slopes(
         self,
@@ -632,10 +632,12 @@ class _Reader:
         stations: list[float] | np.ndarray,
         numbered: Sequence[int],
         where_a: str,
+        picks: np.ndarray | None = None,
     ) -> np.ndarray:
         """The sections' (station, left, right) rows from their numbers (``counts`` of them each; the stations made
-        distances by the caller), a section with no point on one side skipped and said so."""
-        slopes = _slopes(values, np.array(counts))
+        distances by the caller; ``picks``: each section's points picked by the compiled scan), a section with no
+        point on one side skipped and said so."""
+        slopes = _slopes(values, np.array(counts)) if picks is None else _slopes_from(*picks.T)
         missing = np.isnan(slopes[:, 0])
         for i in np.flatnonzero(missing).tolist():
             self.skipped.append(
@@ -694,8 +696,10 @@ class _Scanned:
 
     def __init__(self) -> None:
         self.stations: list[str | None] = []
-        #: the stations as numbers, where the compiled scan read them (then ``stations`` is empty)
+        #: the stations as numbers, and each section's points picked for its slopes (:func:`_slopes_from`'s
+        #: columns), where the compiled scan read them (then ``stations`` is empty)
         self.station_values: np.ndarray | None = None
+        self.picks: np.ndarray | None = None
         self.counts: list[int] | np.ndarray = []
         self.chunks: list[tuple[int, int, np.ndarray | None, list[str]]] = []  # first section, sections, values, words
         self.proved = True
@@ -735,7 +739,7 @@ def _scan_region_compiled(text: bytes, start: int, end: int) -> _Scanned | None:
     time (the interpreter's lock is held in each and given up between them), or None where a chunk holds anything it
     does not take (a shape, a word or a number the Python scan and the tree's reading must judge). What it takes is
     the Python scan's usual shape in ASCII, well-formed by itself (proved), every number finite."""
-    stations, counts, values = [], [], []
+    stations, counts, values, picks = [], [], [], []
     view = memoryview(text)
     pos, n = start, end
     while pos < n:
@@ -748,11 +752,13 @@ def _scan_region_compiled(text: bytes, start: int, end: int) -> _Scanned | None:
         stations.append(got[0])
         counts.append(got[1])
         values.append(got[2])
+        picks.append(got[3])
         time.sleep(0)  # the lock given up between chunks, as xmlsafe's parse does
     out = _Scanned()
     out.station_values = np.frombuffer(b"".join(stations), dtype=np.float64)
     out.counts = np.frombuffer(b"".join(counts), dtype=np.int64)
     out.chunks = [(0, len(out.counts), np.frombuffer(b"".join(values), dtype=np.float64), [])]
+    out.picks = np.frombuffer(b"".join(picks), dtype=np.float64).reshape(-1, 5)
     return out
 
 
@@ -894,7 +900,6 @@ def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
     at = np.repeat(first, pairs) + 2 * j
     x, z = values[at], values[at + 1]
     order = np.arange(len(x))
-    out = np.full((n, 2), np.nan)
     left, right, zero = x < 0, x > 0, x == 0
     # left: the greatest negative offset (the first of equals): the last of each section's (offset, -order) sort
     i = np.flatnonzero(left)[np.lexsort((-order[left], x[left], sec[left]))]
@@ -911,6 +916,13 @@ def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
     last = np.r_[sec[i][1:] != sec[i][:-1], True] if len(i) else np.zeros(0, bool)
     zc = np.full(n, np.nan)
     zc[sec[i][last]] = z[i][last]
+    return _slopes_from(xl, zl, xr, zr, zc)
+
+
+def _slopes_from(xl: np.ndarray, zl: np.ndarray, xr: np.ndarray, zr: np.ndarray, zc: np.ndarray) -> np.ndarray:
+    """:func:`_slopes` from each section's points picked (the nearest on the left and on the right, the centreline's
+    elevation where a point is at offset 0; nan where there is none): the compiled scan picks them as it reads."""
+    out = np.empty((len(xl), 2))
     zc = np.where(np.isnan(zc), zl + (zr - zl) * (0 - xl) / (xr - xl), zc)
     out[:, 0] = 100.0 * (zc - zl) / (0 - xl)
     out[:, 1] = 100.0 * (zr - zc) / xr

@@ -383,6 +383,10 @@ def _compiled_agrees(content: bytes) -> bool:
     assert python is not None, content
     assert _numbers_of(mine) == _numbers_of(python), content
     assert mine.proved
+    # the points it picks give the slopes the Python scan's numbers give
+    _, counts, values, _ = _numbers_of(python)
+    slopes = landxml._slopes(np.frombuffer(values), np.array(counts, dtype=np.int64))
+    assert landxml._slopes_from(*mine.picks.T).tobytes() == slopes.tobytes(), content
     return True
 
 
@@ -409,7 +413,12 @@ def test_the_compiled_scan_takes_the_shapes_writers_use_and_reads_them_as_the_py
         b"<CrossSect sta='75'><DesignCrossSectSurf></DesignCrossSectSurf></CrossSect>"
         b'<CrossSect sta="1e2"><DesignCrossSectSurf><CrossSectPnt>+0 -0</CrossSectPnt>'
         b"<CrossSectPnt>.5 5.</CrossSectPnt><CrossSectPnt>-00.0500E+01 1E-3</CrossSectPnt></DesignCrossSectSurf>"
-        b"</CrossSect>",
+        b"</CrossSect>"
+        # ties on each side (the first of equals) and several points at offset 0 (the last)
+        b'<CrossSect sta="80"><DesignCrossSectSurf><CrossSectPnt>-3.5 1</CrossSectPnt><CrossSectPnt>-3.5 2'
+        b"</CrossSectPnt><CrossSectPnt>0 5</CrossSectPnt><CrossSectPnt>-0 6</CrossSectPnt><CrossSectPnt>2 7"
+        b"</CrossSectPnt><CrossSectPnt>2 8</CrossSectPnt><CrossSectPnt>-7 0</CrossSectPnt><CrossSectPnt>0.0 4"
+        b"</CrossSectPnt><CrossSectPnt>9 9</CrossSectPnt></DesignCrossSectSurf></CrossSect>",
     ):
         assert _compiled_agrees(content), content
     # in chunks: a content over several MiB
@@ -567,3 +576,39 @@ def test_a_document_the_compiled_scan_reads_answers_as_the_tree(compiled, monkey
     assert sc is not None and all(region.station_values is not None for region in sc[1].values())  # (it read them)
     out = _same(doc, monkeypatch, scanned=True)
     assert out[0] == "read" and len(out[1][0]) == 30
+
+
+def _slopes_one_by_one(values: list[float], counts: list[int]) -> list[tuple[float, float]]:
+    """landxml._slopes's rule, section by section in plain Python (the second formulation): the nearest point on
+    each side (the first of equals), the centreline's elevation the last point at offset 0, else interpolated."""
+    out, at = [], 0
+    for c in counts:
+        pts = [(values[at + 2 * k], values[at + 2 * k + 1]) for k in range(c // 2)]
+        at += c
+        lefts = [p for p in pts if p[0] < 0]
+        rights = [p for p in pts if p[0] > 0]
+        if not lefts or not rights:
+            out.append((math.nan, math.nan))
+            continue
+        xl, zl = next(p for p in lefts if p[0] == max(q[0] for q in lefts))
+        xr, zr = next(p for p in rights if p[0] == min(q[0] for q in rights))
+        centre = [p[1] for p in pts if p[0] == 0]
+        zc = centre[-1] if centre else zl + (zr - zl) * (0 - xl) / (xr - xl)
+        out.append((100.0 * (zc - zl) / (0 - xl), 100.0 * (zr - zc) / xr))
+    return out
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_slopes_are_the_rule_applied_section_by_section(seed):
+    """Ties (the first of equals), several points at offset 0 (the last), sections with no point, one side only or
+    an odd number of numbers, offsets of -0.0: the vectorised slopes, bit for bit the rule's."""
+    rng = random.Random(seed)
+    counts = [rng.choice([0, 1, 2, 3, 4, 6, 6, 6, 7, 10, 14]) for _ in range(500)]
+    offsets = [-7.0, -3.5, -3.5, -1e-9, -0.0, 0.0, 0.0, 1e-9, 3.5, 3.5, 7.0]
+    values = []
+    for c in counts:
+        for k in range(c):
+            values.append(rng.choice(offsets) if k % 2 == 0 else round(rng.uniform(99, 101), rng.randint(0, 6)))
+    got = landxml._slopes(np.array(values), np.array(counts))
+    expected = np.array(_slopes_one_by_one(values, counts)).reshape(-1, 2)
+    assert got.tobytes() == expected.tobytes()

@@ -6,14 +6,18 @@
  * larger, and the Python scan spent about a second on them at 200,000 curves (regular expressions, a bytes object
  * per number, each number converted by a Python call), where issue 39 allows a third of the reading's time.
  *
- * scan(chunk) -> (stations, counts, values) | None. `chunk` (a bytes-like object) is part of a <CrossSects>'s
- * content, whole sections; the answer is three bytes objects (native doubles, int64, doubles): each section's
- * `sta`, how many numbers its points have (two a point), and the points' numbers in order. None: the chunk holds
- * something this scan does not take, and the caller reads the whole content with the Python scan (which takes more
- * shapes and refuses bad numbers word for word as the tree's reading does). Taken is only this, with XML's white
- * space (space, tab, line feed, carriage return) where shown as S:
+ * scan(chunk) -> (stations, counts, values, picks) | None. `chunk` (a bytes-like object) is part of a
+ * <CrossSects>'s content, whole sections; the answer is four bytes objects (native doubles, int64, doubles,
+ * doubles): each section's `sta`, how many numbers its points have (two a point), the points' numbers in order, and
+ * per section the five numbers landxml._slopes_from takes (the offset and elevation of the point nearest the
+ * centreline on the left, the same on the right, and the elevation of the last point at offset 0; nan where there is
+ * none), picked as landxml._slopes picks them (the arithmetic stays numpy's, the same for every path). None:
+ * the chunk holds something this scan does not take, and the caller reads the whole content with the Python scan
+ * (which takes more shapes and refuses bad numbers word for word as the tree's reading does). Taken is only this,
+ * with XML's white space (space, tab, line feed, carriage return) where shown as S:
  *
- *   S? ( <CrossSect ATTRS> S? <DesignCrossSectSurf ATTRS> ( S? <CrossSectPnt S? > S? NUM S NUM S? </CrossSectPnt S? > )*
+ *   S? ( <CrossSect ATTRS> S? <DesignCrossSectSurf ATTRS>
+ *        ( S? <CrossSectPnt S? > S? NUM S NUM S? </CrossSectPnt S? > )*
  *        S? </DesignCrossSectSurf S? > S? </CrossSect S? > S? )*
  *
  * ATTRS: ( S NAME S? = S? ("value" | 'value') )* S? with NAME as the Python scan's (ASCII letters, digits, "._-", not
@@ -47,7 +51,7 @@ typedef struct {
 
 typedef struct {
     const char *p, *end;
-    vec_t stations, counts, values;
+    vec_t stations, counts, values, picks;
 } scan_t;
 
 enum { OK = 0, DECLINE = 1, FAIL = -1 }; /* FAIL: a Python exception is set */
@@ -245,7 +249,10 @@ static int attributes(scan_t *s, const char **sta, const char **sta_end) {
 /* one <CrossSect> (its '<CrossSect' taken) */
 static int section(scan_t *s) {
     const char *sta, *sta_end;
-    double v;
+    double v, point[2];
+    /* the points landxml._slopes picks: the nearest on the left and on the right (the first of equals: only a
+     * nearer one replaces it) and the last at offset 0; nan where there is none */
+    double pick[5] = {NAN, NAN, NAN, NAN, NAN}; /* x left, z left, x right, z right, z centre */
     int64_t count = 0;
     int r = attributes(s, &sta, &sta_end);
     if (r != OK)
@@ -279,12 +286,24 @@ static int section(scan_t *s) {
                 s->p++;
             if (k == 0 && !(s->p < s->end && is_space(*s->p)))
                 return DECLINE; /* one word */
-            if ((r = number(word, s->p, &v)) != OK)
+            if ((r = number(word, s->p, &point[k])) != OK)
                 return r;
-            if (push(&s->values, &v, sizeof v) != OK)
-                return FAIL;
         }
+        if (push(&s->values, point, sizeof point) != OK)
+            return FAIL;
         count += 2;
+        if (point[0] < 0) {
+            if (isnan(pick[0]) || point[0] > pick[0]) {
+                pick[0] = point[0];
+                pick[1] = point[1];
+            }
+        } else if (point[0] > 0) {
+            if (isnan(pick[2]) || point[0] < pick[2]) {
+                pick[2] = point[0];
+                pick[3] = point[1];
+            }
+        } else /* 0 or -0 (every number is finite) */
+            pick[4] = point[1];
         skip_space(s);
         if (!TAKE(s, "</CrossSectPnt"))
             return DECLINE; /* a third word, an element inside */
@@ -303,6 +322,8 @@ static int section(scan_t *s) {
     skip_space(s);
     if (!TAKE(s, ">"))
         return DECLINE;
+    if (push(&s->picks, pick, sizeof pick) != OK)
+        return FAIL;
     return push(&s->counts, &count, sizeof count);
 }
 
@@ -329,22 +350,23 @@ static PyObject *xsectscan_scan(PyObject *self, PyObject *args) {
             break;
     }
     if (r == OK)
-        out = Py_BuildValue("(y#y#y#)", s.stations.data ? s.stations.data : "", s.stations.n,
+        out = Py_BuildValue("(y#y#y#y#)", s.stations.data ? s.stations.data : "", s.stations.n,
                             s.counts.data ? s.counts.data : "", s.counts.n, s.values.data ? s.values.data : "",
-                            s.values.n);
+                            s.values.n, s.picks.data ? s.picks.data : "", s.picks.n);
     else if (r == DECLINE)
         out = Py_NewRef(Py_None);
     PyMem_Free(s.stations.data);
     PyMem_Free(s.counts.data);
     PyMem_Free(s.values.data);
+    PyMem_Free(s.picks.data);
     PyBuffer_Release(&view);
     return out;
 }
 
 static PyMethodDef methods[] = {
     {"scan", xsectscan_scan, METH_VARARGS,
-     "scan(chunk) -> (stations, counts, values) as bytes of float64, int64, float64, or None where the chunk holds "
-     "something this scan does not take (see app/formats/csrc/xsectscan.c)."},
+     "scan(chunk) -> (stations, counts, values, picks) as bytes of float64, int64, float64, float64, or None where the "
+     "chunk holds something this scan does not take (see app/formats/csrc/xsectscan.c)."},
     {NULL, NULL, 0, NULL},
 };
 

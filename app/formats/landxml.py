@@ -167,6 +167,7 @@ _ROT_CODE = {"ccw": 0, "cw": 1}  # ElementColumns.direction
 _KIND_CODE = {"line": 0, "arc": 1, "spiral": 2}
 _DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
 _VERTICAL = ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve")  # a ProfAlign's points
+_SUPERELEVATION = ("FullSuperelev", "FullSuperSta", "RunoffSta")  # a Superelevation's children read
 
 
 def _float(text: str | None, where: str, attribute: str) -> float:
@@ -397,17 +398,15 @@ class _Reader:
         equations = self.equations(el, a, where_a)
         a = AlignmentGeometry(a_name, start, elements, equations, where=where_a)
         profiles = tuple(p for prof in _children(el, "Profile") for p in self.profiles(prof, a, where_a))
-        supers = tuple(
-            self.superelevation(s, a, f"{where_a} Superelevation {k}")
-            for k, s in enumerate(_children(el, "Superelevation"), start=1)
-        )
+        ranges = self.superelevations(el, where_a)
         rows = [self.cross_sections(cs, a, where_a) for cs in _children(el, "CrossSects")]
         # the ranges' and sections' stations as distances along, in one call each
-        if supers:
-            ends = distance_at(a, np.array([[r.start_distance_m, r.end_distance_m] for r in supers]))
+        supers: tuple[SuperelevationRange, ...] = ()
+        if ranges:
+            ends = distance_at(a, np.array([x for r in ranges for x in r[:2]]).reshape(-1, 2))
             supers = tuple(
-                SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
-                for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
+                SuperelevationRange(min(d0, d1), max(d0, d1), full, where)
+                for (d0, d1), (_, _, full, where) in zip(ends.tolist(), ranges, strict=True)
             )
         slopes: Sequence[CrossSlope] = ()
         if rows and sum(map(len, rows)):  # as columns: no record per section (a long road has 100,000s)
@@ -533,7 +532,35 @@ class _Reader:
 
     # ------------------------------------------------------------------------------ crossfall
 
-    def superelevation(self, el: ET.Element, a: AlignmentGeometry, where: str) -> SuperelevationRange:
+    def superelevations(self, el: ET.Element, where_a: str) -> list[tuple[float, float, float, str]]:
+        """The alignment's ``Superelevation`` elements as (start station, end station, full superelevation, where),
+        in the file's order (the stations made distances by the caller, all at once). A design file has one per
+        curve: the common case (the three children, plain finite numbers) is read in one pass over each element's
+        children; anything else by :meth:`superelevation`, which names every refusal."""
+        out: list[tuple[float, float, float, str]] = []
+        m, quick, isfinite = self.m, 0, math.isfinite
+        for k, s in enumerate(_children(el, "Superelevation"), start=1):
+            where = f"{where_a} Superelevation {k}"
+            texts: dict[str, str | None] = {}
+            for c in s:  # each name's first child (any namespace), as _child finds it
+                tag = c.tag
+                name = tag[tag.rfind("}") + 1 :]
+                if name in _SUPERELEVATION and name not in texts:
+                    texts[name] = c.text
+            try:
+                full, start, end = (float(texts[name]) for name in _SUPERELEVATION)  # type: ignore[arg-type]
+            except (KeyError, TypeError, ValueError):  # (None: a TypeError)
+                full = start = end = math.nan
+            if isfinite(full) and isfinite(start) and isfinite(end):
+                out.append((start * m, end * m, full, where))
+                quick += 1
+            else:
+                out.append(self.superelevation(s, where))
+        if quick:
+            self.counts["Superelevation"] += quick
+        return out
+
+    def superelevation(self, el: ET.Element, where: str) -> tuple[float, float, float, str]:
         self.counts["Superelevation"] += 1
 
         def value(name: str) -> float | None:
@@ -547,7 +574,7 @@ class _Reader:
         end = value("RunoffSta")
         start = start * self.m if start is not None else self.length(el, "staStart", where)
         end = end * self.m if end is not None else self.length(el, "staEnd", where)
-        return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
+        return start, end, full, where  # type: ignore[return-value]  (stations: made distances by the caller)
 
     def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> np.ndarray:
         """The sections' rows (station, left slope, right slope) [m, %, %], in the file's order."""

@@ -683,6 +683,14 @@ class _Reader:
 # reference, a point that is not two words, text not ASCII, a character XML forbids), the document is read as a
 # tree as before. The numbers are then the tree's: the same words, converted by the same calls.
 #
+# Where the compiled scan was built (app.formats._xsectscan, app/formats/csrc/xsectscan.c), it reads the content
+# first, in place, a chunk at a time: one pass in C that takes a strict subset of what the regular expressions take
+# (white space only between the tags, no attribute on a point, every number a plain decimal and finite), converts
+# the numbers as float() does and picks each section's points for its slopes. Anything outside that subset makes it
+# decline the whole content, and the regular expressions read it as before (tests/road/test_landxml_scan.py
+# compares the two, and both with the tree). At 200,000 curves the cross sections took 1.9-2.0 s of processor time
+# with the regular expressions, as much as the rest of the document, and take 0.1-0.2 s in C (docs/uploads.md).
+#
 # The scan runs before the guard (xmlsafe.fromstring), and where it recognises a content that is well-formed by
 # itself (only the three known tags, properly nested; attribute names plain and distinct; no reference, no "]]>",
 # no character XML forbids, no markup declaration anywhere before it), that content is also left out of the

@@ -778,8 +778,7 @@ def _scan_region_compiled(text: bytes, start: int, end: int) -> _Scanned | None:
     view = memoryview(text)
     pos, n = start, end
     while pos < n:
-        stop = text.find(b"</CrossSect>", min(pos + _SCAN_CHUNK, n), n)
-        stop = n if stop < 0 else stop + len(b"</CrossSect>")
+        stop = _section_end(text, min(pos + _SCAN_CHUNK, n), n)
         got = _xsectscan.scan(view[pos:stop])
         if got is None:
             return None
@@ -795,6 +794,21 @@ def _scan_region_compiled(text: bytes, start: int, end: int) -> _Scanned | None:
     out.chunks = [(0, len(out.counts), np.frombuffer(b"".join(values), dtype=np.float64), [])]
     out.picks = np.frombuffer(b"".join(picks), dtype=np.float64).reshape(-1, 5)
     return out
+
+
+def _section_end(text: bytes, at: int, end: int) -> int:
+    """Where the first ``</CrossSect>`` end tag at or after ``at`` ends (white space before its '>' too: a chunk
+    ends on it however the sections are written, and the compiled scan's calls stay short), or ``end``."""
+    while True:
+        k = text.find(b"</CrossSect", at, end)
+        if k < 0:
+            return end
+        after = k + len(b"</CrossSect")
+        while after < end and text[after] in b" \t\r\n":
+            after += 1
+        if after < end and text[after] == ord(">"):
+            return after + 1
+        at = k + 1  # </CrossSectPnt, </CrossSects...
 
 
 def _scan_region_python(text: bytes) -> _Scanned | None:

@@ -612,3 +612,23 @@ def test_the_slopes_are_the_rule_applied_section_by_section(seed):
     got = landxml._slopes(np.array(values), np.array(counts))
     expected = np.array(_slopes_one_by_one(values, counts)).reshape(-1, 2)
     assert got.tobytes() == expected.tobytes()
+
+
+@pytest.mark.parametrize("end_tag", ["</CrossSect>", "</CrossSect >", "</CrossSect\n>"])
+def test_the_compiled_scan_is_called_a_chunk_at_a_time_however_the_sections_end(compiled, monkeypatch, end_tag):
+    """Each call holds the interpreter's lock: a content of several MiB is handed over about a MiB at a time, cut
+    after a section's end tag however it is written."""
+    rng = random.Random(4)
+    content = _usual(40_000, rng).replace(b"</CrossSect>", end_tag.encode())
+    sizes = []
+
+    class Spy:
+        @staticmethod
+        def scan(chunk):
+            sizes.append(len(chunk))
+            return compiled.scan(chunk)
+
+    monkeypatch.setattr(landxml, "_xsectscan", Spy)
+    assert _compiled_agrees(content)
+    assert len(sizes) >= 3 and sum(sizes) == len(content)
+    assert max(sizes) < landxml._SCAN_CHUNK + 1000

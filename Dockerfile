@@ -11,7 +11,8 @@ ARG BASE_IMAGE=python:3.11.17-slim-bookworm
 FROM ${BASE_IMAGE} AS build
 ENV PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
 WORKDIR /src
-# a C compiler for the project's one compiled module (app.formats._rowwriter, the writer of result rows: setup.py),
+# a C compiler for the project's compiled modules (app.formats._rowwriter, the writer of result rows, and
+# app.formats._xsectscan, the reading of a LandXML's design cross sections: setup.py),
 # in this stage only: the runtime stage never has it. The official image has Python's headers; a base without them
 # (the stand-in of scripts/image/check.sh: Debian's python3) gets its python's from Debian's libpython3-dev.
 RUN apt-get update \
@@ -33,13 +34,13 @@ RUN pip --python /opt/venv/bin/python install --require-hashes --no-deps --only-
     && find /opt/venv/lib/python3.11/site-packages/numpy /opt/venv/lib/python3.11/site-packages/scipy \
         -depth -type d -name tests -exec rm -rf {} +
 # project layer: a change to the code rebuilds only this (a few hundred kilobytes); pip builds it with the
-# setuptools pyproject.toml asks for (from the index, or from the wheelhouse). The compiled module is optional to
-# setup.py (a machine without a compiler still installs, with the slower Python writer); here it must be built.
+# setuptools pyproject.toml asks for (from the index, or from the wheelhouse). The compiled modules are optional to
+# setup.py (a machine without a compiler still installs, with the slower Python writer and scan); here they must be.
 COPY pyproject.toml setup.py README.md ./
 COPY engine ./engine
 COPY app ./app
 RUN pip --python /opt/venv/bin/python install ${WHEELHOUSE:+--no-index --find-links "$WHEELHOUSE"} --no-deps . \
-    && /opt/venv/bin/python -I -c 'import app.formats._rowwriter'
+    && /opt/venv/bin/python -I -c 'import app.formats._rowwriter, app.formats._xsectscan'
 
 # ---- runtime stage: the virtualenv only, as a non-root user -------------------------------------------------------
 FROM ${BASE_IMAGE}

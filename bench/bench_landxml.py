@@ -7,8 +7,10 @@ The ceiling is the reader the service had before LandXML was read whole (``git s
 alignment_io.py``: Curves only, no profile, no stations computed), copied below as :func:`old_read_landxml` and
 timed in the same run, interleaved with the reader of today on the same document (the machine is shared: a figure is
 read against the ceiling beside it, not against another run's). The designed documents are timed in wall and in
-processor time (the second varies less on a shared machine), and the one with cross sections once more with the
-cross sections' scan off (app/formats/landxml.py: every section read from the tree), the reading the scan replaces.
+processor time (the second varies less on a shared machine), and the one with cross sections twice more: by the
+Python scan alone (what runs where the compiled scan, app.formats._xsectscan, was not built) and with the cross
+sections' scan off (app/formats/landxml.py: every section read from the tree), the reading the scan replaces. The
+row of the cross sections says which scan read them.
 
     python bench/bench_landxml.py [--curves 200000] [--repeat 3] [--write]
 
@@ -169,6 +171,16 @@ def _once_cpu(fn, doc: bytes) -> tuple[float, float]:
     return time.perf_counter() - t0, time.process_time() - c0
 
 
+def _python_scan(doc: bytes, **kw):
+    """Today's reader with the compiled scan of the cross sections off: the regular expressions read them."""
+    compiled = landxml._xsectscan
+    landxml._xsectscan = None
+    try:
+        return read_landxml(doc, **kw)
+    finally:
+        landxml._xsectscan = compiled
+
+
 def _as_tree(doc: bytes, **kw):
     """Today's reader with the cross sections' scan off: every section read from the tree, as before the scan."""
     scan = landxml._cross_section_scan
@@ -203,7 +215,10 @@ def main() -> None:
     for name, kw, reader in (
         ("lines and curves, every staStart", {"profile": False, "superelevation": False, "sections": False}, None),
         ("  + a profile", {"profile": True, "superelevation": False, "sections": False}, None),
-        ("  + a profile and cross sections", {"profile": True, "superelevation": False, "sections": True}, None),
+        ("  + a profile and cross sections" + (", the compiled scan" if landxml._xsectscan else ", the Python scan "
+         "(the compiled scan NOT BUILT)"), {"profile": True, "superelevation": False, "sections": True}, None),
+        ("  + a profile and cross sections, the Python scan alone",
+         {"profile": True, "superelevation": False, "sections": True}, _python_scan),
         ("  + a profile and cross sections, read as a tree (the scan off)",
          {"profile": True, "superelevation": False, "sections": True}, _as_tree),
         ("  + a profile, Superelevation, cross sections",

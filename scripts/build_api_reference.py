@@ -22,7 +22,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("engine", "app")
 #: modules that are not part of the reference: the database migrations (Alembic scripts run by the migrator); the
-#: compiled module (app.formats._rowwriter) is left out too: its docstrings are C strings, not reST
+#: compiled modules (app.formats._rowwriter, app.formats._xsectscan) are left out too: their docstrings are C strings
 SKIP_PREFIXES = ("app.db.migrations",)
 
 

@@ -45,6 +45,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from app.formats import xmlsafe
+
+try:
+    from app.formats import _xsectscan
+except ImportError:  # built without a C compiler: the Python scan (the same numbers, slower)
+    _xsectscan = None
 from app.formats.alignment_io import AlignmentFormatError
 from engine.road import (
     AlignmentGeometry,
@@ -173,6 +178,7 @@ _ROT_CODE = {"ccw": 0, "cw": 1}  # ElementColumns.direction
 _KIND_CODE = {"line": 0, "arc": 1, "spiral": 2}
 _DIRECTION_CODE = {"left": 0, "right": 1, None: -1}
 _VERTICAL = ("PVI", "ParaCurve", "UnsymParaCurve", "CircCurve")  # a ProfAlign's points
+_SUPERELEVATION = ("FullSuperelev", "FullSuperSta", "RunoffSta")  # a Superelevation's children read
 
 
 def _half_unit(text: str) -> float:
@@ -560,17 +566,15 @@ class _Reader:
         equations = self.equations(el, a, where_a)
         a = AlignmentGeometry(a_name, start, elements, equations, where=where_a)
         profiles = tuple(p for prof in _children(el, "Profile") for p in self.profiles(prof, a, where_a))
-        supers = tuple(
-            self.superelevation(s, a, f"{where_a} Superelevation {k}")
-            for k, s in enumerate(_children(el, "Superelevation"), start=1)
-        )
+        ranges = self.superelevations(el, where_a)
         rows = [self.cross_sections(cs, a, where_a) for cs in _children(el, "CrossSects")]
         # the ranges' and sections' stations as distances along, in one call each
-        if supers:
-            ends = distance_at(a, np.array([[r.start_distance_m, r.end_distance_m] for r in supers]))
+        supers: tuple[SuperelevationRange, ...] = ()
+        if ranges:
+            ends = distance_at(a, np.array([x for r in ranges for x in r[:2]]).reshape(-1, 2))
             supers = tuple(
-                SuperelevationRange(min(d0, d1), max(d0, d1), r.full_percent, r.where)
-                for (d0, d1), r in zip(ends.tolist(), supers, strict=True)
+                SuperelevationRange(min(d0, d1), max(d0, d1), full, where)
+                for (d0, d1), (_, _, full, where) in zip(ends.tolist(), ranges, strict=True)
             )
         slopes: Sequence[CrossSlope] = ()
         if rows and sum(map(len, rows)):  # as columns: no record per section (a long road has 100,000s)
@@ -696,7 +700,35 @@ class _Reader:
 
     # ------------------------------------------------------------------------------ crossfall
 
-    def superelevation(self, el: ET.Element, a: AlignmentGeometry, where: str) -> SuperelevationRange:
+    def superelevations(self, el: ET.Element, where_a: str) -> list[tuple[float, float, float, str]]:
+        """The alignment's ``Superelevation`` elements as (start station, end station, full superelevation, where),
+        in the file's order (the stations made distances by the caller, all at once). A design file has one per
+        curve: the common case (the three children, plain finite numbers) is read in one pass over each element's
+        children; anything else by :meth:`superelevation`, which names every refusal."""
+        out: list[tuple[float, float, float, str]] = []
+        m, quick, isfinite = self.m, 0, math.isfinite
+        for k, s in enumerate(_children(el, "Superelevation"), start=1):
+            where = f"{where_a} Superelevation {k}"
+            texts: dict[str, str | None] = {}
+            for c in s:  # each name's first child (any namespace), as _child finds it
+                tag = c.tag
+                name = tag[tag.rfind("}") + 1 :]
+                if name in _SUPERELEVATION and name not in texts:
+                    texts[name] = c.text
+            try:
+                full, start, end = (float(texts[name]) for name in _SUPERELEVATION)  # type: ignore[arg-type]
+            except (KeyError, TypeError, ValueError):  # (None: a TypeError)
+                full = start = end = math.nan
+            if isfinite(full) and isfinite(start) and isfinite(end):
+                out.append((start * m, end * m, full, where))
+                quick += 1
+            else:
+                out.append(self.superelevation(s, where))
+        if quick:
+            self.counts["Superelevation"] += quick
+        return out
+
+    def superelevation(self, el: ET.Element, where: str) -> tuple[float, float, float, str]:
         self.counts["Superelevation"] += 1
 
         def value(name: str) -> float | None:
@@ -710,7 +742,7 @@ class _Reader:
         end = value("RunoffSta")
         start = start * self.m if start is not None else self.length(el, "staStart", where)
         end = end * self.m if end is not None else self.length(el, "staEnd", where)
-        return SuperelevationRange(start, end, full, where)  # stations: made distances by the caller, all at once
+        return start, end, full, where  # type: ignore[return-value]  (stations: made distances by the caller)
 
     def cross_sections(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> np.ndarray:
         """The sections' rows (station, left slope, right slope) [m, %, %], in the file's order."""
@@ -762,11 +794,14 @@ class _Reader:
         n = len(sc.counts)
         if n:  # (as the tree's reading counts them: no entry for none)
             self.counts["CrossSect"] += n
-        try:
-            sta = np.array([float(t) for t in sc.stations])  # type: ignore[arg-type]  (None: a TypeError)
-            good = bool(np.isfinite(sta).all())
-        except (TypeError, ValueError):
-            good = False
+        if sc.station_values is not None:  # the compiled scan's: finite numbers, converted as float() converts
+            sta, good = sc.station_values, True
+        else:
+            try:
+                sta = np.array([float(t) for t in sc.stations])  # type: ignore[arg-type]  (None: a TypeError)
+                good = bool(np.isfinite(sta).all())
+            except (TypeError, ValueError):
+                good = False
         if not good:  # the first bad one refused as the tree's reading refuses it
             for k, t in enumerate(sc.stations, start=1):
                 attrib = {} if t is None else {"sta": _attribute_sta(f'sta="{t}"')}
@@ -783,7 +818,7 @@ class _Reader:
                     at += sc.counts[k]
                 values = np.array([float(w) for w in words])
             parts.append(values)
-        return self.slopes(np.concatenate(parts), sc.counts, stations, range(1, n + 1), where_a)
+        return self.slopes(np.concatenate(parts), sc.counts, stations, range(1, n + 1), where_a, sc.picks)
 
     def slopes(
         self,
@@ -792,10 +827,12 @@ class _Reader:
         stations: list[float] | np.ndarray,
         numbered: Sequence[int],
         where_a: str,
+        picks: np.ndarray | None = None,
     ) -> np.ndarray:
         """The sections' (station, left, right) rows from their numbers (``counts`` of them each; the stations made
-        distances by the caller), a section with no point on one side skipped and said so."""
-        slopes = _slopes(values, np.array(counts))
+        distances by the caller; ``picks``: each section's points picked by the compiled scan), a section with no
+        point on one side skipped and said so."""
+        slopes = _slopes(values, np.array(counts)) if picks is None else _slopes_from(*picks.T)
         missing = np.isnan(slopes[:, 0])
         for i in np.flatnonzero(missing).tolist():
             self.skipped.append(
@@ -813,6 +850,14 @@ class _Reader:
 # recognises every element in the content, and where it does not (another element, a comment, a character
 # reference, a point that is not two words, text not ASCII, a character XML forbids), the document is read as a
 # tree as before. The numbers are then the tree's: the same words, converted by the same calls.
+#
+# Where the compiled scan was built (app.formats._xsectscan, app/formats/csrc/xsectscan.c), it reads the content
+# first, in place, a chunk at a time: one pass in C that takes a strict subset of what the regular expressions take
+# (white space only between the tags, no attribute on a point, every number a plain decimal and finite), converts
+# the numbers as float() does and picks each section's points for its slopes. Anything outside that subset makes it
+# decline the whole content, and the regular expressions read it as before (tests/road/test_landxml_scan.py
+# compares the two, and both with the tree). At 200,000 curves the cross sections took 1.9-2.0 s of processor time
+# with the regular expressions, as much as the rest of the document, and take 0.1-0.2 s in C (docs/uploads.md).
 #
 # The scan runs before the guard (xmlsafe.fromstring), and where it recognises a content that is well-formed by
 # itself (only the three known tags, properly nested; attribute names plain and distinct; no reference, no "]]>",
@@ -854,7 +899,11 @@ class _Scanned:
 
     def __init__(self) -> None:
         self.stations: list[str | None] = []
-        self.counts: list[int] = []
+        #: the stations as numbers, and each section's points picked for its slopes (:func:`_slopes_from`'s
+        #: columns), where the compiled scan read them (then ``stations`` is empty)
+        self.station_values: np.ndarray | None = None
+        self.picks: np.ndarray | None = None
+        self.counts: list[int] | np.ndarray = []
         self.chunks: list[tuple[int, int, np.ndarray | None, list[str]]] = []  # first section, sections, values, words
         self.proved = True
 
@@ -876,9 +925,62 @@ def _distinct(attrs: bytes) -> bool:
     return len(names) == len(set(names))
 
 
-def _scan_region(text: bytes) -> _Scanned | None:
-    """The sections of one <CrossSects>'s content (``text``, ASCII), or None where it holds anything the scan does
-    not recognise (the document is then read as a tree)."""
+def _scan_region(text: bytes, start: int, end: int) -> _Scanned | None:
+    """The sections of one <CrossSects>'s content (``text[start:end]``), or None where it holds anything the scan
+    does not recognise (the document is then read as a tree): by the compiled scan where it was built and takes the
+    content (read in place), else by :func:`_scan_region_python` (the reference: the same numbers, more shapes)."""
+    if _xsectscan is not None:
+        compiled = _scan_region_compiled(text, start, end)
+        if compiled is not None:
+            return compiled
+    content = text[start:end]
+    return _scan_region_python(content) if content.isascii() else None
+
+
+def _scan_region_compiled(text: bytes, start: int, end: int) -> _Scanned | None:
+    """``text[start:end]``'s sections read by app.formats._xsectscan (app/formats/csrc/xsectscan.c), a chunk at a
+    time (the interpreter's lock is held in each and given up between them), or None where a chunk holds anything it
+    does not take (a shape, a word or a number the Python scan and the tree's reading must judge). What it takes is
+    the Python scan's usual shape in ASCII, well-formed by itself (proved), every number finite."""
+    stations, counts, values, picks = [], [], [], []
+    view = memoryview(text)
+    pos, n = start, end
+    while pos < n:
+        stop = _section_end(text, min(pos + _SCAN_CHUNK, n), n)
+        got = _xsectscan.scan(view[pos:stop])
+        if got is None:
+            return None
+        pos = stop
+        stations.append(got[0])
+        counts.append(got[1])
+        values.append(got[2])
+        picks.append(got[3])
+        time.sleep(0)  # the lock given up between chunks, as xmlsafe's parse does
+    out = _Scanned()
+    out.station_values = np.frombuffer(b"".join(stations), dtype=np.float64)
+    out.counts = np.frombuffer(b"".join(counts), dtype=np.int64)
+    out.chunks = [(0, len(out.counts), np.frombuffer(b"".join(values), dtype=np.float64), [])]
+    out.picks = np.frombuffer(b"".join(picks), dtype=np.float64).reshape(-1, 5)
+    return out
+
+
+def _section_end(text: bytes, at: int, end: int) -> int:
+    """Where the first ``</CrossSect>`` end tag at or after ``at`` ends (white space before its '>' too: a chunk
+    ends on it however the sections are written, and the compiled scan's calls stay short), or ``end``."""
+    while True:
+        k = text.find(b"</CrossSect", at, end)
+        if k < 0:
+            return end
+        after = k + len(b"</CrossSect")
+        while after < end and text[after] in b" \t\r\n":
+            after += 1
+        if after < end and text[after] == ord(">"):
+            return after + 1
+        at = k + 1  # </CrossSectPnt, </CrossSects...
+
+
+def _scan_region_python(text: bytes) -> _Scanned | None:
+    """:func:`_scan_region` by regular expressions (the reference, and where the compiled scan was not built)."""
     out = _Scanned()
     # a reference, or "]]>" (which character data may not hold): well-formed or not, not proved here
     out.proved = b"&" not in text and b"]]>" not in text
@@ -982,10 +1084,11 @@ def _cross_section_scan(text: str | bytes) -> tuple[Pieces, dict[str, _Scanned],
     view = memoryview(text) if is_bytes else text
     done = guarded_to = 0
     for k, (start, end) in enumerate(spans):
-        content = text[start:end]
-        if not content.isascii():
-            return None
-        region = _scan_region(content if is_bytes else content.encode("ascii"))
+        if is_bytes:  # read in place (a copy of the content only where the Python scan reads it)
+            region = _scan_region(text, start, end)
+        else:
+            content = text[start:end]
+            region = _scan_region(content.encode("ascii"), 0, end - start) if content.isascii() else None
         if region is None:
             return None
         marker = f'<{_SCANNED} key="{key}-{k}"/>'
@@ -1014,7 +1117,6 @@ def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
     at = np.repeat(first, pairs) + 2 * j
     x, z = values[at], values[at + 1]
     order = np.arange(len(x))
-    out = np.full((n, 2), np.nan)
     left, right, zero = x < 0, x > 0, x == 0
     # left: the greatest negative offset (the first of equals): the last of each section's (offset, -order) sort
     i = np.flatnonzero(left)[np.lexsort((-order[left], x[left], sec[left]))]
@@ -1031,6 +1133,13 @@ def _slopes(values: np.ndarray, counts: np.ndarray) -> np.ndarray:
     last = np.r_[sec[i][1:] != sec[i][:-1], True] if len(i) else np.zeros(0, bool)
     zc = np.full(n, np.nan)
     zc[sec[i][last]] = z[i][last]
+    return _slopes_from(xl, zl, xr, zr, zc)
+
+
+def _slopes_from(xl: np.ndarray, zl: np.ndarray, xr: np.ndarray, zr: np.ndarray, zc: np.ndarray) -> np.ndarray:
+    """:func:`_slopes` from each section's points picked (the nearest on the left and on the right, the centreline's
+    elevation where a point is at offset 0; nan where there is none): the compiled scan picks them as it reads."""
+    out = np.empty((len(xl), 2))
     zc = np.where(np.isnan(zc), zl + (zr - zl) * (0 - xl) / (xr - xl), zc)
     out[:, 0] = 100.0 * (zc - zl) / (0 - xl)
     out[:, 1] = 100.0 * (zr - zc) / xr

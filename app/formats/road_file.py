@@ -188,11 +188,12 @@ def curves_from_road_file(
             e_sections, s_from = superelevations(dataclasses.replace(a, superelevation=()), b)
             differ = (e_from == 0) & (s_from == 1) & (np.abs(e_sections - e_file) > DISAGREEMENT_PERCENT)
             first = len(ids) - n
+            given, used = e_sections.tolist(), e_file.tolist()  # (Python floats: formatted as numpy's, faster)
             for k in np.flatnonzero(differ).tolist():
                 skipped.append(
                     {
                         "what": f"{a.where} cross sections at curve {ids[first + k]!r}",
-                        "why": f"they give {e_sections[k]:.2f} %, the <Superelevation> element {e_file[k]:.2f} %: "
+                        "why": f"they give {given[k]:.2f} %, the <Superelevation> element {used[k]:.2f} %: "
                         "the element is used",
                     }
                 )

@@ -60,6 +60,26 @@ def _landxml(limit: int) -> bytes:
     return b"".join([*parts, tail])
 
 
+def _landxml_with_sections(limit: int) -> bytes:
+    """A LandXML alignment of a thousand arcs and design cross sections (app/formats/landxml.py reads them by its scan:
+    the compiled one where it was built) up to just under ``limit`` bytes."""
+    head = _landxml(60_000)[: -len(b"</CoordGeom></Alignment></Alignments></LandXML>")] + b"</CoordGeom><CrossSects>"
+    tail = b"</CrossSects></Alignment></Alignments></LandXML>"
+    section = (
+        b'<CrossSect sta="%.1f"><DesignCrossSectSurf><CrossSectPnt>-3.5 99.93</CrossSectPnt>'
+        b"<CrossSectPnt>0 100</CrossSectPnt><CrossSectPnt>3.5 %.2f</CrossSectPnt></DesignCrossSectSurf></CrossSect>"
+    )
+    parts, size, k = [head], len(head) + len(tail), 0
+    while True:
+        item = section % (0.1 * k, 99.9 + 0.01 * (k % 7))
+        if size + len(item) > limit - 1024:
+            break
+        parts.append(item)
+        size += len(item)
+        k += 1
+    return b"".join([*parts, tail])
+
+
 def _gpx(limit: int) -> bytes:
     """A GPX track of points 10 m apart along a gentle wave, just under ``limit`` bytes."""
     head = b'<?xml version="1.0"?><gpx version="1.1" creator="test" xmlns="http://www.topografix.com/GPX/1/1"><trk><trkseg>'
@@ -151,6 +171,26 @@ def test_a_cached_request_is_answered_within_100_ms_while_the_largest_landxml_is
     during = _over(latencies, parse_window)
     # requests were sent all through the parse (none can be while a parser holds the lock for the whole document)
     assert parse_window[1] - parse_window[0] > 0.5 and len(during) > 10
+    assert max(during) < TARGET_S, (sorted(during)[-5:], max(d for _, d in latencies), seconds)
+
+
+def test_a_cached_request_is_answered_within_100_ms_while_the_largest_landxml_of_cross_sections_is_read(
+    client, parse_window
+):
+    doc = _landxml_with_sections(LANDXML_LARGEST)
+    assert LANDXML_LARGEST - 2048 < len(doc) < LANDXML_LARGEST
+    latencies, r, seconds = _cached_latencies_during(
+        client,
+        lambda: client.post(
+            "/v1/alignments/assess/landxml?vehicle=table16-btrain&superelevation_percent=4",
+            content=doc,
+            headers={"content-type": "application/xml"},
+        ),
+    )
+    assert r.status_code == 200, r.text[:300]
+    assert r.json()["reading"]["elements"]["CrossSect"] > 300_000
+    during = _over(latencies, parse_window)
+    assert len(during) > 3
     assert max(during) < TARGET_S, (sorted(during)[-5:], max(d for _, d in latencies), seconds)
 
 

@@ -618,3 +618,50 @@ def test_the_sections_slopes_on_arrays_are_those_of_each_section_read_alone():
             assert math.isnan(left) and math.isnan(right)
         else:
             assert (left, right) == pytest.approx(expected, rel=1e-12, abs=1e-12)
+
+
+def _superelevation_element(rng: random.Random) -> str:
+    """A Superelevation as writers write it, now and then with what only the careful reading judges: a child
+    missing, blank, not a number, not finite or twice (the first counts), a namespace prefix, the stations only as
+    attributes."""
+    prefix = rng.choice(["", "", "", "l:"])
+    sta = rng.uniform(0, 300)
+    texts = {"FullSuperSta": f"{sta:.3f}", "FullSuperelev": f"{rng.uniform(-8, 8):.2f}", "RunoffSta": f"{sta + 20:g}"}
+    odd = ["", " ", "x", "inf", "nan", " 1_0 ", "1e400", "\n12.5\t", None]
+    parts = []
+    for name, text in texts.items():
+        if rng.random() < 0.15:
+            text = rng.choice(odd)
+        if text is not None:
+            tag = (prefix if rng.random() < 0.5 else "") + name
+            parts.append(f"<{tag}>{text}</{tag}>")
+        if rng.random() < 0.05:
+            parts.append(f"<{name}>{rng.uniform(0, 9):.1f}</{name}>")
+    rng.shuffle(parts)
+    attrs = rng.choice(['staStart="5" staEnd="295"', 'staStart="5"', "", 'staStart="a" staEnd="9"'])
+    return f'<Superelevation {attrs} xmlns:l="urn:x">{"".join(parts)}</Superelevation>'
+
+
+@pytest.mark.parametrize("seed", range(60))
+def test_superelevation_elements_read_alike_by_the_quick_and_the_careful_reading(monkeypatch, seed):
+    """The common Superelevation (its three children plain finite numbers) is read in one pass over its children;
+    whatever else by the careful reading that names each refusal. Both give the same ranges, or the same refusal
+    word for word (the careful reading alone: a fourth child name no element has sends every element to it)."""
+    from app.formats import landxml as module
+
+    rng = random.Random(seed)
+    design = Design("S", 0.0, [Element("Line", 100.0), Element("Curve", 100.0, 300.0, 300.0, "cw", "K")])
+    elements = "".join(_superelevation_element(rng) for _ in range(rng.randint(1, 6)))
+    doc = landxml(design).replace("</CoordGeom>", "</CoordGeom>" + elements)
+
+    def outcome():
+        try:
+            rf = read_road_file(doc)
+            return [a.superelevation for a in rf.alignments], rf.elements
+        except AlignmentFormatError as exc:
+            return str(exc), exc.location, exc.field
+
+    quick = outcome()
+    monkeypatch.setattr(module, "_SUPERELEVATION", (*module._SUPERELEVATION, "NoSuchChild"))
+    assert outcome() == quick
+    assert "malformed" not in str(quick[0])  # (the documents are well-formed: what is compared is the reading)

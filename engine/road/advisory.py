@@ -420,7 +420,7 @@ def _advisory_speeds(radius_m, superelevation_percent, deflection_deg, measured_
     criteria = LEGACY_CRITERIA if all_methods else (BALL_BANK_2009,)
     methods = {b.id: criterion_speed_kmh(b, r, e, body_roll_deg_per_g) for b in criteria}
     if measured_car_speed_kmh is None:  # (an alignment's rows): every speed is the criterion's, no select
-        methods["txdot-direct"] = np.full(n, np.nan)
+        methods["txdot-direct"] = np.broadcast_to(np.nan, n)  # (read-only: no whole-road array of nan made)
         raw, governed_by = methods[BALL_BANK_2009.id], np.ones(n, dtype=np.int8)
     else:
         direct = direct_method_speed_kmh(column(measured_car_speed_kmh))

@@ -298,7 +298,8 @@ def speed_profile(
 
     length = column(length_m, np.nan)
     desired = column(desired_speed_kmh, np.nan)
-    if np.any(~np.isfinite(desired) | (desired <= 0)):
+    # (two reductions, no whole-road temporaries: a nan makes the minimum nan, which fails the test like inf)
+    if n and not (desired.min() > 0 and desired.max() < math.inf):
         i = int(np.flatnonzero(~np.isfinite(desired) | (desired <= 0))[0])
         raise InvalidRoad(
             "the desired speed must be a positive speed", field=f"curves[{first_index + i}].desired_speed_kmh"
@@ -519,16 +520,20 @@ def _element_points(node_s, v2, acc, d, c2, last):
     pts_s = np.empty((rows, 3))
     pts_v = np.empty((rows, 3))
     pts_s[:m, 0], pts_v[:m, 0] = s_p, v2p
-    np.minimum(s1, s_q, out=pts_s[:m, 1])
-    np.maximum(s2, s_p, out=pts_s[:m, 2])
-    pts_v[:m, 1] = c2
-    pts_v[:m, 2] = c2
+    # the middle points in the chunk's own contiguous arrays (s1, s2, c2), the meeting points scattered into them,
+    # then each copied once into its column: scatters into a column of the (rows, 3) arrays by a mixed index cost
+    # more than a contiguous scatter
+    np.minimum(s1, s_q, out=s1)
+    np.maximum(s2, s_p, out=s2)
     if len(meet):  # where the lines meet below the cap: v2p + 2 a (s - s_p) = v2q + 2 d (s_q - s)
         a, sp, sq, vp, vq = acc[meet], s_p[meet], s_q[meet], v2p[meet], v2q[meet]
         s_star = np.clip((vq - vp + 2.0 * d * sq + 2.0 * a * sp) / (2.0 * (a + d)), sp, sq)
         v_star2 = np.minimum(vp + 2.0 * a * (s_star - sp), vq + 2.0 * d * (sq - s_star))
-        pts_s[meet, 1] = pts_s[meet, 2] = s_star
-        pts_v[meet, 1] = pts_v[meet, 2] = v_star2
+        s1[meet] = s_star
+        s2[meet] = s_star
+        c2[meet] = v_star2
+    pts_s[:m, 1], pts_s[:m, 2] = s1, s2
+    pts_v[:m, 1] = pts_v[:m, 2] = c2
     if last:
         pts_s[m], pts_v[m] = s_q[-1], v2q[-1]  # the last node (thrice: the duplicates are dropped)
     return pts_s.ravel(), pts_v.ravel()

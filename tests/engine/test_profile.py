@@ -108,6 +108,17 @@ def test_deceleration_beyond_a_loaded_truck_is_refused():
         prof.check_deceleration(0.0)
 
 
+@pytest.mark.parametrize("bad", [np.nan, 0.0, -50.0, np.inf, -np.inf])
+def test_a_desired_speed_that_is_not_a_positive_speed_is_refused_naming_its_curve(bad):
+    start, length = [0.0, 200.0, 400.0, 600.0], [100.0, 100.0, 100.0, 100.0]
+    desired = np.array([90.0, 80.0, bad, bad])
+    with pytest.raises(InvalidRoad) as e:
+        prof.speed_profile(start, length, desired, first_index=10)
+    assert e.value.field == "curves[12].desired_speed_kmh"  # the first bad one, as the request numbers it
+    # any finite positive speed passes, however large or small
+    assert len(prof.speed_profile(start, length, [1e6, 1e-3, 90.0, 90.0]).station_m)
+
+
 def test_crawl_speed_is_where_the_model_stops_accelerating():
     g = np.array([0.0, 3.0, 6.0])
     v = prof.crawl_speed_kmh(g)

@@ -54,6 +54,18 @@ def test_a_string_decoded_in_slices_is_json_loads_string(encoded, step):
     assert decode_string(text, step) == value
 
 
+@pytest.mark.parametrize("in_place", [True, False], ids=["appended", "joined"])
+def test_slices_of_ever_wider_characters_make_json_loads_string(monkeypatch, in_place):
+    """The value grows slice by slice: slices that need a wider storage than the value so far (ASCII, then Latin-1,
+    the BMP, beyond it; and back) make the same string as ``json.loads``, appended in place or (under a trace
+    function, as coverage runs) joined at the end."""
+    monkeypatch.setattr(jsonpieces, "_appends_in_place", lambda: in_place)
+    value = "a" * 40 + "é" * 30 + "b" * 40 + "€" * 30 + "c" * 40 + "😀" * 30 + "d" * 40 + "é" + "e" * 40
+    text = orjson.dumps(value)[1:-1]
+    for step in (12, 13, 40, 64, len(text) - 1, len(text)):
+        assert decode_string(text, step) == value == json.loads(b'"' + text + b'"')
+
+
 @pytest.mark.parametrize(
     "text",
     [b"\\ud83d", b"\\ude00", b"ab\\ud83d\\u0041", b"\x01", b"a\xff", b"\xe2\x82", b"\\x41", b"\\u12", b"ab\\"],

@@ -27,7 +27,7 @@ so that the slices' values joined are the string's value. Same rule: any doubt, 
 No call on the way works on the whole string at once. The slices are short (:data:`STRING_SLICE_BYTES`), and the
 value is not made by joining the slices' values (one C call that allocates the whole value and fills it: 40-55 ms of
 processor time for a 64-million-character document on the 2-core machine under load, most of it the page faults of
-the fresh allocation) but by appending each slice's value in place as it is decoded (:func:`decode_string`).
+the fresh allocation) but by appending each slice's value in place as it is decoded (:func:`assembled`).
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ import bisect
 import re
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -228,39 +228,45 @@ def _appends_in_place() -> bool:
     """Whether ``value += part`` on a local ``str`` nothing else refers to grows it in place here: CPython's
     specialised instruction (3.11 on) does (the string is reallocated, a large one by moving its pages, not copying
     them, and only the part is copied); under a trace or profile function (a debugger, coverage) CPython 3.11 runs
-    the generic instruction, which makes a new string each time (a copy of all so far per slice)."""
+    the generic instruction, which makes a new string each time (a copy of all so far per part)."""
     return sys.implementation.name == "cpython" and sys.gettrace() is None and sys.getprofile() is None
+
+
+def assembled(parts: Iterable[str]) -> str:
+    """``"".join(parts)``, each part appended to the value in place as it comes (:func:`_appends_in_place`; else
+    joined). A join is one C call that allocates the whole value and writes it, every page of the new allocation
+    faulted in during that call: for a 64-million-character document 40-55 ms of processor time under load on the
+    2-core machine, the interpreter's lock held throughout. Appended, each call faults only its part's pages. A
+    part whose characters need a wider storage than the value so far (the first beyond ASCII, beyond Latin-1,
+    beyond the BMP) makes a new value once, a copy of all so far: a document whose first such character comes late
+    pays that copy (no worse than the join)."""
+    if not _appends_in_place():
+        return "".join(parts)
+    value = ""
+    for part in parts:
+        value += part  # in place: `value` is a local nothing else refers to (the parts are not kept)
+    return value
+
+
+def _slice_values(text: bytes, step: int, lo: int, hi: int) -> Iterator[str]:
+    """The values of ``text[lo:hi]``'s slices of about ``step`` bytes (see :func:`decode_string`), the interpreter
+    let go after each."""
+    while hi - lo > step:
+        cut = _safe_cut(text, lo, hi, lo + step)
+        if cut is None:
+            raise ValueError("no place to cut the string")
+        yield orjson.loads(b'"' + text[lo:cut] + b'"')
+        lo = cut
+        time.sleep(0)
+    yield orjson.loads(b'"' + text[lo:hi] + b'"')
 
 
 def decode_string(text: bytes, step: int = STRING_SLICE_BYTES, lo: int = 0, hi: int | None = None) -> str:
     """The value of the JSON string whose text (between its quotes) is ``text[lo:hi]``: ``orjson.loads(b'"' + text
-    + b'"')``, decoded ``step`` bytes at a time, the interpreter let go between two slices. Raises
-    ``orjson.JSONDecodeError`` (or ValueError: no place to cut) where the text is not a string's.
-
-    Each slice's value is appended to the value in place (:func:`_appends_in_place`), not joined at the end: a join
-    is one C call that allocates the whole value and writes it, every page of the new allocation faulted in during
-    that call (for a 64-million-character document 40-55 ms of processor time under load, the lock held
-    throughout); appended, each call faults only the pages of its slice. A slice whose characters need a wider
-    storage than the value so far (the first beyond ASCII, beyond Latin-1, beyond the BMP) makes a new value once,
-    a copy of all so far: a document whose first such character comes late pays that copy (no worse than the join)."""
-    hi = len(text) if hi is None else hi
-    in_place = _appends_in_place()
-    value, parts = "", []
-    while True:
-        last = hi - lo <= step
-        cut = hi if last else _safe_cut(text, lo, hi, lo + step)
-        if cut is None:
-            raise ValueError("no place to cut the string")
-        part = orjson.loads(b'"' + text[lo:cut] + b'"')
-        if in_place:
-            value += part  # in place: `value` is a local nothing else refers to (see _appends_in_place)
-        else:
-            parts.append(part)
-        del part
-        if last:
-            return value if in_place else "".join(parts)
-        lo = cut
-        time.sleep(0)
+    + b'"')``, decoded ``step`` bytes at a time, the interpreter let go between two slices, the slices' values
+    :func:`assembled` (not joined in one call). Raises ``orjson.JSONDecodeError`` (or ValueError: no place to cut)
+    where the text is not a string's."""
+    return assembled(_slice_values(text, step, lo, len(text) if hi is None else hi))
 
 
 def _put_back(data: Any, values: dict[str, str], depth: int = 0) -> int:

@@ -25,7 +25,7 @@ time (``orjson.loads(b'"' + slice + b'"')``), cut only where no escape, surrogat
 so that the slices' values joined are the string's value. Same rule: any doubt, the whole body at once.
 
 No call on the way works on the whole string at once. The slices are short (:data:`STRING_SLICE_BYTES`), and the
-value is not made by joining the slices' values (one C call that allocates the whole value and fills it: 40-55 ms of
+value is not made by joining the slices' values (one C call that allocates the whole value and fills it: 37-55 ms of
 processor time for a 64-million-character document on the 2-core machine under load, most of it the page faults of
 the fresh allocation) but by appending each slice's value in place as it is decoded (:func:`assembled`).
 """
@@ -235,7 +235,7 @@ def _appends_in_place() -> bool:
 def assembled(parts: Iterable[str]) -> str:
     """``"".join(parts)``, each part appended to the value in place as it comes (:func:`_appends_in_place`; else
     joined). A join is one C call that allocates the whole value and writes it, every page of the new allocation
-    faulted in during that call: for a 64-million-character document 40-55 ms of processor time under load on the
+    faulted in during that call: for a 64-million-character document 37-55 ms of processor time under load on the
     2-core machine, the interpreter's lock held throughout. Appended, each call faults only its part's pages. A
     part whose characters need a wider storage than the value so far (the first beyond ASCII, beyond Latin-1,
     beyond the BMP) makes a new value once, a copy of all so far: a document whose first such character comes late

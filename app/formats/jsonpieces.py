@@ -174,7 +174,7 @@ def loads_in_pieces(
 #: a string value longer than this (its JSON text) is decoded a slice at a time by :func:`loads_long_strings` [bytes]
 LONG_STRING_BYTES = 1 << 20
 #: the slice of a long string decoded, or scanned for its end, in one call [bytes]: a few milliseconds at most (the
-#: scan, a regular expression, is the slower: up to 20 ms of processor time for a MiB under load, ~5 ms for this)
+#: scan, a regular expression, is the slower: up to 20 ms of processor time for a MiB under load, under 5 ms for this)
 STRING_SLICE_BYTES = 256 * 1024
 #: a body with more strings than this before its long ones is parsed at once (walking them in Python would take
 #: longer than the parse it spares) [-]

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import codecs
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,6 +23,7 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from starlette.datastructures import UploadFile
 
+from app.formats.jsonpieces import assembled
 from app.http.problems import InvalidAlignment
 
 MULTIPART = "multipart/form-data"
@@ -106,9 +108,13 @@ def _decoded(data: bytes, encoding: str) -> str:
     chunks is decoded whole); raises :class:`UnicodeDecodeError` as ``bytes.decode`` does."""
     decoder = codecs.getincrementaldecoder(encoding)()
     view = memoryview(data)
-    parts = [decoder.decode(view[k : k + DECODE_CHUNK]) for k in range(0, len(view), DECODE_CHUNK)]
-    parts.append(decoder.decode(b"", final=True))
-    return "".join(parts)
+
+    def parts() -> Iterator[str]:
+        for k in range(0, len(view), DECODE_CHUNK):
+            yield decoder.decode(view[k : k + DECODE_CHUNK])
+        yield decoder.decode(b"", final=True)
+
+    return assembled(parts())  # appended as decoded, not joined in one call (see assembled)
 
 
 def decode_xml(data: bytes, field: str = "body", root: str = "LandXML", error: type = InvalidAlignment) -> str:

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.formats import jsonpieces
+from app.formats import jsonpieces, uploads
 from app.formats.jsonpieces import decode_string, loads_long_strings
 
 #: characters whose JSON text is an escape, two or three UTF-8 bytes, or a surrogate pair (astral), and XML's
@@ -52,6 +52,31 @@ def test_a_string_decoded_in_slices_is_json_loads_string(encoded, step):
     value, text = encoded
     assert json.loads(b'"' + text + b'"') == value  # the encoding is JSON's
     assert decode_string(text, step) == value
+
+
+@pytest.mark.parametrize("in_place", [True, False], ids=["appended", "joined"])
+def test_slices_of_ever_wider_characters_make_json_loads_string(monkeypatch, in_place):
+    """The value grows slice by slice: slices that need a wider storage than the value so far (ASCII, then Latin-1,
+    the BMP, beyond it; and back) make the same string as ``json.loads``, appended in place or (under a trace
+    function, as coverage runs) joined at the end."""
+    monkeypatch.setattr(jsonpieces, "_appends_in_place", lambda: in_place)
+    value = "a" * 40 + "é" * 30 + "b" * 40 + "€" * 30 + "c" * 40 + "😀" * 30 + "d" * 40 + "é" + "e" * 40
+    text = orjson.dumps(value)[1:-1]
+    for step in (12, 13, 40, 64, len(text) - 1, len(text)):
+        assert decode_string(text, step) == value == json.loads(b'"' + text + b'"')
+
+
+@pytest.mark.parametrize("in_place", [True, False], ids=["appended", "joined"])
+def test_an_upload_decoded_in_chunks_is_its_text(monkeypatch, in_place):
+    """An XML upload (app/formats/uploads.py) is decoded a chunk at a time and its parts assembled the same way:
+    every cut through a UTF-8 character (two, three or four bytes), the byte-order mark dropped, is ``bytes.decode``'s
+    text."""
+    monkeypatch.setattr(jsonpieces, "_appends_in_place", lambda: in_place)
+    doc = '<?xml version="1.0"?><LandXML name="' + "a" * 9 + "Vegløp" + "b" * 9 + "€" * 5 + "c" * 9 + '😀">' + "d" * 9
+    data = "\ufeff".encode() + doc.encode()
+    for chunk in range(1, 14):
+        monkeypatch.setattr(uploads, "DECODE_CHUNK", chunk)
+        assert uploads.decode_xml(data) == data.decode("utf-8-sig") == doc
 
 
 @pytest.mark.parametrize(

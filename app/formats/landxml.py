@@ -1033,6 +1033,33 @@ def _scan_region_python(text: bytes) -> _Scanned | None:
 Pieces = list[str | bytes | memoryview]
 
 
+def _find(text: str | bytes, sub: str | bytes, start: int) -> int:
+    """``text.find(sub, start)``, searched ``_SCAN_CHUNK`` at a time with the lock given up between two (one call over
+    a 64 MiB content held it for 20-30 ms)."""
+    n, step = len(text), _SCAN_CHUNK
+    while start < n:
+        at = text.find(sub, start, min(n, start + step + len(sub) - 1))
+        if at >= 0:
+            return at
+        start += step
+        time.sleep(0)
+    return -1
+
+
+def _ascii(text: str, start: int, end: int) -> bytearray | None:
+    """``text[start:end]`` encoded as ASCII, or None where it holds another character (the tree reads it): a chunk
+    at a time, the lock given up between two (the content sliced, checked and encoded in one call each held it for
+    about 100 ms at 64 MiB); a bytearray grows in place."""
+    out = bytearray()
+    for a in range(start, end, _SCAN_CHUNK):
+        piece = text[a : min(end, a + _SCAN_CHUNK)]
+        if not piece.isascii():
+            return None
+        out += piece.encode("ascii")
+        time.sleep(0)
+    return out
+
+
 def _cross_section_scan(text: str | bytes) -> tuple[Pieces, dict[str, _Scanned], Pieces] | None:
     """The pieces of ``text`` to build the tree from (each scanned <CrossSects>'s content replaced by the marker),
     the scanned sections by their marker's key (random: a file cannot name them) and the pieces for the guard
@@ -1054,7 +1081,7 @@ def _cross_section_scan(text: str | bytes) -> tuple[Pieces, dict[str, _Scanned],
                 continue
             return None  # an empty element or attributes the pattern does not take: the tree reads it
         start = at + m.end()
-        end = text.find(close_tag, start)
+        end = _find(text, close_tag, start)
         if end < 0:
             return None
         spans.append((start, end))
@@ -1087,8 +1114,8 @@ def _cross_section_scan(text: str | bytes) -> tuple[Pieces, dict[str, _Scanned],
         if is_bytes:  # read in place (a copy of the content only where the Python scan reads it)
             region = _scan_region(text, start, end)
         else:
-            content = text[start:end]
-            region = _scan_region(content.encode("ascii"), 0, end - start) if content.isascii() else None
+            content = _ascii(text, start, end)
+            region = None if content is None else _scan_region(content, 0, end - start)
         if region is None:
             return None
         marker = f'<{_SCANNED} key="{key}-{k}"/>'

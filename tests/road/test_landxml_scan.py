@@ -632,3 +632,21 @@ def test_the_compiled_scan_is_called_a_chunk_at_a_time_however_the_sections_end(
     assert _compiled_agrees(content)
     assert len(sizes) >= 3 and sum(sizes) == len(content)
     assert max(sizes) < landxml._SCAN_CHUNK + 1000
+
+
+@pytest.mark.parametrize("chunk", [1, 3, 7, 64])
+def test_the_chunked_find_and_ascii_encoding_equal_one_call(monkeypatch, chunk):
+    """A 64 MiB document's search for </CrossSects> and the ASCII encoding of a content sent as text go a chunk at a
+    time (the lock given up between two); whatever the chunk, the same answer as one call."""
+    monkeypatch.setattr(landxml, "_SCAN_CHUNK", chunk)
+    rng = random.Random(chunk)
+    for _ in range(200):
+        text = "".join(rng.choice("ab</Cé") for _ in range(rng.randint(0, 40)))
+        sub = rng.choice(["</C", "b", "ab<", "é", "</CrossSects"])
+        start = rng.randint(0, len(text))
+        assert landxml._find(text, sub, start) == text.find(sub, start)
+        assert landxml._find(text.encode(), sub.encode(), start) == text.encode().find(sub.encode(), start)
+        end = rng.randint(start, len(text))
+        got = landxml._ascii(text, start, end)
+        want = text[start:end].encode("ascii") if text[start:end].isascii() else None
+        assert (None if got is None else bytes(got)) == want

@@ -10,7 +10,9 @@ read against the ceiling beside it, not against another run's). The designed doc
 processor time (the second varies less on a shared machine), and the one with cross sections twice more: by the
 Python scan alone (what runs where the compiled scan, app.formats._xsectscan, was not built) and with the cross
 sections' scan off (app/formats/landxml.py: every section read from the tree), the reading the scan replaces. The
-row of the cross sections says which scan read them.
+row of the cross sections says which scan read them. With Superelevation elements the cross sections are banked
+through each curve to its element's superelevation (they agree, as a design package writes them); a last row keeps
+every section at the normal crown under them (they disagree under every curve, and the reading notes each).
 
     python bench/bench_landxml.py [--curves 200000] [--repeat 3] [--write]
 

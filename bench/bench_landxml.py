@@ -10,7 +10,9 @@ read against the ceiling beside it, not against another run's). The designed doc
 processor time (the second varies less on a shared machine), and the one with cross sections twice more: by the
 Python scan alone (what runs where the compiled scan, app.formats._xsectscan, was not built) and with the cross
 sections' scan off (app/formats/landxml.py: every section read from the tree), the reading the scan replaces. The
-row of the cross sections says which scan read them.
+row of the cross sections says which scan read them. With Superelevation elements the cross sections are banked
+through each curve to its element's superelevation (they agree, as a design package writes them); a last row keeps
+every section at the normal crown under them (they disagree under every curve, and the reading notes each).
 
     python bench/bench_landxml.py [--curves 200000] [--repeat 3] [--write]
 
@@ -121,15 +123,24 @@ def old_read_landxml(text, *, superelevation_percent, grade_percent=0.0, posted_
 # ---------------------------------------------------------------------------------------------- documents
 
 
-def designed(curves: list[dict], *, profile: bool, superelevation: bool, sections: bool) -> str:
+def designed(
+    curves: list[dict], *, profile: bool, superelevation: bool, sections: bool, banked: bool | None = None
+) -> str:
     """The curves as a design package writes them: a 50 m line before each and every element's staStart; with
     ``profile`` a ProfAlign with a PVI every 500 m (150 m parabolas), with ``superelevation`` a Superelevation
-    element per curve, with ``sections`` a design cross section every 50 m (two per curve: a crowned road)."""
+    element per curve, with ``sections`` a design cross section every 50 m (one on each line, one at each curve's
+    middle). ``banked`` (default: with ``superelevation``): the section at a curve's middle rotated about the
+    centreline to the curve's full superelevation, as a design package writes the sections of a superelevated road
+    (they agree with its Superelevation elements); else every section keeps the normal crown, -2 % on either side
+    (with Superelevation elements of 0-12 %: cross sections that disagree with them under every curve)."""
+    banked = superelevation if banked is None else banked
     items, supers, sta = [], [], 0.0
+    middles: dict[int, float] = {}  # a curve's middle station: its superelevation [%]
     for c in curves:
         items.append(f'<Line length="50" staStart="{sta}"/>')
         sta += 50
         items.append(f'<Curve rot="cw" radius="{c["radius_m"]}" length="50" staStart="{sta}" name="{c["id"]}"/>')
+        middles[int(sta) + 25] = c["superelevation_percent"]
         supers.append(
             f'<Superelevation staStart="{sta - 10}" staEnd="{sta + 60}"><FullSuperSta>{sta}</FullSuperSta>'
             f"<FullSuperelev>{c['superelevation_percent']}</FullSuperelev>"
@@ -140,9 +151,24 @@ def designed(curves: list[dict], *, profile: bool, superelevation: bool, section
     for k, s in enumerate(range(500, int(sta) - 500, 500)):
         pvis.append(f'<ParaCurve length="150">{s} {100 + (k % 2) * 10}</ParaCurve>')
     pvis.append(f"<PVI>{sta} 100</PVI>")
+    crown = (
+        "<CrossSectPnt>-3.5 99.93</CrossSectPnt><CrossSectPnt>0 100</CrossSectPnt>"
+        "<CrossSectPnt>3.5 99.93</CrossSectPnt>"
+    )
+
+    def surface(s: int) -> str:
+        e = middles.get(s) if banked else None
+        if e is None:
+            return crown
+        # every curve turns right (rot="cw"): banked toward the inside, the left edge up and the right edge down
+        dz = 3.5 * e / 100
+        return (
+            f"<CrossSectPnt>-3.5 {100 + dz:.4f}</CrossSectPnt><CrossSectPnt>0 100</CrossSectPnt>"
+            f"<CrossSectPnt>3.5 {100 - dz:.4f}</CrossSectPnt>"
+        )
+
     sects = "".join(
-        f'<CrossSect sta="{s}"><DesignCrossSectSurf><CrossSectPnt>-3.5 99.93</CrossSectPnt>'
-        f"<CrossSectPnt>0 100</CrossSectPnt><CrossSectPnt>3.5 99.93</CrossSectPnt></DesignCrossSectSurf></CrossSect>"
+        f'<CrossSect sta="{s}"><DesignCrossSectSurf>{surface(s)}</DesignCrossSectSurf></CrossSect>'
         for s in range(25, int(sta), 50)
     )
     return (
@@ -221,8 +247,10 @@ def main() -> None:
          {"profile": True, "superelevation": False, "sections": True}, _python_scan),
         ("  + a profile and cross sections, read as a tree (the scan off)",
          {"profile": True, "superelevation": False, "sections": True}, _as_tree),
-        ("  + a profile, Superelevation, cross sections",
+        ("  + a profile, Superelevation, cross sections (banked through the curves, agreeing)",
          {"profile": True, "superelevation": True, "sections": True}, None),
+        ("  + a profile, Superelevation, cross sections crowned under every curve (disagreeing: a note per curve)",
+         {"profile": True, "superelevation": True, "sections": True, "banked": False}, None),
     ):  # fmt: skip
         data = designed(curves, **kw).encode()
         samples = [_once_cpu(reader or read_landxml, data) for _ in range(args.repeat)]

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import operator
 import re
 import secrets
 import time
@@ -57,6 +58,7 @@ from engine.road import (
     ElementColumns,
     HorizontalElement,
     Profile,
+    RangeColumns,
     RoadFile,
     SegmentColumns,
     SlopeColumns,
@@ -103,6 +105,10 @@ ARC_GROSS = 0.01
 MAX_ARC_NOTES = 20
 
 
+_TAG_OF = operator.attrgetter("tag")
+_TAG_SLICE = 2**16  # children whose tags are gathered per C call (a few milliseconds)
+
+
 def _children(el: ET.Element, name: str) -> list[ET.Element]:
     """``el``'s children named ``name`` in any namespace (a string test per child: there can be a million)."""
     suffix = "}" + name
@@ -115,6 +121,22 @@ def _child(el: ET.Element, name: str) -> ET.Element | None:
         if c.tag == name or c.tag.endswith(suffix):
             return c
     return None
+
+
+def _children_named(el: ET.Element, names: tuple[str, ...]) -> dict[str, list[ET.Element]]:
+    """:func:`_children` for each of ``names`` (each name's list in document order), the children's tags looked at
+    once: where one tag (one namespace) holds a name, its children are found by ``findall`` on that tag, which
+    compares in C (an alignment has a Superelevation element per curve: a million children). The tags are
+    gathered a slice at a time, each a short C call (the interpreter's lock is not held over a million)."""
+    tags: set[str] = set()
+    for at in range(0, len(el), _TAG_SLICE):
+        tags.update(map(_TAG_OF, el[at : at + _TAG_SLICE]))
+    out = {}
+    for name in names:
+        suffix = "}" + name
+        mine = [t for t in tags if isinstance(t, str) and (t == name or t.endswith(suffix))]
+        out[name] = el.findall(mine[0]) if len(mine) == 1 else _children(el, name) if mine else []
+    return out
 
 
 def _numbers(texts: list[str], where: str, what: str) -> list[float]:
@@ -220,6 +242,26 @@ def _float(text: str | None, where: str, attribute: str) -> float:
     if not math.isfinite(v):
         raise AlignmentFormatError(f"{attribute} must be finite, got {(text or '').strip()[:40]!r}", where, attribute)
     return v
+
+
+class _Places(Sequence[str]):
+    """The places of an alignment's ``Superelevation`` elements (``<prefix><k>``, k from 1), each made when it is
+    asked for: a design file has one per curve, and a range's place is read only where a record is made."""
+
+    __slots__ = ("n", "prefix")
+
+    def __init__(self, prefix: str, n: int) -> None:
+        self.prefix, self.n = prefix, n
+
+    def __len__(self) -> int:
+        return self.n
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(self.n))]
+        if not -self.n <= i < self.n:
+            raise IndexError("place index out of range")
+        return f"{self.prefix}{i % self.n + 1}"
 
 
 class _Reader:
@@ -474,7 +516,9 @@ class _Reader:
         ordinal: dict[str, int] = {}
         prefix, m, inf, nan = f"{where_a} CoordGeom ", self.m, math.inf, math.nan
         self.notes, self.disagreeing = [], 0
-        for geom in _children(el, "CoordGeom"):
+        # the alignment's children by name, looked at once (a design file has a Superelevation element per curve)
+        kids = _children_named(el, ("CoordGeom", "StaEquation", "Profile", "Superelevation", "CrossSects"))
+        for geom in kids["CoordGeom"]:
             for child in geom:
                 tag = child.tag
                 name = tag[tag.rfind("}") + 1 :]  # xmlsafe.local, inline: once per element of a large file
@@ -563,18 +607,22 @@ class _Reader:
         notes = tuple(self.notes)
         elements = ElementColumns(kinds, lengths, r1s, r2s, dirs, stas, types, names, wheres)
         a = AlignmentGeometry(a_name, start, elements, where=where_a)
-        equations = self.equations(el, a, where_a)
+        equations = self.equations(kids["StaEquation"], a, where_a)
         a = AlignmentGeometry(a_name, start, elements, equations, where=where_a)
-        profiles = tuple(p for prof in _children(el, "Profile") for p in self.profiles(prof, a, where_a))
-        ranges = self.superelevations(el, where_a)
-        rows = [self.cross_sections(cs, a, where_a) for cs in _children(el, "CrossSects")]
+        profiles = tuple(p for prof in kids["Profile"] for p in self.profiles(prof, a, where_a))
+        ranges = self.superelevations(kids["Superelevation"], where_a)
+        rows = [self.cross_sections(cs, a, where_a) for cs in kids["CrossSects"]]
         # the ranges' and sections' stations as distances along, in one call each
-        supers: tuple[SuperelevationRange, ...] = ()
-        if ranges:
-            ends = distance_at(a, np.array([x for r in ranges for x in r[:2]]).reshape(-1, 2))
-            supers = tuple(
-                SuperelevationRange(min(d0, d1), max(d0, d1), full, where)
-                for (d0, d1), (_, _, full, where) in zip(ends.tolist(), ranges, strict=True)
+        supers: Sequence[SuperelevationRange] = ()
+        if ranges is not None:  # as columns: no record per range (a design file has one per curve)
+            sta0, sta1, full = ranges
+            d0, d1 = distance_at(a, np.column_stack((sta0, sta1))).T
+            # each range's nearer end first (min() and max() of the two, as the records were made: the first of equals)
+            supers = RangeColumns(
+                np.where(d1 < d0, d1, d0),
+                np.where(d1 > d0, d1, d0),
+                full,
+                _Places(f"{where_a} Superelevation ", len(full)),
             )
         slopes: Sequence[CrossSlope] = ()
         if rows and sum(map(len, rows)):  # as columns: no record per section (a long road has 100,000s)
@@ -582,9 +630,9 @@ class _Reader:
             slopes = SlopeColumns(distance_at(a, sections[:, 0]), sections[:, 1].copy(), sections[:, 2].copy())
         return AlignmentGeometry(a_name, start, elements, equations, profiles, supers, slopes, where_a, notes)
 
-    def equations(self, el: ET.Element, a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
+    def equations(self, els: list[ET.Element], a: AlignmentGeometry, where_a: str) -> tuple[StationEquation, ...]:
         out: list[StationEquation] = []
-        for k, eq in enumerate(_children(el, "StaEquation"), start=1):
+        for k, eq in enumerate(els, start=1):
             self.counts["StaEquation"] += 1
             where = f"{where_a} StaEquation {k}"
             back = self.length(eq, "staBack", where)
@@ -700,33 +748,63 @@ class _Reader:
 
     # ------------------------------------------------------------------------------ crossfall
 
-    def superelevations(self, el: ET.Element, where_a: str) -> list[tuple[float, float, float, str]]:
-        """The alignment's ``Superelevation`` elements as (start station, end station, full superelevation, where),
-        in the file's order (the stations made distances by the caller, all at once). A design file has one per
-        curve: the common case (the three children, plain finite numbers) is read in one pass over each element's
-        children; anything else by :meth:`superelevation`, which names every refusal."""
-        out: list[tuple[float, float, float, str]] = []
-        m, quick, isfinite = self.m, 0, math.isfinite
-        for k, s in enumerate(_children(el, "Superelevation"), start=1):
-            where = f"{where_a} Superelevation {k}"
-            texts: dict[str, str | None] = {}
-            for c in s:  # each name's first child (any namespace), as _child finds it
-                tag = c.tag
-                name = tag[tag.rfind("}") + 1 :]
-                if name in _SUPERELEVATION and name not in texts:
-                    texts[name] = c.text
-            try:
-                full, start, end = (float(texts[name]) for name in _SUPERELEVATION)  # type: ignore[arg-type]
-            except (KeyError, TypeError, ValueError):  # (None: a TypeError)
-                full = start = end = math.nan
+    def superelevations(self, els: list[ET.Element], where_a: str) -> tuple[array, array, array] | None:
+        """The alignment's ``Superelevation`` elements (``els``) as columns: start station, end station, full
+        superelevation, in the file's order (the stations made distances by the caller, all at once); None where
+        there is none. A design file has one per curve: the common case (the three children, plain finite numbers)
+        is read in one pass over each element's children; anything else by :meth:`superelevation`, which names
+        every refusal."""
+        if not els:
+            return None
+        starts, ends, fulls = array("d"), array("d"), array("d")
+        m, quick, isfinite, nan = self.m, 0, math.isfinite, math.nan
+        usual: tuple[str, str, str] | None = None  # the usual children's tags, in the elements' namespace
+        head = els[0].tag
+        if isinstance(head, str):
+            ns = head[: head.rfind("}") + 1]
+            usual = (ns + "FullSuperSta", ns + "FullSuperelev", ns + "RunoffSta")
+        for k, s in enumerate(els, start=1):
+            full = start = end = nan
+            if len(s) == 3 and s.tag == head:  # the shape written most: the three children, in this order
+                a, b, c = s
+                if (a.tag, b.tag, c.tag) == usual:
+                    try:
+                        full, start, end = float(b.text), float(a.text), float(c.text)  # type: ignore[arg-type]
+                    except (TypeError, ValueError):  # (None: a TypeError)
+                        full = start = end = nan
+                else:
+                    full, start, end = self._usual(s)
+            else:
+                full, start, end = self._usual(s)
             if isfinite(full) and isfinite(start) and isfinite(end):
-                out.append((start * m, end * m, full, where))
+                starts.append(start * m)
+                ends.append(end * m)
+                fulls.append(full)
                 quick += 1
             else:
-                out.append(self.superelevation(s, where))
+                start, end, full, _ = self.superelevation(s, f"{where_a} Superelevation {k}")
+                starts.append(start)
+                ends.append(end)
+                fulls.append(full)
         if quick:
             self.counts["Superelevation"] += quick
-        return out
+        return starts, ends, fulls
+
+    @staticmethod
+    def _usual(s: ET.Element) -> tuple[float, float, float]:
+        """(full, start, end) of a ``Superelevation`` from each name's first child (any namespace, as
+        :func:`_child` finds it), nan where one is missing or not a number (the careful path then reads it)."""
+        texts: dict[str, str | None] = {}
+        for c in s:
+            tag = c.tag
+            name = tag[tag.rfind("}") + 1 :]
+            if name in _SUPERELEVATION and name not in texts:
+                texts[name] = c.text
+        try:
+            full, start, end = (float(texts[name]) for name in _SUPERELEVATION)  # type: ignore[arg-type]
+        except (KeyError, TypeError, ValueError):  # (None: a TypeError)
+            return math.nan, math.nan, math.nan
+        return full, start, end
 
     def superelevation(self, el: ET.Element, where: str) -> tuple[float, float, float, str]:
         self.counts["Superelevation"] += 1

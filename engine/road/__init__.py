@@ -89,6 +89,8 @@ elements (lines, circular arcs, spirals), stations, the vertical profile and the
   reading of the profile's segments (a long profile has tens of thousands)
 - ``HorizontalElement``: One element of the horizontal alignment (LandXML ``Line``/``Curve``/``Spiral``
 - ``Profile``: A vertical profile (LandXML ``ProfAlign``
+- ``RangeColumns``: Superelevation ranges held as columns, one entry per range: a sequence of ``SuperelevationRange``
+  (each made when it is asked for) that ``superelevations`` reads as arrays
 - ``RoadFile``: What a reader made of one road-design file: its alignments in SI units and the facts the answer's
   ``reading`` summary reports (``format`` such as ``"LandXML 1.2"`` or ``"IFC4X3_ADD2"``
 - ``station_at``: The station as the file writes it [m] at each distance along [m]: the alignment's start station plus
@@ -204,6 +206,7 @@ from .geometry import (
     ElementColumns,
     HorizontalElement,
     Profile,
+    RangeColumns,
     RoadFile,
     SegmentColumns,
     SlopeColumns,
@@ -293,6 +296,7 @@ __all__ = [
     "LimitTableRow",
     "MinRadius",
     "Profile",
+    "RangeColumns",
     "RoadFile",
     "SegmentColumns",
     "SlopeColumns",

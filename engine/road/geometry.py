@@ -63,9 +63,9 @@ _DIRECTIONS: tuple[Direction | None, ...] = ("left", "right", None)  # by code 0
 
 
 class _Columns(Sequence[_Record]):
-    """What the column forms (:class:`ElementColumns`, :class:`SegmentColumns`, :class:`SlopeColumns`) share: a
-    sequence of records, each made by the subclass's ``_one(i)`` when it is asked for, equal to any sequence of the
-    same records (a tuple of records included), hashed as that tuple."""
+    """What the column forms (:class:`ElementColumns`, :class:`SegmentColumns`, :class:`SlopeColumns`,
+    :class:`RangeColumns`) share: a sequence of records, each made by the subclass's ``_one(i)`` when it is asked
+    for, equal to any sequence of the same records (a tuple of records included), hashed as that tuple."""
 
     __slots__ = ()
     #: what one entry is called in an index error, and many in the repr
@@ -267,6 +267,31 @@ class SuperelevationRange:
     where: str = ""
 
 
+class RangeColumns(_Columns[SuperelevationRange]):
+    """Superelevation ranges held as columns, one entry per range: a sequence of :class:`SuperelevationRange` (each
+    made when it is asked for) that :func:`superelevations` reads as arrays (a design file has one per curve: a
+    long road's hundreds of thousands of records would be made, sorted and read back). ``where``: any sequence of
+    the ranges' places (a reader may make each when it is asked for)."""
+
+    _noun, _plural = "superelevation range", "ranges"
+    __slots__ = ("end_distance_m", "full_percent", "start_distance_m", "where")
+
+    def __init__(self, start_distance_m, end_distance_m, full_percent, where: Sequence[str]):
+        self.start_distance_m = np.asarray(start_distance_m, dtype=float)
+        self.end_distance_m = np.asarray(end_distance_m, dtype=float)
+        self.full_percent = np.asarray(full_percent, dtype=float)
+        self.where = where
+        self._same_lengths()
+
+    def __len__(self) -> int:
+        return len(self.start_distance_m)
+
+    def _one(self, i: int) -> SuperelevationRange:
+        return SuperelevationRange(
+            float(self.start_distance_m[i]), float(self.end_distance_m[i]), float(self.full_percent[i]), self.where[i]
+        )
+
+
 @dataclass(frozen=True)
 class CrossSlope:
     """The cross slopes at one distance (LandXML design ``CrossSect``; IFC cant): the left lane's and the right
@@ -308,7 +333,8 @@ class AlignmentGeometry:
     elements: Sequence[HorizontalElement]
     station_equations: tuple[StationEquation, ...] = ()
     profiles: tuple[Profile, ...] = ()
-    superelevation: tuple[SuperelevationRange, ...] = ()
+    #: a tuple of records, or (a reader of a large file) the same as :class:`RangeColumns`
+    superelevation: Sequence[SuperelevationRange] = ()
     #: a tuple of records, or (a reader of a large file) the same as :class:`SlopeColumns`
     cross_slopes: Sequence[CrossSlope] = ()
     where: str = ""
@@ -740,11 +766,16 @@ def superelevations(alignment: AlignmentGeometry, cols: BendColumns) -> tuple[np
     n = len(cols)
     mid = cols.arc_start_m + 0.5 * cols.arc_length_m
     value, source = np.full(n, np.nan), np.full(n, np.nan)
-    ranges = sorted(alignment.superelevation, key=lambda r: r.start_distance_m)
-    if ranges and n:
-        rs = np.array([r.start_distance_m for r in ranges])
-        re = np.array([r.end_distance_m for r in ranges])
-        full = np.array([r.full_percent for r in ranges])
+    ranges = alignment.superelevation
+    if len(ranges) and n:
+        if isinstance(ranges, RangeColumns):  # in order of start, ranges with one start as given (as sorted() does)
+            order = np.argsort(ranges.start_distance_m, kind="stable")
+            rs, re, full = ranges.start_distance_m[order], ranges.end_distance_m[order], ranges.full_percent[order]
+        else:
+            ranges = sorted(ranges, key=lambda r: r.start_distance_m)
+            rs = np.array([r.start_distance_m for r in ranges])
+            re = np.array([r.end_distance_m for r in ranges])
+            full = np.array([r.full_percent for r in ranges])
         k = np.searchsorted(rs, mid, side="right") - 1
         kc = np.clip(k, 0, len(rs) - 1)
         contained = (k >= 0) & (mid <= re[kc])

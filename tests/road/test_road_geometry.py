@@ -17,6 +17,7 @@ from engine.road.geometry import (
     ElementColumns,
     HorizontalElement,
     Profile,
+    RangeColumns,
     StationEquation,
     SuperelevationRange,
     VerticalSegment,
@@ -193,6 +194,31 @@ def test_superelevation_range_wins_over_cross_slopes():
     )
     (b,) = bends(a)
     assert bend_superelevation(a, b) == (6.0, "file")
+
+
+@pytest.mark.parametrize(
+    "given",
+    [
+        [(300.0, 420.0, 5.0), (90.0, 150.0, 7.0), (90.0, 210.0, 6.0)],
+        [(300.0, 420.0, 5.0), (90.0, 210.0, 6.0), (90.0, 150.0, 7.0)],
+        [(90.0, 210.0, 6.0), (300.0, 420.0, 5.0), (-0.0, 60.0, 3.0), (0.0, 60.0, 2.0)],
+    ],
+)
+def test_superelevation_ranges_as_columns_are_the_records(given):
+    # a reader's columns (RangeColumns) against the records they stand for: the same sequence, and every bend given
+    # the same range (ties of start broken by the order given, as a stable sort of the records breaks them)
+    records = tuple(SuperelevationRange(s, e, f, f"R{k}") for k, (s, e, f) in enumerate(given))
+    columns = RangeColumns(*(np.array(c) for c in zip(*given, strict=True)), [r.where for r in records])
+    assert columns == records and records == columns and list(columns) == list(records) and len(columns) == len(given)
+    assert columns[-1] == records[-1] and columns[1:] == records[1:]
+    elements = (line(100.0), arc(100.0, 300.0, "right"), line(100.0), arc(100.0, 300.0), line(100.0))
+    as_records = alignment(*elements, superelevation=records)
+    as_columns = alignment(*elements, superelevation=columns)
+    got = [bend_superelevation(as_columns, b) for b in bends(as_columns)]
+    assert got == [bend_superelevation(as_records, b) for b in bends(as_records)]
+    # the first bend's middle (150 m) lies in both ranges from 90 m: the one of them given last wins
+    assert got[0] == (next(f for s, e, f in reversed(given) if s == 90.0), "file")
+    assert got[1] == (5.0, "file")
 
 
 @pytest.mark.parametrize("direction", ["left", "right"])

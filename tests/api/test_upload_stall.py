@@ -109,8 +109,9 @@ def _landxml(limit: int) -> bytes:
 
 
 def _landxml_with_sections(limit: int) -> bytes:
-    """A LandXML alignment of a thousand arcs and design cross sections (app/formats/landxml.py reads them by its scan:
-    the compiled one where it was built) up to just under ``limit`` bytes."""
+    """A LandXML alignment of 831 arcs (the first 60,000 bytes of :func:`_landxml`) and design cross sections
+    (app/formats/landxml.py reads them by its scan: the compiled one where it was built) up to just under ``limit``
+    bytes."""
     head = _landxml(60_000)[: -len(b"</CoordGeom></Alignment></Alignments></LandXML>")] + b"</CoordGeom><CrossSects>"
     tail = b"</CrossSects></Alignment></Alignments></LandXML>"
     section = (

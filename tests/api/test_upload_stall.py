@@ -89,6 +89,17 @@ sys.stdout.buffer.write(out.tobytes())
 """
 
 
+def _filled(head: bytes, tail: bytes, item: Callable[[int], bytes], limit: int) -> bytes:
+    """``head``, then ``item(0)``, ``item(1)``, ... while the document stays 1 KiB under ``limit`` bytes, then
+    ``tail``."""
+    parts, size, k = [head], len(head) + len(tail), 0
+    while size + len(piece := item(k)) <= limit - 1024:
+        parts.append(piece)
+        size += len(piece)
+        k += 1
+    return b"".join([*parts, tail])
+
+
 def _landxml(limit: int) -> bytes:
     """A LandXML alignment of arcs just under ``limit`` bytes (far more curves than a request may hold)."""
     head = (
@@ -97,15 +108,7 @@ def _landxml(limit: int) -> bytes:
     )
     tail = b"</CoordGeom></Alignment></Alignments></LandXML>"
     curve = b'<Curve rot="cw" radius="%d" length="50" staStart="%d" name="C%d"/>'
-    parts, size, k = [head], len(head) + len(tail), 0
-    while True:
-        item = curve % (100 + k % 700, 50 * k, k)
-        if size + len(item) > limit - 1024:
-            break
-        parts.append(item)
-        size += len(item)
-        k += 1
-    return b"".join([*parts, tail])
+    return _filled(head, tail, lambda k: curve % (100 + k % 700, 50 * k, k), limit)
 
 
 def _landxml_with_sections(limit: int) -> bytes:
@@ -118,34 +121,15 @@ def _landxml_with_sections(limit: int) -> bytes:
         b'<CrossSect sta="%.1f"><DesignCrossSectSurf><CrossSectPnt>-3.5 99.93</CrossSectPnt>'
         b"<CrossSectPnt>0 100</CrossSectPnt><CrossSectPnt>3.5 %.2f</CrossSectPnt></DesignCrossSectSurf></CrossSect>"
     )
-    parts, size, k = [head], len(head) + len(tail), 0
-    while True:
-        item = section % (0.1 * k, 99.9 + 0.01 * (k % 7))
-        if size + len(item) > limit - 1024:
-            break
-        parts.append(item)
-        size += len(item)
-        k += 1
-    return b"".join([*parts, tail])
+    return _filled(head, tail, lambda k: section % (0.1 * k, 99.9 + 0.01 * (k % 7)), limit)
 
 
 def _gpx(limit: int) -> bytes:
     """A GPX track of points 10 m apart along a gentle wave, just under ``limit`` bytes."""
     head = b'<?xml version="1.0"?><gpx version="1.1" creator="test" xmlns="http://www.topografix.com/GPX/1/1"><trk><trkseg>'
     tail = b"</trkseg></trk></gpx>"
-    parts, size, k = [head], len(head) + len(tail), 0
-    while True:
-        item = b'<trkpt lat="%.7f" lon="%.7f"><ele>%.1f</ele></trkpt>' % (
-            45.0 + 0.00009 * k,
-            7.0 + 0.0005 * ((k // 50) % 2),
-            100.0,
-        )
-        if size + len(item) > limit - 1024:
-            break
-        parts.append(item)
-        size += len(item)
-        k += 1
-    return b"".join([*parts, tail])
+    point = b'<trkpt lat="%.7f" lon="%.7f"><ele>%.1f</ele></trkpt>'
+    return _filled(head, tail, lambda k: point % (45.0 + 0.00009 * k, 7.0 + 0.0005 * ((k // 50) % 2), 100.0), limit)
 
 
 @pytest.fixture

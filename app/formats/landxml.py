@@ -764,16 +764,13 @@ class _Reader:
             ns = head[: head.rfind("}") + 1]
             usual = (ns + "FullSuperSta", ns + "FullSuperelev", ns + "RunoffSta")
         for k, s in enumerate(els, start=1):
-            full = start = end = nan
-            if len(s) == 3 and s.tag == head:  # the shape written most: the three children, in this order
+            # the shape written most: the three children, in this order, in the elements' namespace
+            if len(s) == 3 and s.tag == head and (s[0].tag, s[1].tag, s[2].tag) == usual:
                 a, b, c = s
-                if (a.tag, b.tag, c.tag) == usual:
-                    try:
-                        full, start, end = float(b.text), float(a.text), float(c.text)  # type: ignore[arg-type]
-                    except (TypeError, ValueError):  # (None: a TypeError)
-                        full = start = end = nan
-                else:
-                    full, start, end = self._usual(s)
+                try:
+                    full, start, end = float(b.text), float(a.text), float(c.text)  # type: ignore[arg-type]
+                except (TypeError, ValueError):  # (None: a TypeError)
+                    full = start = end = nan
             else:
                 full, start, end = self._usual(s)
             if isfinite(full) and isfinite(start) and isfinite(end):
